@@ -1,0 +1,68 @@
+# trigeo - top-level entry points. `make demo` and `make test` work on a fresh Debian 12 as root:
+# they install the missing Debian packages with apt-get first.
+#
+#   make demo    build, then run the main job on the bundled default mesh (data/nvd_spot.obj)
+#   make test    build with gcc and run every test; build with clang + ASan/UBSan (+ fuzz smoke)
+#                and run every test again
+#   make bench   benchmarks against the peers (Embree, CGAL), tables on stdout
+#   make fuzz    libFuzzer targets for a bounded time each (FUZZ_SECONDS, default 60)
+#   make build   release build only (build/)
+
+SHELL := /bin/bash
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+BUILD ?= build
+ASAN_BUILD ?= build-asan
+BENCH_BUILD ?= build-bench
+FUZZ_SECONDS ?= 60
+CMAKE_FLAGS ?=
+
+DEPS := cmake make gcc g++ clang libclang-rt-14-dev libomp-dev zlib1g-dev libpng-dev libgmp-dev pkg-config python3
+BENCH_DEPS := libembree-dev libcgal-dev libeigen3-dev time
+
+.PHONY: all deps bench-deps build demo test test-release test-asan bench fuzz clean large
+
+all: build
+
+deps:
+	@bash scripts/ensure-packages.sh $(DEPS)
+
+bench-deps:
+	@bash scripts/ensure-packages.sh $(DEPS) $(BENCH_DEPS)
+
+build: deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=gcc -DCMAKE_CXX_COMPILER=g++ $(CMAKE_FLAGS) >/dev/null
+	cmake --build $(BUILD) -j $(JOBS)
+
+demo: build
+	@bash scripts/demo.sh $(BUILD)/trigeo
+
+test-release: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+test-asan: deps
+	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+	      -DTG_SANITIZE=ON -DTG_FUZZ=ON $(CMAKE_FLAGS) >/dev/null
+	cmake --build $(ASAN_BUILD) -j $(JOBS)
+	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	      ctest --output-on-failure -j $(JOBS)
+
+test: test-release test-asan
+	@echo "make test: gcc release suite and clang ASan+UBSan suite both passed"
+
+large:
+	@bash ../shared/tools/make_large_meshes.sh $(BUILD)/large
+
+bench: bench-deps large
+	cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=gcc -DCMAKE_CXX_COMPILER=g++ \
+	      -DTG_BENCH=ON -DTG_TESTS=OFF -DTG_LARGE_DIR=$(abspath $(BUILD))/large $(CMAKE_FLAGS) >/dev/null
+	cmake --build $(BENCH_BUILD) -j $(JOBS)
+	@bash bench/run.sh $(BENCH_BUILD) $(abspath $(BUILD))/large
+
+fuzz: deps
+	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+	      -DTG_SANITIZE=ON -DTG_FUZZ=ON $(CMAKE_FLAGS) >/dev/null
+	cmake --build $(ASAN_BUILD) -j $(JOBS)
+	@bash fuzz/run.sh $(ASAN_BUILD) $(FUZZ_SECONDS)
+
+clean:
+	rm -rf $(BUILD) $(ASAN_BUILD) $(BENCH_BUILD)

@@ -1,0 +1,255 @@
+/* trigeo.h - the public API of trigeo: distances and shortest paths on triangle meshes.
+ *
+ * This header is the API reference. Every declaration has a doc block stating its behaviour,
+ * return values, parameter contracts (sizes, NULL-ability, units), complexity and thread-safety.
+ *
+ * Conventions (see ../shared/STYLE.md of the project):
+ *  - Every fallible function returns tg_status (TG_OK == 0). On failure, *out is NULL, nothing
+ *    leaks and the caller's state is unchanged.
+ *  - Built objects (tg_mesh, tg_bvh, ...) are opaque and immutable after creation; queries on them
+ *    are thread-safe. tg_x_destroy(NULL) is a no-op.
+ *  - Options structs: a NULL pointer or a zero-initialised struct means "defaults".
+ *  - Indices are 0-based uint32_t in file order; TG_NONE (0xFFFFFFFF) means "no such element".
+ *  - Coordinates and lengths are double. The library never prints, exits, aborts or keeps mutable
+ *    globals.
+ *
+ * Compiles as C11 and as C++ (extern "C").
+ */
+#ifndef TRIGEO_H
+#define TRIGEO_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ============================================================================================== */
+/* Version                                                                                        */
+/* ============================================================================================== */
+
+#define TG_VERSION_MAJOR 0
+#define TG_VERSION_MINOR 1
+#define TG_VERSION_PATCH 0
+/** Single integer for comparisons: major * 10000 + minor * 100 + patch. */
+#define TG_VERSION (TG_VERSION_MAJOR * 10000 + TG_VERSION_MINOR * 100 + TG_VERSION_PATCH)
+
+/** The library's version as "MAJOR.MINOR.PATCH". Static storage; never NULL; thread-safe. */
+const char* tg_version(void);
+
+/* ============================================================================================== */
+/* Status codes and diagnostics                                                                   */
+/* ============================================================================================== */
+
+/** The one list of status codes: X(enum name, short name, sentence). */
+#define TG_STATUS_LIST(X)                                                                         \
+    X(TG_OK, "ok", "success")                                                                     \
+    X(TG_ERR_INVALID_ARGUMENT, "invalid_argument", "an argument is NULL, out of range or inconsistent") \
+    X(TG_ERR_OUT_OF_MEMORY, "out_of_memory", "memory allocation failed or a size overflowed")     \
+    X(TG_ERR_IO, "io", "a file could not be opened, read or written")                             \
+    X(TG_ERR_PARSE, "parse", "the input is malformed")                                            \
+    X(TG_ERR_INVALID_MESH, "invalid_mesh", "the data cannot describe a mesh (bad index, NaN or infinite coordinate)") \
+    X(TG_ERR_UNSUPPORTED, "unsupported", "the format or feature is not supported")                \
+    X(TG_ERR_CAPACITY, "capacity", "an output buffer is too small")
+
+/** Status returned by every fallible function. TG_OK is 0. */
+typedef enum tg_status {
+#define TG_STATUS_ENUM_(name, short_name, sentence) name,
+    TG_STATUS_LIST(TG_STATUS_ENUM_)
+#undef TG_STATUS_ENUM_
+    TG_STATUS_COUNT_
+} tg_status;
+
+/** Short identifier of a status, e.g. "parse". Unknown values give "unknown". Never NULL. */
+const char* tg_status_name(tg_status status);
+/** One sentence describing a status. Unknown values give "unknown status". Never NULL. */
+const char* tg_status_string(tg_status status);
+
+/** Where and why input was rejected. Filled by parsers and validators when the caller passes a
+ *  non-NULL tg_diag*; all strings are NUL-terminated (truncated if longer than their arrays).
+ *  line and column are 1-based (0 = not applicable, e.g. for binary formats, where byte_offset is
+ *  the offset of the offending byte). */
+typedef struct tg_diag {
+    char file[256];     /**< the path or name given to the reader ("" if none) */
+    uint64_t line;      /**< 1-based line of the problem, 0 if not a text position */
+    uint64_t column;    /**< 1-based column, 0 if unknown */
+    uint64_t byte_offset; /**< offset from the start of the (decompressed) data */
+    char message[256];  /**< one sentence, no trailing newline */
+} tg_diag;
+
+/* ============================================================================================== */
+/* Allocator                                                                                      */
+/* ============================================================================================== */
+
+/** Memory hooks. Any NULL function pointer (or a NULL tg_allocator*) selects the C library's
+ *  malloc/realloc/free for all three. The hooks must be thread-safe if objects are created from
+ *  several threads. realloc(user, NULL, n) must behave as alloc; free(user, NULL) as a no-op. */
+typedef struct tg_allocator {
+    void* (*alloc)(void* user, size_t size);
+    void* (*realloc)(void* user, void* ptr, size_t size);
+    void (*free)(void* user, void* ptr);
+    void* user;
+} tg_allocator;
+
+/* ============================================================================================== */
+/* Mesh                                                                                           */
+/* ============================================================================================== */
+
+#define TG_NONE 0xFFFFFFFFu
+
+/** An immutable triangle mesh with halfedge topology.
+ *  Halfedge h = 3 * f + i runs from triangle corner i to corner (i + 1) % 3 of face f, so next is
+ *  implicit. Its opposite is the halfedge of the other face on the same edge, running the other
+ *  way; TG_NONE at boundary edges, at non-manifold edges (three or more faces), at edges whose two
+ *  faces are oriented inconsistently, and on faces with a repeated vertex index. */
+typedef struct tg_mesh tg_mesh;
+
+typedef struct tg_mesh_options {
+    const tg_allocator* allocator; /**< NULL: libc */
+} tg_mesh_options;
+
+/** Mesh file formats. TG_FORMAT_AUTO picks by file extension (before a trailing .gz), then by
+ *  content sniffing. */
+typedef enum tg_format {
+    TG_FORMAT_AUTO = 0,
+    TG_FORMAT_OBJ,
+    TG_FORMAT_OFF,
+    TG_FORMAT_PLY,
+    TG_FORMAT_STL
+} tg_format;
+
+/** The validation report, computed once at creation. Counts follow the definitions of the
+ *  project's mesh corpus (shared/meshes/README.md): edges are undirected vertex pairs used by at
+ *  least one triangle, ignoring pairs (a, a) of triangles with a repeated index. */
+typedef struct tg_mesh_report {
+    uint64_t vertices;              /**< vertex records (file order) */
+    uint64_t faces;                 /**< triangles (after fan triangulation) */
+    uint64_t edges;                 /**< undirected edges */
+    uint64_t components;            /**< components of triangles connected through shared vertices */
+    uint64_t boundary_edges;        /**< edges used by exactly one triangle */
+    uint64_t boundary_loops;        /**< connected components of the graph of boundary edges */
+    uint64_t nonmanifold_edges;     /**< edges used by three or more triangles */
+    uint64_t nonmanifold_vertices;  /**< vertices whose triangles form more than one fan (pinched) */
+    uint64_t misoriented_edges;     /**< two-face edges whose faces run the same way along it */
+    uint64_t degenerate_faces;      /**< repeated index, or cross product exactly zero in double */
+    uint64_t duplicate_faces;       /**< faces beyond the first with the same vertex set */
+    uint64_t unreferenced_vertices; /**< vertices used by no triangle */
+    int64_t euler_characteristic;   /**< V_used - E + F */
+    int64_t genus;                  /**< total genus when the mesh is a closed manifold, else -1 */
+    int closed_manifold;            /**< 1 when no boundary, non-manifold edge or vertex, repeated index */
+    double bbox_min[3];             /**< bounding box of all vertices (zeros for an empty mesh) */
+    double bbox_max[3];
+} tg_mesh_report;
+
+/** Creates a mesh from caller arrays, which are copied (the caller keeps ownership).
+ *  xyz: 3 * vertex_count finite doubles; triangles: 3 * face_count indices < vertex_count.
+ *  vertex_count and face_count must be < 2^31 (halfedge ids are 32-bit).
+ *  Returns TG_ERR_INVALID_MESH (with diag naming the element) for an out-of-range index or a
+ *  non-finite coordinate, TG_ERR_INVALID_ARGUMENT for NULL arrays with non-zero counts.
+ *  Complexity O(V + F) time and memory. Thread-safe (no shared state). */
+tg_status tg_mesh_create(const double* xyz, size_t vertex_count, const uint32_t* triangles,
+                         size_t face_count, const tg_mesh_options* options, tg_diag* diag,
+                         tg_mesh** out_mesh);
+
+/** Loads a mesh file (OBJ, OFF, PLY ascii/binary LE/BE, STL ascii/binary; a path ending in .gz
+ *  is decompressed with zlib). Polygons are fan-triangulated; vertices keep file order (STL welds
+ *  bit-identical positions in first-seen order). format: TG_FORMAT_AUTO or a forced format.
+ *  Errors: TG_ERR_IO (cannot open/read), TG_ERR_PARSE (malformed), TG_ERR_INVALID_MESH,
+ *  TG_ERR_UNSUPPORTED; diag (may be NULL) gets file, line or byte offset, and a sentence. */
+tg_status tg_mesh_load(const char* path, tg_format format, const tg_mesh_options* options,
+                       tg_diag* diag, tg_mesh** out_mesh);
+
+/** Parses a mesh from memory (uncompressed bytes). name is used in diagnostics and, with
+ *  TG_FORMAT_AUTO, for the extension; it may be NULL. Same errors as tg_mesh_load. */
+tg_status tg_mesh_load_memory(const void* data, size_t size, const char* name, tg_format format,
+                              const tg_mesh_options* options, tg_diag* diag, tg_mesh** out_mesh);
+
+/** Frees a mesh. NULL is a no-op. */
+void tg_mesh_destroy(tg_mesh* mesh);
+
+/** Element counts. O(1). */
+size_t tg_mesh_vertex_count(const tg_mesh* mesh);
+size_t tg_mesh_face_count(const tg_mesh* mesh);
+/** Array views valid for the mesh's lifetime: positions (3 doubles per vertex), triangles
+ *  (3 indices per face), opposite halfedges (3 per face), one outgoing halfedge per vertex
+ *  (TG_NONE for unreferenced vertices; a boundary halfedge where the vertex has one, so that a
+ *  walk around the vertex covers its whole fan), and a component id per face (0-based, numbered
+ *  in order of first face). */
+const double* tg_mesh_positions(const tg_mesh* mesh);
+const uint32_t* tg_mesh_triangles(const tg_mesh* mesh);
+const uint32_t* tg_mesh_opposites(const tg_mesh* mesh);
+const uint32_t* tg_mesh_vertex_halfedges(const tg_mesh* mesh);
+const uint32_t* tg_mesh_face_components(const tg_mesh* mesh);
+/** The report computed at creation. Never NULL for a valid mesh. */
+const tg_mesh_report* tg_mesh_get_report(const tg_mesh* mesh);
+/** Bytes owned by the mesh object (arrays and header). */
+size_t tg_mesh_memory_bytes(const tg_mesh* mesh);
+
+/** Halfedge helpers (inline): next and previous within a face, face of a halfedge. */
+static inline uint32_t tg_halfedge_next(uint32_t h) { return h - h % 3 + (h % 3 + 1) % 3; }
+static inline uint32_t tg_halfedge_prev(uint32_t h) { return h - h % 3 + (h % 3 + 2) % 3; }
+static inline uint32_t tg_halfedge_face(uint32_t h) { return h / 3; }
+/** Start and end vertex of halfedge h. h must be < 3 * face_count. */
+uint32_t tg_mesh_halfedge_from(const tg_mesh* mesh, uint32_t h);
+uint32_t tg_mesh_halfedge_to(const tg_mesh* mesh, uint32_t h);
+
+/* ---- Writers ---- */
+
+/** Writes the mesh as Wavefront OBJ ("v x y z" with %.17g, "f a b c" 1-based). */
+tg_status tg_mesh_write_obj(const tg_mesh* mesh, const char* path, tg_diag* diag);
+
+/** A named per-vertex scalar written as a PLY property (double). */
+typedef struct tg_vertex_scalar {
+    const char* name;     /**< property name: letters, digits, '_' */
+    const double* values; /**< vertex_count values */
+} tg_vertex_scalar;
+
+/** Writes the mesh as binary little-endian PLY: vertex x,y,z (double) plus the given per-vertex
+ *  scalar properties (double), face vertex_indices (uchar count, uint index). scalar_count may be
+ *  0 (scalars NULL). */
+tg_status tg_mesh_write_ply(const tg_mesh* mesh, const char* path, const tg_vertex_scalar* scalars,
+                            size_t scalar_count, tg_diag* diag);
+
+/** Reads the named per-vertex scalar property of a PLY file written by tg_mesh_write_ply (or any
+ *  PLY whose vertex element has that numeric property). out_values: vertex_count doubles (NULL to
+ *  ask for the count only); capacity: their number; *out_count receives the vertex count.
+ *  TG_ERR_CAPACITY if capacity is too small; TG_ERR_PARSE if the property is absent. */
+tg_status tg_ply_read_vertex_scalar(const char* path, const char* name, double* out_values,
+                                    size_t capacity, size_t* out_count, tg_diag* diag);
+
+/* ============================================================================================== */
+/* Point-triangle distance (src/kernels) - section owned by the point-triangle kernels           */
+/* ============================================================================================== */
+/* TG-SECTION-KERNELS-PT */
+/* TG-SECTION-KERNELS-PT-END */
+
+/* ============================================================================================== */
+/* Surface points (src/mesh)                                                                      */
+/* ============================================================================================== */
+/* TG-SECTION-SURFACE-POINT */
+/* TG-SECTION-SURFACE-POINT-END */
+
+/* ============================================================================================== */
+/* BVH, closest point, signed distance (src/spatial)                                              */
+/* ============================================================================================== */
+/* TG-SECTION-SPATIAL */
+/* TG-SECTION-SPATIAL-END */
+
+/* ============================================================================================== */
+/* Geodesic kernels: two-triangle and fan minimizers (src/kernels, seed 002 §2-4)                 */
+/* ============================================================================================== */
+/* TG-SECTION-KERNELS-GEODESIC */
+/* TG-SECTION-KERNELS-GEODESIC-END */
+
+/* ============================================================================================== */
+/* Geodesic paths (src/geodesic)                                                                  */
+/* ============================================================================================== */
+/* TG-SECTION-GEODESIC */
+/* TG-SECTION-GEODESIC-END */
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TRIGEO_H */

@@ -1,0 +1,143 @@
+/* core.c - version, status names, diagnostics and the allocator hooks.
+ * Based on: the project's STYLE.md (one X-macro status list; no globals; no printing). */
+#include "core.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define TG_STR2_(x) #x
+#define TG_STR_(x) TG_STR2_(x)
+
+const char* tg_version(void)
+{
+    return TG_STR_(TG_VERSION_MAJOR) "." TG_STR_(TG_VERSION_MINOR) "." TG_STR_(TG_VERSION_PATCH);
+}
+
+const char* tg_status_name(tg_status status)
+{
+    switch (status) {
+#define TG_STATUS_NAME_(name, short_name, sentence) \
+    case name: return short_name;
+        TG_STATUS_LIST(TG_STATUS_NAME_)
+#undef TG_STATUS_NAME_
+    default: return "unknown";
+    }
+}
+
+const char* tg_status_string(tg_status status)
+{
+    switch (status) {
+#define TG_STATUS_STRING_(name, short_name, sentence) \
+    case name: return sentence;
+        TG_STATUS_LIST(TG_STATUS_STRING_)
+#undef TG_STATUS_STRING_
+    default: return "unknown status";
+    }
+}
+
+static bool hooks_complete(const tg_allocator* a)
+{
+    return a && a->alloc && a->realloc && a->free;
+}
+
+void* tg__alloc(const tg_allocator* a, size_t size)
+{
+    if (size == 0) size = 1;
+    return hooks_complete(a) ? a->alloc(a->user, size) : malloc(size);
+}
+
+void* tg__realloc(const tg_allocator* a, void* ptr, size_t size)
+{
+    if (size == 0) size = 1;
+    return hooks_complete(a) ? a->realloc(a->user, ptr, size) : realloc(ptr, size);
+}
+
+void tg__free(const tg_allocator* a, void* ptr)
+{
+    if (!ptr) return;
+    if (hooks_complete(a))
+        a->free(a->user, ptr);
+    else
+        free(ptr);
+}
+
+void* tg__alloc_array(const tg_allocator* a, size_t n, size_t size)
+{
+    size_t bytes;
+    if (tg__mul_overflows(n, size, &bytes)) return NULL;
+    return tg__alloc(a, bytes);
+}
+
+void* tg__calloc_array(const tg_allocator* a, size_t n, size_t size)
+{
+    size_t bytes;
+    if (tg__mul_overflows(n, size, &bytes)) return NULL;
+    void* p = tg__alloc(a, bytes);
+    if (p) memset(p, 0, bytes);
+    return p;
+}
+
+static void copy_truncated(char* dst, size_t cap, const char* src)
+{
+    size_t n = src ? strlen(src) : 0;
+    if (n >= cap) n = cap - 1;
+    if (n) memcpy(dst, src, n);
+    dst[n] = '\0';
+}
+
+void tg__diag_clear(tg_diag* diag, const char* file)
+{
+    if (!diag) return;
+    memset(diag, 0, sizeof *diag);
+    copy_truncated(diag->file, sizeof diag->file, file);
+}
+
+void tg__diag_vset(tg_diag* diag, const char* file, uint64_t line, uint64_t column,
+                   uint64_t byte_offset, const char* fmt, va_list ap)
+{
+    if (!diag) return;
+    tg__diag_clear(diag, file);
+    diag->line = line;
+    diag->column = column;
+    diag->byte_offset = byte_offset;
+    vsnprintf(diag->message, sizeof diag->message, fmt, ap);
+}
+
+void tg__diag_set(tg_diag* diag, const char* file, uint64_t line, uint64_t column, uint64_t byte_offset,
+                  const char* fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    tg__diag_vset(diag, file, line, column, byte_offset, fmt, ap);
+    va_end(ap);
+}
+
+bool tg__vec_reserve(const tg_allocator* a, tg__vec* v, size_t extra)
+{
+    if (extra <= v->capacity - v->count) return true;
+    if (extra > SIZE_MAX - v->count) return false;
+    size_t need = v->count + extra;
+    size_t cap = v->capacity ? v->capacity : 64;
+    while (cap < need) {
+        if (cap > SIZE_MAX / 2) {
+            cap = need;
+            break;
+        }
+        cap *= 2;
+    }
+    size_t bytes;
+    if (tg__mul_overflows(cap, v->elem, &bytes)) return false;
+    void* p = tg__realloc(a, v->data, bytes);
+    if (!p) return false;
+    v->data = p;
+    v->capacity = cap;
+    return true;
+}
+
+void tg__vec_free(const tg_allocator* a, tg__vec* v)
+{
+    tg__free(a, v->data);
+    v->data = NULL;
+    v->count = v->capacity = 0;
+}

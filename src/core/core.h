@@ -1,0 +1,56 @@
+/* core.h - internal core services shared by every layer: allocator, diagnostics, checked sizes.
+ * Based on: the project's STYLE.md (errors and input, memory). */
+#ifndef TG_CORE_H
+#define TG_CORE_H
+
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "trigeo.h"
+
+#if defined(__GNUC__) || defined(__clang__)
+#define TG_PRINTF(fmt, args) __attribute__((format(printf, fmt, args)))
+#define TG_UNLIKELY(x) __builtin_expect(!!(x), 0)
+#else
+#define TG_PRINTF(fmt, args)
+#define TG_UNLIKELY(x) (x)
+#endif
+
+/* Allocation through a tg_allocator (NULL or incomplete hooks: libc). */
+void* tg__alloc(const tg_allocator* a, size_t size);
+void* tg__realloc(const tg_allocator* a, void* ptr, size_t size);
+void tg__free(const tg_allocator* a, void* ptr);
+/* n * size with overflow check; NULL on overflow or failure. */
+void* tg__alloc_array(const tg_allocator* a, size_t n, size_t size);
+void* tg__calloc_array(const tg_allocator* a, size_t n, size_t size);
+
+/* true when a * b overflows size_t; otherwise *out = a * b. */
+static inline bool tg__mul_overflows(size_t a, size_t b, size_t* out)
+{
+    if (b != 0 && a > SIZE_MAX / b) return true;
+    *out = a * b;
+    return false;
+}
+
+/* Fills diag (if non-NULL) with file name, position and a printf-style message. */
+void tg__diag_set(tg_diag* diag, const char* file, uint64_t line, uint64_t column, uint64_t byte_offset,
+                  const char* fmt, ...) TG_PRINTF(6, 7);
+void tg__diag_vset(tg_diag* diag, const char* file, uint64_t line, uint64_t column,
+                   uint64_t byte_offset, const char* fmt, va_list ap);
+/* Clears diag to an empty state naming file. */
+void tg__diag_clear(tg_diag* diag, const char* file);
+
+/* A growable byte/element buffer for readers (amortised doubling, checked sizes). */
+typedef struct tg__vec {
+    void* data;
+    size_t count;    /* elements in use */
+    size_t capacity; /* elements allocated */
+    size_t elem;     /* element size in bytes */
+} tg__vec;
+/* Makes room for `extra` more elements; false on overflow or allocation failure. */
+bool tg__vec_reserve(const tg_allocator* a, tg__vec* v, size_t extra);
+void tg__vec_free(const tg_allocator* a, tg__vec* v);
+
+#endif

@@ -1,0 +1,46 @@
+/* io_internal.h - the contract between the loader (load.c) and the per-format readers.
+ * Based on: the project's STYLE.md (validate everything from outside; no allocation sized by an
+ * untrusted count before it is checked against the data size). */
+#ifndef TG_IO_INTERNAL_H
+#define TG_IO_INTERNAL_H
+
+#include "core/core.h"
+
+/* What a reader produces: a triangle soup in file order. Arrays are allocated with the
+ * allocator given to the reader; on failure the reader frees them and leaves NULL. */
+typedef struct tg__soup {
+    double* xyz;
+    size_t vertex_count;
+    uint32_t* tri;
+    size_t face_count;
+} tg__soup;
+
+/* Every reader: data[size] is readable and is '\0' (the loader guarantees a terminator, so
+ * strtod-style scanning can never run past the buffer). name is for diagnostics. */
+typedef tg_status (*tg__reader_fn)(const char* data, size_t size, const char* name,
+                                   const tg_allocator* a, tg_diag* diag, tg__soup* out);
+
+tg_status tg__read_obj(const char* data, size_t size, const char* name, const tg_allocator* a,
+                       tg_diag* diag, tg__soup* out);
+tg_status tg__read_off(const char* data, size_t size, const char* name, const tg_allocator* a,
+                       tg_diag* diag, tg__soup* out);
+tg_status tg__read_ply(const char* data, size_t size, const char* name, const tg_allocator* a,
+                       tg_diag* diag, tg__soup* out);
+tg_status tg__read_stl(const char* data, size_t size, const char* name, const tg_allocator* a,
+                       tg_diag* diag, tg__soup* out);
+
+/* Reads a whole file (decompressing .gz / gzip magic with zlib) into a '\0'-terminated buffer
+ * allocated with a. */
+tg_status tg__read_file(const char* path, const tg_allocator* a, tg_diag* diag, char** out_data,
+                        size_t* out_size);
+
+/* Format from the name's extension (before .gz), else sniffed from the content. */
+tg_format tg__detect_format(const char* name, const char* data, size_t size);
+
+/* Appends triangles (a, p[k], p[k+1]) of a polygon fan to the soup's triangle vector. */
+bool tg__fan_push(const tg_allocator* a, tg__vec* tris, const uint32_t* poly, size_t corners);
+
+/* 1-based line and column of byte offset `off` in text data (for diagnostics on error paths). */
+void tg__line_col(const char* data, size_t off, uint64_t* line, uint64_t* col);
+
+#endif

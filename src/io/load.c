@@ -1,0 +1,256 @@
+/* load.c - tg_mesh_load / tg_mesh_load_memory: read the file (zlib for .gz), pick the reader,
+ * hand the soup to tg_mesh. Based on: zlib's gzread interface (reads plain files too). */
+#include "io/io_internal.h"
+#include "mesh/mesh_internal.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+#include <zlib.h>
+
+/* Decompressed inputs larger than this are refused: halfedge ids are 32-bit, so no usable mesh
+ * needs more than a few GiB of text, and a gzip bomb must not exhaust memory. */
+#define TG_MAX_INPUT_BYTES ((size_t)8 << 30)
+
+static bool ends_with_ci(const char* s, const char* suffix)
+{
+    size_t n = strlen(s), k = strlen(suffix);
+    if (k > n) return false;
+    for (size_t i = 0; i < k; ++i)
+        if (tolower((unsigned char)s[n - k + i]) != tolower((unsigned char)suffix[i])) return false;
+    return true;
+}
+
+void tg__line_col(const char* data, size_t off, uint64_t* line, uint64_t* col)
+{
+    uint64_t l = 1;
+    size_t start = 0;
+    for (size_t i = 0; i < off; ++i) {
+        if (data[i] == '\n' || (data[i] == '\r' && data[i + 1] != '\n')) {
+            l++;
+            start = i + 1;
+        }
+    }
+    *line = l;
+    *col = off - start + 1;
+}
+
+bool tg__fan_push(const tg_allocator* a, tg__vec* tris, const uint32_t* poly, size_t corners)
+{
+    if (corners < 3) return true;
+    if (!tg__vec_reserve(a, tris, 3 * (corners - 2))) return false;
+    uint32_t* t = (uint32_t*)tris->data + tris->count;
+    for (size_t k = 1; k + 1 < corners; ++k) {
+        *t++ = poly[0];
+        *t++ = poly[k];
+        *t++ = poly[k + 1];
+    }
+    tris->count += 3 * (corners - 2);
+    return true;
+}
+
+static tg_status read_gz(const char* path, const tg_allocator* a, tg_diag* diag, char** out_data,
+                         size_t* out_size)
+{
+    gzFile gz = gzopen(path, "rb");
+    if (!gz) {
+        tg__diag_set(diag, path, 0, 0, 0, "cannot open: %s", strerror(errno));
+        return TG_ERR_IO;
+    }
+    tg__vec buf = {NULL, 0, 0, 1};
+    tg_status st = TG_OK;
+    for (;;) {
+        if (!tg__vec_reserve(a, &buf, (size_t)1 << 20)) {
+            st = TG_ERR_OUT_OF_MEMORY;
+            break;
+        }
+        size_t room = buf.capacity - buf.count - 1;
+        if (room > (1u << 30)) room = 1u << 30;
+        int n = gzread(gz, (char*)buf.data + buf.count, (unsigned)room);
+        if (n < 0) {
+            int zerr;
+            const char* msg = gzerror(gz, &zerr);
+            tg__diag_set(diag, path, 0, 0, buf.count, "corrupt gzip data: %s", msg ? msg : "unknown error");
+            st = TG_ERR_PARSE;
+            break;
+        }
+        if (n == 0) break;
+        buf.count += (size_t)n;
+        if (buf.count > TG_MAX_INPUT_BYTES) {
+            tg__diag_set(diag, path, 0, 0, buf.count, "decompressed data exceeds %zu bytes", TG_MAX_INPUT_BYTES);
+            st = TG_ERR_UNSUPPORTED;
+            break;
+        }
+    }
+    gzclose(gz);
+    if (st != TG_OK) {
+        tg__vec_free(a, &buf);
+        return st;
+    }
+    if (!tg__vec_reserve(a, &buf, 1)) {
+        tg__vec_free(a, &buf);
+        return TG_ERR_OUT_OF_MEMORY;
+    }
+    ((char*)buf.data)[buf.count] = '\0';
+    *out_data = buf.data;
+    *out_size = buf.count;
+    return TG_OK;
+}
+
+tg_status tg__read_file(const char* path, const tg_allocator* a, tg_diag* diag, char** out_data,
+                        size_t* out_size)
+{
+    *out_data = NULL;
+    *out_size = 0;
+    FILE* f = fopen(path, "rb");
+    if (!f) {
+        tg__diag_set(diag, path, 0, 0, 0, "cannot open: %s", strerror(errno));
+        return TG_ERR_IO;
+    }
+    unsigned char magic[2] = {0, 0};
+    size_t got = fread(magic, 1, 2, f);
+    if (ends_with_ci(path, ".gz") || (got == 2 && magic[0] == 0x1f && magic[1] == 0x8b)) {
+        fclose(f);
+        return read_gz(path, a, diag, out_data, out_size);
+    }
+    long size = -1;
+    if (fseek(f, 0, SEEK_END) == 0) size = ftell(f);
+    if (size < 0 || fseek(f, 0, SEEK_SET) != 0) {
+        fclose(f);
+        tg__diag_set(diag, path, 0, 0, 0, "cannot determine the file size (not a regular file?)");
+        return TG_ERR_IO;
+    }
+    char* data = tg__alloc(a, (size_t)size + 1);
+    if (!data) {
+        fclose(f);
+        tg__diag_set(diag, path, 0, 0, 0, "out of memory reading %ld bytes", size);
+        return TG_ERR_OUT_OF_MEMORY;
+    }
+    size_t n = size ? fread(data, 1, (size_t)size, f) : 0;
+    int err = ferror(f);
+    fclose(f);
+    if (n != (size_t)size || err) {
+        tg__free(a, data);
+        tg__diag_set(diag, path, 0, 0, n, "read error after %zu of %ld bytes", n, size);
+        return TG_ERR_IO;
+    }
+    data[size] = '\0';
+    *out_data = data;
+    *out_size = (size_t)size;
+    return TG_OK;
+}
+
+static bool starts_with_ci(const char* p, const char* end, const char* word)
+{
+    for (; *word; ++word, ++p)
+        if (p >= end || tolower((unsigned char)*p) != *word) return false;
+    return true;
+}
+
+tg_format tg__detect_format(const char* name, const char* data, size_t size)
+{
+    if (name && *name) {
+        char base[1024];
+        size_t n = strlen(name);
+        if (n >= sizeof base) n = sizeof base - 1;
+        memcpy(base, name, n);
+        base[n] = '\0';
+        if (ends_with_ci(base, ".gz")) base[n - 3] = '\0';
+        if (ends_with_ci(base, ".obj")) return TG_FORMAT_OBJ;
+        if (ends_with_ci(base, ".off")) return TG_FORMAT_OFF;
+        if (ends_with_ci(base, ".ply")) return TG_FORMAT_PLY;
+        if (ends_with_ci(base, ".stl")) return TG_FORMAT_STL;
+    }
+    const char* p = data;
+    const char* end = data + (size < 256 ? size : 256);
+    while (p < end && isspace((unsigned char)*p)) p++;
+    if (starts_with_ci(p, end, "ply")) return TG_FORMAT_PLY;
+    if (starts_with_ci(p, end, "solid")) return TG_FORMAT_STL;
+    const char* q = p;
+    while (q < end && isalpha((unsigned char)*q)) q++;
+    if (q - p >= 3 && starts_with_ci(q - 3, end, "off")) return TG_FORMAT_OFF;
+    if (size >= 84) {
+        uint32_t n = (uint32_t)(unsigned char)data[80] | (uint32_t)(unsigned char)data[81] << 8 |
+                     (uint32_t)(unsigned char)data[82] << 16 | (uint32_t)(unsigned char)data[83] << 24;
+        if ((uint64_t)84 + 50 * (uint64_t)n == size) return TG_FORMAT_STL;
+    }
+    return TG_FORMAT_OBJ;
+}
+
+static const char* format_name(tg_format f)
+{
+    switch (f) {
+    case TG_FORMAT_OBJ: return "OBJ";
+    case TG_FORMAT_OFF: return "OFF";
+    case TG_FORMAT_PLY: return "PLY";
+    case TG_FORMAT_STL: return "STL";
+    default: return "unknown";
+    }
+}
+
+static tg_status parse_buffer(const char* data, size_t size, const char* name, tg_format format,
+                              const tg_allocator* a, tg_diag* diag, tg_mesh** out_mesh)
+{
+    if (format == TG_FORMAT_AUTO) format = tg__detect_format(name, data, size);
+    tg__reader_fn reader = format == TG_FORMAT_OBJ ? tg__read_obj
+                         : format == TG_FORMAT_OFF ? tg__read_off
+                         : format == TG_FORMAT_PLY ? tg__read_ply
+                         : format == TG_FORMAT_STL ? tg__read_stl
+                                                   : NULL;
+    if (!reader) {
+        tg__diag_set(diag, name, 0, 0, 0, "unknown mesh format");
+        return TG_ERR_UNSUPPORTED;
+    }
+    if (size == 0) {
+        tg__diag_set(diag, name, 0, 0, 0, "empty file (expected %s)", format_name(format));
+        return TG_ERR_PARSE;
+    }
+    tg__soup soup = {NULL, 0, NULL, 0};
+    tg_status st = reader(data, size, name, a, diag, &soup);
+    if (st != TG_OK) return st;
+    if (soup.face_count == 0) {
+        tg__free(a, soup.xyz);
+        tg__free(a, soup.tri);
+        tg__diag_set(diag, name, 0, 0, size, "%s data has no faces", format_name(format));
+        return TG_ERR_PARSE;
+    }
+    return tg__mesh_create_owned(soup.xyz, soup.vertex_count, soup.tri, soup.face_count, a, name,
+                                 diag, out_mesh);
+}
+
+tg_status tg_mesh_load(const char* path, tg_format format, const tg_mesh_options* options,
+                       tg_diag* diag, tg_mesh** out_mesh)
+{
+    if (!out_mesh) return TG_ERR_INVALID_ARGUMENT;
+    *out_mesh = NULL;
+    if (!path) return TG_ERR_INVALID_ARGUMENT;
+    tg__diag_clear(diag, path);
+    const tg_allocator* a = options ? options->allocator : NULL;
+    char* data;
+    size_t size;
+    tg_status st = tg__read_file(path, a, diag, &data, &size);
+    if (st != TG_OK) return st;
+    st = parse_buffer(data, size, path, format, a, diag, out_mesh);
+    tg__free(a, data);
+    return st;
+}
+
+tg_status tg_mesh_load_memory(const void* data, size_t size, const char* name, tg_format format,
+                              const tg_mesh_options* options, tg_diag* diag, tg_mesh** out_mesh)
+{
+    if (!out_mesh) return TG_ERR_INVALID_ARGUMENT;
+    *out_mesh = NULL;
+    if (!data && size) return TG_ERR_INVALID_ARGUMENT;
+    if (!name) name = "";
+    tg__diag_clear(diag, name);
+    const tg_allocator* a = options ? options->allocator : NULL;
+    /* copy to guarantee the '\0' terminator every reader relies on */
+    char* buf = tg__alloc(a, size + 1);
+    if (!buf) return TG_ERR_OUT_OF_MEMORY;
+    if (size) memcpy(buf, data, size);
+    buf[size] = '\0';
+    tg_status st = parse_buffer(buf, size, name, format, a, diag, out_mesh);
+    tg__free(a, buf);
+    return st;
+}

@@ -1,0 +1,90 @@
+/* tg_test.h - a minimal test harness: CHECK macros print both operands; the summary line is
+ * "N passed, N failed" and the exit code is non-zero if anything failed. */
+#ifndef TG_TEST_H
+#define TG_TEST_H
+
+#include <inttypes.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int tg_test_passed_;
+static int tg_test_failed_;
+
+#define TG_FAIL_(...)                                                   \
+    do {                                                                \
+        tg_test_failed_++;                                              \
+        fprintf(stderr, "%s:%d: FAIL: ", __FILE__, __LINE__);           \
+        fprintf(stderr, __VA_ARGS__);                                   \
+        fprintf(stderr, "\n");                                          \
+    } while (0)
+
+#define CHECK(cond)                                                     \
+    do {                                                                \
+        if (cond) tg_test_passed_++;                                    \
+        else TG_FAIL_("%s", #cond);                                     \
+    } while (0)
+
+#define CHECK_MSG(cond, ...)                                            \
+    do {                                                                \
+        if (cond) tg_test_passed_++;                                    \
+        else TG_FAIL_(__VA_ARGS__);                                     \
+    } while (0)
+
+#define CHECK_EQ_INT(a, b)                                                                  \
+    do {                                                                                    \
+        long long a_ = (long long)(a), b_ = (long long)(b);                                 \
+        if (a_ == b_) tg_test_passed_++;                                                    \
+        else TG_FAIL_("%s == %s: %lld != %lld", #a, #b, a_, b_);                            \
+    } while (0)
+
+#define CHECK_EQ_STR(a, b)                                                                  \
+    do {                                                                                    \
+        const char *a_ = (a), *b_ = (b);                                                    \
+        if (a_ && b_ && strcmp(a_, b_) == 0) tg_test_passed_++;                             \
+        else TG_FAIL_("%s == %s: '%s' != '%s'", #a, #b, a_ ? a_ : "(null)", b_ ? b_ : "(null)"); \
+    } while (0)
+
+/* |a - b| <= tol */
+#define CHECK_NEAR(a, b, tol)                                                               \
+    do {                                                                                    \
+        double a_ = (double)(a), b_ = (double)(b), t_ = (double)(tol);                      \
+        if (fabs(a_ - b_) <= t_) tg_test_passed_++;                                         \
+        else TG_FAIL_("%s ~ %s: %.17g vs %.17g (diff %.3g > %.3g)", #a, #b, a_, b_, fabs(a_ - b_), t_); \
+    } while (0)
+
+#define CHECK_STATUS(expr, expected)                                                        \
+    do {                                                                                    \
+        tg_status s_ = (expr);                                                              \
+        if (s_ == (expected)) tg_test_passed_++;                                            \
+        else TG_FAIL_("%s: status %s, expected %s", #expr, tg_status_name(s_), tg_status_name(expected)); \
+    } while (0)
+
+static inline int tg_test_finish(void)
+{
+    printf("%d passed, %d failed\n", tg_test_passed_, tg_test_failed_);
+    return tg_test_failed_ ? 1 : 0;
+}
+
+/* Directory of the shared mesh corpus (env TG_MESHES_DIR, set by CTest). */
+static inline const char* tg_test_meshes_dir(void)
+{
+    const char* d = getenv("TG_MESHES_DIR");
+    return d ? d : "../shared/meshes";
+}
+
+/* Deterministic xorshift64* generator for property tests. */
+typedef struct tg_rng { uint64_t s; } tg_rng;
+static inline uint64_t tg_rng_next(tg_rng* r)
+{
+    r->s ^= r->s >> 12;
+    r->s ^= r->s << 25;
+    r->s ^= r->s >> 27;
+    return r->s * 2685821657736338717ull;
+}
+/* uniform in [0, 1) */
+static inline double tg_rng_unit(tg_rng* r) { return (double)(tg_rng_next(r) >> 11) * (1.0 / 9007199254740992.0); }
+static inline double tg_rng_range(tg_rng* r, double lo, double hi) { return lo + (hi - lo) * tg_rng_unit(r); }
+
+#endif

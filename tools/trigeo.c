@@ -1,0 +1,143 @@
+/* trigeo.c - the trigeo command-line tool: dispatch, help, shared helpers.
+ * Based on: the CLI contract of the project's DESIGN.md (commands, exit codes, error format). */
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const cli_command* const commands[] = {
+    &cli_cmd_info,
+};
+#define COMMAND_COUNT (sizeof commands / sizeof commands[0])
+
+void cli_error(const char* file, unsigned long long line, const char* fmt, ...)
+{
+    va_list ap;
+    fputs("trigeo: ", stderr);
+    if (file && *file) {
+        if (line)
+            fprintf(stderr, "%s:%llu: ", file, line);
+        else
+            fprintf(stderr, "%s: ", file);
+    }
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+}
+
+void cli_error_diag(const tg_diag* d, tg_status st)
+{
+    if (d->message[0]) {
+        if (!d->line && d->byte_offset)
+            cli_error(d->file, 0, "byte %llu: %s", (unsigned long long)d->byte_offset, d->message);
+        else
+            cli_error(d->file, d->line, "%s", d->message);
+    } else {
+        cli_error(d->file, d->line, "%s", tg_status_string(st));
+    }
+}
+
+tg_mesh* cli_load_mesh(const char* path)
+{
+    tg_diag diag;
+    tg_mesh* mesh = NULL;
+    tg_status st = tg_mesh_load(path, TG_FORMAT_AUTO, NULL, &diag, &mesh);
+    if (st != TG_OK) {
+        cli_error_diag(&diag, st);
+        return NULL;
+    }
+    return mesh;
+}
+
+int cli_usage(const char* cmd, const char* fmt, ...)
+{
+    va_list ap;
+    fputs("trigeo: ", stderr);
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fprintf(stderr, "\n(see 'trigeo help %s')\n", cmd ? cmd : "");
+    return CLI_USAGE;
+}
+
+bool cli_parse_uint(const char* s, unsigned long long* out)
+{
+    if (!s || !*s || *s == '-' || *s == '+') return false;
+    char* end;
+    errno = 0;
+    unsigned long long v = strtoull(s, &end, 10);
+    if (errno || *end) return false;
+    *out = v;
+    return true;
+}
+
+bool cli_parse_double(const char* s, double* out)
+{
+    if (!s || !*s) return false;
+    char* end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (errno || *end || !isfinite(v)) return false;
+    *out = v;
+    return true;
+}
+
+static void print_overview(FILE* f)
+{
+    fprintf(f, "trigeo %s - distances and shortest paths on triangle meshes\n\n", tg_version());
+    fprintf(f, "usage: trigeo COMMAND [ARGS...]\n\ncommands:\n");
+    for (size_t i = 0; i < COMMAND_COUNT; ++i) fprintf(f, "  trigeo %s\n", commands[i]->synopsis);
+    fprintf(f, "  trigeo help [COMMAND]\n  trigeo --version\n\n");
+    fprintf(f, "Meshes: OBJ, OFF, PLY (ascii, binary), STL (ascii, binary), optionally .gz.\n");
+    fprintf(f, "Indices are 0-based in file order. Exit codes: 0 ok, 1 usage, 2 input/IO error.\n");
+}
+
+static const cli_command* find_command(const char* name)
+{
+    for (size_t i = 0; i < COMMAND_COUNT; ++i)
+        if (strcmp(commands[i]->name, name) == 0) return commands[i];
+    return NULL;
+}
+
+int main(int argc, char** argv)
+{
+    if (argc < 2) {
+        print_overview(stderr);
+        return CLI_USAGE;
+    }
+    const char* cmd = argv[1];
+    if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h")) {
+        print_overview(stdout);
+        return CLI_OK;
+    }
+    if (!strcmp(cmd, "--version")) {
+        printf("trigeo %s\n", tg_version());
+        return CLI_OK;
+    }
+    if (!strcmp(cmd, "help")) {
+        if (argc < 3) {
+            print_overview(stdout);
+            return CLI_OK;
+        }
+        const cli_command* c = find_command(argv[2]);
+        if (!c) return cli_usage(NULL, "unknown command '%s'", argv[2]);
+        printf("usage: trigeo %s\n\n%s", c->synopsis, c->help);
+        return CLI_OK;
+    }
+    const cli_command* c = find_command(cmd);
+    if (!c) {
+        cli_error(NULL, 0, "unknown command '%s' (try 'trigeo --help')", cmd);
+        return CLI_USAGE;
+    }
+    for (int i = 2; i < argc; ++i) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            printf("usage: trigeo %s\n\n%s", c->synopsis, c->help);
+            return CLI_OK;
+        }
+    }
+    return c->run(argc - 1, argv + 1);
+}

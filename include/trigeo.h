@@ -228,6 +228,56 @@ tg_status tg_ply_read_vertex_scalar(const char* path, const char* name, double* 
 /* Surface points (src/mesh)                                                                      */
 /* ============================================================================================== */
 /* TG-SECTION-SURFACE-POINT */
+
+/** Kinds of surface point. */
+typedef enum tg_surface_point_kind {
+    TG_SURFACE_VERTEX = 0, /**< a mesh vertex: index = vertex id */
+    TG_SURFACE_EDGE = 1,   /**< a point on an edge: index = halfedge id, t in [0, 1] from its start */
+    TG_SURFACE_FACE = 2    /**< a point in a face: index = face id, bary = barycentric coordinates */
+} tg_surface_point_kind;
+
+/** A location on the mesh surface. Every API that takes a location takes one of these; tg_bvh
+ *  turns any xyz into one (tg_bvh_locate). For TG_SURFACE_EDGE the point is
+ *  (1 - t) * from(h) + t * to(h); for TG_SURFACE_FACE it is the barycentric combination of the
+ *  face's corners 0, 1, 2 (bary sums to 1, each in [0, 1]). Unused fields are ignored. */
+typedef struct tg_surface_point {
+    tg_surface_point_kind kind;
+    uint32_t index;
+    double t;
+    double bary[3];
+} tg_surface_point;
+
+/** Constructors (inline, no validation). */
+static inline tg_surface_point tg_surface_vertex(uint32_t v)
+{
+    tg_surface_point p = {TG_SURFACE_VERTEX, v, 0.0, {0.0, 0.0, 0.0}};
+    return p;
+}
+static inline tg_surface_point tg_surface_edge(uint32_t halfedge, double t)
+{
+    tg_surface_point p = {TG_SURFACE_EDGE, halfedge, t, {0.0, 0.0, 0.0}};
+    return p;
+}
+static inline tg_surface_point tg_surface_face(uint32_t face, double b0, double b1, double b2)
+{
+    tg_surface_point p = {TG_SURFACE_FACE, face, 0.0, {b0, b1, b2}};
+    return p;
+}
+
+/** Checks a surface point against a mesh: index in range, t in [0, 1], barycentrics finite, each
+ *  in [-1e-12, 1 + 1e-12] and summing to 1 within 1e-9 (a tolerance for values read from text);
+ *  a vertex must be referenced by some face. Returns TG_OK or TG_ERR_INVALID_ARGUMENT with a
+ *  sentence in diag (may be NULL). O(1). Thread-safe. */
+tg_status tg_surface_point_validate(const tg_mesh* mesh, const tg_surface_point* point, tg_diag* diag);
+
+/** The 3D position of a (valid) surface point. O(1). Thread-safe. */
+void tg_surface_point_position(const tg_mesh* mesh, const tg_surface_point* point, double out_xyz[3]);
+
+/** The same location expressed canonically: a face point with a barycentric coordinate that is
+ *  exactly 0 becomes an edge point, an edge point with t exactly 0 or 1 becomes a vertex. Never
+ *  changes the position. O(1). */
+tg_surface_point tg_surface_point_canonical(const tg_mesh* mesh, const tg_surface_point* point);
+
 /* TG-SECTION-SURFACE-POINT-END */
 
 /* ============================================================================================== */

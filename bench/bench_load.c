@@ -1,0 +1,160 @@
+/* bench_load.c - mesh loading speed and memory: trigeo's readers + topology against a plain
+ * fgets/strtod and a fscanf OBJ baseline, measured in the same run on the same files.
+ * usage: bench_load MESH... (PLY/OBJ/...; for each mesh its OBJ form is written to a temp file
+ * and parsed by all three). Prints one table row per mesh. Single-threaded. */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <time.h>
+#include <trigeo.h>
+
+#include "io/io_internal.h"
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int cmp_double(const void* a, const void* b)
+{
+    double x = *(const double*)a, y = *(const double*)b;
+    return (x > y) - (x < y);
+}
+
+#define REPS 5
+static double median(double* v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return v[n / 2];
+}
+
+/* Baseline 1: fgets + strtod/strtol, the way a quick hand-written loader reads OBJ. */
+static size_t baseline_fgets(const char* path, size_t* out_faces)
+{
+    FILE* f = fopen(path, "rb");
+    if (!f) return 0;
+    char line[4096];
+    size_t nv = 0, nf = 0, cap = 1 << 20;
+    double* v = malloc(cap * sizeof *v);
+    while (fgets(line, sizeof line, f)) {
+        if (line[0] == 'v' && line[1] == ' ') {
+            char* p = line + 2;
+            if (nv * 3 + 3 > cap) v = realloc(v, (cap *= 2) * sizeof *v);
+            for (int k = 0; k < 3; ++k) v[nv * 3 + k] = strtod(p, &p);
+            nv++;
+        } else if (line[0] == 'f' && line[1] == ' ') {
+            char* p = line + 2;
+            long a = strtol(p, &p, 10), b = strtol(p, &p, 10), c = strtol(p, &p, 10);
+            nf += (a && b && c);
+        }
+    }
+    fclose(f);
+    free(v);
+    *out_faces = nf;
+    return nv;
+}
+
+/* Baseline 2: fscanf tokens. */
+static size_t baseline_fscanf(const char* path, size_t* out_faces)
+{
+    FILE* f = fopen(path, "rb");
+    if (!f) return 0;
+    char tok[256];
+    size_t nv = 0, nf = 0;
+    double x, y, z;
+    long a, b, c;
+    while (fscanf(f, "%255s", tok) == 1) {
+        if (!strcmp(tok, "v") && fscanf(f, "%lf %lf %lf", &x, &y, &z) == 3)
+            nv++;
+        else if (!strcmp(tok, "f") && fscanf(f, "%ld %ld %ld", &a, &b, &c) == 3)
+            nf++;
+    }
+    fclose(f);
+    *out_faces = nf;
+    return nv;
+}
+
+static long peak_rss_kib(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return ru.ru_maxrss;
+}
+
+int main(int argc, char** argv)
+{
+    if (argc < 2) {
+        fprintf(stderr, "usage: bench_load MESH...\n");
+        return 1;
+    }
+    printf("| mesh | faces | load (parse+topology) s | bytes/face | OBJ MB | trigeo OBJ parse MB/s | trigeo OBJ load s | fgets+strtod MB/s | fscanf MB/s |\n");
+    printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (int i = 1; i < argc; ++i) {
+        const char* path = argv[i];
+        double t[REPS];
+        tg_mesh* m = NULL;
+        tg_diag d;
+        for (int r = 0; r < REPS; ++r) {
+            tg_mesh_destroy(m);
+            m = NULL;
+            double t0 = now();
+            tg_status st = tg_mesh_load(path, TG_FORMAT_AUTO, NULL, &d, &m);
+            t[r] = now() - t0;
+            if (st != TG_OK) {
+                fprintf(stderr, "%s: %s\n", path, d.message);
+                return 2;
+            }
+        }
+        double load_s = median(t, REPS);
+        size_t nf = tg_mesh_face_count(m);
+        double bpf = (double)tg_mesh_memory_bytes(m) / (double)nf;
+
+        char obj[512];
+        snprintf(obj, sizeof obj, "/tmp/bench_load_%d.obj", (int)i);
+        if (tg_mesh_write_obj(m, obj, &d) != TG_OK) {
+            fprintf(stderr, "%s: %s\n", obj, d.message);
+            return 2;
+        }
+        tg_mesh_destroy(m);
+        char* data;
+        size_t size;
+        if (tg__read_file(obj, NULL, &d, &data, &size) != TG_OK) return 2;
+        for (int r = 0; r < REPS; ++r) {
+            tg__soup soup;
+            double t0 = now();
+            tg_status st = tg__read_obj(data, size, obj, NULL, &d, &soup);
+            t[r] = now() - t0;
+            if (st != TG_OK) return 2;
+            free(soup.xyz);
+            free(soup.tri);
+        }
+        double parse_s = median(t, REPS);
+        free(data);
+        for (int r = 0; r < REPS; ++r) {
+            double t0 = now();
+            tg_mesh_load(obj, TG_FORMAT_AUTO, NULL, &d, &m);
+            t[r] = now() - t0;
+            tg_mesh_destroy(m);
+        }
+        double objload_s = median(t, REPS);
+        size_t bf = 0;
+        double t0 = now();
+        baseline_fgets(obj, &bf);
+        double fgets_s = now() - t0;
+        t0 = now();
+        baseline_fscanf(obj, &bf);
+        double fscanf_s = now() - t0;
+        double mb = (double)size / 1e6;
+        const char* base = strrchr(path, '/');
+        printf("| %s | %zu | %.3f | %.1f | %.1f | %.0f | %.3f | %.0f | %.0f |\n", base ? base + 1 : path, nf,
+               load_s, bpf, mb, mb / parse_s, objload_s, mb / fgets_s, mb / fscanf_s);
+        remove(obj);
+    }
+    printf("\npeak RSS %.1f MiB; median of %d runs for trigeo, 1 run for the baselines; 1 thread\n",
+           peak_rss_kib() / 1024.0, REPS);
+    return 0;
+}

@@ -290,6 +290,76 @@ tg_surface_point tg_surface_point_canonical(const tg_mesh* mesh, const tg_surfac
 /* Geodesic kernels: two-triangle and fan minimizers (src/kernels, seed 002 §2-4)                 */
 /* ============================================================================================== */
 /* TG-SECTION-KERNELS-GEODESIC */
+
+/** Search strategies of the fan minimizer after its initial descent step (seed 002 §3.4.2). */
+typedef enum tg_fan_strategy {
+    TG_FAN_COORDINATE = 0, /**< coordinate-direction search with Search/GetLRoot (seed §3.5, §4.3-4.5); default */
+    TG_FAN_POWELL = 1,     /**< Powell's direction set: coordinate sweeps plus the sweep's net direction */
+    TG_FAN_CG = 2          /**< conjugate gradient: each direction conjugate to the previous one with
+                                respect to the exact (tridiagonal) Hessian, eq. (57)-(58) */
+} tg_fan_strategy;
+
+/** One-dimensional root finders for L'(t) = 0 (the derivative of a convex length function). */
+typedef enum tg_root_method {
+    TG_ROOT_BISECTION = 0, /**< n = ceil(digits * log2(10)) bisection steps, no early exit (seed §2.4); default */
+    TG_ROOT_NEWTON = 1,    /**< Newton steps safeguarded by the same bracket: the same final bracket width
+                                bound, usually far fewer derivative evaluations */
+    TG_ROOT_QUADRATIC = 2  /**< two-triangle kernel only: the closed-form roots of eq. (6), with its
+                                degenerate case t = b0 / a (Example 2.2); the fan treats it as BISECTION */
+} tg_root_method;
+
+/** Options of the geodesic kernels. A NULL pointer or a zero-initialised struct means defaults. */
+typedef struct tg_geodesic_kernel_options {
+    int digits;         /**< decimal digits of accuracy of each 1D root (seed §2.4); 0: 15; clamped to [1, 17] */
+    int max_iterations; /**< cap on the fan search's outer iterations (one iteration = one sweep over
+                             all coordinates, or one conjugate direction); 0: 100 + 20 * m */
+    int strategy;       /**< tg_fan_strategy; 0: TG_FAN_COORDINATE (the seed's choice) */
+    int root_method;    /**< tg_root_method; 0: TG_ROOT_BISECTION (the seed's choice) */
+} tg_geodesic_kernel_options;
+
+/** Two triangles sharing the edge AB (seed 002 §2): the shortest path P0 -> M -> P1 with
+ *  M = A + t (B - A), t in [0, 1], minimizing L(t) = |M - P0| + |P1 - M| (eq. 2). L is convex
+ *  (eq. 7-8), so: L'(0) >= 0 gives t = 0; else L'(1) <= 0 gives t = 1; else the unique root of
+ *  L' in (0, 1) by bisection (or the method chosen in opts). Works in 3D directly: P0 and P1 need
+ *  not be coplanar with AB (each leg lies in its own triangle); no unfolding is needed.
+ *  p0, a, b, p1: 3 doubles each, finite. opts: NULL for defaults. out_t: receives t in [0, 1]
+ *  (may be NULL). Returns L(t) (>= 0). Degenerate input is handled without NaN: A == B gives
+ *  t = 0; P0 or P1 on the line AB uses one-sided derivatives. Non-finite input returns +inf with
+ *  t = 0. Cost: O(digits) square roots. Thread-safe, no allocation. */
+double tg_edge_path_minimize(const double p0[3], const double a[3], const double b[3], const double p1[3],
+                             const tg_geodesic_kernel_options* opts, double* out_t);
+
+/** A fan of m + 1 triangles around vertex V (seed 002 §3-4): the path enters at P0 (a point of
+ *  the first triangle, usually its far vertex or a point on its outer edge), crosses the m interior
+ *  edges V -> W_i at M_i = V + t_i (W_i - V), t_i in [0, 1], in order, and leaves at P1 (a point of
+ *  the last triangle). Minimizes L(t) = |M_0 - P0| + sum |M_{i+1} - M_i| + |P1 - M_{m-1}| (eq. 55),
+ *  a convex function (§4.2), by the seed's method: ComputeLargestInitialDecrease (recursive in
+ *  dimension, eq. 50/68/72/81/84/87) decides whether the path through V (all t = 0) can be
+ *  shortened at all; if so ClampToDomain steps along the steepest ray, then the search strategy in
+ *  opts runs to convergence. When the search stalls where the path touches V again (two or more
+ *  consecutive t = 0), the same initial-decrease test is applied to that sub-fan, so the result is
+ *  the minimum over [0, 1]^m up to the 1D root accuracy, not only a coordinate-wise one.
+ *  To shorten a path through a mesh vertex V, call this once per side of V (the two fans between
+ *  the incoming and outgoing path edges; on a boundary vertex only the interior side) and keep the
+ *  shorter result.
+ *  p0, p1, v: 3 doubles each. w: 3 * m doubles, W_0 .. W_{m-1} in fan order from the P0 side to the
+ *  P1 side. m: number of interior edges (triangles - 1); m == 0 means a single triangle, whose
+ *  shortest path is the segment P0P1 (*out_length = |P1 - P0|). t_init: m start values (clamped to
+ *  [0, 1]) or NULL for the seed's start at all t = 0. opts: NULL for defaults.
+ *  out_t: m doubles in [0, 1] (may be NULL only when m == 0). out_length: the minimized length,
+ *  never larger than the length through V (|P0 - V| + |P1 - V|) nor than L(t_init).
+ *  out_decreased (may be NULL): 1 when *out_length is shorter than the path through V by more
+ *  than the rounding noise of evaluating it (a few ulps of the length per segment), else 0 (and
+ *  then out_t is all 0 unless t_init gave a shorter path).
+ *  Degenerate fans (zero-length edges, V on a segment, collinear points) never produce NaN; the
+ *  search always terminates (iteration caps). Returns TG_OK; TG_ERR_INVALID_ARGUMENT for NULL
+ *  pointers or non-finite input; TG_ERR_OUT_OF_MEMORY if m > 64 and scratch allocation fails
+ *  (m <= 64 uses the stack only). Cost: O(m) per sweep and O(digits) per 1D root.
+ *  Thread-safe. */
+tg_status tg_fan_path_minimize(const double p0[3], const double p1[3], const double v[3], const double* w,
+                               size_t m, const double* t_init, const tg_geodesic_kernel_options* opts,
+                               double* out_t, double* out_length, int* out_decreased);
+
 /* TG-SECTION-KERNELS-GEODESIC-END */
 
 /* ============================================================================================== */

@@ -43,51 +43,59 @@ static uint32_t corner_of(const uint32_t* tri, uint32_t f, uint32_t v)
     return 3 * f + (t[0] == v ? 0u : t[1] == v ? 1u : 2u);
 }
 
-/* ---- edge grouping: halfedges bucketed by their smaller endpoint (counting sort) ---- */
+/* ---- edge grouping ----
+ * Halfedges with distinct endpoints are bucketed by their smaller endpoint (counting sort), each
+ * entry a packed key  hi << 33 | dir << 32 | h  (hi: larger endpoint, dir: 1 when h runs hi -> lo)
+ * plus the face's third vertex, all computed in one sequential pass over the triangles. Sorting
+ * a bucket by key groups the halfedges of each undirected edge without touching tri again. */
 
 typedef struct edge_scan {
-    uint32_t* start; /* vertex_count + 1 bucket offsets */
-    uint32_t* he;    /* halfedges sorted by (lo, hi, h) */
+    uint32_t* start;  /* vertex_count + 1 bucket offsets */
+    uint64_t* key;    /* 3F entries (only the first start[V] used) */
+    uint32_t* third;  /* vertex of the halfedge's face opposite the edge, parallel to key */
+    uint8_t* repeat;  /* per face: 1 when the face has a repeated vertex index */
 } edge_scan;
 
-static uint32_t he_hi(const uint32_t* tri, uint32_t h)
-{
-    uint32_t a = tri[h], b = tri[tg_halfedge_next(h)];
-    return a > b ? a : b;
-}
+#define KEY_HI(k) ((uint32_t)((k) >> 33))
+#define KEY_DIR(k) ((uint32_t)((k) >> 32) & 1u)
+#define KEY_H(k) ((uint32_t)(k))
 
-/* Sorts one bucket by (hi vertex, halfedge id): insertion sort, buckets are vertex valences. */
-static void sort_bucket(const uint32_t* tri, uint32_t* he, uint32_t n)
+/* Insertion sort of one bucket (buckets are vertex valences, ~6 on typical meshes). */
+static void sort_bucket(uint64_t* key, uint32_t* third, uint32_t n)
 {
     for (uint32_t i = 1; i < n; ++i) {
-        uint32_t h = he[i], key = he_hi(tri, h);
-        uint32_t j = i;
-        while (j > 0) {
-            uint32_t g = he[j - 1], gk = he_hi(tri, g);
-            if (gk < key || (gk == key && g < h)) break;
-            he[j] = g;
+        uint64_t k = key[i];
+        uint32_t t = third[i], j = i;
+        while (j > 0 && key[j - 1] > k) {
+            key[j] = key[j - 1];
+            third[j] = third[j - 1];
             --j;
         }
-        he[j] = h;
+        key[j] = k;
+        third[j] = t;
     }
 }
 
-static int cmp_u64(const void* a, const void* b)
+typedef struct key_third {
+    uint64_t key;
+    uint32_t third;
+} key_third;
+
+static int cmp_key_third(const void* a, const void* b)
 {
-    uint64_t x = *(const uint64_t*)a, y = *(const uint64_t*)b;
+    uint64_t x = ((const key_third*)a)->key, y = ((const key_third*)b)->key;
     return (x > y) - (x < y);
 }
 
-/* Buckets of high-valence vertices (fan-triangulated polygons) are sorted by qsort on
- * (hi << 32 | h) keys instead, to stay O(n log n). */
-static bool sort_big_bucket(const tg_allocator* a, const uint32_t* tri, uint32_t* he, uint32_t n)
+/* Buckets of high-valence vertices (fan-triangulated polygons) use qsort to stay O(n log n). */
+static bool sort_big_bucket(const tg_allocator* a, uint64_t* key, uint32_t* third, uint32_t n)
 {
-    uint64_t* key = tg__alloc_array(a, n, sizeof(uint64_t));
-    if (!key) return false;
-    for (uint32_t i = 0; i < n; ++i) key[i] = (uint64_t)he_hi(tri, he[i]) << 32 | he[i];
-    qsort(key, n, sizeof *key, cmp_u64);
-    for (uint32_t i = 0; i < n; ++i) he[i] = (uint32_t)key[i];
-    tg__free(a, key);
+    key_third* kt = tg__alloc_array(a, n, sizeof *kt);
+    if (!kt) return false;
+    for (uint32_t i = 0; i < n; ++i) kt[i].key = key[i], kt[i].third = third[i];
+    qsort(kt, n, sizeof *kt, cmp_key_third);
+    for (uint32_t i = 0; i < n; ++i) key[i] = kt[i].key, third[i] = kt[i].third;
+    tg__free(a, kt);
     return true;
 }
 
@@ -95,40 +103,74 @@ static bool edge_scan_build(const tg_allocator* a, const uint32_t* tri, size_t n
                             edge_scan* es)
 {
     es->start = tg__calloc_array(a, nv + 1, sizeof(uint32_t));
-    es->he = tg__alloc_array(a, 3 * nf, sizeof(uint32_t));
-    if (!es->start || !es->he) return false;
-    for (size_t h = 0; h < 3 * nf; ++h) {
-        uint32_t u = tri[h], w = tri[tg_halfedge_next((uint32_t)h)];
-        if (u != w) es->start[(u < w ? u : w) + 1]++;
+    es->key = tg__alloc_array(a, 3 * nf, sizeof(uint64_t));
+    es->third = tg__alloc_array(a, 3 * nf, sizeof(uint32_t));
+    es->repeat = tg__alloc_array(a, nf, 1);
+    uint32_t* fill = tg__alloc_array(a, nv + 1, sizeof(uint32_t));
+    if (!es->start || !es->key || !es->third || !es->repeat || !fill) {
+        tg__free(a, fill);
+        return false;
+    }
+    for (size_t f = 0; f < nf; ++f) {
+        const uint32_t* t = tri + 3 * f;
+        es->repeat[f] = face_has_repeat(t);
+        for (int i = 0; i < 3; ++i) {
+            uint32_t u = t[i], w = t[(i + 1) % 3];
+            if (u != w) es->start[(u < w ? u : w) + 1]++;
+        }
     }
     for (size_t v = 0; v < nv; ++v) es->start[v + 1] += es->start[v];
-    uint32_t* fill = tg__alloc_array(a, nv + 1, sizeof(uint32_t));
-    if (!fill) return false;
     memcpy(fill, es->start, (nv + 1) * sizeof(uint32_t));
-    for (size_t h = 0; h < 3 * nf; ++h) {
-        uint32_t u = tri[h], w = tri[tg_halfedge_next((uint32_t)h)];
-        if (u != w) es->he[fill[u < w ? u : w]++] = (uint32_t)h;
+    for (size_t f = 0; f < nf; ++f) {
+        const uint32_t* t = tri + 3 * f;
+        for (uint32_t i = 0; i < 3; ++i) {
+            uint32_t u = t[i], w = t[(i + 1) % 3];
+            if (u == w) continue;
+            uint32_t lo = u < w ? u : w, hi = u ^ w ^ lo, slot = fill[lo]++;
+            es->key[slot] = (uint64_t)hi << 33 | (uint64_t)(u > w) << 32 | (uint32_t)(3 * f + i);
+            es->third[slot] = t[(i + 2) % 3];
+        }
     }
     tg__free(a, fill);
     for (size_t v = 0; v < nv; ++v) {
-        uint32_t n = es->start[v + 1] - es->start[v];
-        if (n <= 64)
-            sort_bucket(tri, es->he + es->start[v], n);
-        else if (!sort_big_bucket(a, tri, es->he + es->start[v], n))
+        uint32_t b = es->start[v], n = es->start[v + 1] - b;
+        if (n <= 32)
+            sort_bucket(es->key + b, es->third + b, n);
+        else if (!sort_big_bucket(a, es->key + b, es->third + b, n))
             return false;
     }
     return true;
 }
 
-/* ---- duplicate faces: open-addressing hash of sorted index triples ---- */
+/* ---- duplicate faces (same sorted index triple) ----
+ * A face without repeated indices is a duplicate when an earlier face holds the same vertex set;
+ * both then lie on the edge between the two smallest indices with the same third vertex, so the
+ * test runs per edge group, counting each face on its (smallest, middle) edge only. Faces with a
+ * repeated index are rare and compared separately by sorting their triples. */
 
-static uint64_t hash3(uint32_t a, uint32_t b, uint32_t c)
+static uint64_t group_duplicates(const edge_scan* es, uint32_t i, uint32_t j, uint32_t hi)
 {
-    uint64_t h = (uint64_t)a * 0x9E3779B97F4A7C15ull;
-    h ^= (uint64_t)b * 0xC2B2AE3D27D4EB4Full + (h >> 29);
-    h ^= (uint64_t)c * 0x165667B19E3779F9ull + (h >> 32);
-    h ^= h >> 31;
-    return h * 0xD6E8FEB86659FD93ull;
+    uint64_t dup = 0;
+    for (uint32_t x = i; x < j; ++x) {
+        uint32_t fx = KEY_H(es->key[x]) / 3;
+        if (es->repeat[fx] || es->third[x] < hi) continue; /* not this face's smallest edge */
+        for (uint32_t y = i; y < j; ++y) {
+            uint32_t fy = KEY_H(es->key[y]) / 3;
+            if (fy < fx && !es->repeat[fy] && es->third[y] == es->third[x]) {
+                dup++;
+                break;
+            }
+        }
+    }
+    return dup;
+}
+
+static int cmp_triple(const void* a, const void* b)
+{
+    const uint32_t *x = a, *y = b;
+    for (int k = 0; k < 3; ++k)
+        if (x[k] != y[k]) return (x[k] > y[k]) - (x[k] < y[k]);
+    return 0;
 }
 
 static void sort3(const uint32_t* t, uint32_t* s)
@@ -140,33 +182,20 @@ static void sort3(const uint32_t* t, uint32_t* s)
     s[0] = a; s[1] = b; s[2] = c;
 }
 
-static bool count_duplicate_faces(const tg_allocator* a, const uint32_t* tri, size_t nf, uint64_t* out)
+static bool repeated_face_duplicates(const tg_allocator* a, const uint32_t* tri, const uint8_t* repeat,
+                                     size_t nf, uint64_t* out)
 {
-    size_t cap = 16;
-    while (cap < 2 * nf) cap *= 2;
-    uint32_t* slot = tg__alloc_array(a, cap, sizeof(uint32_t));
-    if (!slot) return false;
-    memset(slot, 0xFF, cap * sizeof(uint32_t));
-    uint64_t dup = 0;
-    for (size_t f = 0; f < nf; ++f) {
-        uint32_t s[3], o[3];
-        sort3(tri + 3 * f, s);
-        size_t i = (size_t)hash3(s[0], s[1], s[2]) & (cap - 1);
-        for (;;) {
-            if (slot[i] == TG_NONE) {
-                slot[i] = (uint32_t)f;
-                break;
-            }
-            sort3(tri + 3 * (size_t)slot[i], o);
-            if (o[0] == s[0] && o[1] == s[1] && o[2] == s[2]) {
-                dup++;
-                break;
-            }
-            i = (i + 1) & (cap - 1);
-        }
-    }
-    tg__free(a, slot);
-    *out = dup;
+    size_t n = 0;
+    for (size_t f = 0; f < nf; ++f) n += repeat[f];
+    *out = 0;
+    if (n < 2) return true;
+    uint32_t* s = tg__alloc_array(a, 3 * n, sizeof(uint32_t));
+    if (!s) return false;
+    for (size_t f = 0, k = 0; f < nf; ++f)
+        if (repeat[f]) sort3(tri + 3 * f, s + 3 * k++);
+    qsort(s, n, 3 * sizeof(uint32_t), cmp_triple);
+    for (size_t k = 1; k < n; ++k) *out += cmp_triple(s + 3 * k, s + 3 * (k - 1)) == 0;
+    tg__free(a, s);
     return true;
 }
 
@@ -182,43 +211,56 @@ typedef struct topo_scratch {
 static void scratch_free(const tg_allocator* a, topo_scratch* s)
 {
     tg__free(a, s->es.start);
-    tg__free(a, s->es.he);
+    tg__free(a, s->es.key);
+    tg__free(a, s->es.third);
+    tg__free(a, s->es.repeat);
     tg__free(a, s->corner_parent);
     tg__free(a, s->vert_parent);
     tg__free(a, s->bnd_parent);
 }
 
-/* Walks the sorted halfedges edge by edge: sets opposites and the edge counts, and joins the
- * corners across every two-face edge (the corpus's fan definition, orientation ignored). */
+/* The corner of halfedge h's face at its start (end_ = 0) or end (end_ = 1) vertex; on faces with
+ * a repeated index the corpus definition takes the first corner holding that vertex. */
+static uint32_t he_corner(const tg_mesh* m, const edge_scan* es, uint32_t h, uint32_t v)
+{
+    uint32_t f = h / 3;
+    if (es->repeat[f]) return corner_of(m->tri, f, v);
+    return m->tri[h] == v ? h : tg_halfedge_next(h);
+}
+
+/* Walks the sorted halfedges edge by edge: sets opposites and the edge counts, joins the corners
+ * across every two-face edge (the corpus's fan definition, orientation ignored), counts
+ * duplicate faces. */
 static void scan_edges(tg_mesh* m, topo_scratch* s, uint8_t* on_boundary, tg_mesh_report* r)
 {
-    const uint32_t* tri = m->tri;
+    const edge_scan* es = &s->es;
     for (size_t v = 0; v < m->vertex_count; ++v) {
-        uint32_t i = s->es.start[v], end = s->es.start[v + 1];
+        uint32_t i = es->start[v], end = es->start[v + 1];
         while (i < end) {
-            uint32_t hi = he_hi(tri, s->es.he[i]);
+            uint32_t hi = KEY_HI(es->key[i]);
             uint32_t j = i + 1;
-            while (j < end && he_hi(tri, s->es.he[j]) == hi) ++j;
+            while (j < end && KEY_HI(es->key[j]) == hi) ++j;
             uint32_t uses = j - i;
             r->edges++;
             if (uses == 1) {
                 r->boundary_edges++;
                 on_boundary[v] = on_boundary[hi] = 1;
                 uf_union(s->bnd_parent, (uint32_t)v, hi);
-            } else if (uses >= 3) {
-                r->nonmanifold_edges++;
             } else {
-                uint32_t ha = s->es.he[i], hb = s->es.he[i + 1];
-                uint32_t fa = ha / 3, fb = hb / 3;
-                bool same_dir = tri[ha] == tri[hb];
-                if (same_dir) r->misoriented_edges++;
-                if (!same_dir && !face_has_repeat(tri + 3 * (size_t)fa) &&
-                    !face_has_repeat(tri + 3 * (size_t)fb)) {
-                    m->opp[ha] = hb;
-                    m->opp[hb] = ha;
+                r->duplicate_faces += group_duplicates(es, i, j, hi);
+                if (uses >= 3) {
+                    r->nonmanifold_edges++;
+                } else {
+                    uint32_t ha = KEY_H(es->key[i]), hb = KEY_H(es->key[i + 1]);
+                    bool same_dir = KEY_DIR(es->key[i]) == KEY_DIR(es->key[i + 1]);
+                    if (same_dir) r->misoriented_edges++;
+                    if (!same_dir && !es->repeat[ha / 3] && !es->repeat[hb / 3]) {
+                        m->opp[ha] = hb;
+                        m->opp[hb] = ha;
+                    }
+                    uf_union(s->corner_parent, he_corner(m, es, ha, (uint32_t)v), he_corner(m, es, hb, (uint32_t)v));
+                    uf_union(s->corner_parent, he_corner(m, es, ha, hi), he_corner(m, es, hb, hi));
                 }
-                uf_union(s->corner_parent, corner_of(tri, fa, (uint32_t)v), corner_of(tri, fb, (uint32_t)v));
-                uf_union(s->corner_parent, corner_of(tri, fa, hi), corner_of(tri, fb, hi));
             }
             i = j;
         }
@@ -341,13 +383,15 @@ static tg_status build_topology(tg_mesh* m)
     assign_components(m, s.vert_parent, s.bnd_parent, r);
     assign_vertex_halfedges(m);
     geometry_report(m, r);
-    bool ok = count_duplicate_faces(a, m->tri, nf, &r->duplicate_faces);
+    uint64_t repeated_dups = 0;
+    bool ok = repeated_face_duplicates(a, m->tri, s.es.repeat, nf, &repeated_dups);
+    r->duplicate_faces += repeated_dups;
 
     uint64_t used = 0, repeated = 0;
     memset(pinched, 0, nv);
     for (size_t i = 0; i < 3 * nf; ++i) pinched[m->tri[i]] = 1;
     for (size_t v = 0; v < nv; ++v) used += pinched[v];
-    for (size_t f = 0; f < nf; ++f) repeated += face_has_repeat(m->tri + 3 * f);
+    for (size_t f = 0; f < nf; ++f) repeated += s.es.repeat[f];
     r->unreferenced_vertices = nv - used;
     r->euler_characteristic = (int64_t)used - (int64_t)r->edges + (int64_t)nf;
     r->closed_manifold = nf > 0 && r->boundary_edges == 0 && r->nonmanifold_edges == 0 &&

@@ -2,10 +2,17 @@
  * Based on: W. D. Clinger, "How to Read Floating Point Numbers Accurately" (PLDI 1990), the
  * fast path: a decimal mantissa m <= 2^53 and a power 10^k with |k| <= 22 are both exact
  * doubles, so one IEEE multiplication or division gives the correctly rounded result. Every
- * other input falls back to strtod (C locale), which is also correctly rounded on glibc. */
+ * other input falls back to strtod (C locale), which is also correctly rounded on glibc.
+ * Extended path (x86 80-bit long double, 64-bit significand): a mantissa below 10^19 < 2^64 and
+ * 10^k with |k| <= 27 (5^27 < 2^64) are exact, so one long double operation has error at most
+ * half an ulp of long double; rounding that to double is correct unless the true value may lie
+ * on the other side of a double rounding boundary, which we detect by rounding both ends of the
+ * error interval and falling back to strtod when they differ. This keeps 17-digit (%.17g) input
+ * on the fast path. */
 #ifndef TG_NUMPARSE_H
 #define TG_NUMPARSE_H
 
+#include <float.h>
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -59,13 +66,31 @@ static inline const char* tg__parse_double(const char* p, double* out)
     }
     if (*s == 'x' || *s == 'X' || *s == 'p' || *s == 'P') goto slow;
     e -= frac;
-    if (m > (1ull << 53) || e < -22 || e > 22) goto slow;
-    {
+    if (m <= (1ull << 53) && e >= -22 && e <= 22) {
         double v = (double)m;
         v = e < 0 ? v / pow10[-e] : v * pow10[e];
         *out = neg ? -v : v;
         return s;
     }
+#if LDBL_MANT_DIG == 64
+    if (e >= -27 && e <= 27) {
+        static const long double pow10l[28] = {
+            1e0L,  1e1L,  1e2L,  1e3L,  1e4L,  1e5L,  1e6L,  1e7L,  1e8L,  1e9L,
+            1e10L, 1e11L, 1e12L, 1e13L, 1e14L, 1e15L, 1e16L, 1e17L, 1e18L, 1e19L,
+            1e20L, 1e21L, 1e22L, 1e23L, 1e24L, 1e25L, 1e26L, 1e27L};
+        long double v = (long double)m;
+        v = e < 0 ? v / pow10l[-e] : v * pow10l[e];
+        /* the exact value lies within v * (1 +- 2^-64); widen to 2^-62 and require both ends
+         * to round to the same double */
+        long double slack = v * 0x1p-62L;
+        double lo = (double)(v - slack), hi = (double)(v + slack);
+        if (lo == hi && v != 0.0L) {
+            *out = neg ? -lo : lo;
+            return s;
+        }
+    }
+#endif
+    goto slow;
 slow:
     {
         char* endp;

@@ -43,4 +43,15 @@ bool tg__fan_push(const tg_allocator* a, tg__vec* tris, const uint32_t* poly, si
 /* 1-based line and column of byte offset `off` in text data (for diagnostics on error paths). */
 void tg__line_col(const char* data, size_t off, uint64_t* line, uint64_t* col);
 
+/* Records a reader failure at byte offset `off` and returns `status`. With text != NULL the
+ * offset is in text data and line/column are computed from it (O(off), error paths only); with
+ * text == NULL the data is binary and only the byte offset is set. */
+tg_status tg__io_fail(tg_diag* diag, const char* name, const char* text, size_t off, tg_status status,
+                      const char* fmt, ...) TG_PRINTF(6, 7);
+
+/* Whitespace of the token-based text formats (OFF, PLY ascii, STL ascii): blank, \t, \n, \v,
+ * \f, \r. '\0' is not whitespace, so a terminator or embedded NUL ends every token scan. */
+static inline bool tg__is_space(char c) { return c == ' ' || (unsigned)(c - '\t') <= 4u; }
+static inline bool tg__is_eol(char c) { return c == '\n' || c == '\r'; }
+
 #endif

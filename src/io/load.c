@@ -36,6 +36,18 @@ void tg__line_col(const char* data, size_t off, uint64_t* line, uint64_t* col)
     *col = off - start + 1;
 }
 
+tg_status tg__io_fail(tg_diag* diag, const char* name, const char* text, size_t off, tg_status status,
+                      const char* fmt, ...)
+{
+    uint64_t line = 0, col = 0;
+    if (text) tg__line_col(text, off, &line, &col);
+    va_list ap;
+    va_start(ap, fmt);
+    tg__diag_vset(diag, name, line, col, off, fmt, ap);
+    va_end(ap);
+    return status;
+}
+
 bool tg__fan_push(const tg_allocator* a, tg__vec* tris, const uint32_t* poly, size_t corners)
 {
     if (corners < 3) return true;
@@ -203,7 +215,7 @@ static tg_status parse_buffer(const char* data, size_t size, const char* name, t
         return TG_ERR_UNSUPPORTED;
     }
     if (size == 0) {
-        tg__diag_set(diag, name, 0, 0, 0, "empty file (expected %s)", format_name(format));
+        tg__diag_set(diag, name, 1, 1, 0, "empty file (expected %s)", format_name(format));
         return TG_ERR_PARSE;
     }
     tg__soup soup = {NULL, 0, NULL, 0};
@@ -212,8 +224,10 @@ static tg_status parse_buffer(const char* data, size_t size, const char* name, t
     if (soup.face_count == 0) {
         tg__free(a, soup.xyz);
         tg__free(a, soup.tri);
-        tg__diag_set(diag, name, 0, 0, size, "%s data has no faces", format_name(format));
-        return TG_ERR_PARSE;
+        /* text formats get the line of the end of the data; binary ones only the offset */
+        bool text = format == TG_FORMAT_OBJ || format == TG_FORMAT_OFF;
+        return tg__io_fail(diag, name, text ? data : NULL, size, TG_ERR_PARSE, "%s data has no faces",
+                           format_name(format));
     }
     return tg__mesh_create_owned(soup.xyz, soup.vertex_count, soup.tri, soup.face_count, a, name,
                                  diag, out_mesh);

@@ -50,14 +50,20 @@ static void next_line(obj_cursor* c)
     c->line++;
 }
 
-static tg_status fail(obj_cursor* c, const char* name, tg_diag* diag, const char* msg, long long value)
+static tg_status fail_status(obj_cursor* c, const char* name, tg_diag* diag, tg_status st, const char* msg,
+                             long long value)
 {
     uint64_t line, col;
     size_t off = (size_t)(c->p - c->data);
     tg__line_col(c->data, off, &line, &col);
     (void)line;
     tg__diag_set(diag, name, c->line, col, off, msg, value);
-    return TG_ERR_PARSE;
+    return st;
+}
+
+static tg_status fail(obj_cursor* c, const char* name, tg_diag* diag, const char* msg, long long value)
+{
+    return fail_status(c, name, diag, TG_ERR_PARSE, msg, value);
 }
 
 static tg_status parse_vertex(obj_cursor* c, const char* name, const tg_allocator* a, tg_diag* diag,
@@ -69,7 +75,7 @@ static tg_status parse_vertex(obj_cursor* c, const char* name, const tg_allocato
         skip_blanks(c);
         const char* q = at_line_end(c) ? NULL : tg__parse_double(c->p, &out[k]);
         if (!q || q > c->end) return fail(c, name, diag, "vertex needs 3 numeric coordinates (got %lld)", k);
-        if (!isfinite(out[k])) return fail(c, name, diag, "non-finite vertex coordinate (coordinate %lld)", k);
+        if (!isfinite(out[k])) return fail_status(c, name, diag, TG_ERR_INVALID_MESH, "non-finite vertex coordinate (coordinate %lld)", k);
         c->p = q;
     }
     xyz->count += 3;
@@ -88,7 +94,7 @@ static tg_status parse_face(obj_cursor* c, const char* name, const tg_allocator*
         if (!q) return fail(c, name, diag, "face corner is not a vertex index%.0lld", 0);
         int64_t v = idx > 0 ? idx - 1 : (int64_t)vertex_count + idx;
         if (idx == 0 || v < 0 || v >= (int64_t)vertex_count)
-            return fail(c, name, diag, "face index %lld out of range", (long long)idx);
+            return fail_status(c, name, diag, TG_ERR_INVALID_MESH, "face index %lld out of range", (long long)idx);
         /* skip /vt/vn */
         while (q < c->end && *q != ' ' && *q != '\t' && *q != '\n' && *q != '\r' && *q != '#') {
             if (*q != '/' && *q != '-' && *q != '+' && !tg__is_digit(*q))

@@ -85,10 +85,13 @@ static tg_status parse_keyword(off_cursor* c)
 {
     skip_space(c);
     if (c->p >= c->end) return fail_at(c, c->p, TG_ERR_PARSE, "no OFF header or counts (only comments and blanks)");
-    if (tg__is_digit(*c->p) || *c->p == '+' || *c->p == '-') return TG_OK;
     const char* kw = c->p;
-    while (c->p < c->end && !tg__is_space(*c->p) && *c->p != '#') c->p++;
-    size_t n = (size_t)(c->p - kw);
+    const char* q = kw;
+    while (q < c->end && !tg__is_space(*q) && *q != '#') q++;
+    size_t n = (size_t)(q - kw);
+    bool keyword = n >= 3 && memcmp(q - 3, "OFF", 3) == 0;
+    if (!keyword && (tg__is_digit(*kw) || *kw == '+' || *kw == '-')) return TG_OK; /* counts first */
+    c->p = q;
     if (n < 3 || memcmp(kw + n - 3, "OFF", 3) != 0)
         return fail_at(c, kw, TG_ERR_PARSE, "not an OFF file: expected the OFF keyword or vertex/face counts, found '%.*s'",
                        (int)(n < 40 ? n : 40), kw);

@@ -387,6 +387,157 @@ tg_surface_point tg_surface_point_canonical(const tg_mesh* mesh, const tg_surfac
 /* BVH, closest point, signed distance (src/spatial)                                              */
 /* ============================================================================================== */
 /* TG-SECTION-SPATIAL */
+
+/** A bounding volume hierarchy over the triangles of a tg_mesh, for closest-point, signed-distance,
+ *  winding-number and surface-location queries. Immutable after creation; every query is
+ *  thread-safe given one workspace per thread. It keeps a pointer to the mesh (it does not copy
+ *  the mesh), so the mesh must outlive the BVH.
+ *
+ *  Exactness: every closest-point answer is bit-identical to a linear scan of all faces with the
+ *  project's robust point-triangle kernel (the tie rule below included); the tree only skips faces
+ *  it has proved to be farther (float node bounds are rounded outward and pruning is conservative).
+ *  Ties: among faces at exactly the same squared distance, the lowest face index wins.
+ *  Degenerate (zero-area) and duplicate faces are ordinary candidates. */
+typedef struct tg_bvh tg_bvh;
+
+/** Whether tg_bvh_create precomputes per-cluster dipole data for the fast (hierarchical)
+ *  generalized winding number. */
+typedef enum tg_bvh_winding_data {
+    TG_BVH_WINDING_AUTO = 0,   /**< precompute exactly when TG_SIGN_AUTO would pick the winding number */
+    TG_BVH_WINDING_ALWAYS = 1, /**< always precompute (about 256 bytes per BVH node) */
+    TG_BVH_WINDING_NEVER = 2   /**< never; winding numbers are then exact sums over all faces, O(F) */
+} tg_bvh_winding_data;
+
+/** Build options; a NULL pointer or a zero-initialised struct means defaults. */
+typedef struct tg_bvh_options {
+    const tg_allocator* allocator;    /**< NULL: libc. Also used by workspaces and batch queries. */
+    uint32_t max_leaf_size;           /**< largest leaf, 1..15; 0: default (4) */
+    tg_bvh_winding_data winding_data; /**< see tg_bvh_winding_data */
+} tg_bvh_options;
+
+/** Builds a 4-wide BVH over all faces of mesh (binned surface area heuristic; 64-byte nodes).
+ *  Any valid mesh is accepted, including an empty one (every query then finds nothing).
+ *  Returns TG_OK; TG_ERR_INVALID_ARGUMENT for a NULL mesh or out_bvh or an option out of range;
+ *  TG_ERR_OUT_OF_MEMORY. On failure *out_bvh is NULL.
+ *  Complexity: O(F log F) time, about 30-45 bytes per face (see tg_bvh_memory_bytes).
+ *  Thread-safe (reads the mesh only). */
+tg_status tg_bvh_create(const tg_mesh* mesh, const tg_bvh_options* options, tg_bvh** out_bvh);
+
+/** Frees a BVH (not its mesh). NULL is a no-op. Workspaces created for it must not be used after. */
+void tg_bvh_destroy(tg_bvh* bvh);
+
+/** The mesh the BVH was built over. O(1). */
+const tg_mesh* tg_bvh_mesh(const tg_bvh* bvh);
+
+/** Bytes owned by the BVH (nodes, its copy of the triangles in tree order, winding data and
+ *  header), excluding the tg_mesh. O(1). */
+size_t tg_bvh_memory_bytes(const tg_bvh* bvh);
+
+/** Per-thread query scratch (the traversal stack). A workspace may be used with the BVH it was
+ *  created for, by one thread at a time. */
+typedef struct tg_bvh_workspace tg_bvh_workspace;
+
+/** Creates a workspace for bvh (a few kilobytes, allocated with the BVH's allocator).
+ *  Returns TG_OK, TG_ERR_INVALID_ARGUMENT (NULL argument) or TG_ERR_OUT_OF_MEMORY. Thread-safe. */
+tg_status tg_bvh_workspace_create(const tg_bvh* bvh, tg_bvh_workspace** out_workspace);
+
+/** Frees a workspace. NULL is a no-op. */
+void tg_bvh_workspace_destroy(tg_bvh_workspace* workspace);
+
+/** The closest point of the mesh to a query point. */
+typedef struct tg_closest_hit {
+    uint32_t face;      /**< closest face (file order); TG_NONE when nothing was found */
+    tg_feature feature; /**< face interior, edge or vertex of that face (kernel's classification) */
+    double sqdist;      /**< squared distance; +infinity when nothing was found */
+    double point[3];    /**< the closest point (zeros when nothing was found) */
+    double bary[3];     /**< its barycentric coordinates on face (corners 0, 1, 2) */
+} tg_closest_hit;
+
+/** Finds the face closest to xyz with a squared distance <= max_dist_sq (pass INFINITY for no
+ *  limit), with the kernel's closest point, barycentric coordinates and feature. When no face is
+ *  that close (or the mesh is empty), returns TG_OK with out_hit->face == TG_NONE.
+ *  Returns TG_ERR_INVALID_ARGUMENT for a NULL argument, a non-finite xyz, a NaN or negative
+ *  max_dist_sq, or a workspace of another BVH.
+ *  Complexity: O(log F) node visits for typical meshes, O(F) worst case. Thread-safe with one
+ *  workspace per thread. */
+tg_status tg_bvh_closest(const tg_bvh* bvh, tg_bvh_workspace* workspace, const double xyz[3],
+                         double max_dist_sq, tg_closest_hit* out_hit);
+
+/** tg_bvh_closest for count points (xyz: 3 * count doubles; out_hits: count entries, in input
+ *  order). Queries are processed in Morton (Z-curve) order so that consecutive queries share cache
+ *  lines, each seeded with the answer of its predecessor as an upper bound; the answers are
+ *  identical to calling tg_bvh_closest on each point. threads: 0 = all cores (OpenMP), 1 = the
+ *  calling thread only. Allocates O(count) scratch with the BVH's allocator.
+ *  Returns TG_ERR_INVALID_ARGUMENT (NULL with count > 0, a non-finite point, a NaN or negative
+ *  max_dist_sq, threads < 0; out_hits is then unspecified) or TG_ERR_OUT_OF_MEMORY.
+ *  Thread-safe. */
+tg_status tg_bvh_closest_batch(const tg_bvh* bvh, const double* xyz, size_t count,
+                               double max_dist_sq, int threads, tg_closest_hit* out_hits);
+
+/** How the inside/outside sign of a distance is decided. */
+typedef enum tg_sign_method {
+    TG_SIGN_AUTO = 0,         /**< pseudonormal for a consistently oriented closed manifold without
+                                   degenerate faces (tg_mesh_report: closed_manifold, no misoriented
+                                   edges, no degenerate faces), else winding */
+    TG_SIGN_PSEUDONORMAL = 1, /**< angle-weighted pseudonormal at the closest feature (Baerentzen
+                                   and Aanaes 2005); exact for closed manifolds */
+    TG_SIGN_WINDING = 2       /**< generalized winding number >= 1/2 means inside (Jacobson et al.
+                                   2013; far clusters by dipoles, Barill et al. 2018) */
+} tg_sign_method;
+
+/** The method TG_SIGN_AUTO resolves to for this BVH's mesh (other values are returned as is). */
+tg_sign_method tg_bvh_sign_method(const tg_bvh* bvh, tg_sign_method method);
+
+/** A closest point with an inside/outside sign. Faces are taken counter-clockwise seen from
+ *  outside (right-hand normals point out): inside a closed, so oriented mesh is negative. */
+typedef struct tg_signed_hit {
+    tg_closest_hit hit;         /**< as tg_bvh_closest with no distance limit */
+    double distance;            /**< sign * sqrt(hit.sqdist) */
+    int sign;                   /**< -1 inside, +1 outside, 0 exactly on the surface */
+    tg_sign_method method;      /**< the method used (never TG_SIGN_AUTO) */
+    double winding_number;      /**< with TG_SIGN_WINDING: the generalized winding number, as it is
+                                     (fractional on open meshes); otherwise 0 */
+} tg_signed_hit;
+
+/** Signed distance from xyz to the mesh. With TG_SIGN_PSEUDONORMAL the sign is that of
+ *  (xyz - closest point) . pseudonormal of the closest feature (face normal; sum of the two face
+ *  normals of an edge; angle-weighted sum around a vertex); if that dot product is exactly 0 with
+ *  a non-zero distance (degenerate normals), the winding number decides. With TG_SIGN_WINDING
+ *  the point is inside when the winding number is >= 1/2. sign is 0 when hit.sqdist == 0.
+ *  An empty mesh gives hit.face == TG_NONE, sign +1 and distance +infinity.
+ *  Returns TG_ERR_INVALID_ARGUMENT for a NULL argument, a non-finite xyz, an unknown method or a
+ *  workspace of another BVH. Complexity: one closest-point query, plus one winding-number
+ *  evaluation for TG_SIGN_WINDING. Thread-safe with one workspace per thread. */
+tg_status tg_bvh_signed_distance(const tg_bvh* bvh, tg_bvh_workspace* workspace,
+                                 const double xyz[3], tg_sign_method method,
+                                 tg_signed_hit* out_hit);
+
+/** tg_bvh_signed_distance for count points (same ordering and threads as tg_bvh_closest_batch;
+ *  answers identical to the single-point call). */
+tg_status tg_bvh_signed_distance_batch(const tg_bvh* bvh, const double* xyz, size_t count,
+                                       tg_sign_method method, int threads,
+                                       tg_signed_hit* out_hits);
+
+/** The generalized winding number of the mesh at xyz: (1/4pi) * sum of the signed solid angles
+ *  of its triangles (Van Oosterom and Strackee 1983). 1 inside and 0 outside a closed,
+ *  consistently oriented mesh; fractional near holes. Evaluated hierarchically: clusters far from
+ *  xyz (distance > 2 * their radius) contribute their dipole term, near ones the exact sum; without
+ *  dipole data (TG_BVH_WINDING_NEVER) the exact sum over all faces. Finite everywhere (on the
+ *  surface itself the value is one of the one-sided limits or in between).
+ *  Returns TG_ERR_INVALID_ARGUMENT for a NULL argument, a non-finite xyz or a foreign workspace.
+ *  Complexity: O(log F) clusters plus the triangles near xyz; O(F) without dipole data.
+ *  Thread-safe with one workspace per thread. */
+tg_status tg_bvh_winding_number(const tg_bvh* bvh, tg_bvh_workspace* workspace, const double xyz[3],
+                                double* out_winding_number);
+
+/** The surface point closest to xyz, canonical (tg_surface_point_canonical: a barycentric
+ *  coordinate that is exactly 0 makes it an edge point, t exactly 0 or 1 a vertex). out_hit (may
+ *  be NULL) receives the closest-point answer it came from. Returns TG_ERR_INVALID_ARGUMENT as
+ *  tg_bvh_closest, and for an empty mesh (no surface point exists). Thread-safe with one
+ *  workspace per thread. */
+tg_status tg_bvh_locate(const tg_bvh* bvh, tg_bvh_workspace* workspace, const double xyz[3],
+                        tg_surface_point* out_point, tg_closest_hit* out_hit);
+
 /* TG-SECTION-SPATIAL-END */
 
 /* ============================================================================================== */

@@ -1,0 +1,148 @@
+/* bvh_internal.h - the tg_bvh layout shared by the spatial layer (build, queries, sign, winding).
+ * Based on: Wald 2007, "On fast construction of SAH-based bounding volume hierarchies" §3 (binned
+ * SAH); Dammertz, Hanika, Keller 2008, "Shallow bounding volume hierarchies for fast SIMD ray
+ * tracing of incoherent rays" §2 (4-wide nodes, children tested together); Ylitie, Karras, Laine
+ * 2017, "Efficient incoherent ray traversal on GPUs through compressed wide BVHs" §3.1 (child boxes
+ * quantized to 8 bits relative to the parent, power-of-two scale, rounded outward). */
+#ifndef TG_BVH_INTERNAL_H
+#define TG_BVH_INTERNAL_H
+
+#include "mesh/mesh_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#define TG__BVH_WIDTH 4
+#define TG__BVH_MAX_LEAF 15
+#define TG__BVH_DEFAULT_LEAF 4
+
+/* One 4-wide node in exactly one 64-byte cache line. Coordinates are "local": (x - origin) * scale
+ * of the tg_bvh, so that the mesh fits in [-1, 1]^3 and float keeps relative precision whatever
+ * the mesh's position and size. A child box on axis a is
+ *     lo = origin[a] + (float)qlo[a][slot] * 2^exponent[a]   (float multiply, then float add)
+ * and likewise hi; the builder checks with exactly these float operations that the decoded box
+ * contains the child, so pruning with it is conservative. */
+typedef struct tg__bvh_node {
+    float origin[3];       /* lower corner of this node's box */
+    int8_t exponent[3];    /* per-axis power-of-two quantization step */
+    uint8_t child_count;   /* slots 0 .. child_count-1 are used (1..4) */
+    uint8_t qlo[3][TG__BVH_WIDTH];
+    uint8_t qhi[3][TG__BVH_WIDTH];
+    uint32_t child[TG__BVH_WIDTH];     /* inner child: node index; leaf: first primitive */
+    uint8_t leaf_count[TG__BVH_WIDTH]; /* 0: inner child; 1..15: primitives of a leaf */
+    uint32_t reserved;
+} tg__bvh_node;
+
+/* A triangle in tree order: its face id and its corners (in face order) as indices into the BVH's
+ * own copy of the vertices, which is numbered in order of first use so that a leaf's corners sit
+ * in a few neighbouring cache lines. */
+typedef struct tg__bvh_prim {
+    uint32_t face;
+    uint32_t v[3];
+} tg__bvh_prim;
+
+/* Winding-number data of one child cluster (a node slot): Barill et al. 2018 §3.2, first order.
+ * center: area-weighted centroid; normal: sum of area-weighted unit normals (= half the sum of
+ * the corner cross products); radius: bounds |x - center| over the cluster; area: total area. */
+typedef struct tg__bvh_cluster {
+    double center[3];
+    double normal[3];
+    double radius;
+    double area;
+} tg__bvh_cluster;
+
+/* Traversal stack entry: a node (count 0) or a leaf (first primitive, count), with the lower
+ * bound of its squared distance (local units) when it was pushed. */
+typedef struct tg__bvh_entry {
+    uint32_t ref;
+    uint32_t count;
+    float dist;
+} tg__bvh_entry;
+
+struct tg_bvh {
+    tg_allocator allocator;
+    const tg_mesh* mesh;
+    double origin[3]; /* local = (x - origin) * scale */
+    double scale;     /* a power of two */
+    tg__bvh_node* nodes; /* 64-byte aligned inside nodes_raw; node 0 is the root */
+    void* nodes_raw;
+    size_t node_count;
+    tg__bvh_prim* prims;
+    size_t prim_count;
+    double* vtx; /* 3 per BVH vertex */
+    size_t vtx_count;
+    tg__bvh_cluster* clusters; /* TG__BVH_WIDTH per node, or NULL */
+    uint32_t depth;            /* node levels (root alone: 1; empty mesh: 0) */
+    uint32_t stack_capacity;   /* entries a workspace needs */
+    tg_sign_method auto_method;
+    size_t memory_bytes;
+};
+
+struct tg_bvh_workspace {
+    const tg_bvh* bvh;
+    uint32_t capacity;
+    tg__bvh_entry* stack;
+};
+
+/* ---- float bounds rounded outward ---- */
+
+static inline float tg__f32_next_up(float f)
+{
+    uint32_t u;
+    if (f != f || f == (float)INFINITY) return f;
+    if (f == 0.0f) return 0x1p-149f;
+    memcpy(&u, &f, sizeof u);
+    u = f > 0.0f ? u + 1 : u - 1;
+    memcpy(&f, &u, sizeof u);
+    return f;
+}
+static inline float tg__f32_next_down(float f) { return -tg__f32_next_up(-f); }
+
+/* A float <= x, one float step below the nearest, to also cover the double rounding of x itself
+ * (at most half a double ulp, far less than a float step). */
+static inline float tg__f32_below(double x)
+{
+    float f = (float)x;
+    if ((double)f > x) f = tg__f32_next_down(f);
+    return tg__f32_next_down(f);
+}
+static inline float tg__f32_above(double x)
+{
+    float f = (float)x;
+    if ((double)f < x) f = tg__f32_next_up(f);
+    return tg__f32_next_up(f);
+}
+
+/* 2^e as a float for e in [-126, 127]. */
+static inline float tg__f32_pow2(int e)
+{
+    uint32_t u = (uint32_t)(e + 127) << 23;
+    float f;
+    memcpy(&f, &u, sizeof f);
+    return f;
+}
+
+/* The decoded child bound; the query's SIMD path performs the same two float operations. */
+static inline float tg__bvh_decode(float origin, float step, uint8_t q) { return origin + (float)q * step; }
+
+/* Local coordinates of a point (double, exact up to one rounding of the subtraction). */
+static inline void tg__bvh_to_local(const tg_bvh* b, const double* x, double* out)
+{
+    for (int k = 0; k < 3; ++k) out[k] = (x[k] - b->origin[k]) * b->scale;
+}
+
+/* Internal cross-file entry points. */
+/* One closest query (no distance limit) seeded with the distance to face hint (TG_NONE: none). */
+void tg__bvh_closest_hinted(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p, uint32_t hint,
+                            tg_closest_hit* hit);
+/* Runs fn on each of count points (validated finite first) in Morton order on `threads` threads
+ * (0: all), consecutive points sharing a hint; fn's index is the point's input position. */
+typedef void (*tg__bvh_batch_fn)(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p, uint32_t* hint,
+                                 void* ctx, size_t index);
+tg_status tg__bvh_run_batch(const tg_bvh* bvh, const double* xyz, size_t count, int threads, tg__bvh_batch_fn fn,
+                            void* ctx);
+tg_status tg__bvh_build_clusters(tg_bvh* bvh);
+/* Generalized winding number at p (world coordinates), using ws's stack. */
+double tg__bvh_winding(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p);
+
+#endif

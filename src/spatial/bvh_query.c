@@ -1,0 +1,368 @@
+/* bvh_query.c - closest point on a mesh: nearest-first branch and bound over the 4-wide BVH with
+ * conservative float pruning and exact double point-triangle distances; workspaces; batches in
+ * Morton order on all cores; surface location.
+ * Based on: Larsen, Gottschalk, Lin, Manocha 1999, "Fast proximity queries with swept sphere
+ * volumes" §5 (closest-first traversal, pruning by a lower bound against the best distance so far);
+ * Eberly, "Distance between point and triangle in 3D" (the kernel, seed 000, via
+ * kernels/point_triangle.h); Morton 1966 (Z-order keys by bit interleaving) for batch order. */
+#include "spatial/bvh_internal.h"
+#include "spatial/simd4.h"
+#include "kernels/point_triangle.h"
+
+#include <float.h>
+#include <math.h>
+
+#ifdef TG_HAVE_OPENMP
+#include <omp.h>
+#endif
+
+#if defined(__GNUC__) || defined(__clang__)
+#define PREFETCH(p) __builtin_prefetch(p)
+#else
+#define PREFETCH(p) ((void)0)
+#endif
+
+/* Where one query stands. Pruning compares float lower bounds in local units against thr, an
+ * upper bound of the best squared distance in local units: a subtree is skipped only when its box
+ * is certainly farther than the best face so far, so that any face at the final best distance
+ * (ties included) is always examined. */
+typedef struct query {
+    const double* p;
+    float plo[3], phi[3]; /* float interval around the local coordinates of p */
+    double best;          /* best squared distance so far (world units) */
+    uint32_t best_face;
+    tg_point_triangle best_pt;
+    float thr;
+} query;
+
+/* Upper bound, in float local units, of the squared distance that a face whose box is at that
+ * distance could still be computed at by the kernel. The kernel's squared distances are taken to
+ * be within 2^-45 * (d + E)^2 (plus underflow, 2^-1070 absolute) of the true ones, d the
+ * distance and E the mesh diagonal (it subtracts coordinates and works with differences no
+ * longer than d + E); doubling that margin makes the prune sound for faces farther than best.
+ * Float lower bounds carry a relative error below 6 * 2^-24 (one rounding per subtraction,
+ * square and sum of three non-negative terms): the threshold is inflated by 2^-19 for them, and
+ * never drops below 2 * FLT_MIN, which absorbs the absolute error of underflowing squares. */
+static float threshold(const tg_bvh* bvh, double best)
+{
+    /* in local units, where the mesh diagonal is at most 2 * sqrt(3) < 3.5 */
+    double s = bvh->scale, r = sqrt(best) * s + 3.5;
+    double local = best * s * s + 0x1p-44 * r * r + 0x1p-1060 * s * s;
+    float f = (float)local;
+    if ((double)f < local) f = tg__f32_next_up(f);
+    f = f * (1.0f + 0x1p-19f);
+    return f < 2.0f * FLT_MIN ? 2.0f * FLT_MIN : f;
+}
+
+static void query_init(const tg_bvh* bvh, query* q, const double* p, double max_dist_sq)
+{
+    double x[3];
+    tg__bvh_to_local(bvh, p, x);
+    for (int k = 0; k < 3; ++k) {
+        /* Moving a far point towards the mesh box (inside [-2, 2]^3) only lowers lower bounds. */
+        double c = x[k] < -0x1p30 ? -0x1p30 : x[k] > 0x1p30 ? 0x1p30 : x[k];
+        q->plo[k] = tg__f32_below(c);
+        q->phi[k] = tg__f32_above(c);
+    }
+    q->p = p;
+    q->best = max_dist_sq;
+    q->best_face = TG_NONE;
+    q->thr = threshold(bvh, max_dist_sq);
+}
+
+static inline void consider(const tg_bvh* bvh, query* q, uint32_t face, const double* v0, const double* v1,
+                            const double* v2)
+{
+    tg_point_triangle r;
+    tg__point_triangle_robust_3d(q->p, v0, v1, v2, &r);
+    if (r.sqdist < q->best || (r.sqdist == q->best && face < q->best_face)) {
+        q->best = r.sqdist;
+        q->best_face = face;
+        q->best_pt = r;
+        q->thr = threshold(bvh, r.sqdist);
+    }
+}
+
+static void test_leaf(const tg_bvh* bvh, query* q, uint32_t first, uint32_t count)
+{
+    const tg__bvh_prim* pr = bvh->prims + first;
+    const double* v = bvh->vtx;
+    for (uint32_t i = 0; i < count; ++i)
+        consider(bvh, q, pr[i].face, v + 3 * (size_t)pr[i].v[0], v + 3 * (size_t)pr[i].v[1], v + 3 * (size_t)pr[i].v[2]);
+}
+
+/* Lower bounds of the squared distance from the query to the node's child boxes (local units);
+ * returns the mask of used children that are not farther than the threshold. */
+static inline int node_bounds(const tg__bvh_node* n, const query* q, float* out)
+{
+    tg_v4 acc = tg_v4_set1(0.0f), zero = tg_v4_set1(0.0f);
+    for (int a = 0; a < 3; ++a) {
+        tg_v4 o = tg_v4_set1(n->origin[a]);
+        tg_v4 step = tg_v4_set1(tg__f32_pow2(n->exponent[a]));
+        tg_v4 lo = tg_v4_add(o, tg_v4_mul(tg_v4_from_u8(n->qlo[a]), step));
+        tg_v4 hi = tg_v4_add(o, tg_v4_mul(tg_v4_from_u8(n->qhi[a]), step));
+        tg_v4 d = tg_v4_max(tg_v4_max(tg_v4_sub(lo, tg_v4_set1(q->phi[a])), tg_v4_sub(tg_v4_set1(q->plo[a]), hi)), zero);
+        acc = tg_v4_add(acc, tg_v4_mul(d, d));
+    }
+    tg_v4_storeu(out, acc);
+    return tg_v4_le_mask(acc, tg_v4_set1(q->thr)) & ((1 << n->child_count) - 1);
+}
+
+static void traverse(const tg_bvh* bvh, tg_bvh_workspace* ws, query* q)
+{
+    tg__bvh_entry* stack = ws->stack;
+    uint32_t sp = 0;
+    stack[sp++] = (tg__bvh_entry){0, 0, 0.0f};
+    while (sp > 0) {
+        tg__bvh_entry e = stack[--sp];
+        if (e.dist > q->thr) continue;
+        if (e.count) {
+            test_leaf(bvh, q, e.ref, e.count);
+            continue;
+        }
+        const tg__bvh_node* n = &bvh->nodes[e.ref];
+        float d[4];
+        int mask = node_bounds(n, q, d);
+        /* Push the surviving children farthest first, so that the nearest is popped next. */
+        int slot[4], k = 0;
+        for (int s = 0; s < 4; ++s)
+            if (mask >> s & 1) {
+                int j = k++;
+                while (j > 0 && d[slot[j - 1]] < d[s]) {
+                    slot[j] = slot[j - 1];
+                    --j;
+                }
+                slot[j] = s;
+            }
+        for (int i = 0; i < k; ++i) {
+            int s = slot[i];
+            uint32_t c = n->child[s];
+            if (n->leaf_count[s])
+                PREFETCH(bvh->prims + c);
+            else
+                PREFETCH(bvh->nodes + c);
+            stack[sp++] = (tg__bvh_entry){c, n->leaf_count[s], d[s]};
+        }
+    }
+}
+
+static void fill_hit(const query* q, tg_closest_hit* hit)
+{
+    memset(hit, 0, sizeof *hit);
+    if (q->best_face == TG_NONE) {
+        hit->face = TG_NONE;
+        hit->feature = TG_FEATURE_FACE;
+        hit->sqdist = INFINITY;
+        return;
+    }
+    hit->face = q->best_face;
+    hit->feature = q->best_pt.feature;
+    hit->sqdist = q->best_pt.sqdist;
+    memcpy(hit->point, q->best_pt.closest, sizeof hit->point);
+    memcpy(hit->bary, q->best_pt.bary, sizeof hit->bary);
+}
+
+/* One query; hint is a face whose distance seeds the bound (TG_NONE: none). The answer does not
+ * depend on the hint: it only starts the search with a real candidate. */
+static void closest(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p, double max_dist_sq, uint32_t hint,
+                    tg_closest_hit* hit)
+{
+    query q;
+    query_init(bvh, &q, p, max_dist_sq);
+    if (bvh->node_count) {
+        if (hint != TG_NONE) {
+            const tg_mesh* m = bvh->mesh;
+            const uint32_t* t = m->tri + 3 * (size_t)hint;
+            consider(bvh, &q, hint, m->xyz + 3 * (size_t)t[0], m->xyz + 3 * (size_t)t[1], m->xyz + 3 * (size_t)t[2]);
+        }
+        traverse(bvh, ws, &q);
+    }
+    fill_hit(&q, hit);
+}
+
+static bool finite3(const double* p) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
+
+/* ---- workspaces ---- */
+
+tg_status tg_bvh_workspace_create(const tg_bvh* bvh, tg_bvh_workspace** out)
+{
+    if (out) *out = NULL;
+    if (!bvh || !out) return TG_ERR_INVALID_ARGUMENT;
+    tg_bvh_workspace* ws = tg__alloc(&bvh->allocator, sizeof *ws);
+    if (!ws) return TG_ERR_OUT_OF_MEMORY;
+    ws->bvh = bvh;
+    ws->capacity = bvh->stack_capacity;
+    ws->stack = tg__alloc_array(&bvh->allocator, ws->capacity, sizeof *ws->stack);
+    if (!ws->stack) {
+        tg__free(&bvh->allocator, ws);
+        return TG_ERR_OUT_OF_MEMORY;
+    }
+    *out = ws;
+    return TG_OK;
+}
+
+void tg_bvh_workspace_destroy(tg_bvh_workspace* ws)
+{
+    if (!ws) return;
+    const tg_allocator* a = &ws->bvh->allocator;
+    tg__free(a, ws->stack);
+    tg__free(a, ws);
+}
+
+/* ---- batches ---- */
+
+/* Spreads the low 10 bits of x to every third bit. */
+static uint32_t spread3(uint32_t x)
+{
+    x &= 0x3FF;
+    x = (x | x << 16) & 0x030000FF;
+    x = (x | x << 8) & 0x0300F00F;
+    x = (x | x << 4) & 0x030C30C3;
+    x = (x | x << 2) & 0x09249249;
+    return x;
+}
+
+/* 30-bit Morton key of p over [-1.25, 1.25]^3 in local coordinates (clamped). */
+static uint32_t morton_key(const tg_bvh* bvh, const double* p)
+{
+    double x[3];
+    uint32_t c[3];
+    tg__bvh_to_local(bvh, p, x);
+    for (int k = 0; k < 3; ++k) {
+        double t = (x[k] + 1.25) * (1024.0 / 2.5);
+        c[k] = t <= 0.0 ? 0 : t >= 1023.0 ? 1023 : (uint32_t)t;
+    }
+    return spread3(c[0]) | spread3(c[1]) << 1 | spread3(c[2]) << 2;
+}
+
+/* Indices 0..count-1 sorted by Morton key (stable LSD radix sort, 3 passes of 10 bits), as the
+ * low 32 bits of out[]; tmp has count entries. */
+static void morton_order(const tg_bvh* bvh, const double* xyz, uint32_t count, uint64_t* out, uint64_t* tmp,
+                         uint32_t* hist)
+{
+    for (uint32_t i = 0; i < count; ++i) out[i] = (uint64_t)morton_key(bvh, xyz + 3 * (size_t)i) << 32 | i;
+    for (int pass = 0; pass < 3; ++pass) {
+        int shift = 32 + 10 * pass;
+        memset(hist, 0, 1024 * sizeof *hist);
+        for (uint32_t i = 0; i < count; ++i) hist[out[i] >> shift & 1023]++;
+        uint32_t sum = 0;
+        for (int b = 0; b < 1024; ++b) {
+            uint32_t h = hist[b];
+            hist[b] = sum;
+            sum += h;
+        }
+        for (uint32_t i = 0; i < count; ++i) tmp[hist[out[i] >> shift & 1023]++] = out[i];
+        memcpy(out, tmp, (size_t)count * sizeof *out);
+    }
+}
+
+
+/* Runs fn over count points in Morton order, chunks of consecutive points per thread, each chunk
+ * passing a hint from one query to the next. Shared by the closest and signed batches. */
+static tg_status run_batch(const tg_bvh* bvh, const double* xyz, size_t count, int threads, tg__bvh_batch_fn fn,
+                           void* ctx)
+{
+    const tg_allocator* a = &bvh->allocator;
+    for (size_t i = 0; i < count; ++i)
+        if (!finite3(xyz + 3 * i)) return TG_ERR_INVALID_ARGUMENT;
+    int nt = 1;
+#ifdef TG_HAVE_OPENMP
+    nt = threads > 0 ? threads : omp_get_max_threads();
+#endif
+    if (nt < 1) nt = 1;
+    const size_t block = (size_t)1 << 30; /* keeps indices in 32 bits */
+    uint32_t n0 = (uint32_t)(count < block ? count : block);
+    uint64_t* order = tg__alloc_array(a, n0 ? n0 : 1, sizeof *order);
+    uint64_t* tmp = tg__alloc_array(a, n0 ? n0 : 1, sizeof *tmp);
+    uint32_t* hist = tg__alloc_array(a, 1024, sizeof *hist);
+    tg_bvh_workspace** ws = tg__calloc_array(a, (size_t)nt, sizeof *ws);
+    tg_status st = order && tmp && hist && ws ? TG_OK : TG_ERR_OUT_OF_MEMORY;
+    for (int t = 0; t < nt && st == TG_OK; ++t) st = tg_bvh_workspace_create(bvh, &ws[t]);
+    for (size_t base = 0; base < count && st == TG_OK; base += block) {
+        uint32_t n = (uint32_t)(count - base < block ? count - base : block);
+        const double* pts = xyz + 3 * base;
+        morton_order(bvh, pts, n, order, tmp, hist);
+        const long chunk = 256, chunks = (long)((n + chunk - 1) / chunk);
+#ifdef TG_HAVE_OPENMP
+#pragma omp parallel for num_threads(nt) schedule(dynamic, 1)
+#endif
+        for (long c = 0; c < chunks; ++c) {
+            int t = 0;
+#ifdef TG_HAVE_OPENMP
+            t = omp_get_thread_num();
+#endif
+            uint32_t hint = TG_NONE;
+            size_t end = (size_t)(c + 1) * (size_t)chunk < n ? (size_t)(c + 1) * (size_t)chunk : n;
+            for (size_t i = (size_t)c * (size_t)chunk; i < end; ++i) {
+                uint32_t idx = (uint32_t)order[i];
+                fn(bvh, ws[t], pts + 3 * (size_t)idx, &hint, ctx, base + idx);
+            }
+        }
+    }
+    if (ws)
+        for (int t = 0; t < nt; ++t) tg_bvh_workspace_destroy(ws[t]);
+    tg__free(a, ws);
+    tg__free(a, hist);
+    tg__free(a, tmp);
+    tg__free(a, order);
+    return st;
+}
+
+typedef struct closest_ctx {
+    double max_dist_sq;
+    tg_closest_hit* hits;
+} closest_ctx;
+
+static void closest_one(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p, uint32_t* hint, void* ctx,
+                        size_t index)
+{
+    closest_ctx* c = ctx;
+    tg_closest_hit* h = &c->hits[index];
+    closest(bvh, ws, p, c->max_dist_sq, *hint, h);
+    if (h->face != TG_NONE) *hint = h->face;
+}
+
+void tg__bvh_closest_hinted(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p, uint32_t hint,
+                            tg_closest_hit* hit)
+{
+    closest(bvh, ws, p, INFINITY, hint, hit);
+}
+
+tg_status tg__bvh_run_batch(const tg_bvh* bvh, const double* xyz, size_t count, int threads, tg__bvh_batch_fn fn,
+                            void* ctx)
+{
+    return run_batch(bvh, xyz, count, threads, fn, ctx);
+}
+
+/* ---- public entry points ---- */
+
+tg_status tg_bvh_closest(const tg_bvh* bvh, tg_bvh_workspace* ws, const double xyz[3], double max_dist_sq,
+                         tg_closest_hit* out_hit)
+{
+    if (!bvh || !ws || !xyz || !out_hit || ws->bvh != bvh) return TG_ERR_INVALID_ARGUMENT;
+    if (!finite3(xyz) || !(max_dist_sq >= 0.0)) return TG_ERR_INVALID_ARGUMENT;
+    closest(bvh, ws, xyz, max_dist_sq, TG_NONE, out_hit);
+    return TG_OK;
+}
+
+tg_status tg_bvh_closest_batch(const tg_bvh* bvh, const double* xyz, size_t count, double max_dist_sq, int threads,
+                               tg_closest_hit* out_hits)
+{
+    if (!bvh || (count && (!xyz || !out_hits)) || threads < 0 || !(max_dist_sq >= 0.0))
+        return TG_ERR_INVALID_ARGUMENT;
+    closest_ctx c = {max_dist_sq, out_hits};
+    return run_batch(bvh, xyz, count, threads, closest_one, &c);
+}
+
+tg_status tg_bvh_locate(const tg_bvh* bvh, tg_bvh_workspace* ws, const double xyz[3], tg_surface_point* out_point,
+                        tg_closest_hit* out_hit)
+{
+    if (!bvh || !ws || !xyz || !out_point || ws->bvh != bvh || !finite3(xyz)) return TG_ERR_INVALID_ARGUMENT;
+    tg_closest_hit h;
+    closest(bvh, ws, xyz, INFINITY, TG_NONE, &h);
+    if (out_hit) *out_hit = h;
+    if (h.face == TG_NONE) return TG_ERR_INVALID_ARGUMENT;
+    tg_surface_point sp = tg_surface_face(h.face, h.bary[0], h.bary[1], h.bary[2]);
+    *out_point = tg_surface_point_canonical(bvh->mesh, &sp);
+    return TG_OK;
+}

@@ -264,6 +264,8 @@ static tg_status parse_header(ply_file* f)
         if (pos >= n) return header_fail(f, pos, TG_ERR_PARSE, "missing 'end_header' (truncated header?)");
         size_t e = pos;
         while (e < n && !tg__is_eol(d[e])) e++;
+        /* \n, \r\n or a lone \r; a binary body after "end_header\r" that starts with byte 0x0A
+         * is read as if the header ended in \r\n (the format says \n; no writer emits a lone \r) */
         size_t next = e >= n ? n : (d[e] == '\r' && e + 1 < n && d[e + 1] == '\n') ? e + 2 : e + 1;
         ply_word w[6];
         size_t nw = split_words(d + pos, d + e, w, 6);

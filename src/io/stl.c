@@ -236,6 +236,14 @@ static tg_status parse_facet(stl_cursor* c, size_t facet, const tg_allocator* a,
     return st;
 }
 
+/* Some exporters pad the file after the last endsolid with NUL bytes. */
+static bool only_padding(const stl_cursor* c, size_t from)
+{
+    for (size_t i = from; i < c->n; ++i)
+        if (c->data[i] != '\0' && !tg__is_space(c->data[i])) return false;
+    return true;
+}
+
 static tg_status parse_ascii(stl_cursor* c, const tg_allocator* a, tg__vec* xyz)
 {
     size_t facet = 0;
@@ -243,6 +251,7 @@ static tg_status parse_ascii(stl_cursor* c, const tg_allocator* a, tg__vec* xyz)
     for (;;) {
         stl_token t = next_token(c);
         if (t.len == 0 && any_solid) return TG_OK;
+        if (any_solid && only_padding(c, t.at)) return TG_OK;
         if (!token_is(c, t, "solid")) {
             if (t.len == 0) return tg__io_fail(c->diag, c->name, c->data, t.at, TG_ERR_PARSE, "ascii STL has no 'solid'");
             return tg__io_fail(c->diag, c->name, c->data, t.at, TG_ERR_PARSE, "expected 'solid', found '%.*s'",

@@ -45,7 +45,8 @@ static uint32_t corner_of(const uint32_t* tri, uint32_t f, uint32_t v)
 
 /* ---- edge grouping ----
  * Halfedges with distinct endpoints are bucketed by their smaller endpoint (counting sort), each
- * entry a packed key  hi << 33 | dir << 32 | h  (hi: larger endpoint, dir: 1 when h runs hi -> lo)
+ * entry a packed key  hi << 33 | dir << 32 | repeat << 31 | h  (hi: larger endpoint, dir: 1 when
+ * h runs hi -> lo, repeat: h's face has a repeated index)
  * plus the face's third vertex, all computed in one sequential pass over the triangles. Sorting
  * a bucket by key groups the halfedges of each undirected edge without touching tri again. */
 
@@ -58,7 +59,8 @@ typedef struct edge_scan {
 
 #define KEY_HI(k) ((uint32_t)((k) >> 33))
 #define KEY_DIR(k) ((uint32_t)((k) >> 32) & 1u)
-#define KEY_H(k) ((uint32_t)(k))
+#define KEY_H(k) ((uint32_t)(k)&0x7FFFFFFFu)
+#define KEY_REPEAT(k) ((uint32_t)((k) >> 31) & 1u) /* the face has a repeated index (h < 2^31) */
 
 /* Insertion sort of one bucket (buckets are vertex valences, ~6 on typical meshes). */
 static void sort_bucket(uint64_t* key, uint32_t* third, uint32_t n)
@@ -127,7 +129,8 @@ static bool edge_scan_build(const tg_allocator* a, const uint32_t* tri, size_t n
             uint32_t u = t[i], w = t[(i + 1) % 3];
             if (u == w) continue;
             uint32_t lo = u < w ? u : w, hi = u ^ w ^ lo, slot = fill[lo]++;
-            es->key[slot] = (uint64_t)hi << 33 | (uint64_t)(u > w) << 32 | (uint32_t)(3 * f + i);
+            es->key[slot] = (uint64_t)hi << 33 | (uint64_t)(u > w) << 32 |
+                            (uint64_t)es->repeat[f] << 31 | (uint32_t)(3 * f + i);
             es->third[slot] = t[(i + 2) % 3];
         }
     }
@@ -153,10 +156,10 @@ static uint64_t group_duplicates(const edge_scan* es, uint32_t i, uint32_t j, ui
     uint64_t dup = 0;
     for (uint32_t x = i; x < j; ++x) {
         uint32_t fx = KEY_H(es->key[x]) / 3;
-        if (es->repeat[fx] || es->third[x] < hi) continue; /* not this face's smallest edge */
+        if (KEY_REPEAT(es->key[x]) || es->third[x] < hi) continue; /* not this face's smallest edge */
         for (uint32_t y = i; y < j; ++y) {
             uint32_t fy = KEY_H(es->key[y]) / 3;
-            if (fy < fx && !es->repeat[fy] && es->third[y] == es->third[x]) {
+            if (fy < fx && !KEY_REPEAT(es->key[y]) && es->third[y] == es->third[x]) {
                 dup++;
                 break;
             }
@@ -228,9 +231,8 @@ static uint32_t he_corner(const tg_mesh* m, const edge_scan* es, uint32_t h, uin
     return m->tri[h] == v ? h : tg_halfedge_next(h);
 }
 
-/* Walks the sorted halfedges edge by edge: sets opposites and the edge counts, joins the corners
- * across every two-face edge (the corpus's fan definition, orientation ignored), counts
- * duplicate faces. */
+/* Walks the sorted halfedges edge by edge: sets opposites and the edge counts, counts duplicate
+ * faces. */
 static void scan_edges(tg_mesh* m, topo_scratch* s, uint8_t* on_boundary, tg_mesh_report* r)
 {
     const edge_scan* es = &s->es;
@@ -251,20 +253,62 @@ static void scan_edges(tg_mesh* m, topo_scratch* s, uint8_t* on_boundary, tg_mes
                 if (uses >= 3) {
                     r->nonmanifold_edges++;
                 } else {
-                    uint32_t ha = KEY_H(es->key[i]), hb = KEY_H(es->key[i + 1]);
-                    bool same_dir = KEY_DIR(es->key[i]) == KEY_DIR(es->key[i + 1]);
-                    if (same_dir) r->misoriented_edges++;
-                    if (!same_dir && !es->repeat[ha / 3] && !es->repeat[hb / 3]) {
-                        m->opp[ha] = hb;
-                        m->opp[hb] = ha;
+                    uint64_t ka = es->key[i], kb = es->key[i + 1];
+                    if (KEY_DIR(ka) == KEY_DIR(kb)) {
+                        r->misoriented_edges++;
+                    } else if (!KEY_REPEAT(ka) && !KEY_REPEAT(kb)) {
+                        m->opp[KEY_H(ka)] = KEY_H(kb);
+                        m->opp[KEY_H(kb)] = KEY_H(ka);
                     }
-                    uf_union(s->corner_parent, he_corner(m, es, ha, (uint32_t)v), he_corner(m, es, hb, (uint32_t)v));
-                    uf_union(s->corner_parent, he_corner(m, es, ha, hi), he_corner(m, es, hb, hi));
                 }
             }
             i = j;
         }
     }
+}
+
+/* Joins the corners across every two-face edge, the corpus's fan definition: orientation ignored
+ * and faces with a repeated index included. Only needed when the opposites differ from those
+ * links (misoriented edges or repeated indices); otherwise the fan walk below is exact. */
+static void link_corners(const tg_mesh* m, topo_scratch* s)
+{
+    const edge_scan* es = &s->es;
+    for (size_t v = 0; v < m->vertex_count; ++v) {
+        uint32_t i = es->start[v], end = es->start[v + 1];
+        while (i < end) {
+            uint32_t hi = KEY_HI(es->key[i]);
+            uint32_t j = i + 1;
+            while (j < end && KEY_HI(es->key[j]) == hi) ++j;
+            if (j - i == 2) {
+                uint32_t ha = KEY_H(es->key[i]), hb = KEY_H(es->key[i + 1]);
+                uf_union(s->corner_parent, he_corner(m, es, ha, (uint32_t)v), he_corner(m, es, hb, (uint32_t)v));
+                uf_union(s->corner_parent, he_corner(m, es, ha, hi), he_corner(m, es, hb, hi));
+            }
+            i = j;
+        }
+    }
+}
+
+/* Pinched vertices when every two-face edge is paired by opposites: the walk h -> opp(prev(h))
+ * from the vertex halfedge (a boundary one where there is one, so the walk starts at the end of
+ * an open fan) covers exactly one fan; the vertex is pinched when that fan has fewer corners than
+ * the vertex. corners: V-sized scratch. */
+static uint64_t count_pinched_walk(const tg_mesh* m, uint32_t* corners)
+{
+    uint64_t count = 0;
+    memset(corners, 0, m->vertex_count * sizeof *corners);
+    for (size_t i = 0; i < 3 * m->face_count; ++i) corners[m->tri[i]]++;
+    for (size_t v = 0; v < m->vertex_count; ++v) {
+        uint32_t start = m->vhe[v];
+        if (start == TG_NONE) continue;
+        uint32_t h = start, steps = 0;
+        do {
+            steps++;
+            h = m->opp[tg_halfedge_prev(h)];
+        } while (h != TG_NONE && h != start && steps <= corners[v]);
+        count += steps != corners[v];
+    }
+    return count;
 }
 
 /* Vertices with corners in more than one fan; first_root is V-sized scratch. */
@@ -359,17 +403,16 @@ static tg_status build_topology(tg_mesh* m)
     size_t nv = m->vertex_count, nf = m->face_count;
     topo_scratch s;
     memset(&s, 0, sizeof s);
-    s.corner_parent = tg__alloc_array(a, 3 * nf, sizeof(uint32_t));
     s.vert_parent = tg__alloc_array(a, nv, sizeof(uint32_t));
     s.bnd_parent = tg__alloc_array(a, nv, sizeof(uint32_t));
     uint8_t* pinched = tg__calloc_array(a, nv, 1);
-    if (!s.corner_parent || !s.vert_parent || !s.bnd_parent || !pinched ||
+    if (!s.vert_parent || !s.bnd_parent || !pinched ||
         !edge_scan_build(a, m->tri, nv, nf, &s.es)) {
         tg__free(a, pinched);
         scratch_free(a, &s);
         return TG_ERR_OUT_OF_MEMORY;
     }
-    for (size_t i = 0; i < 3 * nf; ++i) s.corner_parent[i] = (uint32_t)i, m->opp[i] = TG_NONE;
+    for (size_t i = 0; i < 3 * nf; ++i) m->opp[i] = TG_NONE;
     for (size_t v = 0; v < nv; ++v) s.vert_parent[v] = s.bnd_parent[v] = (uint32_t)v;
 
     r->vertices = nv;
@@ -377,21 +420,34 @@ static tg_status build_topology(tg_mesh* m)
     scan_edges(m, &s, pinched, r);
     r->boundary_loops = count_boundary_loops(m, s.bnd_parent, pinched);
     memset(pinched, 0, nv);
-    /* vert_parent is reused as scratch for first roots, then rebuilt for components */
-    r->nonmanifold_vertices = count_pinched(m, s.corner_parent, s.vert_parent, pinched);
+    assign_vertex_halfedges(m);
+    uint64_t repeated = 0;
+    for (size_t f = 0; f < nf; ++f) repeated += s.es.repeat[f];
+    /* vert_parent is reused as scratch, then rebuilt for components */
+    if (r->misoriented_edges == 0 && repeated == 0) {
+        r->nonmanifold_vertices = count_pinched_walk(m, s.vert_parent);
+    } else {
+        s.corner_parent = tg__alloc_array(a, 3 * nf, sizeof(uint32_t));
+        if (!s.corner_parent) {
+            tg__free(a, pinched);
+            scratch_free(a, &s);
+            return TG_ERR_OUT_OF_MEMORY;
+        }
+        for (size_t i = 0; i < 3 * nf; ++i) s.corner_parent[i] = (uint32_t)i;
+        link_corners(m, &s);
+        r->nonmanifold_vertices = count_pinched(m, s.corner_parent, s.vert_parent, pinched);
+    }
     for (size_t v = 0; v < nv; ++v) s.vert_parent[v] = (uint32_t)v;
     assign_components(m, s.vert_parent, s.bnd_parent, r);
-    assign_vertex_halfedges(m);
     geometry_report(m, r);
     uint64_t repeated_dups = 0;
     bool ok = repeated_face_duplicates(a, m->tri, s.es.repeat, nf, &repeated_dups);
     r->duplicate_faces += repeated_dups;
 
-    uint64_t used = 0, repeated = 0;
+    uint64_t used = 0;
     memset(pinched, 0, nv);
     for (size_t i = 0; i < 3 * nf; ++i) pinched[m->tri[i]] = 1;
     for (size_t v = 0; v < nv; ++v) used += pinched[v];
-    for (size_t f = 0; f < nf; ++f) repeated += s.es.repeat[f];
     r->unreferenced_vertices = nv - used;
     r->euler_characteristic = (int64_t)used - (int64_t)r->edges + (int64_t)nf;
     r->closed_manifold = nf > 0 && r->boundary_edges == 0 && r->nonmanifold_edges == 0 &&

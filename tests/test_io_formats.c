@@ -154,6 +154,17 @@ static void test_obj(void)
     check_arrays(m, "obj hexagon", hex_xyz, 6, hex_tri, 4);
     tg_mesh_destroy(m);
     check_line_endings(variants[5], "v.obj", TG_FORMAT_OBJ);
+    /* imperfect but valid: a repeated index, a duplicate face, a zero-area face, an unused vertex */
+    const char* imperfect = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nv 5 5 5\nf 1 1 2\nf 1 2 3\nf 3 2 1\nf 1 2 4\n";
+    static const double imp_xyz[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 2, 0, 0, 5, 5, 5};
+    static const uint32_t imp_tri[] = {0, 0, 1, 0, 1, 2, 2, 1, 0, 0, 1, 3};
+    m = load_text(imperfect, "imperfect.obj", TG_FORMAT_OBJ);
+    check_arrays(m, "obj imperfect", imp_xyz, 5, imp_tri, 4);
+    if (m) {
+        CHECK_EQ_INT(tg_mesh_get_report(m)->degenerate_faces, 2);
+        CHECK_EQ_INT(tg_mesh_get_report(m)->unreferenced_vertices, 1);
+    }
+    tg_mesh_destroy(m);
 }
 
 /* ---- OFF ---- */
@@ -504,6 +515,17 @@ static void test_stl(void)
         CHECK_EQ_INT(negative_zeros, 0);
     }
     tg_mesh_destroy(m);
+
+    /* NUL padding after the last endsolid is tolerated */
+    {
+        static char padded[1024];
+        size_t n = strlen(stl_ascii);
+        memcpy(padded, stl_ascii, n);
+        memset(padded + n, 0, 16);
+        m = load(padded, n + 16, "pad.stl", TG_FORMAT_STL);
+        check_arrays(m, "stl ascii with NUL padding", stl_xyz, 4, stl_tri, 2);
+        tg_mesh_destroy(m);
+    }
 
     /* binary: same soup; welding order is first-seen, not sorted */
     static const double corners[] = {1, 1, 0, 1, 0, 0, 0, 0, 0, /* */ 0, 0, 0, 1, 0, 0, 0, 1, 0,

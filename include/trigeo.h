@@ -549,8 +549,10 @@ tg_status tg_bvh_locate(const tg_bvh* bvh, tg_bvh_workspace* workspace, const do
 typedef enum tg_fan_strategy {
     TG_FAN_COORDINATE = 0, /**< coordinate-direction search with Search/GetLRoot (seed §3.5, §4.3-4.5); default */
     TG_FAN_POWELL = 1,     /**< Powell's direction set: coordinate sweeps plus the sweep's net direction */
-    TG_FAN_CG = 2          /**< conjugate gradient: each direction conjugate to the previous one with
+    TG_FAN_CG = 2,         /**< conjugate gradient: each direction conjugate to the previous one with
                                 respect to the exact (tridiagonal) Hessian, eq. (57)-(58) */
+    TG_FAN_NEWTON = 3      /**< projected Newton with that Hessian and exact line searches (not in the
+                                seed): quadratic convergence, the fastest and most accurate */
 } tg_fan_strategy;
 
 /** One-dimensional root finders for L'(t) = 0 (the derivative of a convex length function). */
@@ -558,15 +560,20 @@ typedef enum tg_root_method {
     TG_ROOT_BISECTION = 0, /**< n = ceil(digits * log2(10)) bisection steps, no early exit (seed §2.4); default */
     TG_ROOT_NEWTON = 1,    /**< Newton steps safeguarded by the same bracket: the same final bracket width
                                 bound, usually far fewer derivative evaluations */
-    TG_ROOT_QUADRATIC = 2  /**< two-triangle kernel only: the closed-form roots of eq. (6), with its
-                                degenerate case t = b0 / a (Example 2.2); the fan treats it as BISECTION */
+    TG_ROOT_QUADRATIC = 2, /**< two-triangle kernel: the closed-form roots of eq. (6), with its degenerate
+                                case t = b0 / a (Example 2.2); the fan treats it as BISECTION */
+    TG_ROOT_UNFOLD = 3     /**< closed form by unfolding the two triangles into a plane (not in the seed):
+                                t = (a_par b_perp + b_par a_perp) / ((a_perp + b_perp) |B - A|), clamped,
+                                for the two-triangle kernel and the fan's coordinate searches, O(1) each;
+                                the fan's other line searches then use NEWTON */
 } tg_root_method;
 
 /** Options of the geodesic kernels. A NULL pointer or a zero-initialised struct means defaults. */
 typedef struct tg_geodesic_kernel_options {
     int digits;         /**< decimal digits of accuracy of each 1D root (seed §2.4); 0: 15; clamped to [1, 17] */
-    int max_iterations; /**< cap on the fan search's outer iterations (one iteration = one sweep over
-                             all coordinates, or one conjugate direction); 0: 100 + 20 * m */
+    int max_iterations; /**< cap on the fan search's outer iterations (one sweep over all coordinates,
+                             or one CG / Newton step); 0: 100 + 50 (m + 1)^2 for COORDINATE and
+                             POWELL (linear convergence), 100 + 20 (m + 1) for CG and NEWTON */
     int strategy;       /**< tg_fan_strategy; 0: TG_FAN_COORDINATE (the seed's choice) */
     int root_method;    /**< tg_root_method; 0: TG_ROOT_BISECTION (the seed's choice) */
 } tg_geodesic_kernel_options;

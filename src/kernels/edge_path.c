@@ -31,7 +31,7 @@ tg__root_opts tg__root_opts_make(const tg_geodesic_kernel_options* opts)
     int digits = (opts && opts->digits > 0) ? opts->digits : TG_KERNEL_DEFAULT_DIGITS;
     if (digits > TG_KERNEL_MAX_DIGITS) digits = TG_KERNEL_MAX_DIGITS;
     ro.method = opts ? opts->root_method : TG_ROOT_BISECTION;
-    if (ro.method < TG_ROOT_BISECTION || ro.method > TG_ROOT_QUADRATIC) ro.method = TG_ROOT_BISECTION;
+    if (ro.method < TG_ROOT_BISECTION || ro.method > TG_ROOT_UNFOLD) ro.method = TG_ROOT_BISECTION;
     /* n = ceil(digits * log2(10)) (seed §2.4); 8 digits give 27 as in the seed's example. */
     ro.iterations = (int)ceil(digits * 3.321928094887362);
     return ro;
@@ -163,6 +163,22 @@ double tg__norm_sum_minimize(const tg__norm_sum* f, double lo, double hi, const 
     return tg__norm_sum_root(f, lo, hi, ro, out_s);
 }
 
+double tg__two_point_unfold(const double d[3], const double a[3], const double b[3], double lo, double hi)
+{
+    tg_vec3 D = tg_v3_load(d);
+    double dl = tg_v3_len(D);
+    if (!(dl > 0.0)) return lo;
+    tg_vec3 E = tg_v3_scale(D, 1.0 / dl);
+    tg_vec3 A = tg_v3_load(a), B = tg_v3_load(b);
+    double a_par = tg_v3_dot(A, E), b_par = tg_v3_dot(B, E);
+    double a_perp = tg_v3_len(tg_v3_cross(A, E)), b_perp = tg_v3_len(tg_v3_cross(B, E));
+    double den = a_perp + b_perp;
+    /* A weighted mean of the two feet of the perpendiculars: no cancellation. */
+    double x = den > 0.0 ? (a_par * b_perp + b_par * a_perp) / den : 0.5 * (a_par + b_par);
+    double s = x / dl;
+    return s < lo ? lo : (s > hi ? hi : s);
+}
+
 void tg__edge_quadratic(const double p0[3], const double a[3], const double b[3], const double p1[3], double out_q[3])
 {
     tg_vec3 A = tg_v3_load(a);
@@ -251,7 +267,11 @@ double tg_edge_path_minimize(const double p0[3], const double a[3], const double
     tg__norm_sum f = {x, y, 2};
     tg__root_opts ro = tg__root_opts_make(opts);
     double len;
-    if (ro.method == TG_ROOT_QUADRATIC) {
+    if (ro.method == TG_ROOT_UNFOLD) {
+        double pp0[3] = {-x[0], -x[1], -x[2]}, pp1[3] = {-x[3], -x[4], -x[5]};
+        t = tg__two_point_unfold(y, pp0, pp1, 0.0, 1.0);
+        len = tg__norm_sum_value(&f, t);
+    } else if (ro.method == TG_ROOT_QUADRATIC) {
         double pp0[3] = {-x[0], -x[1], -x[2]}, pp1[3] = {-x[3], -x[4], -x[5]}, o[3] = {0, 0, 0};
         len = edge_quadratic_minimize(&f, pp0, o, y, pp1, &t);
     } else {

@@ -54,6 +54,14 @@ double tg__norm_sum_root(const tg__norm_sum* f, double lo, double hi, const tg__
  * returns the factor applied (1.0 when none). Minimizers are unchanged by a common scale. */
 double tg__kernel_rescale(double* x, size_t nx, double* y, size_t ny);
 
+/* The minimizer over s in [lo, hi] of |s D - A| + |s D - B| in closed form, by unfolding:
+ * rotating B about the line of D into the plane of A, on the other side, the shortest path is a
+ * straight segment, which meets the line at x = (a_par b_perp + b_par a_perp) / (a_perp + b_perp)
+ * (par: component along D, perp: distance from the line); s = x / |D| clamped to [lo, hi]
+ * (clamping is exact because the function is convex). With A and B both on the line every point
+ * between them is a minimizer; the midpoint is returned. D == 0 returns lo. */
+double tg__two_point_unfold(const double d[3], const double a[3], const double b[3], double lo, double hi);
+
 /* Coefficients (q2, q1, q0) of eq. (6): q2 t^2 + q1 t + q0 = 0, whose roots include the root of
  * L'(t) of the two-triangle problem (and extraneous roots from squaring). */
 void tg__edge_quadratic(const double p0[3], const double a[3], const double b[3], const double p1[3], double out_q[3]);

@@ -10,6 +10,7 @@
 
 static const cli_command* const commands[] = {
     &cli_cmd_info,
+    &cli_cmd_closest,
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 

@@ -17,7 +17,7 @@ _Static_assert(sizeof(tg__bvh_node) == 64, "a BVH node is one 64-byte cache line
 #define BIN_COUNT 16
 /* SAH constants relative to one point-triangle kernel call: testing a child box costs about a
  * quarter of a kernel call; a node visit tests four boxes at once. */
-#define SAH_TRAVERSAL 1.0f
+#define SAH_TRAVERSAL 4.0f
 #define SAH_INTERSECT 1.0f
 /* Beyond this many node levels, splits halve the primitive range by index: the depth (and so the
  * traversal stack) stays bounded by SAH_DEPTH_LIMIT + 16 whatever the input. */
@@ -386,39 +386,62 @@ done:
     return st;
 }
 
-/* ---- primitives and vertices in tree order ---- */
+/* ---- leaf blocks in node order ---- */
 
-static tg_status make_prims(tg_bvh* bvh, const bprim* bp)
+/* The distinct mesh vertices of primitives [begin, begin + k) and each corner's index among them. */
+static uint32_t leaf_vertices(const tg_mesh* m, const bprim* bp, uint32_t begin, uint32_t k, uint32_t* vert,
+                              uint8_t* corner)
+{
+    uint32_t u = 0;
+    for (uint32_t i = 0; i < k; ++i)
+        for (int c = 0; c < 3; ++c) {
+            uint32_t v = m->tri[3 * (size_t)bp[begin + i].face + c], j = 0;
+            while (j < u && vert[j] != v) ++j;
+            if (j == u) vert[u++] = v;
+            corner[3 * i + c] = (uint8_t)j;
+        }
+    return u;
+}
+
+/* Writes every leaf block, in node order and slot order (siblings next to each other), and points
+ * the leaf slots at them. */
+static tg_status make_leaves(tg_bvh* bvh, const bprim* bp)
 {
     const tg_mesh* m = bvh->mesh;
-    const tg_allocator* a = &bvh->allocator;
-    size_t n = m->face_count;
-    uint32_t* remap = tg__alloc_array(a, m->vertex_count ? m->vertex_count : 1, sizeof *remap);
-    bvh->prims = tg__alloc_array(a, n, sizeof *bvh->prims);
-    if (!remap || !bvh->prims) {
-        tg__free(a, remap);
-        return TG_ERR_OUT_OF_MEMORY;
-    }
-    memset(remap, 0xFF, m->vertex_count * sizeof *remap);
-    uint32_t used = 0;
-    for (size_t i = 0; i < n; ++i) {
-        uint32_t f = bp[i].face;
-        bvh->prims[i].face = f;
-        for (int k = 0; k < 3; ++k) {
-            uint32_t v = m->tri[3 * (size_t)f + k];
-            if (remap[v] == TG_NONE) remap[v] = used++;
-            bvh->prims[i].v[k] = remap[v];
+    uint32_t vert[3 * TG__BVH_MAX_LEAF];
+    uint8_t corner[3 * TG__BVH_MAX_LEAF];
+    size_t words = 0;
+    for (size_t n = 0; n < bvh->node_count; ++n) {
+        const tg__bvh_node* node = &bvh->nodes[n];
+        for (int s = 0; s < node->child_count; ++s) {
+            uint32_t k = node->leaf_count[s];
+            if (!k) continue;
+            uint32_t u = leaf_vertices(m, bp, node->child[s], k, vert, corner);
+            words += (tg__bvh_leaf_header(k) + 24 * (size_t)u) / 8;
         }
     }
-    bvh->vtx = tg__alloc_array(a, (size_t)used ? (size_t)used * 3 : 1, sizeof(double));
-    if (!bvh->vtx) {
-        tg__free(a, remap);
-        return TG_ERR_OUT_OF_MEMORY;
+    if (words >= (size_t)UINT32_MAX) return TG_ERR_UNSUPPORTED;
+    bvh->leaves = tg__alloc_array(&bvh->allocator, words ? words : 1, sizeof *bvh->leaves);
+    if (!bvh->leaves) return TG_ERR_OUT_OF_MEMORY;
+    bvh->leaf_words = words;
+    size_t at = 0;
+    for (size_t n = 0; n < bvh->node_count; ++n) {
+        tg__bvh_node* node = &bvh->nodes[n];
+        for (int s = 0; s < node->child_count; ++s) {
+            uint32_t k = node->leaf_count[s], begin = node->child[s];
+            if (!k) continue;
+            uint32_t u = leaf_vertices(m, bp, begin, k, vert, corner);
+            unsigned char* base = (unsigned char*)(bvh->leaves + at);
+            uint32_t* face = (uint32_t*)(void*)base;
+            for (uint32_t i = 0; i < k; ++i) face[i] = bp[begin + i].face;
+            memset(base + 4 * (size_t)k, 0, tg__bvh_leaf_header(k) - 4 * (size_t)k);
+            memcpy(base + 4 * (size_t)k, corner, 3 * (size_t)k);
+            double* v = (double*)(void*)(base + tg__bvh_leaf_header(k));
+            for (uint32_t j = 0; j < u; ++j) memcpy(v + 3 * (size_t)j, m->xyz + 3 * (size_t)vert[j], 3 * sizeof(double));
+            node->child[s] = (uint32_t)at;
+            at += (tg__bvh_leaf_header(k) + 24 * (size_t)u) / 8;
+        }
     }
-    for (size_t v = 0; v < m->vertex_count; ++v)
-        if (remap[v] != TG_NONE) memcpy(bvh->vtx + 3 * (size_t)remap[v], m->xyz + 3 * v, 3 * sizeof(double));
-    bvh->vtx_count = used;
-    tg__free(a, remap);
     return TG_OK;
 }
 
@@ -501,8 +524,7 @@ tg_status tg_bvh_create(const tg_mesh* mesh, const tg_bvh_options* opts, tg_bvh*
         bvh->nodes_raw = bd.nodes_raw;
         bvh->node_count = bd.node_count;
         bvh->depth = bd.depth;
-        if (st == TG_OK) st = make_prims(bvh, bd.prims);
-        bvh->prim_count = n;
+        if (st == TG_OK) st = make_leaves(bvh, bd.prims);
         tg__free(bd.a, bd.prims);
     }
     bool winding = o.winding_data == TG_BVH_WINDING_ALWAYS ||
@@ -515,7 +537,7 @@ tg_status tg_bvh_create(const tg_mesh* mesh, const tg_bvh_options* opts, tg_bvh*
     /* Nearest-first traversal pushes at most 3 entries more than it pops per level. */
     bvh->stack_capacity = 3 * bvh->depth + 4;
     bvh->memory_bytes = sizeof *bvh + (bvh->node_count + 1) * sizeof(tg__bvh_node) +
-                        bvh->prim_count * sizeof(tg__bvh_prim) + bvh->vtx_count * 3 * sizeof(double) +
+                        bvh->leaf_words * sizeof(uint64_t) +
                         (bvh->clusters ? bvh->node_count * TG__BVH_WIDTH * sizeof(tg__bvh_cluster) : 0);
     *out = bvh;
     return TG_OK;
@@ -526,8 +548,7 @@ void tg_bvh_destroy(tg_bvh* bvh)
     if (!bvh) return;
     tg_allocator a = bvh->allocator;
     tg__free(&a, bvh->nodes_raw);
-    tg__free(&a, bvh->prims);
-    tg__free(&a, bvh->vtx);
+    tg__free(&a, bvh->leaves);
     tg__free(&a, bvh->clusters);
     tg__free(&a, bvh);
 }

@@ -33,13 +33,21 @@ typedef struct tg__bvh_node {
     uint32_t reserved;
 } tg__bvh_node;
 
-/* A triangle in tree order: its face id and its corners (in face order) as indices into the BVH's
- * own copy of the vertices, which is numbered in order of first use so that a leaf's corners sit
- * in a few neighbouring cache lines. */
-typedef struct tg__bvh_prim {
-    uint32_t face;
-    uint32_t v[3];
-} tg__bvh_prim;
+/* A leaf is one contiguous block in tg_bvh.leaves, so that everything a leaf test reads sits in a
+ * few neighbouring cache lines that can be prefetched as soon as the leaf is found: for its k
+ * triangles (k = the node slot's leaf_count),
+ *     uint32_t face[k];          face ids in the mesh
+ *     uint8_t corner[k][3];      each triangle's corners, in face order, as indices into vertex[]
+ *     (padding to 8 bytes)
+ *     double vertex[u][3];       exact copies of the u distinct mesh vertices of the leaf
+ * The node slot's child is the block's offset in 8-byte words. */
+typedef struct tg__bvh_leaf {
+    const uint32_t* face;
+    const uint8_t* corner;
+    const double* vertex;
+} tg__bvh_leaf;
+
+static inline size_t tg__bvh_leaf_header(uint32_t k) { return (7 * (size_t)k + 7) & ~(size_t)7; }
 
 /* Winding-number data of one child cluster (a node slot): Barill et al. 2018 §3.2, first order.
  * center: area-weighted centroid; normal: sum of area-weighted unit normals (= half the sum of
@@ -67,10 +75,8 @@ struct tg_bvh {
     tg__bvh_node* nodes; /* 64-byte aligned inside nodes_raw; node 0 is the root */
     void* nodes_raw;
     size_t node_count;
-    tg__bvh_prim* prims;
-    size_t prim_count;
-    double* vtx; /* 3 per BVH vertex */
-    size_t vtx_count;
+    uint64_t* leaves;  /* leaf blocks (see tg__bvh_leaf), addressed in 8-byte words */
+    size_t leaf_words;
     tg__bvh_cluster* clusters; /* TG__BVH_WIDTH per node, or NULL */
     uint32_t depth;            /* node levels (root alone: 1; empty mesh: 0) */
     uint32_t stack_capacity;   /* entries a workspace needs */
@@ -83,6 +89,14 @@ struct tg_bvh_workspace {
     uint32_t capacity;
     tg__bvh_entry* stack;
 };
+
+static inline tg__bvh_leaf tg__bvh_leaf_at(const tg_bvh* b, uint32_t child, uint32_t k)
+{
+    const unsigned char* base = (const unsigned char*)(b->leaves + child);
+    tg__bvh_leaf l = {(const uint32_t*)(const void*)base, base + 4 * (size_t)k,
+                      (const double*)(const void*)(base + tg__bvh_leaf_header(k))};
+    return l;
+}
 
 /* ---- float bounds rounded outward ---- */
 

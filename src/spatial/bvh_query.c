@@ -32,7 +32,8 @@ typedef struct query {
     double best;          /* best squared distance so far (world units) */
     uint32_t best_face;
     tg_point_triangle best_pt;
-    float thr;
+    float thr;            /* prune bound for boxes, float local units (see threshold) */
+    double thr_world;     /* the same bound in world units, double, for the faces' own boxes */
 } query;
 
 /* Upper bound, in float local units, of the squared distance that a face whose box is at that
@@ -43,15 +44,17 @@ typedef struct query {
  * Float lower bounds carry a relative error below 6 * 2^-24 (one rounding per subtraction,
  * square and sum of three non-negative terms): the threshold is inflated by 2^-19 for them, and
  * never drops below 2 * FLT_MIN, which absorbs the absolute error of underflowing squares. */
-static float threshold(const tg_bvh* bvh, double best)
+static void set_threshold(const tg_bvh* bvh, query* q, double best)
 {
     /* in local units, where the mesh diagonal is at most 2 * sqrt(3) < 3.5 */
-    double s = bvh->scale, r = sqrt(best) * s + 3.5;
+    double s = bvh->scale, r = sqrt(best) * s + 3.5, rw = sqrt(best) + 3.5 / s;
     double local = best * s * s + 0x1p-44 * r * r + 0x1p-1060 * s * s;
     float f = (float)local;
     if ((double)f < local) f = tg__f32_next_up(f);
     f = f * (1.0f + 0x1p-19f);
-    return f < 2.0f * FLT_MIN ? 2.0f * FLT_MIN : f;
+    q->thr = f < 2.0f * FLT_MIN ? 2.0f * FLT_MIN : f;
+    /* a double lower bound has a relative error of a few 2^-53, far inside the 2^-44 margin */
+    q->thr_world = best + 0x1p-44 * rw * rw + 0x1p-1060;
 }
 
 static void query_init(const tg_bvh* bvh, query* q, const double* p, double max_dist_sq)
@@ -67,7 +70,7 @@ static void query_init(const tg_bvh* bvh, query* q, const double* p, double max_
     q->p = p;
     q->best = max_dist_sq;
     q->best_face = TG_NONE;
-    q->thr = threshold(bvh, max_dist_sq);
+    set_threshold(bvh, q, max_dist_sq);
 }
 
 static inline void consider(const tg_bvh* bvh, query* q, uint32_t face, const double* v0, const double* v1,
@@ -79,16 +82,42 @@ static inline void consider(const tg_bvh* bvh, query* q, uint32_t face, const do
         q->best = r.sqdist;
         q->best_face = face;
         q->best_pt = r;
-        q->thr = threshold(bvh, r.sqdist);
+        set_threshold(bvh, q, r.sqdist);
     }
 }
 
-static void test_leaf(const tg_bvh* bvh, query* q, uint32_t first, uint32_t count)
+/* Squared distance from p to the bounding box of a triangle, from its exact corners: a cheap lower
+ * bound that spares the kernel call for faces beside the query. */
+static inline double face_box_sq(const double* p, const double* a, const double* b, const double* c)
 {
-    const tg__bvh_prim* pr = bvh->prims + first;
-    const double* v = bvh->vtx;
-    for (uint32_t i = 0; i < count; ++i)
-        consider(bvh, q, pr[i].face, v + 3 * (size_t)pr[i].v[0], v + 3 * (size_t)pr[i].v[1], v + 3 * (size_t)pr[i].v[2]);
+    double s = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        double lo = a[k] < b[k] ? a[k] : b[k], hi = a[k] < b[k] ? b[k] : a[k];
+        lo = c[k] < lo ? c[k] : lo;
+        hi = c[k] > hi ? c[k] : hi;
+        double g = lo - p[k] > 0.0 ? lo - p[k] : p[k] - hi > 0.0 ? p[k] - hi : 0.0;
+        s += g * g;
+    }
+    return s;
+}
+
+static void test_leaf(const tg_bvh* bvh, query* q, uint32_t child, uint32_t k)
+{
+    tg__bvh_leaf l = tg__bvh_leaf_at(bvh, child, k);
+    for (uint32_t i = 0; i < k; ++i) {
+        const uint8_t* c = l.corner + 3 * i;
+        const double *a = l.vertex + 3 * c[0], *b = l.vertex + 3 * c[1], *d = l.vertex + 3 * c[2];
+        if (face_box_sq(q->p, a, b, d) > q->thr_world) continue;
+        consider(bvh, q, l.face[i], a, b, d);
+    }
+}
+
+/* Asks for the cache lines of a leaf block (its vertex count is usually at most k + 2). */
+static inline void prefetch_leaf(const tg_bvh* bvh, uint32_t child, uint32_t k)
+{
+    const char* base = (const char*)(bvh->leaves + child);
+    size_t bytes = tg__bvh_leaf_header(k) + 24 * (size_t)(k + 2);
+    for (size_t off = 0; off < bytes; off += 64) PREFETCH(base + off);
 }
 
 /* Lower bounds of the squared distance from the query to the node's child boxes (local units);
@@ -138,7 +167,7 @@ static void traverse(const tg_bvh* bvh, tg_bvh_workspace* ws, query* q)
             int s = slot[i];
             uint32_t c = n->child[s];
             if (n->leaf_count[s])
-                PREFETCH(bvh->prims + c);
+                prefetch_leaf(bvh, c, n->leaf_count[s]);
             else
                 PREFETCH(bvh->nodes + c);
             stack[sp++] = (tg__bvh_entry){c, n->leaf_count[s], d[s]};

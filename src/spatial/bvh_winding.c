@@ -49,10 +49,13 @@ static double solid_angle(const double* p, const double* v0, const double* v1, c
 static void leaf_cluster(const tg_bvh* bvh, uint32_t first, uint32_t count, tg__bvh_cluster* cl)
 {
     double c[3] = {0, 0, 0}, mean[3] = {0, 0, 0}, n[3] = {0, 0, 0}, area = 0.0;
-    for (uint32_t i = first; i < first + count; ++i) {
-        const tg__bvh_prim* pr = &bvh->prims[i];
-        const double *v0 = bvh->vtx + 3 * (size_t)pr->v[0], *v1 = bvh->vtx + 3 * (size_t)pr->v[1],
-                     *v2 = bvh->vtx + 3 * (size_t)pr->v[2];
+    tg__bvh_leaf l = tg__bvh_leaf_at(bvh, first, count);
+    uint32_t u = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+        const uint8_t* cn = l.corner + 3 * i;
+        const double *v0 = l.vertex + 3 * cn[0], *v1 = l.vertex + 3 * cn[1], *v2 = l.vertex + 3 * cn[2];
+        for (int k = 0; k < 3; ++k)
+            if (cn[k] >= u) u = cn[k] + 1u;
         double e1[3], e2[3], x[3];
         sub3(v1, v0, e1);
         sub3(v2, v0, e2);
@@ -72,13 +75,12 @@ static void leaf_cluster(const tg_bvh* bvh, uint32_t first, uint32_t count, tg__
     }
     cl->area = area;
     double r = 0.0;
-    for (uint32_t i = first; i < first + count; ++i)
-        for (int k = 0; k < 3; ++k) {
-            double d[3];
-            sub3(bvh->vtx + 3 * (size_t)bvh->prims[i].v[k], cl->center, d);
-            double l = len3(d);
-            if (l > r) r = l;
-        }
+    for (uint32_t j = 0; j < u; ++j) {
+        double d[3];
+        sub3(l.vertex + 3 * (size_t)j, cl->center, d);
+        double len = len3(d);
+        if (len > r) r = len;
+    }
     cl->radius = r;
 }
 
@@ -153,10 +155,10 @@ double tg__bvh_winding(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p)
                 }
             }
             if (node->leaf_count[s]) {
-                for (uint32_t i = node->child[s]; i < node->child[s] + node->leaf_count[s]; ++i) {
-                    const tg__bvh_prim* pr = &bvh->prims[i];
-                    sum += solid_angle(p, bvh->vtx + 3 * (size_t)pr->v[0], bvh->vtx + 3 * (size_t)pr->v[1],
-                                       bvh->vtx + 3 * (size_t)pr->v[2]);
+                tg__bvh_leaf l = tg__bvh_leaf_at(bvh, node->child[s], node->leaf_count[s]);
+                for (uint32_t i = 0; i < node->leaf_count[s]; ++i) {
+                    const uint8_t* cn = l.corner + 3 * i;
+                    sum += solid_angle(p, l.vertex + 3 * cn[0], l.vertex + 3 * cn[1], l.vertex + 3 * cn[2]);
                 }
             } else {
                 stack[sp++] = node->child[s];

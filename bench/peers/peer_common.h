@@ -1,0 +1,79 @@
+// peer_common.h - shared plumbing of the peer comparators: query/distance files (the formats of
+// bench/bench_closest.c), timing, medians, heap usage. Header-only; C++17.
+#ifndef TG_PEER_COMMON_H
+#define TG_PEER_COMMON_H
+
+#include <malloc.h>
+#include <trigeo.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace peer {
+
+[[noreturn]] inline void die(const char* msg, const std::string& arg)
+{
+    std::fprintf(stderr, "peer: %s %s\n", msg, arg.c_str());
+    std::exit(2);
+}
+
+inline double now()
+{
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+inline double median(std::vector<double> v)
+{
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+// Bytes currently allocated from the C heap (small blocks plus mmapped ones).
+inline double heap_bytes()
+{
+    struct mallinfo2 mi = mallinfo2();
+    return (double)mi.uordblks + (double)mi.hblkhd;
+}
+
+inline std::vector<double> read_array(const std::string& path, const char* magic, int per)
+{
+    FILE* f = std::fopen(path.c_str(), "rb");
+    char m[8];
+    uint64_t n = 0;
+    if (!f) die("cannot read", path);
+    if (std::fread(m, 1, 8, f) != 8 || std::memcmp(m, magic, 8) || std::fread(&n, sizeof n, 1, f) != 1)
+        die("bad file", path);
+    std::vector<double> v((size_t)n * (size_t)per);
+    if (std::fread(v.data(), sizeof(double), v.size(), f) != v.size()) die("bad file", path);
+    std::fclose(f);
+    return v;
+}
+
+inline void write_distances(const std::string& path, const std::vector<double>& d)
+{
+    FILE* f = std::fopen(path.c_str(), "wb");
+    uint64_t n = d.size();
+    if (!f) die("cannot write", path);
+    std::fwrite("TGDIST01", 1, 8, f);
+    std::fwrite(&n, sizeof n, 1, f);
+    std::fwrite(d.data(), sizeof(double), d.size(), f);
+    if (std::fclose(f)) die("cannot write", path);
+}
+
+inline tg_mesh* load(const char* path)
+{
+    tg_mesh* m = nullptr;
+    tg_diag d;
+    if (tg_mesh_load(path, TG_FORMAT_AUTO, nullptr, &d, &m) != TG_OK) die("cannot load", path);
+    return m;
+}
+
+} // namespace peer
+
+#endif

@@ -1,0 +1,243 @@
+/* cmd_closest.c - `trigeo closest MESH QUERIES [--signed] [--sign M] [--threads N] [-o OUT.csv]`:
+ * closest points (and optionally signed distances) of query points, as CSV. */
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The whole of a file (or stdin for "-") as a NUL-terminated buffer; NULL after printing why. */
+static char* read_all(const char* path, size_t* out_size)
+{
+    FILE* f = strcmp(path, "-") ? fopen(path, "rb") : stdin;
+    if (!f) {
+        cli_error(path, 0, "cannot open: %s", strerror(errno));
+        return NULL;
+    }
+    size_t cap = 1 << 16, n = 0;
+    char* buf = malloc(cap);
+    while (buf) {
+        if (n + 1 >= cap) {
+            char* grown = cap > (size_t)-1 / 2 ? NULL : realloc(buf, cap * 2);
+            if (!grown) {
+                free(buf);
+                buf = NULL;
+                break;
+            }
+            buf = grown;
+            cap *= 2;
+        }
+        size_t got = fread(buf + n, 1, cap - 1 - n, f);
+        n += got;
+        if (got == 0) break;
+    }
+    int bad = ferror(f);
+    if (f != stdin) fclose(f);
+    if (!buf || bad) {
+        cli_error(path, 0, bad ? "read error" : "out of memory");
+        free(buf);
+        return NULL;
+    }
+    buf[n] = '\0';
+    *out_size = n;
+    return buf;
+}
+
+static const char* skip_blanks(const char* s)
+{
+    while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\v' || *s == '\f') ++s;
+    return s;
+}
+
+/* Parses "x y z" lines; blank lines and lines starting with '#' are skipped, and a '#' after the
+ * third number starts a comment. Returns the number of points (3 doubles each in *out), or
+ * (size_t)-1 after printing "QUERIES:LINE: message". */
+static size_t parse_queries(const char* name, char* text, double** out)
+{
+    size_t count = 0, cap = 1024;
+    double* xyz = malloc(3 * cap * sizeof *xyz);
+    unsigned long long line = 0;
+    char* s = text;
+    while (xyz && *s) {
+        char* end = strchr(s, '\n');
+        if (end) *end = '\0';
+        ++line;
+        const char* p = skip_blanks(s);
+        if (*p && *p != '#') {
+            if (count == cap) {
+                double* grown = cap > ((size_t)-1 / 2) / (6 * sizeof *xyz) ? NULL : realloc(xyz, 6 * cap * sizeof *xyz);
+                if (!grown) break;
+                xyz = grown;
+                cap *= 2;
+            }
+            for (int k = 0; k < 3; ++k) {
+                char* after;
+                errno = 0;
+                double v = strtod(p, &after);
+                if (after == p || (*after && *after != ' ' && *after != '\t' && *after != '\r' && *after != '#')) {
+                    cli_error(name, line, "expected three numbers \"x y z\", got \"%.40s\"", skip_blanks(s));
+                    free(xyz);
+                    return (size_t)-1;
+                }
+                if (!isfinite(v)) { /* also strtod overflow, which returns HUGE_VAL */
+                    cli_error(name, line, "coordinate %d is not a finite number", k + 1);
+                    free(xyz);
+                    return (size_t)-1;
+                }
+                xyz[3 * count + (size_t)k] = v;
+                p = skip_blanks(after);
+            }
+            if (*p && *p != '#') {
+                cli_error(name, line, "unexpected \"%.20s\" after the three coordinates", p);
+                free(xyz);
+                return (size_t)-1;
+            }
+            ++count;
+        }
+        if (!end) break;
+        s = end + 1;
+    }
+    if (!xyz || (*s && count == cap)) {
+        cli_error(name, 0, "out of memory");
+        free(xyz);
+        return (size_t)-1;
+    }
+    *out = xyz;
+    return count;
+}
+
+static int write_csv(FILE* f, size_t n, const tg_closest_hit* hits, const tg_signed_hit* signed_hits)
+{
+    fprintf(f, "i,face,sqdist,cx,cy,cz,b0,b1,b2%s\n", signed_hits ? ",sign" : "");
+    for (size_t i = 0; i < n; ++i) {
+        const tg_closest_hit* h = signed_hits ? &signed_hits[i].hit : &hits[i];
+        fprintf(f, "%zu,%u,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", i, h->face, h->sqdist, h->point[0], h->point[1],
+                h->point[2], h->bary[0], h->bary[1], h->bary[2]);
+        if (signed_hits) fprintf(f, ",%d", signed_hits[i].sign);
+        fputc('\n', f);
+    }
+    return ferror(f) ? -1 : 0;
+}
+
+static const char* method_reason(const tg_mesh* mesh, tg_sign_method requested)
+{
+    if (requested != TG_SIGN_AUTO) return "as requested";
+    const tg_mesh_report* r = tg_mesh_get_report(mesh);
+    if (!r->closed_manifold) return "the mesh is not a closed manifold";
+    if (r->misoriented_edges) return "the mesh has inconsistently oriented edges";
+    if (r->degenerate_faces) return "the mesh has degenerate faces";
+    return "closed, consistently oriented manifold";
+}
+
+static int run(int argc, char** argv)
+{
+    const char *mesh_path = NULL, *query_path = NULL, *out_path = NULL;
+    bool want_sign = false;
+    tg_sign_method method = TG_SIGN_AUTO;
+    unsigned long long threads = 0;
+    for (int i = 1; i < argc; ++i) {
+        const char* a = argv[i];
+        if (!strcmp(a, "--signed")) {
+            want_sign = true;
+        } else if (!strcmp(a, "--sign")) {
+            if (++i >= argc) return cli_usage("closest", "--sign needs pseudonormal or winding");
+            if (!strcmp(argv[i], "pseudonormal"))
+                method = TG_SIGN_PSEUDONORMAL;
+            else if (!strcmp(argv[i], "winding"))
+                method = TG_SIGN_WINDING;
+            else
+                return cli_usage("closest", "--sign must be pseudonormal or winding, not '%s'", argv[i]);
+            want_sign = true;
+        } else if (!strcmp(a, "--threads")) {
+            if (++i >= argc || !cli_parse_uint(argv[i], &threads) || threads > 4096)
+                return cli_usage("closest", "--threads needs a count (0 = all cores)");
+        } else if (!strcmp(a, "-o")) {
+            if (++i >= argc) return cli_usage("closest", "-o needs a file name");
+            out_path = argv[i];
+        } else if (a[0] == '-' && a[1]) {
+            return cli_usage("closest", "unknown option '%s'", a);
+        } else if (!mesh_path) {
+            mesh_path = a;
+        } else if (!query_path) {
+            query_path = a;
+        } else {
+            return cli_usage("closest", "unexpected argument '%s'", a);
+        }
+    }
+    if (!mesh_path || !query_path) return cli_usage("closest", "missing %s", mesh_path ? "QUERIES" : "MESH");
+
+    size_t size = 0;
+    char* text = read_all(query_path, &size);
+    if (!text) return CLI_INPUT;
+    double* xyz = NULL;
+    size_t n = parse_queries(query_path, text, &xyz);
+    free(text);
+    if (n == (size_t)-1) return CLI_INPUT;
+
+    int rc = CLI_INPUT;
+    tg_mesh* mesh = cli_load_mesh(mesh_path);
+    tg_bvh* bvh = NULL;
+    tg_closest_hit* hits = NULL;
+    tg_signed_hit* shits = NULL;
+    if (!mesh) goto done;
+    if (tg_mesh_face_count(mesh) == 0) {
+        cli_error(mesh_path, 0, "the mesh has no faces");
+        goto done;
+    }
+    tg_bvh_options o = {0};
+    o.winding_data = !want_sign ? TG_BVH_WINDING_NEVER : method == TG_SIGN_WINDING ? TG_BVH_WINDING_ALWAYS : TG_BVH_WINDING_AUTO;
+    tg_status st = tg_bvh_create(mesh, &o, &bvh);
+    if (st == TG_OK && want_sign) {
+        tg_sign_method used = tg_bvh_sign_method(bvh, method);
+        fprintf(stderr, "trigeo: closest: sign from %s (%s)\n",
+                used == TG_SIGN_PSEUDONORMAL ? "angle-weighted pseudonormals" : "the generalized winding number",
+                method_reason(mesh, method));
+        shits = malloc((n ? n : 1) * sizeof *shits);
+        st = shits ? tg_bvh_signed_distance_batch(bvh, xyz, n, method, (int)threads, shits) : TG_ERR_OUT_OF_MEMORY;
+    } else if (st == TG_OK) {
+        hits = malloc((n ? n : 1) * sizeof *hits);
+        st = hits ? tg_bvh_closest_batch(bvh, xyz, n, INFINITY, (int)threads, hits) : TG_ERR_OUT_OF_MEMORY;
+    }
+    if (st != TG_OK) {
+        cli_error(mesh_path, 0, "%s", tg_status_string(st));
+        goto done;
+    }
+    FILE* f = out_path ? fopen(out_path, "w") : stdout;
+    if (!f) {
+        cli_error(out_path, 0, "cannot write: %s", strerror(errno));
+        goto done;
+    }
+    int werr = write_csv(f, n, hits, shits);
+    if (out_path && fclose(f)) werr = -1;
+    if (!out_path && fflush(stdout)) werr = -1;
+    if (werr) {
+        cli_error(out_path ? out_path : "-", 0, "write error");
+        goto done;
+    }
+    rc = CLI_OK;
+done:
+    free(shits);
+    free(hits);
+    tg_bvh_destroy(bvh);
+    tg_mesh_destroy(mesh);
+    free(xyz);
+    return rc;
+}
+
+const cli_command cli_cmd_closest = {
+    "closest", "closest MESH QUERIES [--signed] [--sign pseudonormal|winding] [--threads N] [-o OUT.csv]",
+    "For each query point, the closest point of MESH: face (0-based, file order), squared distance,\n"
+    "closest point and its barycentric coordinates on that face. Ties go to the lowest face index;\n"
+    "the answers equal a linear scan over all faces.\n\n"
+    "  QUERIES     text, one \"x y z\" per line ('-' = stdin); blank lines and '#' comments allowed\n"
+    "  --signed    add a sign column: -1 inside, +1 outside, 0 on the surface. Angle-weighted\n"
+    "              pseudonormals for closed, consistently oriented manifolds, else the generalized\n"
+    "              winding number (>= 1/2 is inside); the choice is reported on stderr\n"
+    "  --sign M    force the method: pseudonormal or winding (implies --signed)\n"
+    "  --threads N worker threads (default 0 = all cores)\n"
+    "  -o OUT.csv  write there instead of stdout\n\n"
+    "Output: CSV with header i,face,sqdist,cx,cy,cz,b0,b1,b2[,sign], numbers with %.17g.\n"
+    "A malformed or non-finite query line is reported as QUERIES:LINE and nothing is written.\n",
+    run,
+};

@@ -627,6 +627,146 @@ tg_status tg_fan_path_minimize(const double p0[3], const double p1[3], const dou
 /* Geodesic paths (src/geodesic)                                                                  */
 /* ============================================================================================== */
 /* TG-SECTION-GEODESIC */
+
+/** A geodesic path solver over one mesh (seed 002 §5 and the straightener beyond it).
+ *  Built once per mesh by tg_geodesic_create: it keeps a pointer to the mesh (which must outlive
+ *  it and is never modified) plus vertex adjacency and vertex-corner tables (about 50 bytes per
+ *  vertex). Immutable after creation; any number of threads may query it at once, each with its
+ *  own tg_geodesic_workspace. */
+typedef struct tg_geodesic tg_geodesic;
+
+typedef struct tg_geodesic_options {
+    const tg_allocator* allocator; /**< NULL: libc; also used by workspaces created from it */
+} tg_geodesic_options;
+
+/** Builds the solver for mesh (not copied; must stay alive and unchanged until
+ *  tg_geodesic_destroy). options may be NULL. Errors: TG_ERR_INVALID_ARGUMENT (NULL mesh or out),
+ *  TG_ERR_OUT_OF_MEMORY. On failure *out_geodesic is NULL. O(V + F log(valence)) time, O(V + F)
+ *  memory. Thread-safe (no shared state). */
+tg_status tg_geodesic_create(const tg_mesh* mesh, const tg_geodesic_options* options,
+                             tg_geodesic** out_geodesic);
+
+/** Frees the solver. NULL is a no-op. Workspaces created from it must be destroyed first or at
+ *  least never used again. */
+void tg_geodesic_destroy(tg_geodesic* geodesic);
+
+/** Bytes owned by the solver (tables and header, not the mesh). O(1). NULL gives 0. */
+size_t tg_geodesic_memory_bytes(const tg_geodesic* geodesic);
+
+/** Per-thread scratch for path queries: arrays sized once for the mesh (about 16 bytes per
+ *  vertex) and buffers that grow to the largest path seen, so repeated queries do not allocate.
+ *  A query touches only the entries of the region it explores. Not thread-safe: one workspace
+ *  per thread. */
+typedef struct tg_geodesic_workspace tg_geodesic_workspace;
+
+/** Creates a workspace for queries on geodesic. Errors: TG_ERR_INVALID_ARGUMENT,
+ *  TG_ERR_OUT_OF_MEMORY (then *out_workspace is NULL). O(V) time and memory. */
+tg_status tg_geodesic_workspace_create(const tg_geodesic* geodesic,
+                                       tg_geodesic_workspace** out_workspace);
+
+/** Frees a workspace. NULL is a no-op. */
+void tg_geodesic_workspace_destroy(tg_geodesic_workspace* workspace);
+
+/** Bytes currently owned by the workspace (fixed arrays plus grown buffers). NULL gives 0. */
+size_t tg_geodesic_workspace_memory_bytes(const tg_geodesic_workspace* workspace);
+
+/** How the initial edge path is shortened. */
+typedef enum tg_path_method {
+    /** Default. Unfolds every run of edge crossings (a triangle strip) into the plane and
+     *  straightens it in one pass with a funnel (Lee & Preparata 1984); vertex passages whose
+     *  smaller side angle is below pi are re-routed through the fan on that side and the strip is
+     *  straightened again, until every vertex passage is locally shortest (Xin & Wang 2007). */
+    TG_PATH_STRAIGHTEN = 0,
+    /** The seed's relaxation (seed 002 §5): passes over consecutive triples, two-triangle
+     *  minimization at edge points (§2) and fan minimization on each side of a mesh vertex (§3-4),
+     *  until a pass shortens the path by at most tolerance * length. */
+    TG_PATH_RELAX = 1,
+    /** No shortening: the initial shortest edge path (Dijkstra/A*) only. */
+    TG_PATH_EDGE = 2
+} tg_path_method;
+
+/** The outcome of a query, stored in the path. */
+typedef enum tg_path_status {
+    TG_PATH_CONVERGED = 0,     /**< the method's stopping criterion was met */
+    TG_PATH_ITERATION_CAP = 1, /**< max_iterations was reached; the path is valid but may be longer */
+    TG_PATH_UNREACHABLE = 2    /**< the endpoints lie in different components: no points, length +inf */
+} tg_path_status;
+
+/** "converged", "iteration_cap", "unreachable"; "unknown" for other values. Never NULL. */
+const char* tg_path_status_name(tg_path_status status);
+
+/** Query options. NULL or all-zero means defaults. */
+typedef struct tg_path_options {
+    tg_path_method method;   /**< TG_PATH_STRAIGHTEN (0) by default */
+    uint32_t max_iterations; /**< cap on straightening sweeps or relaxation passes; 0: 10000 */
+    /** Stopping tolerance, dimensionless; 0: default. STRAIGHTEN: a vertex passage is re-routed
+     *  when its smaller side angle is below pi - tolerance radians (default 1e-12). RELAX: stop
+     *  when a pass shortens the path by at most tolerance * length (default 1e-13). */
+    double tolerance;
+    /** RELAX: decimal digits of the bisections in the seed's kernels (§2.4); 0: 15. */
+    uint32_t digits;
+} tg_path_options;
+
+/** A geodesic path: a caller-owned result object reused across queries (its buffers grow to the
+ *  longest path and are kept). Read it through tg_path_get_view. */
+typedef struct tg_path tg_path;
+
+/** Read-only view of a path, valid until the next query into the same tg_path or its
+ *  destruction. Consecutive points are joined by straight segments, segment i (between points i
+ *  and i + 1) lying in face faces[i]; a segment along a mesh edge names one of the edge's faces
+ *  (the lowest index among the choices the solver had). */
+typedef struct tg_path_view {
+    size_t point_count;              /**< >= 2 unless unreachable (then 0) */
+    const tg_surface_point* points;  /**< from, every vertex passage and edge crossing, to */
+    const double* xyz;               /**< 3 * point_count positions */
+    const uint32_t* faces;           /**< point_count - 1 faces, one per segment */
+    double length;                   /**< sum of 3D segment lengths; +inf when unreachable */
+    double initial_length;           /**< length of the initial shortest edge path; +inf when unreachable */
+    /** The certificate, radians: the largest straightness defect over edge crossings
+     *  (|pi - unfolded angle|) and vertex passages (max(0, pi - smaller side angle), taking only
+     *  the interior side at a boundary; 0 where the path passes between two fans of a pinched or
+     *  non-manifold vertex). 0 for a path with no interior point. */
+    double max_angle_defect;
+    tg_path_status status;
+    uint32_t iterations;             /**< sweeps (STRAIGHTEN) or passes (RELAX) performed */
+    uint32_t edge_path_vertices;     /**< mesh vertices on the initial edge path */
+} tg_path_view;
+
+/** Creates an empty path object. allocator may be NULL (libc). Errors: TG_ERR_INVALID_ARGUMENT,
+ *  TG_ERR_OUT_OF_MEMORY. */
+tg_status tg_path_create(const tg_allocator* allocator, tg_path** out_path);
+
+/** Frees a path object. NULL is a no-op. */
+void tg_path_destroy(tg_path* path);
+
+/** Fills *out_view with the path's current content (an empty, unreachable path before the first
+ *  query). O(1). */
+void tg_path_get_view(const tg_path* path, tg_path_view* out_view);
+
+/** Computes a geodesic path from `from` to `to` (any surface points: vertex, edge point, face
+ *  point; never snapped to a vertex) into `path`.
+ *  The endpoints are inserted virtually (the mesh is not modified), the shortest path in the edge
+ *  graph plus the endpoints' virtual edges is found by A* with the Euclidean lower bound (binary
+ *  heap, stopping at the target, work proportional to the explored region), then shortened by
+ *  options->method. Paths cross only manifold edges (two consistently oriented faces, non-zero
+ *  length); non-manifold edges and pinched vertices are passed through their vertices. Endpoints
+ *  in different components give status TG_PATH_UNREACHABLE, length +inf and TG_OK.
+ *  Every returned path lies on the surface and its length never exceeds initial_length; the
+ *  straightener's converged paths have max_angle_defect <= 1e-10 in practice (reported, not
+ *  assumed). The output endpoints are the canonical forms of from and to.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL argument, workspace of another solver, invalid surface
+ *  point, unknown method), TG_ERR_OUT_OF_MEMORY (a buffer could not grow; path is then empty).
+ *  Complexity: A* is O(n log n) in the n explored vertices; straightening is O(k) per sweep in the
+ *  k faces of the path's strips. Thread-safe for distinct workspaces and paths. */
+tg_status tg_geodesic_path(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
+                           const tg_surface_point* from, const tg_surface_point* to,
+                           const tg_path_options* options, tg_path* path);
+
+/** Writes the path as a Wavefront OBJ polyline: one "v x y z" (%.17g) per point and one
+ *  "l 1 2 ... n" record (nothing but a comment for an unreachable path). Errors: TG_ERR_IO with
+ *  diag (may be NULL), TG_ERR_INVALID_ARGUMENT. */
+tg_status tg_path_write_obj(const tg_path* path, const char* filename, tg_diag* diag);
+
 /* TG-SECTION-GEODESIC-END */
 
 #ifdef __cplusplus

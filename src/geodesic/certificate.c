@@ -1,0 +1,161 @@
+/* certificate.c - the straightness certificate of a path: the largest angle defect, in radians,
+ * over its edge crossings and vertex passages.
+ * Based on: Polthier & Schmies, "Straightest Geodesics on Polyhedral Surfaces" (1998), §3 (a
+ *   polyline is a shortest geodesic across an edge iff it is straight in the unfolding of the two
+ *   faces; at a vertex iff both angles are at least pi); Mitchell, Mount & Papadimitriou (1987),
+ *   Lemma 3.4; seed 002 §2 (the two-triangle configuration of an edge point). */
+#include "geodesic/geodesic_internal.h"
+
+/* A neighbour closer to the crossing than this is merged with it (its direction is noise): the
+ * crossings where a path runs through a zero-area face coincide up to rounding. The bound is
+ * relative: 1e-9 of the crossed edge's length, plus the rounding of coordinates of that size
+ * (64 ulps of the position's magnitude). */
+#define MERGE_REL_EDGE 1e-9
+#define MERGE_REL_POS (64.0 * 2.220446049250313e-16)
+
+/* Longest run of merged crossings walked on either side (they are rare and short). */
+#define MAX_WINDOW 64
+
+typedef struct placed_face {
+    uint32_t f;
+    double xy[3][2]; /* 2D position of each corner */
+} placed_face;
+
+/* The halfedge of face f on the edge of halfedge h, or TG_NONE. */
+static uint32_t halfedge_in(const tg_geodesic* g, uint32_t h, uint32_t f)
+{
+    if (h / 3 == f) return h;
+    uint32_t o = g->opp[h];
+    return o != TG_NONE && o / 3 == f ? o : TG_NONE;
+}
+
+/* Unfolds the face across halfedge h of the placed (counterclockwise) face pf. */
+static bool unfold_across(const tg_geodesic* g, placed_face* pf, uint32_t h)
+{
+    uint32_t q = g->opp[h];
+    if (q == TG_NONE || h / 3 != pf->f) return false;
+    double r[2] = {pf->xy[h % 3][0], pf->xy[h % 3][1]};
+    double l[2] = {pf->xy[(h % 3 + 1) % 3][0], pf->xy[(h % 3 + 1) % 3][1]};
+    tg_vec3 pr = tg__gpos(g, g->tri[h]);
+    tg_vec3 e = tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_next(h)]), pr);
+    uint32_t qk = q % 3;
+    tg_vec3 d = tg_v3_sub(tg__gpos(g, g->tri[q - qk + (qk + 2) % 3]), pr);
+    double ee = tg_v3_dot(e, e);
+    if (!(ee > 0.0)) return false;
+    double x = tg_v3_dot(d, e) / ee, y = tg_v3_len(tg_v3_cross(d, e)) / ee;
+    double dx = l[0] - r[0], dy = l[1] - r[1];
+    pf->f = q / 3;
+    pf->xy[qk][0] = l[0], pf->xy[qk][1] = l[1];
+    pf->xy[(qk + 1) % 3][0] = r[0], pf->xy[(qk + 1) % 3][1] = r[1];
+    pf->xy[(qk + 2) % 3][0] = r[0] + x * dx + y * dy;
+    pf->xy[(qk + 2) % 3][1] = r[1] + x * dy - y * dx;
+    return true;
+}
+
+/* 2D position of node p in the placed face (relative to its heaviest corner). */
+static bool place_node(const tg_geodesic* g, const placed_face* pf, const tg__node* p, double out[2])
+{
+    double b[3];
+    if (!tg__node_bary(g, p, pf->f, b)) return false;
+    int k = b[1] > b[0] ? 1 : 0;
+    if (b[2] > b[k]) k = 2;
+    out[0] = pf->xy[k][0], out[1] = pf->xy[k][1];
+    for (int i = 0; i < 3; ++i) {
+        if (i == k) continue;
+        out[0] += b[i] * (pf->xy[i][0] - pf->xy[k][0]);
+        out[1] += b[i] * (pf->xy[i][1] - pf->xy[k][1]);
+    }
+    return true;
+}
+
+/* Lays face f counterclockwise with corner k at the origin and side k -> k+1 along +x. */
+static void place_first(const tg_geodesic* g, uint32_t f, int k, placed_face* pf)
+{
+    const uint32_t* t = g->tri + 3 * (size_t)f;
+    tg_vec3 o = tg__gpos(g, t[k]);
+    tg_vec3 e1 = tg_v3_sub(tg__gpos(g, t[(k + 1) % 3]), o), e2 = tg_v3_sub(tg__gpos(g, t[(k + 2) % 3]), o);
+    double l1 = tg_v3_len(e1);
+    pf->f = f;
+    pf->xy[k][0] = pf->xy[k][1] = 0.0;
+    pf->xy[(k + 1) % 3][0] = l1, pf->xy[(k + 1) % 3][1] = 0.0;
+    if (l1 > 0.0) {
+        pf->xy[(k + 2) % 3][0] = tg_v3_dot(e1, e2) / l1;
+        pf->xy[(k + 2) % 3][1] = tg_v3_len(tg_v3_cross(e1, e2)) / l1;
+    } else {
+        pf->xy[(k + 2) % 3][0] = tg_v3_len(e2), pf->xy[(k + 2) % 3][1] = 0.0;
+    }
+}
+
+static double angle_2d(const double* p, const double* x, const double* n)
+{
+    double ax = p[0] - x[0], ay = p[1] - x[1], bx = n[0] - x[0], by = n[1] - x[1];
+    return atan2(fabs(ax * by - ay * bx), ax * bx + ay * by);
+}
+
+static double angle_3d(tg_vec3 p, tg_vec3 x, tg_vec3 n)
+{
+    tg_vec3 a = tg_v3_sub(p, x), b = tg_v3_sub(n, x);
+    return atan2(tg_v3_len(tg_v3_cross(a, b)), tg_v3_dot(a, b));
+}
+
+/* Defect at edge crossing i: the angle between the previous and next points that are not merged
+ * with it, in the unfolding of the faces between them. */
+static double crossing_defect(const tg_geodesic* g, const tg__node* nodes, const uint32_t* faces, size_t count,
+                              size_t i)
+{
+    const tg__node* x = &nodes[i];
+    uint32_t h = x->id;
+    tg_vec3 xp = tg__node_pos(g, x);
+    double elen = tg_v3_dist(tg__gpos(g, g->tri[h]), tg__gpos(g, g->tri[tg_halfedge_next(h)]));
+    double tiny = MERGE_REL_EDGE * elen + MERGE_REL_POS * (fabs(xp.x) + fabs(xp.y) + fabs(xp.z));
+    size_t i0 = i - 1, i1 = i + 1;
+    while (i0 > 0 && i - i0 < MAX_WINDOW && nodes[i0].kind == TG__NODE_EDGE &&
+           tg_v3_dist(tg__node_pos(g, &nodes[i0]), xp) <= tiny)
+        i0--;
+    while (i1 + 1 < count && i1 - i < MAX_WINDOW && nodes[i1].kind == TG__NODE_EDGE &&
+           tg_v3_dist(tg__node_pos(g, &nodes[i1]), xp) <= tiny)
+        i1++;
+    /* start in the face before the crossing, origin at the crossed edge's nearer end */
+    uint32_t fx = faces[i - 1];
+    uint32_t near_v = x->t <= x->s ? g->tri[h] : g->tri[tg_halfedge_next(h)];
+    int k = tg__corner_of(g, fx, near_v);
+    placed_face pf;
+    place_first(g, fx, k < 0 ? 0 : k, &pf);
+    double px[2], pp[2], pn[2];
+    bool ok = place_node(g, &pf, x, px);
+    placed_face back = pf;
+    for (size_t j = i - 1; ok && j > i0; --j) {
+        if (faces[j - 1] == back.f) continue;
+        uint32_t he = halfedge_in(g, nodes[j].id, back.f);
+        ok = nodes[j].kind == TG__NODE_EDGE && he != TG_NONE && unfold_across(g, &back, he) && back.f == faces[j - 1];
+    }
+    ok = ok && place_node(g, &back, &nodes[i0], pp);
+    for (size_t j = i; ok && j < i1; ++j) {
+        if (faces[j] == pf.f) continue; /* the path touches the edge without crossing it */
+        uint32_t he = halfedge_in(g, nodes[j].id, pf.f);
+        ok = nodes[j].kind == TG__NODE_EDGE && he != TG_NONE && unfold_across(g, &pf, he) && pf.f == faces[j];
+    }
+    ok = ok && place_node(g, &pf, &nodes[i1], pn);
+    double a = ok ? angle_2d(pp, px, pn)
+                  : angle_3d(tg__node_pos(g, &nodes[i0]), xp, tg__node_pos(g, &nodes[i1]));
+    return TG__PI - a;
+}
+
+double tg__path_defect(const tg_geodesic* g, const tg__node* nodes, const uint32_t* faces, size_t count)
+{
+    double worst = 0.0;
+    for (size_t i = 1; i + 1 < count; ++i) {
+        double d = 0.0;
+        if (nodes[i].kind == TG__NODE_EDGE) {
+            d = crossing_defect(g, nodes, faces, count, i);
+        } else if (nodes[i].kind == TG__NODE_VERTEX) {
+            uint32_t fi, fo;
+            int side;
+            double a = tg__vertex_best_side(g, nodes[i].id, &nodes[i - 1], faces[i - 1], &nodes[i + 1], faces[i],
+                                            &fi, &fo, &side);
+            if (a >= 0.0) d = TG__PI - a;
+        }
+        if (d > worst) worst = d;
+    }
+    return worst;
+}

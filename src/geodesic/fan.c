@@ -1,0 +1,153 @@
+/* fan.c - fans of faces around a vertex: corner angles, the two side angles of a vertex passage,
+ * and the portals crossed when a passage is re-routed through one side.
+ * Based on: seed 002 §5 and Figure 5.1 (a path through a mesh vertex can be relaxed into the fan
+ *   on either side; on a boundary vertex only the interior side exists); Mitchell, Mount &
+ *   Papadimitriou, "The Discrete Geodesic Problem" (1987), Lemma 3.4: a locally shortest path
+ *   passes through a vertex only if both angles it makes there are at least pi; Polthier &
+ *   Schmies, "Straightest Geodesics on Polyhedral Surfaces" (1998), §3: angles at a vertex are
+ *   sums of the incident corner angles. */
+#include "geodesic/geodesic_internal.h"
+
+double tg__corner_angle(const tg_geodesic* g, uint32_t f, int k)
+{
+    const uint32_t* t = g->tri + 3 * (size_t)f;
+    tg_vec3 o = tg__gpos(g, t[k]);
+    tg_vec3 e1 = tg_v3_sub(tg__gpos(g, t[(k + 1) % 3]), o), e2 = tg_v3_sub(tg__gpos(g, t[(k + 2) % 3]), o);
+    /* atan2(|a x b|, a . b) is accurate at every angle, unlike acos of a normalised dot */
+    return atan2(tg_v3_len(tg_v3_cross(e1, e2)), tg_v3_dot(e1, e2));
+}
+
+/* Angle of node p seen from corner k of face f, measured from side k -> k+1 towards k -> k+2. */
+static double node_angle(const tg_geodesic* g, uint32_t f, int k, const tg__node* p)
+{
+    tg_vec3 d;
+    if (!tg__node_offset(g, p, f, k, &d)) return 0.0;
+    const uint32_t* t = g->tri + 3 * (size_t)f;
+    tg_vec3 e1 = tg_v3_sub(tg__gpos(g, t[(k + 1) % 3]), tg__gpos(g, t[k]));
+    double a = atan2(tg_v3_len(tg_v3_cross(e1, d)), tg_v3_dot(e1, d));
+    double c = tg__corner_angle(g, f, k);
+    return a > c ? c : a;
+}
+
+/* One step around v: from face *f (corner *k of v) across the side in the + sense (the edge
+ * prev(corner), towards k + 2) or the - sense (the edge of the corner itself). Returns the portal
+ * halfedge (in the face left) or TG_NONE at an edge that cannot be crossed. */
+static uint32_t fan_step(const tg_geodesic* g, uint32_t v, uint32_t* f, int* k, int side)
+{
+    uint32_t h = side == 0 ? 3 * *f + (uint32_t)(*k + 2) % 3 : 3 * *f + (uint32_t)*k;
+    uint32_t o = tg__cross_opp(g, h);
+    if (o == TG_NONE) return TG_NONE;
+    uint32_t nk = side == 0 ? o % 3 : (o % 3 + 1) % 3;
+    if (g->tri[o - o % 3 + nk] != v) return TG_NONE; /* inconsistent topology: treat as a wall */
+    *f = o / 3;
+    *k = (int)nk;
+    return h;
+}
+
+/* Walks side `side` from f_in to f_out; returns the swept angle or -1, and writes the portals if
+ * out != NULL (*io_count in/out). */
+static double walk_side(const tg_geodesic* g, uint32_t v, uint32_t f_in, double a_in, uint32_t f_out,
+                        double a_out, int side, uint32_t* out, size_t cap, size_t* io_count)
+{
+    int k_in = tg__corner_of(g, f_in, v), k_out = tg__corner_of(g, f_out, v);
+    if (k_in < 0 || k_out < 0) return -1.0;
+    if (f_in == f_out && (side == 0 ? a_out >= a_in : a_out <= a_in)) return fabs(a_out - a_in);
+    double c_in = tg__corner_angle(g, f_in, k_in);
+    double angle = side == 0 ? c_in - a_in : a_in;
+    uint32_t f = f_in;
+    int k = k_in;
+    /* a fan has at most as many faces as v has corners: the bound stops walks on broken input */
+    uint32_t limit = g->vc_start[v + 1] - g->vc_start[v] + 1;
+    for (uint32_t step = 0; step < limit; ++step) {
+        uint32_t h = fan_step(g, v, &f, &k, side);
+        if (h == TG_NONE) return -1.0;
+        if (out) {
+            if (*io_count >= cap) return -1.0;
+            out[(*io_count)++] = h;
+        }
+        double c = tg__corner_angle(g, f, k);
+        if (f == f_out) return angle + (side == 0 ? a_out : c - a_out);
+        angle += c;
+    }
+    return -1.0;
+}
+
+bool tg__fan_sides(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, uint32_t f_out,
+                   const tg__node* p_out, double out_angle[2])
+{
+    int k_in = tg__corner_of(g, f_in, v), k_out = tg__corner_of(g, f_out, v);
+    out_angle[0] = out_angle[1] = -1.0;
+    if (k_in < 0 || k_out < 0) return false;
+    double a_in = node_angle(g, f_in, k_in, p_in), a_out = node_angle(g, f_out, k_out, p_out);
+    for (int side = 0; side < 2; ++side)
+        out_angle[side] = walk_side(g, v, f_in, a_in, f_out, a_out, side, NULL, 0, NULL);
+    return out_angle[0] >= 0.0 || out_angle[1] >= 0.0;
+}
+
+size_t tg__fan_portals(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, uint32_t f_out,
+                       const tg__node* p_out, int side, uint32_t* out, size_t cap)
+{
+    int k_in = tg__corner_of(g, f_in, v), k_out = tg__corner_of(g, f_out, v);
+    if (k_in < 0 || k_out < 0) return SIZE_MAX;
+    double a_in = node_angle(g, f_in, k_in, p_in), a_out = node_angle(g, f_out, k_out, p_out);
+    size_t count = 0;
+    if (walk_side(g, v, f_in, a_in, f_out, a_out, side, out, cap, &count) < 0.0) return SIZE_MAX;
+    return count;
+}
+
+/* When the segment between v and p runs along an edge (v, w) of face f that cannot be crossed
+ * (boundary, non-manifold, misoriented or zero-length), other faces also hold the segment and may
+ * belong to other fans of v: returns true in that case. */
+static bool along_wall(const tg_geodesic* g, uint32_t v, const tg__node* p, uint32_t f)
+{
+    int kv = tg__corner_of(g, f, v);
+    if (kv < 0) return false;
+    uint32_t w;
+    if (p->kind == TG__NODE_VERTEX) {
+        w = p->id;
+    } else if (p->kind == TG__NODE_EDGE) {
+        uint32_t a = g->tri[p->id], b = g->tri[tg_halfedge_next(p->id)];
+        if (a != v && b != v) return false;
+        w = a == v ? b : a;
+    } else {
+        return false;
+    }
+    int kw = tg__corner_of(g, f, w);
+    if (kw < 0) return false;
+    uint32_t h = 3 * f + (uint32_t)((kw + 1) % 3 == kv ? kw : kv); /* the halfedge of f on edge (v, w) */
+    return tg__cross_opp(g, h) == TG_NONE;
+}
+
+double tg__vertex_best_side(const tg_geodesic* g, uint32_t v, const tg__node* p_in, uint32_t f_in,
+                            const tg__node* p_out, uint32_t f_out, uint32_t* out_f_in, uint32_t* out_f_out,
+                            int* out_side)
+{
+    double best = -1.0;
+    *out_f_in = f_in, *out_f_out = f_out, *out_side = 0;
+    double ang[2];
+    if (tg__fan_sides(g, v, f_in, p_in, f_out, p_out, ang)) {
+        for (int s = 0; s < 2; ++s)
+            if (ang[s] >= 0.0 && (best < 0.0 || ang[s] < best)) best = ang[s], *out_side = s;
+    }
+    bool alt_in = along_wall(g, v, p_in, f_in), alt_out = along_wall(g, v, p_out, f_out);
+    if (!alt_in && !alt_out) return best;
+    /* other faces holding the segments: pairs in ascending face order, strictly better only */
+    double b[3];
+    for (uint32_t i = g->vc_start[v]; i < g->vc_start[v + 1]; ++i) {
+        uint32_t fi = g->vc[i] / 3;
+        if (fi != f_in && (!alt_in || !tg__node_bary(g, p_in, fi, b))) continue;
+        for (uint32_t j = g->vc_start[v]; j < g->vc_start[v + 1]; ++j) {
+            uint32_t fo = g->vc[j] / 3;
+            if (fo != f_out && (!alt_out || !tg__node_bary(g, p_out, fo, b))) continue;
+            if (fi == f_in && fo == f_out) continue;
+            if (!tg__fan_sides(g, v, fi, p_in, fo, p_out, ang)) continue;
+            for (int s = 0; s < 2; ++s) {
+                if (ang[s] >= 0.0 && (best < 0.0 || ang[s] < best)) {
+                    best = ang[s];
+                    *out_f_in = fi, *out_f_out = fo, *out_side = s;
+                }
+            }
+        }
+    }
+    return best;
+}

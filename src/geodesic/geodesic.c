@@ -1,0 +1,212 @@
+/* geodesic.c - the tg_geodesic solver (adjacency tables), its workspaces, and tg_geodesic_path.
+ * Based on: seed 002 §5 (the general case: insert the endpoints, Dijkstra edge path, then
+ *   relaxation); compressed sparse row adjacency (Saad, "Iterative Methods for Sparse Linear
+ *   Systems", §3.4) built by counting sort. */
+#include "geodesic/geodesic_internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- solver construction ---- */
+
+static void sort_u32(uint32_t* a, size_t n);
+
+static int cmp_u32(const void* x, const void* y)
+{
+    uint32_t a = *(const uint32_t*)x, b = *(const uint32_t*)y;
+    return (a > b) - (a < b);
+}
+
+/* Insertion sort for the usual valences, qsort past that (fan-triangulated polygons). */
+static void sort_u32(uint32_t* a, size_t n)
+{
+    if (n > 32) {
+        qsort(a, n, sizeof *a, cmp_u32);
+        return;
+    }
+    for (size_t i = 1; i < n; ++i) {
+        uint32_t x = a[i];
+        size_t j = i;
+        while (j > 0 && a[j - 1] > x) {
+            a[j] = a[j - 1];
+            --j;
+        }
+        a[j] = x;
+    }
+}
+
+/* Vertex -> corners table by counting sort over corners in order (so ascending per vertex). */
+static bool build_corners(tg_geodesic* g)
+{
+    const tg_allocator* a = &g->allocator;
+    size_t nv = g->vertex_count, nc = 3 * (size_t)g->face_count;
+    g->vc_start = tg__calloc_array(a, nv + 1, sizeof(uint32_t));
+    g->vc = tg__alloc_array(a, nc ? nc : 1, sizeof(uint32_t));
+    uint32_t* fill = tg__alloc_array(a, nv + 1, sizeof(uint32_t));
+    if (!g->vc_start || !g->vc || !fill) {
+        tg__free(a, fill);
+        return false;
+    }
+    for (size_t c = 0; c < nc; ++c) g->vc_start[g->tri[c] + 1]++;
+    for (size_t v = 0; v < nv; ++v) g->vc_start[v + 1] += g->vc_start[v];
+    memcpy(fill, g->vc_start, (nv + 1) * sizeof(uint32_t));
+    for (size_t c = 0; c < nc; ++c) g->vc[fill[g->tri[c]]++] = (uint32_t)c;
+    tg__free(a, fill);
+    return true;
+}
+
+/* Unique neighbours of every vertex (edges of all faces, including non-manifold and degenerate
+ * ones: every edge is a segment on the surface). */
+static bool build_adjacency(tg_geodesic* g)
+{
+    const tg_allocator* a = &g->allocator;
+    size_t nv = g->vertex_count;
+    size_t total = 2 * (size_t)g->vc_start[nv];
+    uint32_t* tmp = tg__alloc_array(a, total ? total : 1, sizeof(uint32_t));
+    g->adj_start = tg__calloc_array(a, nv + 1, sizeof(uint32_t));
+    if (!tmp || !g->adj_start) {
+        tg__free(a, tmp);
+        return false;
+    }
+    size_t out = 0;
+    for (size_t v = 0; v < nv; ++v) {
+        size_t begin = out;
+        for (uint32_t i = g->vc_start[v]; i < g->vc_start[v + 1]; ++i) {
+            uint32_t c = g->vc[i], f3 = c - c % 3;
+            uint32_t w1 = g->tri[f3 + (c % 3 + 1) % 3], w2 = g->tri[f3 + (c % 3 + 2) % 3];
+            if (w1 != v) tmp[out++] = w1;
+            if (w2 != v) tmp[out++] = w2;
+        }
+        sort_u32(tmp + begin, out - begin);
+        size_t u = begin;
+        for (size_t i = begin; i < out; ++i)
+            if (i == begin || tmp[i] != tmp[u - 1]) tmp[u++] = tmp[i];
+        out = u;
+        g->adj_start[v + 1] = (uint32_t)out;
+    }
+    g->adj = tg__realloc(a, tmp, (out ? out : 1) * sizeof(uint32_t));
+    if (!g->adj) {
+        tg__free(a, tmp);
+        return false;
+    }
+    return true;
+}
+
+void tg_geodesic_destroy(tg_geodesic* g)
+{
+    if (!g) return;
+    tg_allocator a = g->allocator;
+    tg__free(&a, g->adj_start);
+    tg__free(&a, g->adj);
+    tg__free(&a, g->vc_start);
+    tg__free(&a, g->vc);
+    tg__free(&a, g);
+}
+
+tg_status tg_geodesic_create(const tg_mesh* mesh, const tg_geodesic_options* options, tg_geodesic** out)
+{
+    if (!out) return TG_ERR_INVALID_ARGUMENT;
+    *out = NULL;
+    if (!mesh) return TG_ERR_INVALID_ARGUMENT;
+    const tg_allocator* a = options ? options->allocator : NULL;
+    tg_geodesic* g = tg__alloc(a, sizeof *g);
+    if (!g) return TG_ERR_OUT_OF_MEMORY;
+    memset(g, 0, sizeof *g);
+    if (a) g->allocator = *a;
+    g->mesh = mesh;
+    g->vertex_count = (uint32_t)mesh->vertex_count;
+    g->face_count = (uint32_t)mesh->face_count;
+    g->xyz = mesh->xyz;
+    g->tri = mesh->tri;
+    g->opp = mesh->opp;
+    g->comp = mesh->comp;
+    if (!build_corners(g) || !build_adjacency(g)) {
+        tg_geodesic_destroy(g);
+        return TG_ERR_OUT_OF_MEMORY;
+    }
+    *out = g;
+    return TG_OK;
+}
+
+size_t tg_geodesic_memory_bytes(const tg_geodesic* g)
+{
+    if (!g) return 0;
+    size_t nv = g->vertex_count;
+    return sizeof *g + 2 * (nv + 1) * sizeof(uint32_t) + (size_t)g->adj_start[nv] * sizeof(uint32_t) +
+           (size_t)g->vc_start[nv] * sizeof(uint32_t);
+}
+
+/* ---- workspaces ---- */
+
+bool tg__buf_reserve(tg_geodesic_workspace* ws, tg__buf* b, size_t count, size_t elem)
+{
+    size_t need;
+    if (tg__mul_overflows(count ? count : 1, elem, &need)) return false;
+    if (need <= b->cap) return true;
+    size_t cap = b->cap ? b->cap : 256;
+    while (cap < need) {
+        if (cap > SIZE_MAX / 2) return false;
+        cap *= 2;
+    }
+    void* p = tg__realloc(&ws->allocator, b->p, cap);
+    if (!p) return false;
+    b->p = p;
+    b->cap = cap;
+    return true;
+}
+
+/* Every tg__buf member, for destruction and accounting. */
+#define WS_BUFFERS(X)                                                                              \
+    X(heap) X(ep_nbr[0]) X(ep_nbr[1]) X(nodes[0]) X(nodes[1]) X(segf[0]) X(segf[1]) X(piv[0]) X(piv[1]) X(slv[0])  \
+    X(slv[1]) X(portals[0]) X(portals[1]) X(decide) X(merged) X(faces) X(uxy) X(uvert) X(urange)   \
+    X(pleft) X(pright) X(deque) X(apex) X(dval) X(fan) X(spokes) X(tvals)
+
+void tg_geodesic_workspace_destroy(tg_geodesic_workspace* ws)
+{
+    if (!ws) return;
+    tg_allocator a = ws->allocator;
+    tg__free(&a, ws->g);
+    tg__free(&a, ws->parent);
+    tg__free(&a, ws->mark);
+    tg__free(&a, ws->tmark);
+#define WS_FREE_(m) tg__free(&a, ws->m.p);
+    WS_BUFFERS(WS_FREE_)
+#undef WS_FREE_
+    tg__free(&a, ws);
+}
+
+tg_status tg_geodesic_workspace_create(const tg_geodesic* g, tg_geodesic_workspace** out)
+{
+    if (!out) return TG_ERR_INVALID_ARGUMENT;
+    *out = NULL;
+    if (!g) return TG_ERR_INVALID_ARGUMENT;
+    const tg_allocator* a = &g->allocator;
+    tg_geodesic_workspace* ws = tg__alloc(a, sizeof *ws);
+    if (!ws) return TG_ERR_OUT_OF_MEMORY;
+    memset(ws, 0, sizeof *ws);
+    ws->geo = g;
+    ws->allocator = g->allocator;
+    size_t n = (size_t)g->vertex_count + 2;
+    ws->g = tg__alloc_array(a, n, sizeof(double));
+    ws->parent = tg__alloc_array(a, n, sizeof(uint32_t));
+    ws->mark = tg__calloc_array(a, n, sizeof(uint32_t));
+    ws->tmark = tg__calloc_array(a, n, sizeof(uint32_t));
+    if (!ws->g || !ws->parent || !ws->mark || !ws->tmark) {
+        tg_geodesic_workspace_destroy(ws);
+        return TG_ERR_OUT_OF_MEMORY;
+    }
+    ws->gen = 2; /* marks start at 0: untouched */
+    ws->fixed_bytes = sizeof *ws + n * (sizeof(double) + 3 * sizeof(uint32_t));
+    *out = ws;
+    return TG_OK;
+}
+
+size_t tg_geodesic_workspace_memory_bytes(const tg_geodesic_workspace* ws)
+{
+    if (!ws) return 0;
+    size_t bytes = ws->fixed_bytes;
+#define WS_BYTES_(m) bytes += ws->m.cap;
+    WS_BUFFERS(WS_BYTES_)
+#undef WS_BYTES_
+    return bytes;
+}

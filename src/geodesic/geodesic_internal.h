@@ -1,0 +1,236 @@
+/* geodesic_internal.h - internal types of src/geodesic: the solver, the workspace, path nodes.
+ * Based on: seed 002 §5 (endpoints inserted as vertices, Dijkstra edge path, relaxation);
+ *   halfedge meshes with implicit next (the project's DESIGN.md). */
+#ifndef TG_GEODESIC_INTERNAL_H
+#define TG_GEODESIC_INTERNAL_H
+
+#include "core/core.h"
+#include "core/vec3.h"
+#include "mesh/mesh_internal.h"
+
+#include <math.h>
+
+/* Pi to double precision (not every libm exports M_PI in strict C11). */
+#define TG__PI 3.14159265358979323846
+
+struct tg_geodesic {
+    tg_allocator allocator;
+    const tg_mesh* mesh;
+    uint32_t vertex_count;
+    uint32_t face_count;
+    const double* xyz;
+    const uint32_t* tri;
+    const uint32_t* opp;
+    const uint32_t* comp;
+    uint32_t* adj_start; /* V + 1: neighbours of v are adj[adj_start[v] .. adj_start[v + 1]) */
+    uint32_t* adj;       /* unique neighbour vertices (every edge of every face), ascending */
+    uint32_t* vc_start;  /* V + 1: corners of v are vc[vc_start[v] .. vc_start[v + 1]) */
+    uint32_t* vc;        /* corners 3f + k with tri[3f + k] == v, ascending (so by face) */
+};
+
+/* A point of a path: a mesh vertex, a point on an edge, or a point inside a face (endpoints only).
+ * Edge points keep both t (from tri[id]) and s = 1 - t: the smaller of the two is exact, which
+ * keeps crossings near a vertex precise relative to their distance from it. */
+enum { TG__NODE_VERTEX = 0, TG__NODE_EDGE = 1, TG__NODE_FACE = 2 };
+typedef struct tg__node {
+    uint32_t kind;
+    uint32_t id;    /* vertex, halfedge or face */
+    double t, s;    /* edge: position = (s) from(id) + (t) to(id) */
+    double bary[3]; /* face */
+} tg__node;
+
+/* A growable scratch buffer owned by a workspace. */
+typedef struct tg__buf {
+    void* p;
+    size_t cap; /* bytes */
+} tg__buf;
+
+typedef struct tg__heap_item {
+    double key;
+    uint32_t node;
+} tg__heap_item;
+
+/* One endpoint after virtual insertion: its graph id (a mesh vertex, or V / V + 1 for a virtual
+ * vertex) and, when virtual, its neighbours with the face through which each is reached. */
+typedef struct tg__endpoint {
+    tg__node node;
+    uint32_t graph_id;
+    int is_virtual;
+    double xyz[3];
+    uint32_t comp;
+    size_t nbr_count;
+    uint32_t* nbr;      /* into a workspace buffer */
+    uint32_t* nbr_face;
+} tg__endpoint;
+
+/* The straightener's path state: pivots (endpoints and vertex passages) and, between consecutive
+ * pivots, a sleeve: a first face and a run of portal halfedges (each in the face before it, its
+ * opposite in the face after it). */
+typedef struct tg__sleeve {
+    uint32_t face0;
+    uint32_t portal_begin, portal_end; /* into the state's portal array */
+    double len;                        /* length of the straight segment through it */
+    tg__node near_a, near_b;           /* the path's points next to its start and end pivots (the
+                                          first / last crossing, or the other pivot) */
+} tg__sleeve;
+
+struct tg_geodesic_workspace {
+    const tg_geodesic* geo;
+    tg_allocator allocator;
+    size_t fixed_bytes;
+    /* A* (graph ids 0..V-1 mesh vertices, V source, V + 1 target) */
+    double* g;
+    uint32_t* parent;
+    uint32_t* mark;   /* == gen: open, == gen + 1: closed; anything else: untouched */
+    uint32_t* tmark;  /* == gen: the vertex is a neighbour of the virtual target */
+    uint32_t gen;
+    tg__buf heap;
+    /* endpoints' neighbour lists (source, target) */
+    tg__buf ep_nbr[2];
+    /* working paths (node arrays + segment faces), double-buffered */
+    tg__buf nodes[2], segf[2];
+    /* straightener state, double-buffered */
+    tg__buf piv[2], slv[2], portals[2];
+    tg__buf decide;
+    /* sleeve unfolding and funnel */
+    tg__buf merged, faces, uxy, uvert, urange, pleft, pright, deque, apex, dval;
+    /* fan and relaxation scratch */
+    tg__buf fan, spokes, tvals;
+};
+
+/* ---- workspace buffers ---- */
+
+/* Ensures buf holds at least count * elem bytes (keeping content); false on overflow/OOM. */
+bool tg__buf_reserve(tg_geodesic_workspace* ws, tg__buf* buf, size_t count, size_t elem);
+
+/* ---- small geometric helpers on the mesh ---- */
+
+static inline tg_vec3 tg__gpos(const tg_geodesic* g, uint32_t v)
+{
+    return tg_v3_load(g->xyz + 3 * (size_t)v);
+}
+
+/* Corner (0, 1, 2) of vertex v in face f, or -1. */
+static inline int tg__corner_of(const tg_geodesic* g, uint32_t f, uint32_t v)
+{
+    const uint32_t* t = g->tri + 3 * (size_t)f;
+    return t[0] == v ? 0 : t[1] == v ? 1 : t[2] == v ? 2 : -1;
+}
+
+/* The crossable opposite of halfedge h: the mesh opposite, unless the edge has zero length (a
+ * crossing there is a passage through its coincident endpoints). TG_NONE if not crossable. */
+static inline uint32_t tg__cross_opp(const tg_geodesic* g, uint32_t h)
+{
+    uint32_t o = g->opp[h];
+    if (o == TG_NONE) return TG_NONE;
+    const double* a = g->xyz + 3 * (size_t)g->tri[h];
+    const double* b = g->xyz + 3 * (size_t)g->tri[tg_halfedge_next(h)];
+    if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) return TG_NONE;
+    return o;
+}
+
+/* Barycentric coordinates of node p in face f; false if p does not lie in f. */
+bool tg__node_bary(const tg_geodesic* g, const tg__node* p, uint32_t f, double out_b[3]);
+/* The vector from corner k of face f to node p (which lies in f), formed from the barycentric
+ * coordinates relative to that corner so that it is precise when p is near it. */
+bool tg__node_offset(const tg_geodesic* g, const tg__node* p, uint32_t f, int k, tg_vec3* out);
+/* The 3D position of a node. */
+tg_vec3 tg__node_pos(const tg_geodesic* g, const tg__node* p);
+/* Distance between two nodes lying in a common face f (precise for nearby nodes). */
+double tg__node_dist(const tg_geodesic* g, const tg__node* a, const tg__node* b, uint32_t f);
+/* True when both nodes denote the same point of the surface (same vertex, same edge point). */
+bool tg__node_same(const tg_geodesic* g, const tg__node* a, const tg__node* b);
+/* Does node p lie on the closed mesh edge of halfedge h (an end vertex, or a point of it)? */
+bool tg__node_on_edge(const tg_geodesic* g, const tg__node* p, uint32_t h);
+/* The node for a canonical surface point. */
+tg__node tg__node_from_surface(const tg_surface_point* p);
+static inline tg__node tg__node_vertex(uint32_t v)
+{
+    tg__node n = {TG__NODE_VERTEX, v, 0.0, 0.0, {0.0, 0.0, 0.0}};
+    return n;
+}
+/* Edge node on halfedge h at t from its start; s is the exact complement when given. */
+static inline tg__node tg__node_edge(uint32_t h, double t, double s)
+{
+    tg__node n = {TG__NODE_EDGE, h, t, s, {0.0, 0.0, 0.0}};
+    return n;
+}
+
+/* ---- fans around a vertex (fan.c) ---- */
+
+/* Interior angle of face f at corner k, in [0, pi]; 0 for a zero-length side. */
+double tg__corner_angle(const tg_geodesic* g, uint32_t f, int k);
+
+/* Side angles at a vertex passage: node p_in in face f_in, vertex v, node p_out in face f_out.
+ * out_angle[0]: the angle swept rotating from the incoming direction to the outgoing one in the
+ * + sense (across prev(corner) edges), out_angle[1] in the - sense; -1 when that side is not
+ * available (it meets a boundary, non-manifold, misoriented or zero-length edge before reaching
+ * f_out). Returns false when neither side reaches f_out (different fans). */
+bool tg__fan_sides(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in,
+                   uint32_t f_out, const tg__node* p_out, double out_angle[2]);
+
+/* The portal halfedges crossed when rotating around v from f_in to f_out on side (0: +, 1: -),
+ * given that tg__fan_sides reported the side as available. Writes up to cap halfedges to out and
+ * returns the count (or SIZE_MAX when cap is too small or the walk fails). f_in == f_out with the
+ * inner side gives 0 portals; the outer side walks the whole fan back to f_in. */
+size_t tg__fan_portals(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in,
+                       uint32_t f_out, const tg__node* p_out, int side, uint32_t* out, size_t cap);
+
+/* Best way to shorten a vertex passage: tries the segment faces and, when the path runs along an
+ * edge at v (so other faces also hold that segment), the other faces holding it. Writes the face
+ * pair and side with the smallest available side angle; returns that angle, or -1 when the
+ * passage is between two fans (no side available). */
+double tg__vertex_best_side(const tg_geodesic* g, uint32_t v, const tg__node* p_in, uint32_t f_in,
+                            const tg__node* p_out, uint32_t f_out, uint32_t* out_f_in,
+                            uint32_t* out_f_out, int* out_side);
+
+/* A face (lowest index) containing both nodes, preferring `hint` when it qualifies; TG_NONE if
+ * none. Uses the vertex-corner table, so non-manifold configurations are covered. */
+uint32_t tg__common_face(const tg_geodesic* g, const tg__node* a, const tg__node* b, uint32_t hint);
+
+/* ---- initial path (astar.c) ---- */
+
+/* Builds the endpoint (canonical node, graph id, virtual neighbours). */
+tg_status tg__endpoint_make(tg_geodesic_workspace* ws, const tg_surface_point* p, int which,
+                            tg__endpoint* out);
+/* A* from src to dst over the edge graph plus the virtual edges. Writes the node path (nodes +
+ * segment faces) into ws->nodes[0] / ws->segf[0], sets *out_count (nodes) and *out_length.
+ * Returns TG_OK with *out_count == 0 when dst is unreachable. */
+tg_status tg__initial_path(tg_geodesic_workspace* ws, const tg__endpoint* src, const tg__endpoint* dst,
+                           size_t* out_count, double* out_length);
+
+/* ---- shortening (straighten.c, relax.c) ---- */
+
+typedef struct tg__shorten_result {
+    size_t count;        /* nodes of the result in ws->nodes[0] / ws->segf[0] */
+    uint32_t iterations;
+    int capped;          /* the iteration cap was reached */
+} tg__shorten_result;
+
+tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_sweeps, double angle_tol,
+                         tg__shorten_result* out);
+tg_status tg__relax(tg_geodesic_workspace* ws, size_t count, uint32_t max_passes, double rel_tol,
+                    int digits, tg__shorten_result* out);
+
+/* ---- sleeves (funnel.c) ---- */
+
+/* Funnel over the sleeve (face0, portals[0..m)) from node a to node b: appends the vertex passages
+ * of the shortest path inside the sleeve and the sub-sleeves between them to the straightener's
+ * output state `dst` (index 0 or 1 of ws->piv / slv / portals): the pivots after a (ending with
+ * b) and one sleeve per new pivot. *io_piv / *io_portals are the current counts in dst. */
+tg_status tg__funnel(tg_geodesic_workspace* ws, const tg__node* a, const tg__node* b, uint32_t face0,
+                     const uint32_t* portals, size_t m, int dst, size_t* io_piv, size_t* io_portals);
+
+/* The edge crossings of the straight segment from a to b through the sleeve (face0, portals):
+ * appends nodes and segment faces (ending with b; a is not written) at out_nodes / out_faces,
+ * which must hold m + 1 entries; returns the number written. */
+size_t tg__sleeve_crossings(tg_geodesic_workspace* ws, const tg__node* a, const tg__node* b,
+                            uint32_t face0, const uint32_t* portals, size_t m, tg__node* out_nodes,
+                            uint32_t* out_faces);
+
+/* ---- certificate (certificate.c) ---- */
+
+/* The largest straightness defect (radians) of the node path (nodes[0..count), faces[0..count-1)). */
+double tg__path_defect(const tg_geodesic* g, const tg__node* nodes, const uint32_t* faces, size_t count);
+
+#endif

@@ -1,0 +1,217 @@
+/* path.c - tg_path (the caller-owned result), tg_geodesic_path (the query), tg_path_write_obj.
+ * Based on: seed 002 §5 (endpoints, initial edge path, shortening) and the project's DESIGN.md
+ *   (tg_path: points with every crossing and vertex passage, faces, length, status, certificate). */
+#include "geodesic/geodesic_internal.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+
+struct tg_path {
+    tg_allocator allocator;
+    tg_surface_point* points;
+    double* xyz;
+    uint32_t* faces;
+    size_t count, capacity;
+    double length, initial_length, max_angle_defect;
+    tg_path_status status;
+    uint32_t iterations;
+    uint32_t edge_path_vertices;
+};
+
+/* Defaults of tg_path_options (see the header for their meaning). */
+#define DEFAULT_MAX_ITERATIONS 10000u
+#define DEFAULT_STRAIGHTEN_TOL 1e-12 /* radians: ~4500 ulps of pi, above the rounding of angle sums */
+#define DEFAULT_RELAX_TOL 1e-13      /* relative length decrease per pass */
+#define DEFAULT_DIGITS 15
+
+const char* tg_path_status_name(tg_path_status s)
+{
+    switch (s) {
+    case TG_PATH_CONVERGED: return "converged";
+    case TG_PATH_ITERATION_CAP: return "iteration_cap";
+    case TG_PATH_UNREACHABLE: return "unreachable";
+    default: return "unknown";
+    }
+}
+
+static void path_clear(tg_path* p)
+{
+    p->count = 0;
+    p->length = p->initial_length = INFINITY;
+    p->max_angle_defect = 0.0;
+    p->status = TG_PATH_UNREACHABLE;
+    p->iterations = 0;
+    p->edge_path_vertices = 0;
+}
+
+tg_status tg_path_create(const tg_allocator* a, tg_path** out)
+{
+    if (!out) return TG_ERR_INVALID_ARGUMENT;
+    *out = NULL;
+    tg_path* p = tg__alloc(a, sizeof *p);
+    if (!p) return TG_ERR_OUT_OF_MEMORY;
+    memset(p, 0, sizeof *p);
+    if (a) p->allocator = *a;
+    path_clear(p);
+    *out = p;
+    return TG_OK;
+}
+
+void tg_path_destroy(tg_path* p)
+{
+    if (!p) return;
+    tg_allocator a = p->allocator;
+    tg__free(&a, p->points);
+    tg__free(&a, p->xyz);
+    tg__free(&a, p->faces);
+    tg__free(&a, p);
+}
+
+void tg_path_get_view(const tg_path* p, tg_path_view* v)
+{
+    if (!v) return;
+    memset(v, 0, sizeof *v);
+    if (!p) {
+        v->length = v->initial_length = INFINITY;
+        v->status = TG_PATH_UNREACHABLE;
+        return;
+    }
+    v->point_count = p->count;
+    v->points = p->points;
+    v->xyz = p->xyz;
+    v->faces = p->faces;
+    v->length = p->length;
+    v->initial_length = p->initial_length;
+    v->max_angle_defect = p->max_angle_defect;
+    v->status = p->status;
+    v->iterations = p->iterations;
+    v->edge_path_vertices = p->edge_path_vertices;
+}
+
+static bool path_reserve(tg_path* p, size_t n)
+{
+    if (n <= p->capacity) return true;
+    size_t cap = p->capacity ? p->capacity : 16;
+    while (cap < n) cap *= 2;
+    tg_surface_point* pts = tg__realloc(&p->allocator, p->points, cap * sizeof *pts);
+    if (pts) p->points = pts;
+    double* xyz = pts ? tg__realloc(&p->allocator, p->xyz, cap * 3 * sizeof *xyz) : NULL;
+    if (xyz) p->xyz = xyz;
+    uint32_t* faces = xyz ? tg__realloc(&p->allocator, p->faces, cap * sizeof *faces) : NULL;
+    if (faces) p->faces = faces;
+    if (!faces) return false;
+    p->capacity = cap;
+    return true;
+}
+
+/* The public form of a node: edge points name the halfedge from their nearer end (t <= 1/2) when
+ * the edge has an opposite, so that t is the exact one of the pair. */
+static tg_surface_point node_to_surface(const tg_geodesic* g, const tg__node* n)
+{
+    if (n->kind == TG__NODE_VERTEX) return tg_surface_vertex(n->id);
+    if (n->kind == TG__NODE_FACE) return tg_surface_face(n->id, n->bary[0], n->bary[1], n->bary[2]);
+    if (n->t > n->s && g->opp[n->id] != TG_NONE) return tg_surface_edge(g->opp[n->id], n->s);
+    return tg_surface_edge(n->id, n->t);
+}
+
+/* Fills the path from the node path in ws->nodes[0] / segf[0]. */
+static tg_status fill_path(const tg_geodesic* g, tg_geodesic_workspace* ws, size_t n, tg_path* path)
+{
+    tg__node* nodes = ws->nodes[0].p;
+    uint32_t* faces = ws->segf[0].p;
+    if (n == 1) {
+        /* from == to: two points joined by an empty segment in a face holding the point */
+        if (!tg__buf_reserve(ws, &ws->nodes[0], 2, sizeof(tg__node)) || !tg__buf_reserve(ws, &ws->segf[0], 2, sizeof(uint32_t)))
+            return TG_ERR_OUT_OF_MEMORY;
+        nodes = ws->nodes[0].p;
+        faces = ws->segf[0].p;
+        nodes[1] = nodes[0];
+        faces[0] = tg__common_face(g, &nodes[0], &nodes[0], TG_NONE);
+        n = 2;
+    }
+    if (!path_reserve(path, n)) return TG_ERR_OUT_OF_MEMORY;
+    double len = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        path->points[i] = node_to_surface(g, &nodes[i]);
+        tg_v3_store(tg__node_pos(g, &nodes[i]), path->xyz + 3 * i);
+        if (i + 1 < n) {
+            path->faces[i] = faces[i];
+            len += tg__node_dist(g, &nodes[i], &nodes[i + 1], faces[i]);
+        }
+    }
+    path->count = n;
+    path->length = len;
+    path->max_angle_defect = tg__path_defect(g, nodes, faces, n);
+    return TG_OK;
+}
+
+tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* from,
+                           const tg_surface_point* to, const tg_path_options* options, tg_path* path)
+{
+    if (!g || !ws || !from || !to || !path || ws->geo != g) return TG_ERR_INVALID_ARGUMENT;
+    path_clear(path);
+    if (tg_surface_point_validate(g->mesh, from, NULL) != TG_OK || tg_surface_point_validate(g->mesh, to, NULL) != TG_OK)
+        return TG_ERR_INVALID_ARGUMENT;
+    tg_path_method method = options ? options->method : TG_PATH_STRAIGHTEN;
+    if (method != TG_PATH_STRAIGHTEN && method != TG_PATH_RELAX && method != TG_PATH_EDGE)
+        return TG_ERR_INVALID_ARGUMENT;
+    uint32_t max_it = options && options->max_iterations ? options->max_iterations : DEFAULT_MAX_ITERATIONS;
+    double tol = options && options->tolerance > 0.0 && isfinite(options->tolerance)
+                     ? options->tolerance
+                     : method == TG_PATH_RELAX ? DEFAULT_RELAX_TOL : DEFAULT_STRAIGHTEN_TOL;
+    int digits = options && options->digits ? (int)options->digits : DEFAULT_DIGITS;
+
+    tg__endpoint src, dst;
+    tg_status st = tg__endpoint_make(ws, from, 0, &src);
+    if (st == TG_OK) st = tg__endpoint_make(ws, to, 1, &dst);
+    size_t n = 0;
+    double initial = INFINITY;
+    if (st == TG_OK) st = tg__initial_path(ws, &src, &dst, &n, &initial);
+    if (st != TG_OK) return st;
+    if (n == 0) return TG_OK; /* unreachable: cleared path */
+    uint32_t vertices = 0;
+    for (size_t i = 0; i < n; ++i) vertices += ((const tg__node*)ws->nodes[0].p)[i].kind == TG__NODE_VERTEX;
+    tg__shorten_result r = {n, 0, 0};
+    if (method == TG_PATH_STRAIGHTEN && n > 2)
+        st = tg__straighten(ws, n, max_it, tol, &r);
+    else if (method == TG_PATH_RELAX && n > 2)
+        st = tg__relax(ws, n, max_it, tol, digits, &r);
+    if (st == TG_OK) st = fill_path(g, ws, r.count, path);
+    if (st != TG_OK) {
+        path_clear(path);
+        return st;
+    }
+    path->initial_length = initial;
+    path->iterations = r.iterations;
+    path->edge_path_vertices = vertices;
+    path->status = r.capped ? TG_PATH_ITERATION_CAP : TG_PATH_CONVERGED;
+    return TG_OK;
+}
+
+tg_status tg_path_write_obj(const tg_path* p, const char* filename, tg_diag* diag)
+{
+    tg__diag_clear(diag, filename ? filename : "");
+    if (!p || !filename) return TG_ERR_INVALID_ARGUMENT;
+    FILE* f = fopen(filename, "w");
+    if (!f) {
+        tg__diag_set(diag, filename, 0, 0, 0, "cannot open for writing: %s", strerror(errno));
+        return TG_ERR_IO;
+    }
+    fprintf(f, "# trigeo geodesic path: %zu points, length %.17g, status %s, max angle defect %.3g rad\n",
+            p->count, p->length, tg_path_status_name(p->status), p->max_angle_defect);
+    for (size_t i = 0; i < p->count; ++i)
+        fprintf(f, "v %.17g %.17g %.17g\n", p->xyz[3 * i], p->xyz[3 * i + 1], p->xyz[3 * i + 2]);
+    if (p->count >= 2) {
+        fputs("l", f);
+        for (size_t i = 0; i < p->count; ++i) fprintf(f, " %zu", i + 1);
+        fputc('\n', f);
+    }
+    bool bad = ferror(f) != 0;
+    if (fclose(f) != 0) bad = true;
+    if (bad) {
+        tg__diag_set(diag, filename, 0, 0, 0, "write failed");
+        return TG_ERR_IO;
+    }
+    return TG_OK;
+}

@@ -81,17 +81,25 @@ double tg__norm_sum_slope(const tg__norm_sum* f, double s, int side)
     return sum;
 }
 
-/* f''(s) = sum |v x y|^2 / |v|^3 (eq. 7-8 written with cross products); +inf at a kink. */
-static double norm_sum_curvature(const tg__norm_sum* f, double s)
+/* f'(s+) and f''(s) = sum |v x y|^2 / |v|^3 (eq. 7-8 written with cross products) in one pass;
+ * f'' is +inf at a kink (a vanishing term). */
+static void norm_sum_slope_curvature(const tg__norm_sum* f, double s, double* out_slope, double* out_curv)
 {
-    double sum = 0.0;
+    double g = 0.0, h = 0.0;
     for (size_t k = 0; k < f->count; k++) {
         tg_vec3 v = term_vec(f, k, s);
+        tg_vec3 y = tg_v3_load(f->y + 3 * k);
         double n = tg_v3_len(v);
-        if (n > 0.0) sum += tg_v3_len_sq(tg_v3_cross(v, tg_v3_load(f->y + 3 * k))) / (n * n * n);
-        else return INFINITY;
+        if (n > 0.0) {
+            g += tg_v3_dot(v, y) / n;
+            h += tg_v3_len_sq(tg_v3_cross(v, y)) / (n * n * n);
+        } else {
+            g += tg_v3_len(y);
+            h = INFINITY;
+        }
     }
-    return sum;
+    *out_slope = g;
+    *out_curv = h;
 }
 
 /* The seed's GetFRoot: exactly n bisection steps, stopping early only on a derivative that is
@@ -109,35 +117,39 @@ static double root_bisect(const tg__norm_sum* f, double lo, double hi, int n)
     return root;
 }
 
-/* Newton on f' = 0 inside the bracket [lo, hi] (f'(lo) < 0 < f'(hi)), falling back to bisection
- * when a step leaves the bracket or the bracket stops halving; a step shorter than tol/2 is
- * lengthened to tol/2 so that the root is bracketed within tol, the bound bisection gives after n
- * steps. The iteration cap (2n + 8) is never reached in practice and only bounds the work. */
+/* Newton on f' = 0 inside the bracket [lo, hi] (f'(lo) < 0 < f'(hi)), safeguarded as in the
+ * classic "rtsafe": a Newton step is taken only when it stays inside the bracket and is less than
+ * half the step before the last one, otherwise the bracket is bisected; every evaluation shrinks
+ * the bracket. Stops when the last step is below tol = (hi - lo) 2^-n, the resolution n bisection
+ * steps would give (the Newton step then also bounds the remaining error, convergence being
+ * quadratic), or on an exact zero. Starts with the Newton step from lo, which for a search
+ * direction that is itself a Newton direction lands next to the root at once. */
 static double root_newton(const tg__norm_sum* f, double lo, double hi, int n)
 {
     double tol = ldexp(hi - lo, -n);
-    double s = 0.5 * (lo + hi);
-    double width_prev = hi - lo, width_prev2 = hi - lo;
+    double g, h;
+    norm_sum_slope_curvature(f, lo, &g, &h);
+    double s = (h > 0.0 && h < INFINITY) ? lo - g / h : NAN;
+    if (!(s > lo && s < hi)) s = 0.5 * (lo + hi);
+    double dx = hi - lo, dx_old = dx;
     for (int i = 0; i < 2 * n + 8; i++) {
-        double g = tg__norm_sum_slope(f, s, +1);
+        norm_sum_slope_curvature(f, s, &g, &h);
         if (g == 0.0) return s;
         if (g < 0.0) lo = s;
         else hi = s;
-        double width = hi - lo;
-        if (!(width > tol)) break;
-        double h = norm_sum_curvature(f, s);
-        double next = (h > 0.0 && h < INFINITY) ? s - g / h : NAN;
-        if (!(next > lo && next < hi) || width > 0.5 * width_prev2) next = 0.5 * (lo + hi);
-        else if (fabs(next - s) < 0.5 * tol) {
-            next = g < 0.0 ? s + 0.5 * tol : s - 0.5 * tol;
-            if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+        double step = g / h; /* NaN or 0 when h is infinite or 0: then bisect */
+        double next = s - step;
+        dx_old = dx;
+        if (h > 0.0 && h < INFINITY && next > lo && next < hi && fabs(2.0 * step) < fabs(dx_old)) {
+            dx = step;
+            s = next;
+        } else {
+            dx = 0.5 * (hi - lo);
+            s = lo + dx;
         }
-        if (next == s) break; /* below the resolution of doubles near s */
-        width_prev2 = width_prev;
-        width_prev = width;
-        s = next;
+        if (fabs(dx) <= tol) return s;
     }
-    return 0.5 * (lo + hi);
+    return s;
 }
 
 double tg__norm_sum_root(const tg__norm_sum* f, double lo, double hi, const tg__root_opts* ro, double* out_s)

@@ -33,10 +33,10 @@
 
 /* Fans with at most this many interior edges keep their scratch on the stack (no allocation). */
 #define FAN_STACK_EDGES 64
-/* Doubles of scratch per interior edge (D: 3, t, u, g, dir, dprev, tsave: 6) and per segment of
- * a line search (x and y: 6). */
-#define FAN_SCRATCH_PER_EDGE 9
-#define FAN_SCRATCH_PER_SEGMENT 6
+/* Doubles of scratch per interior edge (D: 3; |D|, t, u, g, dprev, tsave, aux1, aux2, flags: 9)
+ * and per segment (line-search x and y: 6; cached length: 1). */
+#define FAN_SCRATCH_PER_EDGE 12
+#define FAN_SCRATCH_PER_SEGMENT 7
 
 /* The closed form (eq. 50 ff.) divides by 1 - g^2 (g = -E . xi for the last edge, g_i(r_i)
  * after); its relative error grows like eps / (1 - g^2). Below sqrt(eps) it would lose more than
@@ -63,9 +63,13 @@ typedef struct fan {
     double* u;           /* m: a direction (initial decrease, search direction) */
     double* g;           /* m: projected gradient */
     double* dprev;       /* m: previous conjugate-gradient direction */
-    double* tsave;       /* m: t at the start of a Powell sweep */
-    double* lx;          /* 3 (m + 1): line-search data x_k */
+    double* tsave;       /* m: t at the start of a Powell sweep; previous CG gradient */
+    double* aux1;        /* m: Newton: Thomas modified super-diagonal */
+    double* aux2;        /* m: Newton: Thomas modified right-hand side */
+    double* flags;       /* m: Newton: 1 for a free variable, 0 for one held at a bound */
+    double* lx;          /* 3 (m + 1): line-search data x_k; Newton: segment vectors */
     double* ly;          /* 3 (m + 1): line-search data y_k */
+    double* seglen;      /* m + 1: Newton: segment lengths */
     tg__root_opts ro;
     int strategy;
     double grad_tol; /* on |dL/dt_j| / |D_j| (a difference of two cosines) */
@@ -394,18 +398,22 @@ static int fan_clamp_to_domain(fan* F, size_t j, size_t k, const double* u)
  * Returns the number of runs that got shorter. */
 static int fan_leave_vertex(fan* F)
 {
+    /* t below the 1D resolution is V for the search: a search that drives t towards V converges
+     * to such values without reaching 0 exactly, and must not hide a run from this test. */
+    const double at_v = F->step_tol;
     int changed = 0;
     size_t j = 0;
     while (j < F->m) {
-        if (F->t[j] != 0.0) {
+        if (F->t[j] > at_v) {
             j++;
             continue;
         }
         size_t k = j;
-        while (k + 1 < F->m && F->t[k + 1] == 0.0) k++;
+        while (k + 1 < F->m && F->t[k + 1] <= at_v) k++;
         double q0[3], q1[3];
         tg_v3_store(fan_point(F, (long)j - 1), q0);
         tg_v3_store(fan_point(F, (long)k + 1), q1);
+        for (size_t l = j; l <= k; l++) F->t[l] = 0.0; /* ClampToDomain starts from V */
         double hmin = tg__fan_initial_decrease(q0, q1, F->d + 3 * j, k - j + 1, &F->ro, F->u + j);
         if (hmin < 0.0 && fan_clamp_to_domain(F, j, k, F->u)) changed++;
         j = k + 1;
@@ -527,29 +535,61 @@ static void strategy_cg(fan* F)
     }
 }
 
-/* The projected-Newton direction: H delta = -g on the free variables (those not held at a bound
- * by their gradient), with H the tridiagonal Hessian of eq. (57)-(58), positive definite there
- * (§4.2), assembled per segment as in fan_hessian_form and solved by the Thomas algorithm (no
- * pivoting needed for a symmetric positive definite matrix). Writes delta to F->u; returns 0 when
- * H is unbounded (a zero-length segment between free variables) or not numerically positive. */
+/* Segment vectors X_i = M_i - M_{i-1} into F->lx and their lengths into F->seglen, i = 0..m. */
+static void fan_segments(fan* F)
+{
+    tg_vec3 prev = fan_point(F, -1);
+    for (size_t i = 0; i <= F->m; i++) {
+        tg_vec3 cur = fan_point(F, (long)i);
+        tg_vec3 x = tg_v3_sub(cur, prev);
+        tg_v3_store(x, F->lx + 3 * i);
+        F->seglen[i] = tg_v3_len(x);
+        prev = cur;
+    }
+}
+
+/* From the cached segments: the projected gradient (eq. 56, one-sided at zero-length segments)
+ * into F->g and the free-variable flags into F->flags (a variable is held when it sits on a
+ * bound its gradient pushes against). Returns max_j |g_j| / |D_j|. */
+static double fan_newton_gradient(fan* F)
+{
+    double worst = 0.0;
+    for (size_t j = 0; j < F->m; j++) {
+        tg_vec3 dj = tg_v3_load(F->d + 3 * j);
+        double la = F->seglen[j], lb = F->seglen[j + 1], smooth = 0.0, kinks = 0.0;
+        if (la > 0.0) smooth += tg_v3_dot(dj, tg_v3_load(F->lx + 3 * j)) / la;
+        else kinks += F->dlen[j];
+        if (lb > 0.0) smooth -= tg_v3_dot(dj, tg_v3_load(F->lx + 3 * (j + 1))) / lb;
+        else kinks += F->dlen[j];
+        double gr = smooth + kinks, gl = smooth - kinks, g = 0.0;
+        int held = F->dlen[j] == 0.0 || (F->t[j] <= 0.0 && gr >= 0.0) || (F->t[j] >= 1.0 && gl <= 0.0);
+        if (!held) g = gr < 0.0 ? gr : (gl > 0.0 ? gl : 0.0);
+        F->flags[j] = held ? 0.0 : 1.0;
+        F->g[j] = g;
+        if (g != 0.0 && fabs(g) / F->dlen[j] > worst) worst = fabs(g) / F->dlen[j];
+    }
+    return worst;
+}
+
+/* The projected-Newton direction: H delta = -g on the free variables, with H the tridiagonal
+ * Hessian of eq. (57)-(58), positive definite there (§4.2), assembled from the cached segments
+ * as in fan_hessian_form and solved by the Thomas algorithm (no pivoting needed for a symmetric
+ * positive definite matrix). Writes delta to F->u; returns 0 when H is unbounded (a zero-length
+ * segment next to a free variable) or not numerically positive definite. */
 static int fan_newton_direction(fan* F)
 {
     size_t m = F->m;
-    double* diag = F->dprev; /* scratch: this strategy uses neither dprev nor tsave */
+    double* diag = F->dprev; /* this strategy uses neither dprev nor tsave otherwise */
     double* off = F->tsave;  /* off[j] = H[j][j + 1] */
-    double* cp = F->lx;      /* Thomas: modified super-diagonal and right-hand side */
-    double* dp = F->ly;
+    double* cp = F->aux1;
+    double* dp = F->aux2;
     for (size_t j = 0; j < m; j++) diag[j] = off[j] = 0.0;
-    tg_vec3 prev = fan_point(F, -1);
     for (size_t i = 0; i <= m; i++) {
-        tg_vec3 cur = fan_point(F, (long)i);
-        tg_vec3 x = tg_v3_sub(cur, prev);
-        prev = cur;
-        double len = tg_v3_len(x);
-        int has_right = i < m && F->dlen[i] > 0.0, has_left = i > 0 && F->dlen[i - 1] > 0.0;
+        int has_right = i < m && F->flags[i] != 0.0, has_left = i > 0 && F->flags[i - 1] != 0.0;
         if (!has_right && !has_left) continue;
+        double len = F->seglen[i];
         if (!(len > 0.0)) return 0;
-        tg_vec3 n = tg_v3_scale(x, 1.0 / len);
+        tg_vec3 n = tg_v3_scale(tg_v3_load(F->lx + 3 * i), 1.0 / len);
         /* D^T (I - n n^T) D' = (D x n) . (D' x n) (Lagrange's identity), no cancellation */
         tg_vec3 cr = has_right ? tg_v3_cross(tg_v3_load(F->d + 3 * i), n) : tg_v3(0, 0, 0);
         tg_vec3 cl = has_left ? tg_v3_cross(tg_v3_load(F->d + 3 * (i - 1)), n) : tg_v3(0, 0, 0);
@@ -557,54 +597,50 @@ static int fan_newton_direction(fan* F)
         if (has_left) diag[i - 1] += tg_v3_len_sq(cl) / len;
         if (has_right && has_left) off[i - 1] -= tg_v3_dot(cl, cr) / len;
     }
-    /* free variables; F->g holds the projected gradient */
-    long last_free = -2;
+    /* forward elimination over each run of free variables (held ones decouple the runs) */
     for (size_t j = 0; j < m; j++) {
-        double gr, gl;
-        fan_partial(F, j, &gr, &gl);
-        int blocked = F->dlen[j] == 0.0 || (F->t[j] <= 0.0 && gr >= 0.0) || (F->t[j] >= 1.0 && gl <= 0.0);
-        if (blocked) {
+        if (F->flags[j] == 0.0) {
             cp[j] = dp[j] = 0.0;
-            F->u[j] = 0.0;
             continue;
         }
-        double sub = last_free == (long)j - 1 ? off[j - 1] : 0.0;
-        double den = diag[j] - (sub != 0.0 ? sub * cp[j - 1] : 0.0);
+        int linked = j > 0 && F->flags[j - 1] != 0.0;
+        double sub = linked ? off[j - 1] : 0.0;
+        double den = diag[j] - (linked ? sub * cp[j - 1] : 0.0);
         if (!(den > 0.0) || !isfinite(den)) return 0;
-        cp[j] = (j + 1 < m ? off[j] : 0.0) / den;
-        dp[j] = (-F->g[j] - (sub != 0.0 ? sub * dp[j - 1] : 0.0)) / den;
-        F->u[j] = 1.0; /* marks free for the back substitution */
-        last_free = (long)j;
+        cp[j] = (j + 1 < m && F->flags[j + 1] != 0.0) ? off[j] / den : 0.0;
+        dp[j] = (-F->g[j] - (linked ? sub * dp[j - 1] : 0.0)) / den;
     }
-    /* back substitution over the free variables; a blocked neighbour decouples the blocks */
     double next = 0.0;
-    int next_free = 0;
-    for (size_t jj = m; jj-- > 0;) {
-        if (F->u[jj] == 0.0) {
-            next_free = 0;
+    for (size_t j = m; j-- > 0;) {
+        if (F->flags[j] == 0.0) {
+            F->u[j] = next = 0.0;
             continue;
         }
-        double x = dp[jj] - (next_free ? cp[jj] * next : 0.0);
-        F->u[jj] = x;
-        next = x;
-        next_free = 1;
+        F->u[j] = next = dp[j] - cp[j] * next;
+        if (!isfinite(next)) return 0;
     }
-    for (size_t j = 0; j < m; j++)
-        if (!isfinite(F->u[j])) return 0;
     return 1;
 }
 
 /* 4. Projected Newton (not in the seed; its Hessian is): Newton directions on the free
- * variables with an exact line search, quadratic convergence near the minimum. Where the Hessian
- * is unbounded it falls back to a coordinate sweep. */
+ * variables with an exact line search, quadratic convergence near the minimum. Converged when
+ * the Newton step itself is below the 1D resolution. Where the Hessian is unbounded it falls back
+ * to a coordinate sweep. */
 static void strategy_newton(fan* F)
 {
     while (F->budget > 0) {
         F->budget--;
-        if (fan_projected_gradient(F) <= F->grad_tol) return;
-        int hit = 0;
-        double moved = fan_newton_direction(F) ? fan_line_search(F, F->u, &hit) : 0.0;
-        if (moved <= F->step_tol && fan_sweep(F) <= F->step_tol) return;
+        fan_segments(F);
+        if (fan_newton_gradient(F) <= F->grad_tol) return;
+        if (!fan_newton_direction(F)) {
+            if (fan_sweep(F) <= F->step_tol) return;
+            continue;
+        }
+        double step = 0.0;
+        for (size_t j = 0; j < F->m; j++) step = fmax(step, fabs(F->u[j]));
+        if (step <= F->step_tol) return;
+        int hit;
+        if (fan_line_search(F, F->u, &hit) <= F->step_tol && fan_sweep(F) <= F->step_tol) return;
     }
 }
 
@@ -714,8 +750,12 @@ tg_status tg_fan_path_minimize(const double p0[3], const double p1[3], const dou
     F.g = F.u + m;
     F.dprev = F.g + m;
     F.tsave = F.dprev + m;
-    F.lx = F.tsave + m;
+    F.aux1 = F.tsave + m;
+    F.aux2 = F.aux1 + m;
+    F.flags = F.aux2 + m;
+    F.lx = F.flags + m;
     F.ly = F.lx + 3 * (m + 1);
+    F.seglen = F.ly + 3 * (m + 1);
     for (int k = 0; k < 3; k++) {
         F.q0[k] = p0[k] - v[k];
         F.q1[k] = p1[k] - v[k];
@@ -780,11 +820,14 @@ tg_status tg_fan_path_minimize(const double p0[3], const double p1[3], const dou
                                                                                        : 100 + 20 * mm;
         F.budget = cap;
         /* Convergence thresholds: the 1D searches resolve t to 2^-n (n = ceil(digits log2 10));
-         * a sweep that moves no t by more than a few of those has stalled, and a projected
-         * gradient below 10^-digits of |D_j| (or a few ulps, whichever is larger) is zero. */
+         * a sweep or step that moves no t by more than a few of those has stalled. dL/dt_j / |D_j|
+         * is a difference of cosines (of the path's angles with the edge on its two sides), so a
+         * projected gradient below 10^-digits of |D_j| is zero to the requested digits; it is
+         * never asked below 64 ulps, the rounding noise of those cosines (unit vectors of short,
+         * cancelling differences M_i - M_{i-1}). */
         F.step_tol = ldexp(4.0, -F.ro.iterations);
         F.grad_tol = fmax(pow(10.0, -(double)(opts && opts->digits > 0 ? opts->digits : TG_KERNEL_DEFAULT_DIGITS)),
-                          16.0 * DBL_EPSILON);
+                          64.0 * DBL_EPSILON);
         fan_minimize(&F);
         for (size_t i = 0; i < m; i++) {
             size_t gi = group[i];

@@ -244,17 +244,22 @@ typedef enum tg_feature {
  *  Invariants on every result (both variants, every dimension, every triangle):
  *   - all fields are finite (for finite inputs in the supported range, see below);
  *   - s, t in [0, 1] and the double sum s + t <= 1 (so (s, t) is in the domain);
- *   - bary = (1 - s - t, s, t) with bary[0] computed as (1 - s) - t; bary[0] == 0 exactly if and
- *     only if s + t == 1 exactly, so the zero pattern of bary always agrees with `feature`;
+ *   - bary = (1 - s - t, s, t): bary[0] is (1 - s) - t evaluated in doubles, except that it is
+ *     exactly 0 when s + t == 1; it is > 0 otherwise, so the zero pattern of bary always agrees
+ *     with `feature` (a vertex has s, t in {0, 1} exactly);
  *   - closest and T(s, t) agree up to rounding (a few units in the last place of the triangle's
  *     coordinates); sqdist is the squared distance from p to the computed closest point,
  *     evaluated from the displacement (closest - p) formed in coordinates local to the triangle,
  *     so it does not suffer from the rounding of closest itself when coordinates are large.
  *
- *  Degenerate triangles (robust variant): the convention is that a zero-area triangle is the
- *  segment or point it spans; the closest point is reported on its longest edge (the first of
- *  01, 12, 20 on ties) or on an endpoint of it, with the matching (s, t), bary and feature. When
- *  all three vertices coincide the result is VERTEX0 with s = t = 0. */
+ *  Degenerate triangles (robust variant): a zero-area triangle is the segment or point it spans.
+ *  When v0 == v1, or v2 lies on the line v0 v1 as far as double arithmetic can tell (the computed
+ *  height of v2 over that line is zero), the closest point is reported on the longest edge (the
+ *  first of 01, 12, 20 on ties) or an endpoint of it, with the matching (s, t), bary and feature;
+ *  when all three vertices coincide that is VERTEX0 with s = t = 0. A collinear triangle whose
+ *  computed height is a rounding-level nonzero is handled as the sliver it then is: the closest
+ *  point and distance are just as accurate, but (s, t) and the feature may name any edge or
+ *  vertex that contains the point. */
 typedef struct tg_point_triangle {
     double sqdist;     /**< squared distance from p to the triangle */
     double closest[3]; /**< closest point (3D; 2D entry points set closest[2] = 0; n-D entry points
@@ -269,8 +274,9 @@ typedef struct tg_point_triangle {
  *  as written (seed 000 §3, Listings 1-8: region classification of the unconstrained minimiser
  *  (be - cd, bd - ae) against det = |ac - b^2|, at most one division, deferred).
  *
- *  Accurate (relative error of sqdist ~1e-15 or better away from the triangle, absolute error of
- *  the distance a few ulps of the local scale near it) on well-shaped triangles. Its premise
+ *  Accurate on well-shaped triangles: relative error of sqdist ~1e-14 away from the triangle,
+ *  distance error below ~100 ulps of the local scale max_i |p - v_i| near it (measured by
+ *  tests/test_point_triangle_gmp.c; the robust kernel stays below 5). Its premise
  *  ac - b^2 > 0 fails on zero-area triangles and rounding can misclassify needles and caps:
  *  there the result is still a valid point of the triangle (never NaN, (s, t) in the domain, so
  *  sqdist is never below the true squared distance by more than rounding) but not necessarily
@@ -768,6 +774,12 @@ tg_status tg_geodesic_path(const tg_geodesic* geodesic, tg_geodesic_workspace* w
 tg_status tg_path_write_obj(const tg_path* path, const char* filename, tg_diag* diag);
 
 /* TG-SECTION-GEODESIC-END */
+
+/* ============================================================================================== */
+/* Pictures (src/render)                                                                          */
+/* ============================================================================================== */
+/* TG-SECTION-RENDER */
+/* TG-SECTION-RENDER-END */
 
 #ifdef __cplusplus
 }

@@ -1,7 +1,8 @@
 /* test_io_bad.c - malformed input: every case returns TG_ERR_PARSE / TG_ERR_INVALID_MESH /
  * TG_ERR_UNSUPPORTED with a diagnostic naming the file, a position (line for text, byte offset
  * for binary) and a message; every prefix of a valid file of each format and flavour fails
- * cleanly or loads; absurd header counts allocate nothing large; failures leak nothing. */
+ * cleanly or loads (hand-written files, and prefixes of real corpus files); absurd header counts
+ * allocate nothing large; failures leak nothing. */
 #include "tg_test.h"
 
 #include <trigeo.h>
@@ -493,10 +494,56 @@ static void test_prefixes(void)
     check_prefixes("stl binary", TG_FORMAT_STL, b.d, b.n);
 }
 
+/* Prefixes of real corpus files of each flavour, cut at 97 evenly spaced lengths and next to
+ * the header / first record boundaries (every cut of a small prefix region, then a stride). */
+static void test_corpus_prefixes(void)
+{
+    static const struct { const char* file; tg_format fmt; } files[] = {
+        {"cgal_mpi.off", TG_FORMAT_OFF},          {"igl_camelhead.off", TG_FORMAT_OFF},
+        {"gc_lego.ply", TG_FORMAT_PLY},           {"tm_bunny.ply", TG_FORMAT_PLY},
+        {"tm_cycloidal.ply", TG_FORMAT_PLY},      {"tm_soup.stl", TG_FORMAT_STL},
+        {"tm_1002_tray_bottom.STL", TG_FORMAT_STL}, {"c3d_suzanne.obj", TG_FORMAT_OBJ},
+    };
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; ++i) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s", tg_test_meshes_dir(), files[i].file);
+        FILE* f = fopen(path, "rb");
+        CHECK_MSG(f != NULL, "cannot open corpus file %s", path);
+        if (!f) continue;
+        fseek(f, 0, SEEK_END);
+        long len = ftell(f);
+        fseek(f, 0, SEEK_SET);
+        unsigned char* data = malloc((size_t)len);
+        size_t got = fread(data, 1, (size_t)len, f);
+        fclose(f);
+        CHECK_EQ_INT(got, len);
+        int bad = 0, failed = 0;
+        for (size_t k = 0; k < 97 + 600; ++k) {
+            size_t n = k < 600 ? k : (size_t)len * (k - 600) / 97;
+            if (n > got) break;
+            tg_diag d;
+            tg_mesh* m = NULL;
+            tg_status st = tg_mesh_load_memory(data, n, files[i].file, files[i].fmt, NULL, &d, &m);
+            if (st == TG_OK) {
+                bad += m == NULL;
+            } else {
+                failed++;
+                bad += m != NULL || d.message[0] == '\0' || (d.line == 0 && d.byte_offset == 0) ||
+                       (st != TG_ERR_PARSE && st != TG_ERR_INVALID_MESH);
+            }
+            tg_mesh_destroy(m);
+        }
+        CHECK_MSG(bad == 0, "%s: %d prefixes misbehaved", files[i].file, bad);
+        CHECK_MSG(failed > 0, "%s: no prefix failed", files[i].file);
+        free(data);
+    }
+}
+
 int main(void)
 {
     test_text_cases();
     test_binary_cases();
     test_prefixes();
+    test_corpus_prefixes();
     return tg_test_finish();
 }

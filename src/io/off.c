@@ -133,9 +133,9 @@ static tg_status parse_vertices(off_cursor* c, size_t vertex_count, double* xyz)
             const char* at = c->p;
             double v;
             if (!parse_double_token(c, &v))
-                return fail_at(c, at, TG_ERR_PARSE, "vertex %zu: coordinate %d is not a number", i, k);
+                return fail_at(c, at, TG_ERR_PARSE, "vertex %zu: %c coordinate is not a number", i, "xyz"[k]);
             if (!isfinite(v))
-                return fail_at(c, at, TG_ERR_INVALID_MESH, "vertex %zu: non-finite coordinate %d", i, k);
+                return fail_at(c, at, TG_ERR_INVALID_MESH, "vertex %zu: non-finite %c coordinate", i, "xyz"[k]);
             xyz[3 * i + (size_t)k] = v;
         }
         skip_line(c); /* colors, normals, texture coordinates */

@@ -94,48 +94,6 @@ static size_t format_u32(char* s, uint64_t v)
     return n;
 }
 
-tg_status tg_mesh_write_obj(const tg_mesh* mesh, const char* path, tg_diag* diag)
-{
-    if (!mesh || !path) {
-        tg__diag_set(diag, path ? path : "", 0, 0, 0, "NULL mesh or path");
-        return TG_ERR_INVALID_ARGUMENT;
-    }
-    out_file* o = tg__alloc(NULL, sizeof *o);
-    if (!o) return TG_ERR_OUT_OF_MEMORY;
-    tg_status st = out_open(o, path, diag);
-    if (st != TG_OK) {
-        tg__free(NULL, o);
-        return st;
-    }
-    static const char head[] = "# written by trigeo\n";
-    out_bytes(o, head, sizeof head - 1);
-    for (size_t v = 0; v < mesh->vertex_count; ++v) {
-        char* s = out_room(o, 128);
-        size_t n = 0;
-        s[n++] = 'v';
-        for (int k = 0; k < 3; ++k) {
-            s[n++] = ' ';
-            n += format_double(s + n, 40, mesh->xyz[3 * v + (size_t)k]);
-        }
-        s[n++] = '\n';
-        o->len += n;
-    }
-    for (size_t f = 0; f < mesh->face_count; ++f) {
-        char* s = out_room(o, 80);
-        size_t n = 0;
-        s[n++] = 'f';
-        for (int k = 0; k < 3; ++k) {
-            s[n++] = ' ';
-            n += format_u32(s + n, (uint64_t)mesh->tri[3 * f + (size_t)k] + 1);
-        }
-        s[n++] = '\n';
-        o->len += n;
-    }
-    st = out_close(o, diag);
-    tg__free(NULL, o);
-    return st;
-}
-
 static bool valid_property_name(const char* s)
 {
     if (!s || !*s) return false;
@@ -180,6 +138,48 @@ static void put_le_double(out_file* o, double v)
     out_bytes(o, b, 8);
 }
 
+tg_status tg_mesh_write_obj(const tg_mesh* mesh, const char* path, tg_diag* diag)
+{
+    if (!mesh || !path) {
+        tg__diag_set(diag, path ? path : "", 0, 0, 0, "NULL mesh or path");
+        return TG_ERR_INVALID_ARGUMENT;
+    }
+    out_file* o = tg__alloc(&mesh->allocator, sizeof *o);
+    if (!o) return TG_ERR_OUT_OF_MEMORY;
+    tg_status st = out_open(o, path, diag);
+    if (st != TG_OK) {
+        tg__free(&mesh->allocator, o);
+        return st;
+    }
+    static const char head[] = "# written by trigeo\n";
+    out_bytes(o, head, sizeof head - 1);
+    for (size_t v = 0; v < mesh->vertex_count; ++v) {
+        char* s = out_room(o, 128);
+        size_t n = 0;
+        s[n++] = 'v';
+        for (int k = 0; k < 3; ++k) {
+            s[n++] = ' ';
+            n += format_double(s + n, 40, mesh->xyz[3 * v + (size_t)k]);
+        }
+        s[n++] = '\n';
+        o->len += n;
+    }
+    for (size_t f = 0; f < mesh->face_count; ++f) {
+        char* s = out_room(o, 80);
+        size_t n = 0;
+        s[n++] = 'f';
+        for (int k = 0; k < 3; ++k) {
+            s[n++] = ' ';
+            n += format_u32(s + n, (uint64_t)mesh->tri[3 * f + (size_t)k] + 1);
+        }
+        s[n++] = '\n';
+        o->len += n;
+    }
+    st = out_close(o, diag);
+    tg__free(&mesh->allocator, o);
+    return st;
+}
+
 tg_status tg_mesh_write_ply(const tg_mesh* mesh, const char* path, const tg_vertex_scalar* scalars,
                             size_t scalar_count, tg_diag* diag)
 {
@@ -189,11 +189,11 @@ tg_status tg_mesh_write_ply(const tg_mesh* mesh, const char* path, const tg_vert
     }
     tg_status st = check_scalars(scalars, scalar_count, path, diag);
     if (st != TG_OK) return st;
-    out_file* o = tg__alloc(NULL, sizeof *o);
+    out_file* o = tg__alloc(&mesh->allocator, sizeof *o);
     if (!o) return TG_ERR_OUT_OF_MEMORY;
     st = out_open(o, path, diag);
     if (st != TG_OK) {
-        tg__free(NULL, o);
+        tg__free(&mesh->allocator, o);
         return st;
     }
     char line[160];
@@ -223,6 +223,6 @@ tg_status tg_mesh_write_ply(const tg_mesh* mesh, const char* path, const tg_vert
         out_bytes(o, rec, sizeof rec);
     }
     st = out_close(o, diag);
-    tg__free(NULL, o);
+    tg__free(&mesh->allocator, o);
     return st;
 }

@@ -779,6 +779,37 @@ tg_status tg_path_write_obj(const tg_path* path, const char* filename, tg_diag* 
 /* Pictures (src/render)                                                                          */
 /* ============================================================================================== */
 /* TG-SECTION-RENDER */
+
+/** What to draw and how. A zero-initialised struct (or NULL) means: 960 x 720 pixels, the default
+ *  three-quarter view, the mesh in neutral grey, no overlay. */
+typedef struct tg_render_options {
+    int width, height;            /**< pixels; 0: 960 x 720; each at most 8192 */
+    double view_dir[3];           /**< direction the camera looks along (world space); zero: the
+                                       default view (0.55, -0.35, 1), i.e. from -z, slightly
+                                       above and to the right. Orthographic projection. */
+    double up[3];                 /**< world "up" for the camera; zero: +y (or +z if the view is
+                                       along y) */
+    const double* vertex_scalar;  /**< optional: one value per vertex, drawn with a perceptual
+                                       colour map (dark blue = low, yellow = high) and isolines;
+                                       non-finite values (e.g. +inf: unreachable) are drawn grey */
+    int isolines;                 /**< number of isolines over the scalar's finite range; 0: 16;
+                                       negative: none */
+    const double* polyline;       /**< optional: 3 * polyline_count doubles, drawn as a red tube
+                                       over the surface (depth-tested, slightly lifted toward the
+                                       camera), endpoints as dots */
+    size_t polyline_count;
+    int supersample;              /**< samples per pixel side for anti-aliasing; 0: 3; 1: none */
+} tg_render_options;
+
+/** Renders the mesh (software rasterizer, z-buffer, smooth two-sided headlight shading) with the
+ *  optional scalar field and polyline, and writes an 8-bit RGB PNG (libpng) to png_path.
+ *  Degenerate faces are skipped; an empty mesh gives a background-only image. Deterministic: the
+ *  same inputs give the same bytes. Errors: TG_ERR_INVALID_ARGUMENT (NULL mesh/path, size out of
+ *  range, polyline_count > 0 with NULL polyline), TG_ERR_OUT_OF_MEMORY, TG_ERR_IO (cannot write).
+ *  Cost: O(F + pixels * supersample^2). Thread-safe (no shared state). */
+tg_status tg_render_png(const tg_mesh* mesh, const tg_render_options* options, const char* png_path,
+                        tg_diag* diag);
+
 /* TG-SECTION-RENDER-END */
 
 #ifdef __cplusplus

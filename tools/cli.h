@@ -39,5 +39,6 @@ bool cli_parse_double(const char* s, double* out);
 /* Commands (one file each). */
 extern const cli_command cli_cmd_info;
 extern const cli_command cli_cmd_closest;
+extern const cli_command cli_cmd_render;
 
 #endif

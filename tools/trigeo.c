@@ -11,6 +11,7 @@
 static const cli_command* const commands[] = {
     &cli_cmd_info,
     &cli_cmd_closest,
+    &cli_cmd_render,
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 

@@ -1,0 +1,125 @@
+/* test_render.c - tg_render_png: the PNG decodes to the requested size; background where no face
+ * projects, shaded mesh where one does; a polyline adds red pixels; a scalar field colours the
+ * low and high ends differently; identical inputs give identical bytes; bad arguments fail. */
+#include "tg_test.h"
+
+#include <png.h>
+#include <trigeo.h>
+
+static unsigned char* decode(const char* path, int* w, int* h)
+{
+    png_image pi;
+    memset(&pi, 0, sizeof pi);
+    pi.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_file(&pi, path)) return NULL;
+    pi.format = PNG_FORMAT_RGB;
+    unsigned char* buf = malloc(PNG_IMAGE_SIZE(pi));
+    if (!buf || !png_image_finish_read(&pi, NULL, buf, 0, NULL)) {
+        free(buf);
+        png_image_free(&pi);
+        return NULL;
+    }
+    *w = (int)pi.width, *h = (int)pi.height;
+    return buf;
+}
+
+static const unsigned char* px(const unsigned char* img, int w, int x, int y) { return img + 3 * (y * w + x); }
+
+static int count_red(const unsigned char* img, int w, int h)
+{
+    int n = 0;
+    for (int i = 0; i < w * h; ++i) n += img[3 * i] > 150 && img[3 * i + 1] < 110 && img[3 * i + 2] < 110;
+    return n;
+}
+
+static long file_bytes(const char* path, unsigned char** out)
+{
+    FILE* f = fopen(path, "rb");
+    if (!f) return -1;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    *out = malloc((size_t)n);
+    if (fread(*out, 1, (size_t)n, f) != (size_t)n) n = -1;
+    fclose(f);
+    return n;
+}
+
+int main(void)
+{
+    /* a unit square in the xy plane (two triangles), viewed straight along -z */
+    const double x[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    const uint32_t t[] = {0, 1, 2, 0, 2, 3};
+    tg_mesh* m = NULL;
+    CHECK_STATUS(tg_mesh_create(x, 4, t, 2, NULL, NULL, &m), TG_OK);
+    if (!m) return tg_test_finish();
+    char a[256], b[256];
+    snprintf(a, sizeof a, "%s/tg_render_a.png", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
+    snprintf(b, sizeof b, "%s/tg_render_b.png", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
+    tg_render_options o;
+    memset(&o, 0, sizeof o);
+    o.width = 200, o.height = 100, o.view_dir[2] = -1.0;
+    CHECK_STATUS(tg_render_png(m, &o, a, NULL), TG_OK);
+    int w = 0, h = 0;
+    unsigned char* img = decode(a, &w, &h);
+    CHECK(img != NULL);
+    if (img) {
+        CHECK_EQ_INT(w, 200);
+        CHECK_EQ_INT(h, 100);
+        /* the square is fitted to 88% of the height, centred: x in ~[56, 144] */
+        const unsigned char *corner = px(img, w, 2, 2), *centre = px(img, w, 100, 50), *left = px(img, w, 30, 50);
+        CHECK_MSG(corner[0] > 200 && corner[0] == corner[1], "background pixel (%d,%d,%d)", corner[0], corner[1], corner[2]);
+        CHECK_MSG(left[0] > 200, "left of the square is background (%d)", left[0]);
+        CHECK_MSG(centre[0] < 230 && abs(centre[0] - corner[0]) > 10, "centre shaded (%d) vs background (%d)", centre[0], corner[0]);
+        CHECK_EQ_INT(count_red(img, w, h), 0);
+        free(img);
+    }
+    /* identical inputs, identical bytes */
+    CHECK_STATUS(tg_render_png(m, &o, b, NULL), TG_OK);
+    unsigned char *ba = NULL, *bb = NULL;
+    long na = file_bytes(a, &ba), nb = file_bytes(b, &bb);
+    CHECK(na > 0 && na == nb && memcmp(ba, bb, (size_t)na) == 0);
+    free(ba);
+    free(bb);
+    /* a diagonal polyline over the square */
+    const double line[] = {0.1, 0.1, 0, 0.5, 0.5, 0, 0.9, 0.9, 0};
+    o.polyline = line, o.polyline_count = 3;
+    CHECK_STATUS(tg_render_png(m, &o, a, NULL), TG_OK);
+    img = decode(a, &w, &h);
+    if (img) {
+        int red = count_red(img, w, h);
+        CHECK_MSG(red > 60, "polyline pixels: %d", red);
+        const unsigned char* mid = px(img, w, 100, 50);
+        CHECK_MSG(mid[0] > 150 && mid[1] < 110, "the path's middle is red (%d,%d,%d)", mid[0], mid[1], mid[2]);
+        free(img);
+    }
+    /* a scalar field: low end dark blue, high end yellow */
+    const double field[] = {0, 1, 2, 1};
+    o.polyline = NULL, o.polyline_count = 0, o.vertex_scalar = field, o.isolines = -1;
+    CHECK_STATUS(tg_render_png(m, &o, a, NULL), TG_OK);
+    img = decode(a, &w, &h);
+    if (img) {
+        const unsigned char *lo = px(img, w, 60, 92), *hi = px(img, w, 140, 8); /* near (0,0) and (1,1) */
+        CHECK_MSG(lo[2] > lo[0] && hi[0] > hi[2] && hi[1] > lo[1], "low (%d,%d,%d) high (%d,%d,%d)", lo[0], lo[1],
+                  lo[2], hi[0], hi[1], hi[2]);
+        free(img);
+    }
+    /* bad arguments */
+    tg_diag d;
+    o.vertex_scalar = NULL;
+    o.width = 0, o.height = -5;
+    CHECK_STATUS(tg_render_png(m, &o, a, &d), TG_ERR_INVALID_ARGUMENT);
+    o.width = 10, o.height = 10, o.polyline_count = 2;
+    CHECK_STATUS(tg_render_png(m, &o, a, NULL), TG_ERR_INVALID_ARGUMENT);
+    const double nan_line[] = {0, 0, 0, NAN, 0, 0};
+    o.polyline = nan_line;
+    CHECK_STATUS(tg_render_png(m, &o, a, &d), TG_ERR_INVALID_ARGUMENT);
+    o.polyline_count = 0;
+    CHECK_STATUS(tg_render_png(m, &o, "/nonexistent-dir/x.png", &d), TG_ERR_IO);
+    CHECK(strlen(d.message) > 0);
+    CHECK_STATUS(tg_render_png(NULL, &o, a, NULL), TG_ERR_INVALID_ARGUMENT);
+    remove(a);
+    remove(b);
+    tg_mesh_destroy(m);
+    return tg_test_finish();
+}

@@ -554,18 +554,23 @@ tg_status tg_bvh_locate(const tg_bvh* bvh, tg_bvh_workspace* workspace, const do
 /** Search strategies of the fan minimizer after its initial descent step (seed 002 §3.4.2). */
 typedef enum tg_fan_strategy {
     TG_FAN_COORDINATE = 0, /**< coordinate-direction search with Search/GetLRoot (seed §3.5, §4.3-4.5); default */
-    TG_FAN_POWELL = 1,     /**< Powell's direction set: coordinate sweeps plus the sweep's net direction */
-    TG_FAN_CG = 2,         /**< conjugate gradient: each direction conjugate to the previous one with
-                                respect to the exact (tridiagonal) Hessian, eq. (57)-(58) */
+    TG_FAN_POWELL = 1,     /**< Powell-style (seed §3.4.2 item 2): each coordinate sweep is followed by a
+                                line search along the sweep's net displacement, the "approximate
+                                conjugate direction"; no full direction set is kept */
+    TG_FAN_CG = 2,         /**< conjugate gradient (seed §3.4.2 item 3): each direction conjugate to the
+                                previous one with respect to the exact (tridiagonal) Hessian, eq. (57)-(58),
+                                restarted by Powell's test */
     TG_FAN_NEWTON = 3      /**< projected Newton with that Hessian and exact line searches (not in the
-                                seed): quadratic convergence, the fastest and most accurate */
+                                seed): quadratic convergence, the fastest and most accurate; recommended
+                                together with TG_ROOT_NEWTON or TG_ROOT_UNFOLD (bench/bench_fan.c) */
 } tg_fan_strategy;
 
 /** One-dimensional root finders for L'(t) = 0 (the derivative of a convex length function). */
 typedef enum tg_root_method {
     TG_ROOT_BISECTION = 0, /**< n = ceil(digits * log2(10)) bisection steps, no early exit (seed §2.4); default */
-    TG_ROOT_NEWTON = 1,    /**< Newton steps safeguarded by the same bracket: the same final bracket width
-                                bound, usually far fewer derivative evaluations */
+    TG_ROOT_NEWTON = 1,    /**< Newton steps safeguarded by the bracket (bisection when a step leaves it or
+                                shrinks too slowly), stopping when a step is below the width n bisection
+                                steps would leave: the same resolution, usually 3-5 evaluations */
     TG_ROOT_QUADRATIC = 2, /**< two-triangle kernel: the closed-form roots of eq. (6), with its degenerate
                                 case t = b0 / a (Example 2.2); the fan treats it as BISECTION */
     TG_ROOT_UNFOLD = 3     /**< closed form by unfolding the two triangles into a plane (not in the seed):
@@ -591,8 +596,10 @@ typedef struct tg_geodesic_kernel_options {
  *  not be coplanar with AB (each leg lies in its own triangle); no unfolding is needed.
  *  p0, a, b, p1: 3 doubles each, finite. opts: NULL for defaults. out_t: receives t in [0, 1]
  *  (may be NULL). Returns L(t) (>= 0). Degenerate input is handled without NaN: A == B gives
- *  t = 0; P0 or P1 on the line AB uses one-sided derivatives. Non-finite input returns +inf with
- *  t = 0. Cost: O(digits) square roots. Thread-safe, no allocation. */
+ *  t = 0; P0 or P1 on the line AB uses one-sided derivatives; data of extreme magnitude is rescaled
+ *  by a power of two. Non-finite input, or finite input whose differences overflow, returns +inf
+ *  with t = 0. Cost: O(digits) square roots (O(1) with TG_ROOT_UNFOLD). Thread-safe, no
+ *  allocation. */
 double tg_edge_path_minimize(const double p0[3], const double a[3], const double b[3], const double p1[3],
                              const tg_geodesic_kernel_options* opts, double* out_t);
 
@@ -613,15 +620,21 @@ double tg_edge_path_minimize(const double p0[3], const double a[3], const double
  *  P1 side. m: number of interior edges (triangles - 1); m == 0 means a single triangle, whose
  *  shortest path is the segment P0P1 (*out_length = |P1 - P0|). t_init: m start values (clamped to
  *  [0, 1]) or NULL for the seed's start at all t = 0. opts: NULL for defaults.
- *  out_t: m doubles in [0, 1] (may be NULL only when m == 0). out_length: the minimized length,
- *  never larger than the length through V (|P0 - V| + |P1 - V|) nor than L(t_init).
- *  out_decreased (may be NULL): 1 when *out_length is shorter than the path through V by more
- *  than the rounding noise of evaluating it (a few ulps of the length per segment), else 0 (and
- *  then out_t is all 0 unless t_init gave a shorter path).
- *  Degenerate fans (zero-length edges, V on a segment, collinear points) never produce NaN; the
- *  search always terminates (iteration caps). Returns TG_OK; TG_ERR_INVALID_ARGUMENT for NULL
- *  pointers or non-finite input; TG_ERR_OUT_OF_MEMORY if m > 64 and scratch allocation fails
- *  (m <= 64 uses the stack only). Cost: O(m) per sweep and O(digits) per 1D root.
+ *  out_t: m doubles in [0, 1] (may be NULL only when m == 0). out_length: the length of the path
+ *  given by out_t, never larger than the length through V (|P0 - V| + |P1 - V|), and, from a
+ *  t_init, not larger than L(t_init) beyond rounding.
+ *  out_decreased (may be NULL): 1 when *out_length is shorter than the path through V by more than
+ *  the rounding noise of evaluating it (4 ulps of the length per segment); else 0, and then out_t
+ *  is all 0 and *out_length is the length through V.
+ *  Degenerate fans never produce NaN: a zero-length edge (W_i == V) pins the path to V; consecutive
+ *  edges on one ray (a zero-area triangle, detected exactly with orient2d) are crossed at one
+ *  point; P0 or P1 at V, collinear points and extreme magnitudes are handled. The search always
+ *  terminates (iteration caps); the strategies reach the minimum to ~1e-12 relative with their
+ *  default caps (COORDINATE: ~1e-10 on long, badly scaled fans; its rate is linear).
+ *  Returns TG_OK; TG_ERR_INVALID_ARGUMENT for NULL pointers, non-finite input or finite input
+ *  whose differences overflow; TG_ERR_OUT_OF_MEMORY if m > 64 and scratch allocation fails
+ *  (m <= 64 uses the stack only, about 12 KB). Cost per iteration: O(m) square roots times the
+ *  1D root cost (O(digits) for bisection, a few for NEWTON, 1 for UNFOLD in sweeps).
  *  Thread-safe. */
 tg_status tg_fan_path_minimize(const double p0[3], const double p1[3], const double v[3], const double* w,
                                size_t m, const double* t_init, const tg_geodesic_kernel_options* opts,

@@ -453,6 +453,26 @@ static void test_degenerate(void)
             CHECK_MSG(fabs(r.len - sqrt(5.0)) <= 1e-12, "collinear edges %s/%s: %.17g", strategy_names[s], root_names[q], r.len);
         }
     }
+    /* Random fans with runs of edges on one ray (W_i = 2^k W_{i-1}, exactly collinear with V = 0),
+     * against the unfolding reference (where such edges simply have the same angle). */
+    tg_rng rng = {4711};
+    for (int k = 0; k < 120; k++) {
+        size_t m = 3 + (size_t)(tg_rng_next(&rng) % 8);
+        double q0[3], q1[3], vv[3], w[3 * 200];
+        make_fan(&rng, (fan_kind)(k % 3), m, q0, q1, vv, w);
+        for (int rep = 0; rep < 2; rep++) {
+            size_t i = 1 + (size_t)(tg_rng_next(&rng) % (m - 1));
+            double f = (tg_rng_next(&rng) & 1) ? 0.5 : 2.0;
+            for (int c = 0; c < 3; c++) w[3 * i + c] = f * w[3 * (i - 1) + c];
+        }
+        double ref = unfold_reference(q0, q1, vv, w, m);
+        for (int s = 0; s < NSTRAT; s++) {
+            run_result r = run(q0, q1, vv, w, m, NULL, strategies[s], TG_ROOT_NEWTON);
+            CHECK_MSG(fabs(r.len - ref) <= strategy_tol[s] * ref, "same-ray fan %d %s: %.17g vs %.17g", k,
+                      strategy_names[s], r.len, ref);
+            CHECK_NEAR(path_length(q0, q1, vv, w, m, r.t), r.len, 1e-13 * ref);
+        }
+    }
     /* P0 at V; P1 on an edge's line; P0 == P1. */
     CHECK_STATUS(tg_fan_path_minimize(v, p1, v, w_col, 3, NULL, NULL, t, &len, &dec), TG_OK);
     CHECK_NEAR(len, 1.0, 1e-15);

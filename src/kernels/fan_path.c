@@ -19,8 +19,14 @@
  *  - The gradient test uses the projected gradient (components pushing against t = 0 or t = 1
  *    do not count): at a minimum on the boundary of [0, 1]^m the gradient does not vanish
  *    (Example 3.3, whose minimum has t0 = 1).
- *  - Derivatives are one-sided where a segment has zero length, so no 0/0 occurs; every step is
- *    kept only if it does not lengthen the path, so the result is never longer than the start. */
+ *  - Derivatives are one-sided where a segment has zero length, so no 0/0 occurs; a step is
+ *    kept only if it does not lengthen the path beyond rounding.
+ *  - Consecutive edges on one ray (a zero-area triangle between them) are merged into one
+ *    variable before the search: the length has a kink along them that stalls every strategy.
+ *  - A fourth strategy, projected Newton with the seed's own tridiagonal Hessian (eq. 57-58),
+ *    converges quadratically where the seed's linear-rate strategies need O(m^2) sweeps.
+ *  - The 1D roots may also come from safeguarded Newton steps or, for the two-point problems of
+ *    the coordinate search, from the unfolding closed form (edge_path.c). */
 #include "kernels/fan_path.h"
 
 #include <float.h>
@@ -692,6 +698,42 @@ static int same_ray(const double* v, const double* a, const double* b, const dou
     return tg_v3_dot(tg_v3_load(da), tg_v3_load(db)) > 0.0;
 }
 
+/* Consecutive edges on one ray: an optimal path crosses them at one point (moving the crossing of
+ * the longer edge onto the other's is never longer, by the triangle inequality), so they become
+ * one variable of the reduced fan F, with the shorter edge. Without this the length has a kink
+ * along t_{i-1} |D_{i-1}| = t_i |D_i| that stalls every search. Fills F->d, F->dlen, F->m and the
+ * start values F->t (from t_init, clamped, mapped to the same points on the ray), lfull (|D_i| of
+ * the input's edges) and group (input edge -> reduced edge). Returns the reduced count. */
+static size_t fan_merge_collinear(fan* F, const double* v, const double* w, const double* dfull, double* lfull,
+                                  size_t m, double scale, const double* t_init, size_t* group)
+{
+    size_t mr = 0;
+    for (size_t i = 0; i < m; i++) {
+        lfull[i] = tg_v3_len(tg_v3_load(dfull + 3 * i));
+        int merge = i > 0 && lfull[i] > 0.0 && lfull[i - 1] > 0.0 &&
+                    same_ray(v, w + 3 * (i - 1), w + 3 * i, dfull + 3 * (i - 1), dfull + 3 * i, scale);
+        if (!merge) {
+            memcpy(F->d + 3 * mr, dfull + 3 * i, 3 * sizeof(double));
+            F->dlen[mr] = lfull[i];
+            F->t[mr] = INFINITY;
+            mr++;
+        } else if (lfull[i] < F->dlen[mr - 1]) {
+            memcpy(F->d + 3 * (mr - 1), dfull + 3 * i, 3 * sizeof(double));
+            F->dlen[mr - 1] = lfull[i];
+        }
+        group[i] = mr - 1;
+    }
+    F->m = mr;
+    for (size_t i = 0; i < m; i++) {
+        double ti = t_init ? t_init[i] : 0.0;
+        ti = ti < 0.0 ? 0.0 : (ti > 1.0 ? 1.0 : ti);
+        size_t gi = group[i];
+        double tr = F->dlen[gi] > 0.0 ? ti * lfull[i] / F->dlen[gi] : ti; /* the same point on the ray */
+        if (tr < F->t[gi]) F->t[gi] = tr > 1.0 ? 1.0 : tr;
+    }
+    return mr;
+}
+
 /* L(t) of eq. (55) for the input's own edges: the sum of the m + 1 segment lengths. */
 static double full_length(const double* q0, const double* q1, const double* d, size_t m, const double* t)
 {
@@ -781,34 +823,7 @@ tg_status tg_fan_path_minimize(const double p0[3], const double p1[3], const dou
             if (out_decreased) *out_decreased = direct < through_v - noise;
             goto done;
         }
-        /* Consecutive edges on one ray: an optimal path crosses them at one point (moving the
-         * crossing of the longer edge onto the other's is never longer, by the triangle
-         * inequality), so they are one variable, with the shorter edge's length. Without this the
-         * length has a kink along t_{i-1} |D_{i-1}| = t_i |D_i| that stalls every search. */
-        size_t mr = 0;
-        for (size_t i = 0; i < m; i++) {
-            lfull[i] = tg_v3_len(tg_v3_load(dfull + 3 * i));
-            int merge = i > 0 && lfull[i] > 0.0 && lfull[i - 1] > 0.0 &&
-                        same_ray(v, w + 3 * (i - 1), w + 3 * i, dfull + 3 * (i - 1), dfull + 3 * i, scale);
-            if (!merge) {
-                memcpy(F.d + 3 * mr, dfull + 3 * i, 3 * sizeof(double));
-                F.dlen[mr] = lfull[i];
-                F.t[mr] = INFINITY;
-                mr++;
-            } else if (lfull[i] < F.dlen[mr - 1]) {
-                memcpy(F.d + 3 * (mr - 1), dfull + 3 * i, 3 * sizeof(double));
-                F.dlen[mr - 1] = lfull[i];
-            }
-            group[i] = mr - 1;
-        }
-        F.m = mr;
-        for (size_t i = 0; i < m; i++) {
-            double ti = t_init ? t_init[i] : 0.0;
-            ti = ti < 0.0 ? 0.0 : (ti > 1.0 ? 1.0 : ti);
-            size_t gi = group[i];
-            double tr = F.dlen[gi] > 0.0 ? ti * lfull[i] / F.dlen[gi] : ti; /* same point on the ray */
-            if (tr < F.t[gi]) F.t[gi] = tr > 1.0 ? 1.0 : tr;
-        }
+        size_t mr = fan_merge_collinear(&F, v, w, dfull, lfull, m, scale, t_init, group);
         F.ro = tg__root_opts_make(opts);
         F.strategy = opts ? opts->strategy : TG_FAN_COORDINATE;
         /* Default caps: coordinate sweeps converge linearly, at a rate that degrades like 1 - c / m^2

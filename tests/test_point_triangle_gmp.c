@@ -23,8 +23,10 @@
  * eta <= 1e-12 2^-9 L). The maximum distance error in units of u L (u = 2^-53) is printed for
  * every kind of triangle; it is what the kernel actually achieves.
  *
- * Cases: TG_PT_GMP_COUNT (default 10^6; 10^5 when built with AddressSanitizer, where each exact
- * evaluation is ~10x slower) random triangles and query points, mixed over well-shaped, needle,
+ * Cases: TG_PT_GMP_COUNT (default 10^6, ~2 s in a release build; 10^5 when built with
+ * AddressSanitizer (TG_SANITIZE, detected with __SANITIZE_ADDRESS__ / __has_feature), to keep the
+ * sanitizer suite quick - set the variable to run the full count there too) random triangles
+ * and query points, in all six vertex orders, mixed over well-shaped, needle,
  * cap, collinear, coincident-vertex and all-equal triangles, each also placed far from the origin
  * (coordinates ~1e6, edges ~1e-3), in 3D (most), 2D and 5D. The robust variant must meet the bound
  * on all of them, never give NaN, and its closest point must be within the bound implied by the
@@ -366,6 +368,19 @@ static void make_triangle(tg_rng* r, int kind, size_t n, double scale, const dou
     }
 }
 
+/* A random one of the 6 vertex orders, so that every shape meets every labelling (the short edge
+ * of a needle as edge 01, 12 or 20, the apex of a cap as any vertex). */
+static void permute_vertices(tg_rng* r, size_t n, double v[3][MAXN])
+{
+    static const int perms[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
+    const int* pm = perms[tg_rng_next(r) % 6];
+    double w[3][MAXN];
+    for (int j = 0; j < 3; j++)
+        for (size_t i = 0; i < n; i++) w[j][i] = v[pm[j]][i];
+    for (int j = 0; j < 3; j++)
+        for (size_t i = 0; i < n; i++) v[j][i] = w[j][i];
+}
+
 /* A query point near, on or away from the triangle. */
 static void make_query(tg_rng* r, size_t n, double scale, double v[3][MAXN], double* p)
 {
@@ -496,6 +511,7 @@ int main(void)
         const double scale = far ? 1e-3 : 1.0;
         for (size_t i = 0; i < n; i++) center[i] = far ? tg_rng_range(&rng, -1e6, 1e6) : 0.0;
         make_triangle(&rng, kind, n, scale, center, v);
+        permute_vertices(&rng, n, v);
         make_query(&rng, n, scale, v, p);
 
         exact_result ex;

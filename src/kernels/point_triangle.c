@@ -14,6 +14,7 @@
  */
 #include "kernels/point_triangle.h"
 
+#include <float.h>
 #include <math.h>
 
 /* ---------------------------------------------------------------------------------------------- */
@@ -156,155 +157,124 @@ static void region_nd(size_t n, const double* p, const double* v0, const double*
 }
 
 /* The displacement (closest - p) of one of the robust kernel's outcomes, component i. */
-typedef enum robust_form { FORM_POINT, FORM_FACE, FORM_BASE, FORM_SEGMENT } robust_form;
+typedef enum robust_form { FORM_FACE, FORM_SEGMENT } robust_form;
 typedef struct robust_plan {
     robust_form form;
-    const double* A;   /* base start (POINT, FACE, BASE) */
-    const double* B;   /* base end (FACE, BASE) */
-    const double* C;   /* apex (FACE) */
-    const double* X;   /* SEGMENT: start */
-    const double* Y;   /* SEGMENT: end */
-    double mu, sigma, coef; /* coef: tau (FACE) or u (BASE, SEGMENT) */
+    const double* X; /* SEGMENT: start */
+    const double* Y; /* SEGMENT: end */
+    double mu, sigma, coef; /* coef: t (FACE) or u (SEGMENT) */
 } robust_plan;
 
-static double robust_disp_i(const robust_plan* pl, const double* p, size_t i)
+static double robust_disp_i(const robust_plan* pl, const double* p, const double* v0, const double* v1,
+                            const double* v2, size_t i)
 {
-    switch (pl->form) {
-    case FORM_POINT:
-        return pl->A[i] - p[i];
-    case FORM_FACE: {
-        const double base = pl->B[i] - pl->A[i], r = p[i] - pl->A[i];
-        const double h = (pl->C[i] - pl->A[i]) - base * pl->mu;
-        const double q = r - base * pl->sigma;
+    if (pl->form == FORM_FACE) {
+        const double e0 = v1[i] - v0[i];
+        const double h = (v2[i] - v0[i]) - e0 * pl->mu;
+        const double q = (p[i] - v0[i]) - e0 * pl->sigma;
         return h * pl->coef - q;
     }
-    case FORM_BASE:
-        return (pl->B[i] - pl->A[i]) * pl->coef - (p[i] - pl->A[i]);
-    case FORM_SEGMENT:
-    default:
-        return (pl->X[i] - p[i]) + (pl->Y[i] - pl->X[i]) * pl->coef;
-    }
+    return (pl->X[i] - p[i]) + (pl->Y[i] - pl->X[i]) * pl->coef;
 }
 
-static double robust_sq_nd(size_t n, const robust_plan* pl, const double* p)
+static double robust_sq_nd(size_t n, const robust_plan* pl, const double* p, const double* v0, const double* v1,
+                           const double* v2)
 {
     double acc = 0.0;
     for (size_t i = 0; i < n; i++) {
-        const double d = robust_disp_i(pl, p, i);
+        const double d = robust_disp_i(pl, p, v0, v1, v2, i);
         acc = i == 0 ? d * d : acc + d * d;
     }
     return acc;
 }
 
-/* tg__segment_closest_3d in n-D: segment X -> Y of squared length len_sq; returns u. */
-static double segment_u_nd(size_t n, const double* p, const double* X, const double* Y, double len_sq)
+/* tg__segment_closest_3d in n-D for the segment X -> Y of squared length len_sq: sets pl to it
+ * and returns the squared distance. */
+static double segment_nd(size_t n, const double* p, const double* X, const double* Y, double len_sq,
+                         robust_plan* pl)
 {
     const double numer = -dot_diff_nd(n, X, p, Y, X);
-    if (numer <= 0.0) return 0.0;
-    if (numer >= len_sq) return 1.0;
-    return numer / len_sq;
+    pl->form = FORM_SEGMENT, pl->X = X, pl->Y = Y;
+    if (numer <= 0.0) pl->coef = 0.0;
+    else if (numer >= len_sq) pl->coef = 1.0;
+    else pl->coef = numer / len_sq;
+    return robust_sq_nd(n, pl, p, NULL, NULL, NULL);
 }
 
-/* The robust kernel of kernels/point_triangle.h in n-D (n >= 1), same operations in the same
+/* The robust kernel of kernels/point_triangle.h in n-D (n >= 1): the same operations in the same
  * order; vectors are recomputed from the inputs instead of stored, so no scratch is needed. */
 static void robust_nd(size_t n, const double* p, const double* v0, const double* v1, const double* v2,
                       double* out_closest, tg_point_triangle* out)
 {
-    const double* V[3] = {v0, v1, v2};
-    const double L[3] = {dot_diff_nd(n, v1, v0, v1, v0), dot_diff_nd(n, v2, v1, v2, v1),
-                         dot_diff_nd(n, v0, v2, v0, v2)};
-    int k = 0;
-    if (L[1] > L[k]) k = 1;
-    if (L[2] > L[k]) k = 2;
-    const int k1 = k == 2 ? 0 : k + 1, k2 = k == 0 ? 2 : k - 1;
-    const double* A = V[k];
-    const double* B = V[k1];
-    const double* C = V[k2];
-    const double a = L[k];
-    robust_plan pl = {FORM_POINT, A, B, C, A, A, 0.0, 0.0, 0.0};
-    double sq, beta_a, beta_b, beta_c;
-
-    if (a == 0.0) {
-        sq = robust_sq_nd(n, &pl, p);
-        beta_a = 1.0, beta_b = 0.0, beta_c = 0.0;
-        k = 0;
-    } else {
-        const double mu = dot_diff_nd(n, C, A, B, A) / a;
-        double hh = 0.0, wc = 0.0, wa = 0.0, wb = 0.0;
-        int out_ab = 1, out_bc = 0, out_ca = 0;
-        pl.mu = mu;
-        pl.sigma = dot_diff_nd(n, p, A, B, A) / a;
+    const double a = dot_diff_nd(n, v1, v0, v1, v0);
+    double sq = 0.0, s = 0.0, t = 0.0, hh = 0.0;
+    robust_plan pl = {FORM_SEGMENT, v0, v1, 0.0, 0.0, 0.0};
+    if (a >= DBL_MIN) {
+        pl.mu = dot_diff_nd(n, v2, v0, v1, v0) / a;
+        pl.sigma = dot_diff_nd(n, p, v0, v1, v0) / a;
         for (size_t i = 0; i < n; i++) {
-            const double base = B[i] - A[i];
-            const double h = (C[i] - A[i]) - base * mu;
+            const double h = (v2[i] - v0[i]) - (v1[i] - v0[i]) * pl.mu;
             hh = i == 0 ? h * h : hh + h * h;
         }
-        if (hh > 0.0) {
-            for (size_t i = 0; i < n; i++) {
-                const double base = B[i] - A[i], r = p[i] - A[i];
-                const double h = (C[i] - A[i]) - base * mu;
-                const double q = r - base * pl.sigma;
-                wc = i == 0 ? q * h : wc + q * h;
-            }
-            wb = pl.sigma * hh - mu * wc;
-            wa = (1.0 - pl.sigma) * hh - (1.0 - mu) * wc;
-            out_ab = wc < 0.0;
-            out_ca = wb < 0.0;
-            out_bc = wa < 0.0;
+    }
+    if (hh >= DBL_MIN) {
+        double wc = 0.0;
+        for (size_t i = 0; i < n; i++) {
+            const double e0 = v1[i] - v0[i];
+            const double h = (v2[i] - v0[i]) - e0 * pl.mu;
+            const double q = (p[i] - v0[i]) - e0 * pl.sigma;
+            wc = i == 0 ? q * h : wc + q * h;
         }
-        if (!(out_ab | out_bc | out_ca)) {
-            double tau = wc / hh;
-            if (tau > 1.0) tau = 1.0;
+        const double wb = pl.sigma * hh - pl.mu * wc;
+        const double wa = (1.0 - pl.sigma) * hh - (1.0 - pl.mu) * wc;
+        if (wa >= 0.0 && wb >= 0.0 && wc >= 0.0) {
+            const double inv_hh = 1.0 / hh;
+            t = wc * inv_hh;
+            if (t > 1.0) t = 1.0;
+            s = wb * inv_hh;
             pl.form = FORM_FACE;
-            pl.coef = tau;
-            sq = robust_sq_nd(n, &pl, p);
-            beta_c = tau;
-            beta_b = wb / hh;
-            beta_a = wa / hh;
+            pl.coef = t;
+            sq = robust_sq_nd(n, &pl, p, v0, v1, v2);
         } else {
-            double best = 0.0;
             int have = 0;
-            beta_a = beta_b = beta_c = 0.0;
-            if (out_ab) {
+            if (wc < 0.0) {
                 const double u = pl.sigma <= 0.0 ? 0.0 : (pl.sigma >= 1.0 ? 1.0 : pl.sigma);
-                pl.form = FORM_BASE;
-                pl.coef = u;
-                best = robust_sq_nd(n, &pl, p);
-                beta_a = 1.0 - u, beta_b = u, beta_c = 0.0;
+                pl.form = FORM_SEGMENT, pl.X = v0, pl.Y = v1, pl.coef = u;
+                sq = robust_sq_nd(n, &pl, p, v0, v1, v2);
+                s = u, t = 0.0;
                 have = 1;
             }
-            if (out_bc) {
+            if (wa < 0.0) {
                 robust_plan cand = pl;
-                cand.form = FORM_SEGMENT, cand.X = B, cand.Y = C;
-                cand.coef = segment_u_nd(n, p, B, C, L[k1]);
-                const double s2 = robust_sq_nd(n, &cand, p);
-                if (!have || s2 < best) {
-                    pl = cand, best = s2;
-                    beta_a = 0.0, beta_b = 1.0 - cand.coef, beta_c = cand.coef;
-                    have = 1;
-                }
+                const double sq2 = segment_nd(n, p, v1, v2, dot_diff_nd(n, v2, v1, v2, v1), &cand);
+                if (!have || sq2 < sq) pl = cand, sq = sq2, s = 1.0 - cand.coef, t = cand.coef;
+                have = 1;
             }
-            if (out_ca) {
+            if (wb < 0.0) {
                 robust_plan cand = pl;
-                cand.form = FORM_SEGMENT, cand.X = C, cand.Y = A;
-                cand.coef = segment_u_nd(n, p, C, A, L[k2]);
-                const double s2 = robust_sq_nd(n, &cand, p);
-                if (!have || s2 < best) {
-                    pl = cand, best = s2;
-                    beta_a = cand.coef, beta_b = 0.0, beta_c = 1.0 - cand.coef;
-                }
+                const double sq2 = segment_nd(n, p, v0, v2, dot_diff_nd(n, v2, v0, v2, v0), &cand);
+                if (!have || sq2 < sq) pl = cand, sq = sq2, s = 0.0, t = cand.coef;
             }
-            sq = best;
+        }
+    } else {
+        /* zero area: the longest edge (first of 01, 12, 20 on ties) */
+        const double l01 = a, l12 = dot_diff_nd(n, v2, v1, v2, v1), l20 = dot_diff_nd(n, v0, v2, v0, v2);
+        if (l01 >= l12 && l01 >= l20) {
+            sq = segment_nd(n, p, v0, v1, l01, &pl);
+            s = pl.coef, t = 0.0;
+        } else if (l12 >= l20) {
+            sq = segment_nd(n, p, v1, v2, l12, &pl);
+            s = 1.0 - pl.coef, t = pl.coef;
+        } else {
+            sq = segment_nd(n, p, v2, v0, l20, &pl);
+            s = 0.0, t = 1.0 - pl.coef;
         }
     }
-    {
-        double s, t;
-        tg__point_triangle_unrotate(k, beta_a, beta_b, beta_c, &s, &t);
-        tg__point_triangle_finish(s, t, out);
-    }
+    tg__point_triangle_finish(s, t, out);
     out->sqdist = sq;
     clear_closest(out);
-    for (size_t i = 0; i < n; i++) store_closest_nd(i, p, robust_disp_i(&pl, p, i), out_closest, out);
+    for (size_t i = 0; i < n; i++)
+        store_closest_nd(i, p, robust_disp_i(&pl, p, v0, v1, v2, i), out_closest, out);
 }
 
 /* ---------------------------------------------------------------------------------------------- */

@@ -3,7 +3,9 @@
  *   quadratic Q(s, t) over the domain D; §2, the minimum is interior (gradient zero) or on the
  *   boundary; Listings 3-5 for the clamped one-dimensional edge minimisations.
  *   Projection onto a convex set (uniqueness; the minimiser over a convex polygon lies on an
- *   edge whose outer half-plane contains the point); Gram-Schmidt in the triangle's plane.
+ *   edge whose outer half-plane contains the point: if it is a vertex, p - vertex lies in the
+ *   cone of the two outer normals, so it has a positive component along at least one of them);
+ *   Gram-Schmidt in the triangle's plane.
  *
  * Why a second algorithm: the seed's region test divides by det = ac - b^2 = |E0 x E1|^2, which
  * cancels to (near) zero on needles, caps and zero-area triangles, so the region of the
@@ -12,73 +14,100 @@
  * the distance by at most delta. A backward-stable kernel (exact for inputs perturbed by a few
  * ulps of the local scale) is therefore accurate to a few ulps of the local scale. This one is:
  *
- *  1. The longest edge is the base AB (E = B - A, a = |E|^2; a == 0 only when all three vertices
- *     coincide), C the apex. The apex's foot on the base line is A + mu E, mu = (C - A).E / a, in
- *     [0, 1] because the base is longest, and H = (C - A) - mu E is the triangle's height vector
- *     (H.H == 0 exactly: the triangle spans only the base segment).
- *  2. With r = p - A: sigma = r.E / a is p's coordinate along the base, q = r - sigma E its part
- *     orthogonal to the base, and tau = q.H / H.H its coordinate along the height. The projection
- *     of p onto the plane is A + sigma E + tau H = A + (sigma - mu tau) E + tau (C - A), so its
- *     barycentrics are (1 - sigma - (1 - mu) tau, sigma - mu tau, tau) for (A, B, C). Multiplied
- *     by H.H they are wA, wB, wC below: sign tests without any division.
- *  3. All three >= 0: the closest point is that projection; p - closest = q - tau H (formed from
- *     local differences, never from rounded absolute coordinates). Otherwise the closest point
- *     lies on an edge whose barycentric is negative (one or two of them), each found by the
- *     clamped one-dimensional minimisation of Listings 3-5, which divides only by that edge's
- *     squared length and only after the clamp tests, so 0/0 cannot occur.
+ *  1. Edge 01 is the base: e0 = v1 - v0, a = e0.e0, e1 = v2 - v0. The apex's foot on the base
+ *     line is v0 + mu e0, mu = e1.e0 / a, and h = e1 - mu e0 is the triangle's height vector.
+ *  2. With r = p - v0: sigma = r.e0 / a is p's coordinate along the base, q = r - sigma e0 its
+ *     part orthogonal to the base, and tau = q.h / h.h its coordinate along the height. The
+ *     projection of p onto the plane is v0 + sigma e0 + tau h = v0 + (sigma - mu tau) e0 + tau e1,
+ *     so its barycentrics are (1 - sigma - (1 - mu) tau, sigma - mu tau, tau). Multiplied by h.h
+ *     they are wa, wb, wc below: sign tests without any division.
+ *  3. All three >= 0: the closest point is that projection, (s, t) = (wb, wc) / h.h, and
+ *     p - closest = q - tau h (formed from local differences, never from rounded absolute
+ *     coordinates). Otherwise the closest point lies on an edge whose barycentric is negative (one
+ *     or two of them), each found by the clamped one-dimensional minimisation of Listings 3-5,
+ *     which divides only by that edge's squared length and only after the clamp tests (so 0/0
+ *     cannot occur). When two edges qualify the nearer wins (edge 01, then 12, then 20 on ties).
+ *  4. a < DBL_MIN (v0 == v1 up to underflow) or h.h < DBL_MIN (v2 on the line v0 v1 up to
+ *     rounding or underflow): the triangle has zero area and is the segment of its longest edge
+ *     (the others lie on it), whose clamped minimisation gives the answer. DBL_MIN is where 1/x
+ *     would overflow, not a tolerance: below it the apex is within 1.5e-154 of the base line.
  *
- * Errors: every rounded quantity is a difference or dot product of local vectors of size <= L =
- * max_i |p - v_i|, and every quotient multiplies back a vector it was divided by (tau H, u E), so
- * positions are perturbed by O(ulp(L)) whatever the shape. Near-zero H.H only makes tau's
- * relative error large, not tau H's absolute error. Supported range: finite inputs whose
- * coordinate differences are below 1e150 in magnitude (squares must not overflow) and, for full
- * accuracy, whose nonzero squared edge lengths are normal doubles.
+ * Why this is backward stable whatever the shape: every rounded quantity is a difference or dot
+ * product of local vectors of size <= L = max_i |p - v_i|, and every quotient is multiplied back
+ * by the vector it was divided by (tau h, sigma e0, u e), so positions move by O(ulp(L)). A tiny
+ * h.h makes tau's relative error large, not tau h's absolute one; q is made orthogonal to e0
+ * before it meets h, so h's rounding-level tilt towards e0 cannot leak the large along-base part
+ * of r into tau. A short base makes sigma and mu large, but their errors are O(ulp(L)) / |e0| and
+ * act along e0. The same argument covers (s, t): in the face case s carries errors of
+ * O(ulp(L)) / |e0| and t of O(ulp(L)) / |h| along h, so when rounding pushes s + t above 1 it is
+ * s that is pulled back (tg__point_triangle_finish): that moves the point by O(ulp(L)) along e0,
+ * while moving t could move it by |e1| / |e0| times more. mu is a true division (not a
+ * reciprocal multiply) so that exactly collinear data with an exactly representable ratio give
+ * h == 0 exactly and take the zero-area path. Working relative to the vertex nearest p, or
+ * relabelling so that the base is the longest edge, were tried and give the same accuracy (the
+ * bound is in units of L either way) for ~10% more instructions.
+ *
+ * Supported range: finite inputs whose coordinate differences are below 1e150 in magnitude (so
+ * squared lengths do not overflow); full accuracy needs the nonzero squared edge lengths and
+ * distances to be normal doubles (differences above ~1e-154).
  */
 #ifndef TG_KERNELS_POINT_TRIANGLE_H
 #define TG_KERNELS_POINT_TRIANGLE_H
 
+#include <float.h>
+
 #include "core/vec3.h"
 #include "trigeo.h"
 
-/* Fills s, t, bary and feature from a closest point's (s, t) given in the domain up to rounding
- * (s, t >= 0). If the double sum s + t reaches 1 the point is on edge 12 up to one ulp: the
- * smaller coordinate is snapped to 1 - (the larger), after which s + t == 1 holds exactly in
- * doubles (for x in [0, 1], x + (1 - x) rounds to 1) and bary[0] = 0. Otherwise the real sum is
- * below 1, (1 - s) - t rounds to a positive number, and bary[0] > 0. The feature is then read
- * off (s, t) by the exact comparisons documented at tg_feature. */
+/* Fills s, t, bary and feature from a closest point's (s, t), given in the domain up to rounding
+ * (s, t >= 0). Both variants and all dimensions end here, so the invariants documented at
+ * tg_point_triangle hold everywhere:
+ *  - if the double sum s + t exceeds 1, s = 1 - t (why s: see the file comment; for the seed
+ *    variant the excess is an ulp and either choice would do); then s + t == 1 exactly, because
+ *    for x in [0, 1] the double x + (1 - x) rounds to 1;
+ *  - s == 1 with t != 0 (t below an ulp of 1, lost in the sum) sets t = 0, and likewise for t == 1,
+ *    so that a vertex is reported as a vertex; both moves are below an ulp;
+ *  - bary[0] = 0 when s + t == 1, else (1 - s) - t, which is then > 0: s + t < 1 in doubles
+ *    implies it in reals, and 1 - s rounds to a double >= t that equals t only if s + t rounds
+ *    to 1;
+ *  - the feature is read off the exact zeros of (s, t, bary[0]), which is the rule documented at
+ *    tg_feature (s == 1 iff t == 0 and bary[0] == 0 once the sum is snapped, and likewise t == 1).
+ */
 static inline void tg__point_triangle_finish(double s, double t, tg_point_triangle* out)
 {
+    static const unsigned char feature_by_zeros[8] = {
+        TG_FEATURE_FACE,   /* none zero */
+        TG_FEATURE_EDGE20, /* s == 0 */
+        TG_FEATURE_EDGE01, /* t == 0 */
+        TG_FEATURE_VERTEX0,
+        TG_FEATURE_EDGE12, /* bary[0] == 0 */
+        TG_FEATURE_VERTEX2,
+        TG_FEATURE_VERTEX1,
+        TG_FEATURE_VERTEX0, /* unreachable: s == t == 0 gives bary[0] == 1 */
+    };
     double b0;
     if (s > 1.0) s = 1.0;
     if (t > 1.0) t = 1.0;
-    if (s + t >= 1.0) {
-        if (s <= t) s = 1.0 - t;
-        else t = 1.0 - s;
-        b0 = 0.0;
-    } else {
-        b0 = (1.0 - s) - t;
-    }
+    if (s + t > 1.0) s = 1.0 - t;
+    if (s == 1.0) t = 0.0;
+    if (t == 1.0) s = 0.0;
+    b0 = s + t == 1.0 ? 0.0 : (1.0 - s) - t;
     out->s = s;
     out->t = t;
     out->bary[0] = b0;
     out->bary[1] = s;
     out->bary[2] = t;
-    if (s == 0.0 && t == 0.0) out->feature = TG_FEATURE_VERTEX0;
-    else if (s == 1.0) out->feature = TG_FEATURE_VERTEX1;
-    else if (t == 1.0) out->feature = TG_FEATURE_VERTEX2;
-    else if (t == 0.0) out->feature = TG_FEATURE_EDGE01;
-    else if (b0 == 0.0) out->feature = TG_FEATURE_EDGE12; /* == (s + t == 1), see above */
-    else if (s == 0.0) out->feature = TG_FEATURE_EDGE20;
-    else out->feature = TG_FEATURE_FACE;
+    out->feature = (tg_feature)feature_by_zeros[(unsigned)(s == 0.0) | (unsigned)(t == 0.0) << 1 |
+                                                (unsigned)(b0 == 0.0) << 2];
 }
 
-/* Seed 000 Listings 4-5: the minimiser over u in [0, 1] of |D + u E|^2 where D = X - p for the
- * segment's start X and len_sq = E.E. The clamps come first; the division happens only when
- * 0 < -D.E < len_sq, so its divisor is a positive sum of squares. Returns u; writes the
+/* Seed 000 Listings 4-5: the minimiser over u in [0, 1] of |d + u e|^2, where d = x - p for the
+ * segment's start x and len_sq = e.e. The clamps come first; the division happens only when
+ * 0 < -d.e < len_sq, so its divisor is a positive sum of squares. Returns u; writes the
  * displacement (closest - p) to *disp and its squared length to *sq. */
 static inline double tg__segment_closest_3d(tg_vec3 d, tg_vec3 e, double len_sq, tg_vec3* disp, double* sq)
 {
-    double numer = -tg_v3_dot(d, e);
+    const double numer = -tg_v3_dot(d, e);
     double u;
     if (numer <= 0.0) u = 0.0;
     else if (numer >= len_sq) u = 1.0;
@@ -88,107 +117,84 @@ static inline double tg__segment_closest_3d(tg_vec3 d, tg_vec3 e, double len_sq,
     return u;
 }
 
-/* Maps barycentrics (beta_a, beta_b, beta_c) of (A, B, C) = (v_k, v_k+1, v_k+2) back to the
- * caller's (s, t) = (bary of v1, bary of v2). */
-static inline void tg__point_triangle_unrotate(int k, double beta_a, double beta_b, double beta_c,
-                                               double* s, double* t)
+/* Step 4 of the file comment: a zero-area triangle is the segment of its longest edge (the first
+ * of 01, 12, 20 on ties). Writes the displacement, its squared length and (s, t). */
+static inline void tg__point_triangle_zero_area_3d(tg_vec3 P, tg_vec3 V0, tg_vec3 V1, tg_vec3 V2, tg_vec3* disp,
+                                                   double* sq, double* s, double* t)
 {
-    if (k == 0) { *s = beta_b; *t = beta_c; }
-    else if (k == 1) { *s = beta_a; *t = beta_b; }
-    else { *s = beta_c; *t = beta_a; }
+    const tg_vec3 e01 = tg_v3_sub(V1, V0), e12 = tg_v3_sub(V2, V1), e20 = tg_v3_sub(V0, V2);
+    const double l01 = tg_v3_len_sq(e01), l12 = tg_v3_len_sq(e12), l20 = tg_v3_len_sq(e20);
+    double u;
+    if (l01 >= l12 && l01 >= l20) {
+        u = tg__segment_closest_3d(tg_v3_sub(V0, P), e01, l01, disp, sq);
+        *s = u, *t = 0.0;
+    } else if (l12 >= l20) {
+        u = tg__segment_closest_3d(tg_v3_sub(V1, P), e12, l12, disp, sq);
+        *s = 1.0 - u, *t = u;
+    } else {
+        u = tg__segment_closest_3d(tg_v3_sub(V2, P), e20, l20, disp, sq);
+        *s = 0.0, *t = 1.0 - u;
+    }
 }
 
 /* The robust kernel (see the file comment). p, v0, v1, v2: 3 doubles each; out non-NULL. */
 static inline void tg__point_triangle_robust_3d(const double* p, const double* v0, const double* v1,
                                                 const double* v2, tg_point_triangle* out)
 {
-    const tg_vec3 P = tg_v3_load(p);
-    const tg_vec3 V[3] = {tg_v3_load(v0), tg_v3_load(v1), tg_v3_load(v2)};
-    /* edge j runs from V[j] to V[j+1 mod 3]; formed from the vertices, independent of p */
-    const tg_vec3 E[3] = {tg_v3_sub(V[1], V[0]), tg_v3_sub(V[2], V[1]), tg_v3_sub(V[0], V[2])};
-    const double L[3] = {tg_v3_len_sq(E[0]), tg_v3_len_sq(E[1]), tg_v3_len_sq(E[2])};
-    int k = 0;
-    if (L[1] > L[k]) k = 1;
-    if (L[2] > L[k]) k = 2;
-    const int k1 = k == 2 ? 0 : k + 1, k2 = k == 0 ? 2 : k - 1;
-    const tg_vec3 base = E[k];
-    const double a = L[k];
-    const tg_vec3 r = tg_v3_sub(P, V[k]);
-    tg_vec3 disp = {0.0, 0.0, 0.0};
-    double sq, beta_a, beta_b, beta_c;
-
-    if (a == 0.0) { /* all three vertices coincide: the triangle is the point V[k] */
-        disp = tg_v3_sub(V[k], P);
-        sq = tg_v3_len_sq(disp);
-        beta_a = 1.0, beta_b = 0.0, beta_c = 0.0;
-        k = 0; /* report VERTEX0 whichever copy was picked */
-    } else {
-        const tg_vec3 ac = tg_v3_sub(V[k2], V[k]); /* C - A == -E[k2] exactly */
-        const double mu = tg_v3_dot(ac, base) / a;
-        const tg_vec3 h = tg_v3_sub(ac, tg_v3_scale(base, mu));
-        const double hh = tg_v3_len_sq(h);
-        const double sigma = tg_v3_dot(r, base) / a;
-        int out_ab = 1, out_bc = 0, out_ca = 0; /* zero-area: only the base segment */
-        double wa = 0.0, wb = 0.0, wc = 0.0;
-        tg_vec3 q = r;
-        if (hh > 0.0) {
-            q = tg_v3_sub(r, tg_v3_scale(base, sigma));
-            wc = tg_v3_dot(q, h);
-            wb = sigma * hh - mu * wc;
-            wa = (1.0 - sigma) * hh - (1.0 - mu) * wc;
-            out_ab = wc < 0.0;
-            out_ca = wb < 0.0;
-            out_bc = wa < 0.0;
-        }
-        if (!(out_ab | out_bc | out_ca)) {
-            /* projection inside: wa + wb + wc == hh in exact arithmetic, each >= 0 */
-            double tau = wc / hh;
-            if (tau > 1.0) tau = 1.0;
-            disp = tg_v3_sub(tg_v3_scale(h, tau), q);
+    const tg_vec3 P = tg_v3_load(p), V0 = tg_v3_load(v0), V1 = tg_v3_load(v1), V2 = tg_v3_load(v2);
+    const tg_vec3 e0 = tg_v3_sub(V1, V0), e1 = tg_v3_sub(V2, V0), r = tg_v3_sub(P, V0);
+    const double a = tg_v3_len_sq(e0);
+    tg_vec3 disp = r;
+    double sq = 0.0, s = 0.0, t = 0.0;
+    double hh = 0.0, mu = 0.0, sigma = 0.0;
+    tg_vec3 h = e1, q = r;
+    if (a >= DBL_MIN) {
+        mu = tg_v3_dot(e1, e0) / a;
+        sigma = tg_v3_dot(r, e0) / a;
+        h = tg_v3_sub(e1, tg_v3_scale(e0, mu));
+        q = tg_v3_sub(r, tg_v3_scale(e0, sigma));
+        hh = tg_v3_len_sq(h);
+    }
+    if (hh >= DBL_MIN) {
+        const double wc = tg_v3_dot(q, h);
+        const double wb = sigma * hh - mu * wc;
+        const double wa = (1.0 - sigma) * hh - (1.0 - mu) * wc;
+        if (wa >= 0.0 && wb >= 0.0 && wc >= 0.0) {
+            /* the projection is in the triangle; wa + wb + wc == hh in exact arithmetic */
+            const double inv_hh = 1.0 / hh;
+            t = wc * inv_hh;
+            if (t > 1.0) t = 1.0;
+            s = wb * inv_hh;
+            disp = tg_v3_sub(tg_v3_scale(h, t), q);
             sq = tg_v3_len_sq(disp);
-            beta_c = tau;
-            beta_b = wb / hh;
-            beta_a = wa / hh;
         } else {
-            /* the closest point is on an edge whose barycentric is negative; at most two */
-            double best = 0.0;
             int have = 0;
-            beta_a = beta_b = beta_c = 0.0;
-            if (out_ab) {
-                /* base: sigma is already the unclamped minimiser (Listing 5 with D = -r) */
-                double u = sigma <= 0.0 ? 0.0 : (sigma >= 1.0 ? 1.0 : sigma);
-                disp = tg_v3_sub(tg_v3_scale(base, u), r);
-                best = tg_v3_len_sq(disp);
-                beta_a = 1.0 - u, beta_b = u, beta_c = 0.0;
+            if (wc < 0.0) { /* outside edge 01; sigma is Listing 5's unclamped minimiser */
+                const double u = sigma <= 0.0 ? 0.0 : (sigma >= 1.0 ? 1.0 : sigma);
+                disp = tg_v3_sub(tg_v3_scale(e0, u), r);
+                sq = tg_v3_len_sq(disp);
+                s = u, t = 0.0;
                 have = 1;
             }
-            if (out_bc) {
-                tg_vec3 dd;
-                double s2;
-                double u = tg__segment_closest_3d(tg_v3_sub(V[k1], P), E[k1], L[k1], &dd, &s2);
-                if (!have || s2 < best) {
-                    disp = dd, best = s2;
-                    beta_a = 0.0, beta_b = 1.0 - u, beta_c = u;
-                    have = 1;
-                }
+            if (wa < 0.0) { /* outside edge 12 */
+                tg_vec3 d2;
+                double sq2;
+                const tg_vec3 e12 = tg_v3_sub(V2, V1);
+                const double u = tg__segment_closest_3d(tg_v3_sub(V1, P), e12, tg_v3_len_sq(e12), &d2, &sq2);
+                if (!have || sq2 < sq) disp = d2, sq = sq2, s = 1.0 - u, t = u;
+                have = 1;
             }
-            if (out_ca) {
-                tg_vec3 dd;
-                double s2;
-                double u = tg__segment_closest_3d(tg_v3_sub(V[k2], P), E[k2], L[k2], &dd, &s2);
-                if (!have || s2 < best) {
-                    disp = dd, best = s2;
-                    beta_a = u, beta_b = 0.0, beta_c = 1.0 - u;
-                }
+            if (wb < 0.0) { /* outside edge 20, walked from v0 along e1 */
+                tg_vec3 d2;
+                double sq2;
+                const double u = tg__segment_closest_3d(tg_v3_scale(r, -1.0), e1, tg_v3_len_sq(e1), &d2, &sq2);
+                if (!have || sq2 < sq) disp = d2, sq = sq2, s = 0.0, t = u;
             }
-            sq = best;
         }
+    } else {
+        tg__point_triangle_zero_area_3d(P, V0, V1, V2, &disp, &sq, &s, &t);
     }
-    {
-        double s, t;
-        tg__point_triangle_unrotate(k, beta_a, beta_b, beta_c, &s, &t);
-        tg__point_triangle_finish(s, t, out);
-    }
+    tg__point_triangle_finish(s, t, out);
     out->sqdist = sq;
     tg_v3_store(tg_v3_add(P, disp), out->closest);
 }

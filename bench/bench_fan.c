@@ -85,8 +85,10 @@ int main(int argc, char** argv)
     for (int table = 0; table < 2; table++) {
         printf("%s\n", table == 0 ? "1D roots: bisection, n = ceil(15 log2 10) = 50 steps (seed §2.4)"
                                   : "1D roots: unfolding closed form (coordinate, powell sweeps), safeguarded Newton (line searches)");
-        printf("%-7s %-9s", "fan", "kind");
-        for (int c = table * 4; c < table * 4 + 4; c++) printf(" | %-10s %7s %8s", cols[c].name, "us", "excess");
+        printf("%-7s %-9s", "", "");
+        for (int c = table * 4; c < table * 4 + 4; c++) printf(" | %-27s", cols[c].name);
+        printf("\n%-7s %-9s", "fan", "kind");
+        for (int c = table * 4; c < table * 4 + 4; c++) printf(" | %-10s %7s %8s", "L", "us", "excess");
         printf("\n");
         for (int kind = 0; kind < 2; kind++) {
             for (int si = 0; si < 4; si++) {

@@ -7,6 +7,7 @@
 
 #include <trigeo.h>
 
+#define TG_PI_ 3.14159265358979323846
 #define MAXV 4096
 #define MAXF 8192
 
@@ -150,8 +151,243 @@ static void test_flat(void)
     close_ctx(&c);
 }
 
+/* ---- unit cube, each side a k x k grid with alternating diagonals ---- */
+
+static uint32_t cube_index[9][9][9];
+
+static uint32_t cube_vertex(int k, int i, int j, int l)
+{
+    if (cube_index[i][j][l] == UINT32_MAX) cube_index[i][j][l] = add_v((double)i / k, (double)j / k, (double)l / k);
+    return cube_index[i][j][l];
+}
+
+/* Side `axis` (0 x, 1 y, 2 z) at `hi` (0 or k): grid (a, b) over the other two axes, wound so
+ * that the normal points outwards. */
+static void cube_side(int k, int axis, int hi)
+{
+    int u = (axis + 1) % 3, w = (axis + 2) % 3;
+    for (int a = 0; a < k; ++a)
+        for (int b = 0; b < k; ++b) {
+            uint32_t q[4];
+            int ca[4] = {a, a + 1, a + 1, a}, cb[4] = {b, b, b + 1, b + 1};
+            for (int c = 0; c < 4; ++c) {
+                int x[3];
+                x[axis] = hi, x[u] = ca[c], x[w] = cb[c];
+                q[c] = cube_vertex(k, x[0], x[1], x[2]);
+            }
+            /* (u, w, axis) is right-handed, so q0 q1 q2 q3 is counterclockwise seen from +axis */
+            if (hi == 0) {
+                uint32_t t = q[1];
+                q[1] = q[3], q[3] = t;
+            }
+            if ((a + b) & 1) {
+                add_f(q[0], q[1], q[2]), add_f(q[0], q[2], q[3]);
+            } else {
+                add_f(q[0], q[1], q[3]), add_f(q[1], q[2], q[3]);
+            }
+        }
+}
+
+static tg_mesh* cube(int k)
+{
+    mb.nv = mb.nf = 0;
+    memset(cube_index, 0xFF, sizeof cube_index);
+    for (int axis = 0; axis < 3; ++axis) {
+        cube_side(k, axis, 0);
+        cube_side(k, axis, k);
+    }
+    return finish();
+}
+
+/* The face point at xyz (which must lie on the cube's surface): searched among all faces. */
+static tg_surface_point locate(const tg_mesh* m, double x, double y, double z)
+{
+    const double* v = tg_mesh_positions(m);
+    const uint32_t* t = tg_mesh_triangles(m);
+    for (size_t f = 0; f < tg_mesh_face_count(m); ++f) {
+        const double *a = v + 3 * t[3 * f], *b = v + 3 * t[3 * f + 1], *c = v + 3 * t[3 * f + 2];
+        double e1[3], e2[3], p[3], n[3];
+        for (int i = 0; i < 3; ++i) e1[i] = b[i] - a[i], e2[i] = c[i] - a[i], p[i] = (i == 0 ? x : i == 1 ? y : z) - a[i];
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        if (fabs(n[0] * p[0] + n[1] * p[1] + n[2] * p[2]) > 1e-12 * sqrt(nn)) continue;
+        /* barycentrics by areas in the face plane */
+        double c1[3] = {p[1] * e2[2] - p[2] * e2[1], p[2] * e2[0] - p[0] * e2[2], p[0] * e2[1] - p[1] * e2[0]};
+        double c2[3] = {e1[1] * p[2] - e1[2] * p[1], e1[2] * p[0] - e1[0] * p[2], e1[0] * p[1] - e1[1] * p[0]};
+        double b1 = (c1[0] * n[0] + c1[1] * n[1] + c1[2] * n[2]) / nn;
+        double b2 = (c2[0] * n[0] + c2[1] * n[1] + c2[2] * n[2]) / nn;
+        if (b1 >= -1e-12 && b2 >= -1e-12 && b1 + b2 <= 1 + 1e-12) {
+            if (b1 < 0) b1 = 0;
+            if (b2 < 0) b2 = 0;
+            if (b1 + b2 > 1) b2 = 1 - b1;
+            return tg_surface_face((uint32_t)f, 1 - b1 - b2, b1, b2);
+        }
+    }
+    CHECK_MSG(0, "point (%g, %g, %g) not on the mesh", x, y, z);
+    return tg_surface_vertex(0);
+}
+
+/* Prints a path (diagnostics of a failed check). */
+static void dump_path(const tg_path_view* v)
+{
+    fprintf(stderr, "  path: %zu points, length %.17g, status %s, %u iterations, defect %.3g\n", v->point_count,
+            v->length, tg_path_status_name(v->status), v->iterations, v->max_angle_defect);
+    for (size_t i = 0; i < v->point_count; ++i)
+        fprintf(stderr, "   %zu: kind %d index %u t %.6g (%.9f, %.9f, %.9f) face %u\n", i, (int)v->points[i].kind,
+                v->points[i].index, v->points[i].t, v->xyz[3 * i], v->xyz[3 * i + 1], v->xyz[3 * i + 2],
+                i + 1 < v->point_count ? v->faces[i] : 0u);
+}
+
+static void check_both(ctx* c, tg_surface_point a, tg_surface_point b, double expect, const char* what)
+{
+    tg_path_view v;
+    double ls = query(c, a, b, TG_PATH_STRAIGHTEN, &v);
+    CHECK_MSG(fabs(ls - expect) <= 1e-12 * (1 + expect), "%s straighten: %.17g, expected %.17g", what, ls, expect);
+    CHECK_MSG(v.max_angle_defect <= 1e-10, "%s: certificate %.3g", what, v.max_angle_defect);
+    if (!(fabs(ls - expect) <= 1e-12 * (1 + expect))) dump_path(&v);
+    double lr = query(c, a, b, TG_PATH_RELAX, &v);
+    CHECK_MSG(fabs(lr - expect) <= 1e-6 * (1 + expect), "%s relax: %.17g, expected %.17g", what, lr, expect);
+    if (!(fabs(lr - expect) <= 1e-6 * (1 + expect))) dump_path(&v);
+    CHECK_MSG(fabs(lr - ls) <= 1e-6 * (1 + expect), "%s: relax %.17g vs straighten %.17g", what, lr, ls);
+}
+
+static void test_cube(void)
+{
+    ctx c = open_ctx(cube(6));
+    /* across one edge: unfold the second side into the first one's plane */
+    check_both(&c, locate(c.mesh, 0.5, 0.5, 1), locate(c.mesh, 0.5, 0, 0.5), 1.0, "cube top-front centres");
+    check_both(&c, locate(c.mesh, 0.2, 0.5, 1), locate(c.mesh, 1, 0.5, 0.3), 1.5, "cube top-right");
+    check_both(&c, locate(c.mesh, 0.3, 0.6, 1), locate(c.mesh, 0.7, 0, 0.4), sqrt(0.4 * 0.4 + 1.2 * 1.2), "cube top-front");
+    /* opposite sides: over one side in between (0.5 + 1 + 0.5) */
+    check_both(&c, locate(c.mesh, 0.5, 0.5, 1), locate(c.mesh, 0.5, 0.5, 0), 2.0, "cube top-bottom centres");
+    /* opposite corners: the diagonal of a 2 x 1 rectangle of two sides */
+    uint32_t c0 = cube_index[0][0][0], c1 = cube_index[6][6][6];
+    check_both(&c, tg_surface_vertex(c0), tg_surface_vertex(c1), sqrt(5.0), "cube opposite corners");
+    /* two points of one side: the straight segment */
+    tg_rng r = {5};
+    for (int q = 0; q < 20; ++q) {
+        double x1 = tg_rng_unit(&r), y1 = tg_rng_unit(&r), x2 = tg_rng_unit(&r), y2 = tg_rng_unit(&r);
+        check_both(&c, locate(c.mesh, x1, y1, 1), locate(c.mesh, x2, y2, 1), hypot(x1 - x2, y1 - y2), "cube same side");
+    }
+    close_ctx(&c);
+}
+
+/* ---- prism "cylinder": n sides around, rings of quads up to height h; unrolls to a strip ---- */
+
+static void test_cylinder(void)
+{
+    const int n = 16, rings = 6;
+    const double h = 2.0, chord = 2 * sin(TG_PI_ / n), width = n * chord;
+    mb.nv = mb.nf = 0;
+    for (int r = 0; r <= rings; ++r)
+        for (int k = 0; k < n; ++k) add_v(cos(2 * TG_PI_ * k / n), sin(2 * TG_PI_ * k / n), h * r / rings);
+    for (int r = 0; r < rings; ++r)
+        for (int k = 0; k < n; ++k) {
+            uint32_t a = (uint32_t)(r * n + k), b = (uint32_t)(r * n + (k + 1) % n), cc = a + (uint32_t)n, d = b + (uint32_t)n;
+            if ((k + r) & 1) {
+                add_f(a, b, d), add_f(a, d, cc);
+            } else {
+                add_f(a, b, cc), add_f(b, d, cc);
+            }
+        }
+    ctx c = open_ctx(finish());
+    tg_rng rng = {11};
+    for (int q = 0; q < 40; ++q) {
+        tg_surface_point p[2];
+        double s[2], z[2];
+        for (int e = 0; e < 2; ++e) {
+            p[e] = random_face_point(&rng, mb.nf);
+            /* unrolled (s, z) of the point: corners on side k and k + 1 of its quad */
+            const uint32_t* t = mb.tri + 3 * p[e].index;
+            int kq = (int)(p[e].index / 2) % n;
+            s[e] = z[e] = 0;
+            for (int i = 0; i < 3; ++i) {
+                int k = (int)(t[i] % (uint32_t)n);
+                double sk = (k == kq ? kq : kq + 1) * chord;
+                s[e] += p[e].bary[i] * sk;
+                z[e] += p[e].bary[i] * mb.xyz[3 * t[i] + 2];
+            }
+        }
+        double ds = fabs(s[0] - s[1]);
+        if (ds > width / 2) ds = width - ds;
+        check_both(&c, p[0], p[1], hypot(ds, z[0] - z[1]), "cylinder");
+    }
+    close_ctx(&c);
+}
+
+/* ---- pyramid "cone": apex over an n-gon, sides cut into rings; unrolls to a sector ---- */
+
+static void test_cone(void)
+{
+    const int n = 10, rings = 5;
+    const double height = 1.5;
+    mb.nv = mb.nf = 0;
+    uint32_t apex = add_v(0, 0, height);
+    for (int r = 1; r <= rings; ++r)
+        for (int k = 0; k < n; ++k) {
+            double f = (double)r / rings;
+            add_v(f * cos(2 * TG_PI_ * k / n), f * sin(2 * TG_PI_ * k / n), height * (1 - f));
+        }
+#define RING(r, k) ((uint32_t)(1 + ((r) - 1) * n + ((k) % n)))
+    for (int k = 0; k < n; ++k) add_f(apex, RING(1, k), RING(1, k + 1));
+    for (int r = 1; r < rings; ++r)
+        for (int k = 0; k < n; ++k) {
+            uint32_t a = RING(r, k), b = RING(r, k + 1), cc = RING(r + 1, k), d = RING(r + 1, k + 1);
+            add_f(a, cc, d), add_f(a, d, b);
+        }
+    ctx c = open_ctx(finish());
+    /* apex angle of one side, and the total angle of the unrolled sector */
+    const double* A = mb.xyz;
+    const double* B0 = mb.xyz + 3 * RING(rings, 0);
+    const double* B1 = mb.xyz + 3 * RING(rings, 1);
+    double u[3], w[3];
+    for (int i = 0; i < 3; ++i) u[i] = B0[i] - A[i], w[i] = B1[i] - A[i];
+    double cr[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    double gamma = atan2(sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]), u[0] * w[0] + u[1] * w[1] + u[2] * w[2]);
+    double total = n * gamma;
+    CHECK(total < 2 * TG_PI_);
+    tg_rng rng = {3};
+    int tested = 0;
+    for (int q = 0; q < 60; ++q) {
+        tg_surface_point p[2];
+        double phi[2], rho[2];
+        for (int e = 0; e < 2; ++e) {
+            p[e] = random_face_point(&rng, mb.nf);
+            double x[3];
+            pos(c.mesh, p[e], x);
+            double d[3] = {x[0] - A[0], x[1] - A[1], x[2] - A[2]};
+            rho[e] = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            /* the side k holding the point: by its azimuth */
+            double az = atan2(x[1], x[0]);
+            if (az < 0) az += 2 * TG_PI_;
+            int k = (int)(az / (2 * TG_PI_ / n));
+            if (k >= n) k = n - 1;
+            const double* bk = mb.xyz + 3 * RING(rings, k);
+            double e1[3] = {bk[0] - A[0], bk[1] - A[1], bk[2] - A[2]};
+            double c2[3] = {e1[1] * d[2] - e1[2] * d[1], e1[2] * d[0] - e1[0] * d[2], e1[0] * d[1] - e1[1] * d[0]};
+            phi[e] = k * gamma + atan2(sqrt(c2[0] * c2[0] + c2[1] * c2[1] + c2[2] * c2[2]), e1[0] * d[0] + e1[1] * d[1] + e1[2] * d[2]);
+        }
+        double dphi = fabs(phi[0] - phi[1]);
+        if (dphi > total / 2) dphi = total - dphi;
+        double expect = dphi < TG_PI_ ? sqrt(rho[0] * rho[0] + rho[1] * rho[1] - 2 * rho[0] * rho[1] * cos(dphi)) : rho[0] + rho[1];
+        double other = total - dphi < TG_PI_ ? sqrt(rho[0] * rho[0] + rho[1] * rho[1] - 2 * rho[0] * rho[1] * cos(total - dphi)) : rho[0] + rho[1];
+        /* a cone point makes two local geodesics, one around each side of the apex; the method
+         * is local (it keeps the side of the initial edge path), so only pairs whose other
+         * geodesic is clearly longer than the edge path's error have a known answer */
+        if (other < 1.3 * expect) continue;
+        check_both(&c, p[0], p[1], expect, "cone");
+        tested++;
+    }
+#undef RING
+    CHECK(tested >= 30);
+    close_ctx(&c);
+}
+
 int main(void)
 {
     test_flat();
+    test_cube();
+    test_cylinder();
+    test_cone();
     return tg_test_finish();
 }

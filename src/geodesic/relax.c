@@ -193,7 +193,11 @@ static tg_status relax_pass(tg_geodesic_workspace* ws, size_t n, const tg_geodes
         bool done = false;
         uint32_t f_next = f_out;
         tg_status st = TG_OK;
-        if (x->kind == TG__NODE_EDGE) {
+        if (x->kind == TG__NODE_EDGE && f_in == f_out) {
+            /* the path touches this edge from one face and turns back into it (left so by a fan
+             * step that dropped an end portal): the straight segment in that face is shorter */
+            f_next = f_in;
+        } else if (x->kind == TG__NODE_EDGE) {
             uint32_t v = near_vertex(g, x);
             size_t j = i + 1;
             while (j + 1 < n && nodes[j].kind == TG__NODE_EDGE && near_vertex(g, &nodes[j]) == v) j++;

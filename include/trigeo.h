@@ -312,22 +312,24 @@ void tg_point_triangle_2d(const double p[2], const double v0[2], const double v1
                           tg_point_triangle* out);
 
 /** 2D version of tg_point_triangle_robust_3d: p and the vertices are 2 doubles; out->closest[2] is
- *  set to 0. Same contract and guarantees. Results equal those of the 3D kernel on the same
- *  triangle embedded at z = 0. */
+ *  set to 0. Same contract and guarantees. Results equal (==) those of the 3D kernel on the same
+ *  triangle and point embedded at z = 0. */
 void tg_point_triangle_robust_2d(const double p[2], const double v0[2], const double v1[2],
                                  const double v2[2], tg_point_triangle* out);
 
 /** n-dimensional version of tg_point_triangle_3d (seed region algorithm; the seed notes that it
  *  holds for any n >= 2). p, v0, v1, v2: n doubles each. out_closest: n doubles receiving the
- *  closest point, or NULL. out->closest receives its first min(n, 3) coordinates (the rest 0).
+ *  closest point, or NULL; it must not overlap the inputs. out->closest receives its first
+ *  min(n, 3) coordinates (the rest 0).
  *  n == 0 gives sqdist 0 and VERTEX0; n == 1 is accepted (a triangle on a line is a segment).
  *  O(n), no allocation, thread-safe. */
 void tg_point_triangle_nd(size_t n, const double* p, const double* v0, const double* v1, const double* v2,
                           double* out_closest, tg_point_triangle* out);
 
 /** n-dimensional version of tg_point_triangle_robust_3d; same arguments as tg_point_triangle_nd.
- *  For n == 3 the results are bit-identical to tg_point_triangle_robust_3d, for n == 2 to
- *  tg_point_triangle_robust_2d. O(n), no allocation, thread-safe. */
+ *  For n == 3 the results equal (==, same operations in the same order) those of
+ *  tg_point_triangle_robust_3d, for n == 2 those of tg_point_triangle_robust_2d, and likewise for
+ *  the region variant. O(n), no allocation, thread-safe. */
 void tg_point_triangle_robust_nd(size_t n, const double* p, const double* v0, const double* v1,
                                  const double* v2, double* out_closest, tg_point_triangle* out);
 

@@ -538,6 +538,15 @@ int main(void)
             tg_point_triangle_2d(p, v[0], v[1], v[2], &other);
             if (!same_result(&other, &reg) && same_fail++ < max_reports)
                 fprintf(stderr, "region 2d != nd(2) at case %ld\n", it);
+            /* documented: the 2D kernels equal the 3D ones at z = 0 */
+            const double p3[3] = {p[0], p[1], 0.0}, a3[3] = {v[0][0], v[0][1], 0.0},
+                         b3[3] = {v[1][0], v[1][1], 0.0}, c3[3] = {v[2][0], v[2][1], 0.0};
+            tg_point_triangle_robust_3d(p3, a3, b3, c3, &other);
+            if (!same_result(&other, &rob) && same_fail++ < max_reports)
+                fprintf(stderr, "robust_2d != robust_3d at z = 0, case %ld\n", it);
+            tg_point_triangle_3d(p3, a3, b3, c3, &other);
+            if (!same_result(&other, &reg) && same_fail++ < max_reports)
+                fprintf(stderr, "region 2d != 3d at z = 0, case %ld\n", it);
         }
 
         const double err_rob = fabs(rob.sqdist - ex.sq);

@@ -419,15 +419,17 @@ typedef enum tg_bvh_winding_data {
 /** Build options; a NULL pointer or a zero-initialised struct means defaults. */
 typedef struct tg_bvh_options {
     const tg_allocator* allocator;    /**< NULL: libc. Also used by workspaces and batch queries. */
-    uint32_t max_leaf_size;           /**< largest leaf, 1..15; 0: default (4) */
+    uint32_t max_leaf_size;           /**< largest leaf, 1..15; 0: default (8) */
     tg_bvh_winding_data winding_data; /**< see tg_bvh_winding_data */
 } tg_bvh_options;
 
-/** Builds a 4-wide BVH over all faces of mesh (binned surface area heuristic; 64-byte nodes).
+/** Builds a 4-wide BVH over all faces of mesh (binned surface area heuristic; 128-byte nodes
+ *  holding axis-aligned and oriented boxes of their four children; leaves store their triangles'
+ *  vertices contiguously).
  *  Any valid mesh is accepted, including an empty one (every query then finds nothing).
  *  Returns TG_OK; TG_ERR_INVALID_ARGUMENT for a NULL mesh or out_bvh or an option out of range;
  *  TG_ERR_OUT_OF_MEMORY. On failure *out_bvh is NULL.
- *  Complexity: O(F log F) time, about 30-45 bytes per face (see tg_bvh_memory_bytes).
+ *  Complexity: O(F log F) time, about 50 bytes per face (see tg_bvh_memory_bytes).
  *  Thread-safe (reads the mesh only). */
 tg_status tg_bvh_create(const tg_mesh* mesh, const tg_bvh_options* options, tg_bvh** out_bvh);
 

@@ -12,7 +12,7 @@
 #include <float.h>
 #include <math.h>
 
-_Static_assert(sizeof(tg__bvh_node) == 64, "a BVH node is one 64-byte cache line");
+_Static_assert(sizeof(tg__bvh_node) == 128, "a BVH node is two 64-byte cache lines");
 
 #define BIN_COUNT 16
 /* SAH constants relative to one point-triangle kernel call: testing a child box costs about a
@@ -64,6 +64,8 @@ typedef struct builder {
     uint32_t max_leaf;
     tg__bvh_node* nodes;
     void* nodes_raw;
+    size_t nodes_raw_bytes;
+    bool nodes_mapped;
     size_t node_count, node_capacity;
     uint32_t depth;
 } builder;
@@ -255,12 +257,16 @@ static bool nodes_reserve(builder* bd, size_t extra)
         if (cap > SIZE_MAX / 2 / sizeof(tg__bvh_node)) return false;
         cap *= 2;
     }
-    void* raw = tg__alloc_array(bd->a, cap + 1, sizeof(tg__bvh_node));
+    bool mapped;
+    size_t bytes = (cap + 1) * sizeof(tg__bvh_node);
+    void* raw = tg__bvh_big_alloc(bd->a, bytes, &mapped);
     if (!raw) return false;
-    tg__bvh_node* nodes = (tg__bvh_node*)(((uintptr_t)raw + 63) & ~(uintptr_t)63);
+    tg__bvh_node* nodes = (tg__bvh_node*)(((uintptr_t)raw + 127) & ~(uintptr_t)127);
     if (bd->node_count) memcpy(nodes, bd->nodes, bd->node_count * sizeof *nodes);
-    tg__free(bd->a, bd->nodes_raw);
+    tg__bvh_big_free(bd->a, bd->nodes_raw, bd->nodes_raw_bytes, bd->nodes_mapped);
     bd->nodes_raw = raw;
+    bd->nodes_raw_bytes = bytes;
+    bd->nodes_mapped = mapped;
     bd->nodes = nodes;
     bd->node_capacity = cap;
     return true;
@@ -403,14 +409,16 @@ static uint32_t leaf_vertices(const tg_mesh* m, const bprim* bp, uint32_t begin,
     return u;
 }
 
-/* Writes every leaf block, in node order and slot order (siblings next to each other), and points
- * the leaf slots at them. */
+/* Writes every leaf block in depth-first order (a slot's leaves, its subtree's included, are
+ * consecutive), points the leaf slots at them, then builds the oriented boxes, which need each
+ * slot's range of leaves. */
 static tg_status make_leaves(tg_bvh* bvh, const bprim* bp)
 {
     const tg_mesh* m = bvh->mesh;
+    const tg_allocator* a = &bvh->allocator;
     uint32_t vert[3 * TG__BVH_MAX_LEAF];
     uint8_t corner[3 * TG__BVH_MAX_LEAF];
-    size_t words = 0;
+    size_t words = 0, leaves = 0, slots = bvh->node_count * TG__BVH_WIDTH;
     for (size_t n = 0; n < bvh->node_count; ++n) {
         const tg__bvh_node* node = &bvh->nodes[n];
         for (int s = 0; s < node->child_count; ++s) {
@@ -418,31 +426,60 @@ static tg_status make_leaves(tg_bvh* bvh, const bprim* bp)
             if (!k) continue;
             uint32_t u = leaf_vertices(m, bp, node->child[s], k, vert, corner);
             words += (tg__bvh_leaf_header(k) + 24 * (size_t)u) / 8;
+            ++leaves;
         }
     }
     if (words >= (size_t)UINT32_MAX) return TG_ERR_UNSUPPORTED;
-    bvh->leaves = tg__alloc_array(&bvh->allocator, words ? words : 1, sizeof *bvh->leaves);
-    if (!bvh->leaves) return TG_ERR_OUT_OF_MEMORY;
+    bvh->leaves = tg__bvh_big_alloc(a, (words ? words : 1) * sizeof *bvh->leaves, &bvh->leaves_mapped);
     bvh->leaf_words = words;
+    uint32_t* leaf_word = tg__alloc_array(a, leaves + 1, sizeof *leaf_word);
+    uint8_t* leaf_u = tg__alloc_array(a, leaves + 1, 1);
+    uint32_t* first = tg__alloc_array(a, slots, sizeof *first);
+    uint32_t* end = tg__alloc_array(a, slots, sizeof *end);
+    struct frame {
+        uint32_t node, slot, parent_slot;
+    }* stack = tg__alloc_array(a, (size_t)bvh->depth + 2, sizeof *stack);
+    tg_status st = TG_ERR_OUT_OF_MEMORY;
+    if (!bvh->leaves || !leaf_word || !leaf_u || !first || !end || !stack) goto done;
     size_t at = 0;
-    for (size_t n = 0; n < bvh->node_count; ++n) {
-        tg__bvh_node* node = &bvh->nodes[n];
-        for (int s = 0; s < node->child_count; ++s) {
-            uint32_t k = node->leaf_count[s], begin = node->child[s];
-            if (!k) continue;
-            uint32_t u = leaf_vertices(m, bp, begin, k, vert, corner);
-            unsigned char* base = (unsigned char*)(bvh->leaves + at);
-            uint32_t* face = (uint32_t*)(void*)base;
-            for (uint32_t i = 0; i < k; ++i) face[i] = bp[begin + i].face;
-            memset(base + 4 * (size_t)k, 0, tg__bvh_leaf_header(k) - 4 * (size_t)k);
-            memcpy(base + 4 * (size_t)k, corner, 3 * (size_t)k);
-            double* v = (double*)(void*)(base + tg__bvh_leaf_header(k));
-            for (uint32_t j = 0; j < u; ++j) memcpy(v + 3 * (size_t)j, m->xyz + 3 * (size_t)vert[j], 3 * sizeof(double));
-            node->child[s] = (uint32_t)at;
-            at += (tg__bvh_leaf_header(k) + 24 * (size_t)u) / 8;
+    uint32_t leaf = 0, sp = 0;
+    stack[sp++] = (struct frame){0, 0, UINT32_MAX};
+    while (sp > 0) {
+        struct frame* fr = &stack[sp - 1];
+        tg__bvh_node* node = &bvh->nodes[fr->node];
+        if (fr->slot == node->child_count) {
+            if (fr->parent_slot != UINT32_MAX) end[fr->parent_slot] = leaf;
+            --sp;
+            continue;
         }
+        uint32_t s = fr->slot++, id = fr->node * TG__BVH_WIDTH + s, k = node->leaf_count[s];
+        first[id] = leaf;
+        if (!k) {
+            stack[sp++] = (struct frame){node->child[s], 0, id};
+            continue;
+        }
+        uint32_t begin = node->child[s], u = leaf_vertices(m, bp, begin, k, vert, corner);
+        unsigned char* base = (unsigned char*)(bvh->leaves + at);
+        uint32_t* face = (uint32_t*)(void*)base;
+        for (uint32_t i = 0; i < k; ++i) face[i] = bp[begin + i].face;
+        memset(base + 4 * (size_t)k, 0, tg__bvh_leaf_header(k) - 4 * (size_t)k);
+        memcpy(base + 4 * (size_t)k, corner, 3 * (size_t)k);
+        double* v = (double*)(void*)(base + tg__bvh_leaf_header(k));
+        for (uint32_t j = 0; j < u; ++j) memcpy(v + 3 * (size_t)j, m->xyz + 3 * (size_t)vert[j], 3 * sizeof(double));
+        node->child[s] = (uint32_t)at;
+        leaf_word[leaf] = (uint32_t)(at + tg__bvh_leaf_header(k) / 8); /* its vertices */
+        leaf_u[leaf] = (uint8_t)u;
+        end[id] = ++leaf;
+        at += (tg__bvh_leaf_header(k) + 24 * (size_t)u) / 8;
     }
-    return TG_OK;
+    st = tg__bvh_build_obbs(bvh, first, end, leaf_word, leaf_u);
+done:
+    tg__free(a, stack);
+    tg__free(a, end);
+    tg__free(a, first);
+    tg__free(a, leaf_u);
+    tg__free(a, leaf_word);
+    return st;
 }
 
 /* origin = centre of the vertex bounding box; scale = 2^-e with the half extent in [1/2, 1). */
@@ -522,6 +559,8 @@ tg_status tg_bvh_create(const tg_mesh* mesh, const tg_bvh_options* opts, tg_bvh*
         }
         bvh->nodes = bd.nodes;
         bvh->nodes_raw = bd.nodes_raw;
+        bvh->nodes_raw_bytes = bd.nodes_raw_bytes;
+        bvh->nodes_mapped = bd.nodes_mapped;
         bvh->node_count = bd.node_count;
         bvh->depth = bd.depth;
         if (st == TG_OK) st = make_leaves(bvh, bd.prims);
@@ -547,8 +586,8 @@ void tg_bvh_destroy(tg_bvh* bvh)
 {
     if (!bvh) return;
     tg_allocator a = bvh->allocator;
-    tg__free(&a, bvh->nodes_raw);
-    tg__free(&a, bvh->leaves);
+    tg__bvh_big_free(&a, bvh->nodes_raw, bvh->nodes_raw_bytes, bvh->nodes_mapped);
+    tg__bvh_big_free(&a, bvh->leaves, (bvh->leaf_words ? bvh->leaf_words : 1) * sizeof *bvh->leaves, bvh->leaves_mapped);
     tg__free(&a, bvh->clusters);
     tg__free(&a, bvh);
 }

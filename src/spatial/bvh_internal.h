@@ -14,24 +14,62 @@
 
 #define TG__BVH_WIDTH 4
 #define TG__BVH_MAX_LEAF 15
-#define TG__BVH_DEFAULT_LEAF 4
+#define TG__BVH_DEFAULT_LEAF 8
 
-/* One 4-wide node in exactly one 64-byte cache line. Coordinates are "local": (x - origin) * scale
- * of the tg_bvh, so that the mesh fits in [-1, 1]^3 and float keeps relative precision whatever
- * the mesh's position and size. A child box on axis a is
+/* One 4-wide node in two 64-byte cache lines. Coordinates are "local": (x - origin) * scale of the
+ * tg_bvh, so that the mesh fits in [-1, 1]^3 and float keeps relative precision whatever the
+ * mesh's position and size.
+ *
+ * Line 1, the child boxes: on axis a,
  *     lo = origin[a] + (float)qlo[a][slot] * 2^exponent[a]   (float multiply, then float add)
  * and likewise hi; the builder checks with exactly these float operations that the decoded box
- * contains the child, so pruning with it is conservative. */
+ * contains the child, so pruning with it is conservative.
+ *
+ * Line 2, an oriented box per child (Gottschalk, Lin, Manocha 1996, "OBBTree", §3: boxes aligned
+ * with the local surface are far tighter than axis-aligned ones around a tilted patch). The frame
+ * is an integer quaternion q = (a, b, c, d) (8 bits each); its matrix
+ *     M = [a2+b2-c2-d2, 2(bc-ad), 2(bd+ac); 2(bc+ad), a2-b2+c2-d2, 2(cd-ab); 2(bd-ac), 2(cd+ab), a2-b2-c2+d2]
+ * has integer entries below 2^17, exact in float, and M^T M = n^2 I exactly with n = |q|^2: it is
+ * n times a rotation, so |M y| = n |y| and no bound is lost to rounding of the frame. With the
+ * decoded child box's centre c = (lo + hi) * 0.5 and step v = (((ext_x + ext_y) + ext_z) * n) *
+ * 0.004 (ext = hi - lo, all in float), every point x of the child satisfies
+ *     (float)olo[i][slot] * v <= (M (x - c))_i <= (float)ohi[i][slot] * v      for i = 0, 1, 2,
+ * so the distance from a point p to the child is at least |gaps of M (p - c)| / n. The first two
+ * rows of M are tangent directions and the last the normal of the child's geometry. A zero
+ * quaternion (n = 0) disables a slot's oriented box. */
 typedef struct tg__bvh_node {
     float origin[3];       /* lower corner of this node's box */
     int8_t exponent[3];    /* per-axis power-of-two quantization step */
     uint8_t child_count;   /* slots 0 .. child_count-1 are used (1..4) */
     uint8_t qlo[3][TG__BVH_WIDTH];
     uint8_t qhi[3][TG__BVH_WIDTH];
-    uint32_t child[TG__BVH_WIDTH];     /* inner child: node index; leaf: first primitive */
-    uint8_t leaf_count[TG__BVH_WIDTH]; /* 0: inner child; 1..15: primitives of a leaf */
+    uint32_t child[TG__BVH_WIDTH];     /* inner child: node index; leaf: leaf block offset in words */
+    uint8_t leaf_count[TG__BVH_WIDTH]; /* 0: inner child; 1..15: triangles of a leaf */
     uint32_t reserved;
+    /* second cache line */
+    int8_t quat[4][TG__BVH_WIDTH];
+    int8_t olo[3][TG__BVH_WIDTH];
+    int8_t ohi[3][TG__BVH_WIDTH];
+    uint8_t reserved2[24];
 } tg__bvh_node;
+
+/* The oriented-box step of a slot (same float operations as the query's vector code):
+ * 127 * 0.004 = 0.508 > 0.5, and |M (x - c)| <= n * (half diagonal) <= n * 0.5 * (sum of extents). */
+static inline float tg__bvh_obb_step(float ext_x, float ext_y, float ext_z, float n)
+{
+    return (((ext_x + ext_y) + ext_z) * n) * 0.004f;
+}
+
+/* The integer matrix M of a quaternion (see tg__bvh_node), row-major, and n = |q|^2. */
+static inline float tg__bvh_quat_matrix(const float q[4], float M[9])
+{
+    float aa = q[0] * q[0], bb = q[1] * q[1], cc = q[2] * q[2], dd = q[3] * q[3];
+    float ab = q[0] * q[1], ac = q[0] * q[2], ad = q[0] * q[3], bc = q[1] * q[2], bd = q[1] * q[3], cd = q[2] * q[3];
+    M[0] = (aa + bb) - (cc + dd), M[1] = 2.0f * (bc - ad), M[2] = 2.0f * (bd + ac);
+    M[3] = 2.0f * (bc + ad), M[4] = (aa - bb) + (cc - dd), M[5] = 2.0f * (cd - ab);
+    M[6] = 2.0f * (bd - ac), M[7] = 2.0f * (cd + ab), M[8] = (aa - bb) - (cc - dd);
+    return (aa + bb) + (cc + dd);
+}
 
 /* A leaf is one contiguous block in tg_bvh.leaves, so that everything a leaf test reads sits in a
  * few neighbouring cache lines that can be prefetched as soon as the leaf is found: for its k
@@ -72,11 +110,14 @@ struct tg_bvh {
     const tg_mesh* mesh;
     double origin[3]; /* local = (x - origin) * scale */
     double scale;     /* a power of two */
-    tg__bvh_node* nodes; /* 64-byte aligned inside nodes_raw; node 0 is the root */
+    tg__bvh_node* nodes; /* 128-byte aligned inside nodes_raw; node 0 is the root */
     void* nodes_raw;
+    size_t nodes_raw_bytes;
+    bool nodes_mapped;
     size_t node_count;
     uint64_t* leaves;  /* leaf blocks (see tg__bvh_leaf), addressed in 8-byte words */
     size_t leaf_words;
+    bool leaves_mapped;
     tg__bvh_cluster* clusters; /* TG__BVH_WIDTH per node, or NULL */
     uint32_t depth;            /* node levels (root alone: 1; empty mesh: 0) */
     uint32_t stack_capacity;   /* entries a workspace needs */
@@ -146,6 +187,15 @@ static inline void tg__bvh_to_local(const tg_bvh* b, const double* x, double* ou
 }
 
 /* Internal cross-file entry points. */
+/* Large arrays: huge pages with the default allocator on Linux (bvh_memory.c). *out_mapped records
+ * how the block was obtained, for tg__bvh_big_free. */
+void* tg__bvh_big_alloc(const tg_allocator* a, size_t bytes, bool* out_mapped);
+void tg__bvh_big_free(const tg_allocator* a, void* p, size_t bytes, bool mapped);
+/* Fills the oriented boxes (line 2) of every node. leaf_first/leaf_end: per slot (node * 4 + s),
+ * the range of leaves under it in leaf order; leaf_vertex_word/leaf_u: per leaf, the word offset
+ * of its vertex array and its number of distinct vertices. */
+tg_status tg__bvh_build_obbs(tg_bvh* bvh, const uint32_t* leaf_first, const uint32_t* leaf_end,
+                             const uint32_t* leaf_vertex_word, const uint8_t* leaf_u);
 /* One closest query (no distance limit) seeded with the distance to face hint (TG_NONE: none). */
 void tg__bvh_closest_hinted(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p, uint32_t hint,
                             tg_closest_hit* hit);

@@ -29,6 +29,7 @@
 typedef struct query {
     const double* p;
     float plo[3], phi[3]; /* float interval around the local coordinates of p */
+    float width2;         /* twice the sum of the interval's widths */
     double best;          /* best squared distance so far (world units) */
     uint32_t best_face;
     tg_point_triangle best_pt;
@@ -67,6 +68,7 @@ static void query_init(const tg_bvh* bvh, query* q, const double* p, double max_
         q->plo[k] = tg__f32_below(c);
         q->phi[k] = tg__f32_above(c);
     }
+    q->width2 = 2.0f * (((q->phi[0] - q->plo[0]) + (q->phi[1] - q->plo[1])) + (q->phi[2] - q->plo[2]));
     q->p = p;
     q->best = max_dist_sq;
     q->best_face = TG_NONE;
@@ -120,19 +122,52 @@ static inline void prefetch_leaf(const tg_bvh* bvh, uint32_t child, uint32_t k)
     for (size_t off = 0; off < bytes; off += 64) PREFETCH(base + off);
 }
 
-/* Lower bounds of the squared distance from the query to the node's child boxes (local units);
- * returns the mask of used children that are not farther than the threshold. */
+/* Lower bounds of the squared distance from the query to the node's children (local units): the
+ * larger of the distance to the child's box and the distance to its oriented box (see
+ * tg__bvh_node). For the oriented box, t = M (p - c) is evaluated in float from the lower end of
+ * p's interval: with |M_ij| <= n it is within n * (4 eps * sum_j |d_j| + the interval's width) of
+ * the exact value (a rounded difference, three products and two sums, eps = 2^-24), so each gap
+ * is first reduced by twice that. Returns the mask of used children not farther than the
+ * threshold. */
 static inline int node_bounds(const tg__bvh_node* n, const query* q, float* out)
 {
-    tg_v4 acc = tg_v4_set1(0.0f), zero = tg_v4_set1(0.0f);
+    tg_v4 acc = tg_v4_set1(0.0f), zero = tg_v4_set1(0.0f), half = tg_v4_set1(0.5f), two = tg_v4_set1(2.0f);
+    tg_v4 ext[3], d[3];
     for (int a = 0; a < 3; ++a) {
         tg_v4 o = tg_v4_set1(n->origin[a]);
         tg_v4 step = tg_v4_set1(tg__f32_pow2(n->exponent[a]));
         tg_v4 lo = tg_v4_add(o, tg_v4_mul(tg_v4_from_u8(n->qlo[a]), step));
         tg_v4 hi = tg_v4_add(o, tg_v4_mul(tg_v4_from_u8(n->qhi[a]), step));
-        tg_v4 d = tg_v4_max(tg_v4_max(tg_v4_sub(lo, tg_v4_set1(q->phi[a])), tg_v4_sub(tg_v4_set1(q->plo[a]), hi)), zero);
-        acc = tg_v4_add(acc, tg_v4_mul(d, d));
+        tg_v4 g = tg_v4_max(tg_v4_max(tg_v4_sub(lo, tg_v4_set1(q->phi[a])), tg_v4_sub(tg_v4_set1(q->plo[a]), hi)), zero);
+        acc = tg_v4_add(acc, tg_v4_mul(g, g));
+        ext[a] = tg_v4_sub(hi, lo);
+        d[a] = tg_v4_sub(tg_v4_set1(q->plo[a]), tg_v4_mul(tg_v4_add(lo, hi), half));
     }
+    /* the oriented boxes: M from the quaternions, as tg__bvh_quat_matrix does lane by lane */
+    tg_v4 qa = tg_v4_from_i8(n->quat[0]), qb = tg_v4_from_i8(n->quat[1]), qc = tg_v4_from_i8(n->quat[2]),
+          qd = tg_v4_from_i8(n->quat[3]);
+    tg_v4 aa = tg_v4_mul(qa, qa), bb = tg_v4_mul(qb, qb), cc = tg_v4_mul(qc, qc), dd = tg_v4_mul(qd, qd);
+    tg_v4 ab = tg_v4_mul(qa, qb), ac = tg_v4_mul(qa, qc), ad = tg_v4_mul(qa, qd), bc = tg_v4_mul(qb, qc),
+          bd = tg_v4_mul(qb, qd), cd = tg_v4_mul(qc, qd);
+    tg_v4 M[9];
+    M[0] = tg_v4_sub(tg_v4_add(aa, bb), tg_v4_add(cc, dd)), M[1] = tg_v4_mul(two, tg_v4_sub(bc, ad));
+    M[2] = tg_v4_mul(two, tg_v4_add(bd, ac)), M[3] = tg_v4_mul(two, tg_v4_add(bc, ad));
+    M[4] = tg_v4_add(tg_v4_sub(aa, bb), tg_v4_sub(cc, dd)), M[5] = tg_v4_mul(two, tg_v4_sub(cd, ab));
+    M[6] = tg_v4_mul(two, tg_v4_sub(bd, ac)), M[7] = tg_v4_mul(two, tg_v4_add(cd, ab));
+    M[8] = tg_v4_sub(tg_v4_sub(aa, bb), tg_v4_sub(cc, dd));
+    tg_v4 nn = tg_v4_add(tg_v4_add(aa, bb), tg_v4_add(cc, dd));
+    tg_v4 v = tg_v4_mul(tg_v4_mul(tg_v4_add(tg_v4_add(ext[0], ext[1]), ext[2]), nn), tg_v4_set1(0.004f));
+    tg_v4 spread = tg_v4_add(tg_v4_add(tg_v4_abs(d[0]), tg_v4_abs(d[1])), tg_v4_abs(d[2]));
+    tg_v4 delta = tg_v4_mul(tg_v4_add(tg_v4_mul(spread, tg_v4_set1(0x1p-21f)), tg_v4_set1(q->width2)), nn);
+    tg_v4 acc2 = zero;
+    for (int i = 0; i < 3; ++i) {
+        tg_v4 t = tg_v4_add(tg_v4_add(tg_v4_mul(M[3 * i], d[0]), tg_v4_mul(M[3 * i + 1], d[1])), tg_v4_mul(M[3 * i + 2], d[2]));
+        tg_v4 lo = tg_v4_mul(tg_v4_from_i8(n->olo[i]), v), hi = tg_v4_mul(tg_v4_from_i8(n->ohi[i]), v);
+        tg_v4 g = tg_v4_max(tg_v4_sub(tg_v4_max(tg_v4_sub(lo, t), tg_v4_sub(t, hi)), delta), zero);
+        acc2 = tg_v4_add(acc2, tg_v4_mul(g, g));
+    }
+    /* |M y| = n |y|: divide by n^2 (at least 1, so that a disabled slot gives 0 / 1) */
+    acc = tg_v4_max(acc, tg_v4_div(acc2, tg_v4_max(tg_v4_mul(nn, nn), tg_v4_set1(1.0f))));
     tg_v4_storeu(out, acc);
     return tg_v4_le_mask(acc, tg_v4_set1(q->thr)) & ((1 << n->child_count) - 1);
 }

@@ -18,6 +18,7 @@ static inline void tg_v4_storeu(float* p, tg_v4 a) { _mm_storeu_ps(p, a); }
 static inline tg_v4 tg_v4_add(tg_v4 a, tg_v4 b) { return _mm_add_ps(a, b); }
 static inline tg_v4 tg_v4_sub(tg_v4 a, tg_v4 b) { return _mm_sub_ps(a, b); }
 static inline tg_v4 tg_v4_mul(tg_v4 a, tg_v4 b) { return _mm_mul_ps(a, b); }
+static inline tg_v4 tg_v4_div(tg_v4 a, tg_v4 b) { return _mm_div_ps(a, b); }
 /* min/max return the second operand when either is NaN (as minps/maxps); callers never pass NaN. */
 static inline tg_v4 tg_v4_min(tg_v4 a, tg_v4 b) { return _mm_min_ps(a, b); }
 static inline tg_v4 tg_v4_max(tg_v4 a, tg_v4 b) { return _mm_max_ps(a, b); }
@@ -30,6 +31,17 @@ static inline tg_v4 tg_v4_from_u8(const uint8_t* q)
     __m128i v = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128((int)w), z), z);
     return _mm_cvtepi32_ps(v);
 }
+/* Four signed bytes as floats -128..127 (exact). */
+static inline tg_v4 tg_v4_from_i8(const int8_t* q)
+{
+    uint32_t w;
+    memcpy(&w, q, sizeof w);
+    __m128i v = _mm_cvtsi32_si128((int)w);
+    v = _mm_unpacklo_epi8(v, v);
+    v = _mm_srai_epi32(_mm_unpacklo_epi16(v, v), 24);
+    return _mm_cvtepi32_ps(v);
+}
+static inline tg_v4 tg_v4_abs(tg_v4 a) { return _mm_and_ps(a, _mm_castsi128_ps(_mm_set1_epi32(0x7FFFFFFF))); }
 /* Bit i set when lane i of a is <= lane i of b. */
 static inline int tg_v4_le_mask(tg_v4 a, tg_v4 b) { return _mm_movemask_ps(_mm_cmple_ps(a, b)); }
 #else
@@ -47,9 +59,12 @@ static inline void tg_v4_storeu(float* p, tg_v4 a) { memcpy(p, a.v, sizeof a.v);
 static inline tg_v4 tg_v4_add(tg_v4 a, tg_v4 b) { TG_V4_LANES_(a.v[i] + b.v[i]); }
 static inline tg_v4 tg_v4_sub(tg_v4 a, tg_v4 b) { TG_V4_LANES_(a.v[i] - b.v[i]); }
 static inline tg_v4 tg_v4_mul(tg_v4 a, tg_v4 b) { TG_V4_LANES_(a.v[i] * b.v[i]); }
+static inline tg_v4 tg_v4_div(tg_v4 a, tg_v4 b) { TG_V4_LANES_(a.v[i] / b.v[i]); }
 static inline tg_v4 tg_v4_min(tg_v4 a, tg_v4 b) { TG_V4_LANES_(a.v[i] < b.v[i] ? a.v[i] : b.v[i]); }
 static inline tg_v4 tg_v4_max(tg_v4 a, tg_v4 b) { TG_V4_LANES_(a.v[i] > b.v[i] ? a.v[i] : b.v[i]); }
 static inline tg_v4 tg_v4_from_u8(const uint8_t* q) { TG_V4_LANES_((float)q[i]); }
+static inline tg_v4 tg_v4_from_i8(const int8_t* q) { TG_V4_LANES_((float)q[i]); }
+static inline tg_v4 tg_v4_abs(tg_v4 a) { TG_V4_LANES_(a.v[i] < 0.0f ? -a.v[i] : a.v[i]); }
 #undef TG_V4_LANES_
 static inline int tg_v4_le_mask(tg_v4 a, tg_v4 b)
 {

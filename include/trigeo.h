@@ -726,8 +726,9 @@ typedef struct tg_path_options {
      *  when its smaller side angle is below pi - tolerance radians (default 1e-12). RELAX: stop
      *  when a pass shortens the path by at most tolerance * length (default 1e-13). */
     double tolerance;
-    /** RELAX: decimal digits of the bisections in the seed's kernels (§2.4); 0: 15. */
-    uint32_t digits;
+    /** RELAX: options of the seed's kernels (tg_edge_path_minimize, tg_fan_path_minimize). NULL:
+     *  15 digits by bisection (§2.4) and the conjugate-gradient fan search (§3.4.2). */
+    const tg_geodesic_kernel_options* kernel;
 } tg_path_options;
 
 /** A geodesic path: a caller-owned result object reused across queries (its buffers grow to the

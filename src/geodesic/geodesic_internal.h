@@ -210,7 +210,7 @@ typedef struct tg__shorten_result {
 tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_sweeps, double angle_tol,
                          tg__shorten_result* out);
 tg_status tg__relax(tg_geodesic_workspace* ws, size_t count, uint32_t max_passes, double rel_tol,
-                    int digits, tg__shorten_result* out);
+                    const tg_geodesic_kernel_options* kernel, tg__shorten_result* out);
 
 /* ---- sleeves (funnel.c) ---- */
 

@@ -23,7 +23,6 @@ struct tg_path {
 #define DEFAULT_MAX_ITERATIONS 10000u
 #define DEFAULT_STRAIGHTEN_TOL 1e-12 /* radians: ~4500 ulps of pi, above the rounding of angle sums */
 #define DEFAULT_RELAX_TOL 1e-13      /* relative length decrease per pass */
-#define DEFAULT_DIGITS 15
 
 const char* tg_path_status_name(tg_path_status s)
 {
@@ -160,7 +159,13 @@ tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, cons
     double tol = options && options->tolerance > 0.0 && isfinite(options->tolerance)
                      ? options->tolerance
                      : method == TG_PATH_RELAX ? DEFAULT_RELAX_TOL : DEFAULT_STRAIGHTEN_TOL;
-    int digits = options && options->digits ? (int)options->digits : DEFAULT_DIGITS;
+    /* RELAX's kernels: the caller's, or the seed's bisection (§2.4) with 15 digits and the
+     * conjugate-gradient fan search, the third strategy of §3.4.2 (same minima as the coordinate
+     * search, which stalls into its iteration cap on coupled spokes and is 30x slower here) */
+    tg_geodesic_kernel_options kopt;
+    memset(&kopt, 0, sizeof kopt);
+    kopt.strategy = TG_FAN_CG;
+    if (options && options->kernel) kopt = *options->kernel;
 
     tg__endpoint src, dst;
     tg_status st = tg__endpoint_make(ws, from, 0, &src);
@@ -176,7 +181,7 @@ tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, cons
     if (method == TG_PATH_STRAIGHTEN && n > 2)
         st = tg__straighten(ws, n, max_it, tol, &r);
     else if (method == TG_PATH_RELAX && n > 2)
-        st = tg__relax(ws, n, max_it, tol, digits, &r);
+        st = tg__relax(ws, n, max_it, tol, &kopt, &r);
     if (st == TG_OK) st = fill_path(g, ws, r.count, path);
     if (st != TG_OK) {
         path_clear(path);

@@ -58,8 +58,8 @@ static void relax_edge(const tg_geodesic* g, relax_out* o, const tg__node* x, co
  * end point on its first or last spoke as degenerate. On success pushes the spoke points and sets
  * *f_next to the face of the segment towards next. */
 static tg_status fan_step(tg_geodesic_workspace* ws, relax_out* o, uint32_t v, const tg__node* next, uint32_t f_in,
-                          uint32_t f_out, double current, const tg_geodesic_kernel_options* kopt, bool* done,
-                          uint32_t* f_next)
+                          uint32_t f_out, double current, const tg__node* skip_edge,
+                          const tg_geodesic_kernel_options* kopt, bool* done, uint32_t* f_next)
 {
     const tg_geodesic* g = ws->geo;
     *done = false;
@@ -80,10 +80,25 @@ static tg_status fan_step(tg_geodesic_workspace* ws, relax_out* o, uint32_t v, c
     int best_side = -1;
     size_t best_lo = 0, best_m = 0;
     uint32_t best_start = f_in;
+    /* A side whose angle is at least pi cannot shorten the path through V (Mitchell, Mount &
+     * Papadimitriou 1987, Lemma 3.4): the kernel would find no decrease there, so it is not
+     * asked. This is the seed's own test (ComputeLargestInitialDecrease < 0) done by angles. */
+    double ang[2];
+    tg__fan_sides(g, v, f_in, prev, f_out, next, ang);
+    /* the path through V itself: a run that converged onto V (both sides at least pi, so no side
+     * is solved) is replaced by V once that is shorter */
+    tg__node vn = tg__node_vertex(v);
+    double through = tg__node_dist(g, prev, &vn, f_in) + tg__node_dist(g, &vn, next, f_out);
+    bool via_v = through < best;
+    if (via_v) best = through;
     for (int side = 0; side < 2; ++side) {
+        if (!(ang[side] >= 0.0 && ang[side] < TG__PI)) continue;
         uint32_t* ps = portals + (size_t)side * cap;
         size_t m = tg__fan_portals(g, v, f_in, prev, f_out, next, side, ps, cap);
         if (m == SIZE_MAX) continue;
+        bool skip = false;
+        for (size_t k = 0; skip_edge && k < m && !skip; ++k) skip = tg__node_on_edge(g, skip_edge, ps[k]);
+        if (skip) continue;
         size_t lo = 0;
         while (lo < m && tg__node_on_edge(g, prev, ps[lo])) lo++;
         while (m > lo && tg__node_on_edge(g, next, ps[m - 1])) m--;
@@ -101,11 +116,16 @@ static tg_status fan_step(tg_geodesic_workspace* ws, relax_out* o, uint32_t v, c
         if (st != TG_OK || !(len < best)) continue;
         best = len, best_side = side, best_lo = lo, best_m = m, best_start = start;
     }
-    if (best_side < 0) return TG_OK;
+    if (best_side < 0) {
+        if (!via_v) return TG_OK;
+        push(g, o, &vn, f_in);
+        *f_next = f_out;
+        *done = true;
+        return TG_OK;
+    }
     const uint32_t* ps = portals + (size_t)best_side * cap;
     const double* t = tv + (size_t)best_side * cap;
     uint32_t f = best_start;
-    tg__node vn = tg__node_vertex(v);
     for (size_t k = best_lo; k < best_m; ++k) {
         uint32_t p = ps[k];
         double tk = t[k - best_lo];
@@ -136,8 +156,9 @@ static uint32_t near_vertex(const tg_geodesic* g, const tg__node* e)
  * coordinate-wise moves stall: each point's optimum given its neighbours moves towards v by a
  * fraction per pass, so a path that should pass v on its other side converges geometrically onto
  * v (t ~ 1e-8 after hundreds of passes) and never gets past it. The run is a path through v's fan
- * on one side, so it is re-solved the way §5 re-solves a vertex: the fan minimization on both
- * sides. Returns with *done false when neither beats the current run. */
+ * on one side, so it is re-solved the way §5 re-solves a vertex: the fan minimization on each
+ * side (on its own side this is also a block step that converges much faster than point-wise
+ * moves). Returns with *done false when neither side beats the run. */
 static tg_status relax_run(tg_geodesic_workspace* ws, relax_out* o, const tg__node* run, size_t count, uint32_t v,
                            const tg__node* next, uint32_t f_in, uint32_t f_out, const tg_geodesic_kernel_options* kopt,
                            bool* done, uint32_t* f_next)
@@ -146,7 +167,7 @@ static tg_status relax_run(tg_geodesic_workspace* ws, relax_out* o, const tg__no
     const tg__node* prev = &o->nodes[o->n - 1];
     double cur = tg__node_dist(g, prev, &run[0], f_in) + tg__node_dist(g, &run[count - 1], next, f_out);
     for (size_t k = 0; k + 1 < count; ++k) cur += tg_v3_dist(tg__node_pos(g, &run[k]), tg__node_pos(g, &run[k + 1]));
-    return fan_step(ws, o, v, next, f_in, f_out, cur, kopt, done, f_next);
+    return fan_step(ws, o, v, next, f_in, f_out, cur, NULL, kopt, done, f_next);
 }
 
 static double path_length(const tg_geodesic* g, const tg__node* nodes, const uint32_t* faces, size_t n)
@@ -212,7 +233,7 @@ static tg_status relax_pass(tg_geodesic_workspace* ws, size_t n, const tg_geodes
         } else if (x->kind == TG__NODE_VERTEX) {
             const tg__node* prev = &o.nodes[o.n - 1];
             double through = tg__node_dist(g, prev, x, f_in) + tg__node_dist(g, x, &nodes[i + 1], f_out);
-            st = fan_step(ws, &o, x->id, &nodes[i + 1], f_in, f_out, through, kopt, &done, &f_next);
+            st = fan_step(ws, &o, x->id, &nodes[i + 1], f_in, f_out, through, NULL, kopt, &done, &f_next);
             if (!done) push(g, &o, x, f_in);
         } else {
             push(g, &o, x, f_in);
@@ -233,14 +254,12 @@ static tg_status relax_pass(tg_geodesic_workspace* ws, size_t n, const tg_geodes
     return TG_OK;
 }
 
-tg_status tg__relax(tg_geodesic_workspace* ws, size_t count, uint32_t max_passes, double rel_tol, int digits,
-                    tg__shorten_result* out)
+tg_status tg__relax(tg_geodesic_workspace* ws, size_t count, uint32_t max_passes, double rel_tol,
+                    const tg_geodesic_kernel_options* kernel, tg__shorten_result* out)
 {
     const tg_geodesic* g = ws->geo;
     memset(out, 0, sizeof *out);
-    tg_geodesic_kernel_options kopt;
-    memset(&kopt, 0, sizeof kopt);
-    kopt.digits = digits;
+    tg_geodesic_kernel_options kopt = *kernel;
     size_t n = count;
     double len = path_length(g, ws->nodes[0].p, ws->segf[0].p, n);
     for (;;) {
@@ -252,9 +271,9 @@ tg_status tg__relax(tg_geodesic_workspace* ws, size_t count, uint32_t max_passes
         if (st != TG_OK) return st;
         out->iterations++;
         double new_len = path_length(g, ws->nodes[0].p, ws->segf[0].p, n);
-        bool done = !(len - new_len > rel_tol * new_len);
+        bool stalled = !(len - new_len > rel_tol * new_len);
         len = new_len;
-        if (done) break;
+        if (stalled) break;
     }
     out->count = n;
     return TG_OK;

@@ -8,6 +8,11 @@
 #include <trigeo.h>
 
 #include "kernels/point_triangle.h"
+#include "spatial/bvh_internal.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 /* ---- the reference: a linear scan over all faces ---- */
 
@@ -427,6 +432,43 @@ static void test_allocation_failures(void)
     soup_free(&s);
 }
 
+/* The tree does not depend on the number of threads that built it. */
+static void test_build_determinism(void)
+{
+    tg_rng r = {4242};
+    soup s = random_soup(&r, 20000, 60000, 0.0, 1.0);
+    tg_mesh* m = soup_mesh(&s);
+    tg_bvh *a = NULL, *b = NULL;
+    tg_bvh_options o = {0};
+    o.winding_data = TG_BVH_WINDING_ALWAYS;
+#ifdef _OPENMP
+    int saved = omp_get_max_threads();
+    omp_set_num_threads(1);
+#endif
+    CHECK_STATUS(tg_bvh_create(m, &o, &a), TG_OK);
+#ifdef _OPENMP
+    omp_set_num_threads(saved > 1 ? saved : 2);
+#endif
+    CHECK_STATUS(tg_bvh_create(m, &o, &b), TG_OK);
+#ifdef _OPENMP
+    omp_set_num_threads(saved);
+#endif
+    if (a && b) {
+        CHECK_EQ_INT(a->node_count, b->node_count);
+        CHECK_EQ_INT(a->leaf_words, b->leaf_words);
+        CHECK_EQ_INT(a->depth, b->depth);
+        if (a->node_count == b->node_count && a->leaf_words == b->leaf_words) {
+            CHECK(memcmp(a->nodes, b->nodes, a->node_count * sizeof *a->nodes) == 0);
+            CHECK(memcmp(a->leaves, b->leaves, a->leaf_words * sizeof *a->leaves) == 0);
+            CHECK(memcmp(a->clusters, b->clusters, a->node_count * TG__BVH_WIDTH * sizeof *a->clusters) == 0);
+        }
+    }
+    tg_bvh_destroy(a);
+    tg_bvh_destroy(b);
+    tg_mesh_destroy(m);
+    soup_free(&s);
+}
+
 int main(void)
 {
     test_random_soups();
@@ -435,5 +477,6 @@ int main(void)
     test_empty_and_errors();
     test_locate();
     test_allocation_failures();
+    test_build_determinism();
     return tg_test_finish();
 }

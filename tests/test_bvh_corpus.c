@@ -264,7 +264,7 @@ static void check_mesh(const char* dir, const char* file, size_t nq)
     tg_closest_hit* batch = malloc(nq * sizeof *batch);
     make_queries(m, nq, 0x5EEDu + r.nf, q);
     int bad = 0;
-#ifdef TG_HAVE_OPENMP
+#ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1)
 #endif
     for (long b = 0; b < (long)((nq + QUERY_BLOCK - 1) / QUERY_BLOCK); ++b) {

@@ -1,11 +1,14 @@
-/* bvh_build.c - builds the 4-wide BVH: binned SAH splits, quantized 64-byte nodes, triangles and
- * vertices copied in tree order.
+/* bvh_build.c - builds the 4-wide BVH: Morton-ordered top levels, binned-SAH subtrees built in
+ * parallel, quantized nodes, leaf blocks with the triangles' vertices, oriented boxes (bvh_obb.c).
  * Based on: MacDonald and Booth 1990, "Heuristics for ray tracing using space subdivision" (surface
  * area heuristic: cost = C_trav + C_isect * (A_L N_L + A_R N_R) / A); Wald 2007, "On fast
  * construction of SAH-based bounding volume hierarchies" §3.2-3.3 (centroid binning into K bins,
- * two sweeps, in-place partition); Dammertz, Hanika, Keller 2008 §2.1 (a 4-wide node is made by
- * repeatedly splitting the child with the largest surface area); Ylitie, Karras, Laine 2017 §3.1
- * (8-bit child bounds relative to the parent with a power-of-two step, rounded outward). */
+ * two sweeps, in-place partition); Lauterbach et al. 2009, "Fast BVH construction on GPUs" §3
+ * (LBVH: primitives sorted by the Morton code of their centroids, a range split at the highest
+ * differing bit) and §4 (hybrid: a cheap top hierarchy over SAH-built subtrees); Dammertz, Hanika,
+ * Keller 2008 §2.1 (a 4-wide node is made by repeatedly splitting the child with the largest
+ * surface area); Ylitie, Karras, Laine 2017 §3.1 (8-bit child bounds relative to the parent with a
+ * power-of-two step, rounded outward). */
 #include "spatial/bvh_internal.h"
 #include "spatial/simd4.h"
 
@@ -15,8 +18,9 @@
 _Static_assert(sizeof(tg__bvh_node) == 128, "a BVH node is two 64-byte cache lines");
 
 #define BIN_COUNT 16
-/* SAH constants relative to one point-triangle kernel call: testing a child box costs about a
- * quarter of a kernel call; a node visit tests four boxes at once. */
+/* SAH constants relative to one point-triangle kernel call. A node visit costs about four kernel
+ * calls, mostly in memory latency (two cache lines fetched, eight boxes tested); measured with
+ * bench/bench_closest, larger leaves also save the duplicated vertices of the leaf blocks. */
 #define SAH_TRAVERSAL 4.0f
 #define SAH_INTERSECT 1.0f
 /* Beyond this many node levels, splits halve the primitive range by index: the depth (and so the
@@ -49,7 +53,7 @@ typedef struct range {
     int bin;     /* primitives with bin index < bin go left */
     float cmin, k; /* binning of the split axis: bin = (int)((c - cmin) * k), clamped */
     float area;  /* half surface area of bounds */
-    box side_bounds[2], side_cbounds[2]; /* left and right of the chosen split, from the bins */
+    box side_bounds[2]; /* left and right of the chosen split, from the bins */
 } range;
 
 typedef struct work {
@@ -93,13 +97,17 @@ static float box_half_area(const box* b)
 /* ---- binning (Wald 2007 §3.2) ---- */
 
 typedef struct bin {
-    box b, c;
+    box b;
     uint32_t count;
 } bin;
 
+/* Two interleaved sets of bins (primitive i goes to set i % 2) halve the chains of dependent
+ * updates when consecutive primitives fall into the same bin; they are merged before the sweep. */
+#define BIN_SETS 2
+
 typedef struct binning {
     float cmin[3], k[3]; /* bin = (int)((c - cmin) * k), clamped */
-    bin bins[3][BIN_COUNT];
+    bin bins[BIN_SETS][3][BIN_COUNT];
 } binning;
 
 static int bin_index(float cmin, float k, float c)
@@ -107,7 +115,6 @@ static int bin_index(float cmin, float k, float c)
     int i = (int)((c - cmin) * k);
     return i < 0 ? 0 : i >= BIN_COUNT ? BIN_COUNT - 1 : i;
 }
-static int bin_of(const binning* g, int axis, float c) { return bin_index(g->cmin[axis], g->k[axis], c); }
 
 static float centroid2(const bprim* p, int axis) { return p->lo[axis] + p->hi[axis]; }
 
@@ -121,26 +128,37 @@ static void bin_range(const builder* bd, const range* r, binning* g)
         g->cmin[a] = clo[a];
         /* (1 - 2^-10) keeps the largest centroid inside the last bin. */
         g->k[a] = ext > 0.0f ? (float)BIN_COUNT * (1.0f - 0x1p-10f) / ext : 0.0f;
-        for (int i = 0; i < BIN_COUNT; ++i) {
-            g->bins[a][i].b = box_empty();
-            g->bins[a][i].c = box_empty();
-            g->bins[a][i].count = 0;
-        }
+        for (int set = 0; set < BIN_SETS; ++set)
+            for (int i = 0; i < BIN_COUNT; ++i) {
+                g->bins[set][a][i].b = box_empty();
+                g->bins[set][a][i].count = 0;
+            }
     }
+    /* the bin index of bin_index() for three axes at once: (c - cmin) * k clamped to [0, BIN_COUNT - 1]
+     * before the truncation, which gives the same integers as clamping after it */
+    const tg_v4 cmin = tg_v4_set(g->cmin[0], g->cmin[1], g->cmin[2], 0.0f), k = tg_v4_set(g->k[0], g->k[1], g->k[2], 0.0f);
+    const tg_v4 zero = tg_v4_set1(0.0f), top = tg_v4_set1((float)(BIN_COUNT - 1));
     for (uint32_t i = r->begin; i < r->end; ++i) {
         const bprim* p = &bd->prims[i];
         tg_v4 lo = tg_v4_loadu(p->lo), hi = tg_v4_loadu(p->hi);
-        tg_v4 c = tg_v4_add(lo, hi);
+        int32_t idx[4];
+        tg_v4_trunc_store(idx, tg_v4_min(tg_v4_max(tg_v4_mul(tg_v4_sub(tg_v4_add(lo, hi), cmin), k), zero), top));
+        bin(*set)[BIN_COUNT] = g->bins[(i - r->begin) & (BIN_SETS - 1)];
         for (int a = 0; a < 3; ++a) {
-            bin* b = &g->bins[a][bin_of(g, a, centroid2(p, a))];
+            bin* b = &set[a][idx[a]];
             box_grow(&b->b, lo, hi);
-            box_grow(&b->c, c, c);
             b->count++;
         }
     }
+    for (int set = 1; set < BIN_SETS; ++set)
+        for (int a = 0; a < 3; ++a)
+            for (int i = 0; i < BIN_COUNT; ++i) {
+                box_merge(&g->bins[0][a][i].b, &g->bins[set][a][i].b);
+                g->bins[0][a][i].count += g->bins[set][a][i].count;
+            }
 }
 
-/* Chooses leaf or split for r (sets decision, axis, bin). */
+/* Chooses leaf or split for r (sets decision, axis, bin, and the sides' boxes). */
 static void decide(const builder* bd, range* r, uint32_t depth, binning* g)
 {
     uint32_t n = r->end - r->begin;
@@ -159,19 +177,20 @@ static void decide(const builder* bd, range* r, uint32_t depth, binning* g)
     float best = INFINITY;
     for (int a = 0; a < 3; ++a) {
         if (g->k[a] == 0.0f) continue;
+        const bin* bins = g->bins[0][a];
         float right_cost[BIN_COUNT];
         box acc = box_empty();
         uint32_t cnt = 0;
         for (int i = BIN_COUNT - 1; i > 0; --i) {
-            box_merge(&acc, &g->bins[a][i].b);
-            cnt += g->bins[a][i].count;
+            box_merge(&acc, &bins[i].b);
+            cnt += bins[i].count;
             right_cost[i] = cnt ? box_half_area(&acc) * (float)cnt : INFINITY;
         }
         acc = box_empty();
         cnt = 0;
         for (int i = 0; i < BIN_COUNT - 1; ++i) {
-            box_merge(&acc, &g->bins[a][i].b);
-            cnt += g->bins[a][i].count;
+            box_merge(&acc, &bins[i].b);
+            cnt += bins[i].count;
             if (!cnt || cnt == n) continue;
             float cost = box_half_area(&acc) * (float)cnt + right_cost[i + 1];
             if (cost < best) {
@@ -185,15 +204,8 @@ static void decide(const builder* bd, range* r, uint32_t depth, binning* g)
         int a = r->axis;
         r->cmin = g->cmin[a];
         r->k = g->k[a];
-        for (int side = 0; side < 2; ++side) {
-            r->side_bounds[side] = box_empty();
-            r->side_cbounds[side] = box_empty();
-        }
-        for (int i = 0; i < BIN_COUNT; ++i) {
-            int side = i >= r->bin;
-            box_merge(&r->side_bounds[side], &g->bins[a][i].b);
-            box_merge(&r->side_cbounds[side], &g->bins[a][i].c);
-        }
+        r->side_bounds[0] = r->side_bounds[1] = box_empty();
+        for (int i = 0; i < BIN_COUNT; ++i) box_merge(&r->side_bounds[i >= r->bin], &g->bins[0][a][i].b);
     }
     float split_cost = SAH_TRAVERSAL + SAH_INTERSECT * best / r->area;
     float leaf_cost = SAH_INTERSECT * (float)n;
@@ -203,12 +215,12 @@ static void decide(const builder* bd, range* r, uint32_t depth, binning* g)
         r->decision = DECIDE_SPLIT; /* axis -1 (no usable plane): split at the middle index */
 }
 
-static void range_bounds(const builder* bd, range* r)
+static void range_bounds(const bprim* prims, range* r)
 {
     r->bounds = box_empty();
     r->cbounds = box_empty();
     for (uint32_t i = r->begin; i < r->end; ++i) {
-        tg_v4 lo = tg_v4_loadu(bd->prims[i].lo), hi = tg_v4_loadu(bd->prims[i].hi);
+        tg_v4 lo = tg_v4_loadu(prims[i].lo), hi = tg_v4_loadu(prims[i].hi);
         tg_v4 c = tg_v4_add(lo, hi);
         box_grow(&r->bounds, lo, hi);
         box_grow(&r->cbounds, c, c);
@@ -216,35 +228,39 @@ static void range_bounds(const builder* bd, range* r)
 }
 
 /* Splits r (decision DECIDE_SPLIT) into left and right, partitioning the primitives in place with
- * the same float binning arithmetic that counted them. */
+ * the same float binning arithmetic that counted them; the sides' boxes come from the bins, their
+ * centroid bounds are gathered on the way. */
 static void apply_split(builder* bd, const range* r, range* left, range* right)
 {
     uint32_t mid;
+    left->begin = r->begin, right->end = r->end;
     if (r->axis < 0) {
         mid = r->begin + (r->end - r->begin) / 2;
-    } else {
-        uint32_t i = r->begin, j = r->end;
-        int a = r->axis;
-        while (i < j) {
-            if (bin_index(r->cmin, r->k, centroid2(&bd->prims[i], a)) < r->bin) {
-                ++i;
-            } else {
-                bprim t = bd->prims[i];
-                bd->prims[i] = bd->prims[--j];
-                bd->prims[j] = t;
-            }
+        left->end = mid, right->begin = mid;
+        range_bounds(bd->prims, left);
+        range_bounds(bd->prims, right);
+        return;
+    }
+    box cl = box_empty(), cr = box_empty();
+    uint32_t i = r->begin, j = r->end;
+    int a = r->axis;
+    bprim* p = bd->prims;
+    while (i < j) {
+        tg_v4 c = tg_v4_add(tg_v4_loadu(p[i].lo), tg_v4_loadu(p[i].hi));
+        if (bin_index(r->cmin, r->k, centroid2(&p[i], a)) < r->bin) {
+            box_grow(&cl, c, c);
+            ++i;
+        } else {
+            box_grow(&cr, c, c);
+            bprim t = p[i];
+            p[i] = p[--j];
+            p[j] = t;
         }
-        mid = i;
     }
-    left->begin = r->begin, left->end = mid;
-    right->begin = mid, right->end = r->end;
-    if (r->axis < 0) {
-        range_bounds(bd, left);
-        range_bounds(bd, right);
-    } else {
-        left->bounds = r->side_bounds[0], left->cbounds = r->side_cbounds[0];
-        right->bounds = r->side_bounds[1], right->cbounds = r->side_cbounds[1];
-    }
+    mid = i;
+    left->end = mid, right->begin = mid;
+    left->bounds = r->side_bounds[0], left->cbounds = cl;
+    right->bounds = r->side_bounds[1], right->cbounds = cr;
 }
 
 /* ---- nodes ---- */
@@ -270,6 +286,14 @@ static bool nodes_reserve(builder* bd, size_t extra)
     bd->nodes = nodes;
     bd->node_capacity = cap;
     return true;
+}
+
+static void builder_free(builder* bd)
+{
+    tg__bvh_big_free(bd->a, bd->nodes_raw, bd->nodes_raw_bytes, bd->nodes_mapped);
+    bd->nodes_raw = NULL;
+    bd->nodes = NULL;
+    bd->node_count = bd->node_capacity = 0;
 }
 
 /* Quantizes the children's boxes relative to the union (Ylitie et al. 2017 §3.1). */
@@ -360,24 +384,24 @@ static bool build_node(builder* bd, const work* w, work* stack, size_t* sp, binn
     return true;
 }
 
-/* Leaves with more primitives than max_leaf cannot happen: a range is a leaf only if it fits. */
-static tg_status build_tree(builder* bd, uint32_t face_count)
+/* A binned-SAH subtree over r (bounds set) whose root is node 0 of bd, `depth` levels below the
+ * tree's root. Leaves with more primitives than max_leaf cannot happen: a range is a leaf only if
+ * it fits. */
+static tg_status sah_build(builder* bd, const range* r, uint32_t depth)
 {
     binning* g = tg__alloc(bd->a, sizeof *g);
     work* stack = tg__alloc_array(bd->a, (size_t)4 * (MAX_DEPTH + 2), sizeof *stack);
     tg_status st = TG_OK;
-    if (!g || !stack || !nodes_reserve(bd, (size_t)face_count / 2 + 1)) {
+    if (!g || !stack || !nodes_reserve(bd, (size_t)(r->end - r->begin) / 4 + 1)) {
         st = TG_ERR_OUT_OF_MEMORY;
         goto done;
     }
     size_t sp = 0;
     work* root = &stack[sp++];
     root->node = 0;
-    root->depth = 0;
-    root->r.begin = 0;
-    root->r.end = face_count;
-    range_bounds(bd, &root->r);
-    decide(bd, &root->r, 0, g);
+    root->depth = depth;
+    root->r = *r;
+    decide(bd, &root->r, depth, g);
     bd->node_count = 1;
     while (sp > 0) {
         work w = stack[--sp];
@@ -389,6 +413,235 @@ static tg_status build_tree(builder* bd, uint32_t face_count)
 done:
     tg__free(bd->a, stack);
     tg__free(bd->a, g);
+    return st;
+}
+
+/* ---- top levels by Morton order, subtrees in parallel ---- */
+
+/* Spreads the low 10 bits of x to every third bit. */
+static uint32_t spread3(uint32_t x)
+{
+    x &= 0x3FF;
+    x = (x | x << 16) & 0x030000FF;
+    x = (x | x << 8) & 0x0300F00F;
+    x = (x | x << 4) & 0x030C30C3;
+    x = (x | x << 2) & 0x09249249;
+    return x;
+}
+
+/* Sorts the primitives by the 30-bit Morton key of their centroids in r's centroid box (stable
+ * LSD radix sort, 3 passes of 10 bits); keys[] receives the sorted keys. */
+static tg_status morton_sort(builder* bd, const range* r, uint32_t* keys)
+{
+    uint32_t n = r->end;
+    const tg_allocator* a = bd->a;
+    uint64_t* kv = tg__alloc_array(a, n, sizeof *kv);
+    uint64_t* tmp = tg__alloc_array(a, n, sizeof *tmp);
+    bprim* sorted = tg__alloc_array(a, n, sizeof *sorted);
+    if (!kv || !tmp || !sorted) {
+        tg__free(a, kv);
+        tg__free(a, tmp);
+        tg__free(a, sorted);
+        return TG_ERR_OUT_OF_MEMORY;
+    }
+    float clo[4], chi[4], k[3];
+    tg_v4_storeu(clo, r->cbounds.lo);
+    tg_v4_storeu(chi, r->cbounds.hi);
+    for (int d = 0; d < 3; ++d) k[d] = chi[d] > clo[d] ? 1023.0f / (chi[d] - clo[d]) : 0.0f;
+    const bprim* p = bd->prims;
+#ifdef TG_HAVE_OPENMP
+#pragma omp parallel for schedule(static)
+#endif
+    for (long i = 0; i < (long)n; ++i) {
+        uint32_t c[3];
+        for (int d = 0; d < 3; ++d) {
+            float t = (centroid2(&p[i], d) - clo[d]) * k[d];
+            c[d] = t <= 0.0f ? 0 : t >= 1023.0f ? 1023 : (uint32_t)t;
+        }
+        kv[i] = (uint64_t)(spread3(c[0]) | spread3(c[1]) << 1 | spread3(c[2]) << 2) << 32 | (uint64_t)i;
+    }
+    uint32_t hist[1024];
+    for (int pass = 0; pass < 3; ++pass) {
+        int shift = 32 + 10 * pass;
+        memset(hist, 0, sizeof hist);
+        for (uint32_t i = 0; i < n; ++i) hist[kv[i] >> shift & 1023]++;
+        uint32_t sum = 0;
+        for (int b = 0; b < 1024; ++b) {
+            uint32_t h = hist[b];
+            hist[b] = sum;
+            sum += h;
+        }
+        for (uint32_t i = 0; i < n; ++i) tmp[hist[kv[i] >> shift & 1023]++] = kv[i];
+        uint64_t* t = kv;
+        kv = tmp;
+        tmp = t;
+    }
+#ifdef TG_HAVE_OPENMP
+#pragma omp parallel for schedule(static)
+#endif
+    for (long i = 0; i < (long)n; ++i) {
+        sorted[i] = p[(uint32_t)kv[i]];
+        keys[i] = (uint32_t)(kv[i] >> 32);
+    }
+    memcpy(bd->prims, sorted, (size_t)n * sizeof *sorted);
+    tg__free(a, sorted);
+    tg__free(a, tmp);
+    tg__free(a, kv);
+    return TG_OK;
+}
+
+/* Where [b, e) of sorted keys splits at its highest differing bit (the middle if all are equal). */
+static uint32_t morton_split(const uint32_t* keys, uint32_t b, uint32_t e)
+{
+    uint32_t x = keys[b] ^ keys[e - 1];
+    if (!x) return b + (e - b) / 2;
+    uint32_t bit = 31;
+    while (!(x >> bit & 1)) --bit;
+    uint32_t lo = b, hi = e - 1;
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (keys[mid] >> bit & 1)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return lo;
+}
+
+/* A subtree built by the binned SAH, hanging from slot `slot` of top node `parent`. */
+typedef struct subtree {
+    range r;
+    uint32_t parent, slot, depth;
+    builder bd;
+    tg_status status;
+} subtree;
+
+/* Ranges above this size are split by Morton order (cheap, and they are few); below, a subtree is
+ * built by the binned SAH, its primitives fitting in the L2 cache. */
+#define SUBTREE_MAX 4096
+
+typedef struct top_work {
+    uint32_t node, depth, begin, end;
+} top_work;
+
+/* The top levels: 4-wide nodes whose children are Morton halves (the largest opened first), down
+ * to ranges of at most SUBTREE_MAX primitives, which become subtrees (or leaves if they fit). */
+static tg_status build_top(builder* top, const uint32_t* keys, uint32_t n, subtree** out, size_t* out_count)
+{
+    size_t cap = 64, count = 0;
+    subtree* tasks = tg__alloc_array(top->a, cap, sizeof *tasks);
+    top_work* stack = tg__alloc_array(top->a, (size_t)4 * 40, sizeof *stack);
+    tg_status st = tasks && stack && nodes_reserve(top, 64) ? TG_OK : TG_ERR_OUT_OF_MEMORY;
+    size_t sp = 0;
+    if (st == TG_OK) {
+        stack[sp++] = (top_work){0, 0, 0, n};
+        top->node_count = 1;
+    }
+    while (st == TG_OK && sp > 0) {
+        top_work w = stack[--sp];
+        range cand[TG__BVH_WIDTH];
+        int nc = 1;
+        cand[0].begin = w.begin, cand[0].end = w.end;
+        for (; nc < TG__BVH_WIDTH; ++nc) {
+            int pick = -1;
+            for (int s = 0; s < nc; ++s)
+                if (cand[s].end - cand[s].begin > SUBTREE_MAX &&
+                    (pick < 0 || cand[s].end - cand[s].begin > cand[pick].end - cand[pick].begin))
+                    pick = s;
+            if (pick < 0) break;
+            uint32_t mid = morton_split(keys, cand[pick].begin, cand[pick].end);
+            cand[nc].begin = mid, cand[nc].end = cand[pick].end;
+            cand[pick].end = mid;
+        }
+        int inner = 0;
+        for (int s = 0; s < nc; ++s) {
+            range_bounds(top->prims, &cand[s]);
+            inner += cand[s].end - cand[s].begin > SUBTREE_MAX;
+        }
+        if (!nodes_reserve(top, (size_t)inner) || (count + TG__BVH_WIDTH > cap && !(cap *= 2, tasks = tg__realloc(top->a, tasks, cap * sizeof *tasks)))) {
+            st = TG_ERR_OUT_OF_MEMORY;
+            break;
+        }
+        tg__bvh_node* node = &top->nodes[w.node];
+        memset(node, 0, sizeof *node);
+        quantize(node, cand, nc);
+        if (w.depth + 1 > top->depth) top->depth = w.depth + 1;
+        for (int s = 0; s < nc; ++s) {
+            uint32_t size = cand[s].end - cand[s].begin;
+            if (size <= top->max_leaf) {
+                node->child[s] = cand[s].begin;
+                node->leaf_count[s] = (uint8_t)size;
+            } else if (size <= SUBTREE_MAX) {
+                subtree* t = &tasks[count++];
+                memset(t, 0, sizeof *t);
+                t->r = cand[s];
+                t->parent = w.node, t->slot = (uint32_t)s, t->depth = w.depth + 1;
+                node->child[s] = 0; /* patched once the subtree has its place */
+            } else {
+                node->child[s] = (uint32_t)top->node_count++;
+                stack[sp++] = (top_work){node->child[s], w.depth + 1, cand[s].begin, cand[s].end};
+            }
+        }
+    }
+    tg__free(top->a, stack);
+    if (st != TG_OK) {
+        tg__free(top->a, tasks);
+        return st;
+    }
+    *out = tasks;
+    *out_count = count;
+    return TG_OK;
+}
+
+/* Builds the whole tree into bd (prims, max_leaf and allocator set): Morton top levels, binned-SAH
+ * subtrees in parallel, then one node array: top nodes first, then each subtree's nodes in order,
+ * so that the result does not depend on the number of threads. */
+static tg_status build_tree(builder* bd, uint32_t n)
+{
+    range all;
+    all.begin = 0, all.end = n;
+    range_bounds(bd->prims, &all);
+    if (n <= SUBTREE_MAX) return sah_build(bd, &all, 0);
+    uint32_t* keys = tg__alloc_array(bd->a, n, sizeof *keys);
+    subtree* tasks = NULL;
+    size_t task_count = 0;
+    tg_status st = keys ? morton_sort(bd, &all, keys) : TG_ERR_OUT_OF_MEMORY;
+    if (st == TG_OK) st = build_top(bd, keys, n, &tasks, &task_count);
+    tg__free(bd->a, keys);
+    if (st != TG_OK) return st;
+    long tc = (long)task_count;
+#ifdef TG_HAVE_OPENMP
+#pragma omp parallel for schedule(dynamic, 1)
+#endif
+    for (long t = 0; t < tc; ++t) {
+        subtree* s = &tasks[t];
+        s->bd.a = bd->a;
+        s->bd.prims = bd->prims;
+        s->bd.max_leaf = bd->max_leaf;
+        s->status = sah_build(&s->bd, &s->r, s->depth);
+    }
+    size_t total = bd->node_count;
+    for (size_t t = 0; t < task_count; ++t) {
+        if (tasks[t].status != TG_OK) st = tasks[t].status;
+        total += tasks[t].bd.node_count;
+    }
+    if (st == TG_OK && !nodes_reserve(bd, total - bd->node_count)) st = TG_ERR_OUT_OF_MEMORY;
+    for (size_t t = 0; t < task_count; ++t) {
+        builder* sb = &tasks[t].bd;
+        if (st == TG_OK) {
+            uint32_t base = (uint32_t)bd->node_count;
+            tg__bvh_node* dst = bd->nodes + base;
+            memcpy(dst, sb->nodes, sb->node_count * sizeof *dst);
+            for (size_t i = 0; i < sb->node_count; ++i)
+                for (int s = 0; s < dst[i].child_count; ++s)
+                    if (!dst[i].leaf_count[s]) dst[i].child[s] += base;
+            bd->nodes[tasks[t].parent].child[tasks[t].slot] = base;
+            bd->node_count += sb->node_count;
+            if (sb->depth > bd->depth) bd->depth = sb->depth;
+        }
+        builder_free(sb);
+    }
+    tg__free(bd->a, tasks);
     return st;
 }
 
@@ -409,44 +662,60 @@ static uint32_t leaf_vertices(const tg_mesh* m, const bprim* bp, uint32_t begin,
     return u;
 }
 
-/* Writes every leaf block in depth-first order (a slot's leaves, its subtree's included, are
- * consecutive), points the leaf slots at them, then builds the oriented boxes, which need each
- * slot's range of leaves. */
-static tg_status make_leaves(tg_bvh* bvh, const bprim* bp)
+/* Writes a leaf block at `word` for primitives [begin, begin + k). */
+static void write_leaf(tg_bvh* bvh, const bprim* bp, uint32_t begin, uint32_t k, size_t word)
 {
     const tg_mesh* m = bvh->mesh;
-    const tg_allocator* a = &bvh->allocator;
     uint32_t vert[3 * TG__BVH_MAX_LEAF];
     uint8_t corner[3 * TG__BVH_MAX_LEAF];
-    size_t words = 0, leaves = 0, slots = bvh->node_count * TG__BVH_WIDTH;
-    for (size_t n = 0; n < bvh->node_count; ++n) {
-        const tg__bvh_node* node = &bvh->nodes[n];
-        for (int s = 0; s < node->child_count; ++s) {
-            uint32_t k = node->leaf_count[s];
-            if (!k) continue;
-            uint32_t u = leaf_vertices(m, bp, node->child[s], k, vert, corner);
-            words += (tg__bvh_leaf_header(k) + 24 * (size_t)u) / 8;
-            ++leaves;
-        }
-    }
-    if (words >= (size_t)UINT32_MAX) return TG_ERR_UNSUPPORTED;
-    bvh->leaves = tg__bvh_big_alloc(a, (words ? words : 1) * sizeof *bvh->leaves, &bvh->leaves_mapped);
-    bvh->leaf_words = words;
-    uint32_t* leaf_word = tg__alloc_array(a, leaves + 1, sizeof *leaf_word);
-    uint8_t* leaf_u = tg__alloc_array(a, leaves + 1, 1);
+    uint32_t u = leaf_vertices(m, bp, begin, k, vert, corner);
+    unsigned char* base = (unsigned char*)(bvh->leaves + word);
+    uint32_t* face = (uint32_t*)(void*)base;
+    for (uint32_t i = 0; i < k; ++i) face[i] = bp[begin + i].face;
+    memset(base + 4 * (size_t)k, 0, tg__bvh_leaf_header(k) - 4 * (size_t)k);
+    memcpy(base + 4 * (size_t)k, corner, 3 * (size_t)k);
+    double* v = (double*)(void*)(base + tg__bvh_leaf_header(k));
+    for (uint32_t j = 0; j < u; ++j) memcpy(v + 3 * (size_t)j, m->xyz + 3 * (size_t)vert[j], 3 * sizeof(double));
+}
+
+/* Writes every leaf block in depth-first order (a slot's leaves, its subtree's included, are
+ * consecutive), points the leaf slots at them, then builds the oriented boxes, which need each
+ * slot's range of leaves. The blocks' sizes and contents are computed in parallel; only the
+ * depth-first walk that places them is sequential. */
+static tg_status make_leaves(tg_bvh* bvh, const bprim* bp)
+{
+    const tg_allocator* a = &bvh->allocator;
+    size_t slots = bvh->node_count * TG__BVH_WIDTH;
+    long nodes = (long)bvh->node_count;
+    uint8_t* slot_u = tg__alloc_array(a, slots, 1);
+    uint32_t* slot_word = tg__alloc_array(a, slots, sizeof *slot_word);
     uint32_t* first = tg__alloc_array(a, slots, sizeof *first);
     uint32_t* end = tg__alloc_array(a, slots, sizeof *end);
+    uint32_t* leaf_word = tg__alloc_array(a, slots + 1, sizeof *leaf_word);
+    uint8_t* leaf_u = tg__alloc_array(a, slots + 1, 1);
     struct frame {
         uint32_t node, slot, parent_slot;
     }* stack = tg__alloc_array(a, (size_t)bvh->depth + 2, sizeof *stack);
     tg_status st = TG_ERR_OUT_OF_MEMORY;
-    if (!bvh->leaves || !leaf_word || !leaf_u || !first || !end || !stack) goto done;
+    if (!slot_u || !slot_word || !first || !end || !leaf_word || !leaf_u || !stack) goto done;
+#ifdef TG_HAVE_OPENMP
+#pragma omp parallel for schedule(dynamic, 256)
+#endif
+    for (long n = 0; n < nodes; ++n) {
+        uint32_t vert[3 * TG__BVH_MAX_LEAF];
+        uint8_t corner[3 * TG__BVH_MAX_LEAF];
+        const tg__bvh_node* node = &bvh->nodes[n];
+        for (int s = 0; s < TG__BVH_WIDTH; ++s) {
+            uint32_t k = s < node->child_count ? node->leaf_count[s] : 0;
+            slot_u[TG__BVH_WIDTH * n + s] = k ? (uint8_t)leaf_vertices(bvh->mesh, bp, node->child[s], k, vert, corner) : 0;
+        }
+    }
     size_t at = 0;
     uint32_t leaf = 0, sp = 0;
     stack[sp++] = (struct frame){0, 0, UINT32_MAX};
     while (sp > 0) {
         struct frame* fr = &stack[sp - 1];
-        tg__bvh_node* node = &bvh->nodes[fr->node];
+        const tg__bvh_node* node = &bvh->nodes[fr->node];
         if (fr->slot == node->child_count) {
             if (fr->parent_slot != UINT32_MAX) end[fr->parent_slot] = leaf;
             --sp;
@@ -458,27 +727,41 @@ static tg_status make_leaves(tg_bvh* bvh, const bprim* bp)
             stack[sp++] = (struct frame){node->child[s], 0, id};
             continue;
         }
-        uint32_t begin = node->child[s], u = leaf_vertices(m, bp, begin, k, vert, corner);
-        unsigned char* base = (unsigned char*)(bvh->leaves + at);
-        uint32_t* face = (uint32_t*)(void*)base;
-        for (uint32_t i = 0; i < k; ++i) face[i] = bp[begin + i].face;
-        memset(base + 4 * (size_t)k, 0, tg__bvh_leaf_header(k) - 4 * (size_t)k);
-        memcpy(base + 4 * (size_t)k, corner, 3 * (size_t)k);
-        double* v = (double*)(void*)(base + tg__bvh_leaf_header(k));
-        for (uint32_t j = 0; j < u; ++j) memcpy(v + 3 * (size_t)j, m->xyz + 3 * (size_t)vert[j], 3 * sizeof(double));
-        node->child[s] = (uint32_t)at;
+        if (at + (tg__bvh_leaf_header(k) + 24 * (size_t)slot_u[id]) / 8 >= (size_t)UINT32_MAX) {
+            st = TG_ERR_UNSUPPORTED;
+            goto done;
+        }
+        slot_word[id] = (uint32_t)at;
         leaf_word[leaf] = (uint32_t)(at + tg__bvh_leaf_header(k) / 8); /* its vertices */
-        leaf_u[leaf] = (uint8_t)u;
+        leaf_u[leaf] = slot_u[id];
         end[id] = ++leaf;
-        at += (tg__bvh_leaf_header(k) + 24 * (size_t)u) / 8;
+        at += (tg__bvh_leaf_header(k) + 24 * (size_t)slot_u[id]) / 8;
+    }
+    bvh->leaves = tg__bvh_big_alloc(a, (at ? at : 1) * sizeof *bvh->leaves, &bvh->leaves_mapped);
+    if (!bvh->leaves) goto done;
+    bvh->leaf_words = at;
+#ifdef TG_HAVE_OPENMP
+#pragma omp parallel for schedule(dynamic, 256)
+#endif
+    for (long n = 0; n < nodes; ++n) {
+        tg__bvh_node* node = &bvh->nodes[n];
+        for (int s = 0; s < node->child_count; ++s) {
+            uint32_t k = node->leaf_count[s];
+            if (!k) continue;
+            size_t id = TG__BVH_WIDTH * (size_t)n + (size_t)s;
+            write_leaf(bvh, bp, node->child[s], k, slot_word[id]);
+            node->child[s] = slot_word[id];
+        }
     }
     st = tg__bvh_build_obbs(bvh, first, end, leaf_word, leaf_u);
 done:
     tg__free(a, stack);
-    tg__free(a, end);
-    tg__free(a, first);
     tg__free(a, leaf_u);
     tg__free(a, leaf_word);
+    tg__free(a, end);
+    tg__free(a, first);
+    tg__free(a, slot_word);
+    tg__free(a, slot_u);
     return st;
 }
 
@@ -501,7 +784,11 @@ static void choose_frame(tg_bvh* bvh)
 static void face_boxes(const tg_bvh* bvh, bprim* bp)
 {
     const tg_mesh* m = bvh->mesh;
-    for (size_t f = 0; f < m->face_count; ++f) {
+    long count = (long)m->face_count;
+#ifdef TG_HAVE_OPENMP
+#pragma omp parallel for schedule(static)
+#endif
+    for (long f = 0; f < count; ++f) {
         bprim* p = &bp[f];
         double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
         for (int c = 0; c < 3; ++c) {

@@ -93,9 +93,16 @@ static void frame(const moments* mo, double R[3][3])
     }
     double ctt = t[0] * ct[0] + t[1] * ct[1] + t[2] * ct[2], cww = w[0] * cw[0] + w[1] * cw[1] + w[2] * cw[2];
     double ctw = t[0] * cw[0] + t[1] * cw[1] + t[2] * cw[2];
-    double th = 0.5 * atan2(2.0 * ctw, ctt - cww), cs = cos(th), sn = sin(th);
+    /* major eigenvector of [[ctt, ctw], [ctw, cww]] in closed form, from the better-conditioned row */
+    double half = 0.5 * (ctt - cww), lam = 0.5 * (ctt + cww) + sqrt(half * half + ctw * ctw), e0, e1;
+    if (ctw == 0.0)
+        e0 = ctt >= cww ? 1.0 : 0.0, e1 = ctt >= cww ? 0.0 : 1.0;
+    else if (ctt >= cww)
+        e0 = lam - cww, e1 = ctw;
+    else
+        e0 = ctw, e1 = lam - ctt;
     for (int k = 0; k < 3; ++k) {
-        R[0][k] = cs * t[k] + sn * w[k];
+        R[0][k] = e0 * t[k] + e1 * w[k];
         R[2][k] = n[k];
     }
     normalize3(R[0]);
@@ -194,49 +201,62 @@ static bool slot_intervals(const tg_bvh* bvh, tg__bvh_node* node, int s, uint32_
     return true;
 }
 
+/* Children with more leaves than this keep only their axis-aligned box: near the root, clusters
+ * are curved or closed and an oriented box gains little, while its intervals would cost a pass over
+ * all their vertices per level. */
+#define OBB_MAX_LEAVES 512
+
 tg_status tg__bvh_build_obbs(tg_bvh* bvh, const uint32_t* leaf_first, const uint32_t* leaf_end,
                              const uint32_t* leaf_vertex_word, const uint8_t* leaf_u)
 {
     const tg_allocator* a = &bvh->allocator;
     moments* node_mo = tg__alloc_array(a, bvh->node_count + 1, sizeof *node_mo);
     if (!node_mo) return TG_ERR_OUT_OF_MEMORY;
-    /* frames bottom-up: children have larger indices than their parent */
+    /* moments bottom-up: children have larger indices than their parent */
     for (size_t n = bvh->node_count; n-- > 0;) {
-        tg__bvh_node* node = &bvh->nodes[n];
+        const tg__bvh_node* node = &bvh->nodes[n];
         memset(&node_mo[n], 0, sizeof node_mo[n]);
-        for (int s = 0; s < TG__BVH_WIDTH; ++s) {
-            if (s >= node->child_count) {
-                disable_slot(node, s);
-                continue;
-            }
-            moments mo;
+        for (int s = 0; s < node->child_count; ++s) {
             if (node->leaf_count[s]) {
+                moments mo;
                 uint32_t leaf = leaf_first[TG__BVH_WIDTH * n + (size_t)s];
                 uint32_t word = leaf_vertex_word[leaf] - (uint32_t)(tg__bvh_leaf_header(node->leaf_count[s]) / 8);
                 leaf_moments(bvh, word, node->leaf_count[s], leaf_u[leaf], &mo);
+                add_moments(&node_mo[n], &mo);
             } else {
-                mo = node_mo[node->child[s]];
+                add_moments(&node_mo[n], &node_mo[node->child[s]]);
             }
-            add_moments(&node_mo[n], &mo);
-            double R[3][3];
-            int8_t q[4];
-            frame(&mo, R);
-            quaternion(R, q);
-            for (int k = 0; k < 4; ++k) node->quat[k][s] = q[k];
         }
     }
-    tg__free(a, node_mo);
-    /* intervals: independent per node */
+    /* frames and intervals: independent per node */
     long count = (long)bvh->node_count;
 #ifdef TG_HAVE_OPENMP
 #pragma omp parallel for schedule(dynamic, 64)
 #endif
     for (long n = 0; n < count; ++n) {
         tg__bvh_node* node = &bvh->nodes[n];
-        for (int s = 0; s < node->child_count; ++s) {
+        for (int s = 0; s < TG__BVH_WIDTH; ++s) {
             size_t id = TG__BVH_WIDTH * (size_t)n + (size_t)s;
+            if (s >= node->child_count || leaf_end[id] - leaf_first[id] > OBB_MAX_LEAVES) {
+                disable_slot(node, s);
+                continue;
+            }
+            moments mo;
+            if (node->leaf_count[s]) {
+                uint32_t leaf = leaf_first[id];
+                uint32_t word = leaf_vertex_word[leaf] - (uint32_t)(tg__bvh_leaf_header(node->leaf_count[s]) / 8);
+                leaf_moments(bvh, word, node->leaf_count[s], leaf_u[leaf], &mo);
+            } else {
+                mo = node_mo[node->child[s]];
+            }
+            double R[3][3];
+            int8_t q[4];
+            frame(&mo, R);
+            quaternion(R, q);
+            for (int k = 0; k < 4; ++k) node->quat[k][s] = q[k];
             if (!slot_intervals(bvh, node, s, leaf_first[id], leaf_end[id], leaf_vertex_word, leaf_u)) disable_slot(node, s);
         }
     }
+    tg__free(a, node_mo);
     return TG_OK;
 }

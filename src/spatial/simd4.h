@@ -42,6 +42,8 @@ static inline tg_v4 tg_v4_from_i8(const int8_t* q)
     return _mm_cvtepi32_ps(v);
 }
 static inline tg_v4 tg_v4_abs(tg_v4 a) { return _mm_and_ps(a, _mm_castsi128_ps(_mm_set1_epi32(0x7FFFFFFF))); }
+/* Lanes converted to int32 with truncation (as a C cast), stored to out[4]. */
+static inline void tg_v4_trunc_store(int32_t* out, tg_v4 a) { _mm_storeu_si128((__m128i*)(void*)out, _mm_cvttps_epi32(a)); }
 /* Bit i set when lane i of a is <= lane i of b. */
 static inline int tg_v4_le_mask(tg_v4 a, tg_v4 b) { return _mm_movemask_ps(_mm_cmple_ps(a, b)); }
 #else
@@ -65,6 +67,10 @@ static inline tg_v4 tg_v4_max(tg_v4 a, tg_v4 b) { TG_V4_LANES_(a.v[i] > b.v[i] ?
 static inline tg_v4 tg_v4_from_u8(const uint8_t* q) { TG_V4_LANES_((float)q[i]); }
 static inline tg_v4 tg_v4_from_i8(const int8_t* q) { TG_V4_LANES_((float)q[i]); }
 static inline tg_v4 tg_v4_abs(tg_v4 a) { TG_V4_LANES_(a.v[i] < 0.0f ? -a.v[i] : a.v[i]); }
+static inline void tg_v4_trunc_store(int32_t* out, tg_v4 a)
+{
+    for (int i = 0; i < 4; ++i) out[i] = (int32_t)a.v[i];
+}
 #undef TG_V4_LANES_
 static inline int tg_v4_le_mask(tg_v4 a, tg_v4 b)
 {

@@ -6,11 +6,15 @@
  *   Lemma 3.4; seed 002 §2 (the two-triangle configuration of an edge point). */
 #include "geodesic/geodesic_internal.h"
 
-/* A neighbour closer to the crossing than this is merged with it (its direction is noise): the
- * crossings where a path runs through a zero-area face coincide up to rounding. The bound is
- * relative: 1e-9 of the crossed edge's length, plus the rounding of coordinates of that size
- * (64 ulps of the position's magnitude). */
-#define MERGE_REL_EDGE 1e-9
+/* A neighbour closer to the crossing than this is merged with it and the angle is taken between
+ * the nearest points beyond, through the unfolding of the faces in between. A crossing is stored
+ * as (edge, t), so its position carries an absolute rounding error of about eps times the edge
+ * length; across a segment of length d that is an angle of eps |e| / d. Merging below 1e-5 of the
+ * local edge length (the longest edge of the two faces at the crossing) keeps that noise near
+ * 2e-11 rad, under the 1e-10 certificate, while a real bend inside such a cluster still shows in
+ * the angle between the points beyond it. The position term (64 ulps of its magnitude) covers
+ * coordinates far from the origin; crossings through zero-area faces coincide and merge too. */
+#define MERGE_REL_EDGE 1e-5
 #define MERGE_REL_POS (64.0 * 2.220446049250313e-16)
 
 /* Longest run of merged crossings walked on either side (they are rare and short). */
@@ -106,7 +110,14 @@ static double crossing_defect(const tg_geodesic* g, const tg__node* nodes, const
     const tg__node* x = &nodes[i];
     uint32_t h = x->id;
     tg_vec3 xp = tg__node_pos(g, x);
-    double elen = tg_v3_dist(tg__gpos(g, g->tri[h]), tg__gpos(g, g->tri[tg_halfedge_next(h)]));
+    double elen = 0.0;
+    for (int side = 0; side < 2; ++side) {
+        const uint32_t* t = g->tri + 3 * (size_t)faces[i - 1 + (size_t)side];
+        for (int k = 0; k < 3; ++k) {
+            double l = tg_v3_dist(tg__gpos(g, t[k]), tg__gpos(g, t[(k + 1) % 3]));
+            if (l > elen) elen = l;
+        }
+    }
     double tiny = MERGE_REL_EDGE * elen + MERGE_REL_POS * (fabs(xp.x) + fabs(xp.y) + fabs(xp.z));
     size_t i0 = i - 1, i1 = i + 1;
     while (i0 > 0 && i - i0 < MAX_WINDOW && nodes[i0].kind == TG__NODE_EDGE &&
@@ -136,8 +147,11 @@ static double crossing_defect(const tg_geodesic* g, const tg__node* nodes, const
         ok = nodes[j].kind == TG__NODE_EDGE && he != TG_NONE && unfold_across(g, &pf, he) && pf.f == faces[j];
     }
     ok = ok && place_node(g, &pf, &nodes[i1], pn);
-    double a = ok ? angle_2d(pp, px, pn)
-                  : angle_3d(tg__node_pos(g, &nodes[i0]), xp, tg__node_pos(g, &nodes[i1]));
+    /* no distinct neighbour on a side: the crossing is at a degenerate point (coincident
+     * vertices, an endpoint on a zero-area face) where the path has no direction to keep */
+    tg_vec3 np = tg__node_pos(g, &nodes[i0]), nn = tg__node_pos(g, &nodes[i1]);
+    if (tg_v3_dist(np, xp) <= tiny || tg_v3_dist(nn, xp) <= tiny) return 0.0;
+    double a = ok ? angle_2d(pp, px, pn) : angle_3d(np, xp, nn);
     return TG__PI - a;
 }
 

@@ -17,11 +17,14 @@ double tg__corner_angle(const tg_geodesic* g, uint32_t f, int k)
     return atan2(tg_v3_len(tg_v3_cross(e1, e2)), tg_v3_dot(e1, e2));
 }
 
-/* Angle of node p seen from corner k of face f, measured from side k -> k+1 towards k -> k+2. */
+/* Angle of node p seen from corner k of face f, measured from side k -> k+1 towards k -> k+2;
+ * -1 when p is not in f or coincides with the corner (a zero-length segment has no direction:
+ * the passage is through coincident vertices, which the fans treat like a pinch). */
 static double node_angle(const tg_geodesic* g, uint32_t f, int k, const tg__node* p)
 {
     tg_vec3 d;
-    if (!tg__node_offset(g, p, f, k, &d)) return 0.0;
+    if (!tg__node_offset(g, p, f, k, &d)) return -1.0;
+    if (d.x == 0.0 && d.y == 0.0 && d.z == 0.0) return -1.0;
     const uint32_t* t = g->tri + 3 * (size_t)f;
     tg_vec3 e1 = tg_v3_sub(tg__gpos(g, t[(k + 1) % 3]), tg__gpos(g, t[k]));
     double a = atan2(tg_v3_len(tg_v3_cross(e1, d)), tg_v3_dot(e1, d));
@@ -79,6 +82,7 @@ bool tg__fan_sides(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__no
     out_angle[0] = out_angle[1] = -1.0;
     if (k_in < 0 || k_out < 0) return false;
     double a_in = node_angle(g, f_in, k_in, p_in), a_out = node_angle(g, f_out, k_out, p_out);
+    if (a_in < 0.0 || a_out < 0.0) return false;
     for (int side = 0; side < 2; ++side)
         out_angle[side] = walk_side(g, v, f_in, a_in, f_out, a_out, side, NULL, 0, NULL);
     return out_angle[0] >= 0.0 || out_angle[1] >= 0.0;
@@ -90,6 +94,7 @@ size_t tg__fan_portals(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg
     int k_in = tg__corner_of(g, f_in, v), k_out = tg__corner_of(g, f_out, v);
     if (k_in < 0 || k_out < 0) return SIZE_MAX;
     double a_in = node_angle(g, f_in, k_in, p_in), a_out = node_angle(g, f_out, k_out, p_out);
+    if (a_in < 0.0 || a_out < 0.0) return SIZE_MAX;
     size_t count = 0;
     if (walk_side(g, v, f_in, a_in, f_out, a_out, side, out, cap, &count) < 0.0) return SIZE_MAX;
     return count;

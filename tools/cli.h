@@ -40,5 +40,6 @@ bool cli_parse_double(const char* s, double* out);
 extern const cli_command cli_cmd_info;
 extern const cli_command cli_cmd_closest;
 extern const cli_command cli_cmd_render;
+extern const cli_command cli_cmd_path;
 
 #endif

@@ -12,6 +12,7 @@ static const cli_command* const commands[] = {
     &cli_cmd_info,
     &cli_cmd_closest,
     &cli_cmd_render,
+    &cli_cmd_path,
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 

@@ -1,0 +1,412 @@
+/* cmd_path.c - `trigeo path MESH --from SPEC --to SPEC [-o PATH.obj] [--json] [--method M]` and
+ * `trigeo path MESH --pairs PAIRS [-o OUT.csv] [--method M]`: geodesic paths between surface
+ * points (one, written as an OBJ polyline or JSON; or a batch, as CSV with timings). */
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+/* ---- endpoint specifications ---- */
+
+/* Parses a comma-separated list of exactly n finite doubles. */
+static bool parse_doubles(const char* s, int n, double* out)
+{
+    for (int k = 0; k < n; ++k) {
+        char* end;
+        errno = 0;
+        out[k] = strtod(s, &end);
+        if (end == s || errno || !isfinite(out[k])) return false;
+        if (k + 1 < n) {
+            if (*end != ',') return false;
+            s = end + 1;
+        } else if (*end) {
+            return false;
+        }
+    }
+    return true;
+}
+
+typedef struct spec {
+    int kind; /* 'v', 'f', 'e' or 'p' */
+    unsigned long long index;
+    double v[3];
+} spec;
+
+/* v:IDX | f:FACE:b0,b1,b2 | e:HALFEDGE:t | p:x,y,z. false on a syntax error. */
+static bool parse_spec(const char* s, spec* out)
+{
+    memset(out, 0, sizeof *out);
+    if (!s[0] || s[1] != ':') return false;
+    out->kind = s[0];
+    const char* rest = s + 2;
+    if (out->kind == 'v') return cli_parse_uint(rest, &out->index);
+    if (out->kind == 'p') return parse_doubles(rest, 3, out->v);
+    if (out->kind != 'f' && out->kind != 'e') return false;
+    const char* colon = strchr(rest, ':');
+    if (!colon || colon == rest || colon - rest > 20) return false;
+    char num[24];
+    memcpy(num, rest, (size_t)(colon - rest));
+    num[colon - rest] = '\0';
+    if (!cli_parse_uint(num, &out->index)) return false;
+    return parse_doubles(colon + 1, out->kind == 'f' ? 3 : 1, out->v);
+}
+
+/* Resolves a spec on the mesh (p: through the BVH, built on first use). Prints the error and
+ * returns false when the location is invalid. */
+static bool resolve_spec(const char* mesh_path, tg_mesh* mesh, tg_bvh** bvh, const char* text, const spec* sp,
+                         tg_surface_point* out)
+{
+    if (sp->kind == 'p') {
+        tg_status st = TG_OK;
+        tg_bvh_workspace* ws = NULL;
+        if (!*bvh) st = tg_bvh_create(mesh, NULL, bvh);
+        if (st == TG_OK) st = tg_bvh_workspace_create(*bvh, &ws);
+        if (st == TG_OK) st = tg_bvh_locate(*bvh, ws, sp->v, out, NULL);
+        tg_bvh_workspace_destroy(ws);
+        if (st != TG_OK) {
+            cli_error(mesh_path, 0, "cannot locate '%s' on the surface: %s", text, tg_status_string(st));
+            return false;
+        }
+        return true;
+    }
+    if (sp->index > UINT32_MAX) {
+        cli_error(mesh_path, 0, "index in '%s' is out of range", text);
+        return false;
+    }
+    uint32_t i = (uint32_t)sp->index;
+    if (sp->kind == 'v')
+        *out = tg_surface_vertex(i);
+    else if (sp->kind == 'e')
+        *out = tg_surface_edge(i, sp->v[0]);
+    else
+        *out = tg_surface_face(i, sp->v[0], sp->v[1], sp->v[2]);
+    tg_diag d;
+    memset(&d, 0, sizeof d);
+    if (tg_surface_point_validate(mesh, out, &d) != TG_OK) {
+        cli_error(mesh_path, 0, "'%s': %s", text, d.message[0] ? d.message : "invalid surface point");
+        return false;
+    }
+    return true;
+}
+
+/* ---- output ---- */
+
+static void json_point(FILE* f, const tg_surface_point* p)
+{
+    if (p->kind == TG_SURFACE_VERTEX)
+        fprintf(f, "{\"kind\": \"vertex\", \"vertex\": %u}", p->index);
+    else if (p->kind == TG_SURFACE_EDGE)
+        fprintf(f, "{\"kind\": \"edge\", \"halfedge\": %u, \"t\": %.17g}", p->index, p->t);
+    else
+        fprintf(f, "{\"kind\": \"face\", \"face\": %u, \"bary\": [%.17g, %.17g, %.17g]}", p->index, p->bary[0],
+                p->bary[1], p->bary[2]);
+}
+
+static void json_string(FILE* f, const char* s)
+{
+    fputc('"', f);
+    for (; *s; ++s) {
+        if (*s == '"' || *s == '\\') fputc('\\', f);
+        if ((unsigned char)*s < 0x20)
+            fprintf(f, "\\u%04x", (unsigned char)*s);
+        else
+            fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+/* JSON has no infinity: an unreachable path's lengths are null. */
+static void json_number(FILE* f, double x)
+{
+    if (isfinite(x))
+        fprintf(f, "%.17g", x);
+    else
+        fputs("null", f);
+}
+
+static void print_json(FILE* f, const char* mesh_path, const char* method, const tg_path_view* v)
+{
+    fprintf(f, "{\n  \"mesh\": ");
+    json_string(f, mesh_path);
+    fprintf(f, ",\n  \"method\": \"%s\",\n  \"status\": \"%s\",\n  \"length\": ", method, tg_path_status_name(v->status));
+    json_number(f, v->length);
+    fprintf(f, ",\n  \"initial_length\": ");
+    json_number(f, v->initial_length);
+    fprintf(f, ",\n  \"max_angle_defect\": %.17g,\n  \"iterations\": %u,\n  \"point_count\": %zu,\n  \"points\": [",
+            v->max_angle_defect, v->iterations, v->point_count);
+    for (size_t i = 0; i < v->point_count; ++i) {
+        fputs(i ? ",\n    " : "\n    ", f);
+        json_point(f, &v->points[i]);
+    }
+    fprintf(f, "%s],\n  \"xyz\": [", v->point_count ? "\n  " : "");
+    for (size_t i = 0; i < v->point_count; ++i)
+        fprintf(f, "%s[%.17g, %.17g, %.17g]", i ? ",\n    " : "\n    ", v->xyz[3 * i], v->xyz[3 * i + 1], v->xyz[3 * i + 2]);
+    fprintf(f, "%s],\n  \"faces\": [", v->point_count ? "\n  " : "");
+    for (size_t i = 0; i + 1 < v->point_count; ++i) fprintf(f, "%s%u", i ? ", " : "", v->faces[i]);
+    fprintf(f, "]\n}\n");
+}
+
+static void print_summary(FILE* f, const tg_path_view* v)
+{
+    int crossings = 0, vertices = 0;
+    for (size_t i = 1; i + 1 < v->point_count; ++i) {
+        crossings += v->points[i].kind == TG_SURFACE_EDGE;
+        vertices += v->points[i].kind == TG_SURFACE_VERTEX;
+    }
+    fprintf(f, "status             %s\n", tg_path_status_name(v->status));
+    fprintf(f, "length             %.17g\n", v->length);
+    fprintf(f, "edge path length   %.17g\n", v->initial_length);
+    fprintf(f, "points             %zu (%d edge crossings, %d vertex passages)\n", v->point_count, crossings, vertices);
+    fprintf(f, "max angle defect   %.3g rad\n", v->max_angle_defect);
+    fprintf(f, "iterations         %u\n", v->iterations);
+}
+
+/* ---- batch ---- */
+
+static double now_us(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec * 1e6 + (double)t.tv_nsec * 1e-3;
+}
+
+/* Parses one PAIRS line into two surface points; false after printing "PAIRS:LINE: message". */
+static bool parse_pair(const char* name, unsigned long long line, char* s, tg_mesh* mesh, tg_surface_point* a,
+                       tg_surface_point* b)
+{
+    char* tok[9];
+    int n = 0;
+    for (char* t = strtok(s, " \t\r"); t && n < 9; t = strtok(NULL, " \t\r")) tok[n++] = t;
+    bool extra = strtok(NULL, " \t\r") != NULL;
+    unsigned long long i0, i1;
+    double c[6];
+    if (n == 3 && !extra && !strcmp(tok[0], "v") && cli_parse_uint(tok[1], &i0) && cli_parse_uint(tok[2], &i1)) {
+        if (i0 > UINT32_MAX || i1 > UINT32_MAX) {
+            cli_error(name, line, "vertex index out of range");
+            return false;
+        }
+        *a = tg_surface_vertex((uint32_t)i0);
+        *b = tg_surface_vertex((uint32_t)i1);
+    } else if (n == 9 && !extra && !strcmp(tok[0], "p") && cli_parse_uint(tok[1], &i0) && cli_parse_uint(tok[5], &i1) &&
+               cli_parse_double(tok[2], &c[0]) && cli_parse_double(tok[3], &c[1]) && cli_parse_double(tok[4], &c[2]) &&
+               cli_parse_double(tok[6], &c[3]) && cli_parse_double(tok[7], &c[4]) && cli_parse_double(tok[8], &c[5])) {
+        if (i0 > UINT32_MAX || i1 > UINT32_MAX) {
+            cli_error(name, line, "face index out of range");
+            return false;
+        }
+        *a = tg_surface_face((uint32_t)i0, c[0], c[1], c[2]);
+        *b = tg_surface_face((uint32_t)i1, c[3], c[4], c[5]);
+    } else {
+        cli_error(name, line, "expected \"v SRC TGT\" or \"p F0 b0 b1 b2 F1 c0 c1 c2\"");
+        return false;
+    }
+    tg_diag d;
+    for (int e = 0; e < 2; ++e) {
+        memset(&d, 0, sizeof d);
+        if (tg_surface_point_validate(mesh, e ? b : a, &d) != TG_OK) {
+            cli_error(name, line, "%s point: %s", e ? "second" : "first", d.message[0] ? d.message : "invalid");
+            return false;
+        }
+    }
+    return true;
+}
+
+static int run_pairs(const char* mesh_path, const char* pairs_path, const char* out_path, const tg_path_options* o)
+{
+    FILE* in = strcmp(pairs_path, "-") ? fopen(pairs_path, "r") : stdin;
+    if (!in) {
+        cli_error(pairs_path, 0, "cannot open: %s", strerror(errno));
+        return CLI_INPUT;
+    }
+    int rc = CLI_INPUT;
+    FILE* out = NULL;
+    tg_geodesic* geo = NULL;
+    tg_geodesic_workspace* ws = NULL;
+    tg_path* path = NULL;
+    tg_mesh* mesh = cli_load_mesh(mesh_path);
+    if (!mesh) goto done;
+    tg_status st = tg_geodesic_create(mesh, NULL, &geo);
+    if (st == TG_OK) st = tg_geodesic_workspace_create(geo, &ws);
+    if (st == TG_OK) st = tg_path_create(NULL, &path);
+    if (st != TG_OK) {
+        cli_error(mesh_path, 0, "%s", tg_status_string(st));
+        goto done;
+    }
+    out = out_path ? fopen(out_path, "w") : stdout;
+    if (!out) {
+        cli_error(out_path, 0, "cannot open for writing: %s", strerror(errno));
+        goto done;
+    }
+    fprintf(out, "i,length,points,status,max_angle_defect,microseconds\n");
+    char line[4096];
+    unsigned long long lineno = 0, i = 0;
+    while (fgets(line, sizeof line, in)) {
+        ++lineno;
+        if (!strchr(line, '\n') && !feof(in)) {
+            cli_error(pairs_path, lineno, "line too long");
+            goto done;
+        }
+        line[strcspn(line, "\n")] = '\0';
+        const char* p = line + strspn(line, " \t\r");
+        if (!*p || *p == '#') continue;
+        tg_surface_point a, b;
+        if (!parse_pair(pairs_path, lineno, line, mesh, &a, &b)) goto done;
+        double t0 = now_us();
+        st = tg_geodesic_path(geo, ws, &a, &b, o, path);
+        double us = now_us() - t0;
+        if (st != TG_OK) {
+            cli_error(pairs_path, lineno, "%s", tg_status_string(st));
+            goto done;
+        }
+        tg_path_view v;
+        tg_path_get_view(path, &v);
+        fprintf(out, "%llu,%.17g,%zu,%s,%.17g,%.3f\n", i++, v.length, v.point_count, tg_path_status_name(v.status),
+                v.max_angle_defect, us);
+    }
+    if (ferror(in)) {
+        cli_error(pairs_path, 0, "read error");
+        goto done;
+    }
+    rc = CLI_OK;
+done:
+    if (out && out != stdout && fclose(out) != 0 && rc == CLI_OK) {
+        cli_error(out_path, 0, "write failed");
+        rc = CLI_INPUT;
+    } else if (out == stdout && fflush(stdout) != 0 && rc == CLI_OK) {
+        rc = CLI_INPUT;
+    }
+    if (in != stdin) fclose(in);
+    tg_path_destroy(path);
+    tg_geodesic_workspace_destroy(ws);
+    tg_geodesic_destroy(geo);
+    tg_mesh_destroy(mesh);
+    return rc;
+}
+
+/* ---- single path ---- */
+
+static int run_single(const char* mesh_path, const char* from, const char* to, const char* out_path, bool json,
+                      const char* method_name, const tg_path_options* o)
+{
+    spec sa, sb;
+    if (!parse_spec(from, &sa)) return cli_usage("path", "bad --from '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", from);
+    if (!parse_spec(to, &sb)) return cli_usage("path", "bad --to '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", to);
+    int rc = CLI_INPUT;
+    tg_bvh* bvh = NULL;
+    tg_geodesic* geo = NULL;
+    tg_geodesic_workspace* ws = NULL;
+    tg_path* path = NULL;
+    tg_mesh* mesh = cli_load_mesh(mesh_path);
+    tg_surface_point a, b;
+    if (!mesh) goto done;
+    if (tg_mesh_face_count(mesh) == 0) {
+        cli_error(mesh_path, 0, "the mesh has no faces");
+        goto done;
+    }
+    if (!resolve_spec(mesh_path, mesh, &bvh, from, &sa, &a) || !resolve_spec(mesh_path, mesh, &bvh, to, &sb, &b)) goto done;
+    tg_status st = tg_geodesic_create(mesh, NULL, &geo);
+    if (st == TG_OK) st = tg_geodesic_workspace_create(geo, &ws);
+    if (st == TG_OK) st = tg_path_create(NULL, &path);
+    if (st == TG_OK) st = tg_geodesic_path(geo, ws, &a, &b, o, path);
+    if (st != TG_OK) {
+        cli_error(mesh_path, 0, "%s", tg_status_string(st));
+        goto done;
+    }
+    tg_path_view v;
+    tg_path_get_view(path, &v);
+    if (out_path) {
+        tg_diag d;
+        st = tg_path_write_obj(path, out_path, &d);
+        if (st != TG_OK) {
+            cli_error_diag(&d, st);
+            goto done;
+        }
+    }
+    if (json)
+        print_json(stdout, mesh_path, method_name, &v);
+    else
+        print_summary(stdout, &v);
+    rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
+done:
+    tg_path_destroy(path);
+    tg_geodesic_workspace_destroy(ws);
+    tg_geodesic_destroy(geo);
+    tg_bvh_destroy(bvh);
+    tg_mesh_destroy(mesh);
+    return rc;
+}
+
+static int run(int argc, char** argv)
+{
+    const char *mesh_path = NULL, *from = NULL, *to = NULL, *pairs = NULL, *out_path = NULL, *method = "straighten";
+    bool json = false;
+    tg_path_options o;
+    memset(&o, 0, sizeof o);
+    for (int i = 1; i < argc; ++i) {
+        const char* a = argv[i];
+        if (!strcmp(a, "--from") || !strcmp(a, "--to") || !strcmp(a, "--pairs") || !strcmp(a, "-o") ||
+            !strcmp(a, "--method")) {
+            if (i + 1 >= argc) return cli_usage("path", "%s needs a value", a);
+            const char* val = argv[++i];
+            if (!strcmp(a, "--from"))
+                from = val;
+            else if (!strcmp(a, "--to"))
+                to = val;
+            else if (!strcmp(a, "--pairs"))
+                pairs = val;
+            else if (!strcmp(a, "-o"))
+                out_path = val;
+            else
+                method = val;
+        } else if (!strcmp(a, "--json")) {
+            json = true;
+        } else if (a[0] == '-' && a[1]) {
+            return cli_usage("path", "unknown option '%s'", a);
+        } else if (!mesh_path) {
+            mesh_path = a;
+        } else {
+            return cli_usage("path", "unexpected argument '%s'", a);
+        }
+    }
+    if (!strcmp(method, "straighten"))
+        o.method = TG_PATH_STRAIGHTEN;
+    else if (!strcmp(method, "relax"))
+        o.method = TG_PATH_RELAX;
+    else if (!strcmp(method, "edge"))
+        o.method = TG_PATH_EDGE;
+    else
+        return cli_usage("path", "--method must be straighten, relax or edge, not '%s'", method);
+    if (!mesh_path) return cli_usage("path", "missing MESH");
+    if (pairs) {
+        if (from || to) return cli_usage("path", "--pairs excludes --from and --to");
+        if (json) return cli_usage("path", "--json applies to a single path (--from/--to)");
+        return run_pairs(mesh_path, pairs, out_path, &o);
+    }
+    if (!from || !to) return cli_usage("path", "missing %s (or --pairs FILE)", from ? "--to" : "--from");
+    return run_single(mesh_path, from, to, out_path, json, method, &o);
+}
+
+const cli_command cli_cmd_path = {
+    "path",
+    "path MESH (--from SPEC --to SPEC [-o PATH.obj] [--json] | --pairs PAIRS [-o OUT.csv]) [--method M]",
+    "Geodesic paths on the surface between any two surface points (never snapped to a vertex):\n"
+    "the shortest edge path (A*) with the endpoints inserted virtually, then shortened.\n\n"
+    "  --from SPEC, --to SPEC   endpoints:  v:IDX            a vertex\n"
+    "                                       f:FACE:b0,b1,b2  a point of a face (barycentric)\n"
+    "                                       e:HALFEDGE:t     a point of an edge (halfedge 3*face+corner)\n"
+    "                                       p:x,y,z          the surface point closest to x,y,z\n"
+    "  -o PATH.obj              write the path as an OBJ polyline (v and l records)\n"
+    "  --json                   print surface points, faces, 3D points, length, status, certificate\n"
+    "  --pairs PAIRS            batch: one pair a line, \"v SRC TGT\" or \"p F0 b0 b1 b2 F1 c0 c1 c2\";\n"
+    "                           CSV i,length,points,status,max_angle_defect,microseconds to stdout\n"
+    "                           or -o OUT.csv ('-' reads PAIRS from stdin)\n"
+    "  --method M               straighten (default: funnel over unfolded strips, vertex re-routing),\n"
+    "                           relax (the seed's relaxation), edge (the initial edge path only)\n\n"
+    "Status is converged, iteration_cap or unreachable (endpoints in different components: no\n"
+    "points, length inf). The certificate (max angle defect, radians) is the largest deviation from\n"
+    "straightness over edge crossings and vertex passages. Indices are 0-based in file order.\n",
+    run,
+};

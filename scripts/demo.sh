@@ -4,5 +4,14 @@ set -euo pipefail
 trigeo=${1:?usage: demo.sh path/to/trigeo}
 here=$(cd "$(dirname "$0")/.." && pwd)
 mesh=$here/data/nvd_spot.obj
+out=$(cd "$(dirname "$trigeo")" && pwd)
 echo "== trigeo info $mesh"
 "$trigeo" info "$mesh"
+# A geodesic between two far-apart face points (the faces at the two ends of Spot along z),
+# written as an OBJ polyline next to the binary.
+from="f:3832:0.2,0.3,0.5"
+to="f:4380:0.3,0.3,0.4"
+echo
+echo "== trigeo path $mesh --from $from --to $to -o $out/demo_path.obj"
+"$trigeo" path "$mesh" --from "$from" --to "$to" -o "$out/demo_path.obj"
+echo "wrote $out/demo_path.obj"

@@ -18,6 +18,13 @@
 _Static_assert(sizeof(tg__bvh_node) == 128, "a BVH node is two 64-byte cache lines");
 
 #define BIN_COUNT 16
+/* How many primitives ahead scattered mesh vertices are prefetched. */
+#define PREFETCH_AHEAD 16
+#if defined(__GNUC__) || defined(__clang__)
+#define PREFETCH(p) __builtin_prefetch(p)
+#else
+#define PREFETCH(p) ((void)0)
+#endif
 /* SAH constants relative to one point-triangle kernel call. A node visit costs about four kernel
  * calls, mostly in memory latency (two cache lines fetched, eight boxes tested); measured with
  * bench/bench_closest, larger leaves also save the duplicated vertices of the leaf blocks. */
@@ -483,8 +490,8 @@ static tg_status morton_sort(builder* bd, const range* r, uint32_t* keys)
         sorted[i] = p[(uint32_t)kv[i]];
         keys[i] = (uint32_t)(kv[i] >> 32);
     }
-    memcpy(bd->prims, sorted, (size_t)n * sizeof *sorted);
-    tg__free(a, sorted);
+    tg__free(a, bd->prims); /* the sorted copy replaces the primitives */
+    bd->prims = sorted;
     tg__free(a, tmp);
     tg__free(a, kv);
     return TG_OK;
@@ -662,6 +669,23 @@ static uint32_t leaf_vertices(const tg_mesh* m, const bprim* bp, uint32_t begin,
     return u;
 }
 
+/* Asks for the mesh rows (and, once those have arrived, the vertices) of the faces in node n's
+ * leaves: in tree order they are scattered over the mesh arrays. */
+static void prefetch_node_faces(const tg_bvh* bvh, const bprim* bp, long n, bool vertices)
+{
+    if (n >= (long)bvh->node_count) return;
+    const tg__bvh_node* node = &bvh->nodes[n];
+    const tg_mesh* m = bvh->mesh;
+    for (int s = 0; s < node->child_count; ++s)
+        for (uint32_t i = 0; i < node->leaf_count[s]; ++i) {
+            const uint32_t* t = m->tri + 3 * (size_t)bp[node->child[s] + i].face;
+            if (!vertices)
+                PREFETCH(t);
+            else
+                for (int c = 0; c < 3; ++c) PREFETCH(m->xyz + 3 * (size_t)t[c]);
+        }
+}
+
 /* Writes a leaf block at `word` for primitives [begin, begin + k). */
 static void write_leaf(tg_bvh* bvh, const bprim* bp, uint32_t begin, uint32_t k, size_t word)
 {
@@ -705,6 +729,7 @@ static tg_status make_leaves(tg_bvh* bvh, const bprim* bp)
         uint32_t vert[3 * TG__BVH_MAX_LEAF];
         uint8_t corner[3 * TG__BVH_MAX_LEAF];
         const tg__bvh_node* node = &bvh->nodes[n];
+        prefetch_node_faces(bvh, bp, n + 2, false);
         for (int s = 0; s < TG__BVH_WIDTH; ++s) {
             uint32_t k = s < node->child_count ? node->leaf_count[s] : 0;
             slot_u[TG__BVH_WIDTH * n + s] = k ? (uint8_t)leaf_vertices(bvh->mesh, bp, node->child[s], k, vert, corner) : 0;
@@ -745,13 +770,19 @@ static tg_status make_leaves(tg_bvh* bvh, const bprim* bp)
 #endif
     for (long n = 0; n < nodes; ++n) {
         tg__bvh_node* node = &bvh->nodes[n];
+        prefetch_node_faces(bvh, bp, n + 4, false);
+        prefetch_node_faces(bvh, bp, n + 2, true);
         for (int s = 0; s < node->child_count; ++s) {
             uint32_t k = node->leaf_count[s];
             if (!k) continue;
-            size_t id = TG__BVH_WIDTH * (size_t)n + (size_t)s;
-            write_leaf(bvh, bp, node->child[s], k, slot_word[id]);
-            node->child[s] = slot_word[id];
+            write_leaf(bvh, bp, node->child[s], k, slot_word[TG__BVH_WIDTH * (size_t)n + (size_t)s]);
         }
+    }
+    /* only now that no thread reads them any more: the leaf slots point at their blocks */
+    for (long n = 0; n < nodes; ++n) {
+        tg__bvh_node* node = &bvh->nodes[n];
+        for (int s = 0; s < node->child_count; ++s)
+            if (node->leaf_count[s]) node->child[s] = slot_word[TG__BVH_WIDTH * (size_t)n + (size_t)s];
     }
     st = tg__bvh_build_obbs(bvh, first, end, leaf_word, leaf_u);
 done:
@@ -791,6 +822,8 @@ static void face_boxes(const tg_bvh* bvh, bprim* bp)
     for (long f = 0; f < count; ++f) {
         bprim* p = &bp[f];
         double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        if (f + PREFETCH_AHEAD < count) /* the corners are scattered: ask for them early */
+            for (int c = 0; c < 3; ++c) PREFETCH(m->xyz + 3 * (size_t)m->tri[3 * (size_t)(f + PREFETCH_AHEAD) + c]);
         for (int c = 0; c < 3; ++c) {
             double x[3];
             tg__bvh_to_local(bvh, m->xyz + 3 * (size_t)m->tri[3 * f + c], x);

@@ -210,26 +210,38 @@ tg_status tg__bvh_build_obbs(tg_bvh* bvh, const uint32_t* leaf_first, const uint
                              const uint32_t* leaf_vertex_word, const uint8_t* leaf_u)
 {
     const tg_allocator* a = &bvh->allocator;
+    long count = (long)bvh->node_count;
+    /* the root's last slot ends the depth-first leaf order */
+    size_t leaves = count ? leaf_end[bvh->nodes[0].child_count - 1] : 0;
     moments* node_mo = tg__alloc_array(a, bvh->node_count + 1, sizeof *node_mo);
-    if (!node_mo) return TG_ERR_OUT_OF_MEMORY;
-    /* moments bottom-up: children have larger indices than their parent */
+    moments* leaf_mo = tg__alloc_array(a, leaves + 1, sizeof *leaf_mo);
+    if (!node_mo || !leaf_mo) {
+        tg__free(a, node_mo);
+        tg__free(a, leaf_mo);
+        return TG_ERR_OUT_OF_MEMORY;
+    }
+    /* the leaves' moments, in parallel */
+#ifdef TG_HAVE_OPENMP
+#pragma omp parallel for schedule(dynamic, 256)
+#endif
+    for (long n = 0; n < count; ++n) {
+        const tg__bvh_node* node = &bvh->nodes[n];
+        for (int s = 0; s < node->child_count; ++s) {
+            if (!node->leaf_count[s]) continue;
+            uint32_t leaf = leaf_first[TG__BVH_WIDTH * (size_t)n + (size_t)s];
+            uint32_t word = leaf_vertex_word[leaf] - (uint32_t)(tg__bvh_leaf_header(node->leaf_count[s]) / 8);
+            leaf_moments(bvh, word, node->leaf_count[s], leaf_u[leaf], &leaf_mo[leaf]);
+        }
+    }
+    /* the nodes' sums bottom-up: children have larger indices than their parent */
     for (size_t n = bvh->node_count; n-- > 0;) {
         const tg__bvh_node* node = &bvh->nodes[n];
         memset(&node_mo[n], 0, sizeof node_mo[n]);
-        for (int s = 0; s < node->child_count; ++s) {
-            if (node->leaf_count[s]) {
-                moments mo;
-                uint32_t leaf = leaf_first[TG__BVH_WIDTH * n + (size_t)s];
-                uint32_t word = leaf_vertex_word[leaf] - (uint32_t)(tg__bvh_leaf_header(node->leaf_count[s]) / 8);
-                leaf_moments(bvh, word, node->leaf_count[s], leaf_u[leaf], &mo);
-                add_moments(&node_mo[n], &mo);
-            } else {
-                add_moments(&node_mo[n], &node_mo[node->child[s]]);
-            }
-        }
+        for (int s = 0; s < node->child_count; ++s)
+            add_moments(&node_mo[n], node->leaf_count[s] ? &leaf_mo[leaf_first[TG__BVH_WIDTH * n + (size_t)s]]
+                                                         : &node_mo[node->child[s]]);
     }
     /* frames and intervals: independent per node */
-    long count = (long)bvh->node_count;
 #ifdef TG_HAVE_OPENMP
 #pragma omp parallel for schedule(dynamic, 64)
 #endif
@@ -241,22 +253,16 @@ tg_status tg__bvh_build_obbs(tg_bvh* bvh, const uint32_t* leaf_first, const uint
                 disable_slot(node, s);
                 continue;
             }
-            moments mo;
-            if (node->leaf_count[s]) {
-                uint32_t leaf = leaf_first[id];
-                uint32_t word = leaf_vertex_word[leaf] - (uint32_t)(tg__bvh_leaf_header(node->leaf_count[s]) / 8);
-                leaf_moments(bvh, word, node->leaf_count[s], leaf_u[leaf], &mo);
-            } else {
-                mo = node_mo[node->child[s]];
-            }
+            const moments* mo = node->leaf_count[s] ? &leaf_mo[leaf_first[id]] : &node_mo[node->child[s]];
             double R[3][3];
             int8_t q[4];
-            frame(&mo, R);
+            frame(mo, R);
             quaternion(R, q);
             for (int k = 0; k < 4; ++k) node->quat[k][s] = q[k];
             if (!slot_intervals(bvh, node, s, leaf_first[id], leaf_end[id], leaf_vertex_word, leaf_u)) disable_slot(node, s);
         }
     }
+    tg__free(a, leaf_mo);
     tg__free(a, node_mo);
     return TG_OK;
 }

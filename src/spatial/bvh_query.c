@@ -75,8 +75,15 @@ static void query_init(const tg_bvh* bvh, query* q, const double* p, double max_
     set_threshold(bvh, q, max_dist_sq);
 }
 
-static inline void consider(const tg_bvh* bvh, query* q, uint32_t face, const double* v0, const double* v1,
-                            const double* v2)
+/* The kernel call is the inner loop's main work: flatten asks the compiler to inline it here. */
+#if defined(__GNUC__) || defined(__clang__)
+#define TG_FLATTEN __attribute__((flatten))
+#else
+#define TG_FLATTEN
+#endif
+
+static TG_FLATTEN void consider(const tg_bvh* bvh, query* q, uint32_t face, const double* v0, const double* v1,
+                                const double* v2)
 {
     tg_point_triangle r;
     tg__point_triangle_robust_3d(q->p, v0, v1, v2, &r);
@@ -203,8 +210,10 @@ static void traverse(const tg_bvh* bvh, tg_bvh_workspace* ws, query* q)
             uint32_t c = n->child[s];
             if (n->leaf_count[s])
                 prefetch_leaf(bvh, c, n->leaf_count[s]);
-            else
-                PREFETCH(bvh->nodes + c);
+            else {
+                PREFETCH(bvh->nodes + c); /* both cache lines of the node */
+                PREFETCH((const char*)(bvh->nodes + c) + 64);
+            }
             stack[sp++] = (tg__bvh_entry){c, n->leaf_count[s], d[s]};
         }
     }

@@ -4,7 +4,8 @@
  *   connexion with graphs" (1959) with a binary heap (Williams 1964); Hart, Nilsson & Raphael,
  *   "A Formal Basis for the Heuristic Determination of Minimum Cost Paths" (1968): A* with a
  *   consistent heuristic (the Euclidean distance to the target, a lower bound on every edge path
- *   by the triangle inequality) stops once the target is settled. */
+ *   by the triangle inequality) stops once the target is settled. Graph ids are the solver's
+ *   internal (Morton-ordered) vertex ids; paths are returned in mesh ids. */
 #include "geodesic/geodesic_internal.h"
 
 #include <string.h>
@@ -69,7 +70,7 @@ tg_status tg__endpoint_make(tg_geodesic_workspace* ws, const tg_surface_point* s
     e->node = tg__node_from_surface(&c);
     tg_v3_store(tg__node_pos(g, &e->node), e->xyz);
     if (e->node.kind == TG__NODE_VERTEX) {
-        e->graph_id = e->node.id;
+        e->graph_id = g->rank[e->node.id];
         e->comp = g->comp[g->vc[g->vc_start[e->node.id]] / 3];
         return TG_OK;
     }
@@ -118,29 +119,34 @@ typedef struct astar {
     size_t heap_n;
 } astar;
 
-static double vdist(const tg_geodesic* g, uint32_t a, uint32_t b)
+static tg_vec3 ipos(const tg_geodesic* g, uint32_t u)
 {
-    return tg_v3_dist(tg__gpos(g, a), tg__gpos(g, b));
+    return tg_v3_load(g->pos + 3 * (size_t)u);
 }
 
-/* Offers distance d with parent p to node u at position x. */
+/* Offers distance d with parent p to node u (internal id) at position x. */
 static bool relax(astar* s, uint32_t u, tg_vec3 x, double d, uint32_t p)
 {
-    tg_geodesic_workspace* ws = s->ws;
-    if (ws->mark[u] == s->closed) return true;
-    if (ws->mark[u] == s->open && !(d < ws->g[u])) return true;
-    ws->mark[u] = s->open;
-    ws->g[u] = d;
-    ws->parent[u] = p;
-    return heap_push(ws, &s->heap_n, d + tg_v3_dist(x, s->target), u);
+    tg__astar_node* n = &s->ws->nodes_a[u];
+    if (n->mark == s->closed) return true;
+    if (n->mark == s->open) {
+        if (!(d < n->g)) return true;
+    } else {
+        n->mark = s->open;
+        n->h = tg_v3_dist(x, s->target);
+    }
+    n->g = d;
+    n->parent = p;
+    return heap_push(s->ws, &s->heap_n, d + n->h, u);
 }
 
 /* Starts a new search generation; on wrap-around every mark is cleared once. */
 static void next_generation(tg_geodesic_workspace* ws)
 {
     if (ws->gen >= UINT32_MAX - 4) {
-        memset(ws->mark, 0, ((size_t)ws->geo->vertex_count + 2) * sizeof(uint32_t));
-        memset(ws->tmark, 0, ((size_t)ws->geo->vertex_count + 2) * sizeof(uint32_t));
+        size_t n = (size_t)ws->geo->vertex_count + 2;
+        for (size_t i = 0; i < n; ++i) ws->nodes_a[i].mark = 0;
+        memset(ws->tmark, 0, n * sizeof(uint32_t));
         ws->gen = 2;
     }
     ws->gen += 2;
@@ -154,24 +160,25 @@ static tg_status run_astar(astar* s, const tg__endpoint* src, const tg__endpoint
     tg_vec3 sx = tg_v3_load(src->xyz);
     *out_found = false;
     if (dst->is_virtual)
-        for (size_t i = 0; i < dst->nbr_count; ++i) ws->tmark[dst->nbr[i]] = s->open;
+        for (size_t i = 0; i < dst->nbr_count; ++i) ws->tmark[g->rank[dst->nbr[i]]] = s->open;
     if (!relax(s, src->graph_id, sx, 0.0, TG_NONE)) return TG_ERR_OUT_OF_MEMORY;
     while (s->heap_n) {
         tg__heap_item it = heap_pop(ws, &s->heap_n);
         uint32_t u = it.node;
-        if (ws->mark[u] == s->closed) continue;
-        ws->mark[u] = s->closed;
+        tg__astar_node* nu = &ws->nodes_a[u];
+        if (nu->mark == s->closed) continue;
+        nu->mark = s->closed;
         if (u == dst->graph_id) {
             *out_found = true;
             return TG_OK;
         }
-        double gu = ws->g[u];
+        double gu = nu->g;
         if (u >= nv) {
             /* the virtual source: its split edges, and the direct segment to a virtual target
              * sharing one of its faces */
             for (size_t i = 0; i < src->nbr_count; ++i) {
-                uint32_t w = src->nbr[i];
-                tg_vec3 wx = tg__gpos(g, w);
+                uint32_t w = g->rank[src->nbr[i]];
+                tg_vec3 wx = ipos(g, w);
                 if (!relax(s, w, wx, tg_v3_dist(sx, wx), u)) return TG_ERR_OUT_OF_MEMORY;
             }
             if (dst->is_virtual && tg__common_face(g, &src->node, &dst->node, TG_NONE) != TG_NONE &&
@@ -179,10 +186,11 @@ static tg_status run_astar(astar* s, const tg__endpoint* src, const tg__endpoint
                 return TG_ERR_OUT_OF_MEMORY;
             continue;
         }
-        tg_vec3 ux = tg__gpos(g, u);
+        tg_vec3 ux = ipos(g, u);
         for (uint32_t i = g->adj_start[u]; i < g->adj_start[u + 1]; ++i) {
             uint32_t w = g->adj[i];
-            tg_vec3 wx = tg__gpos(g, w);
+            if (ws->nodes_a[w].mark == s->closed) continue; /* settled: skip the square roots */
+            tg_vec3 wx = ipos(g, w);
             if (!relax(s, w, wx, gu + tg_v3_dist(ux, wx), u)) return TG_ERR_OUT_OF_MEMORY;
         }
         if (dst->is_virtual && ws->tmark[u] == s->open &&
@@ -216,16 +224,16 @@ tg_status tg__initial_path(tg_geodesic_workspace* ws, const tg__endpoint* src, c
     if (st != TG_OK || !found) return st;
     /* walk parents back, then reverse into nodes + segment faces */
     size_t n = 0;
-    for (uint32_t u = dst->graph_id; u != TG_NONE; u = ws->parent[u]) n++;
+    for (uint32_t u = dst->graph_id; u != TG_NONE; u = ws->nodes_a[u].parent) n++;
     if (!tg__buf_reserve(ws, &ws->nodes[0], n, sizeof(tg__node)) ||
         !tg__buf_reserve(ws, &ws->segf[0], n, sizeof(uint32_t)))
         return TG_ERR_OUT_OF_MEMORY;
     tg__node* nodes = ws->nodes[0].p;
     uint32_t* faces = ws->segf[0].p;
     size_t i = n;
-    for (uint32_t u = dst->graph_id; u != TG_NONE; u = ws->parent[u]) {
+    for (uint32_t u = dst->graph_id; u != TG_NONE; u = ws->nodes_a[u].parent) {
         --i;
-        nodes[i] = u == src->graph_id ? src->node : u == dst->graph_id ? dst->node : tg__node_vertex(u);
+        nodes[i] = u == src->graph_id ? src->node : u == dst->graph_id ? dst->node : tg__node_vertex(g->order[u]);
     }
     for (size_t k = 0; k + 1 < n; ++k) {
         const tg__node *a = &nodes[k], *b = &nodes[k + 1];
@@ -242,6 +250,6 @@ tg_status tg__initial_path(tg_geodesic_workspace* ws, const tg__endpoint* src, c
         faces[k] = f;
     }
     *out_count = n;
-    *out_length = ws->g[dst->graph_id];
+    *out_length = ws->nodes_a[dst->graph_id].g;
     return TG_OK;
 }

@@ -328,6 +328,7 @@ tg_status tg__funnel(tg_geodesic_workspace* ws, const tg__node* a, const tg__nod
         sl->portal_end = (uint32_t)nq;
         const double *px = s.xy + 2 * x, *py = s.xy + 2 * y;
         sl->len = hypot(py[0] - px[0], py[1] - px[1]);
+        sl->fresh = 1;
         if (last > first) {
             sl->near_a = portal_crossing(&s, portals, first + 1, x, y, NULL);
             sl->near_b = portal_crossing(&s, portals, last, x, y, NULL);

@@ -22,8 +22,14 @@ struct tg_geodesic {
     const uint32_t* tri;
     const uint32_t* opp;
     const uint32_t* comp;
-    uint32_t* adj_start; /* V + 1: neighbours of v are adj[adj_start[v] .. adj_start[v + 1]) */
-    uint32_t* adj;       /* unique neighbour vertices (every edge of every face), ascending */
+    /* The edge graph for A*, in an internal vertex order (Morton order of the positions, so that
+     * the region a search explores is contiguous in memory): internal id u is mesh vertex
+     * order[u]; mesh vertex v is internal id rank[v]. */
+    uint32_t* order;
+    uint32_t* rank;
+    double* pos;         /* 3 per internal id */
+    uint32_t* adj_start; /* V + 1: neighbours of u are adj[adj_start[u] .. adj_start[u + 1]) */
+    uint32_t* adj;       /* unique neighbours (internal ids; every edge of every face), ascending */
     uint32_t* vc_start;  /* V + 1: corners of v are vc[vc_start[v] .. vc_start[v + 1]) */
     uint32_t* vc;        /* corners 3f + k with tri[3f + k] == v, ascending (so by face) */
 };
@@ -45,13 +51,21 @@ typedef struct tg__buf {
     size_t cap; /* bytes */
 } tg__buf;
 
+typedef struct tg__astar_node {
+    double g;        /* distance from the source */
+    double h;        /* the heuristic (Euclidean distance to the target), set when first reached */
+    uint32_t mark;   /* == gen: open, == gen + 1: closed; anything else: untouched */
+    uint32_t parent; /* internal id of the predecessor, TG_NONE at the source */
+} tg__astar_node;
+
 typedef struct tg__heap_item {
     double key;
     uint32_t node;
 } tg__heap_item;
 
-/* One endpoint after virtual insertion: its graph id (a mesh vertex, or V / V + 1 for a virtual
- * vertex) and, when virtual, its neighbours with the face through which each is reached. */
+/* One endpoint after virtual insertion: its graph id (the internal id of its vertex, or V / V + 1
+ * for a virtual vertex) and, when virtual, its neighbours (mesh ids) with the face through which
+ * each is reached. */
 typedef struct tg__endpoint {
     tg__node node;
     uint32_t graph_id;
@@ -70,6 +84,7 @@ typedef struct tg__sleeve {
     uint32_t face0;
     uint32_t portal_begin, portal_end; /* into the state's portal array */
     double len;                        /* length of the straight segment through it */
+    uint32_t fresh;                    /* made by the last sweep (its end pivots need a check) */
     tg__node near_a, near_b;           /* the path's points next to its start and end pivots (the
                                           first / last crossing, or the other pivot) */
 } tg__sleeve;
@@ -78,10 +93,9 @@ struct tg_geodesic_workspace {
     const tg_geodesic* geo;
     tg_allocator allocator;
     size_t fixed_bytes;
-    /* A* (graph ids 0..V-1 mesh vertices, V source, V + 1 target) */
-    double* g;
-    uint32_t* parent;
-    uint32_t* mark;   /* == gen: open, == gen + 1: closed; anything else: untouched */
+    /* A* over internal ids (0..V-1 the vertices in the solver's order, V the virtual source,
+     * V + 1 the virtual target): one record per node, so a relaxation touches one cache line */
+    tg__astar_node* nodes_a;
     uint32_t* tmark;  /* == gen: the vertex is a neighbour of the virtual target */
     uint32_t gen;
     tg__buf heap;

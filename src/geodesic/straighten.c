@@ -34,6 +34,9 @@ static size_t decide_all(tg_geodesic_workspace* ws, int cur, size_t np, double l
     for (size_t i = 0; i < np; ++i) dec[i].side = -1;
     for (size_t i = 1; i + 1 < np; ++i) {
         if (piv[i].kind != TG__NODE_VERTEX) continue;
+        /* both sleeves unchanged since the last check, which found nothing to do here (or its
+         * re-routing was rejected, which would happen again) */
+        if (!slv[i - 1].fresh && !slv[i].fresh) continue;
         const tg__sleeve *in = &slv[i - 1], *out = &slv[i];
         uint32_t f_in = sleeve_last_face(g, in, portals), f_out = out->face0;
         uint32_t fi, fo;
@@ -124,6 +127,7 @@ static bool copy_step(tg_geodesic_workspace* ws, int cur, size_t i, size_t* np, 
         return false;
     tg__sleeve* d = (tg__sleeve*)ws->slv[nxt].p + (*np - 1);
     *d = *s;
+    d->fresh = 0;
     memcpy((uint32_t*)ws->portals[nxt].p + *nq, (const uint32_t*)ws->portals[cur].p + s->portal_begin,
            k * sizeof(uint32_t));
     d->portal_begin = (uint32_t)*nq;
@@ -287,6 +291,7 @@ tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_s
         slv[i].len = tg__node_dist(g, &nodes[i], &nodes[i + 1], faces[i]);
         slv[i].near_a = nodes[i + 1];
         slv[i].near_b = nodes[i];
+        slv[i].fresh = 1;
     }
     int cur = 0;
     size_t np = count;

@@ -231,17 +231,23 @@ static uint32_t he_corner(const tg_mesh* m, const edge_scan* es, uint32_t h, uin
     return m->tri[h] == v ? h : tg_halfedge_next(h);
 }
 
+/* One past the last entry of the edge group (same larger endpoint) starting at entry i. */
+static uint32_t edge_group_end(const edge_scan* es, uint32_t i, uint32_t end)
+{
+    uint32_t hi = KEY_HI(es->key[i]), j = i + 1;
+    while (j < end && KEY_HI(es->key[j]) == hi) ++j;
+    return j;
+}
+
 /* Walks the sorted halfedges edge by edge: sets opposites and the edge counts, counts duplicate
  * faces. */
 static void scan_edges(tg_mesh* m, topo_scratch* s, uint8_t* on_boundary, tg_mesh_report* r)
 {
     const edge_scan* es = &s->es;
     for (size_t v = 0; v < m->vertex_count; ++v) {
-        uint32_t i = es->start[v], end = es->start[v + 1];
-        while (i < end) {
+        for (uint32_t i = es->start[v], j, end = es->start[v + 1]; i < end; i = j) {
             uint32_t hi = KEY_HI(es->key[i]);
-            uint32_t j = i + 1;
-            while (j < end && KEY_HI(es->key[j]) == hi) ++j;
+            j = edge_group_end(es, i, end);
             uint32_t uses = j - i;
             r->edges++;
             if (uses == 1) {
@@ -262,7 +268,6 @@ static void scan_edges(tg_mesh* m, topo_scratch* s, uint8_t* on_boundary, tg_mes
                     }
                 }
             }
-            i = j;
         }
     }
 }
@@ -274,17 +279,14 @@ static void link_corners(const tg_mesh* m, topo_scratch* s)
 {
     const edge_scan* es = &s->es;
     for (size_t v = 0; v < m->vertex_count; ++v) {
-        uint32_t i = es->start[v], end = es->start[v + 1];
-        while (i < end) {
+        for (uint32_t i = es->start[v], j, end = es->start[v + 1]; i < end; i = j) {
             uint32_t hi = KEY_HI(es->key[i]);
-            uint32_t j = i + 1;
-            while (j < end && KEY_HI(es->key[j]) == hi) ++j;
+            j = edge_group_end(es, i, end);
             if (j - i == 2) {
                 uint32_t ha = KEY_H(es->key[i]), hb = KEY_H(es->key[i + 1]);
                 uf_union(s->corner_parent, he_corner(m, es, ha, (uint32_t)v), he_corner(m, es, hb, (uint32_t)v));
                 uf_union(s->corner_parent, he_corner(m, es, ha, hi), he_corner(m, es, hb, hi));
             }
-            i = j;
         }
     }
 }

@@ -17,19 +17,22 @@ double tg__corner_angle(const tg_geodesic* g, uint32_t f, int k)
     return atan2(tg_v3_len(tg_v3_cross(e1, e2)), tg_v3_dot(e1, e2));
 }
 
-/* Angle of node p seen from corner k of face f, measured from side k -> k+1 towards k -> k+2;
- * -1 when p is not in f or coincides with the corner (a zero-length segment has no direction:
- * the passage is through coincident vertices, which the fans treat like a pinch). */
-static double node_angle(const tg_geodesic* g, uint32_t f, int k, const tg__node* p)
+/* Angle of node p seen from corner k of face f, measured from side k -> k+1 towards k -> k+2,
+ * and the corner's angle; false when p is not in f or coincides with the corner (a zero-length
+ * segment has no direction: the passage is through coincident vertices, which the fans treat
+ * like a pinch). */
+static bool node_angle(const tg_geodesic* g, uint32_t f, int k, const tg__node* p, double* out_a, double* out_c)
 {
     tg_vec3 d;
-    if (!tg__node_offset(g, p, f, k, &d)) return -1.0;
-    if (d.x == 0.0 && d.y == 0.0 && d.z == 0.0) return -1.0;
+    if (!tg__node_offset(g, p, f, k, &d)) return false;
+    if (d.x == 0.0 && d.y == 0.0 && d.z == 0.0) return false;
     const uint32_t* t = g->tri + 3 * (size_t)f;
     tg_vec3 e1 = tg_v3_sub(tg__gpos(g, t[(k + 1) % 3]), tg__gpos(g, t[k]));
     double a = atan2(tg_v3_len(tg_v3_cross(e1, d)), tg_v3_dot(e1, d));
     double c = tg__corner_angle(g, f, k);
-    return a > c ? c : a;
+    *out_a = a > c ? c : a;
+    *out_c = c;
+    return true;
 }
 
 /* One step around v: from face *f (corner *k of v) across the side in the + sense (the edge
@@ -47,18 +50,33 @@ static uint32_t fan_step(const tg_geodesic* g, uint32_t v, uint32_t* f, int* k, 
     return h;
 }
 
-/* Walks side `side` from f_in to f_out; returns the swept angle or -1, and writes the portals if
- * out != NULL (*io_count in/out). */
-static double walk_side(const tg_geodesic* g, uint32_t v, uint32_t f_in, double a_in, uint32_t f_out,
-                        double a_out, int side, uint32_t* out, size_t cap, size_t* io_count)
+/* The directions of a vertex passage: the in- and out-points' angles in their faces' corners at
+ * v, with those corners' angles. */
+typedef struct passage {
+    uint32_t v, f_in, f_out;
+    int k_in;
+    double a_in, c_in, a_out, c_out;
+} passage;
+
+static bool passage_make(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, uint32_t f_out,
+                         const tg__node* p_out, passage* ps)
 {
     int k_in = tg__corner_of(g, f_in, v), k_out = tg__corner_of(g, f_out, v);
-    if (k_in < 0 || k_out < 0) return -1.0;
-    if (f_in == f_out && (side == 0 ? a_out >= a_in : a_out <= a_in)) return fabs(a_out - a_in);
-    double c_in = tg__corner_angle(g, f_in, k_in);
-    double angle = side == 0 ? c_in - a_in : a_in;
-    uint32_t f = f_in;
-    int k = k_in;
+    if (k_in < 0 || k_out < 0) return false;
+    ps->v = v, ps->f_in = f_in, ps->f_out = f_out, ps->k_in = k_in;
+    return node_angle(g, f_in, k_in, p_in, &ps->a_in, &ps->c_in) &&
+           node_angle(g, f_out, k_out, p_out, &ps->a_out, &ps->c_out);
+}
+
+/* Walks side `side` from f_in to f_out; returns the swept angle or -1, and writes the portals if
+ * out != NULL (*io_count in/out). */
+static double walk_side(const tg_geodesic* g, const passage* ps, int side, uint32_t* out, size_t cap, size_t* io_count)
+{
+    if (ps->f_in == ps->f_out && (side == 0 ? ps->a_out >= ps->a_in : ps->a_out <= ps->a_in))
+        return fabs(ps->a_out - ps->a_in);
+    double angle = side == 0 ? ps->c_in - ps->a_in : ps->a_in;
+    uint32_t f = ps->f_in, v = ps->v;
+    int k = ps->k_in;
     /* a fan has at most as many faces as v has corners: the bound stops walks on broken input */
     uint32_t limit = g->vc_start[v + 1] - g->vc_start[v] + 1;
     for (uint32_t step = 0; step < limit; ++step) {
@@ -68,9 +86,8 @@ static double walk_side(const tg_geodesic* g, uint32_t v, uint32_t f_in, double 
             if (*io_count >= cap) return -1.0;
             out[(*io_count)++] = h;
         }
-        double c = tg__corner_angle(g, f, k);
-        if (f == f_out) return angle + (side == 0 ? a_out : c - a_out);
-        angle += c;
+        if (f == ps->f_out) return angle + (side == 0 ? ps->a_out : ps->c_out - ps->a_out);
+        angle += tg__corner_angle(g, f, k);
     }
     return -1.0;
 }
@@ -78,25 +95,20 @@ static double walk_side(const tg_geodesic* g, uint32_t v, uint32_t f_in, double 
 bool tg__fan_sides(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, uint32_t f_out,
                    const tg__node* p_out, double out_angle[2])
 {
-    int k_in = tg__corner_of(g, f_in, v), k_out = tg__corner_of(g, f_out, v);
+    passage ps;
     out_angle[0] = out_angle[1] = -1.0;
-    if (k_in < 0 || k_out < 0) return false;
-    double a_in = node_angle(g, f_in, k_in, p_in), a_out = node_angle(g, f_out, k_out, p_out);
-    if (a_in < 0.0 || a_out < 0.0) return false;
-    for (int side = 0; side < 2; ++side)
-        out_angle[side] = walk_side(g, v, f_in, a_in, f_out, a_out, side, NULL, 0, NULL);
+    if (!passage_make(g, v, f_in, p_in, f_out, p_out, &ps)) return false;
+    for (int side = 0; side < 2; ++side) out_angle[side] = walk_side(g, &ps, side, NULL, 0, NULL);
     return out_angle[0] >= 0.0 || out_angle[1] >= 0.0;
 }
 
 size_t tg__fan_portals(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, uint32_t f_out,
                        const tg__node* p_out, int side, uint32_t* out, size_t cap)
 {
-    int k_in = tg__corner_of(g, f_in, v), k_out = tg__corner_of(g, f_out, v);
-    if (k_in < 0 || k_out < 0) return SIZE_MAX;
-    double a_in = node_angle(g, f_in, k_in, p_in), a_out = node_angle(g, f_out, k_out, p_out);
-    if (a_in < 0.0 || a_out < 0.0) return SIZE_MAX;
+    passage ps;
+    if (!passage_make(g, v, f_in, p_in, f_out, p_out, &ps)) return SIZE_MAX;
     size_t count = 0;
-    if (walk_side(g, v, f_in, a_in, f_out, a_out, side, out, cap, &count) < 0.0) return SIZE_MAX;
+    if (walk_side(g, &ps, side, out, cap, &count) < 0.0) return SIZE_MAX;
     return count;
 }
 

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# run_path.sh BUILD LARGE MESHES: geodesic paths (issue 4). For fcpw_kitten.obj, igl_armadillo.obj
+# and armadillo_1m.ply: 1000 random vertex pairs and 1000 random face-point pairs (and, on
+# armadillo_1m.ply, 1000 face-point pairs at most 10% of the bounding-box diagonal apart), timed
+# per path (thread CPU time, median of TG_BENCH_REPS runs per pair, default 3) with the default
+# straightener; the seed's relaxation on the first TG_BENCH_RELAX_PAIRS pairs of each set (default
+# 10; on armadillo_1m.ply only in the near set, its long paths take minutes each). One table; a
+# footer line per mesh with setup time and memory.
+set -euo pipefail
+build=${1:?usage: run_path.sh BUILD LARGE MESHES}
+large=${2:?usage: run_path.sh BUILD LARGE MESHES}
+meshes=${3:?usage: run_path.sh BUILD LARGE MESHES}
+pairs=${TG_BENCH_PATH_PAIRS:-1000}
+reps=${TG_BENCH_REPS:-3}
+relax=${TG_BENCH_RELAX_PAIRS:-10}
+bp=$build/bench/bench_path
+printf '| mesh | faces | set | method | pairs | median ms | p90 ms | max ms | initial path median ms | initial share | converged | max certificate rad | median points |\n'
+printf '|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n'
+footer=()
+for m in "$meshes/fcpw_kitten.obj" "$meshes/igl_armadillo.obj" "$large/armadillo_1m.ply"; do
+    [ -e "$m" ] || { echo "run_path.sh: missing $m" >&2; continue; }
+    extra=()
+    case "$m" in *armadillo_1m.ply) extra=(--near 0.1 --relax-near-only) ;; esac
+    out=$("$bp" "$m" --pairs "$pairs" --reps "$reps" --relax "$relax" "${extra[@]}")
+    grep '^|' <<<"$out"
+    footer+=("$(grep '^#' <<<"$out")")
+done
+printf '%s\n' "${footer[@]}"

@@ -402,8 +402,10 @@ tg_surface_point tg_surface_point_canonical(const tg_mesh* mesh, const tg_surfac
  *  the mesh), so the mesh must outlive the BVH.
  *
  *  Exactness: every closest-point answer is bit-identical to a linear scan of all faces with the
- *  project's robust point-triangle kernel (the tie rule below included); the tree only skips faces
- *  it has proved to be farther (float node bounds are rounded outward and pruning is conservative).
+ *  project's robust point-triangle kernel (the tie rule below included). The tree only skips a
+ *  face when its bounds (float, rounded outward, tested with error terms) prove that the kernel's
+ *  value for it would exceed the best so far by more than the kernel's documented rounding error
+ *  (taken as 2^-45 (d + D)^2 for distance d and mesh diagonal D; the kernel promises a few ulps).
  *  Ties: among faces at exactly the same squared distance, the lowest face index wins.
  *  Degenerate (zero-area) and duplicate faces are ordinary candidates. */
 typedef struct tg_bvh tg_bvh;
@@ -423,12 +425,16 @@ typedef struct tg_bvh_options {
     tg_bvh_winding_data winding_data; /**< see tg_bvh_winding_data */
 } tg_bvh_options;
 
-/** Builds a 4-wide BVH over all faces of mesh (binned surface area heuristic; 128-byte nodes
- *  holding axis-aligned and oriented boxes of their four children; leaves store their triangles'
- *  vertices contiguously).
+/** Builds a 4-wide BVH over all faces of mesh: top levels split in Morton order, subtrees of at
+ *  most 4096 faces by the binned surface area heuristic; 128-byte nodes holding axis-aligned and
+ *  oriented boxes of their four children; leaves store their triangles' vertices contiguously.
+ *  With OpenMP the subtrees, leaves and boxes are built on all cores; the tree is the same
+ *  whatever the number of threads. With the default allocator on Linux the large arrays are
+ *  advised as transparent huge pages.
  *  Any valid mesh is accepted, including an empty one (every query then finds nothing).
  *  Returns TG_OK; TG_ERR_INVALID_ARGUMENT for a NULL mesh or out_bvh or an option out of range;
- *  TG_ERR_OUT_OF_MEMORY. On failure *out_bvh is NULL.
+ *  TG_ERR_OUT_OF_MEMORY; TG_ERR_UNSUPPORTED beyond 2^31 faces or 32 GiB of leaf data. On failure
+ *  *out_bvh is NULL.
  *  Complexity: O(F log F) time, about 50 bytes per face (see tg_bvh_memory_bytes).
  *  Thread-safe (reads the mesh only). */
 tg_status tg_bvh_create(const tg_mesh* mesh, const tg_bvh_options* options, tg_bvh** out_bvh);
@@ -531,9 +537,10 @@ tg_status tg_bvh_signed_distance_batch(const tg_bvh* bvh, const double* xyz, siz
 /** The generalized winding number of the mesh at xyz: (1/4pi) * sum of the signed solid angles
  *  of its triangles (Van Oosterom and Strackee 1983). 1 inside and 0 outside a closed,
  *  consistently oriented mesh; fractional near holes. Evaluated hierarchically: clusters far from
- *  xyz (distance > 2 * their radius) contribute their dipole term, near ones the exact sum; without
- *  dipole data (TG_BVH_WINDING_NEVER) the exact sum over all faces. Finite everywhere (on the
- *  surface itself the value is one of the one-sided limits or in between).
+ *  xyz (distance > 3 * their radius) contribute their dipole term, near ones the exact sum (the
+ *  approximation is typically within 1e-2 of the exact value); without dipole data
+ *  (TG_BVH_WINDING_NEVER) the exact sum over all faces. Finite everywhere (on the surface itself
+ *  the value is one of the one-sided limits or in between).
  *  Returns TG_ERR_INVALID_ARGUMENT for a NULL argument, a non-finite xyz or a foreign workspace.
  *  Complexity: O(log F) clusters plus the triangles near xyz; O(F) without dipole data.
  *  Thread-safe with one workspace per thread. */

@@ -58,14 +58,29 @@ typedef struct passage {
     double a_in, c_in, a_out, c_out;
 } passage;
 
-static bool passage_make(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, uint32_t f_out,
-                         const tg__node* p_out, passage* ps)
+/* A direction given as an angle in its corner (>= 0, e.g. measured in a strip's unfolding) is
+ * used as is (clamped to the corner); otherwise it is measured towards the node. */
+static bool direction(const tg_geodesic* g, uint32_t f, int k, const tg__node* p, double hint, double* a, double* c)
+{
+    /* a corner with a zero-length side (coincident vertices) spans no direction: the passage is
+     * through a point the mesh splits into several vertices, treated like a pinch */
+    const uint32_t* t = g->tri + 3 * (size_t)f;
+    tg_vec3 o = tg__gpos(g, t[k]), b = tg__gpos(g, t[(k + 1) % 3]), e = tg__gpos(g, t[(k + 2) % 3]);
+    if ((o.x == b.x && o.y == b.y && o.z == b.z) || (o.x == e.x && o.y == e.y && o.z == e.z)) return false;
+    if (!(hint >= 0.0)) return node_angle(g, f, k, p, a, c);
+    *c = tg__corner_angle(g, f, k);
+    *a = hint > *c ? *c : hint;
+    return true;
+}
+
+static bool passage_make(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, double a_in,
+                         uint32_t f_out, const tg__node* p_out, double a_out, passage* ps)
 {
     int k_in = tg__corner_of(g, f_in, v), k_out = tg__corner_of(g, f_out, v);
     if (k_in < 0 || k_out < 0) return false;
     ps->v = v, ps->f_in = f_in, ps->f_out = f_out, ps->k_in = k_in;
-    return node_angle(g, f_in, k_in, p_in, &ps->a_in, &ps->c_in) &&
-           node_angle(g, f_out, k_out, p_out, &ps->a_out, &ps->c_out);
+    return direction(g, f_in, k_in, p_in, a_in, &ps->a_in, &ps->c_in) &&
+           direction(g, f_out, k_out, p_out, a_out, &ps->a_out, &ps->c_out);
 }
 
 /* Walks side `side` from f_in to f_out; returns the swept angle or -1, and writes the portals if
@@ -92,24 +107,36 @@ static double walk_side(const tg_geodesic* g, const passage* ps, int side, uint3
     return -1.0;
 }
 
-bool tg__fan_sides(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, uint32_t f_out,
-                   const tg__node* p_out, double out_angle[2])
+static bool fan_sides(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, double a_in,
+                      uint32_t f_out, const tg__node* p_out, double a_out, double out_angle[2])
 {
     passage ps;
     out_angle[0] = out_angle[1] = -1.0;
-    if (!passage_make(g, v, f_in, p_in, f_out, p_out, &ps)) return false;
+    if (!passage_make(g, v, f_in, p_in, a_in, f_out, p_out, a_out, &ps)) return false;
     for (int side = 0; side < 2; ++side) out_angle[side] = walk_side(g, &ps, side, NULL, 0, NULL);
     return out_angle[0] >= 0.0 || out_angle[1] >= 0.0;
+}
+
+bool tg__fan_sides(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, uint32_t f_out,
+                   const tg__node* p_out, double out_angle[2])
+{
+    return fan_sides(g, v, f_in, p_in, -1.0, f_out, p_out, -1.0, out_angle);
+}
+
+size_t tg__fan_portals_hint(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, double a_in,
+                            uint32_t f_out, const tg__node* p_out, double a_out, int side, uint32_t* out, size_t cap)
+{
+    passage ps;
+    if (!passage_make(g, v, f_in, p_in, a_in, f_out, p_out, a_out, &ps)) return SIZE_MAX;
+    size_t count = 0;
+    if (walk_side(g, &ps, side, out, cap, &count) < 0.0) return SIZE_MAX;
+    return count;
 }
 
 size_t tg__fan_portals(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, uint32_t f_out,
                        const tg__node* p_out, int side, uint32_t* out, size_t cap)
 {
-    passage ps;
-    if (!passage_make(g, v, f_in, p_in, f_out, p_out, &ps)) return SIZE_MAX;
-    size_t count = 0;
-    if (walk_side(g, &ps, side, out, cap, &count) < 0.0) return SIZE_MAX;
-    return count;
+    return tg__fan_portals_hint(g, v, f_in, p_in, -1.0, f_out, p_out, -1.0, side, out, cap);
 }
 
 /* When the segment between v and p runs along an edge (v, w) of face f that cannot be crossed
@@ -135,14 +162,14 @@ static bool along_wall(const tg_geodesic* g, uint32_t v, const tg__node* p, uint
     return tg__cross_opp(g, h) == TG_NONE;
 }
 
-double tg__vertex_best_side(const tg_geodesic* g, uint32_t v, const tg__node* p_in, uint32_t f_in,
-                            const tg__node* p_out, uint32_t f_out, uint32_t* out_f_in, uint32_t* out_f_out,
-                            int* out_side)
+double tg__vertex_best_side_hint(const tg_geodesic* g, uint32_t v, const tg__node* p_in, uint32_t f_in, double a_in,
+                                 const tg__node* p_out, uint32_t f_out, double a_out, uint32_t* out_f_in,
+                                 uint32_t* out_f_out, int* out_side)
 {
     double best = -1.0;
     *out_f_in = f_in, *out_f_out = f_out, *out_side = 0;
     double ang[2];
-    if (tg__fan_sides(g, v, f_in, p_in, f_out, p_out, ang)) {
+    if (fan_sides(g, v, f_in, p_in, a_in, f_out, p_out, a_out, ang)) {
         for (int s = 0; s < 2; ++s)
             if (ang[s] >= 0.0 && (best < 0.0 || ang[s] < best)) best = ang[s], *out_side = s;
     }
@@ -167,4 +194,11 @@ double tg__vertex_best_side(const tg_geodesic* g, uint32_t v, const tg__node* p_
         }
     }
     return best;
+}
+
+double tg__vertex_best_side(const tg_geodesic* g, uint32_t v, const tg__node* p_in, uint32_t f_in,
+                            const tg__node* p_out, uint32_t f_out, uint32_t* out_f_in, uint32_t* out_f_out,
+                            int* out_side)
+{
+    return tg__vertex_best_side_hint(g, v, p_in, f_in, -1.0, p_out, f_out, -1.0, out_f_in, out_f_out, out_side);
 }

@@ -21,6 +21,7 @@ typedef struct sleeve2d {
     uint32_t* left;    /* per portal j = 1..m: U index of its left endpoint (index 0 unused) */
     uint32_t* right;   /* U index of its right endpoint (the portal halfedge's start) */
     uint32_t* faces;   /* m + 1 sleeve faces */
+    uint32_t* corner;  /* 3 per sleeve face: the U point of each of its corners 0, 1, 2 */
     int cu_first[3];   /* U index of face 0's corners 0, 1, 2 */
     int cu_last[3];    /* U index of face m's corners */
     size_t u_count;    /* mesh U points (A and B are appended after them) */
@@ -35,6 +36,7 @@ static bool sleeve_reserve(tg_geodesic_workspace* ws, size_t m, sleeve2d* s)
         !tg__buf_reserve(ws, &ws->pleft, m + 1, sizeof(uint32_t)) ||
         !tg__buf_reserve(ws, &ws->pright, m + 1, sizeof(uint32_t)) ||
         !tg__buf_reserve(ws, &ws->faces, m + 1, sizeof(uint32_t)) ||
+        !tg__buf_reserve(ws, &ws->ucorner, 3 * (m + 1), sizeof(uint32_t)) ||
         !tg__buf_reserve(ws, &ws->dval, nu, sizeof(double)))
         return false;
     s->xy = ws->uxy.p;
@@ -43,6 +45,7 @@ static bool sleeve_reserve(tg_geodesic_workspace* ws, size_t m, sleeve2d* s)
     s->left = ws->pleft.p;
     s->right = ws->pright.p;
     s->faces = ws->faces.p;
+    s->corner = ws->ucorner.p;
     return true;
 }
 
@@ -72,6 +75,7 @@ static bool unfold(const tg_geodesic* g, uint32_t face0, const uint32_t* portals
         s->cu_first[k] = k;
     }
     s->faces[0] = face0;
+    for (int k = 0; k < 3; ++k) s->corner[k] = (uint32_t)k;
     uint32_t f = face0;
     for (size_t j = 1; j <= m; ++j) {
         uint32_t p = portals[j - 1];
@@ -100,6 +104,7 @@ static bool unfold(const tg_geodesic* g, uint32_t face0, const uint32_t* portals
         cu[qk] = (int)lu, cu[(qk + 1) % 3] = (int)ru, cu[(qk + 2) % 3] = (int)u;
         f = q / 3;
         s->faces[j] = f;
+        for (int k = 0; k < 3; ++k) s->corner[3 * j + (size_t)k] = (uint32_t)cu[k];
     }
     for (int k = 0; k < 3; ++k) s->cu_last[k] = cu[k];
     s->u_count = m + 3;
@@ -261,6 +266,21 @@ static tg__node portal_crossing(const sleeve2d* s, const uint32_t* portals, size
     return tg__node_vertex(s->vert[sl <= 0 ? l : r]);
 }
 
+/* The direction from U point x towards U point y as an angle in x's corner of sleeve face j,
+ * measured from side k -> k+1 (faces are counterclockwise in the unfolding); -1 when x is not a
+ * corner of that face. Unlike a direction towards a neighbouring crossing in 3D, this stays
+ * meaningful when the crossing coincides with x (a segment entering x through a zero-area face). */
+static double corner_direction(const sleeve2d* s, size_t j, uint32_t x, uint32_t y)
+{
+    const uint32_t* c = s->corner + 3 * j;
+    int k = c[0] == x ? 0 : c[1] == x ? 1 : c[2] == x ? 2 : -1;
+    if (k < 0) return -1.0;
+    const double *o = s->xy + 2 * x, *n = s->xy + 2 * c[(k + 1) % 3], *p = s->xy + 2 * y;
+    double ex = n[0] - o[0], ey = n[1] - o[1], dx = p[0] - o[0], dy = p[1] - o[1];
+    double a = atan2(ex * dy - ey * dx, ex * dx + ey * dy);
+    return a < 0.0 ? 0.0 : a;
+}
+
 /* ---- entry points ---- */
 
 /* Sleeve face index ranges of the segment from U point x to U point y of a funnel path. */
@@ -336,6 +356,8 @@ tg_status tg__funnel(tg_geodesic_workspace* ws, const tg__node* a, const tg__nod
             sl->near_a = ny;
             sl->near_b = prev;
         }
+        sl->ang_a = x < s.u_count ? corner_direction(&s, first, x, y) : -1.0;
+        sl->ang_b = y < s.u_count ? corner_direction(&s, last, y, x) : -1.0;
         piv[np++] = ny;
         prev = ny;
     }

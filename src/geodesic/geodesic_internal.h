@@ -87,6 +87,9 @@ typedef struct tg__sleeve {
     uint32_t fresh;                    /* made by the last sweep (its end pivots need a check) */
     tg__node near_a, near_b;           /* the path's points next to its start and end pivots (the
                                           first / last crossing, or the other pivot) */
+    double ang_a, ang_b;               /* the segment's direction at its start / end pivot as an angle
+                                          in that pivot's corner of face0 / the last face, measured in
+                                          the unfolding; -1: measure towards near_a / near_b */
 } tg__sleeve;
 
 struct tg_geodesic_workspace {
@@ -107,7 +110,7 @@ struct tg_geodesic_workspace {
     tg__buf piv[2], slv[2], portals[2];
     tg__buf decide;
     /* sleeve unfolding and funnel */
-    tg__buf merged, faces, uxy, uvert, urange, pleft, pright, deque, apex, dval;
+    tg__buf merged, faces, uxy, uvert, urange, ucorner, pleft, pright, deque, apex, dval;
     /* fan and relaxation scratch */
     tg__buf fan, spokes, tvals;
 };
@@ -197,6 +200,16 @@ size_t tg__fan_portals(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg
 double tg__vertex_best_side(const tg_geodesic* g, uint32_t v, const tg__node* p_in, uint32_t f_in,
                             const tg__node* p_out, uint32_t f_out, uint32_t* out_f_in,
                             uint32_t* out_f_out, int* out_side);
+
+/* The same with directions given as angles in their corners at v (measured from side k -> k+1,
+ * as tg__fan_sides does), e.g. taken from a strip's unfolding where a node's own position is not
+ * a usable direction (it coincides with v through a zero-area face); a negative angle means
+ * "measure towards the node". The hints apply to f_in / f_out only, not to other faces tried. */
+double tg__vertex_best_side_hint(const tg_geodesic* g, uint32_t v, const tg__node* p_in, uint32_t f_in, double a_in,
+                                 const tg__node* p_out, uint32_t f_out, double a_out, uint32_t* out_f_in,
+                                 uint32_t* out_f_out, int* out_side);
+size_t tg__fan_portals_hint(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, double a_in,
+                            uint32_t f_out, const tg__node* p_out, double a_out, int side, uint32_t* out, size_t cap);
 
 /* A face (lowest index) containing both nodes, preferring `hint` when it qualifies; TG_NONE if
  * none. Uses the vertex-corner table, so non-manifold configurations are covered. */

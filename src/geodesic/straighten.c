@@ -41,7 +41,8 @@ static size_t decide_all(tg_geodesic_workspace* ws, int cur, size_t np, double l
         uint32_t f_in = sleeve_last_face(g, in, portals), f_out = out->face0;
         uint32_t fi, fo;
         int side;
-        double a = tg__vertex_best_side(g, piv[i].id, &in->near_b, f_in, &out->near_a, f_out, &fi, &fo, &side);
+        double a = tg__vertex_best_side_hint(g, piv[i].id, &in->near_b, f_in, in->ang_b, &out->near_a, f_out,
+                                             out->ang_a, &fi, &fo, &side);
         if (a < 0.0 || !(a < limit)) continue;
         if ((fi != f_in && in->portal_end != in->portal_begin) || (fo != f_out && out->portal_end != out->portal_begin))
             continue;
@@ -105,8 +106,10 @@ static bool build_run(tg_geodesic_workspace* ws, int cur, size_t i, size_t j, co
         uint32_t f_last = m ? g->opp[mp[m - 1]] / 3 : *out_face0;
         if (f_last != d->f_in) return false;
         /* the fan is written past the end, then pushed one portal at a time */
-        size_t n = tg__fan_portals(g, piv[r + 1].id, d->f_in, &s->near_b, d->f_out, &slv[r + 1].near_a, d->side,
-                                   mp + m, fan_cap);
+        double a_in = d->f_in == sleeve_last_face(g, s, portals) ? s->ang_b : -1.0;
+        double a_out = d->f_out == slv[r + 1].face0 ? slv[r + 1].ang_a : -1.0;
+        size_t n = tg__fan_portals_hint(g, piv[r + 1].id, d->f_in, &s->near_b, a_in, d->f_out, &slv[r + 1].near_a,
+                                        a_out, d->side, mp + m, fan_cap);
         if (n == SIZE_MAX) return false;
         size_t at = m;
         for (size_t q = 0; q < n; ++q) push_portal(g, mp, &m, mp[at + q]);
@@ -270,6 +273,8 @@ static void polish(const tg_geodesic* g, tg__node* nodes, const uint32_t* faces,
     }
 }
 
+#define STALL_SWEEPS 3
+
 tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_sweeps, double angle_tol,
                          tg__shorten_result* out)
 {
@@ -291,11 +296,19 @@ tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_s
         slv[i].len = tg__node_dist(g, &nodes[i], &nodes[i + 1], faces[i]);
         slv[i].near_a = nodes[i + 1];
         slv[i].near_b = nodes[i];
+        slv[i].ang_a = slv[i].ang_b = -1.0;
         slv[i].fresh = 1;
     }
     int cur = 0;
     size_t np = count;
     double limit = TG__PI - angle_tol;
+    /* Every accepted re-routing shortens the path in exact arithmetic; sweeps that no longer
+     * shorten it at all in floating point are numerical stalls (e.g. a passage whose side angle
+     * is measured below pi - tolerance but whose funnel returns the same path): after STALL_SWEEPS
+     * of them the loop stops, and the status says the criterion was not met. */
+    double total = 0.0;
+    for (size_t i = 0; i + 1 < np; ++i) total += slv[i].len;
+    int stalls = 0;
     for (;;) {
         if (!tg__buf_reserve(ws, &ws->decide, np, sizeof(decision))) return TG_ERR_OUT_OF_MEMORY;
         decision* dec = ws->decide.p;
@@ -312,6 +325,15 @@ tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_s
         np = next_np;
         if (accepted == 0) {
             out->capped = 1; /* every re-routing was rejected: stop rather than repeat it */
+            break;
+        }
+        const tg__sleeve* ns = ws->slv[cur].p;
+        double next_total = 0.0;
+        for (size_t i = 0; i + 1 < np; ++i) next_total += ns[i].len;
+        stalls = next_total < total ? 0 : stalls + 1;
+        total = next_total;
+        if (stalls >= STALL_SWEEPS) {
+            out->capped = 1;
             break;
         }
     }

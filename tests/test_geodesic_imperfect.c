@@ -1,0 +1,349 @@
+/* test_geodesic_imperfect.c - documented behaviour of geodesic paths on imperfect meshes, each on
+ * a mesh built here: a boundary with a reflex corner (the path bends there, certified by its
+ * interior angle), two components (unreachable, length +inf), a zero-area face inside a flat
+ * sheet (straight through it), a non-manifold "book" edge and a pinched vertex (crossed only
+ * through vertices), a duplicate face, an unreferenced vertex (rejected as an endpoint). */
+#include "tg_test.h"
+
+#include <trigeo.h>
+
+#define MAXV 512
+#define MAXF 1024
+
+static double xyz[3 * MAXV];
+static uint32_t tri[3 * MAXF];
+static size_t nv, nf;
+
+static uint32_t add_v(double x, double y, double z)
+{
+    xyz[3 * nv] = x, xyz[3 * nv + 1] = y, xyz[3 * nv + 2] = z;
+    return (uint32_t)nv++;
+}
+static void add_f(uint32_t a, uint32_t b, uint32_t c)
+{
+    tri[3 * nf] = a, tri[3 * nf + 1] = b, tri[3 * nf + 2] = c;
+    nf++;
+}
+
+/* An n x n grid over [x0, x0 + w] x [y0, y0 + w] at height z, skipping cells for which skip()
+ * is true; returns the vertex id of grid point (0, 0). */
+static uint32_t grid(int n, double x0, double y0, double w, double z, int (*skip)(int, int, int))
+{
+    uint32_t base = (uint32_t)nv;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) add_v(x0 + w * i / n, y0 + w * j / n, z);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            if (skip && skip(i, j, n)) continue;
+            uint32_t a = base + (uint32_t)(j * (n + 1) + i), b = a + 1, c = a + (uint32_t)n + 1, d = c + 1;
+            if ((i + j) & 1) {
+                add_f(a, b, d), add_f(a, d, c);
+            } else {
+                add_f(a, b, c), add_f(b, d, c);
+            }
+        }
+    return base;
+}
+
+typedef struct ctx {
+    tg_mesh* mesh;
+    tg_geodesic* geo;
+    tg_geodesic_workspace* ws;
+    tg_path* path;
+} ctx;
+
+static ctx open_ctx(void)
+{
+    ctx c = {NULL, NULL, NULL, NULL};
+    CHECK_STATUS(tg_mesh_create(xyz, nv, tri, nf, NULL, NULL, &c.mesh), TG_OK);
+    CHECK_STATUS(tg_geodesic_create(c.mesh, NULL, &c.geo), TG_OK);
+    CHECK_STATUS(tg_geodesic_workspace_create(c.geo, &c.ws), TG_OK);
+    CHECK_STATUS(tg_path_create(NULL, &c.path), TG_OK);
+    return c;
+}
+
+static void close_ctx(ctx* c)
+{
+    tg_path_destroy(c->path);
+    tg_geodesic_workspace_destroy(c->ws);
+    tg_geodesic_destroy(c->geo);
+    tg_mesh_destroy(c->mesh);
+    nv = nf = 0;
+}
+
+static tg_path_view run(ctx* c, tg_surface_point a, tg_surface_point b, tg_path_method m)
+{
+    tg_path_options o;
+    memset(&o, 0, sizeof o);
+    o.method = m;
+    CHECK_STATUS(tg_geodesic_path(c->geo, c->ws, &a, &b, &o, c->path), TG_OK);
+    tg_path_view v;
+    tg_path_get_view(c->path, &v);
+    return v;
+}
+
+/* The face point of face f at xyz, which must lie in f's plane (barycentrics by areas). */
+static tg_surface_point at(uint32_t f, double x, double y)
+{
+    const double *a = xyz + 3 * tri[3 * f], *b = xyz + 3 * tri[3 * f + 1], *c = xyz + 3 * tri[3 * f + 2];
+    double d = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    double l1 = ((x - a[0]) * (c[1] - a[1]) - (y - a[1]) * (c[0] - a[0])) / d;
+    double l2 = ((b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0])) / d;
+    return tg_surface_face(f, 1 - l1 - l2, l1, l2);
+}
+
+/* The face of a planar (z = const) mesh containing (x, y), or TG_NONE. */
+static uint32_t find_face(double x, double y)
+{
+    for (size_t f = 0; f < nf; ++f) {
+        tg_surface_point p = at((uint32_t)f, x, y);
+        if (p.bary[0] >= 0 && p.bary[1] >= 0 && p.bary[2] >= 0) return (uint32_t)f;
+    }
+    return TG_NONE;
+}
+
+/* Interior points of a path that lie on an edge with more or fewer than two faces, or on a
+ * zero-length one (a path crosses only manifold edges). */
+static int crossings_on_walls(const ctx* c, const tg_path_view* v)
+{
+    const uint32_t* opp = tg_mesh_opposites(c->mesh);
+    int bad = 0;
+    for (size_t i = 1; i + 1 < v->point_count; ++i)
+        if (v->points[i].kind == TG_SURFACE_EDGE && opp[v->points[i].index] == TG_NONE) bad++;
+    return bad;
+}
+
+/* ---- boundary: an L-shaped sheet, the path bends at the reflex corner (0.5, 0.5) ---- */
+
+static int skip_quadrant(int i, int j, int n) { return i >= n / 2 && j >= n / 2; }
+
+static void test_reflex_corner(void)
+{
+    grid(8, 0, 0, 1, 0, skip_quadrant);
+    ctx c = open_ctx();
+    uint32_t fa = find_face(0.9, 0.3), fb = find_face(0.3, 0.9);
+    double expect = 2 * sqrt(0.2); /* (0.9,0.3) -> (0.5,0.5) -> (0.3,0.9) */
+    for (int m = 0; m < 2; ++m) {
+        tg_path_view v = run(&c, at(fa, 0.9, 0.3), at(fb, 0.3, 0.9), m ? TG_PATH_RELAX : TG_PATH_STRAIGHTEN);
+        CHECK_NEAR(v.length, expect, m ? 1e-6 : 1e-12);
+        if (m == 0) {
+            CHECK_MSG(v.status == TG_PATH_CONVERGED && v.max_angle_defect <= 1e-10, "reflex corner: %s, %.3g",
+                      tg_path_status_name(v.status), v.max_angle_defect);
+            int through = 0;
+            for (size_t i = 1; i + 1 < v.point_count; ++i)
+                through += v.points[i].kind == TG_SURFACE_VERTEX && v.xyz[3 * i] == 0.5 && v.xyz[3 * i + 1] == 0.5;
+            CHECK_MSG(through == 1, "the path passes the reflex corner once (%d)", through);
+        }
+    }
+    close_ctx(&c);
+}
+
+/* ---- two components: unreachable, length +inf, no points; then a reachable pair ---- */
+
+static void test_components(void)
+{
+    uint32_t a0 = grid(3, 0, 0, 1, 0, NULL);
+    uint32_t b0 = grid(3, 5, 0, 1, 0, NULL);
+    ctx c = open_ctx();
+    for (int m = 0; m < 3; ++m) {
+        tg_path_view v = run(&c, tg_surface_vertex(a0), tg_surface_vertex(b0 + 5), (tg_path_method)m);
+        CHECK(v.status == TG_PATH_UNREACHABLE && v.point_count == 0);
+        CHECK(isinf(v.length) && v.length > 0 && isinf(v.initial_length));
+        CHECK(v.max_angle_defect == 0);
+    }
+    tg_path_view v = run(&c, tg_surface_vertex(b0), tg_surface_vertex(b0 + 15), TG_PATH_STRAIGHTEN);
+    CHECK(v.status == TG_PATH_CONVERGED);
+    CHECK_NEAR(v.length, sqrt(2.0), 1e-12);
+    /* the result object is reused: an unreachable query after a path clears it */
+    v = run(&c, tg_surface_vertex(b0), tg_surface_vertex(a0), TG_PATH_STRAIGHTEN);
+    CHECK(v.status == TG_PATH_UNREACHABLE && v.point_count == 0);
+    close_ctx(&c);
+}
+
+/* ---- a zero-area face in a flat sheet: edge (u, w) split by its midpoint m on one side ---- */
+
+static void test_zero_area_face(void)
+{
+    uint32_t base = grid(6, 0, 0, 1, 0, NULL);
+    /* the interior vertical edge from grid (3,1) to (3,2) is in two faces; find them */
+    uint32_t u = base + 1 * 7 + 3, w = base + 2 * 7 + 3;
+    int f1 = -1, f2 = -1;
+    for (size_t f = 0; f < nf; ++f)
+        for (int k = 0; k < 3; ++k) {
+            if (tri[3 * f + k] == u && tri[3 * f + (k + 1) % 3] == w) f1 = (int)f;
+            if (tri[3 * f + k] == w && tri[3 * f + (k + 1) % 3] == u) f2 = (int)f;
+        }
+    CHECK(f1 >= 0 && f2 >= 0);
+    if (f1 < 0 || f2 < 0) return;
+    uint32_t y = 0;
+    for (int k = 0; k < 3; ++k)
+        if (tri[3 * f2 + k] != u && tri[3 * f2 + k] != w) y = tri[3 * f2 + k];
+    uint32_t m = add_v(0.5, 0.25, 0.0); /* the midpoint of u = (0.5, 1/6) and w = (0.5, 2/6) */
+    tri[3 * f2] = w, tri[3 * f2 + 1] = m, tri[3 * f2 + 2] = y; /* (w, u, y) -> (w, m, y) + (m, u, y) */
+    add_f(m, u, y);
+    add_f(w, u, m); /* zero area: m lies on the segment u w */
+    ctx c = open_ctx();
+    const tg_mesh_report* r = tg_mesh_get_report(c.mesh);
+    CHECK_EQ_INT(r->degenerate_faces, 1);
+    CHECK_EQ_INT(r->nonmanifold_edges, 0);
+    tg_rng rng = {8};
+    for (int q = 0; q < 40; ++q) {
+        /* pairs on either side of x = 0.5, so that many paths cross the sliver */
+        double x1 = tg_rng_range(&rng, 0.02, 0.48), y1 = tg_rng_range(&rng, 0.02, 0.6);
+        double x2 = tg_rng_range(&rng, 0.52, 0.98), y2 = tg_rng_range(&rng, 0.02, 0.6);
+        uint32_t fa = find_face(x1, y1), fb = find_face(x2, y2);
+        /* the straightener measures directions in the strip's unfolding, where a segment through
+         * the zero-area face keeps its direction: exact. The seed's relaxation needs a direction at
+         * each vertex from the neighbouring path point, which a crossing through the zero-area
+         * face puts on top of the vertex: it may stop early there (valid, not longer, not exact). */
+        for (int meth = 0; meth < 2; ++meth) {
+            tg_path_view v = run(&c, at(fa, x1, y1), at(fb, x2, y2), meth ? TG_PATH_RELAX : TG_PATH_STRAIGHTEN);
+            double euclid = hypot(x2 - x1, y2 - y1);
+            if (meth == 0) {
+                CHECK_NEAR(v.length, euclid, 1e-12);
+                CHECK_MSG(v.status == TG_PATH_CONVERGED && v.max_angle_defect <= 1e-10, "sliver pair %d: %s %.3g", q,
+                          tg_path_status_name(v.status), v.max_angle_defect);
+            } else {
+                CHECK(v.length >= euclid * (1 - 1e-12) && v.length <= v.initial_length * (1 + 1e-12));
+            }
+            CHECK(crossings_on_walls(&c, &v) == 0);
+        }
+    }
+    close_ctx(&c);
+}
+
+/* ---- non-manifold: three half-planes ("pages") on one spine edge; pinched: two sheets sharing
+ * one vertex. Paths between sheets pass through a vertex, never cross the spine's interior. ---- */
+
+static void test_book_and_pinch(void)
+{
+    /* spine from s0 = (0,0,0) to s1 = (0,0,1); page k is a fan of two triangles to its far edge */
+    uint32_t s0 = add_v(0, 0, 0), s1 = add_v(0, 0, 1);
+    const double dir[3][2] = {{1, 0}, {-0.5, 0.8660254037844386}, {-0.5, -0.8660254037844386}};
+    uint32_t far0[3], far1[3];
+    for (int k = 0; k < 3; ++k) {
+        far0[k] = add_v(dir[k][0], dir[k][1], 0);
+        far1[k] = add_v(dir[k][0], dir[k][1], 1);
+        add_f(s0, far0[k], far1[k]);
+        add_f(s0, far1[k], s1);
+    }
+    ctx c = open_ctx();
+    CHECK_EQ_INT(tg_mesh_get_report(c.mesh)->nonmanifold_edges, 1);
+    /* page 0 point (0.5, 0, 0.5) to page 1 point at distance 0.5 from the spine, height 0.5: the
+     * shortest way is through the spine, at one of its end vertices (the interior is not crossed):
+     * 2 * sqrt(0.5^2 + 0.5^2) */
+    for (int m = 0; m < 2; ++m) {
+        tg_surface_point a = tg_surface_face(0, 0.5, 0.5, 0.0), b = tg_surface_face(2, 0.5, 0.5, 0.0);
+        double pa[3], pb[3];
+        tg_surface_point_position(c.mesh, &a, pa);
+        tg_surface_point_position(c.mesh, &b, pb);
+        tg_path_view v = run(&c, a, b, m ? TG_PATH_RELAX : TG_PATH_STRAIGHTEN);
+        CHECK(v.status == TG_PATH_CONVERGED);
+        CHECK(crossings_on_walls(&c, &v) == 0);
+        double via0 = sqrt(pa[0] * pa[0] + pa[1] * pa[1] + pa[2] * pa[2]) + sqrt(pb[0] * pb[0] + pb[1] * pb[1] + pb[2] * pb[2]);
+        CHECK_NEAR(v.length, via0, m ? 1e-6 : 1e-12);
+        if (m == 0) CHECK(v.max_angle_defect <= 1e-10);
+    }
+    close_ctx(&c);
+
+    /* pinch: two squares touching at one corner vertex p */
+    uint32_t p = add_v(0, 0, 0);
+    uint32_t a1 = add_v(1, 0, 0), a2 = add_v(1, 1, 0), a3 = add_v(0, 1, 0);
+    uint32_t b1 = add_v(-1, 0, 0), b2 = add_v(-1, -1, 0.5), b3 = add_v(0, -1, 0);
+    add_f(p, a1, a2), add_f(p, a2, a3);
+    add_f(p, b1, b2), add_f(p, b2, b3);
+    c = open_ctx();
+    CHECK_EQ_INT(tg_mesh_get_report(c.mesh)->nonmanifold_vertices, 1);
+    tg_surface_point a = tg_surface_face(0, 0.2, 0.4, 0.4), b = tg_surface_face(3, 0.3, 0.3, 0.4);
+    double pa[3], pb[3];
+    tg_surface_point_position(c.mesh, &a, pa);
+    tg_surface_point_position(c.mesh, &b, pb);
+    for (int m = 0; m < 2; ++m) {
+        tg_path_view v = run(&c, a, b, m ? TG_PATH_RELAX : TG_PATH_STRAIGHTEN);
+        CHECK(v.status == TG_PATH_CONVERGED && v.point_count == 3);
+        if (v.point_count == 3) CHECK(v.points[1].kind == TG_SURFACE_VERTEX && v.points[1].index == p);
+        CHECK_NEAR(v.length, sqrt(pa[0] * pa[0] + pa[1] * pa[1] + pa[2] * pa[2]) + sqrt(pb[0] * pb[0] + pb[1] * pb[1] + pb[2] * pb[2]), 1e-12);
+        /* a pinched vertex may be passed at any angle between its two fans */
+        CHECK(v.max_angle_defect == 0);
+    }
+    close_ctx(&c);
+}
+
+/* ---- a duplicate face and an unreferenced vertex ---- */
+
+static void test_duplicate_and_unreferenced(void)
+{
+    uint32_t base = grid(5, 0, 0, 1, 0, NULL);
+    add_f(tri[3 * 12], tri[3 * 12 + 1], tri[3 * 12 + 2]); /* face 12 twice */
+    uint32_t lone = add_v(3, 3, 3);
+    ctx c = open_ctx();
+    CHECK_EQ_INT(tg_mesh_get_report(c.mesh)->duplicate_faces, 1);
+    tg_rng rng = {9};
+    for (int q = 0; q < 30; ++q) {
+        double x1 = tg_rng_unit(&rng), y1 = tg_rng_unit(&rng), x2 = tg_rng_unit(&rng), y2 = tg_rng_unit(&rng);
+        uint32_t fa = find_face(x1, y1), fb = find_face(x2, y2);
+        tg_path_view v = run(&c, at(fa, x1, y1), at(fb, x2, y2), TG_PATH_STRAIGHTEN);
+        CHECK(v.status == TG_PATH_CONVERGED && v.max_angle_defect <= 1e-10);
+        CHECK(crossings_on_walls(&c, &v) == 0);
+        /* the duplicated face's edges are non-manifold: paths go around or through its corners */
+        CHECK(v.length >= hypot(x2 - x1, y2 - y1) * (1 - 1e-12) && v.length <= v.initial_length * (1 + 1e-12));
+    }
+    tg_surface_point a = tg_surface_vertex(base), b = tg_surface_vertex(lone);
+    CHECK_STATUS(tg_geodesic_path(c.geo, c.ws, &a, &b, NULL, c.path), TG_ERR_INVALID_ARGUMENT);
+    tg_surface_point bad = tg_surface_face(0, 0.5, 0.5, 0.5);
+    CHECK_STATUS(tg_geodesic_path(c.geo, c.ws, &a, &bad, NULL, c.path), TG_ERR_INVALID_ARGUMENT);
+    tg_path_options o;
+    memset(&o, 0, sizeof o);
+    o.method = (tg_path_method)7;
+    CHECK_STATUS(tg_geodesic_path(c.geo, c.ws, &a, &a, &o, c.path), TG_ERR_INVALID_ARGUMENT);
+    close_ctx(&c);
+}
+
+/* ---- API contract: NULL arguments, foreign workspaces, empty views ---- */
+
+static void test_api(void)
+{
+    grid(2, 0, 0, 1, 0, NULL);
+    ctx c = open_ctx();
+    tg_geodesic* other = NULL;
+    tg_geodesic_workspace* ows = NULL;
+    CHECK_STATUS(tg_geodesic_create(c.mesh, NULL, &other), TG_OK);
+    CHECK_STATUS(tg_geodesic_workspace_create(other, &ows), TG_OK);
+    tg_surface_point a = tg_surface_vertex(0), b = tg_surface_vertex(8);
+    CHECK_STATUS(tg_geodesic_path(c.geo, ows, &a, &b, NULL, c.path), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_path(c.geo, c.ws, NULL, &b, NULL, c.path), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_path(c.geo, c.ws, &a, &b, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    tg_geodesic* g0 = (tg_geodesic*)1;
+    CHECK_STATUS(tg_geodesic_create(NULL, NULL, &g0), TG_ERR_INVALID_ARGUMENT);
+    CHECK(g0 == NULL);
+    tg_path_view v;
+    tg_path_get_view(NULL, &v);
+    CHECK(v.point_count == 0 && v.status == TG_PATH_UNREACHABLE && isinf(v.length));
+    tg_geodesic_destroy(NULL);
+    tg_geodesic_workspace_destroy(NULL);
+    tg_path_destroy(NULL);
+    CHECK(tg_geodesic_memory_bytes(c.geo) > 0 && tg_geodesic_workspace_memory_bytes(c.ws) > 0);
+    CHECK_EQ_STR(tg_path_status_name(TG_PATH_ITERATION_CAP), "iteration_cap");
+    CHECK_EQ_STR(tg_path_status_name((tg_path_status)42), "unknown");
+    /* a point to itself: two coincident points, length 0 */
+    tg_surface_point f = tg_surface_face(3, 0.2, 0.3, 0.5);
+    v = run(&c, f, f, TG_PATH_STRAIGHTEN);
+    CHECK(v.point_count == 2 && v.length == 0 && v.status == TG_PATH_CONVERGED);
+    v = run(&c, a, a, TG_PATH_RELAX);
+    CHECK(v.point_count == 2 && v.length == 0);
+    /* an iteration cap of one sweep on a long path reports the cap, with a valid shorter path */
+    tg_geodesic_workspace_destroy(ows);
+    tg_geodesic_destroy(other);
+    close_ctx(&c);
+}
+
+int main(void)
+{
+    test_reflex_corner();
+    test_components();
+    test_zero_area_face();
+    test_book_and_pinch();
+    test_duplicate_and_unreferenced();
+    test_api();
+    return tg_test_finish();
+}

@@ -24,7 +24,7 @@ static uint32_t sleeve_last_face(const tg_geodesic* g, const tg__sleeve* s, cons
 }
 
 /* Decides, for every interior vertex passage, whether and how to re-route it. Returns the count. */
-static size_t decide_all(tg_geodesic_workspace* ws, int cur, size_t np, double limit, decision* dec)
+static size_t decide_all(tg_geodesic_workspace* ws, int cur, size_t np, double limit, bool single, decision* dec)
 {
     const tg_geodesic* g = ws->geo;
     const tg__node* piv = ws->piv[cur].p;
@@ -48,6 +48,13 @@ static size_t decide_all(tg_geodesic_workspace* ws, int cur, size_t np, double l
             continue;
         dec[i].side = side, dec[i].f_in = fi, dec[i].f_out = fo;
         count++;
+    }
+    /* after a rejected run: passages one at a time, never two adjacent ones */
+    for (size_t i = 1; single && i + 2 < np; ++i) {
+        if (dec[i].side >= 0 && dec[i + 1].side >= 0) {
+            dec[i + 1].side = -1;
+            count--;
+        }
     }
     /* a portal-less sleeve between two re-routed passages can take only one face */
     for (size_t i = 1; i + 2 < np; ++i) {
@@ -143,8 +150,9 @@ static bool copy_step(tg_geodesic_workspace* ws, int cur, size_t i, size_t* np, 
 /* One sweep: re-routes the decided passages run by run. Returns the new pivot count in *out_np
  * and the total length before/after in *io_len. */
 static tg_status sweep(tg_geodesic_workspace* ws, int cur, size_t np, const decision* dec, size_t* out_np,
-                       size_t* accepted)
+                       size_t* accepted, bool* out_retry)
 {
+    *out_retry = false;
     int nxt = 1 - cur;
     size_t onp = 1, onq = 0;
     if (!tg__buf_reserve(ws, &ws->piv[nxt], 1, sizeof(tg__node)) ||
@@ -184,9 +192,14 @@ static tg_status sweep(tg_geodesic_workspace* ws, int cur, size_t np, const deci
         if (ok) {
             *accepted += j - i - 1;
         } else {
+            /* keep the old run; when it joined several passages, retry them one at a time in
+             * the next sweep (their sleeves stay fresh so that they are decided again) */
             onp = save_np, onq = save_nq;
-            for (size_t r = i; r < j; ++r)
+            for (size_t r = i; r < j; ++r) {
                 if (!copy_step(ws, cur, r, &onp, &onq)) return TG_ERR_OUT_OF_MEMORY;
+                if (j - i > 2) ((tg__sleeve*)ws->slv[nxt].p)[onp - 2].fresh = 1;
+            }
+            if (j - i > 2) *out_retry = true;
         }
         i = j;
     }
@@ -302,35 +315,43 @@ tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_s
     int cur = 0;
     size_t np = count;
     double limit = TG__PI - angle_tol;
-    /* Every accepted re-routing shortens the path in exact arithmetic; sweeps that no longer
-     * shorten it at all in floating point are numerical stalls (e.g. a passage whose side angle
-     * is measured below pi - tolerance but whose funnel returns the same path): after STALL_SWEEPS
-     * of them the loop stops, and the status says the criterion was not met. */
+    /* Every accepted re-routing shortens the path in exact arithmetic; sweeps that neither
+     * shorten it in floating point nor change its passages are numerical stalls (a passage whose
+     * side angle is measured below pi - tolerance but whose funnel returns the same path): after
+     * STALL_SWEEPS of them the loop stops, and the status says the criterion was not met. */
     double total = 0.0;
     for (size_t i = 0; i + 1 < np; ++i) total += slv[i].len;
     int stalls = 0;
+    bool single = false;
     for (;;) {
         if (!tg__buf_reserve(ws, &ws->decide, np, sizeof(decision))) return TG_ERR_OUT_OF_MEMORY;
         decision* dec = ws->decide.p;
-        if (decide_all(ws, cur, np, limit, dec) == 0) break;
+        if (decide_all(ws, cur, np, limit, single, dec) == 0) break;
         if (out->iterations >= max_sweeps) {
             out->capped = 1;
             break;
         }
         size_t accepted = 0, next_np = 0;
-        tg_status st = sweep(ws, cur, np, dec, &next_np, &accepted);
+        bool retry = false;
+        size_t prev_np = np;
+        tg_status st = sweep(ws, cur, np, dec, &next_np, &accepted, &retry);
         if (st != TG_OK) return st;
         out->iterations++;
         cur = 1 - cur;
         np = next_np;
-        if (accepted == 0) {
+        if (retry) single = true;
+        if (accepted == 0 && !retry) {
             out->capped = 1; /* every re-routing was rejected: stop rather than repeat it */
             break;
         }
         const tg__sleeve* ns = ws->slv[cur].p;
         double next_total = 0.0;
         for (size_t i = 0; i + 1 < np; ++i) next_total += ns[i].len;
-        stalls = next_total < total ? 0 : stalls + 1;
+        /* progress: shorter, or (second-order changes below rounding) other passages */
+        bool same = np == prev_np;
+        const tg__node *pa = ws->piv[cur].p, *pb = ws->piv[1 - cur].p;
+        for (size_t i = 0; same && i < np; ++i) same = pa[i].kind == pb[i].kind && pa[i].id == pb[i].id;
+        stalls = next_total < total || retry || !same ? 0 : stalls + 1;
         total = next_total;
         if (stalls >= STALL_SWEEPS) {
             out->capped = 1;

@@ -1,6 +1,7 @@
 /* cmd_path.c - `trigeo path MESH --from SPEC --to SPEC [-o PATH.obj] [--json] [--method M]` and
  * `trigeo path MESH --pairs PAIRS [-o OUT.csv] [--method M]`: geodesic paths between surface
  * points (one, written as an OBJ polyline or JSON; or a batch, as CSV with timings). */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include "cli.h"
 
 #include <errno.h>

@@ -756,7 +756,10 @@ typedef struct tg_path_view {
     /** The certificate, radians: the largest straightness defect over edge crossings
      *  (|pi - unfolded angle|) and vertex passages (max(0, pi - smaller side angle), taking only
      *  the interior side at a boundary; 0 where the path passes between two fans of a pinched or
-     *  non-manifold vertex). 0 for a path with no interior point. */
+     *  non-manifold vertex, or through coincident vertices). Crossings closer together than
+     *  1e-5 of the local edge length are measured as one, between the points beyond them (a
+     *  crossing stored as edge + t is only resolved to about 1e-16 of its edge's length).
+     *  0 for a path with no interior point. */
     double max_angle_defect;
     tg_path_status status;
     uint32_t iterations;             /**< sweeps (STRAIGHTEN) or passes (RELAX) performed */
@@ -779,9 +782,12 @@ void tg_path_get_view(const tg_path* path, tg_path_view* out_view);
  *  The endpoints are inserted virtually (the mesh is not modified), the shortest path in the edge
  *  graph plus the endpoints' virtual edges is found by A* with the Euclidean lower bound (binary
  *  heap, stopping at the target, work proportional to the explored region), then shortened by
- *  options->method. Paths cross only manifold edges (two consistently oriented faces, non-zero
- *  length); non-manifold edges and pinched vertices are passed through their vertices. Endpoints
- *  in different components give status TG_PATH_UNREACHABLE, length +inf and TG_OK.
+ *  options->method. The result is a locally shortest path (a geodesic) in the homotopy class the
+ *  edge path leads to; where several geodesics join the endpoints (around a cone point, a handle)
+ *  it need not be the globally shortest one.
+ *  Paths cross only manifold edges (two consistently oriented faces, non-zero length);
+ *  non-manifold edges, pinched vertices and coincident vertices are passed through vertices.
+ *  Endpoints in different components give status TG_PATH_UNREACHABLE, length +inf and TG_OK.
  *  Every returned path lies on the surface and its length never exceeds initial_length; the
  *  straightener's converged paths have max_angle_defect <= 1e-10 in practice (reported, not
  *  assumed). The output endpoints are the canonical forms of from and to.

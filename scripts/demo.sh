@@ -15,3 +15,8 @@ echo
 echo "== trigeo path $mesh --from $from --to $to -o $out/demo_path.obj"
 "$trigeo" path "$mesh" --from "$from" --to "$to" -o "$out/demo_path.obj"
 echo "wrote $out/demo_path.obj"
+# A picture of it (view from the cow's left side, so the whole path is visible).
+echo
+echo "== trigeo render $mesh --path $out/demo_path.obj --view -0.8,-0.3,-0.5 -o $out/demo_path.png"
+"$trigeo" render "$mesh" --path "$out/demo_path.obj" --view -0.8,-0.3,-0.5 -o "$out/demo_path.png"
+echo "wrote $out/demo_path.png"

@@ -13,7 +13,7 @@
  * face boxes are read from cache. For the first PURE_COUNT queries of each mesh the plain scan
  * (kernel on every face) runs as well and must give the same answers, which checks the argument.
  *
- * QUERY_COUNT is 10^4; under AddressSanitizer (5-10x slower) it is 2000, and the environment
+ * QUERY_COUNT is 10^4; under AddressSanitizer (5-10x slower) it is 5000, and the environment
  * variable TG_CORPUS_QUERIES overrides both.
  *
  * Helper modes for tests/cli_closest.sh:
@@ -35,7 +35,7 @@
 #endif
 #endif
 #ifdef TG_UNDER_ASAN
-#define QUERY_COUNT 2000
+#define QUERY_COUNT 5000
 #else
 #define QUERY_COUNT 10000
 #endif

@@ -26,7 +26,7 @@
 #include <string.h>
 #include <time.h>
 #include <trigeo.h>
-#ifdef TG_HAVE_OPENMP
+#ifdef _OPENMP
 #include <omp.h>
 #endif
 
@@ -214,13 +214,13 @@ static double time_loop(const tg_bvh* bvh, const double* q, size_t n, int thread
 {
     int failed = 0;
     double t0 = now();
-#ifdef TG_HAVE_OPENMP
+#ifdef _OPENMP
 #pragma omp parallel num_threads(threads) reduction(| : failed)
 #endif
     {
         tg_bvh_workspace* ws = NULL;
         if (tg_bvh_workspace_create(bvh, &ws) != TG_OK) failed = 1;
-#ifdef TG_HAVE_OPENMP
+#ifdef _OPENMP
 #pragma omp for schedule(dynamic, 1024)
 #endif
         for (long i = 0; i < (long)n; ++i)

@@ -8,10 +8,11 @@
  *   pairs of each set (default 10; with --relax-near-only only in the near set). --near F adds the
  *   set of pairs at most F times the bounding-box diagonal apart (rejection sampling).
  * Times are the thread's CPU time (CLOCK_THREAD_CPUTIME_ID): the benchmark machine is shared, and
- * CPU time does not count the time other processes hold the core.
+ * CPU time does not count the time other processes hold the core; the median wall-clock time
+ * (CLOCK_MONOTONIC) is printed next to it.
  * Prints one markdown table row per (set, method):
- *   | mesh | faces | set | method | pairs | median ms | p90 ms | max ms | initial path median ms |
- *   initial share | converged | max certificate rad | median points |
+ *   | mesh | faces | set | method | pairs | median ms | p90 ms | max ms | median wall ms |
+ *   initial path median ms | initial share | converged | max certificate rad | median points |
  * and a final line "# MESH setup_ms S solver_MiB M workspace_MiB W mesh_MiB X peak_rss_MiB R".
  * The initial path (A* with the virtual endpoints) is timed separately as TG_PATH_EDGE on the same
  * pairs; its share is sum(initial) / sum(total) over the pairs. */
@@ -28,6 +29,13 @@ static double now(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static double wall(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
@@ -80,20 +88,23 @@ typedef struct ctx {
     tg_path* path;
 } ctx;
 
-/* Times one query REPS times; returns the median seconds and leaves the last result in c->path. */
-static double time_query(ctx* c, const pair* p, tg_path_method method, int reps)
+/* Times one query REPS times; returns the median CPU seconds (and wall seconds in *out_wall)
+ * and leaves the last result in c->path. */
+static double time_query(ctx* c, const pair* p, tg_path_method method, int reps, double* out_wall)
 {
     tg_path_options o;
     memset(&o, 0, sizeof o);
     o.method = method;
-    double t[16];
+    double t[16], w[16];
     if (reps > 16) reps = 16;
     for (int r = 0; r < reps; ++r) {
-        double t0 = now();
+        double w0 = wall(), t0 = now();
         tg_status st = tg_geodesic_path(c->geo, c->ws, &p->a, &p->b, &o, c->path);
         t[r] = now() - t0;
+        w[r] = wall() - w0;
         if (st != TG_OK) die("query failed:", tg_status_name(st));
     }
+    if (out_wall) *out_wall = quantile(w, (size_t)reps, 0.5);
     return quantile(t, (size_t)reps, 0.5);
 }
 
@@ -103,10 +114,11 @@ static void run_set(ctx* c, const char* mesh, size_t faces, const char* set, con
     double* total = malloc(n * sizeof *total);
     double* init = malloc(n * sizeof *init);
     double* points = malloc(n * sizeof *points);
-    if (!total || !init || !points) die("out of memory", NULL);
+    double* walls = malloc(n * sizeof *walls);
+    if (!total || !init || !points || !walls) die("out of memory", NULL);
     double init_sum_s = 0, init_sum_r = 0;
     /* the initial path alone (TG_PATH_EDGE) */
-    for (size_t i = 0; i < n; ++i) init[i] = time_query(c, &pairs[i], TG_PATH_EDGE, reps);
+    for (size_t i = 0; i < n; ++i) init[i] = time_query(c, &pairs[i], TG_PATH_EDGE, reps, NULL);
     for (int m = 0; m < 2; ++m) {
         tg_path_method method = m ? TG_PATH_RELAX : TG_PATH_STRAIGHTEN;
         size_t count = m ? (relax_pairs < n ? relax_pairs : n) : n;
@@ -114,7 +126,7 @@ static void run_set(ctx* c, const char* mesh, size_t faces, const char* set, con
         size_t converged = 0;
         double worst_cert = 0, sum_total = 0, sum_init = 0;
         for (size_t i = 0; i < count; ++i) {
-            total[i] = time_query(c, &pairs[i], method, m ? 1 : reps);
+            total[i] = time_query(c, &pairs[i], method, m ? 1 : reps, &walls[i]);
             tg_path_view v;
             tg_path_get_view(c->path, &v);
             converged += v.status == TG_PATH_CONVERGED;
@@ -129,8 +141,9 @@ static void run_set(ctx* c, const char* mesh, size_t faces, const char* set, con
         if (!init_copy) die("out of memory", NULL);
         memcpy(init_copy, init, count * sizeof *init_copy);
         double med = quantile(total, count, 0.5), p90 = quantile(total, count, 0.9), mx = quantile(total, count, 1.0);
-        printf("| %s | %zu | %s | %s | %zu | %.3f | %.3f | %.3f | %.3f | %.0f%% | %zu/%zu | %.2g | %.0f |\n", mesh, faces,
-               set, m ? "relax" : "straighten", count, 1e3 * med, 1e3 * p90, 1e3 * mx, 1e3 * quantile(init_copy, count, 0.5),
+        printf("| %s | %zu | %s | %s | %zu | %.3f | %.3f | %.3f | %.3f | %.3f | %.0f%% | %zu/%zu | %.2g | %.0f |\n", mesh,
+               faces, set, m ? "relax" : "straighten", count, 1e3 * med, 1e3 * p90, 1e3 * mx,
+               1e3 * quantile(walls, count, 0.5), 1e3 * quantile(init_copy, count, 0.5),
                100.0 * (m ? init_sum_r : init_sum_s), converged, count, worst_cert, quantile(points, count, 0.5));
         fflush(stdout);
         free(init_copy);
@@ -138,6 +151,7 @@ static void run_set(ctx* c, const char* mesh, size_t faces, const char* set, con
     free(total);
     free(init);
     free(points);
+    free(walls);
 }
 
 int main(int argc, char** argv)

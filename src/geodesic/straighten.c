@@ -150,7 +150,7 @@ static bool copy_step(tg_geodesic_workspace* ws, int cur, size_t i, size_t* np, 
 /* One sweep: re-routes the decided passages run by run. Returns the new pivot count in *out_np
  * and the total length before/after in *io_len. */
 static tg_status sweep(tg_geodesic_workspace* ws, int cur, size_t np, const decision* dec, size_t* out_np,
-                       size_t* accepted, bool* out_retry)
+                       size_t* accepted, bool* out_retry, bool* io_banned)
 {
     *out_retry = false;
     int nxt = 1 - cur;
@@ -199,7 +199,10 @@ static tg_status sweep(tg_geodesic_workspace* ws, int cur, size_t np, const deci
                 if (!copy_step(ws, cur, r, &onp, &onq)) return TG_ERR_OUT_OF_MEMORY;
                 if (j - i > 2) ((tg__sleeve*)ws->slv[nxt].p)[onp - 2].fresh = 1;
             }
-            if (j - i > 2) *out_retry = true;
+            if (j - i > 2)
+                *out_retry = true;
+            else
+                *io_banned = true; /* a single passage that cannot be re-routed: not converged */
         }
         i = j;
     }
@@ -322,7 +325,7 @@ tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_s
     double total = 0.0;
     for (size_t i = 0; i + 1 < np; ++i) total += slv[i].len;
     int stalls = 0;
-    bool single = false;
+    bool single = false, banned = false;
     for (;;) {
         if (!tg__buf_reserve(ws, &ws->decide, np, sizeof(decision))) return TG_ERR_OUT_OF_MEMORY;
         decision* dec = ws->decide.p;
@@ -334,7 +337,7 @@ tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_s
         size_t accepted = 0, next_np = 0;
         bool retry = false;
         size_t prev_np = np;
-        tg_status st = sweep(ws, cur, np, dec, &next_np, &accepted, &retry);
+        tg_status st = sweep(ws, cur, np, dec, &next_np, &accepted, &retry, &banned);
         if (st != TG_OK) return st;
         out->iterations++;
         cur = 1 - cur;
@@ -358,6 +361,7 @@ tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_s
             break;
         }
     }
+    if (banned) out->capped = 1;
     tg_status st = expand(ws, cur, np, &out->count);
     if (st == TG_OK) polish(g, ws->nodes[0].p, ws->segf[0].p, out->count);
     return st;

@@ -361,7 +361,13 @@ tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_s
             break;
         }
     }
-    if (banned) out->capped = 1;
+    if (banned) {
+        /* a rejected passage may have been settled since by its neighbours' re-routing */
+        tg__sleeve* fs = ws->slv[cur].p;
+        for (size_t i = 0; i + 1 < np; ++i) fs[i].fresh = 1;
+        if (!tg__buf_reserve(ws, &ws->decide, np, sizeof(decision))) return TG_ERR_OUT_OF_MEMORY;
+        if (decide_all(ws, cur, np, limit, false, ws->decide.p) > 0) out->capped = 1;
+    }
     tg_status st = expand(ws, cur, np, &out->count);
     if (st == TG_OK) polish(g, ws->nodes[0].p, ws->segf[0].p, out->count);
     return st;

@@ -26,6 +26,8 @@
 #include <string.h>
 #include <time.h>
 #include <trigeo.h>
+
+#include "core/morton.h"
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -110,15 +112,6 @@ static int cmp_keyed(const void* a, const void* b)
     const keyed *x = a, *y = b;
     return x->key != y->key ? (x->key > y->key) - (x->key < y->key) : (x->index > y->index) - (x->index < y->index);
 }
-static uint32_t spread3(uint32_t x)
-{
-    x &= 0x3FF;
-    x = (x | x << 16) & 0x030000FF;
-    x = (x | x << 8) & 0x0300F00F;
-    x = (x | x << 4) & 0x030C30C3;
-    x = (x | x << 2) & 0x09249249;
-    return x;
-}
 
 static void surface_point(const tg_mesh* m, const double* cdf, rng* r, double* p)
 {
@@ -188,7 +181,7 @@ static int cmd_gen(int argc, char** argv)
                 double u = (q[3 * i + k] - (c[k] - h[k])) / (2.0 * h[k] > 0.0 ? 2.0 * h[k] : 1.0) * 1024.0;
                 g[k] = u <= 0.0 ? 0 : u >= 1023.0 ? 1023 : (uint32_t)u;
             }
-            keys[i].key = spread3(g[0]) | spread3(g[1]) << 1 | spread3(g[2]) << 2;
+            keys[i].key = tg__morton_spread3(g[0]) | tg__morton_spread3(g[1]) << 1 | tg__morton_spread3(g[2]) << 2;
             keys[i].index = (uint32_t)i;
         }
         qsort(keys, n, sizeof *keys, cmp_keyed);

@@ -28,6 +28,18 @@ static inline tg_vec3 tg_v3_lerp(tg_vec3 a, tg_vec3 b, double t)
 {
     return tg_v3(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z));
 }
+/* The same on plain double[3] arrays (r must not alias a or b for cross). */
+static inline void tg_a3_sub(const double* a, const double* b, double* r)
+{
+    r[0] = a[0] - b[0], r[1] = a[1] - b[1], r[2] = a[2] - b[2];
+}
+static inline void tg_a3_cross(const double* a, const double* b, double* r)
+{
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+}
+static inline double tg_a3_dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 static inline void tg_v3_store(tg_vec3 a, double* p) { p[0] = a.x; p[1] = a.y; p[2] = a.z; }
 
 #endif

@@ -10,6 +10,7 @@
  * surface area); Ylitie, Karras, Laine 2017 §3.1 (8-bit child bounds relative to the parent with a
  * power-of-two step, rounded outward). */
 #include "spatial/bvh_internal.h"
+#include "core/morton.h"
 #include "spatial/simd4.h"
 
 #include <float.h>
@@ -425,16 +426,6 @@ done:
 
 /* ---- top levels by Morton order, subtrees in parallel ---- */
 
-/* Spreads the low 10 bits of x to every third bit. */
-static uint32_t spread3(uint32_t x)
-{
-    x &= 0x3FF;
-    x = (x | x << 16) & 0x030000FF;
-    x = (x | x << 8) & 0x0300F00F;
-    x = (x | x << 4) & 0x030C30C3;
-    x = (x | x << 2) & 0x09249249;
-    return x;
-}
 
 /* Sorts the primitives by the 30-bit Morton key of their centroids in r's centroid box (stable
  * LSD radix sort, 3 passes of 10 bits); keys[] receives the sorted keys. */
@@ -465,7 +456,7 @@ static tg_status morton_sort(builder* bd, const range* r, uint32_t* keys)
             float t = (centroid2(&p[i], d) - clo[d]) * k[d];
             c[d] = t <= 0.0f ? 0 : t >= 1023.0f ? 1023 : (uint32_t)t;
         }
-        kv[i] = (uint64_t)(spread3(c[0]) | spread3(c[1]) << 1 | spread3(c[2]) << 2) << 32 | (uint64_t)i;
+        kv[i] = (uint64_t)(tg__morton_spread3(c[0]) | tg__morton_spread3(c[1]) << 1 | tg__morton_spread3(c[2]) << 2) << 32 | (uint64_t)i;
     }
     uint32_t hist[1024];
     for (int pass = 0; pass < 3; ++pass) {

@@ -6,6 +6,7 @@
  * Eberly, "Distance between point and triangle in 3D" (the kernel, seed 000, via
  * kernels/point_triangle.h); Morton 1966 (Z-order keys by bit interleaving) for batch order. */
 #include "spatial/bvh_internal.h"
+#include "core/morton.h"
 #include "spatial/simd4.h"
 #include "kernels/point_triangle.h"
 
@@ -284,16 +285,6 @@ void tg_bvh_workspace_destroy(tg_bvh_workspace* ws)
 
 /* ---- batches ---- */
 
-/* Spreads the low 10 bits of x to every third bit. */
-static uint32_t spread3(uint32_t x)
-{
-    x &= 0x3FF;
-    x = (x | x << 16) & 0x030000FF;
-    x = (x | x << 8) & 0x0300F00F;
-    x = (x | x << 4) & 0x030C30C3;
-    x = (x | x << 2) & 0x09249249;
-    return x;
-}
 
 /* 30-bit Morton key of p over [-1.25, 1.25]^3 in local coordinates (clamped). */
 static uint32_t morton_key(const tg_bvh* bvh, const double* p)
@@ -305,7 +296,7 @@ static uint32_t morton_key(const tg_bvh* bvh, const double* p)
         double t = (x[k] + 1.25) * (1024.0 / 2.5);
         c[k] = t <= 0.0 ? 0 : t >= 1023.0 ? 1023 : (uint32_t)t;
     }
-    return spread3(c[0]) | spread3(c[1]) << 1 | spread3(c[2]) << 2;
+    return tg__morton_spread3(c[0]) | tg__morton_spread3(c[1]) << 1 | tg__morton_spread3(c[2]) << 2;
 }
 
 /* Indices 0..count-1 sorted by Morton key (stable LSD radix sort, 3 passes of 10 bits), as the

@@ -7,21 +7,11 @@
  * the sum of incident face normals weighted by their incident angles for a vertex); Thurrner and
  * Wuthrich 1998 (angle-weighted vertex normals); Jacobson et al. 2013 (winding number, see
  * bvh_winding.c). */
+#include "core/vec3.h"
 #include "spatial/bvh_internal.h"
 
 #include <math.h>
 
-static void sub3(const double* a, const double* b, double* r)
-{
-    r[0] = a[0] - b[0], r[1] = a[1] - b[1], r[2] = a[2] - b[2];
-}
-static void cross3(const double* a, const double* b, double* r)
-{
-    r[0] = a[1] * b[2] - a[2] * b[1];
-    r[1] = a[2] * b[0] - a[0] * b[2];
-    r[2] = a[0] * b[1] - a[1] * b[0];
-}
-static double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 static const double* corner(const tg_mesh* m, uint32_t face, int k) { return m->xyz + 3 * (size_t)m->tri[3 * (size_t)face + k]; }
 
@@ -29,10 +19,10 @@ static const double* corner(const tg_mesh* m, uint32_t face, int k) { return m->
 static void face_unit_normal(const tg_mesh* m, uint32_t f, double* n)
 {
     double e1[3], e2[3];
-    sub3(corner(m, f, 1), corner(m, f, 0), e1);
-    sub3(corner(m, f, 2), corner(m, f, 0), e2);
-    cross3(e1, e2, n);
-    double l = sqrt(dot3(n, n));
+    tg_a3_sub(corner(m, f, 1), corner(m, f, 0), e1);
+    tg_a3_sub(corner(m, f, 2), corner(m, f, 0), e2);
+    tg_a3_cross(e1, e2, n);
+    double l = sqrt(tg_a3_dot(n, n));
     if (l > 0.0)
         for (int k = 0; k < 3; ++k) n[k] /= l;
     else
@@ -49,10 +39,10 @@ static void vertex_pseudonormal(const tg_mesh* m, uint32_t v, double* n)
         uint32_t f = tg_halfedge_face(h), hp = tg_halfedge_prev(h);
         const double* x = m->xyz + 3 * (size_t)v;
         double e1[3], e2[3], c[3], fn[3];
-        sub3(m->xyz + 3 * (size_t)m->tri[tg_halfedge_next(h)], x, e1); /* to(h) - v */
-        sub3(m->xyz + 3 * (size_t)m->tri[hp], x, e2);                  /* from(prev(h)) - v */
-        cross3(e1, e2, c);
-        double angle = atan2(sqrt(dot3(c, c)), dot3(e1, e2));
+        tg_a3_sub(m->xyz + 3 * (size_t)m->tri[tg_halfedge_next(h)], x, e1); /* to(h) - v */
+        tg_a3_sub(m->xyz + 3 * (size_t)m->tri[hp], x, e2);                  /* from(prev(h)) - v */
+        tg_a3_cross(e1, e2, c);
+        double angle = atan2(sqrt(tg_a3_dot(c, c)), tg_a3_dot(e1, e2));
         face_unit_normal(m, f, fn);
         for (int k = 0; k < 3; ++k) n[k] += angle * fn[k];
         h = m->opp[hp];
@@ -87,8 +77,8 @@ static int pseudonormal_sign(const tg_mesh* m, const double* p, const tg_closest
         face_unit_normal(m, f, n);
         break;
     }
-    sub3(p, hit->point, d);
-    double s = dot3(d, n);
+    tg_a3_sub(p, hit->point, d);
+    double s = tg_a3_dot(d, n);
     return s > 0.0 ? 1 : s < 0.0 ? -1 : 0;
 }
 

@@ -7,6 +7,7 @@
  * §3.2-3.3 (far clusters replaced by the dipole term (p~ - q) . N / |p~ - q|^3 with p~ the
  * area-weighted centroid and N the sum of area-weighted normals; a cluster is far when
  * |q - p~| > beta * r, beta = 2). This file keeps the first-order (dipole) term only. */
+#include "core/vec3.h"
 #include "spatial/bvh_internal.h"
 
 #include <math.h>
@@ -16,31 +17,20 @@
  * the dipole the truncation error is O((r/d)^2) of the cluster's term, so a larger beta is used. */
 #define FAR_BETA 3.0
 
-static void sub3(const double* a, const double* b, double* r)
-{
-    r[0] = a[0] - b[0], r[1] = a[1] - b[1], r[2] = a[2] - b[2];
-}
-static void cross3(const double* a, const double* b, double* r)
-{
-    r[0] = a[1] * b[2] - a[2] * b[1];
-    r[1] = a[2] * b[0] - a[0] * b[2];
-    r[2] = a[0] * b[1] - a[1] * b[0];
-}
-static double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static double len3(const double* a) { return sqrt(dot3(a, a)); }
+static double len3(const double* a) { return sqrt(tg_a3_dot(a, a)); }
 
 /* Signed solid angle of triangle (v0, v1, v2) seen from p (Van Oosterom and Strackee 1983):
  * positive when p is on the side opposite the right-hand normal (inside a closed outward mesh). */
 static double solid_angle(const double* p, const double* v0, const double* v1, const double* v2)
 {
     double a[3], b[3], c[3], bc[3];
-    sub3(v0, p, a);
-    sub3(v1, p, b);
-    sub3(v2, p, c);
+    tg_a3_sub(v0, p, a);
+    tg_a3_sub(v1, p, b);
+    tg_a3_sub(v2, p, c);
     double la = len3(a), lb = len3(b), lc = len3(c);
-    cross3(b, c, bc);
-    double num = dot3(a, bc);
-    double den = la * lb * lc + dot3(a, b) * lc + dot3(b, c) * la + dot3(c, a) * lb;
+    tg_a3_cross(b, c, bc);
+    double num = tg_a3_dot(a, bc);
+    double den = la * lb * lc + tg_a3_dot(a, b) * lc + tg_a3_dot(b, c) * la + tg_a3_dot(c, a) * lb;
     return 2.0 * atan2(num, den); /* atan2(0, 0) = 0: p on a corner contributes nothing */
 }
 
@@ -57,9 +47,9 @@ static void leaf_cluster(const tg_bvh* bvh, uint32_t first, uint32_t count, tg__
         for (int k = 0; k < 3; ++k)
             if (cn[k] >= u) u = cn[k] + 1u;
         double e1[3], e2[3], x[3];
-        sub3(v1, v0, e1);
-        sub3(v2, v0, e2);
-        cross3(e1, e2, x);
+        tg_a3_sub(v1, v0, e1);
+        tg_a3_sub(v2, v0, e2);
+        tg_a3_cross(e1, e2, x);
         double a = 0.5 * len3(x);
         for (int k = 0; k < 3; ++k) {
             double centroid = (v0[k] + v1[k] + v2[k]) / 3.0;
@@ -77,7 +67,7 @@ static void leaf_cluster(const tg_bvh* bvh, uint32_t first, uint32_t count, tg__
     double r = 0.0;
     for (uint32_t j = 0; j < u; ++j) {
         double d[3];
-        sub3(l.vertex + 3 * (size_t)j, cl->center, d);
+        tg_a3_sub(l.vertex + 3 * (size_t)j, cl->center, d);
         double len = len3(d);
         if (len > r) r = len;
     }
@@ -104,7 +94,7 @@ static void node_cluster(const tg__bvh_node* node, const tg__bvh_cluster* slots,
     double r = 0.0;
     for (int s = 0; s < node->child_count; ++s) {
         double d[3];
-        sub3(slots[s].center, cl->center, d);
+        tg_a3_sub(slots[s].center, cl->center, d);
         double l = len3(d) + slots[s].radius;
         if (l > r) r = l;
     }
@@ -147,10 +137,10 @@ double tg__bvh_winding(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p)
             if (bvh->clusters) {
                 const tg__bvh_cluster* cl = &bvh->clusters[TG__BVH_WIDTH * (size_t)ni + (size_t)s];
                 double r[3];
-                sub3(cl->center, p, r);
-                double d2 = dot3(r, r);
+                tg_a3_sub(cl->center, p, r);
+                double d2 = tg_a3_dot(r, r);
                 if (d2 > beta2 * cl->radius * cl->radius) {
-                    sum += dot3(r, cl->normal) / (d2 * sqrt(d2));
+                    sum += tg_a3_dot(r, cl->normal) / (d2 * sqrt(d2));
                     continue;
                 }
             }

@@ -4,6 +4,7 @@
  * sheet (straight through it), a non-manifold "book" edge and a pinched vertex (crossed only
  * through vertices), a duplicate face, an unreferenced vertex (rejected as an endpoint). */
 #include "tg_test.h"
+#include "tg_test_geodesic.h"
 
 #include <trigeo.h>
 
@@ -45,29 +46,17 @@ static uint32_t grid(int n, double x0, double y0, double w, double z, int (*skip
     return base;
 }
 
-typedef struct ctx {
-    tg_mesh* mesh;
-    tg_geodesic* geo;
-    tg_geodesic_workspace* ws;
-    tg_path* path;
-} ctx;
-
+/* The fixture over the mesh built so far; close_sheet also empties the builder. */
 static ctx open_ctx(void)
 {
-    ctx c = {NULL, NULL, NULL, NULL};
-    CHECK_STATUS(tg_mesh_create(xyz, nv, tri, nf, NULL, NULL, &c.mesh), TG_OK);
-    CHECK_STATUS(tg_geodesic_create(c.mesh, NULL, &c.geo), TG_OK);
-    CHECK_STATUS(tg_geodesic_workspace_create(c.geo, &c.ws), TG_OK);
-    CHECK_STATUS(tg_path_create(NULL, &c.path), TG_OK);
-    return c;
+    tg_mesh* m = NULL;
+    CHECK_STATUS(tg_mesh_create(xyz, nv, tri, nf, NULL, NULL, &m), TG_OK);
+    return open_ctx_for(m);
 }
 
-static void close_ctx(ctx* c)
+static void close_sheet(ctx* c)
 {
-    tg_path_destroy(c->path);
-    tg_geodesic_workspace_destroy(c->ws);
-    tg_geodesic_destroy(c->geo);
-    tg_mesh_destroy(c->mesh);
+    close_ctx(c);
     nv = nf = 0;
 }
 
@@ -135,7 +124,7 @@ static void test_reflex_corner(void)
             CHECK_MSG(through == 1, "the path passes the reflex corner once (%d)", through);
         }
     }
-    close_ctx(&c);
+    close_sheet(&c);
 }
 
 /* ---- two components: unreachable, length +inf, no points; then a reachable pair ---- */
@@ -157,7 +146,7 @@ static void test_components(void)
     /* the result object is reused: an unreachable query after a path clears it */
     v = run(&c, tg_surface_vertex(b0), tg_surface_vertex(a0), TG_PATH_STRAIGHTEN);
     CHECK(v.status == TG_PATH_UNREACHABLE && v.point_count == 0);
-    close_ctx(&c);
+    close_sheet(&c);
 }
 
 /* ---- a zero-area face in a flat sheet: edge (u, w) split by its midpoint m on one side ---- */
@@ -209,7 +198,7 @@ static void test_zero_area_face(void)
             CHECK(crossings_on_walls(&c, &v) == 0);
         }
     }
-    close_ctx(&c);
+    close_sheet(&c);
 }
 
 /* ---- non-manifold: three half-planes ("pages") on one spine edge; pinched: two sheets sharing
@@ -244,7 +233,7 @@ static void test_book_and_pinch(void)
         CHECK_NEAR(v.length, via0, m ? 1e-6 : 1e-12);
         if (m == 0) CHECK(v.max_angle_defect <= 1e-10);
     }
-    close_ctx(&c);
+    close_sheet(&c);
 
     /* pinch: two squares touching at one corner vertex p */
     uint32_t p = add_v(0, 0, 0);
@@ -266,7 +255,7 @@ static void test_book_and_pinch(void)
         /* a pinched vertex may be passed at any angle between its two fans */
         CHECK(v.max_angle_defect == 0);
     }
-    close_ctx(&c);
+    close_sheet(&c);
 }
 
 /* ---- a duplicate face and an unreferenced vertex ---- */
@@ -296,7 +285,7 @@ static void test_duplicate_and_unreferenced(void)
     memset(&o, 0, sizeof o);
     o.method = (tg_path_method)7;
     CHECK_STATUS(tg_geodesic_path(c.geo, c.ws, &a, &a, &o, c.path), TG_ERR_INVALID_ARGUMENT);
-    close_ctx(&c);
+    close_sheet(&c);
 }
 
 /* ---- API contract: NULL arguments, foreign workspaces, empty views ---- */
@@ -334,7 +323,7 @@ static void test_api(void)
     /* an iteration cap of one sweep on a long path reports the cap, with a valid shorter path */
     tg_geodesic_workspace_destroy(ows);
     tg_geodesic_destroy(other);
-    close_ctx(&c);
+    close_sheet(&c);
 }
 
 int main(void)

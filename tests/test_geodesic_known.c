@@ -4,6 +4,7 @@
  * (unrolled into a sector; through the apex when the unrolled angle is at least pi). Both
  * methods, every endpoint kind. */
 #include "tg_test.h"
+#include "tg_test_geodesic.h"
 
 #include <trigeo.h>
 
@@ -37,30 +38,6 @@ static tg_mesh* finish(void)
     return m;
 }
 
-/* A solver, workspace and path for one mesh. */
-typedef struct ctx {
-    tg_mesh* mesh;
-    tg_geodesic* geo;
-    tg_geodesic_workspace* ws;
-    tg_path* path;
-} ctx;
-
-static ctx open_ctx(tg_mesh* m)
-{
-    ctx c = {m, NULL, NULL, NULL};
-    CHECK_STATUS(tg_geodesic_create(m, NULL, &c.geo), TG_OK);
-    CHECK_STATUS(tg_geodesic_workspace_create(c.geo, &c.ws), TG_OK);
-    CHECK_STATUS(tg_path_create(NULL, &c.path), TG_OK);
-    return c;
-}
-
-static void close_ctx(ctx* c)
-{
-    tg_path_destroy(c->path);
-    tg_geodesic_workspace_destroy(c->ws);
-    tg_geodesic_destroy(c->geo);
-    tg_mesh_destroy(c->mesh);
-}
 
 /* Runs one query and checks the generic contract; returns the length (NAN on failure). */
 static double query(ctx* c, tg_surface_point a, tg_surface_point b, tg_path_method method, tg_path_view* v)
@@ -114,7 +91,7 @@ static tg_mesh* flat_square(int n, uint64_t seed)
 
 static void test_flat(void)
 {
-    ctx c = open_ctx(flat_square(12, 7));
+    ctx c = open_ctx_for(flat_square(12, 7));
     tg_rng r = {99};
     double worst[2] = {0, 0};
     for (int q = 0; q < 200; ++q) {
@@ -253,7 +230,7 @@ static void check_both(ctx* c, tg_surface_point a, tg_surface_point b, double ex
 
 static void test_cube(void)
 {
-    ctx c = open_ctx(cube(6));
+    ctx c = open_ctx_for(cube(6));
     /* across one edge: unfold the second side into the first one's plane */
     check_both(&c, locate(c.mesh, 0.5, 0.5, 1), locate(c.mesh, 0.5, 0, 0.5), 1.0, "cube top-front centres");
     check_both(&c, locate(c.mesh, 0.2, 0.5, 1), locate(c.mesh, 1, 0.5, 0.3), 1.5, "cube top-right");
@@ -290,7 +267,7 @@ static void test_cylinder(void)
                 add_f(a, b, cc), add_f(b, d, cc);
             }
         }
-    ctx c = open_ctx(finish());
+    ctx c = open_ctx_for(finish());
     tg_rng rng = {11};
     for (int q = 0; q < 40; ++q) {
         tg_surface_point p[2];
@@ -335,7 +312,7 @@ static void test_cone(void)
             uint32_t a = RING(r, k), b = RING(r, k + 1), cc = RING(r + 1, k), d = RING(r + 1, k + 1);
             add_f(a, cc, d), add_f(a, d, b);
         }
-    ctx c = open_ctx(finish());
+    ctx c = open_ctx_for(finish());
     /* apex angle of one side, and the total angle of the unrolled sector */
     const double* A = mb.xyz;
     const double* B0 = mb.xyz + 3 * RING(rings, 0);

@@ -5,6 +5,7 @@
  * on imperfect meshes (boundaries, components, non-manifold edges, pinched vertices, zero-area
  * and duplicate faces) are valid and never NaN. */
 #include "tg_test.h"
+#include "tg_test_geodesic.h"
 
 #include <trigeo.h>
 
@@ -80,29 +81,6 @@ static tg_mesh* make_mesh(void)
     return m;
 }
 
-typedef struct ctx {
-    tg_mesh* mesh;
-    tg_geodesic* geo;
-    tg_geodesic_workspace* ws;
-    tg_path* path;
-} ctx;
-
-static ctx open_ctx(tg_mesh* m)
-{
-    ctx c = {m, NULL, NULL, NULL};
-    CHECK_STATUS(tg_geodesic_create(m, NULL, &c.geo), TG_OK);
-    CHECK_STATUS(tg_geodesic_workspace_create(c.geo, &c.ws), TG_OK);
-    CHECK_STATUS(tg_path_create(NULL, &c.path), TG_OK);
-    return c;
-}
-
-static void close_ctx(ctx* c)
-{
-    tg_path_destroy(c->path);
-    tg_geodesic_workspace_destroy(c->ws);
-    tg_geodesic_destroy(c->geo);
-    tg_mesh_destroy(c->mesh);
-}
 
 static tg_path_view run(ctx* c, tg_surface_point a, tg_surface_point b, tg_path_method method, uint32_t max_it)
 {
@@ -334,7 +312,7 @@ int main(void)
     /* height field: unique geodesics, so symmetry and method agreement are exact properties */
     nv = nf = 0;
     height_field(14, 0.15, 21, 0.0);
-    ctx hf = open_ctx(make_mesh());
+    ctx hf = open_ctx_for(make_mesh());
     test_bellman_ford(&hf, "height field", 30, 1);
     test_bounds(&hf, "height field", 30, 2, 1);
     test_symmetry(&hf, "height field", 30, 3);
@@ -343,7 +321,7 @@ int main(void)
     /* bumpy sphere: many local geodesics; bounds and validity only */
     nv = nf = 0;
     bumpy_sphere(18, 12, 5);
-    ctx bs = open_ctx(make_mesh());
+    ctx bs = open_ctx_for(make_mesh());
     test_bellman_ford(&bs, "bumpy sphere", 30, 4);
     test_bounds(&bs, "bumpy sphere", 30, 5, 0);
     close_ctx(&bs);

@@ -27,29 +27,14 @@
 #include <time.h>
 #include <trigeo.h>
 
+#include "bench_common.h"
 #include "core/morton.h"
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
-static int cmp_double(const void* a, const void* b)
-{
-    double x = *(const double*)a, y = *(const double*)b;
-    return (x > y) - (x < y);
-}
 
-static double median(double* v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return v[n / 2];
-}
 
 static void die(const char* msg, const char* arg)
 {
@@ -206,7 +191,7 @@ static int cmd_gen(int argc, char** argv)
 static double time_loop(const tg_bvh* bvh, const double* q, size_t n, int threads, tg_closest_hit* hits)
 {
     int failed = 0;
-    double t0 = now();
+    double t0 = bench_wall();
 #ifdef _OPENMP
 #pragma omp parallel num_threads(threads) reduction(| : failed)
 #endif
@@ -220,7 +205,7 @@ static double time_loop(const tg_bvh* bvh, const double* q, size_t n, int thread
             if (ws && tg_bvh_closest(bvh, ws, q + 3 * i, INFINITY, &hits[i]) != TG_OK) failed = 1;
         tg_bvh_workspace_destroy(ws);
     }
-    double t = now() - t0;
+    double t = bench_wall() - t0;
     (void)threads;
     if (failed) die("query failed", NULL);
     return t;
@@ -239,11 +224,11 @@ static int cmd_run(int argc, char** argv)
     for (int r = 0; r < reps; ++r) {
         tg_bvh_destroy(bvh);
         bvh = NULL;
-        double t0 = now();
+        double t0 = bench_wall();
         if (tg_bvh_create(m, &o, &bvh) != TG_OK) die("build failed", argv[2]);
-        t[r] = now() - t0;
+        t[r] = bench_wall() - t0;
     }
-    double build = median(t, reps);
+    double build = bench_median(t, reps);
     size_t nf = tg_mesh_face_count(m);
     double bytes = (double)tg_bvh_memory_bytes(bvh) / (double)nf;
     for (int a = 4; a < argc; ++a) {
@@ -256,12 +241,12 @@ static int cmd_run(int argc, char** argv)
                 if (mode < 2) {
                     t[r] = time_loop(bvh, q, (size_t)n, mode + 1, hits);
                 } else {
-                    double t0 = now();
+                    double t0 = bench_wall();
                     if (tg_bvh_closest_batch(bvh, q, (size_t)n, INFINITY, mode - 1, hits) != TG_OK) die("batch failed", NULL);
-                    t[r] = now() - t0;
+                    t[r] = bench_wall() - t0;
                 }
             }
-            ns[mode] = 1e9 * median(t, reps) / (double)n;
+            ns[mode] = 1e9 * bench_median(t, reps) / (double)n;
         }
         time_loop(bvh, q, (size_t)n, 1, hits);
         double* d = malloc((size_t)n * sizeof *d + 1);

@@ -10,34 +10,14 @@
 #include <time.h>
 #include <trigeo.h>
 
+#include "bench_common.h"
+
 #include "io/io_internal.h"
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
-static double cpu_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
-static int cmp_double(const void* a, const void* b)
-{
-    double x = *(const double*)a, y = *(const double*)b;
-    return (x > y) - (x < y);
-}
 
 #define REPS 5
-static double median(double* v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return v[n / 2];
-}
 
 /* Baseline 1: fgets + strtod/strtol, the way a quick hand-written loader reads OBJ. */
 static size_t baseline_fgets(const char* path, size_t* out_faces)
@@ -85,12 +65,6 @@ static size_t baseline_fscanf(const char* path, size_t* out_faces)
     return nv;
 }
 
-static long peak_rss_kib(void)
-{
-    struct rusage ru;
-    getrusage(RUSAGE_SELF, &ru);
-    return ru.ru_maxrss;
-}
 
 int main(int argc, char** argv)
 {
@@ -108,16 +82,16 @@ int main(int argc, char** argv)
         for (int r = 0; r < REPS; ++r) {
             tg_mesh_destroy(m);
             m = NULL;
-            double t0 = now(), c0 = cpu_now();
+            double t0 = bench_wall(), c0 = bench_cpu_process();
             tg_status st = tg_mesh_load(path, TG_FORMAT_AUTO, NULL, &d, &m);
-            t[r] = now() - t0;
-            c[r] = cpu_now() - c0;
+            t[r] = bench_wall() - t0;
+            c[r] = bench_cpu_process() - c0;
             if (st != TG_OK) {
                 fprintf(stderr, "%s: %s\n", path, d.message);
                 return 2;
             }
         }
-        double load_s = median(t, REPS), load_cpu = median(c, REPS);
+        double load_s = bench_median(t, REPS), load_cpu = bench_median(c, REPS);
         size_t nf = tg_mesh_face_count(m);
         double bpf = (double)tg_mesh_memory_bytes(m) / (double)nf;
 
@@ -133,29 +107,29 @@ int main(int argc, char** argv)
         if (tg__read_file(obj, NULL, &d, &data, &size) != TG_OK) return 2;
         for (int r = 0; r < REPS; ++r) {
             tg__soup soup;
-            double c0 = cpu_now();
+            double c0 = bench_cpu_process();
             tg_status st = tg__read_obj(data, size, obj, NULL, &d, &soup);
-            t[r] = cpu_now() - c0;
+            t[r] = bench_cpu_process() - c0;
             if (st != TG_OK) return 2;
             free(soup.xyz);
             free(soup.tri);
         }
-        double parse_s = median(t, REPS);
+        double parse_s = bench_median(t, REPS);
         free(data);
         for (int r = 0; r < REPS; ++r) {
-            double c0 = cpu_now();
+            double c0 = bench_cpu_process();
             tg_mesh_load(obj, TG_FORMAT_AUTO, NULL, &d, &m);
-            t[r] = cpu_now() - c0;
+            t[r] = bench_cpu_process() - c0;
             tg_mesh_destroy(m);
         }
-        double objload_s = median(t, REPS);
+        double objload_s = bench_median(t, REPS);
         size_t bf = 0;
-        double c0 = cpu_now();
+        double c0 = bench_cpu_process();
         baseline_fgets(obj, &bf);
-        double fgets_s = cpu_now() - c0;
-        c0 = cpu_now();
+        double fgets_s = bench_cpu_process() - c0;
+        c0 = bench_cpu_process();
         baseline_fscanf(obj, &bf);
-        double fscanf_s = cpu_now() - c0;
+        double fscanf_s = bench_cpu_process() - c0;
         double mb = (double)size / 1e6;
         const char* base = strrchr(path, '/');
         printf("| %s | %zu | %.3f | %.3f | %.1f | %.1f | %.0f | %.3f | %.0f | %.0f |\n", base ? base + 1 : path, nf,
@@ -164,6 +138,6 @@ int main(int argc, char** argv)
     }
     printf("\nCPU s = process CPU time (user + sys; equals wall time on an idle core); MB/s from CPU time.\n");
     printf("peak RSS %.1f MiB; median of %d runs for trigeo, 1 run for the baselines; 1 thread\n",
-           peak_rss_kib() / 1024.0, REPS);
+           bench_peak_rss_kib() / 1024.0, REPS);
     return 0;
 }

@@ -25,34 +25,11 @@
 #include <time.h>
 #include <trigeo.h>
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "bench_common.h"
 
-static double wall(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
-static int cmp_double(const void* a, const void* b)
-{
-    double x = *(const double*)a, y = *(const double*)b;
-    return (x > y) - (x < y);
-}
 
-/* The q-quantile (0..1) of n values (sorted in place). */
-static double quantile(double* v, size_t n, double q)
-{
-    if (n == 0) return NAN;
-    qsort(v, n, sizeof *v, cmp_double);
-    size_t i = (size_t)(q * (double)(n - 1) + 0.5);
-    return v[i < n ? i : n - 1];
-}
+
 
 static void die(const char* msg, const char* arg)
 {
@@ -98,14 +75,14 @@ static double time_query(ctx* c, const pair* p, tg_path_method method, int reps,
     double t[16], w[16];
     if (reps > 16) reps = 16;
     for (int r = 0; r < reps; ++r) {
-        double w0 = wall(), t0 = now();
+        double w0 = bench_wall(), t0 = bench_cpu_thread();
         tg_status st = tg_geodesic_path(c->geo, c->ws, &p->a, &p->b, &o, c->path);
-        t[r] = now() - t0;
-        w[r] = wall() - w0;
+        t[r] = bench_cpu_thread() - t0;
+        w[r] = bench_wall() - w0;
         if (st != TG_OK) die("query failed:", tg_status_name(st));
     }
-    if (out_wall) *out_wall = quantile(w, (size_t)reps, 0.5);
-    return quantile(t, (size_t)reps, 0.5);
+    if (out_wall) *out_wall = bench_quantile(w, (size_t)reps, 0.5);
+    return bench_quantile(t, (size_t)reps, 0.5);
 }
 
 static void run_set(ctx* c, const char* mesh, size_t faces, const char* set, const pair* pairs, size_t n, int reps,
@@ -140,11 +117,11 @@ static void run_set(ctx* c, const char* mesh, size_t faces, const char* set, con
         double* init_copy = malloc(count * sizeof *init_copy);
         if (!init_copy) die("out of memory", NULL);
         memcpy(init_copy, init, count * sizeof *init_copy);
-        double med = quantile(total, count, 0.5), p90 = quantile(total, count, 0.9), mx = quantile(total, count, 1.0);
+        double med = bench_quantile(total, count, 0.5), p90 = bench_quantile(total, count, 0.9), mx = bench_quantile(total, count, 1.0);
         printf("| %s | %zu | %s | %s | %zu | %.3f | %.3f | %.3f | %.3f | %.3f | %.0f%% | %zu/%zu | %.2g | %.0f |\n", mesh,
                faces, set, m ? "relax" : "straighten", count, 1e3 * med, 1e3 * p90, 1e3 * mx,
-               1e3 * quantile(walls, count, 0.5), 1e3 * quantile(init_copy, count, 0.5),
-               100.0 * (m ? init_sum_r : init_sum_s), converged, count, worst_cert, quantile(points, count, 0.5));
+               1e3 * bench_quantile(walls, count, 0.5), 1e3 * bench_quantile(init_copy, count, 0.5),
+               100.0 * (m ? init_sum_r : init_sum_s), converged, count, worst_cert, bench_quantile(points, count, 0.5));
         fflush(stdout);
         free(init_copy);
     }
@@ -184,9 +161,9 @@ int main(int argc, char** argv)
     tg_diag d;
     if (tg_mesh_load(path, TG_FORMAT_AUTO, NULL, &d, &mesh) != TG_OK) die("cannot load", path);
     ctx c = {NULL, NULL, NULL};
-    double t0 = now();
+    double t0 = bench_cpu_thread();
     if (tg_geodesic_create(mesh, NULL, &c.geo) != TG_OK) die("tg_geodesic_create failed", NULL);
-    double setup = now() - t0;
+    double setup = bench_cpu_thread() - t0;
     if (tg_geodesic_workspace_create(c.geo, &c.ws) != TG_OK || tg_path_create(NULL, &c.path) != TG_OK)
         die("workspace failed", NULL);
     size_t faces = tg_mesh_face_count(mesh), verts = tg_mesh_vertex_count(mesh);

@@ -8,23 +8,6 @@
 
 #include <trigeo.h>
 
-#define MAXV 512
-#define MAXF 1024
-
-static double xyz[3 * MAXV];
-static uint32_t tri[3 * MAXF];
-static size_t nv, nf;
-
-static uint32_t add_v(double x, double y, double z)
-{
-    xyz[3 * nv] = x, xyz[3 * nv + 1] = y, xyz[3 * nv + 2] = z;
-    return (uint32_t)nv++;
-}
-static void add_f(uint32_t a, uint32_t b, uint32_t c)
-{
-    tri[3 * nf] = a, tri[3 * nf + 1] = b, tri[3 * nf + 2] = c;
-    nf++;
-}
 
 /* An n x n grid over [x0, x0 + w] x [y0, y0 + w] at height z, skipping cells for which skip()
  * is true; returns the vertex id of grid point (0, 0). */

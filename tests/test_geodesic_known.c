@@ -9,32 +9,10 @@
 #include <trigeo.h>
 
 #define TG_PI_ 3.14159265358979323846
-#define MAXV 4096
-#define MAXF 8192
-
-typedef struct mesh_buf {
-    double xyz[3 * MAXV];
-    uint32_t tri[3 * MAXF];
-    size_t nv, nf;
-} mesh_buf;
-
-static mesh_buf mb;
-
-static uint32_t add_v(double x, double y, double z)
-{
-    mb.xyz[3 * mb.nv] = x, mb.xyz[3 * mb.nv + 1] = y, mb.xyz[3 * mb.nv + 2] = z;
-    return (uint32_t)mb.nv++;
-}
-static void add_f(uint32_t a, uint32_t b, uint32_t c)
-{
-    mb.tri[3 * mb.nf] = a, mb.tri[3 * mb.nf + 1] = b, mb.tri[3 * mb.nf + 2] = c;
-    mb.nf++;
-}
-
 static tg_mesh* finish(void)
 {
     tg_mesh* m = NULL;
-    CHECK_STATUS(tg_mesh_create(mb.xyz, mb.nv, mb.tri, mb.nf, NULL, NULL, &m), TG_OK);
+    CHECK_STATUS(tg_mesh_create(xyz, nv, tri, nf, NULL, NULL, &m), TG_OK);
     return m;
 }
 
@@ -54,9 +32,9 @@ static double query(ctx* c, tg_surface_point a, tg_surface_point b, tg_path_meth
     return st == TG_OK ? v->length : NAN;
 }
 
-static tg_surface_point random_face_point(tg_rng* r, size_t nf)
+static tg_surface_point random_face_point(tg_rng* r, size_t face_count)
 {
-    uint32_t f = (uint32_t)(tg_rng_next(r) % nf);
+    uint32_t f = (uint32_t)(tg_rng_next(r) % face_count);
     double u = tg_rng_unit(r), w = tg_rng_unit(r);
     if (u + w > 1) u = 1 - u, w = 1 - w;
     return tg_surface_face(f, 1 - u - w, u, w);
@@ -69,7 +47,7 @@ static void pos(const tg_mesh* m, tg_surface_point p, double x[3]) { tg_surface_
 static tg_mesh* flat_square(int n, uint64_t seed)
 {
     tg_rng r = {seed};
-    mb.nv = mb.nf = 0;
+    nv = nf = 0;
     for (int j = 0; j <= n; ++j)
         for (int i = 0; i <= n; ++i) {
             double x = (double)i / n, y = (double)j / n;
@@ -98,14 +76,14 @@ static void test_flat(void)
         tg_surface_point a, b;
         int kind = q % 4;
         if (kind == 0) { /* vertex to vertex */
-            a = tg_surface_vertex((uint32_t)(tg_rng_next(&r) % mb.nv));
-            b = tg_surface_vertex((uint32_t)(tg_rng_next(&r) % mb.nv));
+            a = tg_surface_vertex((uint32_t)(tg_rng_next(&r) % nv));
+            b = tg_surface_vertex((uint32_t)(tg_rng_next(&r) % nv));
         } else if (kind == 1) { /* edge points */
-            a = tg_surface_edge((uint32_t)(tg_rng_next(&r) % (3 * mb.nf)), tg_rng_unit(&r));
-            b = tg_surface_edge((uint32_t)(tg_rng_next(&r) % (3 * mb.nf)), tg_rng_unit(&r));
+            a = tg_surface_edge((uint32_t)(tg_rng_next(&r) % (3 * nf)), tg_rng_unit(&r));
+            b = tg_surface_edge((uint32_t)(tg_rng_next(&r) % (3 * nf)), tg_rng_unit(&r));
         } else {
-            a = random_face_point(&r, mb.nf);
-            b = kind == 2 ? random_face_point(&r, mb.nf) : tg_surface_vertex((uint32_t)(tg_rng_next(&r) % mb.nv));
+            a = random_face_point(&r, nf);
+            b = kind == 2 ? random_face_point(&r, nf) : tg_surface_vertex((uint32_t)(tg_rng_next(&r) % nv));
         }
         double pa[3], pb[3];
         pos(c.mesh, a, pa), pos(c.mesh, b, pb);
@@ -167,7 +145,7 @@ static void cube_side(int k, int axis, int hi)
 
 static tg_mesh* cube(int k)
 {
-    mb.nv = mb.nf = 0;
+    nv = nf = 0;
     memset(cube_index, 0xFF, sizeof cube_index);
     for (int axis = 0; axis < 3; ++axis) {
         cube_side(k, axis, 0);
@@ -255,7 +233,7 @@ static void test_cylinder(void)
 {
     const int n = 16, rings = 6;
     const double h = 2.0, chord = 2 * sin(TG_PI_ / n), width = n * chord;
-    mb.nv = mb.nf = 0;
+    nv = nf = 0;
     for (int r = 0; r <= rings; ++r)
         for (int k = 0; k < n; ++k) add_v(cos(2 * TG_PI_ * k / n), sin(2 * TG_PI_ * k / n), h * r / rings);
     for (int r = 0; r < rings; ++r)
@@ -273,16 +251,16 @@ static void test_cylinder(void)
         tg_surface_point p[2];
         double s[2], z[2];
         for (int e = 0; e < 2; ++e) {
-            p[e] = random_face_point(&rng, mb.nf);
+            p[e] = random_face_point(&rng, nf);
             /* unrolled (s, z) of the point: corners on side k and k + 1 of its quad */
-            const uint32_t* t = mb.tri + 3 * p[e].index;
+            const uint32_t* t = tri + 3 * p[e].index;
             int kq = (int)(p[e].index / 2) % n;
             s[e] = z[e] = 0;
             for (int i = 0; i < 3; ++i) {
                 int k = (int)(t[i] % (uint32_t)n);
                 double sk = (k == kq ? kq : kq + 1) * chord;
                 s[e] += p[e].bary[i] * sk;
-                z[e] += p[e].bary[i] * mb.xyz[3 * t[i] + 2];
+                z[e] += p[e].bary[i] * xyz[3 * t[i] + 2];
             }
         }
         double ds = fabs(s[0] - s[1]);
@@ -298,7 +276,7 @@ static void test_cone(void)
 {
     const int n = 10, rings = 5;
     const double height = 1.5;
-    mb.nv = mb.nf = 0;
+    nv = nf = 0;
     uint32_t apex = add_v(0, 0, height);
     for (int r = 1; r <= rings; ++r)
         for (int k = 0; k < n; ++k) {
@@ -314,9 +292,9 @@ static void test_cone(void)
         }
     ctx c = open_ctx_for(finish());
     /* apex angle of one side, and the total angle of the unrolled sector */
-    const double* A = mb.xyz;
-    const double* B0 = mb.xyz + 3 * RING(rings, 0);
-    const double* B1 = mb.xyz + 3 * RING(rings, 1);
+    const double* A = xyz;
+    const double* B0 = xyz + 3 * RING(rings, 0);
+    const double* B1 = xyz + 3 * RING(rings, 1);
     double u[3], w[3];
     for (int i = 0; i < 3; ++i) u[i] = B0[i] - A[i], w[i] = B1[i] - A[i];
     double cr[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
@@ -329,7 +307,7 @@ static void test_cone(void)
         tg_surface_point p[2];
         double phi[2], rho[2];
         for (int e = 0; e < 2; ++e) {
-            p[e] = random_face_point(&rng, mb.nf);
+            p[e] = random_face_point(&rng, nf);
             double x[3];
             pos(c.mesh, p[e], x);
             double d[3] = {x[0] - A[0], x[1] - A[1], x[2] - A[2]};
@@ -339,7 +317,7 @@ static void test_cone(void)
             if (az < 0) az += 2 * TG_PI_;
             int k = (int)(az / (2 * TG_PI_ / n));
             if (k >= n) k = n - 1;
-            const double* bk = mb.xyz + 3 * RING(rings, k);
+            const double* bk = xyz + 3 * RING(rings, k);
             double e1[3] = {bk[0] - A[0], bk[1] - A[1], bk[2] - A[2]};
             double c2[3] = {e1[1] * d[2] - e1[2] * d[1], e1[2] * d[0] - e1[0] * d[2], e1[0] * d[1] - e1[1] * d[0]};
             phi[e] = k * gamma + atan2(sqrt(c2[0] * c2[0] + c2[1] * c2[1] + c2[2] * c2[2]), e1[0] * d[0] + e1[1] * d[1] + e1[2] * d[2]);

@@ -9,23 +9,6 @@
 
 #include <trigeo.h>
 
-#define MAXV 2048
-#define MAXF 4096
-
-static double xyz[3 * MAXV];
-static uint32_t tri[3 * MAXF];
-static size_t nv, nf;
-
-static uint32_t add_v(double x, double y, double z)
-{
-    xyz[3 * nv] = x, xyz[3 * nv + 1] = y, xyz[3 * nv + 2] = z;
-    return (uint32_t)nv++;
-}
-static void add_f(uint32_t a, uint32_t b, uint32_t c)
-{
-    tri[3 * nf] = a, tri[3 * nf + 1] = b, tri[3 * nf + 2] = c;
-    nf++;
-}
 
 /* A gently curved height field over [0,1]^2 with jittered vertices (a unique geodesic between
  * any two points: curvature too small for conjugate points), grid n x n, offset vertex ids. */

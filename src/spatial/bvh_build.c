@@ -136,11 +136,11 @@ typedef struct binning {
     bin bins[BIN_SETS][3][BIN_COUNT];
 } binning;
 
-/* Bins for a range of n primitives: 16 for large ranges, about n / 2 (at least 4) for small ones,
- * where a sweep over 16 mostly empty bins would cost more than binning the primitives. */
+/* Bins for a range of n primitives: 16 for large ranges, 8 or 4 for small ones, where the sweeps
+ * over 16 mostly empty bins would cost more than binning the primitives. */
 static int bin_count_for(uint32_t n)
 {
-    return n >= 2 * BIN_COUNT ? BIN_COUNT : n < 8 ? 4 : (int)(n / 2);
+    return n >= 4 * BIN_COUNT ? BIN_COUNT : n < 16 ? 4 : 8;
 }
 
 static int bin_index(int count, float cmin, float k, float c)

@@ -13,8 +13,10 @@
 #include "spatial/bvh_internal.h"
 
 #include <float.h>
-
 #include <math.h>
+#if defined(__SSE2__) && !defined(TG_NO_SIMD)
+#include <emmintrin.h>
+#endif
 
 /* A cluster is treated as a surface patch when its area-weighted normal keeps at least this part of
  * its area (a flat patch keeps all of it; a folded or closed one cancels out). Otherwise its frame is
@@ -178,6 +180,31 @@ static bool slot_intervals(const tg_bvh* bvh, tg__bvh_node* node, int s, uint32_
     double spread = 0.0;
     const double m0 = Mf[0], m1 = Mf[1], m2 = Mf[2], m3 = Mf[3], m4 = Mf[4], m5 = Mf[5], m6 = Mf[6], m7 = Mf[7], m8 = Mf[8];
     const double c0 = cf[0], c1 = cf[1], c2 = cf[2];
+#if defined(__SSE2__) && !defined(TG_NO_SIMD)
+    /* rows 0 and 1 in the two lanes of one vector, row 2 alone: every lane performs the scalar
+     * code's operations in its order, so the results are the same bits */
+    const __m128d o01 = _mm_loadu_pd(bvh->origin), sc = _mm_set1_pd(bvh->scale), c01 = _mm_setr_pd(c0, c1);
+    const __m128d mc0 = _mm_setr_pd(m0, m3), mc1 = _mm_setr_pd(m1, m4), mc2 = _mm_setr_pd(m2, m5);
+    __m128d lo01 = _mm_set1_pd(INFINITY), hi01 = _mm_set1_pd(-INFINITY);
+    for (uint32_t leaf = first; leaf < end; ++leaf) {
+        const double* x0 = (const double*)(const void*)(bvh->leaves + leaf_vertex_word[leaf]);
+        for (uint32_t j = 0; j < leaf_u[leaf]; ++j) {
+            const double* p = x0 + 3 * j;
+            __m128d d01 = _mm_sub_pd(_mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(p), o01), sc), c01);
+            double d2 = (p[2] - bvh->origin[2]) * bvh->scale - c2;
+            double d0 = _mm_cvtsd_f64(d01), d1 = _mm_cvtsd_f64(_mm_unpackhi_pd(d01, d01));
+            double sp = fabs(d0) + fabs(d1) + fabs(d2);
+            spread = sp > spread ? sp : spread;
+            __m128d t01 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(mc0, _mm_unpacklo_pd(d01, d01)), _mm_mul_pd(mc1, _mm_unpackhi_pd(d01, d01))),
+                                     _mm_mul_pd(mc2, _mm_set1_pd(d2)));
+            double t2 = m6 * d0 + m7 * d1 + m8 * d2;
+            lo01 = _mm_min_pd(lo01, t01), hi01 = _mm_max_pd(hi01, t01);
+            lo2 = t2 < lo2 ? t2 : lo2, hi2 = t2 > hi2 ? t2 : hi2;
+        }
+    }
+    lo0 = _mm_cvtsd_f64(lo01), lo1 = _mm_cvtsd_f64(_mm_unpackhi_pd(lo01, lo01));
+    hi0 = _mm_cvtsd_f64(hi01), hi1 = _mm_cvtsd_f64(_mm_unpackhi_pd(hi01, hi01));
+#else
     for (uint32_t leaf = first; leaf < end; ++leaf) {
         const double* x0 = (const double*)(const void*)(bvh->leaves + leaf_vertex_word[leaf]);
         for (uint32_t j = 0; j < leaf_u[leaf]; ++j) {
@@ -192,6 +219,7 @@ static bool slot_intervals(const tg_bvh* bvh, tg__bvh_node* node, int s, uint32_
             lo2 = t2 < lo2 ? t2 : lo2, hi2 = t2 > hi2 ? t2 : hi2;
         }
     }
+#endif
     const double lo[3] = {lo0, lo1, lo2}, hi[3] = {hi0, hi1, hi2};
     double margin = n * 0x1p-49 * (spread + 3.0);
     for (int i = 0; i < 3; ++i) {

@@ -1,10 +1,18 @@
-/* core.c - version, status names, diagnostics and the allocator hooks.
- * Based on: the project's STYLE.md (one X-macro status list; no globals; no printing). */
+/* core.c - version, status names, diagnostics, the allocator hooks and "C"-locale numbers.
+ * Based on: the project's STYLE.md (one X-macro status list; no globals; no printing); POSIX.1-2008
+ * newlocale(3) and uselocale(3) (a per-thread locale, so a host's setlocale cannot change how
+ * numbers are read and written, and other threads are unaffected). */
+#define _POSIX_C_SOURCE 200809L
 #include "core.h"
 
+#include <locale.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#if defined(LC_ALL_MASK) && !defined(TG_NO_USELOCALE)
+#define TG_HAVE_USELOCALE 1
+#endif
 
 #define TG_STR2_(x) #x
 #define TG_STR_(x) TG_STR2_(x)
@@ -140,4 +148,38 @@ void tg__vec_free(const tg_allocator* a, tg__vec* v)
     tg__free(a, v->data);
     v->data = NULL;
     v->count = v->capacity = 0;
+}
+
+/* A fresh "C" locale object per use keeps this free of global state; glibc hands out its static
+ * "C" object for this request, so the cost is a few comparisons. */
+tg__c_locale tg__c_locale_enter(void)
+{
+    tg__c_locale l = {NULL, NULL};
+#ifdef TG_HAVE_USELOCALE
+    locale_t c = newlocale(LC_ALL_MASK, "C", (locale_t)0);
+    if (c) {
+        l.c = (void*)c;
+        l.prev = (void*)uselocale(c);
+    }
+#endif
+    return l;
+}
+
+void tg__c_locale_leave(tg__c_locale l)
+{
+#ifdef TG_HAVE_USELOCALE
+    if (!l.c) return;
+    uselocale((locale_t)l.prev);
+    freelocale((locale_t)l.c);
+#else
+    (void)l;
+#endif
+}
+
+double tg__strtod_c(const char* s, char** end)
+{
+    tg__c_locale l = tg__c_locale_enter();
+    double v = strtod(s, end);
+    tg__c_locale_leave(l);
+    return v;
 }

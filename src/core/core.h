@@ -42,6 +42,18 @@ void tg__diag_vset(tg_diag* diag, const char* file, uint64_t line, uint64_t colu
 /* Clears diag to an empty state naming file. */
 void tg__diag_clear(tg_diag* diag, const char* file);
 
+/* Numbers in text whatever LC_NUMERIC a host program has set (a ',' decimal separator would
+ * otherwise stop strtod at the '.' and make printf write ','): the calling thread runs in the "C"
+ * locale between enter and leave (POSIX 2008 uselocale; elsewhere these do nothing). */
+typedef struct tg__c_locale {
+    void* c;    /* the "C" locale object, or NULL */
+    void* prev; /* the thread's locale before enter */
+} tg__c_locale;
+tg__c_locale tg__c_locale_enter(void);
+void tg__c_locale_leave(tg__c_locale l);
+/* strtod in the "C" locale. */
+double tg__strtod_c(const char* s, char** end);
+
 /* A growable byte/element buffer for readers (amortised doubling, checked sizes). */
 typedef struct tg__vec {
     void* data;

@@ -203,10 +203,12 @@ tg_status tg_path_write_obj(const tg_path* p, const char* filename, tg_diag* dia
         tg__diag_set(diag, filename, 0, 0, 0, "cannot open for writing: %s", strerror(errno));
         return TG_ERR_IO;
     }
+    tg__c_locale loc = tg__c_locale_enter(); /* '.' separators whatever the host's LC_NUMERIC */
     fprintf(f, "# trigeo geodesic path: %zu points, length %.17g, status %s, max angle defect %.3g rad\n",
             p->count, p->length, tg_path_status_name(p->status), p->max_angle_defect);
     for (size_t i = 0; i < p->count; ++i)
         fprintf(f, "v %.17g %.17g %.17g\n", p->xyz[3 * i], p->xyz[3 * i + 1], p->xyz[3 * i + 2]);
+    tg__c_locale_leave(loc);
     if (p->count >= 2) {
         fputs("l", f);
         for (size_t i = 0; i < p->count; ++i) fprintf(f, " %zu", i + 1);

@@ -2,7 +2,8 @@
  * Based on: W. D. Clinger, "How to Read Floating Point Numbers Accurately" (PLDI 1990), the
  * fast path: a decimal mantissa m <= 2^53 and a power 10^k with |k| <= 22 are both exact
  * doubles, so one IEEE multiplication or division gives the correctly rounded result. Every
- * other input falls back to strtod (C locale), which is also correctly rounded on glibc.
+ * other input falls back to strtod in the "C" locale (tg__strtod_c, whatever LC_NUMERIC the host
+ * program set), which is also correctly rounded on glibc.
  * Extended path (x86 80-bit long double, 64-bit significand): a mantissa below 10^19 < 2^64 and
  * 10^k with |k| <= 27 (5^27 < 2^64) are exact, so one long double operation has error at most
  * half an ulp of long double; rounding that to double is correct unless the true value may lie
@@ -16,6 +17,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdlib.h>
+
+#include "core/core.h"
 
 static inline bool tg__is_digit(char c) { return (unsigned)(c - '0') < 10u; }
 static inline bool tg__is_blank(char c) { return c == ' ' || c == '\t'; }
@@ -94,7 +97,7 @@ static inline const char* tg__parse_double(const char* p, double* out)
 slow:
     {
         char* endp;
-        double v = strtod(p, &endp);
+        double v = tg__strtod_c(p, &endp);
         if (endp == p) return NULL;
         *out = v;
         return endp;

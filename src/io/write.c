@@ -71,14 +71,12 @@ static tg_status out_close(out_file* o, tg_diag* diag)
     return TG_OK;
 }
 
-/* %.17g, with the decimal separator forced to '.' whatever LC_NUMERIC says. */
+/* %.17g; the caller runs in the "C" locale (tg__c_locale_enter), so the separator is '.'. */
 static size_t format_double(char* s, size_t cap, double v)
 {
     int n = snprintf(s, cap, "%.17g", v);
     if (n < 0) n = 0;
     if ((size_t)n >= cap) n = (int)cap - 1;
-    for (int i = 0; i < n; ++i)
-        if (s[i] == ',') s[i] = '.';
     return (size_t)n;
 }
 
@@ -153,6 +151,7 @@ tg_status tg_mesh_write_obj(const tg_mesh* mesh, const char* path, tg_diag* diag
     }
     static const char head[] = "# written by trigeo\n";
     out_bytes(o, head, sizeof head - 1);
+    tg__c_locale loc = tg__c_locale_enter();
     for (size_t v = 0; v < mesh->vertex_count; ++v) {
         char* s = out_room(o, 128);
         size_t n = 0;
@@ -164,6 +163,7 @@ tg_status tg_mesh_write_obj(const tg_mesh* mesh, const char* path, tg_diag* diag
         s[n++] = '\n';
         o->len += n;
     }
+    tg__c_locale_leave(loc);
     for (size_t f = 0; f < mesh->face_count; ++f) {
         char* s = out_room(o, 80);
         size_t n = 0;

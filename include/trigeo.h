@@ -421,7 +421,7 @@ typedef enum tg_bvh_winding_data {
 /** Build options; a NULL pointer or a zero-initialised struct means defaults. */
 typedef struct tg_bvh_options {
     const tg_allocator* allocator;    /**< NULL: libc. Also used by workspaces and batch queries. */
-    uint32_t max_leaf_size;           /**< largest leaf, 1..15; 0: default (8) */
+    uint32_t max_leaf_size;           /**< largest leaf, 1..15; 0: default (12) */
     tg_bvh_winding_data winding_data; /**< see tg_bvh_winding_data */
 } tg_bvh_options;
 

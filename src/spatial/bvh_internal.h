@@ -14,7 +14,7 @@
 
 #define TG__BVH_WIDTH 4
 #define TG__BVH_MAX_LEAF 15
-#define TG__BVH_DEFAULT_LEAF 8
+#define TG__BVH_DEFAULT_LEAF 12
 
 /* One 4-wide node in two 64-byte cache lines. Coordinates are "local": (x - origin) * scale of the
  * tg_bvh, so that the mesh fits in [-1, 1]^3 and float keeps relative precision whatever the
@@ -199,8 +199,10 @@ void* tg__bvh_big_alloc(const tg_allocator* a, size_t bytes, bool* out_mapped);
 void tg__bvh_big_free(const tg_allocator* a, void* p, size_t bytes, bool mapped);
 /* Fills the oriented boxes (line 2) of every node. leaf_first/leaf_end: per slot (node * 4 + s),
  * the range of leaves under it in leaf order; leaf_vertex_word/leaf_u: per leaf, the word offset
- * of its vertex array and its number of distinct vertices. */
-tg_status tg__bvh_build_obbs(tg_bvh* bvh, const uint32_t* leaf_first, const uint32_t* leaf_end,
+ * of its vertex array and its number of distinct vertices. scratch: scratch_bytes of memory the
+ * build no longer needs (16-byte aligned), used for the moments when large enough: a cold build
+ * pays a page fault for every fresh 4 KiB it touches. */
+tg_status tg__bvh_build_obbs(tg_bvh* bvh, void* scratch, size_t scratch_bytes, const uint32_t* leaf_first, const uint32_t* leaf_end,
                              const uint32_t* leaf_vertex_word, const uint8_t* leaf_u);
 /* One closest query (no distance limit) seeded with the distance to face hint (TG_NONE: none). */
 void tg__bvh_closest_hinted(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p, uint32_t hint,

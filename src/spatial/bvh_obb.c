@@ -240,20 +240,22 @@ static bool slot_intervals(const tg_bvh* bvh, tg__bvh_node* node, int s, uint32_
  * all their vertices per level. */
 #define OBB_MAX_LEAVES 64
 
-tg_status tg__bvh_build_obbs(tg_bvh* bvh, const uint32_t* leaf_first, const uint32_t* leaf_end,
+tg_status tg__bvh_build_obbs(tg_bvh* bvh, void* scratch, size_t scratch_bytes, const uint32_t* leaf_first, const uint32_t* leaf_end,
                              const uint32_t* leaf_vertex_word, const uint8_t* leaf_u)
 {
     const tg_allocator* a = &bvh->allocator;
     long count = (long)bvh->node_count;
     /* the root's last slot ends the depth-first leaf order */
     size_t leaves = count ? leaf_end[bvh->nodes[0].child_count - 1] : 0;
-    moments* node_mo = tg__alloc_array(a, bvh->node_count + 1, sizeof *node_mo);
-    moments* leaf_mo = tg__alloc_array(a, leaves + 1, sizeof *leaf_mo);
-    if (!node_mo || !leaf_mo) {
-        tg__free(a, node_mo);
-        tg__free(a, leaf_mo);
-        return TG_ERR_OUT_OF_MEMORY;
+    moments* all = NULL;
+    bool own = (bvh->node_count + 1 + leaves + 1) > scratch_bytes / sizeof(moments);
+    if (own) {
+        all = tg__alloc_array(a, bvh->node_count + 1 + leaves + 1, sizeof *all);
+        if (!all) return TG_ERR_OUT_OF_MEMORY;
+    } else {
+        all = (moments*)scratch;
     }
+    moments *node_mo = all, *leaf_mo = all + bvh->node_count + 1;
     /* the leaves' moments, in parallel */
 #ifdef TG_HAVE_OPENMP
 #pragma omp parallel for schedule(dynamic, 256)
@@ -296,7 +298,6 @@ tg_status tg__bvh_build_obbs(tg_bvh* bvh, const uint32_t* leaf_first, const uint
             if (!slot_intervals(bvh, node, s, leaf_first[id], leaf_end[id], leaf_vertex_word, leaf_u)) disable_slot(node, s);
         }
     }
-    tg__free(a, leaf_mo);
-    tg__free(a, node_mo);
+    if (own) tg__free(a, all);
     return TG_OK;
 }

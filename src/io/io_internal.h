@@ -48,6 +48,9 @@ void tg__line_col(const char* data, size_t off, uint64_t* line, uint64_t* col);
  * text == NULL the data is binary and only the byte offset is set. */
 tg_status tg__io_fail(tg_diag* diag, const char* name, const char* text, size_t off, tg_status status,
                       const char* fmt, ...) TG_PRINTF(6, 7);
+/* The same with a va_list, for the readers' own printf-style failure helpers. */
+tg_status tg__io_vfail(tg_diag* diag, const char* name, const char* text, size_t off, tg_status status,
+                       const char* fmt, va_list ap);
 
 /* Whitespace of the token-based text formats (OFF, PLY ascii, STL ascii): blank, \t, \n, \v,
  * \f, \r. '\0' is not whitespace, so a terminator or embedded NUL ends every token scan. */

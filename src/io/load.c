@@ -36,14 +36,21 @@ void tg__line_col(const char* data, size_t off, uint64_t* line, uint64_t* col)
     *col = off - start + 1;
 }
 
-tg_status tg__io_fail(tg_diag* diag, const char* name, const char* text, size_t off, tg_status status,
-                      const char* fmt, ...)
+tg_status tg__io_vfail(tg_diag* diag, const char* name, const char* text, size_t off, tg_status status,
+                       const char* fmt, va_list ap)
 {
     uint64_t line = 0, col = 0;
     if (text) tg__line_col(text, off, &line, &col);
+    tg__diag_vset(diag, name, line, col, off, fmt, ap);
+    return status;
+}
+
+tg_status tg__io_fail(tg_diag* diag, const char* name, const char* text, size_t off, tg_status status,
+                      const char* fmt, ...)
+{
     va_list ap;
     va_start(ap, fmt);
-    tg__diag_vset(diag, name, line, col, off, fmt, ap);
+    tg__io_vfail(diag, name, text, off, status, fmt, ap);
     va_end(ap);
     return status;
 }

@@ -21,12 +21,9 @@ typedef struct off_cursor {
 static tg_status fail_at(off_cursor* c, const char* at, tg_status st, const char* msg, ...) TG_PRINTF(4, 5);
 static tg_status fail_at(off_cursor* c, const char* at, tg_status st, const char* msg, ...)
 {
-    uint64_t line, col;
-    size_t off = (size_t)(at - c->data);
-    tg__line_col(c->data, off, &line, &col);
     va_list ap;
     va_start(ap, msg);
-    tg__diag_vset(c->diag, c->name, line, col, off, msg, ap);
+    tg__io_vfail(c->diag, c->name, c->data, (size_t)(at - c->data), st, msg, ap);
     va_end(ap);
     return st;
 }

@@ -174,11 +174,9 @@ static size_t split_words(const char* s, const char* e, ply_word* w, size_t max)
 static tg_status header_fail(ply_file* f, size_t off, tg_status st, const char* fmt, ...) TG_PRINTF(4, 5);
 static tg_status header_fail(ply_file* f, size_t off, tg_status st, const char* fmt, ...)
 {
-    uint64_t line, col;
-    tg__line_col(f->data, off, &line, &col);
     va_list ap;
     va_start(ap, fmt);
-    tg__diag_vset(f->diag, f->name, line, col, off, fmt, ap);
+    tg__io_vfail(f->diag, f->name, f->data, off, st, fmt, ap);
     va_end(ap);
     return st;
 }
@@ -339,11 +337,9 @@ static size_t find_face_list(const ply_file* f, const ply_element* e)
 static tg_status body_fail(ply_file* f, size_t off, tg_status st, const char* fmt, ...) TG_PRINTF(4, 5);
 static tg_status body_fail(ply_file* f, size_t off, tg_status st, const char* fmt, ...)
 {
-    uint64_t line = 0, col = 0;
-    if (f->encoding == PLY_ASCII) tg__line_col(f->data, off, &line, &col);
     va_list ap;
     va_start(ap, fmt);
-    tg__diag_vset(f->diag, f->name, line, col, off, fmt, ap);
+    tg__io_vfail(f->diag, f->name, f->encoding == PLY_ASCII ? f->data : NULL, off, st, fmt, ap);
     va_end(ap);
     return st;
 }

@@ -13,9 +13,6 @@
 #include <CGAL/Simple_cartesian.h>
 
 #include <memory>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace {
 
@@ -63,31 +60,11 @@ int main(int argc, char** argv)
     double build = peer::median(t);
     const Tree& tree = *b->tree;
 
-    for (int a = 3; a < argc; ++a) {
-        std::vector<double> q = peer::read_array(argv[a], "TGQUERY1", 3);
-        const long n = (long)(q.size() / 3);
-        std::vector<double> d(n);
-        double ns[2];
-        for (int threads = 1; threads <= 2; ++threads) {
-            std::vector<double> tt;
-            for (int r = 0; r < reps; ++r) {
-                double t0 = peer::now();
-#ifdef _OPENMP
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1024)
-#endif
-                for (long i = 0; i < n; ++i) {
-                    K::Point_3 p(q[3 * i], q[3 * i + 1], q[3 * i + 2]);
-                    auto pp = tree.closest_point_and_primitive(p);
-                    d[i] = CGAL::squared_distance(p, pp.first);
-                }
-                tt.push_back(peer::now() - t0);
-            }
-            ns[threads - 1] = 1e9 * peer::median(tt) / (double)n;
-        }
-        peer::write_distances(std::string(argv[a]) + ".cgal.d", d);
-        std::printf("cgal %s %zu %.4f %.1f %.0f %.0f\n", argv[a], nf, build, bytes / (double)nf, ns[0], ns[1]);
-        std::fflush(stdout);
-    }
+    peer::run_query_files(argc, argv, 3, reps, "cgal", nf, build, bytes, [&tree](const double* x) {
+        K::Point_3 p(x[0], x[1], x[2]);
+        auto pp = tree.closest_point_and_primitive(p);
+        return CGAL::squared_distance(p, pp.first);
+    });
     b.reset();
     tg_mesh_destroy(m);
     return 0;

@@ -13,9 +13,6 @@
 
 #include <atomic>
 #include <cmath>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace {
 
@@ -87,37 +84,17 @@ int main(int argc, char** argv)
     }
     double build = peer::median(t);
 
-    for (int a = 3; a < argc; ++a) {
-        std::vector<double> q = peer::read_array(argv[a], "TGQUERY1", 3);
-        const long n = (long)(q.size() / 3);
-        std::vector<double> d(n);
-        double ns[2];
-        for (int threads = 1; threads <= 2; ++threads) {
-            std::vector<double> tt;
-            for (int r = 0; r < reps; ++r) {
-                double t0 = peer::now();
-#ifdef _OPENMP
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1024)
-#endif
-                for (long i = 0; i < n; ++i) {
-                    Query u{xyz, tri, {q[3 * i], q[3 * i + 1], q[3 * i + 2]}, INFINITY, 0xFFFFFFFFu};
-                    RTCPointQuery pq;
-                    pq.x = (float)u.p[0], pq.y = (float)u.p[1], pq.z = (float)u.p[2];
-                    pq.time = 0.0f;
-                    pq.radius = INFINITY;
-                    RTCPointQueryContext ctx;
-                    rtcInitPointQueryContext(&ctx);
-                    rtcPointQuery(scene, &pq, &ctx, closest_callback, &u);
-                    d[i] = u.best;
-                }
-                tt.push_back(peer::now() - t0);
-            }
-            ns[threads - 1] = 1e9 * peer::median(tt) / (double)n;
-        }
-        peer::write_distances(std::string(argv[a]) + ".embree.d", d);
-        std::printf("embree %s %zu %.4f %.1f %.0f %.0f\n", argv[a], nf, build, bytes / (double)nf, ns[0], ns[1]);
-        std::fflush(stdout);
-    }
+    peer::run_query_files(argc, argv, 3, reps, "embree", nf, build, bytes, [&](const double* x) {
+        Query u{xyz, tri, {x[0], x[1], x[2]}, INFINITY, 0xFFFFFFFFu};
+        RTCPointQuery pq;
+        pq.x = (float)u.p[0], pq.y = (float)u.p[1], pq.z = (float)u.p[2];
+        pq.time = 0.0f;
+        pq.radius = INFINITY;
+        RTCPointQueryContext ctx;
+        rtcInitPointQueryContext(&ctx);
+        rtcPointQuery(scene, &pq, &ctx, closest_callback, &u);
+        return u.best;
+    });
     rtcReleaseScene(scene);
     rtcReleaseDevice(device);
     tg_mesh_destroy(m);

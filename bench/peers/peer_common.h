@@ -74,6 +74,37 @@ inline tg_mesh* load(const char* path)
     return m;
 }
 
+// Times the query files argv[first..argc) with 1 and 2 threads (OpenMP over the points in file
+// order; medians of reps passes), writes the squared distances to FILE.<name>.d and prints
+// "<name> FILE faces build_s bytes_per_face ns_1t ns_2t". query(p) returns the squared distance
+// from the point p[0..2] to the mesh and must be safe to call from several threads.
+template <class Query>
+inline void run_query_files(int argc, char** argv, int first, int reps, const char* name, size_t nf, double build,
+                            double bytes, Query query)
+{
+    for (int a = first; a < argc; ++a) {
+        std::vector<double> q = read_array(argv[a], "TGQUERY1", 3);
+        const long n = (long)(q.size() / 3);
+        std::vector<double> d(n);
+        double ns[2];
+        for (int threads = 1; threads <= 2; ++threads) {
+            std::vector<double> tt;
+            for (int r = 0; r < reps; ++r) {
+                double t0 = now();
+#ifdef _OPENMP
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1024)
+#endif
+                for (long i = 0; i < n; ++i) d[i] = query(&q[3 * i]);
+                tt.push_back(now() - t0);
+            }
+            ns[threads - 1] = 1e9 * median(tt) / (double)n;
+        }
+        write_distances(std::string(argv[a]) + "." + name + ".d", d);
+        std::printf("%s %s %zu %.4f %.1f %.0f %.0f\n", name, argv[a], nf, build, bytes / (double)nf, ns[0], ns[1]);
+        std::fflush(stdout);
+    }
+}
+
 } // namespace peer
 
 #endif

@@ -807,6 +807,69 @@ tg_status tg_path_write_obj(const tg_path* path, const char* filename, tg_diag* 
 /* TG-SECTION-GEODESIC-END */
 
 /* ============================================================================================== */
+/* Exact geodesic distance fields (src/geodesic/field.c)                                          */
+/* ============================================================================================== */
+/* TG-SECTION-FIELD */
+
+/** Options of tg_geodesic_field. NULL or all-zero means defaults. */
+typedef struct tg_field_options {
+    const tg_allocator* allocator; /**< scratch memory; NULL: the solver's allocator */
+    /** Distance limit (same unit as the coordinates); 0: none. The propagation stops at this
+     *  distance: vertices within it get their exact distance, every vertex beyond it +inf. */
+    double max_distance;
+} tg_field_options;
+
+/** Counters of one tg_geodesic_field run (for benchmarks and tests). */
+typedef struct tg_field_stats {
+    uint64_t windows_created;        /**< windows put on the queue */
+    uint64_t windows_propagated;     /**< windows taken from the queue and unfolded into a face */
+    uint64_t windows_filtered;       /**< windows or children dropped by the filters (or empty) */
+    uint64_t pseudo_source_events;   /**< emissions from source, saddle and boundary vertices */
+    uint64_t pseudo_source_vertices; /**< vertices classified as pseudo-sources */
+    uint64_t max_queue;              /**< largest number of queue entries */
+    size_t peak_bytes;               /**< largest scratch memory in use (bytes) */
+} tg_field_stats;
+
+/** The exact geodesic distance from a set of surface points to every vertex: the length of the
+ *  shortest path on the surface to the nearest source (Chen & Han's window propagation with the
+ *  improvements of Xin & Wang 2009, "ICH"). Windows (intervals of edges lit by one unfolded
+ *  source image, plus a distance offset for paths bending at a vertex) are propagated face by
+ *  face in order of their distance from a priority queue; paths bend only at pseudo-sources:
+ *  vertices whose total angle is at least 2 pi (within 1e-9 relative, so flat vertices count),
+ *  boundary vertices and the vertices listed below. Windows are dropped only when a real path
+ *  provably beats them (the current vertex distances, "one angle one split"), so the result is
+ *  exact up to rounding (about 1e-15 relative per unfolded face), never below the geodesic
+ *  distance beyond rounding, and never above the shortest edge-graph distance beyond rounding.
+ *
+ *  sources: source_count valid surface points (tg_surface_point_validate; vertex, edge point or
+ *  face point; NULL allowed when source_count is 0). With several sources each vertex gets the
+ *  distance to the nearest; with none, every vertex gets +inf.
+ *  options: NULL for defaults. out_vertex_distance: vertex_count doubles; vertices that no path
+ *  reaches (another component, unreferenced vertices, beyond max_distance) get +inf; never NaN.
+ *  out_stats: may be NULL; filled on success.
+ *
+ *  Imperfect meshes: boundaries, several components, non-manifold edges and vertices, zero-area
+ *  and needle faces, duplicate faces and unreferenced vertices are accepted. An edge without an
+ *  opposite halfedge (boundary, non-manifold, inconsistently oriented, of a duplicate face) is a
+ *  wall for windows: paths pass it only through its end vertices, which are pseudo-sources, so
+ *  the result is the exact distance on the surface cut open along such edges (the convention of
+ *  tg_geodesic_path). Vertices of degenerate faces (a zero-length edge or an exactly zero cross
+ *  product) are pseudo-sources too; windows still cross a zero-area face where it is a segment
+ *  with its third corner on it, and otherwise the distance there is the conservative one through
+ *  its vertices (a real path, possibly longer than the infimum).
+ *
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL g or out_vertex_distance, NULL sources with a non-zero
+ *  count, an invalid source point, a negative or NaN max_distance), TG_ERR_OUT_OF_MEMORY (then
+ *  out_vertex_distance and out_stats are untouched and nothing leaks).
+ *  Complexity: O(W log W) time for W windows, typically a small multiple of n^1.5 for n
+ *  vertices (O(n^2 log n) worst case); memory about 130 bytes per face plus 70 bytes per
+ *  queued window. Thread-safe: g is only read; concurrent calls need distinct output arrays. */
+tg_status tg_geodesic_field(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+                            const tg_field_options* options, double* out_vertex_distance, tg_field_stats* out_stats);
+
+/* TG-SECTION-FIELD-END */
+
+/* ============================================================================================== */
 /* Pictures (src/render)                                                                          */
 /* ============================================================================================== */
 /* TG-SECTION-RENDER */

@@ -9,26 +9,6 @@
 #include <trigeo.h>
 
 
-/* An n x n grid over [x0, x0 + w] x [y0, y0 + w] at height z, skipping cells for which skip()
- * is true; returns the vertex id of grid point (0, 0). */
-static uint32_t grid(int n, double x0, double y0, double w, double z, int (*skip)(int, int, int))
-{
-    uint32_t base = (uint32_t)nv;
-    for (int j = 0; j <= n; ++j)
-        for (int i = 0; i <= n; ++i) add_v(x0 + w * i / n, y0 + w * j / n, z);
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            if (skip && skip(i, j, n)) continue;
-            uint32_t a = base + (uint32_t)(j * (n + 1) + i), b = a + 1, c = a + (uint32_t)n + 1, d = c + 1;
-            if ((i + j) & 1) {
-                add_f(a, b, d), add_f(a, d, c);
-            } else {
-                add_f(a, b, c), add_f(b, d, c);
-            }
-        }
-    return base;
-}
-
 /* The fixture over the mesh built so far; close_sheet also empties the builder. */
 static ctx open_ctx(void)
 {
@@ -52,26 +32,6 @@ static tg_path_view run(ctx* c, tg_surface_point a, tg_surface_point b, tg_path_
     tg_path_view v;
     tg_path_get_view(c->path, &v);
     return v;
-}
-
-/* The face point of face f at xyz, which must lie in f's plane (barycentrics by areas). */
-static tg_surface_point at(uint32_t f, double x, double y)
-{
-    const double *a = xyz + 3 * tri[3 * f], *b = xyz + 3 * tri[3 * f + 1], *c = xyz + 3 * tri[3 * f + 2];
-    double d = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-    double l1 = ((x - a[0]) * (c[1] - a[1]) - (y - a[1]) * (c[0] - a[0])) / d;
-    double l2 = ((b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0])) / d;
-    return tg_surface_face(f, 1 - l1 - l2, l1, l2);
-}
-
-/* The face of a planar (z = const) mesh containing (x, y), or TG_NONE. */
-static uint32_t find_face(double x, double y)
-{
-    for (size_t f = 0; f < nf; ++f) {
-        tg_surface_point p = at((uint32_t)f, x, y);
-        if (p.bary[0] >= 0 && p.bary[1] >= 0 && p.bary[2] >= 0) return (uint32_t)f;
-    }
-    return TG_NONE;
 }
 
 /* Interior points of a path that lie on an edge with more or fewer than two faces, or on a

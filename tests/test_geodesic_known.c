@@ -8,13 +8,6 @@
 
 #include <trigeo.h>
 
-#define TG_PI_ 3.14159265358979323846
-static tg_mesh* finish(void)
-{
-    tg_mesh* m = NULL;
-    CHECK_STATUS(tg_mesh_create(xyz, nv, tri, nf, NULL, NULL, &m), TG_OK);
-    return m;
-}
 
 
 /* Runs one query and checks the generic contract; returns the length (NAN on failure). */
@@ -32,40 +25,7 @@ static double query(ctx* c, tg_surface_point a, tg_surface_point b, tg_path_meth
     return st == TG_OK ? v->length : NAN;
 }
 
-static tg_surface_point random_face_point(tg_rng* r, size_t face_count)
-{
-    uint32_t f = (uint32_t)(tg_rng_next(r) % face_count);
-    double u = tg_rng_unit(r), w = tg_rng_unit(r);
-    if (u + w > 1) u = 1 - u, w = 1 - w;
-    return tg_surface_face(f, 1 - u - w, u, w);
-}
-
 static void pos(const tg_mesh* m, tg_surface_point p, double x[3]) { tg_surface_point_position(m, &p, x); }
-
-/* ---- flat square [0,1]^2, jittered interior vertices, random diagonals ---- */
-
-static tg_mesh* flat_square(int n, uint64_t seed)
-{
-    tg_rng r = {seed};
-    nv = nf = 0;
-    for (int j = 0; j <= n; ++j)
-        for (int i = 0; i <= n; ++i) {
-            double x = (double)i / n, y = (double)j / n;
-            if (i > 0 && i < n) x += tg_rng_range(&r, -0.3, 0.3) / n;
-            if (j > 0 && j < n) y += tg_rng_range(&r, -0.3, 0.3) / n;
-            add_v(x, y, 0.0);
-        }
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            uint32_t a = (uint32_t)(j * (n + 1) + i), b = a + 1, c = a + (uint32_t)n + 1, d = c + 1;
-            if (tg_rng_next(&r) & 1) {
-                add_f(a, b, d), add_f(a, d, c);
-            } else {
-                add_f(a, b, c), add_f(b, d, c);
-            }
-        }
-    return finish();
-}
 
 static void test_flat(void)
 {
@@ -104,82 +64,6 @@ static void test_flat(void)
     }
     printf("flat square: max |length - euclidean| straighten %.3g, relax %.3g\n", worst[0], worst[1]);
     close_ctx(&c);
-}
-
-/* ---- unit cube, each side a k x k grid with alternating diagonals ---- */
-
-static uint32_t cube_index[9][9][9];
-
-static uint32_t cube_vertex(int k, int i, int j, int l)
-{
-    if (cube_index[i][j][l] == UINT32_MAX) cube_index[i][j][l] = add_v((double)i / k, (double)j / k, (double)l / k);
-    return cube_index[i][j][l];
-}
-
-/* Side `axis` (0 x, 1 y, 2 z) at `hi` (0 or k): grid (a, b) over the other two axes, wound so
- * that the normal points outwards. */
-static void cube_side(int k, int axis, int hi)
-{
-    int u = (axis + 1) % 3, w = (axis + 2) % 3;
-    for (int a = 0; a < k; ++a)
-        for (int b = 0; b < k; ++b) {
-            uint32_t q[4];
-            int ca[4] = {a, a + 1, a + 1, a}, cb[4] = {b, b, b + 1, b + 1};
-            for (int c = 0; c < 4; ++c) {
-                int x[3];
-                x[axis] = hi, x[u] = ca[c], x[w] = cb[c];
-                q[c] = cube_vertex(k, x[0], x[1], x[2]);
-            }
-            /* (u, w, axis) is right-handed, so q0 q1 q2 q3 is counterclockwise seen from +axis */
-            if (hi == 0) {
-                uint32_t t = q[1];
-                q[1] = q[3], q[3] = t;
-            }
-            if ((a + b) & 1) {
-                add_f(q[0], q[1], q[2]), add_f(q[0], q[2], q[3]);
-            } else {
-                add_f(q[0], q[1], q[3]), add_f(q[1], q[2], q[3]);
-            }
-        }
-}
-
-static tg_mesh* cube(int k)
-{
-    nv = nf = 0;
-    memset(cube_index, 0xFF, sizeof cube_index);
-    for (int axis = 0; axis < 3; ++axis) {
-        cube_side(k, axis, 0);
-        cube_side(k, axis, k);
-    }
-    return finish();
-}
-
-/* The face point at xyz (which must lie on the cube's surface): searched among all faces. */
-static tg_surface_point locate(const tg_mesh* m, double x, double y, double z)
-{
-    const double* v = tg_mesh_positions(m);
-    const uint32_t* t = tg_mesh_triangles(m);
-    for (size_t f = 0; f < tg_mesh_face_count(m); ++f) {
-        const double *a = v + 3 * t[3 * f], *b = v + 3 * t[3 * f + 1], *c = v + 3 * t[3 * f + 2];
-        double e1[3], e2[3], p[3], n[3];
-        for (int i = 0; i < 3; ++i) e1[i] = b[i] - a[i], e2[i] = c[i] - a[i], p[i] = (i == 0 ? x : i == 1 ? y : z) - a[i];
-        n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-        double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-        if (fabs(n[0] * p[0] + n[1] * p[1] + n[2] * p[2]) > 1e-12 * sqrt(nn)) continue;
-        /* barycentrics by areas in the face plane */
-        double c1[3] = {p[1] * e2[2] - p[2] * e2[1], p[2] * e2[0] - p[0] * e2[2], p[0] * e2[1] - p[1] * e2[0]};
-        double c2[3] = {e1[1] * p[2] - e1[2] * p[1], e1[2] * p[0] - e1[0] * p[2], e1[0] * p[1] - e1[1] * p[0]};
-        double b1 = (c1[0] * n[0] + c1[1] * n[1] + c1[2] * n[2]) / nn;
-        double b2 = (c2[0] * n[0] + c2[1] * n[1] + c2[2] * n[2]) / nn;
-        if (b1 >= -1e-12 && b2 >= -1e-12 && b1 + b2 <= 1 + 1e-12) {
-            if (b1 < 0) b1 = 0;
-            if (b2 < 0) b2 = 0;
-            if (b1 + b2 > 1) b2 = 1 - b1;
-            return tg_surface_face((uint32_t)f, 1 - b1 - b2, b1, b2);
-        }
-    }
-    CHECK_MSG(0, "point (%g, %g, %g) not on the mesh", x, y, z);
-    return tg_surface_vertex(0);
 }
 
 /* Prints a path (diagnostics of a failed check). */
@@ -233,19 +117,7 @@ static void test_cylinder(void)
 {
     const int n = 16, rings = 6;
     const double h = 2.0, chord = 2 * sin(TG_PI_ / n), width = n * chord;
-    nv = nf = 0;
-    for (int r = 0; r <= rings; ++r)
-        for (int k = 0; k < n; ++k) add_v(cos(2 * TG_PI_ * k / n), sin(2 * TG_PI_ * k / n), h * r / rings);
-    for (int r = 0; r < rings; ++r)
-        for (int k = 0; k < n; ++k) {
-            uint32_t a = (uint32_t)(r * n + k), b = (uint32_t)(r * n + (k + 1) % n), cc = a + (uint32_t)n, d = b + (uint32_t)n;
-            if ((k + r) & 1) {
-                add_f(a, b, d), add_f(a, d, cc);
-            } else {
-                add_f(a, b, cc), add_f(b, d, cc);
-            }
-        }
-    ctx c = open_ctx_for(finish());
+    ctx c = open_ctx_for(prism(n, rings, h));
     tg_rng rng = {11};
     for (int q = 0; q < 40; ++q) {
         tg_surface_point p[2];
@@ -276,21 +148,8 @@ static void test_cone(void)
 {
     const int n = 10, rings = 5;
     const double height = 1.5;
-    nv = nf = 0;
-    uint32_t apex = add_v(0, 0, height);
-    for (int r = 1; r <= rings; ++r)
-        for (int k = 0; k < n; ++k) {
-            double f = (double)r / rings;
-            add_v(f * cos(2 * TG_PI_ * k / n), f * sin(2 * TG_PI_ * k / n), height * (1 - f));
-        }
-#define RING(r, k) ((uint32_t)(1 + ((r) - 1) * n + ((k) % n)))
-    for (int k = 0; k < n; ++k) add_f(apex, RING(1, k), RING(1, k + 1));
-    for (int r = 1; r < rings; ++r)
-        for (int k = 0; k < n; ++k) {
-            uint32_t a = RING(r, k), b = RING(r, k + 1), cc = RING(r + 1, k), d = RING(r + 1, k + 1);
-            add_f(a, cc, d), add_f(a, d, b);
-        }
-    ctx c = open_ctx_for(finish());
+    ctx c = open_ctx_for(cone(n, rings, height));
+#define RING(r, k) CONE_RING(n, r, k)
     /* apex angle of one side, and the total angle of the unrolled sector */
     const double* A = xyz;
     const double* B0 = xyz + 3 * RING(rings, 0);

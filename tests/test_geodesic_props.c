@@ -10,53 +10,6 @@
 #include <trigeo.h>
 
 
-/* A gently curved height field over [0,1]^2 with jittered vertices (a unique geodesic between
- * any two points: curvature too small for conjugate points), grid n x n, offset vertex ids. */
-static void height_field(int n, double amp, uint64_t seed, double x0)
-{
-    tg_rng r = {seed};
-    uint32_t base = (uint32_t)nv;
-    for (int j = 0; j <= n; ++j)
-        for (int i = 0; i <= n; ++i) {
-            double x = (double)i / n, y = (double)j / n;
-            if (i > 0 && i < n) x += tg_rng_range(&r, -0.25, 0.25) / n;
-            if (j > 0 && j < n) y += tg_rng_range(&r, -0.25, 0.25) / n;
-            add_v(x0 + x, y, amp * sin(2.0 * x + 0.5) * cos(1.5 * y - 0.3));
-        }
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            uint32_t a = base + (uint32_t)(j * (n + 1) + i), b = a + 1, c = a + (uint32_t)n + 1, d = c + 1;
-            if (tg_rng_next(&r) & 1) {
-                add_f(a, b, d), add_f(a, d, c);
-            } else {
-                add_f(a, b, c), add_f(b, d, c);
-            }
-        }
-}
-
-/* A bumpy closed surface: a UV sphere with radial noise (many local geodesics). */
-static void bumpy_sphere(int nu, int nvv, uint64_t seed)
-{
-    tg_rng r = {seed};
-    const double pi = 3.14159265358979323846;
-    uint32_t north = add_v(0, 0, 1);
-    for (int j = 1; j < nvv; ++j)
-        for (int i = 0; i < nu; ++i) {
-            double th = pi * j / nvv, ph = 2 * pi * i / nu, rad = 1 + tg_rng_range(&r, -0.08, 0.08);
-            add_v(rad * sin(th) * cos(ph), rad * sin(th) * sin(ph), rad * cos(th));
-        }
-    uint32_t south = add_v(0, 0, -1);
-#define SV(j, i) ((uint32_t)(1 + ((j) - 1) * nu + ((i) % nu)))
-    for (int i = 0; i < nu; ++i) add_f(north, SV(1, i), SV(1, i + 1));
-    for (int j = 1; j < nvv - 1; ++j)
-        for (int i = 0; i < nu; ++i) {
-            add_f(SV(j, i), SV(j + 1, i), SV(j + 1, i + 1));
-            add_f(SV(j, i), SV(j + 1, i + 1), SV(j, i + 1));
-        }
-    for (int i = 0; i < nu; ++i) add_f(SV(nvv - 1, i), south, SV(nvv - 1, i + 1));
-#undef SV
-}
-
 static tg_mesh* make_mesh(void)
 {
     tg_mesh* m = NULL;

@@ -36,10 +36,24 @@ int cli_usage(const char* cmd, const char* fmt, ...)
 bool cli_parse_uint(const char* s, unsigned long long* out);
 bool cli_parse_double(const char* s, double* out);
 
+/* A surface point as written on the command line (cli_spec.c). */
+typedef struct cli_spec {
+    int kind; /* 'v', 'f', 'e' or 'p' */
+    unsigned long long index;
+    double v[3];
+} cli_spec;
+/* Parses v:IDX | f:FACE:b0,b1,b2 | e:HALFEDGE:t | p:x,y,z; false on a syntax error. */
+bool cli_parse_spec(const char* s, cli_spec* out);
+/* Resolves a spec on the mesh (p: through the BVH *bvh, built on first use; the caller destroys
+ * it). Prints the error and returns false when the location is invalid. */
+bool cli_resolve_spec(const char* mesh_path, tg_mesh* mesh, tg_bvh** bvh, const char* text, const cli_spec* sp,
+                      tg_surface_point* out);
+
 /* Commands (one file each). */
 extern const cli_command cli_cmd_info;
 extern const cli_command cli_cmd_closest;
 extern const cli_command cli_cmd_render;
 extern const cli_command cli_cmd_path;
+extern const cli_command cli_cmd_field;
 
 #endif

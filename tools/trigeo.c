@@ -13,6 +13,7 @@ static const cli_command* const commands[] = {
     &cli_cmd_closest,
     &cli_cmd_render,
     &cli_cmd_path,
+    &cli_cmd_field,
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 

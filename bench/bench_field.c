@@ -1,0 +1,79 @@
+/* bench_field.c - exact geodesic distance fields: seconds per field (median and max over sources)
+ * from random vertex sources, windows propagated, scratch memory and peak RSS.
+ *
+ * usage: bench_field MESH [--sources N] [--seed S]
+ *   N (default 5) fields, each from one random vertex (fixed seed: every run times the same
+ *   sources). Times are the thread's CPU time (CLOCK_THREAD_CPUTIME_ID; the machine is shared),
+ *   with the median wall-clock time next to it.
+ * Prints one markdown table row:
+ *   | mesh | vertices | faces | fields | median s | max s | median wall s | windows (median) |
+ *   scratch MiB (max) | peak RSS MiB | */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <trigeo.h>
+
+#include "bench_common.h"
+
+static void die(const char* msg, const char* arg)
+{
+    fprintf(stderr, "bench_field: %s %s\n", msg, arg ? arg : "");
+    exit(2);
+}
+
+int main(int argc, char** argv)
+{
+    if (argc < 2) die("usage: bench_field MESH [--sources N] [--seed S]", NULL);
+    const char* path = argv[1];
+    int sources = 5;
+    unsigned long long seed = 1;
+    for (int i = 2; i < argc; ++i) {
+        if (!strcmp(argv[i], "--sources") && i + 1 < argc)
+            sources = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--seed") && i + 1 < argc)
+            seed = strtoull(argv[++i], NULL, 10);
+        else
+            die("unknown argument", argv[i]);
+    }
+    if (sources < 1 || sources > 1000) die("--sources must be in 1..1000", NULL);
+    tg_mesh* m = NULL;
+    tg_diag d;
+    if (tg_mesh_load(path, TG_FORMAT_AUTO, NULL, &d, &m) != TG_OK) die("cannot load", d.message);
+    size_t n = tg_mesh_vertex_count(m), F = tg_mesh_face_count(m);
+    if (F == 0) die("no faces in", path);
+    tg_geodesic* g = NULL;
+    if (tg_geodesic_create(m, NULL, &g) != TG_OK) die("solver", path);
+    double* dist = malloc(n * sizeof *dist);
+    double* cpu = malloc((size_t)sources * sizeof *cpu);
+    double* wall = malloc((size_t)sources * sizeof *wall);
+    double* windows = malloc((size_t)sources * sizeof *windows);
+    if (!dist || !cpu || !wall || !windows) die("out of memory", NULL);
+    const uint32_t* t = tg_mesh_triangles(m);
+    uint64_t s = seed * 0x9E3779B97F4A7C15ull + 1;
+    size_t scratch = 0;
+    for (int q = 0; q < sources; ++q) {
+        s ^= s >> 12, s ^= s << 25, s ^= s >> 27;
+        uint32_t v = t[(s * 2685821657736338717ull) % (3 * F)];
+        tg_surface_point src = tg_surface_vertex(v);
+        tg_field_stats st;
+        double w0 = bench_wall(), c0 = bench_cpu_thread();
+        if (tg_geodesic_field(g, &src, 1, NULL, dist, &st) != TG_OK) die("field failed on", path);
+        cpu[q] = bench_cpu_thread() - c0;
+        wall[q] = bench_wall() - w0;
+        windows[q] = (double)st.windows_propagated;
+        if (st.peak_bytes > scratch) scratch = st.peak_bytes;
+    }
+    const char* name = strrchr(path, '/');
+    name = name ? name + 1 : path;
+    double mx = 0;
+    for (int q = 0; q < sources; ++q) mx = cpu[q] > mx ? cpu[q] : mx;
+    printf("| %s | %zu | %zu | %d | %.3f | %.3f | %.3f | %.0f | %.1f | %.1f |\n", name, n, F, sources,
+           bench_median(cpu, (size_t)sources), mx, bench_median(wall, (size_t)sources),
+           bench_median(windows, (size_t)sources), (double)scratch / (1024.0 * 1024.0),
+           (double)bench_peak_rss_kib() / 1024.0);
+    free(dist), free(cpu), free(wall), free(windows);
+    tg_geodesic_destroy(g);
+    tg_mesh_destroy(m);
+    return 0;
+}

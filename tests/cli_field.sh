@@ -1,0 +1,133 @@
+#!/usr/bin/env bash
+# cli_field.sh: `trigeo field` per the CLI contract - CSV (to a file and to stdout) and PLY output
+# (a per-vertex double property 'distance' that `trigeo render --field` draws), every source spec
+# (v:, f:, e:, p: snapped to the surface), several sources, unreachable vertices (inf), the
+# distance limit, exit codes 0/1/2 and the error format. Known answers come from a flat
+# triangulated square written here (geodesic distance = Euclidean distance).
+set -u
+trigeo=${TG_TRIGEO:?}
+meshes=${TG_MESHES_DIR:?}
+exec /usr/bin/env python3 - "$trigeo" "$meshes" <<'PY'
+import math, os, random, struct, subprocess, sys, tempfile
+trigeo, meshes = sys.argv[1], sys.argv[2]
+passed = failed = 0
+def check(cond, what):
+    global passed, failed
+    if cond: passed += 1
+    else:
+        failed += 1; print("FAIL:", what)
+def run(*args, cmd="field"):
+    return subprocess.run([trigeo, cmd, *args], capture_output=True, text=True)
+
+tmp = tempfile.mkdtemp()
+# a flat square [0,1]^2, jittered 8x8 grid, plus a far second component (a lone triangle)
+rnd = random.Random(5)
+n = 8
+vs, fs = [], []
+for j in range(n + 1):
+    for i in range(n + 1):
+        x, y = i / n, j / n
+        if 0 < i < n: x += rnd.uniform(-0.3, 0.3) / n
+        if 0 < j < n: y += rnd.uniform(-0.3, 0.3) / n
+        vs.append((x, y, 0.0))
+for j in range(n):
+    for i in range(n):
+        a = j * (n + 1) + i; b = a + 1; c = a + n + 1; d = c + 1
+        fs += [(a, b, d), (a, d, c)] if rnd.random() < 0.5 else [(a, b, c), (b, d, c)]
+base = len(vs)
+vs += [(5, 5, 5), (6, 5, 5), (5, 6, 5)]
+fs.append((base, base + 1, base + 2))
+flat = os.path.join(tmp, "flat.obj")
+with open(flat, "w") as f:
+    for v in vs: f.write("v %.17g %.17g %.17g\n" % v)
+    for t in fs: f.write("f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1))
+def pos_face(fi, b):
+    t = fs[fi]
+    return [sum(b[k] * vs[t[k]][c] for k in range(3)) for c in range(3)]
+def pos_edge(h, t):
+    f, k = divmod(h, 3)
+    a, b = vs[fs[f][k]], vs[fs[f][(k + 1) % 3]]
+    return [(1 - t) * a[c] + t * b[c] for c in range(3)]
+def dist(p, q): return math.sqrt(sum((p[c] - q[c]) ** 2 for c in range(3)))
+def parse_csv(text):
+    rows = [l.split(",") for l in text.strip().splitlines()]
+    if not rows or rows[0] != ["vertex", "distance"]: return None
+    return [float(r[1]) for r in rows[1:]]
+
+def expect_field(spec, points, out=None):
+    args = [flat, "--from", spec, "--csv", out or "-"]
+    r = run(*args)
+    check(r.returncode == 0, "%s: exit %d %s" % (spec, r.returncode, r.stderr))
+    d = parse_csv(open(out).read() if out else r.stdout)
+    check(d is not None and len(d) == len(vs), "%s: CSV header and %d rows" % (spec, len(d) if d else -1))
+    if not d: return None
+    worst = 0
+    for v in range(len(vs)):
+        if v >= base:
+            check(d[v] == math.inf, "%s: vertex %d of the other component: %s" % (spec, v, d[v]))
+            continue
+        want = min(dist(vs[v], p) for p in points)
+        worst = max(worst, abs(d[v] - want))
+    check(worst <= 1e-12, "%s: max |field - euclidean| %.3g" % (spec, worst))
+    return d
+
+expect_field("v:0", [vs[0]])
+expect_field("f:10:0.2,0.3,0.5", [pos_face(10, (0.2, 0.3, 0.5))], os.path.join(tmp, "f.csv"))
+expect_field("e:31:0.25", [pos_edge(31, 0.25)])
+expect_field("p:0.3,0.4,0.7", [(0.3, 0.4, 0.0)])
+expect_field("v:3;f:100:0.6,0.2,0.2;e:7:0.5", [vs[3], pos_face(100, (0.6, 0.2, 0.2)), pos_edge(7, 0.5)])
+
+# the summary without --csv; the distance limit
+r = run(flat, "--from", "v:0")
+check(r.returncode == 0 and "vertices" in r.stdout and "(%d reached)" % base in r.stdout, "summary: %r" % r.stdout)
+r = run(flat, "--from", "v:0", "--csv", "-", "--max-distance", "0.5")
+d = parse_csv(r.stdout) if r.returncode == 0 else None
+check(d is not None and all((x == math.inf) == (dist(vs[v], vs[0]) > 0.5) for v, x in enumerate(d) if v < base),
+      "--max-distance 0.5: inf exactly beyond")
+
+# PLY output: the mesh plus a double property 'distance'; render draws it
+ply = os.path.join(tmp, "field.ply")
+r = run(flat, "--from", "v:12", "-o", ply)
+check(r.returncode == 0 and os.path.exists(ply), "-o PLY: exit %d %s" % (r.returncode, r.stderr))
+if os.path.exists(ply):
+    data = open(ply, "rb").read()
+    end = data.find(b"end_header\n") + len(b"end_header\n")
+    header = data[:end].decode()
+    props = [l.split()[-1] for l in header.splitlines() if l.startswith("property double")]
+    check("format binary_little_endian" in header and props == ["x", "y", "z", "distance"], "PLY header: %r" % header)
+    nvtx = int([l for l in header.splitlines() if l.startswith("element vertex")][0].split()[-1])
+    check(nvtx == len(vs), "PLY vertex count %d" % nvtx)
+    vals = struct.unpack_from("<%dd" % (4 * nvtx), data, end)
+    dd = vals[3::4]
+    check(all(abs(dd[v] - dist(vs[v], vs[12])) <= 1e-12 for v in range(base)) and all(x == math.inf for x in dd[base:]),
+          "PLY distances")
+    png = os.path.join(tmp, "field.png")
+    r = run(flat, "--field", ply, "-o", png, cmd="render")
+    check(r.returncode == 0 and os.path.getsize(png) > 1000, "render --field: exit %d %s" % (r.returncode, r.stderr))
+
+# errors: usage (1), input (2), message format
+def err(args, code, needle):
+    r = run(*args)
+    check(r.returncode == code and r.stderr.startswith("trigeo: ") and needle in r.stderr,
+          "%s: exit %d (want %d), stderr %r" % (args, r.returncode, code, r.stderr))
+err([flat], 1, "--from")
+err([flat, "--from", "x:1"], 1, "x:1")
+err([flat, "--from", "v:1;"], 1, "--from")
+err([flat, "--from", "v:1", "-o", os.path.join(tmp, "a.ply"), "--csv", "-"], 1, "exclude")
+err([flat, "--from", "v:1", "--max-distance", "-2"], 1, "--max-distance")
+err([flat, "--from", "v:1", "--bogus"], 1, "--bogus")
+err([flat, "--from", "v:99999"], 2, "out of range")
+err([flat, "--from", "v:1;f:1:0.5,0.6,0.5"], 2, "sum")
+err([os.path.join(tmp, "missing.obj"), "--from", "v:1"], 2, "missing.obj")
+err([flat, "--from", "v:1", "-o", os.path.join(tmp, "no", "such", "dir.ply")], 2, "dir.ply")
+
+# a corpus mesh, the default demo mesh: every vertex reached, finite, 0 at the source
+spot = os.path.join(meshes, "nvd_spot.obj")
+r = run(spot, "--from", "v:0;p:0,0,0", "--csv", "-")
+d = parse_csv(r.stdout) if r.returncode == 0 else None
+check(d is not None and len(d) == 2930 and all(math.isfinite(x) and x >= 0 for x in d) and d[0] == 0,
+      "spot: exit %d, %s rows" % (r.returncode, len(d) if d else None))
+
+print("%d passed, %d failed" % (passed, failed))
+sys.exit(1 if failed else 0)
+PY

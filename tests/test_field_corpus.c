@@ -1,0 +1,206 @@
+/* test_field_corpus.c - the exact distance field on every mesh of the shared corpus (MANIFEST.tsv)
+ * from one vertex source: no failure, never NaN, finite exactly on the source's component (+inf
+ * on other components and unreferenced vertices), Euclidean <= field <= Dijkstra distance in the
+ * edge graph. Meshes above FULL_FACES faces (fewer under AddressSanitizer) run with a distance
+ * limit, the edge-graph distance of the LIMIT_VERTICES-th nearest vertex, to keep the suite quick
+ * (full fields on the largest corpus meshes take up to minutes: see bench/bench_field.c);
+ * vertices beyond the limit must then be +inf and have an edge-graph distance beyond it. */
+#include "tg_test.h"
+
+#include <time.h>
+#include <trigeo.h>
+
+#if defined(__SANITIZE_ADDRESS__)
+#define TG_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define TG_UNDER_ASAN 1
+#endif
+#endif
+#ifdef TG_UNDER_ASAN
+#define FULL_FACES 12000
+#define LIMIT_VERTICES 1000
+#else
+#define FULL_FACES 50000
+#define LIMIT_VERTICES 4000
+#endif
+
+/* ---- Dijkstra over the edges of all faces, binary heap with lazy deletion ---- */
+
+typedef struct hitem {
+    double d;
+    uint32_t v;
+} hitem;
+
+static void hpush(hitem* h, size_t* n, hitem it)
+{
+    size_t i = (*n)++;
+    while (i > 0 && h[(i - 1) / 2].d > it.d) {
+        h[i] = h[(i - 1) / 2];
+        i = (i - 1) / 2;
+    }
+    h[i] = it;
+}
+
+static hitem hpop(hitem* h, size_t* n)
+{
+    hitem top = h[0], last = h[--*n];
+    size_t i = 0;
+    for (;;) {
+        size_t c = 2 * i + 1;
+        if (c >= *n) break;
+        if (c + 1 < *n && h[c + 1].d < h[c].d) c++;
+        if (h[c].d >= last.d) break;
+        h[i] = h[c];
+        i = c;
+    }
+    if (*n) h[i] = last;
+    return top;
+}
+
+static double dist3(const double* a, const double* b)
+{
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+static void dijkstra(const tg_mesh* m, uint32_t src, double* d)
+{
+    size_t n = tg_mesh_vertex_count(m), F = tg_mesh_face_count(m);
+    const uint32_t* t = tg_mesh_triangles(m);
+    const double* x = tg_mesh_positions(m);
+    uint32_t* start = calloc(n + 1, sizeof *start);
+    uint32_t* adj = malloc(6 * F * sizeof *adj + 1);
+    uint32_t* fill = malloc((n + 1) * sizeof *fill);
+    hitem* h = malloc((6 * F + 1) * sizeof *h);
+    if (!start || !adj || !fill || !h) {
+        CHECK_MSG(0, "dijkstra: out of memory");
+        free(start), free(adj), free(fill), free(h);
+        return;
+    }
+    for (size_t c = 0; c < 3 * F; ++c) start[t[c] + 1] += 2;
+    for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+    memcpy(fill, start, (n + 1) * sizeof *fill);
+    for (size_t f = 0; f < F; ++f)
+        for (size_t k = 0; k < 3; ++k) {
+            uint32_t a = t[3 * f + k];
+            adj[fill[a]++] = t[3 * f + (k + 1) % 3];
+            adj[fill[a]++] = t[3 * f + (k + 2) % 3];
+        }
+    for (size_t v = 0; v < n; ++v) d[v] = INFINITY;
+    size_t hn = 0;
+    d[src] = 0;
+    hpush(h, &hn, (hitem){0, src});
+    while (hn) {
+        hitem it = hpop(h, &hn);
+        if (it.d > d[it.v]) continue;
+        for (uint32_t i = start[it.v]; i < start[it.v + 1]; ++i) {
+            uint32_t w = adj[i];
+            double nd = it.d + dist3(x + 3 * (size_t)it.v, x + 3 * (size_t)w);
+            if (nd < d[w]) {
+                d[w] = nd;
+                hpush(h, &hn, (hitem){nd, w});
+            }
+        }
+    }
+    free(start), free(adj), free(fill), free(h);
+}
+
+static int cmp_double(const void* a, const void* b)
+{
+    double x = *(const double*)a, y = *(const double*)b;
+    return (x > y) - (x < y);
+}
+
+static void test_mesh(const char* dir, const char* file)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", dir, file);
+    tg_mesh* m = NULL;
+    tg_diag diag;
+    tg_status st = tg_mesh_load(path, TG_FORMAT_AUTO, NULL, &diag, &m);
+    CHECK_MSG(st == TG_OK, "%s: load failed: %s", file, diag.message);
+    if (st != TG_OK) return;
+    size_t n = tg_mesh_vertex_count(m), F = tg_mesh_face_count(m);
+    tg_geodesic* geo = NULL;
+    CHECK_STATUS(tg_geodesic_create(m, NULL, &geo), TG_OK);
+    double* fd = malloc((n + 1) * sizeof *fd);
+    double* dj = malloc((n + 1) * sizeof *dj);
+    uint32_t* vcomp = malloc((n + 1) * sizeof *vcomp);
+    if (!geo || !fd || !dj || !vcomp || F == 0) {
+        CHECK_MSG(F > 0 && fd && dj && vcomp, "%s: setup", file);
+        goto done;
+    }
+    const uint32_t* t = tg_mesh_triangles(m);
+    const uint32_t* comp = tg_mesh_face_components(m);
+    for (size_t v = 0; v < n; ++v) vcomp[v] = TG_NONE;
+    for (size_t c = 0; c < 3 * F; ++c) vcomp[t[c]] = comp[c / 3];
+    /* the source: a corner of the middle face */
+    uint32_t src = t[3 * (F / 2)];
+    tg_field_options o;
+    memset(&o, 0, sizeof o);
+    dijkstra(m, src, dj);
+    if (F > FULL_FACES) {
+        /* the graph distance of the LIMIT_VERTICES-th nearest vertex (field <= graph distance) */
+        size_t k = 0;
+        for (size_t v = 0; v < n; ++v)
+            if (isfinite(dj[v])) fd[k++] = dj[v];
+        qsort(fd, k, sizeof *fd, cmp_double);
+        if (k > LIMIT_VERTICES) o.max_distance = fd[LIMIT_VERTICES];
+    }
+    double limit = o.max_distance > 0 ? o.max_distance : INFINITY;
+    tg_field_stats fs;
+    clock_t t0 = clock();
+    tg_surface_point s = tg_surface_vertex(src);
+    st = tg_geodesic_field(geo, &s, 1, &o, fd, &fs);
+    double secs = (double)(clock() - t0) / CLOCKS_PER_SEC;
+    CHECK_MSG(st == TG_OK, "%s: %s", file, tg_status_name(st));
+    if (st != TG_OK) goto done;
+    const double* x = tg_mesh_positions(m);
+    int bad = 0;
+    size_t reached = 0;
+    for (size_t v = 0; v < n; ++v) {
+        int same = vcomp[v] == vcomp[src];
+        double e = dist3(x + 3 * (size_t)src, x + 3 * v);
+        int ok;
+        if (!same)
+            ok = isinf(fd[v]) && fd[v] > 0;
+        else if (isinf(fd[v]))
+            ok = fd[v] > 0 && dj[v] >= limit * (1 - 1e-12);
+        else
+            ok = fd[v] >= e * (1 - 1e-12) && fd[v] <= dj[v] * (1 + 1e-12) && fd[v] <= limit;
+        reached += isfinite(fd[v]);
+        if (!ok && bad++ < 5)
+            fprintf(stderr, "%s: vertex %zu: field %.17g, euclid %.17g, graph %.17g, same component %d\n", file, v, fd[v], e,
+                    dj[v], same);
+    }
+    CHECK_MSG(bad == 0, "%s: %d vertices wrong", file, bad);
+    printf("%-36s %8zu faces: %7zu reached, %9llu windows, %6.3f s%s%s\n", file, F, reached,
+           (unsigned long long)fs.windows_propagated, secs, o.max_distance > 0 ? " (limited)" : "", bad ? " FAILED" : "");
+done:
+    free(fd), free(dj), free(vcomp);
+    tg_geodesic_destroy(geo);
+    tg_mesh_destroy(m);
+}
+
+int main(void)
+{
+    const char* dir = tg_test_meshes_dir();
+    char manifest[1024];
+    snprintf(manifest, sizeof manifest, "%s/MANIFEST.tsv", dir);
+    FILE* f = fopen(manifest, "r");
+    CHECK_MSG(f != NULL, "cannot open %s", manifest);
+    if (!f) return tg_test_finish();
+    char line[4096];
+    int meshes = 0;
+    if (!fgets(line, sizeof line, f)) line[0] = 0; /* header */
+    while (fgets(line, sizeof line, f)) {
+        char* tab = strchr(line, '\t');
+        if (!tab) continue;
+        *tab = 0;
+        test_mesh(dir, line);
+        meshes++;
+    }
+    fclose(f);
+    CHECK_MSG(meshes >= 61, "only %d corpus meshes", meshes);
+    return tg_test_finish();
+}

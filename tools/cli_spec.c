@@ -1,0 +1,84 @@
+/* cli_spec.c - surface point specifications of the CLI (v:IDX | f:FACE:b0,b1,b2 | e:HALFEDGE:t |
+ * p:x,y,z), shared by `trigeo path` and `trigeo field`.
+ * Based on: the CLI contract of the project's DESIGN.md (SPEC). */
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Parses a comma-separated list of exactly n finite doubles. */
+static bool parse_doubles(const char* s, int n, double* out)
+{
+    for (int k = 0; k < n; ++k) {
+        char* end;
+        errno = 0;
+        out[k] = strtod(s, &end);
+        if (end == s || errno || !isfinite(out[k])) return false;
+        if (k + 1 < n) {
+            if (*end != ',') return false;
+            s = end + 1;
+        } else if (*end) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/* v:IDX | f:FACE:b0,b1,b2 | e:HALFEDGE:t | p:x,y,z. false on a syntax error. */
+bool cli_parse_spec(const char* s, cli_spec* out)
+{
+    memset(out, 0, sizeof *out);
+    if (!s[0] || s[1] != ':') return false;
+    out->kind = s[0];
+    const char* rest = s + 2;
+    if (out->kind == 'v') return cli_parse_uint(rest, &out->index);
+    if (out->kind == 'p') return parse_doubles(rest, 3, out->v);
+    if (out->kind != 'f' && out->kind != 'e') return false;
+    const char* colon = strchr(rest, ':');
+    if (!colon || colon == rest || colon - rest > 20) return false;
+    char num[24];
+    memcpy(num, rest, (size_t)(colon - rest));
+    num[colon - rest] = '\0';
+    if (!cli_parse_uint(num, &out->index)) return false;
+    return parse_doubles(colon + 1, out->kind == 'f' ? 3 : 1, out->v);
+}
+
+/* Resolves a spec on the mesh (p: through the BVH, built on first use). Prints the error and
+ * returns false when the location is invalid. */
+bool cli_resolve_spec(const char* mesh_path, tg_mesh* mesh, tg_bvh** bvh, const char* text, const cli_spec* sp,
+                      tg_surface_point* out)
+{
+    if (sp->kind == 'p') {
+        tg_status st = TG_OK;
+        tg_bvh_workspace* ws = NULL;
+        if (!*bvh) st = tg_bvh_create(mesh, NULL, bvh);
+        if (st == TG_OK) st = tg_bvh_workspace_create(*bvh, &ws);
+        if (st == TG_OK) st = tg_bvh_locate(*bvh, ws, sp->v, out, NULL);
+        tg_bvh_workspace_destroy(ws);
+        if (st != TG_OK) {
+            cli_error(mesh_path, 0, "cannot locate '%s' on the surface: %s", text, tg_status_string(st));
+            return false;
+        }
+        return true;
+    }
+    if (sp->index > UINT32_MAX) {
+        cli_error(mesh_path, 0, "index in '%s' is out of range", text);
+        return false;
+    }
+    uint32_t i = (uint32_t)sp->index;
+    if (sp->kind == 'v')
+        *out = tg_surface_vertex(i);
+    else if (sp->kind == 'e')
+        *out = tg_surface_edge(i, sp->v[0]);
+    else
+        *out = tg_surface_face(i, sp->v[0], sp->v[1], sp->v[2]);
+    tg_diag d;
+    memset(&d, 0, sizeof d);
+    if (tg_surface_point_validate(mesh, out, &d) != TG_OK) {
+        cli_error(mesh_path, 0, "'%s': %s", text, d.message[0] ? d.message : "invalid surface point");
+        return false;
+    }
+    return true;
+}

@@ -10,6 +10,8 @@ meshes=${TG_MESHES_DIR:?}
 exec /usr/bin/env python3 - "$trigeo" "$meshes" <<'PY'
 import math, os, random, struct, subprocess, sys, tempfile
 trigeo, meshes = sys.argv[1], sys.argv[2]
+sys.path.insert(0, os.path.join(os.environ["TG_SOURCE_DIR"], "tests"))
+import cli_common
 passed = failed = 0
 def check(cond, what):
     global passed, failed
@@ -21,29 +23,10 @@ def run(*args, cmd="field"):
 
 tmp = tempfile.mkdtemp()
 # a flat square [0,1]^2, jittered 8x8 grid, plus a far second component (a lone triangle)
-rnd = random.Random(5)
 n = 8
-vs, fs = [], []
-for j in range(n + 1):
-    for i in range(n + 1):
-        x, y = i / n, j / n
-        if 0 < i < n: x += rnd.uniform(-0.3, 0.3) / n
-        if 0 < j < n: y += rnd.uniform(-0.3, 0.3) / n
-        vs.append((x, y, 0.0))
-for j in range(n):
-    for i in range(n):
-        a = j * (n + 1) + i; b = a + 1; c = a + n + 1; d = c + 1
-        fs += [(a, b, d), (a, d, c)] if rnd.random() < 0.5 else [(a, b, c), (b, d, c)]
-base = len(vs)
-vs += [(5, 5, 5), (6, 5, 5), (5, 6, 5)]
-fs.append((base, base + 1, base + 2))
-flat = os.path.join(tmp, "flat.obj")
-with open(flat, "w") as f:
-    for v in vs: f.write("v %.17g %.17g %.17g\n" % v)
-    for t in fs: f.write("f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1))
-def pos_face(fi, b):
-    t = fs[fi]
-    return [sum(b[k] * vs[t[k]][c] for k in range(3)) for c in range(3)]
+flat, vs, fs = cli_common.flat_square(tmp, 5, n)
+base = len(vs) - 3  # the far triangle's first vertex
+def pos_face(fi, b): return cli_common.pos_face(vs, fs, fi, b)
 def pos_edge(h, t):
     f, k = divmod(h, 3)
     a, b = vs[fs[f][k]], vs[fs[f][(k + 1) % 3]]

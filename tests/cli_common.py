@@ -1,0 +1,37 @@
+"""cli_common.py - shared pieces of the CLI tests (tests/cli_*.sh run Python through a heredoc and
+import this from $TG_SOURCE_DIR/tests): the known-answer mesh, a jittered flat square with a far
+second component, whose geodesic distances are Euclidean ones."""
+import os
+import random
+
+
+def flat_square(tmp, seed, n=8):
+    """Writes tmp/flat.obj: the square [0,1]^2 as an (n+1)^2 grid, inner vertices jittered by up to
+    0.3 of a cell, each cell split along a random diagonal, plus a lone far triangle (a second
+    component). Returns (path, vertices, faces) with 0-based faces in file order."""
+    rnd = random.Random(seed)
+    vs, fs = [], []
+    for j in range(n + 1):
+        for i in range(n + 1):
+            x, y = i / n, j / n
+            if 0 < i < n: x += rnd.uniform(-0.3, 0.3) / n
+            if 0 < j < n: y += rnd.uniform(-0.3, 0.3) / n
+            vs.append((x, y, 0.0))
+    for j in range(n):
+        for i in range(n):
+            a = j * (n + 1) + i; b = a + 1; c = a + n + 1; d = c + 1
+            fs += [(a, b, d), (a, d, c)] if rnd.random() < 0.5 else [(a, b, c), (b, d, c)]
+    base = len(vs)
+    vs += [(5, 5, 5), (6, 5, 5), (5, 6, 5)]
+    fs.append((base, base + 1, base + 2))
+    path = os.path.join(tmp, "flat.obj")
+    with open(path, "w") as f:
+        for v in vs: f.write("v %.17g %.17g %.17g\n" % v)
+        for t in fs: f.write("f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1))
+    return path, vs, fs
+
+
+def pos_face(vs, fs, fi, b):
+    """The point with barycentric coordinates b in face fi."""
+    t = fs[fi]
+    return [sum(b[k] * vs[t[k]][c] for k in range(3)) for c in range(3)]

@@ -27,13 +27,6 @@
 #include "kernels/point_triangle.h"
 #include "spatial/simd4.h"
 
-#if defined(__SANITIZE_ADDRESS__)
-#define TG_UNDER_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define TG_UNDER_ASAN 1
-#endif
-#endif
 #ifdef TG_UNDER_ASAN
 #define QUERY_COUNT 5000
 #else
@@ -338,6 +331,12 @@ static int mode_brute(const char* path, const char* queries)
     return 0;
 }
 
+static void each_mesh(const char* dir, const char* file, int index, void* ctx)
+{
+    (void)index;
+    check_mesh(dir, file, *(const size_t*)ctx);
+}
+
 int main(int argc, char** argv)
 {
     if (argc == 5 && !strcmp(argv[1], "--queries")) return mode_queries(argv[2], strtoul(argv[3], NULL, 10), strtoull(argv[4], NULL, 10));
@@ -345,23 +344,7 @@ int main(int argc, char** argv)
     size_t nq = QUERY_COUNT;
     const char* env = getenv("TG_CORPUS_QUERIES");
     if (env && atol(env) > 0) nq = (size_t)atol(env);
-    const char* dir = tg_test_meshes_dir();
-    char path[4096];
-    snprintf(path, sizeof path, "%s/MANIFEST.tsv", dir);
-    FILE* f = fopen(path, "r");
-    CHECK_MSG(f != NULL, "cannot open %s", path);
-    if (!f) return tg_test_finish();
-    char line[8192];
-    int meshes = 0;
-    if (!fgets(line, sizeof line, f)) line[0] = '\0'; /* header */
-    while (fgets(line, sizeof line, f)) {
-        char* tab = strchr(line, '\t');
-        if (!tab) continue;
-        *tab = '\0';
-        check_mesh(dir, line, nq);
-        ++meshes;
-    }
-    fclose(f);
-    CHECK_MSG(meshes >= 60, "only %d meshes in the manifest", meshes);
+    int meshes = tg_test_for_each_corpus_mesh(each_mesh, &nq);
+    if (meshes >= 0) CHECK_MSG(meshes >= 61, "only %d meshes in the manifest", meshes);
     return tg_test_finish();
 }

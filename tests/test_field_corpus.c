@@ -10,13 +10,6 @@
 #include <time.h>
 #include <trigeo.h>
 
-#if defined(__SANITIZE_ADDRESS__)
-#define TG_UNDER_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define TG_UNDER_ASAN 1
-#endif
-#endif
 #ifdef TG_UNDER_ASAN
 #define FULL_FACES 12000
 #define LIMIT_VERTICES 1000
@@ -182,25 +175,15 @@ done:
     tg_mesh_destroy(m);
 }
 
+static void each_mesh(const char* dir, const char* file, int index, void* ctx)
+{
+    (void)index, (void)ctx;
+    test_mesh(dir, file);
+}
+
 int main(void)
 {
-    const char* dir = tg_test_meshes_dir();
-    char manifest[1024];
-    snprintf(manifest, sizeof manifest, "%s/MANIFEST.tsv", dir);
-    FILE* f = fopen(manifest, "r");
-    CHECK_MSG(f != NULL, "cannot open %s", manifest);
-    if (!f) return tg_test_finish();
-    char line[4096];
-    int meshes = 0;
-    if (!fgets(line, sizeof line, f)) line[0] = 0; /* header */
-    while (fgets(line, sizeof line, f)) {
-        char* tab = strchr(line, '\t');
-        if (!tab) continue;
-        *tab = 0;
-        test_mesh(dir, line);
-        meshes++;
-    }
-    fclose(f);
-    CHECK_MSG(meshes >= 61, "only %d corpus meshes", meshes);
+    int meshes = tg_test_for_each_corpus_mesh(each_mesh, NULL);
+    if (meshes >= 0) CHECK_MSG(meshes >= 61, "only %d corpus meshes", meshes);
     return tg_test_finish();
 }

@@ -123,25 +123,15 @@ static void test_mesh(const char* dir, const char* file, uint64_t seed)
     tg_mesh_destroy(m);
 }
 
+static void each_mesh(const char* dir, const char* file, int index, void* ctx)
+{
+    (void)ctx;
+    test_mesh(dir, file, 1000 + (uint64_t)index);
+}
+
 int main(void)
 {
-    const char* dir = tg_test_meshes_dir();
-    char manifest[1024];
-    snprintf(manifest, sizeof manifest, "%s/MANIFEST.tsv", dir);
-    FILE* f = fopen(manifest, "r");
-    CHECK_MSG(f != NULL, "cannot open %s", manifest);
-    if (!f) return tg_test_finish();
-    char line[4096];
-    int meshes = 0;
-    if (!fgets(line, sizeof line, f)) line[0] = 0; /* header */
-    while (fgets(line, sizeof line, f)) {
-        char* tab = strchr(line, '\t');
-        if (!tab) continue;
-        *tab = 0;
-        test_mesh(dir, line, 1000 + (uint64_t)meshes);
-        meshes++;
-    }
-    fclose(f);
-    CHECK_MSG(meshes >= 61, "only %d corpus meshes", meshes);
+    int meshes = tg_test_for_each_corpus_mesh(each_mesh, NULL);
+    if (meshes >= 0) CHECK_MSG(meshes >= 61, "only %d corpus meshes", meshes);
     return tg_test_finish();
 }

@@ -74,6 +74,43 @@ static inline const char* tg_test_meshes_dir(void)
     return d ? d : "../shared/meshes";
 }
 
+/* TG_UNDER_ASAN: defined when AddressSanitizer is on (gcc or clang), for tests that shrink their
+ * workload there (5-10x slower). */
+#if defined(__SANITIZE_ADDRESS__)
+#define TG_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define TG_UNDER_ASAN 1
+#endif
+#endif
+
+/* Calls fn(dir, file, index, ctx) for every mesh listed in the corpus's MANIFEST.tsv (first
+ * column), in order; returns the number of meshes, or -1 (with a failed check) if the manifest
+ * cannot be read. */
+static inline int tg_test_for_each_corpus_mesh(void (*fn)(const char* dir, const char* file, int index, void* ctx),
+                                               void* ctx)
+{
+    const char* dir = tg_test_meshes_dir();
+    char path[4096];
+    snprintf(path, sizeof path, "%s/MANIFEST.tsv", dir);
+    FILE* f = fopen(path, "r");
+    if (!f) {
+        TG_FAIL_("cannot open %s", path);
+        return -1;
+    }
+    char line[8192];
+    int meshes = 0;
+    if (!fgets(line, sizeof line, f)) line[0] = '\0'; /* header */
+    while (fgets(line, sizeof line, f)) {
+        char* tab = strchr(line, '\t');
+        if (!tab) continue;
+        *tab = '\0';
+        fn(dir, line, meshes++, ctx);
+    }
+    fclose(f);
+    return meshes;
+}
+
 /* Deterministic xorshift64* generator for property tests. */
 typedef struct tg_rng { uint64_t s; } tg_rng;
 static inline uint64_t tg_rng_next(tg_rng* r)

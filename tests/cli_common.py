@@ -1,8 +1,28 @@
 """cli_common.py - shared pieces of the CLI tests (tests/cli_*.sh run Python through a heredoc and
-import this from $TG_SOURCE_DIR/tests): the known-answer mesh, a jittered flat square with a far
-second component, whose geodesic distances are Euclidean ones."""
+import this from $TG_SOURCE_DIR/tests): a check counter that ends the script with the summary line
+and exit status, and the known-answer mesh, a jittered flat square with a far second component,
+whose geodesic distances are Euclidean ones."""
 import os
 import random
+import sys
+
+passed = failed = 0
+
+
+def check(cond, what):
+    """Counts one check; prints FAIL with what when cond is false."""
+    global passed, failed
+    if cond:
+        passed += 1
+    else:
+        failed += 1
+        print("FAIL:", what)
+
+
+def finish():
+    """Prints "N passed, N failed" and exits non-zero if anything failed."""
+    print("%d passed, %d failed" % (passed, failed))
+    sys.exit(1 if failed else 0)
 
 
 def flat_square(tmp, seed, n=8):

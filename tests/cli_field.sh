@@ -10,14 +10,10 @@ meshes=${TG_MESHES_DIR:?}
 exec /usr/bin/env python3 - "$trigeo" "$meshes" <<'PY'
 import math, os, random, struct, subprocess, sys, tempfile
 trigeo, meshes = sys.argv[1], sys.argv[2]
+sys.dont_write_bytecode = True  # nothing written into the source tree
 sys.path.insert(0, os.path.join(os.environ["TG_SOURCE_DIR"], "tests"))
 import cli_common
-passed = failed = 0
-def check(cond, what):
-    global passed, failed
-    if cond: passed += 1
-    else:
-        failed += 1; print("FAIL:", what)
+from cli_common import check
 def run(*args, cmd="field"):
     return subprocess.run([trigeo, cmd, *args], capture_output=True, text=True)
 
@@ -111,6 +107,5 @@ d = parse_csv(r.stdout) if r.returncode == 0 else None
 check(d is not None and len(d) == 2930 and all(math.isfinite(x) and x >= 0 for x in d) and d[0] == 0,
       "spot: exit %d, %s rows" % (r.returncode, len(d) if d else None))
 
-print("%d passed, %d failed" % (passed, failed))
-sys.exit(1 if failed else 0)
+cli_common.finish()
 PY

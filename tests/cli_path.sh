@@ -9,14 +9,10 @@ meshes=${TG_MESHES_DIR:?}
 exec /usr/bin/env python3 - "$trigeo" "$meshes" <<'PY'
 import json, math, os, random, subprocess, sys, tempfile
 trigeo, meshes = sys.argv[1], sys.argv[2]
+sys.dont_write_bytecode = True  # nothing written into the source tree
 sys.path.insert(0, os.path.join(os.environ["TG_SOURCE_DIR"], "tests"))
 import cli_common
-passed = failed = 0
-def check(cond, what):
-    global passed, failed
-    if cond: passed += 1
-    else:
-        failed += 1; print("FAIL:", what)
+from cli_common import check
 def run(*args, stdin=None):
     return subprocess.run([trigeo, "path", *args], capture_output=True, text=True, input=stdin)
 
@@ -122,6 +118,5 @@ check(r.returncode == 0 and len(rows) == 3, "spot batch: exit %d, %d rows" % (r.
 check(all(x[3] == "converged" and float(x[4]) <= 1e-10 for x in rows), "spot batch certified: %s" % rows)
 check(len(rows) == 3 and float(rows[2][1]) == 0.0, "a vertex to itself has length 0: %s" % rows[-1:])
 
-print("%d passed, %d failed" % (passed, failed))
-sys.exit(1 if failed else 0)
+cli_common.finish()
 PY

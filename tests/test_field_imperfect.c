@@ -12,19 +12,6 @@
 
 static double fd[MAXV];
 
-static ctx open_ctx(void)
-{
-    tg_mesh* m = NULL;
-    CHECK_STATUS(tg_mesh_create(xyz, nv, tri, nf, NULL, NULL, &m), TG_OK);
-    return open_ctx_for(m);
-}
-
-static void close_sheet(ctx* c)
-{
-    close_ctx(c);
-    nv = nf = 0;
-}
-
 static void field_from(const ctx* c, const tg_surface_point* s, size_t count)
 {
     CHECK_STATUS(tg_geodesic_field(c->geo, s, count, NULL, fd, NULL), TG_OK);
@@ -251,32 +238,6 @@ static void test_duplicate_and_unreferenced(void)
 
 /* ---- allocator failure at every allocation ---- */
 
-typedef struct counting {
-    long allocs, frees, fail_after;
-} counting;
-static void* c_alloc(void* u, size_t n)
-{
-    counting* c = u;
-    if (c->fail_after >= 0 && c->allocs >= c->fail_after) return NULL;
-    c->allocs++;
-    return malloc(n);
-}
-static void* c_realloc(void* u, void* p, size_t n)
-{
-    counting* c = u;
-    if (!p) return c_alloc(u, n);
-    if (c->fail_after >= 0 && c->allocs >= c->fail_after) return NULL;
-    c->allocs++; /* counted as a failure point too; a grown block is still one block */
-    c->frees++;
-    return realloc(p, n);
-}
-static void c_free(void* u, void* p)
-{
-    counting* c = u;
-    if (p) c->frees++;
-    free(p);
-}
-
 static void test_allocator(void)
 {
     /* enough windows that the pool and the queue grow several times */
@@ -284,8 +245,8 @@ static void test_allocator(void)
     static double ref[MAXV];
     tg_surface_point s = tg_surface_vertex(17);
     CHECK_STATUS(tg_geodesic_field(c.geo, &s, 1, NULL, ref, NULL), TG_OK);
-    counting cnt = {0, 0, -1};
-    tg_allocator a = {c_alloc, c_realloc, c_free, &cnt};
+    tg_test_counting cnt = {0, 0, -1};
+    tg_allocator a = tg_test_failing_allocator(&cnt);
     tg_field_options o;
     memset(&o, 0, sizeof o);
     o.allocator = &a;
@@ -295,8 +256,8 @@ static void test_allocator(void)
     CHECK_EQ_INT(cnt.allocs, cnt.frees);
     CHECK(used > 8);
     for (long k = 0; k < used; ++k) {
-        counting f = {0, 0, k};
-        tg_allocator fa = {c_alloc, c_realloc, c_free, &f};
+        tg_test_counting f = {0, 0, k};
+        tg_allocator fa = tg_test_failing_allocator(&f);
         o.allocator = &fa;
         for (size_t v = 0; v < nv; ++v) fd[v] = -1;
         tg_field_stats st;

@@ -9,20 +9,6 @@
 #include <trigeo.h>
 
 
-/* The fixture over the mesh built so far; close_sheet also empties the builder. */
-static ctx open_ctx(void)
-{
-    tg_mesh* m = NULL;
-    CHECK_STATUS(tg_mesh_create(xyz, nv, tri, nf, NULL, NULL, &m), TG_OK);
-    return open_ctx_for(m);
-}
-
-static void close_sheet(ctx* c)
-{
-    close_ctx(c);
-    nv = nf = 0;
-}
-
 static tg_path_view run(ctx* c, tg_surface_point a, tg_surface_point b, tg_path_method m)
 {
     tg_path_options o;

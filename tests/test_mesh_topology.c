@@ -250,34 +250,12 @@ static void test_create_errors(void)
     tg_mesh_destroy(NULL);
 }
 
-typedef struct counting { long allocs, frees, fail_after; } counting;
-static void* c_alloc(void* u, size_t n)
-{
-    counting* c = u;
-    if (c->fail_after >= 0 && c->allocs >= c->fail_after) return NULL;
-    c->allocs++;
-    return malloc(n);
-}
-static void* c_realloc(void* u, void* p, size_t n)
-{
-    counting* c = u;
-    if (!p) return c_alloc(u, n);
-    if (c->fail_after >= 0 && c->allocs >= c->fail_after) return NULL;
-    return realloc(p, n);
-}
-static void c_free(void* u, void* p)
-{
-    counting* c = u;
-    if (p) c->frees++;
-    free(p);
-}
-
 static void test_allocator_hooks(void)
 {
     const double x[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
     const uint32_t t[] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
-    counting c = {0, 0, -1};
-    tg_allocator a = {c_alloc, c_realloc, c_free, &c};
+    tg_test_counting c = {0, 0, -1};
+    tg_allocator a = tg_test_failing_allocator(&c);
     tg_mesh_options o = {&a};
     tg_mesh* m = NULL;
     CHECK_STATUS(tg_mesh_create(x, 4, t, 4, &o, NULL, &m), TG_OK);
@@ -287,8 +265,8 @@ static void test_allocator_hooks(void)
     CHECK_EQ_INT(c.allocs, c.frees);
     /* every failure point: out-of-memory status, NULL out, nothing leaked */
     for (long k = 0; k < used; ++k) {
-        counting f = {0, 0, k};
-        tg_allocator fa = {c_alloc, c_realloc, c_free, &f};
+        tg_test_counting f = {0, 0, k};
+        tg_allocator fa = tg_test_failing_allocator(&f);
         tg_mesh_options fo = {&fa};
         tg_mesh* fm = (tg_mesh*)&fm;
         tg_status st = tg_mesh_create(x, 4, t, 4, &fo, NULL, &fm);

@@ -111,6 +111,37 @@ static inline int tg_test_for_each_corpus_mesh(void (*fn)(const char* dir, const
     return meshes;
 }
 
+/* An allocator that counts blocks and fails every request from the fail_after-th on (-1: never),
+ * for out-of-memory tests at every allocation. A successful realloc is a failure point too and
+ * counts as one block freed and one allocated, so allocs == frees whenever nothing leaked. Use
+ * tg_test_failing_allocator(&counter) as the tg_allocator. */
+typedef struct tg_test_counting {
+    long allocs, frees, fail_after;
+} tg_test_counting;
+static inline void* tg_test_c_alloc(void* u, size_t n)
+{
+    tg_test_counting* c = (tg_test_counting*)u;
+    if (c->fail_after >= 0 && c->allocs >= c->fail_after) return NULL;
+    c->allocs++;
+    return malloc(n);
+}
+static inline void* tg_test_c_realloc(void* u, void* p, size_t n)
+{
+    tg_test_counting* c = (tg_test_counting*)u;
+    if (!p) return tg_test_c_alloc(u, n);
+    if (c->fail_after >= 0 && c->allocs >= c->fail_after) return NULL;
+    c->allocs++;
+    c->frees++;
+    return realloc(p, n);
+}
+static inline void tg_test_c_free(void* u, void* p)
+{
+    tg_test_counting* c = (tg_test_counting*)u;
+    if (p) c->frees++;
+    free(p);
+}
+#define tg_test_failing_allocator(counter) {tg_test_c_alloc, tg_test_c_realloc, tg_test_c_free, (counter)}
+
 /* Deterministic xorshift64* generator for property tests. */
 typedef struct tg_rng { uint64_t s; } tg_rng;
 static inline uint64_t tg_rng_next(tg_rng* r)

@@ -309,4 +309,19 @@ static void uv_sphere(int nu, int nvv, uint64_t seed, double noise)
 /* A bumpy closed surface: a UV sphere with radial noise (many local geodesics). */
 static void bumpy_sphere(int nu, int nvv, uint64_t seed) { uv_sphere(nu, nvv, seed, 0.08); }
 
+/* The fixture over the mesh built so far with add_v / add_f; close_sheet also empties the
+ * builder for the next mesh. */
+static inline ctx open_ctx(void)
+{
+    tg_mesh* m = NULL;
+    CHECK_STATUS(tg_mesh_create(xyz, nv, tri, nf, NULL, NULL, &m), TG_OK);
+    return open_ctx_for(m);
+}
+
+static inline void close_sheet(ctx* c)
+{
+    close_ctx(c);
+    nv = nf = 0;
+}
+
 #endif

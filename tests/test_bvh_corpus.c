@@ -241,13 +241,8 @@ static int same_hit(const tg_closest_hit* a, const tg_closest_hit* b)
 
 static void check_mesh(const char* dir, const char* file, size_t nq)
 {
-    char path[4096];
-    snprintf(path, sizeof path, "%s/%s", dir, file);
-    tg_mesh* m = NULL;
-    tg_diag d;
-    tg_status st = tg_mesh_load(path, TG_FORMAT_AUTO, NULL, &d, &m);
-    CHECK_MSG(st == TG_OK, "%s: load failed: %s", file, d.message);
-    if (st != TG_OK) return;
+    tg_mesh* m = tg_test_load_corpus_mesh(dir, file);
+    if (!m) return;
     ref_mesh r;
     ref_init(&r, m);
     tg_bvh* bvh = NULL;

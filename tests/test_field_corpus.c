@@ -106,13 +106,8 @@ static int cmp_double(const void* a, const void* b)
 
 static void test_mesh(const char* dir, const char* file)
 {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/%s", dir, file);
-    tg_mesh* m = NULL;
-    tg_diag diag;
-    tg_status st = tg_mesh_load(path, TG_FORMAT_AUTO, NULL, &diag, &m);
-    CHECK_MSG(st == TG_OK, "%s: load failed: %s", file, diag.message);
-    if (st != TG_OK) return;
+    tg_mesh* m = tg_test_load_corpus_mesh(dir, file);
+    if (!m) return;
     size_t n = tg_mesh_vertex_count(m), F = tg_mesh_face_count(m);
     tg_geodesic* geo = NULL;
     CHECK_STATUS(tg_geodesic_create(m, NULL, &geo), TG_OK);
@@ -144,7 +139,7 @@ static void test_mesh(const char* dir, const char* file)
     tg_field_stats fs;
     clock_t t0 = clock();
     tg_surface_point s = tg_surface_vertex(src);
-    st = tg_geodesic_field(geo, &s, 1, &o, fd, &fs);
+    tg_status st = tg_geodesic_field(geo, &s, 1, &o, fd, &fs);
     double secs = (double)(clock() - t0) / CLOCKS_PER_SEC;
     CHECK_MSG(st == TG_OK, "%s: %s", file, tg_status_name(st));
     if (st != TG_OK) goto done;

@@ -59,31 +59,10 @@ static int check_path(const char* file, int q, const tg_mesh* m, const tg_path_v
     return bad;
 }
 
-static tg_surface_point random_point(tg_rng* r, const tg_mesh* m, uint32_t* out_face)
-{
-    uint32_t f = (uint32_t)(tg_rng_next(r) % tg_mesh_face_count(m));
-    const uint32_t* t = tg_mesh_triangles(m) + 3 * (size_t)f;
-    *out_face = f;
-    switch (tg_rng_next(r) % 3) {
-    case 0: return tg_surface_vertex(t[tg_rng_next(r) % 3]);
-    case 1: return tg_surface_edge(3 * f + (uint32_t)(tg_rng_next(r) % 3), tg_rng_unit(r));
-    default: {
-        double u = tg_rng_unit(r), w = tg_rng_unit(r);
-        if (u + w > 1) u = 1 - u, w = 1 - w;
-        return tg_surface_face(f, 1 - u - w, u, w);
-    }
-    }
-}
-
 static void test_mesh(const char* dir, const char* file, uint64_t seed)
 {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/%s", dir, file);
-    tg_mesh* m = NULL;
-    tg_diag diag;
-    tg_status st = tg_mesh_load(path, TG_FORMAT_AUTO, NULL, &diag, &m);
-    CHECK_MSG(st == TG_OK, "%s: load failed: %s", file, diag.message);
-    if (st != TG_OK) return;
+    tg_mesh* m = tg_test_load_corpus_mesh(dir, file);
+    if (!m) return;
     tg_geodesic* geo = NULL;
     tg_geodesic_workspace* ws = NULL;
     tg_path* p = NULL;
@@ -95,7 +74,7 @@ static void test_mesh(const char* dir, const char* file, uint64_t seed)
     int bad = 0, reached = 0;
     for (int q = 0; q < PAIRS; ++q) {
         uint32_t fa, fb;
-        tg_surface_point a = random_point(&r, m, &fa), b = random_point(&r, m, &fb);
+        tg_surface_point a = tg_test_random_surface_point(&r, m, &fa), b = tg_test_random_surface_point(&r, m, &fb);
         /* a vertex's component is that of any face using it; the sampled face is one */
         int reachable = comp[fa] == comp[fb];
         double pa[3], pb[3];
@@ -106,7 +85,7 @@ static void test_mesh(const char* dir, const char* file, uint64_t seed)
             tg_path_options o;
             memset(&o, 0, sizeof o);
             o.method = method ? TG_PATH_RELAX : TG_PATH_STRAIGHTEN;
-            st = tg_geodesic_path(geo, ws, &a, &b, &o, p);
+            tg_status st = tg_geodesic_path(geo, ws, &a, &b, &o, p);
             CHECK_MSG(st == TG_OK, "%s pair %d: %s", file, q, tg_status_name(st));
             tg_path_view v;
             tg_path_get_view(p, &v);

@@ -30,23 +30,6 @@ static tg_path_view run(ctx* c, tg_surface_point a, tg_surface_point b, tg_path_
     return v;
 }
 
-/* A random surface point of any kind on a used face. */
-static tg_surface_point random_point(tg_rng* r, const tg_mesh* m)
-{
-    size_t faces = tg_mesh_face_count(m);
-    uint32_t f = (uint32_t)(tg_rng_next(r) % faces);
-    const uint32_t* t = tg_mesh_triangles(m) + 3 * (size_t)f;
-    switch (tg_rng_next(r) % 3) {
-    case 0: return tg_surface_vertex(t[tg_rng_next(r) % 3]);
-    case 1: return tg_surface_edge(3 * f + (uint32_t)(tg_rng_next(r) % 3), tg_rng_unit(r));
-    default: {
-        double u = tg_rng_unit(r), w = tg_rng_unit(r);
-        if (u + w > 1) u = 1 - u, w = 1 - w;
-        return tg_surface_face(f, 1 - u - w, u, w);
-    }
-    }
-}
-
 /* Does surface point p lie in face f (a corner, a point of one of its edges, or inside it)? */
 static int point_in_face(const tg_mesh* m, const tg_surface_point* p, uint32_t f)
 {
@@ -177,7 +160,7 @@ static void test_bellman_ford(ctx* c, const char* name, int pairs, uint64_t seed
 {
     tg_rng r = {seed};
     for (int q = 0; q < pairs; ++q) {
-        tg_surface_point a = random_point(&r, c->mesh), b = random_point(&r, c->mesh);
+        tg_surface_point a = tg_test_random_surface_point(&r, c->mesh, NULL), b = tg_test_random_surface_point(&r, c->mesh, NULL);
         tg_path_view v = run(c, a, b, TG_PATH_EDGE, 0);
         double bf = bellman_ford(c->mesh, a, b);
         if (isinf(bf)) {
@@ -198,7 +181,7 @@ static void test_bounds(ctx* c, const char* name, int pairs, uint64_t seed, int 
 {
     tg_rng r = {seed};
     for (int q = 0; q < pairs; ++q) {
-        tg_surface_point a = random_point(&r, c->mesh), b = random_point(&r, c->mesh);
+        tg_surface_point a = tg_test_random_surface_point(&r, c->mesh, NULL), b = tg_test_random_surface_point(&r, c->mesh, NULL);
         double pa[3], pb[3];
         tg_surface_point_position(c->mesh, &a, pa);
         tg_surface_point_position(c->mesh, &b, pb);
@@ -235,7 +218,7 @@ static void test_symmetry(ctx* c, const char* name, int pairs, uint64_t seed)
 {
     tg_rng r = {seed};
     for (int q = 0; q < pairs; ++q) {
-        tg_surface_point a = random_point(&r, c->mesh), b = random_point(&r, c->mesh);
+        tg_surface_point a = tg_test_random_surface_point(&r, c->mesh, NULL), b = tg_test_random_surface_point(&r, c->mesh, NULL);
         double ab = run(c, a, b, TG_PATH_STRAIGHTEN, 0).length, ba = run(c, b, a, TG_PATH_STRAIGHTEN, 0).length;
         CHECK_MSG(fabs(ab - ba) <= 1e-10 * (1 + ab), "%s pair %d: d(a,b) %.17g vs d(b,a) %.17g", name, q, ab, ba);
         double eab = run(c, a, b, TG_PATH_EDGE, 0).length, eba = run(c, b, a, TG_PATH_EDGE, 0).length;

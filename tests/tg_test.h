@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <trigeo.h>
 
 static int tg_test_passed_;
 static int tg_test_failed_;
@@ -154,5 +155,39 @@ static inline uint64_t tg_rng_next(tg_rng* r)
 /* uniform in [0, 1) */
 static inline double tg_rng_unit(tg_rng* r) { return (double)(tg_rng_next(r) >> 11) * (1.0 / 9007199254740992.0); }
 static inline double tg_rng_range(tg_rng* r, double lo, double hi) { return lo + (hi - lo) * tg_rng_unit(r); }
+
+/* Loads dir/file of the corpus; NULL (with a failed check naming the file) if it does not load. */
+static inline tg_mesh* tg_test_load_corpus_mesh(const char* dir, const char* file)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", dir, file);
+    tg_mesh* m = NULL;
+    tg_diag d;
+    tg_status st = tg_mesh_load(path, TG_FORMAT_AUTO, NULL, &d, &m);
+    if (st != TG_OK) {
+        TG_FAIL_("%s: load failed: %s", file, d.message);
+        return NULL;
+    }
+    tg_test_passed_++;
+    return m;
+}
+
+/* A random surface point of any kind (a corner, an edge point or an interior point) of a random
+ * face, whose index goes to *out_face if out_face is not NULL. */
+static inline tg_surface_point tg_test_random_surface_point(tg_rng* r, const tg_mesh* m, uint32_t* out_face)
+{
+    uint32_t f = (uint32_t)(tg_rng_next(r) % tg_mesh_face_count(m));
+    const uint32_t* t = tg_mesh_triangles(m) + 3 * (size_t)f;
+    if (out_face) *out_face = f;
+    switch (tg_rng_next(r) % 3) {
+    case 0: return tg_surface_vertex(t[tg_rng_next(r) % 3]);
+    case 1: return tg_surface_edge(3 * f + (uint32_t)(tg_rng_next(r) % 3), tg_rng_unit(r));
+    default: {
+        double u = tg_rng_unit(r), w = tg_rng_unit(r);
+        if (u + w > 1) u = 1 - u, w = 1 - w;
+        return tg_surface_face(f, 1 - u - w, u, w);
+    }
+    }
+}
 
 #endif

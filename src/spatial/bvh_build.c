@@ -573,21 +573,7 @@ static tg_status morton_prims(const tg_bvh* bvh, builder* bd, uint32_t n, uint32
         kv[f] = (uint64_t)key << 32 | (uint64_t)f;
     }
     uint32_t hist[1024];
-    for (int pass = 0; pass < 3; ++pass) {
-        int shift = 32 + 10 * pass;
-        memset(hist, 0, sizeof hist);
-        for (uint32_t i = 0; i < n; ++i) hist[kv[i] >> shift & 1023]++;
-        uint32_t sum = 0;
-        for (int b = 0; b < 1024; ++b) {
-            uint32_t h = hist[b];
-            hist[b] = sum;
-            sum += h;
-        }
-        for (uint32_t i = 0; i < n; ++i) tmp[hist[kv[i] >> shift & 1023]++] = kv[i];
-        uint64_t* t = kv;
-        kv = tmp;
-        tmp = t;
-    }
+    kv = tg__morton_sort_pairs(kv, tmp, n, hist);
     bprim* p = bd->prims;
 #ifdef TG_HAVE_OPENMP
 #pragma omp parallel for schedule(static)

@@ -305,19 +305,8 @@ static void morton_order(const tg_bvh* bvh, const double* xyz, uint32_t count, u
                          uint32_t* hist)
 {
     for (uint32_t i = 0; i < count; ++i) out[i] = (uint64_t)morton_key(bvh, xyz + 3 * (size_t)i) << 32 | i;
-    for (int pass = 0; pass < 3; ++pass) {
-        int shift = 32 + 10 * pass;
-        memset(hist, 0, 1024 * sizeof *hist);
-        for (uint32_t i = 0; i < count; ++i) hist[out[i] >> shift & 1023]++;
-        uint32_t sum = 0;
-        for (int b = 0; b < 1024; ++b) {
-            uint32_t h = hist[b];
-            hist[b] = sum;
-            sum += h;
-        }
-        for (uint32_t i = 0; i < count; ++i) tmp[hist[out[i] >> shift & 1023]++] = out[i];
-        memcpy(out, tmp, (size_t)count * sizeof *out);
-    }
+    uint64_t* sorted = tg__morton_sort_pairs(out, tmp, count, hist);
+    if (sorted != out) memcpy(out, sorted, (size_t)count * sizeof *out);
 }
 
 

@@ -51,7 +51,8 @@ const char* tg_version(void);
     X(TG_ERR_PARSE, "parse", "the input is malformed")                                            \
     X(TG_ERR_INVALID_MESH, "invalid_mesh", "the data cannot describe a mesh (bad index, NaN or infinite coordinate)") \
     X(TG_ERR_UNSUPPORTED, "unsupported", "the format or feature is not supported")                \
-    X(TG_ERR_CAPACITY, "capacity", "an output buffer is too small")
+    X(TG_ERR_CAPACITY, "capacity", "an output buffer is too small")                              \
+    X(TG_ERR_CANCELLED, "cancelled", "the caller's progress callback asked to stop")
 
 /** Status returned by every fallible function. TG_OK is 0. */
 typedef enum tg_status {
@@ -811,35 +812,97 @@ tg_status tg_path_write_obj(const tg_path* path, const char* filename, tg_diag* 
 /* ============================================================================================== */
 /* TG-SECTION-FIELD */
 
-/** Options of tg_geodesic_field. NULL or all-zero means defaults. */
+/** Per-thread scratch for exact fields: per-vertex and per-halfedge arrays sized once for the
+ *  mesh (about 17 bytes per vertex and 60 bytes per face) plus the window pool, queues and
+ *  lists, which grow to the largest run seen and are kept, so a second field on the same
+ *  workspace allocates nothing. Not thread-safe: one workspace per thread; any number of threads
+ *  may run fields on one tg_geodesic at once, each with its own workspace. */
+typedef struct tg_field_workspace tg_field_workspace;
+
+/** Creates a field workspace for g (which must outlive it), using g's allocator.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL argument), TG_ERR_OUT_OF_MEMORY (then *out_workspace is
+ *  NULL). O(V + F) time and memory. */
+tg_status tg_field_workspace_create(const tg_geodesic* g, tg_field_workspace** out_workspace);
+
+/** Frees a field workspace. NULL is a no-op. */
+void tg_field_workspace_destroy(tg_field_workspace* workspace);
+
+/** Bytes currently owned by the workspace (fixed arrays plus grown pools). NULL gives 0. */
+size_t tg_field_workspace_memory_bytes(const tg_field_workspace* workspace);
+
+/** What a progress callback is told. */
+typedef struct tg_field_progress {
+    double front_distance;   /**< distance of the wavefront: the last vertex settled */
+    double settled_fraction; /**< share of the mesh's vertices settled (in [0, 1]; vertices no
+                                  source reaches are never settled); for a batch, the share of all
+                                  rows' work: (rows done + this row's share) / rows */
+    size_t rows_done;        /**< batch: rows finished so far (0 for a single field) */
+    size_t row_count;        /**< batch: number of rows (1 for a single field) */
+} tg_field_progress;
+
+/** Progress callback: called every few milliseconds of work (about every 5 ms, from the thread
+ *  doing the work; in a batch, from one thread at a time). Return 0 to go on, anything else to
+ *  cancel: the call then returns TG_ERR_CANCELLED with the outputs untouched. */
+typedef int (*tg_field_progress_fn)(void* user, const tg_field_progress* progress);
+
+/** Whether max_distance applies. */
+typedef enum tg_field_limit {
+    TG_FIELD_UNLIMITED = 0,   /**< default: the whole surface reachable from the sources */
+    TG_FIELD_MAX_DISTANCE = 1 /**< stop at max_distance (0 is allowed and means distance 0) */
+} tg_field_limit;
+
+/** Options of tg_geodesic_field and tg_geodesic_field_batch. NULL or all-zero means defaults. */
 typedef struct tg_field_options {
-    const tg_allocator* allocator; /**< scratch memory; NULL: the solver's allocator */
-    /** Distance limit (same unit as the coordinates); 0: none. The propagation stops at this
-     *  distance: vertices within it get their exact distance, every vertex beyond it +inf. */
+    /** scratch memory of a temporary workspace; NULL: the solver's allocator */
+    const tg_allocator* allocator;
+    tg_field_limit limit; /**< TG_FIELD_UNLIMITED by default */
+    /** With TG_FIELD_MAX_DISTANCE: the distance limit (same unit as the coordinates, >= 0).
+     *  Vertices within it get their exact distance, every vertex beyond it +inf, and the work
+     *  stays within it. Ignored with TG_FIELD_UNLIMITED. */
     double max_distance;
+    /** tg_geodesic_field: a workspace of the same solver to reuse (NULL: a temporary one is
+     *  made and freed). Ignored by tg_geodesic_field_batch, which makes one per thread. */
+    tg_field_workspace* workspace;
+    tg_field_progress_fn progress; /**< NULL: none */
+    void* progress_user;           /**< passed to progress */
 } tg_field_options;
 
-/** Counters of one tg_geodesic_field run (for benchmarks and tests). */
+/** Counters of one tg_geodesic_field run, or summed over a batch (for benchmarks and tests). */
 typedef struct tg_field_stats {
-    uint64_t windows_created;        /**< windows put on the queue */
-    uint64_t windows_propagated;     /**< windows taken from the queue and unfolded into a face */
+    uint64_t windows_created;        /**< windows put on an edge side's list */
+    uint64_t windows_propagated;     /**< windows carried across a face */
     uint64_t windows_filtered;       /**< windows or children dropped by the filters (or empty) */
-    uint64_t pseudo_source_events;   /**< emissions from source, saddle and boundary vertices */
+    uint64_t pseudo_source_events;   /**< emissions from sources and pseudo-source vertices */
     uint64_t pseudo_source_vertices; /**< vertices classified as pseudo-sources */
-    uint64_t max_queue;              /**< largest number of queue entries */
-    size_t peak_bytes;               /**< largest scratch memory in use (bytes) */
+    uint64_t max_queue;              /**< largest number of entries on the vertex front */
+    uint64_t peak_windows;           /**< largest number of windows alive at once */
+    size_t peak_bytes;               /**< largest workspace memory in use (bytes) */
 } tg_field_stats;
 
 /** The exact geodesic distance from a set of surface points to every vertex: the length of the
- *  shortest path on the surface to the nearest source (Chen & Han's window propagation with the
- *  improvements of Xin & Wang 2009, "ICH"). Windows (intervals of edges lit by one unfolded
- *  source image, plus a distance offset for paths bending at a vertex) are propagated face by
- *  face in order of their distance from a priority queue; paths bend only at pseudo-sources:
- *  vertices whose total angle is at least 2 pi (within 1e-9 relative, so flat vertices count),
- *  boundary vertices and the vertices listed below. Windows are dropped only when a real path
- *  provably beats them (the current vertex distances, "one angle one split"), so the result is
- *  exact up to rounding (about 1e-15 relative per unfolded face), never below the geodesic
- *  distance beyond rounding, and never above the shortest edge-graph distance beyond rounding.
+ *  shortest path on the surface to the nearest source.
+ *
+ *  Method: windows (intervals of edges lit by one unfolded source image, plus a distance offset
+ *  for paths bending at a vertex; Chen & Han 1990) are kept in one list per edge side and moved
+ *  across one face at a time, in FIFO order, behind a front of vertices taken in order of
+ *  distance (Qin et al. 2016, "VTP"). Before a list crosses its face its windows are checked
+ *  against the distances of the edge's end vertices (Xin & Wang 2009) and trimmed against each
+ *  other where one is shorter (Mitchell, Mount & Papadimitriou 1987); the window that reaches the
+ *  face's opposite corner most shortly cuts the rays of the others that cross its own ray inside
+ *  the face (one angle, one split). Paths bend only at pseudo-sources: vertices whose total angle
+ *  exceeds 2 pi by more than 1e-9 relative, boundary vertices and the vertices listed below.
+ *  Windows are dropped or cut only where another real path is shorter, so the result is exact up
+ *  to rounding (about 1e-15 relative per unfolded face), never below the geodesic distance beyond
+ *  rounding, and never above the shortest edge-graph distance beyond rounding.
+ *
+ *  Surface semantics: distance is intrinsic, so the winding of faces does not matter: windows
+ *  cross every edge shared by exactly two faces whatever their orientation. At a non-manifold
+ *  edge (three or more faces) windows continue into every other face at the edge (the shortest
+ *  path on the surface as a 2-complex). A face with the same three vertices as a lower-indexed
+ *  face counts once; a face with a repeated vertex index is ignored. Boundary edges are walls
+ *  passed only through their end vertices. Vertices of degenerate faces (a zero-length edge or a
+ *  corner thinner than 1e-12 relative) are pseudo-sources; windows cross a zero-area face at most
+ *  once in a row, otherwise the distance there is the one through its vertices (a real path).
  *
  *  sources: source_count valid surface points (tg_surface_point_validate; vertex, edge point or
  *  face point; NULL allowed when source_count is 0). With several sources each vertex gets the
@@ -848,24 +911,32 @@ typedef struct tg_field_stats {
  *  reaches (another component, unreferenced vertices, beyond max_distance) get +inf; never NaN.
  *  out_stats: may be NULL; filled on success.
  *
- *  Imperfect meshes: boundaries, several components, non-manifold edges and vertices, zero-area
- *  and needle faces, duplicate faces and unreferenced vertices are accepted. An edge without an
- *  opposite halfedge (boundary, non-manifold, inconsistently oriented, of a duplicate face) is a
- *  wall for windows: paths pass it only through its end vertices, which are pseudo-sources, so
- *  the result is the exact distance on the surface cut open along such edges (the convention of
- *  tg_geodesic_path). Vertices of degenerate faces (a zero-length edge or an exactly zero cross
- *  product) are pseudo-sources too; windows still cross a zero-area face where it is a segment
- *  with its third corner on it, and otherwise the distance there is the conservative one through
- *  its vertices (a real path, possibly longer than the infimum).
- *
  *  Errors: TG_ERR_INVALID_ARGUMENT (NULL g or out_vertex_distance, NULL sources with a non-zero
- *  count, an invalid source point, a negative or NaN max_distance), TG_ERR_OUT_OF_MEMORY (then
- *  out_vertex_distance and out_stats are untouched and nothing leaks).
- *  Complexity: O(W log W) time for W windows, typically a small multiple of n^1.5 for n
- *  vertices (O(n^2 log n) worst case); memory about 130 bytes per face plus 70 bytes per
- *  queued window. Thread-safe: g is only read; concurrent calls need distinct output arrays. */
+ *  count, an invalid source point, a negative or NaN max_distance with TG_FIELD_MAX_DISTANCE, an
+ *  unknown limit, a workspace of another solver), TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED (the
+ *  progress callback returned non-zero). On any error out_vertex_distance and out_stats are
+ *  untouched and nothing leaks.
+ *  Complexity: typically a small multiple of n^1.5 window crossings for n vertices (O(n^2 log n)
+ *  worst case); memory: the workspace plus about 56 bytes per live window. Thread-safe: g is only
+ *  read; concurrent calls need distinct workspaces and output arrays. */
 tg_status tg_geodesic_field(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
                             const tg_field_options* options, double* out_vertex_distance, tg_field_stats* out_stats);
+
+/** Many fields at once: row i of out_matrix (row-major, source_count x vertex_count doubles) is
+ *  the field of sources[i] alone, exactly as tg_geodesic_field computes it (bit-identical). Rows
+ *  are computed in parallel with OpenMP on `threads` threads (0: the OpenMP default; 1: this
+ *  thread only), one workspace per thread, made and freed by the call. options->workspace is
+ *  ignored; the limit, allocator and progress apply to every row (progress is called from one
+ *  thread at a time with rows_done / row_count). out_stats (may be NULL): counters summed over
+ *  the rows, peak_bytes the largest of one workspace.
+ *  Errors: as tg_geodesic_field (every source is validated before any work), and
+ *  TG_ERR_INVALID_ARGUMENT for a negative thread count or a matrix size that overflows. Each row
+ *  is written only once complete, so on error (or cancellation) out_matrix holds some complete
+ *  rows and leaves the others untouched, never a partial row; out_stats is untouched.
+ *  Thread-safe as tg_geodesic_field. */
+tg_status tg_geodesic_field_batch(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+                                  const tg_field_options* options, int threads, double* out_matrix,
+                                  tg_field_stats* out_stats);
 
 /* TG-SECTION-FIELD-END */
 

@@ -133,7 +133,7 @@ static void test_mesh(const char* dir, const char* file)
         for (size_t v = 0; v < n; ++v)
             if (isfinite(dj[v])) fd[k++] = dj[v];
         qsort(fd, k, sizeof *fd, cmp_double);
-        if (k > LIMIT_VERTICES) o.max_distance = fd[LIMIT_VERTICES];
+        if (k > LIMIT_VERTICES) o.limit = TG_FIELD_MAX_DISTANCE, o.max_distance = fd[LIMIT_VERTICES];
     }
     double limit = o.max_distance > 0 ? o.max_distance : INFINITY;
     tg_field_stats fs;

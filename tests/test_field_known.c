@@ -201,6 +201,7 @@ static void test_limit_and_api(void)
     tg_surface_point s = tg_surface_vertex(0);
     tg_field_options o;
     memset(&o, 0, sizeof o);
+    o.limit = TG_FIELD_MAX_DISTANCE;
     o.max_distance = 0.5;
     tg_field_stats st_lim, st_full;
     static double full[MAXV];

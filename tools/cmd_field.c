@@ -102,7 +102,7 @@ static int run_field(const char* mesh_path, char* from, const char* ply_path, co
     tg_status st = dist ? tg_geodesic_create(mesh, NULL, &geo) : TG_ERR_OUT_OF_MEMORY;
     tg_field_options o;
     memset(&o, 0, sizeof o);
-    o.max_distance = max_dist;
+    if (max_dist > 0) o.limit = TG_FIELD_MAX_DISTANCE, o.max_distance = max_dist;
     tg_field_stats stats;
     double t0 = now_s();
     if (st == TG_OK) st = tg_geodesic_field(geo, pts, count, &o, dist, &stats);

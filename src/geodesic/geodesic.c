@@ -4,7 +4,7 @@
  *   Systems", §3.4) built by counting sort; vertices renumbered along a Morton (Z-order) curve
  *   (Morton 1966) so that graph searches touch nearby memory (the locality argument of Isenburg &
  *   Lindstrom, "Streaming Meshes", 2005, §2). */
-#include "geodesic/geodesic_internal.h"
+#include "geodesic/field_internal.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -170,6 +170,7 @@ void tg_geodesic_destroy(tg_geodesic* g)
     tg__free(&a, g->adj);
     tg__free(&a, g->vc_start);
     tg__free(&a, g->vc);
+    tg__field_mesh_free(g);
     tg__free(&a, g);
 }
 
@@ -190,7 +191,7 @@ tg_status tg_geodesic_create(const tg_mesh* mesh, const tg_geodesic_options* opt
     g->tri = mesh->tri;
     g->opp = mesh->opp;
     g->comp = mesh->comp;
-    if (!build_corners(g) || !build_order(g) || !build_adjacency(g)) {
+    if (!build_corners(g) || !build_order(g) || !build_adjacency(g) || !tg__field_mesh_build(g)) {
         tg_geodesic_destroy(g);
         return TG_ERR_OUT_OF_MEMORY;
     }
@@ -203,7 +204,8 @@ size_t tg_geodesic_memory_bytes(const tg_geodesic* g)
     if (!g) return 0;
     size_t nv = g->vertex_count;
     return sizeof *g + 2 * (nv + 1) * sizeof(uint32_t) + (size_t)g->adj_start[nv] * sizeof(uint32_t) +
-           (size_t)g->vc_start[nv] * sizeof(uint32_t) + nv * (2 * sizeof(uint32_t) + 3 * sizeof(double));
+           (size_t)g->vc_start[nv] * sizeof(uint32_t) + nv * (2 * sizeof(uint32_t) + 3 * sizeof(double)) +
+           tg__field_mesh_bytes(g);
 }
 
 /* ---- workspaces ---- */

@@ -32,6 +32,11 @@ struct tg_geodesic {
     uint32_t* adj;       /* unique neighbours (internal ids; every edge of every face), ascending */
     uint32_t* vc_start;  /* V + 1: corners of v are vc[vc_start[v] .. vc_start[v + 1]) */
     uint32_t* vc;        /* corners 3f + k with tri[3f + k] == v, ascending (so by face) */
+    /* The exact field engine's tables (field_mesh.c) */
+    struct tg__frame* frame; /* 3F: halfedge frames */
+    uint32_t* ring;          /* 3F: next halfedge of the same edge (any orientation; itself: no other) */
+    uint8_t* vflags;         /* V: TG__V_* */
+    uint8_t* fflags;         /* F: TG__F_* */
 };
 
 /* A point of a path: a mesh vertex, a point on an edge, or a point inside a face (endpoints only).

@@ -1,0 +1,204 @@
+/* field_mesh.c - the exact field engine's per-mesh tables, built once by tg_geodesic_create:
+ * halfedge frames, the ring of halfedges around each edge, duplicate and flat faces, and the
+ * vertices where geodesics may bend (pseudo-sources).
+ * Based on: J. S. B. Mitchell, D. M. Mount and C. H. Papadimitriou, "The discrete geodesic
+ *   problem", SIAM J. Comput. 16(4), 1987 (geodesics bend only at saddle and boundary vertices;
+ *   the unfolding of a face across an edge needs only the edge and the two opposite corners, so
+ *   it is the same whichever way the faces are wound); the surface as a 2-complex at non-manifold
+ *   edges (every other face at the edge continues a ray). */
+#include "geodesic/field_internal.h"
+
+#include <string.h>
+
+/* Halfedges grouped by undirected edge: counting sort by the lower end vertex, then within each
+ * bucket (one vertex's edges, a small set) by the upper end. Faces with a repeated vertex index
+ * and duplicates of a lower face are skipped first. */
+static bool build_rings(tg_geodesic* g, const tg_allocator* a)
+{
+    size_t nv = g->vertex_count, nf = g->face_count, nh = 3 * nf;
+    uint32_t* start = tg__calloc_array(a, nv + 2, sizeof(uint32_t));
+    uint32_t* items = tg__alloc_array(a, nh ? nh : 1, sizeof(uint32_t));
+    if (!start || !items) {
+        tg__free(a, start);
+        tg__free(a, items);
+        return false;
+    }
+    const uint32_t* t = g->tri;
+    /* duplicates: faces bucketed by their lowest vertex, compared by sorted corner triple */
+    for (size_t f = 0; f < nf; ++f) {
+        uint32_t x = t[3 * f], y = t[3 * f + 1], z = t[3 * f + 2];
+        if (x == y || y == z || x == z) g->fflags[f] |= TG__F_SKIP;
+        uint32_t lo = x < y ? (x < z ? x : z) : (y < z ? y : z);
+        start[lo + 2]++;
+    }
+    for (size_t v = 0; v < nv; ++v) start[v + 2] += start[v + 1];
+    for (size_t f = 0; f < nf; ++f) {
+        uint32_t x = t[3 * f], y = t[3 * f + 1], z = t[3 * f + 2];
+        uint32_t lo = x < y ? (x < z ? x : z) : (y < z ? y : z);
+        items[start[lo + 1]++] = (uint32_t)f;
+    }
+    for (size_t v = 0; v < nv; ++v) {
+        for (uint32_t i = start[v]; i < start[v + 1]; ++i) {
+            uint32_t f = items[i];
+            if (g->fflags[f] & TG__F_SKIP) continue;
+            uint32_t key = t[3 * f] ^ t[3 * f + 1] ^ t[3 * f + 2]; /* with lo fixed: sum-free check */
+            uint64_t s1 = (uint64_t)t[3 * f] + t[3 * f + 1] + t[3 * f + 2];
+            for (uint32_t j = start[v]; j < i; ++j) {
+                uint32_t e = items[j];
+                if (g->fflags[e] & TG__F_SKIP) continue;
+                uint64_t s2 = (uint64_t)t[3 * e] + t[3 * e + 1] + t[3 * e + 2];
+                if (s1 != s2 || key != (t[3 * e] ^ t[3 * e + 1] ^ t[3 * e + 2])) continue;
+                /* same lowest vertex, sum and xor of three distinct indices: compare exactly */
+                uint32_t c = 0;
+                for (int k = 0; k < 3; ++k) c += tg__corner_of(g, e, t[3 * f + (size_t)k]) >= 0;
+                if (c == 3) {
+                    g->fflags[f] |= TG__F_SKIP;
+                    break;
+                }
+            }
+        }
+    }
+    /* rings: halfedges of kept faces bucketed by their lower end vertex */
+    memset(start, 0, (nv + 2) * sizeof(uint32_t));
+    for (size_t h = 0; h < nh; ++h) {
+        g->ring[h] = (uint32_t)h;
+        if (g->fflags[h / 3] & TG__F_SKIP) continue;
+        uint32_t p = t[h], q = t[tg_halfedge_next((uint32_t)h)];
+        start[(p < q ? p : q) + 2]++;
+    }
+    for (size_t v = 0; v < nv; ++v) start[v + 2] += start[v + 1];
+    for (size_t h = 0; h < nh; ++h) {
+        if (g->fflags[h / 3] & TG__F_SKIP) continue;
+        uint32_t p = t[h], q = t[tg_halfedge_next((uint32_t)h)];
+        items[start[(p < q ? p : q) + 1]++] = (uint32_t)h;
+    }
+    for (size_t v = 0; v < nv; ++v) {
+        uint32_t b = start[v], e = start[v + 1];
+        /* insertion sort of the bucket by upper end vertex, then halfedge (valences are small) */
+        for (uint32_t i = b + 1; i < e; ++i) {
+            uint32_t h = items[i], key = t[h] ^ t[tg_halfedge_next(h)] ^ (uint32_t)v;
+            uint32_t j = i;
+            while (j > b) {
+                uint32_t o = items[j - 1], ko = t[o] ^ t[tg_halfedge_next(o)] ^ (uint32_t)v;
+                if (ko < key || (ko == key && o < h)) break;
+                items[j] = o;
+                --j;
+            }
+            items[j] = h;
+        }
+        for (uint32_t i = b; i < e;) {
+            uint32_t key = t[items[i]] ^ t[tg_halfedge_next(items[i])] ^ (uint32_t)v, k = i + 1;
+            while (k < e && (t[items[k]] ^ t[tg_halfedge_next(items[k])] ^ (uint32_t)v) == key) ++k;
+            for (uint32_t m = i; m < k; ++m) g->ring[items[m]] = items[m + 1 < k ? m + 1 : i];
+            i = k;
+        }
+    }
+    tg__free(a, start);
+    tg__free(a, items);
+    return true;
+}
+
+/* Frames, flat faces, and the vertex angle sums (into angle[], V doubles). */
+static void build_frames(tg_geodesic* g, double* angle)
+{
+    size_t nv = g->vertex_count, nf = g->face_count;
+    for (size_t v = 0; v < nv; ++v) angle[v] = 0.0;
+    for (size_t f = 0; f < nf; ++f) {
+        bool flat = false;
+        for (size_t k = 0; k < 3; ++k) {
+            size_t h = 3 * f + k;
+            uint32_t va = g->tri[h], vb = g->tri[3 * f + (k + 1) % 3], vc = g->tri[3 * f + (k + 2) % 3];
+            tg_vec3 e = tg_v3_sub(tg__gpos(g, vb), tg__gpos(g, va)), c = tg_v3_sub(tg__gpos(g, vc), tg__gpos(g, va));
+            double len = tg_v3_len(e), cr = tg_v3_len(tg_v3_cross(e, c)), dot = tg_v3_dot(e, c);
+            tg__frame* fr = &g->frame[h];
+            fr->len = len;
+            fr->cx = len > 0.0 ? dot / len : 0.0;
+            fr->cy = len > 0.0 ? cr / len : 0.0;
+            if (!(len > 0.0) || !(cr > TG__GRAZING_REL * len * tg_v3_len(c))) flat = true;
+            if (!(g->fflags[f] & TG__F_SKIP)) angle[va] += atan2(cr, dot);
+        }
+        if (flat) g->fflags[f] |= TG__F_FLAT;
+    }
+}
+
+/* Steps around v from face corner c (tri[c] == v) across the edge of halfedge `via` (an edge of
+ * c's face at v) into the other face of that edge; returns the corner of v there, or TG_NONE when
+ * the edge has no single other face. *out_via becomes the other edge at v of the new face. */
+static uint32_t fan_step(const tg_geodesic* g, uint32_t v, uint32_t via, uint32_t* out_via)
+{
+    uint32_t o = g->ring[via];
+    if (o == via || g->ring[o] != via) return TG_NONE; /* boundary or non-manifold */
+    uint32_t f = o / 3;
+    int k = tg__corner_of(g, f, v);
+    if (k < 0) return TG_NONE;
+    uint32_t c = 3 * f + (uint32_t)k, cp = 3 * f + (uint32_t)(k + 2) % 3;
+    /* the two edges of f at v: c (v -> next) and cp (prev -> v); o is one of them */
+    *out_via = o == c ? cp : c;
+    return c;
+}
+
+/* Pseudo-source vertices: not a single closed fan of manifold edges, touching a flat or skipped
+ * face, or total angle beyond 2 pi by more than the flat margin. */
+static void classify_vertices(tg_geodesic* g, const double* angle)
+{
+    size_t nv = g->vertex_count;
+    for (size_t v = 0; v < nv; ++v) {
+        uint32_t n = 0, first = TG_NONE;
+        bool pseudo = false;
+        for (uint32_t i = g->vc_start[v]; i < g->vc_start[v + 1]; ++i) {
+            uint32_t c = g->vc[i], f = c / 3;
+            if (g->fflags[f] & TG__F_SKIP) continue;
+            if (g->fflags[f] & TG__F_FLAT) pseudo = true;
+            if (first == TG_NONE) first = c;
+            n++;
+        }
+        if (n == 0) continue;
+        if (!pseudo && angle[v] > 2.0 * TG__PI * (1.0 + TG__FLAT_ANGLE_REL)) pseudo = true;
+        if (!pseudo) {
+            uint32_t c = first, via = first, steps = 0;
+            do {
+                uint32_t next_via;
+                c = fan_step(g, (uint32_t)v, via, &next_via);
+                if (c == TG_NONE) break;
+                via = next_via;
+                steps++;
+            } while (c != first && steps <= n);
+            if (c != first || steps != n) pseudo = true;
+        }
+        if (pseudo) g->vflags[v] |= TG__V_PSEUDO;
+    }
+}
+
+void tg__field_mesh_free(tg_geodesic* g)
+{
+    tg__free(&g->allocator, g->frame);
+    tg__free(&g->allocator, g->ring);
+    tg__free(&g->allocator, g->vflags);
+    tg__free(&g->allocator, g->fflags);
+    g->frame = NULL, g->ring = NULL, g->vflags = NULL, g->fflags = NULL;
+}
+
+bool tg__field_mesh_build(tg_geodesic* g)
+{
+    const tg_allocator* a = &g->allocator;
+    size_t nv = g->vertex_count, nf = g->face_count, nh = 3 * nf;
+    g->frame = tg__alloc_array(a, nh ? nh : 1, sizeof(tg__frame));
+    g->ring = tg__alloc_array(a, nh ? nh : 1, sizeof(uint32_t));
+    g->vflags = tg__calloc_array(a, nv ? nv : 1, 1);
+    g->fflags = tg__calloc_array(a, nf ? nf : 1, 1);
+    double* angle = tg__alloc_array(a, nv ? nv : 1, sizeof(double));
+    bool ok = g->frame && g->ring && g->vflags && g->fflags && angle && build_rings(g, a);
+    if (ok) {
+        build_frames(g, angle);
+        classify_vertices(g, angle);
+    }
+    tg__free(a, angle);
+    if (!ok) tg__field_mesh_free(g);
+    return ok;
+}
+
+size_t tg__field_mesh_bytes(const tg_geodesic* g)
+{
+    size_t nv = g->vertex_count, nf = g->face_count;
+    return 3 * nf * (sizeof(tg__frame) + sizeof(uint32_t)) + nv + nf;
+}

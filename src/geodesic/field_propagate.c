@@ -1,0 +1,559 @@
+/* field_propagate.c - the exact field engine's wavefront: sources, window lists crossing faces,
+ * the front of vertices ordered by distance, progress and cancellation.
+ * Based on: Y. Qin, X. Han, H. Yu, Y. Yu and J. Zhang, "Fast and exact discrete geodesic
+ *   computation based on triangle-oriented wavefront propagation", ACM TOG 35(4), 2016 (the
+ *   window list of an edge side crosses its face as a whole, in FIFO order, once an end vertex of
+ *   the edge has left the front; the front is a priority queue of vertices by distance; rule 1:
+ *   the window that reaches the face's opposite corner most shortly splits the list); S.-Q. Xin
+ *   and G.-J. Wang, "Improving Chen and Han's algorithm on the discrete geodesic problem", ACM TOG
+ *   28(4), 2009 (the vertex-distance filter; one angle, one split, kept per edge side across
+ *   lists); J. Chen and Y. Han, SoCG 1990 (pseudo-sources at saddle and boundary vertices).
+ *
+ * Every distance recorded is the length of a real path on the surface (straight in an unfolded
+ * chain of faces, bending only at vertices), so the result never falls below the geodesic
+ * distance beyond rounding; windows are dropped or cut only where another real path is shorter
+ * (by the margins of field_internal.h and field_window.c), so no geodesic is lost. The work ends
+ * when no list holds a window and the front is empty. */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime */
+#include "core/predicates.h"
+#include "geodesic/field_internal.h"
+
+#include <string.h>
+#include <time.h>
+
+enum { VS_INSIDE = 1, VS_SOURCE = 2 };
+
+/* How many list propagations pass between two looks at the clock for progress. */
+#define CHECK_EVERY 256
+/* A window's boundary ray passing the face's opposite corner closer than this share of the edge
+ * length counts as passing through it (its distance is then off by the square of that, relative). */
+#define CORNER_SNAP_REL 1e-12
+/* Seconds between progress reports. */
+#define PROGRESS_PERIOD_S 0.005
+
+static double now_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static void note_peak(tg_field_workspace* ws)
+{
+    size_t b = ws->fixed_bytes + ws->win.capacity * sizeof(tg__window) + ws->free_ids.capacity * sizeof(uint32_t) +
+               ws->heap.capacity * sizeof(tg__heap_item) + ws->fifo.capacity * sizeof(uint32_t) +
+               ws->scratch.capacity * sizeof(uint32_t);
+    if (b > ws->peak_bytes) ws->peak_bytes = b;
+}
+
+/* ---- window pool ---- */
+
+static uint32_t win_alloc(tg_field_workspace* ws)
+{
+    if (ws->free_ids.count) return ((uint32_t*)ws->free_ids.data)[--ws->free_ids.count];
+    if (ws->win.count >= (size_t)UINT32_MAX - 1) return TG_NONE;
+    if (!tg__vec_reserve(&ws->allocator, &ws->win, 1)) return TG_NONE;
+    /* the free list can hold every slot, so releasing never allocates */
+    if (ws->free_ids.capacity < ws->win.capacity &&
+        !tg__vec_reserve(&ws->allocator, &ws->free_ids, ws->win.capacity - ws->free_ids.count))
+        return TG_NONE;
+    note_peak(ws);
+    return (uint32_t)ws->win.count++;
+}
+
+static void win_release(tg_field_workspace* ws, uint32_t id)
+{
+    ((uint32_t*)ws->free_ids.data)[ws->free_ids.count++] = id;
+}
+
+/* ---- the vertex front: a lazy binary min-heap on (distance, vertex) ---- */
+
+static bool item_less(const tg__heap_item* a, const tg__heap_item* b)
+{
+    return a->key < b->key || (a->key == b->key && a->node < b->node);
+}
+
+static bool front_push(tg__field_run* run, double key, uint32_t v)
+{
+    tg_field_workspace* ws = run->ws;
+    if (!tg__vec_reserve(&ws->allocator, &ws->heap, 1)) return false;
+    tg__heap_item* h = ws->heap.data;
+    tg__heap_item it = {key, v};
+    size_t i = ws->heap.count++;
+    while (i > 0) {
+        size_t p = (i - 1) / 2;
+        if (!item_less(&it, &h[p])) break;
+        h[i] = h[p];
+        i = p;
+    }
+    h[i] = it;
+    if (ws->heap.count > run->stats.max_queue) run->stats.max_queue = ws->heap.count;
+    return true;
+}
+
+static tg__heap_item front_pop(tg_field_workspace* ws)
+{
+    tg__heap_item* h = ws->heap.data;
+    tg__heap_item top = h[0], last = h[--ws->heap.count];
+    size_t i = 0, n = ws->heap.count;
+    for (;;) {
+        size_t c = 2 * i + 1;
+        if (c >= n) break;
+        if (c + 1 < n && item_less(&h[c + 1], &h[c])) c++;
+        if (!item_less(&h[c], &last)) break;
+        h[i] = h[c];
+        i = c;
+    }
+    if (n) h[i] = last;
+    return top;
+}
+
+/* Records distance d for vertex v if shorter, and puts it on the front. */
+static bool relax_vertex(tg__field_run* run, uint32_t v, double d)
+{
+    tg_field_workspace* ws = run->ws;
+    if (!(d < ws->dist[v])) return true;
+    ws->dist[v] = d;
+    if (d > run->max_dist) return true;
+    return front_push(run, d, v);
+}
+
+/* ---- lists and the FIFO ---- */
+
+static bool list_ready(const tg__field_run* run, uint32_t h)
+{
+    const tg_geodesic* g = run->ws->g;
+    return run->all_ready || run->ws->inside[g->tri[h]] & VS_INSIDE ||
+           run->ws->inside[g->tri[tg_halfedge_next(h)]] & VS_INSIDE;
+}
+
+static bool enqueue(tg__field_run* run, uint32_t h)
+{
+    tg_field_workspace* ws = run->ws;
+    if (ws->queued[h] || ws->head[h] == TG_NONE) return true;
+    if (ws->fifo_head > 4096 && ws->fifo_head * 2 > ws->fifo.count) { /* compact the consumed front */
+        uint32_t* q = ws->fifo.data;
+        memmove(q, q + ws->fifo_head, (ws->fifo.count - ws->fifo_head) * sizeof *q);
+        ws->fifo.count -= ws->fifo_head;
+        ws->fifo_head = 0;
+    }
+    if (!tg__vec_reserve(&ws->allocator, &ws->fifo, 1)) return false;
+    ((uint32_t*)ws->fifo.data)[ws->fifo.count++] = h;
+    ws->queued[h] = 1;
+    note_peak(ws);
+    return true;
+}
+
+/* Is every point of [c0, c1] on the edge of halfedge h reached more shortly along the edge from
+ * one of its end vertices? The window's distance has slope in [-1, 1] along the edge, d(U) + x
+ * slope 1 and d(W) + (L - x) slope -1, so the far end of the interval decides for all of it. */
+static bool dominated(const tg__field_run* run, uint32_t h, double c0, double c1, double d0, double d1)
+{
+    const tg_geodesic* g = run->ws->g;
+    double du = run->ws->dist[g->tri[h]], dw = run->ws->dist[g->tri[tg_halfedge_next(h)]];
+    double len = g->frame[h].len;
+    return du + c1 < d1 * (1.0 - TG__DOMINATED_REL) || dw + (len - c0) < d0 * (1.0 - TG__DOMINATED_REL);
+}
+
+/* Adds the window [c0, c1] on halfedge h with source image (x, y) and offset sigma to h's list,
+ * unless it is empty, grazing, dominated or beyond the distance limit. */
+static bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, double x, double y, double sigma,
+                        uint32_t via_flat)
+{
+    tg_field_workspace* ws = run->ws;
+    const tg_geodesic* g = ws->g;
+    double len = g->frame[h].len;
+    if (!(c0 < c1) || !(-y > TG__GRAZING_REL * (fabs(x) + len)) || !(sigma < INFINITY)) {
+        run->stats.windows_filtered++;
+        return true;
+    }
+    double d0 = sigma + sqrt((c0 - x) * (c0 - x) + y * y);
+    double d1 = sigma + sqrt((c1 - x) * (c1 - x) + y * y);
+    if (dominated(run, h, c0, c1, d0, d1)) {
+        run->stats.windows_filtered++;
+        return true;
+    }
+    double key = (x > c0 && x < c1) ? sigma - y : (d0 < d1 ? d0 : d1);
+    if (key > run->max_dist) return true;
+    uint32_t id = win_alloc(ws);
+    if (id == TG_NONE) return false;
+    tg__window* w = &((tg__window*)ws->win.data)[id];
+    w->b0 = c0, w->b1 = c1, w->sx = x, w->sy = y, w->sigma = sigma, w->via_flat = via_flat;
+    w->next = ws->head[h];
+    ws->head[h] = id;
+    run->stats.windows_created++;
+    size_t live = ws->win.count - ws->free_ids.count;
+    if (live > run->stats.peak_windows) run->stats.peak_windows = live;
+    return list_ready(run, h) ? enqueue(run, h) : true;
+}
+
+/* The interval [t0, t1] of halfedge e (face e / 3 on its +y side) lit from (x, y) of e's frame
+ * (y > 0: inside the face) at offset sigma continues as a window into every other face at the
+ * edge. */
+static bool push_through(tg__field_run* run, uint32_t e, double t0, double t1, double x, double y, double sigma,
+                         uint32_t via_flat)
+{
+    const tg_geodesic* g = run->ws->g;
+    for (uint32_t o = g->ring[e]; o != e; o = g->ring[o]) {
+        double ox, oy, c0, c1;
+        tg__ring_point(g, e, o, x, y, &ox, &oy);
+        tg__ring_interval(g, e, o, t0, t1, &c0, &c1);
+        if (!push_window(run, o, c0, c1, ox, oy, sigma, via_flat)) return false;
+    }
+    return true;
+}
+
+/* ---- sources and pseudo-sources ---- */
+
+static bool emit_face_point(tg__field_run* run, const double p[3], double sigma, uint32_t f, uint32_t from);
+
+/* Emits from vertex v at its current distance into every face around it (each face's opposite
+ * edge lit from v, which is that edge's opposite corner), and relaxes its neighbours along the
+ * edges. */
+static bool emit_vertex(tg__field_run* run, uint32_t v)
+{
+    tg_field_workspace* ws = run->ws;
+    const tg_geodesic* g = ws->g;
+    double sigma = ws->dist[v];
+    run->stats.pseudo_source_events++;
+    for (uint32_t i = g->vc_start[v]; i < g->vc_start[v + 1]; ++i) {
+        uint32_t c = g->vc[i], f = c / 3, k = c % 3;
+        if (g->fflags[f] & TG__F_SKIP) continue;
+        uint32_t e = 3 * f + (k + 1) % 3;
+        const tg__frame* fr = &g->frame[e];
+        if (g->fflags[f] & TG__F_FLAT) { /* v may lie on the opposite edge: emit across it too */
+            if (!emit_face_point(run, g->xyz + 3 * (size_t)v, sigma, f, TG_NONE)) return false;
+        } else if (!push_through(run, e, 0.0, fr->len, fr->cx, fr->cy, sigma, 0)) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/* Relaxes v's neighbours by the edges from v (paths along edges are real paths: this keeps every
+ * reachable vertex on the front even where no window lights it). */
+static bool relax_neighbours(tg__field_run* run, uint32_t v)
+{
+    tg_field_workspace* ws = run->ws;
+    const tg_geodesic* g = ws->g;
+    double d = ws->dist[v];
+    for (uint32_t i = g->vc_start[v]; i < g->vc_start[v + 1]; ++i) {
+        uint32_t c = g->vc[i], f = c / 3, k = c % 3;
+        if (g->fflags[f] & TG__F_SKIP) continue;
+        uint32_t hn = 3 * f + (k + 1) % 3, hp = 3 * f + (k + 2) % 3;
+        if (!relax_vertex(run, g->tri[hn], d + g->frame[c].len)) return false;
+        if (!relax_vertex(run, g->tri[hp], d + g->frame[hp].len)) return false;
+    }
+    return true;
+}
+
+/* Emits from the point p (3D, in face f) at distance sigma: every corner of f gets its distance,
+ * and each edge of f not containing p is lit from p into the faces beyond. When p lies inside an
+ * edge of f (an edge point, or a point of a zero-area face), it also lies in the other faces at
+ * that edge and emits there (once: `from` is the halfedge already crossed, or TG_NONE). */
+static bool emit_face_point(tg__field_run* run, const double p[3], double sigma, uint32_t f, uint32_t from)
+{
+    const tg_geodesic* g = run->ws->g;
+    for (int k = 0; k < 3; ++k) {
+        uint32_t v = g->tri[3 * (size_t)f + (size_t)k];
+        tg_vec3 r = tg_v3_sub(tg_v3_load(p), tg__gpos(g, v));
+        if (!relax_vertex(run, v, sigma + tg_v3_len(r))) return false;
+    }
+    for (uint32_t k = 0; k < 3; ++k) {
+        uint32_t h = 3 * f + k;
+        double len = g->frame[h].len;
+        if (!(len > 0.0) || h == from) continue;
+        tg_vec3 origin = tg__gpos(g, g->tri[h]);
+        tg_vec3 u = tg_v3_scale(tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_next(h)]), origin), 1.0 / len);
+        tg_vec3 r = tg_v3_sub(tg_v3_load(p), origin);
+        double x = tg_v3_dot(r, u), y = tg_v3_len(tg_v3_cross(u, r));
+        if (y <= TG__GRAZING_REL * (fabs(x) + len)) {
+            if (from == TG_NONE && x > 0.0 && x < len)
+                for (uint32_t o = g->ring[h]; o != h; o = g->ring[o])
+                    if (!emit_face_point(run, p, sigma, o / 3, o)) return false;
+            continue;
+        }
+        if (!push_through(run, h, 0.0, len, x, y, sigma, 0)) return false;
+    }
+    return true;
+}
+
+tg_status tg__field_seed(tg__field_run* run, const tg_surface_point* sp)
+{
+    tg_field_workspace* ws = run->ws;
+    const tg_geodesic* g = ws->g;
+    tg_surface_point cp = tg_surface_point_canonical(g->mesh, sp);
+    tg__node node = tg__node_from_surface(&cp);
+    double p[3];
+    tg_v3_store(tg__node_pos(g, &node), p);
+    bool ok = true;
+    if (node.kind == TG__NODE_VERTEX) {
+        /* emitted when it leaves the front, like a pseudo-source, whatever its kind */
+        ws->inside[node.id] |= VS_SOURCE;
+        ok = relax_vertex(run, node.id, 0.0);
+    } else if (node.kind == TG__NODE_FACE) {
+        ok = emit_face_point(run, p, 0.0, node.id, TG_NONE);
+    } else {
+        /* an edge point lies in every face holding both ends of its edge */
+        uint32_t va = g->tri[node.id], vb = g->tri[tg_halfedge_next(node.id)];
+        for (uint32_t i = g->vc_start[va]; ok && i < g->vc_start[va + 1]; ++i) {
+            uint32_t f = g->vc[i] / 3;
+            if (!(g->fflags[f] & TG__F_SKIP) && tg__corner_of(g, f, vb) >= 0)
+                ok = emit_face_point(run, p, 0.0, f, TG_NONE);
+        }
+    }
+    return ok ? TG_OK : TG_ERR_OUT_OF_MEMORY;
+}
+
+/* ---- one list across its face ---- */
+
+/* Parameter in [0, 1] along the segment o -> e where the ray from src through (b, 0) meets it. */
+static double ray_param(const double src[2], double b, const double o[2], const double e[2])
+{
+    double dx = b - src[0], dy = -src[1];
+    double num = dx * (src[1] - o[1]) - dy * (src[0] - o[0]);
+    double den = dx * (e[1] - o[1]) - dy * (e[0] - o[0]);
+    double t = num / den;
+    if (!(t >= 0.0)) return 0.0; /* also NaN from a ray parallel to the segment */
+    return t <= 1.0 ? t : 1.0;
+}
+
+/* The child of w lit through [t_lo, t_hi] of the exit halfedge e, which runs from o to d in h's
+ * frame: the source image in e's frame, then on into the faces beyond. */
+static bool push_child(tg__field_run* run, const tg__window* w, uint32_t e, const double o[2], const double d[2],
+                       double t_lo, double t_hi, uint32_t via_flat)
+{
+    const tg_geodesic* g = run->ws->g;
+    double len = g->frame[e].len;
+    double ux = (d[0] - o[0]) / len, uy = (d[1] - o[1]) / len;
+    double rx = w->sx - o[0], ry = w->sy - o[1];
+    double x = rx * ux + ry * uy, y = ux * ry - uy * rx;
+    return push_through(run, e, t_lo * len, t_hi * len, x, y, w->sigma, via_flat);
+}
+
+/* Where window w meets the face's opposite corner C: orientation of C against its two boundary
+ * rays, and the distance and edge point of its ray to C when it covers C. */
+typedef struct corner_hit {
+    int o0, o1;
+    int covers;
+    double dc, xc;
+} corner_hit;
+
+static corner_hit hit_corner(const tg__window* w, const tg__frame* fr)
+{
+    corner_hit r;
+    const double src[2] = {w->sx, w->sy}, c[2] = {fr->cx, fr->cy};
+    const double x0[2] = {w->b0, 0.0}, x1[2] = {w->b1, 0.0};
+    /* > 0: C is left of the ray, which passes right of C */
+    r.o0 = tg__orient2d_sign(src, x0, c);
+    r.o1 = tg__orient2d_sign(src, x1, c);
+    /* where the ray through C crosses the edge (cy - sy > 0 since sy < 0 <= cy) */
+    double xc = w->sx + (fr->cx - w->sx) * (-w->sy) / (fr->cy - w->sy);
+    /* A boundary ray that misses C by rounding still reaches it: rays through vertices are
+     * common (grids, CAD), and the two windows beside such a ray may both miss C by an ulp. */
+    double snap = CORNER_SNAP_REL * fr->len;
+    if (r.o1 < 0 && xc - w->b1 <= snap) r.o1 = 0;
+    if (r.o0 > 0 && w->b0 - xc <= snap) r.o0 = 0;
+    r.covers = r.o0 <= 0 && r.o1 >= 0;
+    r.dc = INFINITY, r.xc = 0.0;
+    if (r.covers) {
+        double dxc = fr->cx - w->sx, dyc = fr->cy - w->sy;
+        r.dc = w->sigma + sqrt(dxc * dxc + dyc * dyc);
+        if (r.o1 == 0) {
+            r.xc = w->b1;
+        } else if (r.o0 == 0) {
+            r.xc = w->b0;
+        } else {
+            r.xc = xc;
+            if (!(r.xc >= w->b0)) r.xc = w->b0;
+            if (!(r.xc <= w->b1)) r.xc = w->b1;
+        }
+    }
+    return r;
+}
+
+/* Propagates window w into the face of h: the part left of C lights edge CA, the part right of
+ * C edge CB; covering windows that reach C less shortly than the edge side's best are cut where
+ * their rays cross the best one's ray to C inside the face (one angle, one split). */
+static bool cross_face(tg__field_run* run, uint32_t h, const tg__window* w, int flat)
+{
+    tg_field_workspace* ws = run->ws;
+    const tg_geodesic* g = ws->g;
+    uint32_t hn = tg_halfedge_next(h), hp = tg_halfedge_prev(h);
+    const tg__frame* fr = &g->frame[h];
+    double len = fr->len;
+    const double src[2] = {w->sx, w->sy}, a[2] = {0.0, 0.0}, b[2] = {len, 0.0}, c[2] = {fr->cx, fr->cy};
+    corner_hit hc = hit_corner(w, fr);
+    bool has_l = false, has_r = false;
+    double lo_l = w->b0, hi_l = w->b1, lo_r = w->b0, hi_r = w->b1;
+    if (hc.o1 <= 0) {
+        has_l = true;
+    } else if (hc.o0 >= 0) {
+        has_r = true;
+    } else {
+        has_l = has_r = true;
+        hi_l = lo_r = hc.xc;
+    }
+    bool l_at_c = hc.covers && has_l, r_at_c = hc.covers && has_r;
+    if (hc.covers && !flat) {
+        double xs = ws->split_x[h];
+        if (hc.dc > ws->split_d[h]) {
+            if (has_l && xs < hi_l) hi_l = xs, l_at_c = false, has_l = xs > lo_l;
+            if (has_r && xs > lo_r) lo_r = xs, r_at_c = false, has_r = xs < hi_r;
+        }
+    }
+    if (has_l) { /* exit C -> A is halfedge hp */
+        double t_hi = lo_l == 0.0 ? 1.0 : ray_param(src, lo_l, c, a);
+        double t_lo = l_at_c ? 0.0 : ray_param(src, hi_l, c, a);
+        if (!push_child(run, w, hp, c, a, t_lo, t_hi, (uint32_t)flat)) return false;
+    }
+    if (has_r) { /* exit B -> C is halfedge hn */
+        double t_lo = hi_r == len ? 0.0 : ray_param(src, hi_r, b, c);
+        double t_hi = r_at_c ? 1.0 : ray_param(src, lo_r, b, c);
+        if (!push_child(run, w, hn, b, c, t_lo, t_hi, (uint32_t)flat)) return false;
+    }
+    return true;
+}
+
+/* Takes the list of h and moves it across face h / 3: filters (end-vertex distances, flat faces
+ * crossed twice), trims the windows against each other, lets the one that reaches the opposite
+ * corner most shortly set the corner's distance and the split, then crosses each survivor. */
+static bool propagate_list(tg__field_run* run, uint32_t h)
+{
+    tg_field_workspace* ws = run->ws;
+    const tg_geodesic* g = ws->g;
+    tg__window* pool = ws->win.data;
+    uint32_t id = ws->head[h];
+    ws->head[h] = TG_NONE;
+    const tg__frame* fr = &g->frame[h];
+    uint32_t hn = tg_halfedge_next(h), hp = tg_halfedge_prev(h);
+    bool crossable = fr->len > 0.0 && g->frame[hn].len > 0.0 && g->frame[hp].len > 0.0;
+    int flat = !(fr->cy > 0.0);
+    ws->scratch.count = 0;
+    for (; id != TG_NONE;) {
+        tg__window* w = &pool[id];
+        uint32_t next = w->next;
+        bool keep = crossable && !(flat && w->via_flat);
+        if (keep && dominated(run, h, w->b0, w->b1, tg__win_dist(w, w->b0), tg__win_dist(w, w->b1))) keep = false;
+        if (keep && !tg__vec_reserve(&ws->allocator, &ws->scratch, 1)) return false;
+        if (keep) {
+            ((uint32_t*)ws->scratch.data)[ws->scratch.count++] = id;
+        } else {
+            run->stats.windows_filtered++;
+            win_release(ws, id);
+        }
+        id = next;
+    }
+    uint32_t* ids = ws->scratch.data;
+    size_t n = ws->scratch.count;
+    if (n > 1) tg__windows_trim(pool, ids, n);
+    /* rule 1: the shortest covering window to C over the list sets C and the edge side's split */
+    uint32_t vc = g->tri[hp];
+    for (size_t i = 0; i < n; ++i) {
+        const tg__window* w = &pool[ids[i]];
+        if (!(w->b0 < w->b1)) continue;
+        corner_hit hc = hit_corner(w, fr);
+        if (hc.covers && hc.dc < ws->split_d[h]) {
+            if (!flat) ws->split_d[h] = hc.dc, ws->split_x[h] = hc.xc;
+            if (!relax_vertex(run, vc, hc.dc)) return false;
+        }
+    }
+    for (size_t i = 0; i < n; ++i) {
+        tg__window w = ((tg__window*)ws->win.data)[ids[i]]; /* children may move the pool */
+        win_release(ws, ids[i]);
+        if (!(w.b0 < w.b1)) {
+            run->stats.windows_filtered++;
+            continue;
+        }
+        run->stats.windows_propagated++;
+
+        if (!cross_face(run, h, &w, flat)) return false;
+    }
+    return true;
+}
+
+/* ---- the front ---- */
+
+void tg__field_reset(tg_field_workspace* ws)
+{
+    const tg_geodesic* g = ws->g;
+    size_t nv = g->vertex_count, nh = 3 * (size_t)g->face_count;
+    for (size_t v = 0; v < nv; ++v) ws->dist[v] = INFINITY;
+    memset(ws->inside, 0, nv);
+    memset(ws->queued, 0, nh);
+    for (size_t h = 0; h < nh; ++h) ws->head[h] = TG_NONE, ws->split_d[h] = INFINITY;
+    ws->win.count = 0;
+    ws->free_ids.count = 0;
+    ws->heap.count = 0;
+    ws->fifo.count = 0;
+    ws->fifo_head = 0;
+}
+
+/* When v leaves the front: the lists on the edges at v may cross their faces now, and so may the
+ * lists entering v's faces through their opposite edges; from the other faces at such an edge,
+ * those whose far corner is already reached. */
+static bool release_lists(tg__field_run* run, uint32_t v)
+{
+    tg_field_workspace* ws = run->ws;
+    const tg_geodesic* g = ws->g;
+    for (uint32_t i = g->vc_start[v]; i < g->vc_start[v + 1]; ++i) {
+        uint32_t c = g->vc[i], f = c / 3, k = c % 3;
+        if (g->fflags[f] & TG__F_SKIP) continue;
+        uint32_t e = 3 * f + (k + 1) % 3;
+        if (!enqueue(run, c) || !enqueue(run, 3 * f + (k + 2) % 3) || !enqueue(run, e)) return false;
+        for (uint32_t o = g->ring[e]; o != e; o = g->ring[o])
+            if (ws->dist[g->tri[tg_halfedge_prev(o)]] < INFINITY && !enqueue(run, o)) return false;
+    }
+    return true;
+}
+
+/* Calls the progress hook when its period has passed; true to go on. */
+static bool keep_going(tg__field_run* run)
+{
+    if (++run->work_since_check < CHECK_EVERY) return true;
+    run->work_since_check = 0;
+    if (run->cancel_flag && *run->cancel_flag) return false;
+    if (!run->progress) return true;
+    double t = now_s();
+    if (t < run->next_check_s) return true;
+    run->next_check_s = t + PROGRESS_PERIOD_S;
+    return run->progress(run->progress_user, run) == 0;
+}
+
+tg_status tg__field_propagate(tg__field_run* run)
+{
+    tg_field_workspace* ws = run->ws;
+    const tg_geodesic* g = ws->g;
+    run->next_check_s = now_s() + PROGRESS_PERIOD_S;
+    for (;;) {
+        while (ws->fifo_head < ws->fifo.count) {
+            uint32_t h = ((uint32_t*)ws->fifo.data)[ws->fifo_head++];
+            ws->queued[h] = 0;
+            if (!propagate_list(run, h)) return TG_ERR_OUT_OF_MEMORY;
+            if (!keep_going(run)) return TG_ERR_CANCELLED;
+        }
+        ws->fifo.count = ws->fifo_head = 0;
+        if (!ws->heap.count) break;
+        tg__heap_item it = front_pop(ws);
+        uint32_t v = it.node;
+        if (it.key != ws->dist[v]) continue; /* a shorter distance was queued since */
+        if (it.key > run->max_dist) {
+            if (!run->all_ready) { /* past the limit: every window within it must still cross */
+                run->all_ready = 1;
+                for (uint32_t h = 0; h < 3 * g->face_count; ++h)
+                    if (!enqueue(run, h)) return TG_ERR_OUT_OF_MEMORY;
+            }
+            continue;
+        }
+        if (!(ws->inside[v] & VS_INSIDE)) run->settled++;
+        ws->inside[v] |= VS_INSIDE;
+        run->front = it.key;
+        if ((g->vflags[v] & TG__V_PSEUDO) || (ws->inside[v] & VS_SOURCE)) {
+            ws->inside[v] &= (uint8_t)~VS_SOURCE;
+            if (!emit_vertex(run, v)) return TG_ERR_OUT_OF_MEMORY;
+        }
+        if (!relax_neighbours(run, v) || !release_lists(run, v)) return TG_ERR_OUT_OF_MEMORY;
+        if (!keep_going(run)) return TG_ERR_CANCELLED;
+    }
+    return TG_OK;
+}

@@ -49,6 +49,42 @@ bool cli_parse_spec(const char* s, cli_spec* out);
 bool cli_resolve_spec(const char* mesh_path, tg_mesh* mesh, tg_bvh** bvh, const char* text, const cli_spec* sp,
                       tg_surface_point* out);
 
+/* ---- outputs, Ctrl-C and progress (cli_output.c) ---- */
+
+/* A file output written to a temporary name beside `path` and renamed into place by
+ * cli_output_commit, so that an error or Ctrl-C never leaves a partial file. "-" is stdout. */
+typedef struct cli_output {
+    const char* path;
+    char* tmp; /* the temporary name, NULL for stdout */
+    FILE* f;
+} cli_output;
+/* Opens the temporary file (or stdout for "-"); prints the error and returns NULL on failure. */
+FILE* cli_output_open(cli_output* o, const char* path);
+/* Only picks the temporary name, for a library writer that takes a file name (o->tmp). */
+bool cli_output_reserve(cli_output* o, const char* path);
+/* Closes (checking every write) and renames into place; CLI_OK or CLI_INPUT (error printed,
+ * temporary removed). */
+int cli_output_commit(cli_output* o);
+/* Closes and removes the temporary file. */
+void cli_output_abort(cli_output* o);
+/* Writes a float64 array as NumPy .npy: (rows, cols) when matrix, else (cols,). */
+bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bool matrix);
+
+/* SIGINT and SIGTERM set a flag that long work polls (a second Ctrl-C exits at once). */
+void cli_interrupt_install(void);
+bool cli_interrupted(void);
+
+/* A progress line on stderr, drawn only when it is a terminal, not quiet, and the work has
+ * passed about a second. */
+typedef struct cli_progress {
+    const char* what;
+    bool enabled, drawn;
+    double t0, next;
+} cli_progress;
+void cli_progress_start(cli_progress* p, const char* what, bool quiet);
+void cli_progress_update(cli_progress* p, double fraction, const char* detail);
+void cli_progress_end(cli_progress* p);
+
 /* Commands (one file each). */
 extern const cli_command cli_cmd_info;
 extern const cli_command cli_cmd_closest;

@@ -1,7 +1,7 @@
-/* cmd_field.c - `trigeo field MESH --from SPEC[;SPEC...] [-o FIELD.ply | --csv OUT.csv]
- * [--max-distance D]`: the exact geodesic distance from one or more surface points to every
- * vertex (tg_geodesic_field), written as a PLY vertex property `distance` (which `trigeo render
- * --field` draws) or as CSV rows vertex,distance.
+/* cmd_field.c - `trigeo field MESH --from SPEC[;SPEC...] | --sources FILE [-o OUT.ply|.csv|.npy]
+ * [--max-distance D]`: the exact geodesic distance from surface points to every vertex
+ * (tg_geodesic_field), or one field per source as a matrix (tg_geodesic_field_batch), written
+ * as a PLY vertex property `distance` (which `trigeo render --field` draws), CSV or NumPy .npy.
  * Based on: the CLI contract of the project's DESIGN.md. */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include "cli.h"
@@ -35,97 +35,255 @@ static size_t split_specs(char* list, char** items, size_t cap)
     }
 }
 
-static int write_csv(const char* out_path, const double* d, size_t n)
+/* The output format, from the file name's extension. */
+enum { OUT_NONE, OUT_PLY, OUT_CSV, OUT_NPY };
+
+static int format_of(const char* path)
 {
-    bool to_stdout = !strcmp(out_path, "-");
-    FILE* f = to_stdout ? stdout : fopen(out_path, "w");
-    if (!f) {
-        cli_error(out_path, 0, "cannot open for writing: %s", strerror(errno));
-        return CLI_INPUT;
-    }
-    fprintf(f, "vertex,distance\n");
-    for (size_t v = 0; v < n; ++v) fprintf(f, "%zu,%.17g\n", v, d[v]);
-    int bad = to_stdout ? fflush(f) != 0 : fclose(f) != 0;
-    if (bad) {
-        cli_error(out_path, 0, "write failed");
-        return CLI_INPUT;
-    }
-    return CLI_OK;
+    const char* dot = strrchr(path, '.');
+    if (!dot) return OUT_NONE;
+    if (!strcmp(dot, ".ply")) return OUT_PLY;
+    if (!strcmp(dot, ".csv")) return OUT_CSV;
+    if (!strcmp(dot, ".npy")) return OUT_NPY;
+    return OUT_NONE;
 }
 
-static void print_summary(size_t sources, const double* d, size_t n, double secs, const tg_field_stats* st)
+/* Writes the field (rows == 1, not matrix: CSV rows vertex,distance) or the matrix (CSV: one
+ * row of vertex_count distances per source) to path in `format`. */
+static int write_table(const char* path, int format, const double* d, size_t rows, size_t n, bool matrix)
+{
+    cli_output out;
+    FILE* f = cli_output_open(&out, path);
+    if (!f) return CLI_INPUT;
+    bool ok = true;
+    if (format == OUT_NPY) {
+        ok = cli_write_npy_f64(f, d, rows, n, matrix);
+    } else if (!matrix) {
+        ok = fprintf(f, "vertex,distance\n") > 0;
+        for (size_t v = 0; ok && v < n; ++v) ok = fprintf(f, "%zu,%.17g\n", v, d[v]) > 0;
+    } else {
+        for (size_t r = 0; ok && r < rows; ++r)
+            for (size_t v = 0; ok && v < n; ++v) ok = fprintf(f, v + 1 < n ? "%.17g," : "%.17g\n", d[r * n + v]) > 0;
+    }
+    if (!ok) {
+        cli_error(path, 0, "write failed: %s", strerror(errno));
+        cli_output_abort(&out);
+        return CLI_INPUT;
+    }
+    return cli_output_commit(&out);
+}
+
+/* Progress of the field: the terminal line, and Ctrl-C as cancellation. */
+static int on_progress(void* user, const tg_field_progress* p)
+{
+    char detail[96];
+    if (p->row_count > 1)
+        snprintf(detail, sizeof detail, "%zu/%zu fields", p->rows_done, p->row_count);
+    else
+        snprintf(detail, sizeof detail, "front at distance %.6g", p->front_distance);
+    cli_progress_update(user, p->settled_fraction, detail);
+    return cli_interrupted();
+}
+
+/* Reads a sources file: one SPEC a line; blank lines and '#' comments skipped. Returns the number
+ * of sources (texts copied into *out_text, pointers into it in *out_items), or -1 after printing
+ * the error (file and line). */
+static long read_sources(const char* path, char** out_text, char*** out_items, unsigned long long** out_lines)
+{
+    FILE* f = strcmp(path, "-") ? fopen(path, "rb") : stdin;
+    if (!f) {
+        cli_error(path, 0, "cannot open: %s", strerror(errno));
+        return -1;
+    }
+    size_t cap = 4096, len = 0;
+    char* text = malloc(cap);
+    for (int c; text && (c = fgetc(f)) != EOF;) {
+        if (len + 2 > cap) {
+            char* t = realloc(text, cap *= 2);
+            if (!t) free(text);
+            text = t;
+            if (!text) break;
+        }
+        if (c == 0) {
+            cli_error(path, 0, "binary data (a NUL byte): not a sources file");
+            free(text);
+            if (f != stdin) fclose(f);
+            return -1;
+        }
+        text[len++] = (char)c;
+    }
+    bool read_error = ferror(f) != 0;
+    if (f != stdin) fclose(f);
+    if (!text) {
+        cli_error(path, 0, "out of memory");
+        return -1;
+    }
+    if (read_error) {
+        cli_error(path, 0, "read failed");
+        free(text);
+        return -1;
+    }
+    text[len] = '\0';
+    size_t lines = 1;
+    for (size_t i = 0; i < len; ++i) lines += text[i] == '\n';
+    char** items = malloc(lines * sizeof *items);
+    unsigned long long* at = malloc(lines * sizeof *at);
+    if (!items || !at) {
+        free(text), free(items), free(at);
+        cli_error(path, 0, "out of memory");
+        return -1;
+    }
+    long n = 0;
+    char* s = text;
+    if ((unsigned char)s[0] == 0xEF && (unsigned char)s[1] == 0xBB && (unsigned char)s[2] == 0xBF) s += 3; /* BOM */
+    for (unsigned long long line = 1; *s || line == 1; ++line) {
+        char* end = strchr(s, '\n');
+        char* next = end ? end + 1 : s + strlen(s);
+        if (end) *end = '\0';
+        while (*s == ' ' || *s == '\t') ++s;
+        size_t l = strlen(s);
+        while (l && (s[l - 1] == ' ' || s[l - 1] == '\t' || s[l - 1] == '\r')) s[--l] = '\0';
+        if (l && s[0] != '#') {
+            items[n] = s;
+            at[n] = line;
+            n++;
+        }
+        s = next;
+        if (!end) break;
+    }
+    if (n == 0) {
+        cli_error(path, 0, "no sources (one SPEC a line: v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)");
+        free(text), free(items), free(at);
+        return -1;
+    }
+    *out_text = text, *out_items = items, *out_lines = at;
+    return n;
+}
+
+static void print_summary(size_t sources, bool matrix, const double* d, size_t rows, size_t n, double secs,
+                          const tg_field_stats* st)
 {
     size_t reached = 0;
     double far = 0;
-    for (size_t v = 0; v < n; ++v)
+    for (size_t v = 0; v < n * rows; ++v)
         if (isfinite(d[v])) reached++, far = fmax(far, d[v]);
-    printf("sources            %zu\n", sources);
-    printf("vertices           %zu (%zu reached)\n", n, reached);
+    printf("sources            %zu%s\n", sources, matrix ? " (one field each)" : "");
+    if (matrix)
+        printf("vertices           %zu (%zu of %zu matrix entries reached)\n", n, reached, n * rows);
+    else
+        printf("vertices           %zu (%zu reached)\n", n, reached);
     printf("max distance       %.17g\n", far);
     printf("windows            %llu propagated, %llu created\n", (unsigned long long)st->windows_propagated,
            (unsigned long long)st->windows_created);
     printf("seconds            %.3f\n", secs);
 }
 
-static int run_field(const char* mesh_path, char* from, const char* ply_path, const char* csv_path, double max_dist)
+typedef struct field_args {
+    const char* mesh_path;
+    const char* out;      /* -o / --csv */
+    int format;
+    double max_dist;      /* < 0: no limit */
+    int threads;
+    bool quiet;
+    bool matrix;          /* --sources: one row per source */
+    const char* sources_path;
+} field_args;
+
+/* Resolves the spec texts items[0..count) (lines: from the sources file, named in errors).
+ * CLI_OK, CLI_USAGE (a --from spec that does not parse) or CLI_INPUT (error printed). */
+static int resolve_all(const field_args* fa, tg_mesh* mesh, tg_bvh** bvh, char** items, const unsigned long long* lines,
+                        size_t count, tg_surface_point* pts)
 {
-    char* items[MAX_SOURCES];
-    size_t count = split_specs(from, items, MAX_SOURCES);
-    if (!count) return cli_usage("field", "bad --from list (SPEC[;SPEC...], at most %d)", MAX_SOURCES);
-    cli_spec* specs = malloc(count * sizeof *specs);
-    tg_surface_point* pts = malloc(count * sizeof *pts);
-    if (!specs || !pts) {
-        free(specs), free(pts);
-        cli_error(NULL, 0, "out of memory");
-        return CLI_INPUT;
-    }
     for (size_t i = 0; i < count; ++i) {
-        if (!cli_parse_spec(items[i], &specs[i])) {
-            free(specs), free(pts);
-            return cli_usage("field", "bad source '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", items[i]);
+        cli_spec sp;
+        if (!cli_parse_spec(items[i], &sp)) {
+            if (lines)
+                cli_error(fa->sources_path, lines[i], "bad source '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)",
+                          items[i]);
+            else
+                cli_usage("field", "bad source '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", items[i]);
+            return lines ? CLI_INPUT : CLI_USAGE;
         }
+        char where[4096];
+        if (lines)
+            snprintf(where, sizeof where, "%s:%llu", fa->sources_path, lines[i]);
+        else
+            snprintf(where, sizeof where, "%s", fa->mesh_path);
+        if (!cli_resolve_spec(where, mesh, bvh, items[i], &sp, &pts[i])) return CLI_INPUT;
     }
+    return CLI_OK;
+}
+
+static int run_field(const field_args* fa, char** items, const unsigned long long* lines, size_t count)
+{
     int rc = CLI_INPUT;
     tg_bvh* bvh = NULL;
     tg_geodesic* geo = NULL;
     double* dist = NULL;
-    tg_mesh* mesh = cli_load_mesh(mesh_path);
+    tg_surface_point* pts = malloc(count * sizeof *pts);
+    tg_mesh* mesh = pts ? cli_load_mesh(fa->mesh_path) : NULL;
+    if (!pts) cli_error(NULL, 0, "out of memory");
     if (!mesh) goto done;
     if (tg_mesh_face_count(mesh) == 0) {
-        cli_error(mesh_path, 0, "the mesh has no faces");
+        cli_error(fa->mesh_path, 0, "the mesh has no faces");
         goto done;
     }
-    for (size_t i = 0; i < count; ++i)
-        if (!cli_resolve_spec(mesh_path, mesh, &bvh, items[i], &specs[i], &pts[i])) goto done;
-    size_t n = tg_mesh_vertex_count(mesh);
-    dist = malloc((n ? n : 1) * sizeof *dist);
+    if ((rc = resolve_all(fa, mesh, &bvh, items, lines, count, pts)) != CLI_OK) goto done;
+    rc = CLI_INPUT;
+    size_t n = tg_mesh_vertex_count(mesh), rows = fa->matrix ? count : 1;
+    if (n && rows > SIZE_MAX / sizeof(double) / n) {
+        cli_error(fa->sources_path, 0, "%zu sources x %zu vertices is too large", count, n);
+        goto done;
+    }
+    dist = malloc((n ? n * rows : 1) * sizeof *dist);
     tg_status st = dist ? tg_geodesic_create(mesh, NULL, &geo) : TG_ERR_OUT_OF_MEMORY;
     tg_field_options o;
     memset(&o, 0, sizeof o);
-    if (max_dist > 0) o.limit = TG_FIELD_MAX_DISTANCE, o.max_distance = max_dist;
+    if (fa->max_dist >= 0) o.limit = TG_FIELD_MAX_DISTANCE, o.max_distance = fa->max_dist;
+    cli_progress prog;
+    cli_progress_start(&prog, "field", fa->quiet);
+    o.progress = on_progress;
+    o.progress_user = &prog;
+    cli_interrupt_install();
     tg_field_stats stats;
+    memset(&stats, 0, sizeof stats);
     double t0 = now_s();
-    if (st == TG_OK) st = tg_geodesic_field(geo, pts, count, &o, dist, &stats);
+    if (st == TG_OK && fa->matrix)
+        st = tg_geodesic_field_batch(geo, pts, count, &o, fa->threads, dist, &stats);
+    else if (st == TG_OK)
+        st = tg_geodesic_field(geo, pts, count, &o, dist, &stats);
     double secs = now_s() - t0;
-    if (st != TG_OK) {
-        cli_error(mesh_path, 0, "%s", tg_status_string(st));
+    cli_progress_end(&prog);
+    if (st == TG_ERR_CANCELLED) {
+        cli_error(fa->mesh_path, 0, "interrupted: nothing written");
+        rc = 130;
         goto done;
     }
-    if (ply_path) {
+    if (st != TG_OK) {
+        cli_error(fa->mesh_path, 0, "%s", tg_status_string(st));
+        goto done;
+    }
+    if (fa->out && fa->format == OUT_PLY) {
         tg_diag d;
         memset(&d, 0, sizeof d);
         tg_vertex_scalar sc = {"distance", dist};
-        st = tg_mesh_write_ply(mesh, ply_path, &sc, 1, &d);
+        cli_output out;
+        if (!cli_output_reserve(&out, fa->out)) goto done;
+        out.f = NULL;
+        st = tg_mesh_write_ply(mesh, out.tmp, &sc, 1, &d);
         if (st != TG_OK) {
-            cli_error_diag(&d, st);
+            cli_error(fa->out, 0, "%s", d.message[0] ? d.message : tg_status_string(st));
+            cli_output_abort(&out);
             goto done;
         }
+        if ((rc = cli_output_commit(&out)) != CLI_OK) goto done;
+    } else if (fa->out && (rc = write_table(fa->out, fa->format, dist, rows, n, fa->matrix)) != CLI_OK) {
+        goto done;
     }
-    if (csv_path && (rc = write_csv(csv_path, dist, n)) != CLI_OK) goto done;
-    if (!csv_path || strcmp(csv_path, "-")) print_summary(count, dist, n, secs, &stats);
+    if (!fa->out || strcmp(fa->out, "-")) print_summary(count, fa->matrix, dist, rows, n, secs, &stats);
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
-    free(specs), free(pts), free(dist);
+    free(pts), free(dist);
     tg_geodesic_destroy(geo);
     tg_bvh_destroy(bvh);
     tg_mesh_destroy(mesh);
@@ -134,62 +292,114 @@ done:
 
 static int run(int argc, char** argv)
 {
-    const char *mesh_path = NULL, *from = NULL, *ply = NULL, *csv = NULL, *maxd = NULL;
+    field_args fa;
+    memset(&fa, 0, sizeof fa);
+    fa.max_dist = -1;
+    const char *from = NULL, *csv = NULL, *maxd = NULL, *threads = NULL;
     for (int i = 1; i < argc; ++i) {
         const char* a = argv[i];
-        if (!strcmp(a, "--from") || !strcmp(a, "-o") || !strcmp(a, "--csv") || !strcmp(a, "--max-distance")) {
+        if (!strcmp(a, "--quiet")) {
+            fa.quiet = true;
+        } else if (!strcmp(a, "--from") || !strcmp(a, "-o") || !strcmp(a, "--csv") || !strcmp(a, "--max-distance") ||
+                   !strcmp(a, "--sources") || !strcmp(a, "--threads")) {
             if (i + 1 >= argc) return cli_usage("field", "%s needs a value", a);
             const char* val = argv[++i];
             if (!strcmp(a, "--from"))
                 from = val;
             else if (!strcmp(a, "-o"))
-                ply = val;
+                fa.out = val;
             else if (!strcmp(a, "--csv"))
                 csv = val;
+            else if (!strcmp(a, "--sources"))
+                fa.sources_path = val;
+            else if (!strcmp(a, "--threads"))
+                threads = val;
             else
                 maxd = val;
         } else if (a[0] == '-' && a[1]) {
             return cli_usage("field", "unknown option '%s'", a);
-        } else if (!mesh_path) {
-            mesh_path = a;
+        } else if (!fa.mesh_path) {
+            fa.mesh_path = a;
         } else {
             return cli_usage("field", "unexpected argument '%s'", a);
         }
     }
-    if (!mesh_path) return cli_usage("field", "missing MESH");
-    if (!from) return cli_usage("field", "missing --from SPEC[;SPEC...]");
-    if (ply && csv) return cli_usage("field", "-o and --csv exclude each other");
-    double max_dist = 0;
-    if (maxd && (!cli_parse_double(maxd, &max_dist) || max_dist < 0))
+    if (!fa.mesh_path) return cli_usage("field", "missing MESH");
+    if (!from == !fa.sources_path) return cli_usage("field", "give either --from SPEC[;SPEC...] or --sources FILE");
+    if (fa.out && csv) return cli_usage("field", "-o and --csv exclude each other");
+    if (csv) {
+        fa.out = csv;
+        fa.format = OUT_CSV;
+    } else if (fa.out) {
+        fa.format = !strcmp(fa.out, "-") ? OUT_CSV : format_of(fa.out);
+        if (fa.format == OUT_NONE) return cli_usage("field", "-o %s: the extension must be .ply, .csv or .npy", fa.out);
+    }
+    fa.matrix = fa.sources_path != NULL;
+    if (fa.matrix && !fa.out) return cli_usage("field", "--sources needs -o MATRIX.npy or -o MATRIX.csv");
+    if (fa.matrix && fa.format == OUT_PLY) return cli_usage("field", "--sources writes a matrix: -o MATRIX.npy or .csv");
+    if (maxd && (!cli_parse_double(maxd, &fa.max_dist) || !(fa.max_dist >= 0)))
         return cli_usage("field", "--max-distance needs a non-negative number, not '%s'", maxd);
+    unsigned long long nt = 0;
+    if (threads && (!cli_parse_uint(threads, &nt) || nt > 1024))
+        return cli_usage("field", "--threads needs a number in 0..1024, not '%s'", threads);
+    fa.threads = (int)nt;
+    int rc;
+    if (fa.matrix) {
+        char* text = NULL;
+        char** items = NULL;
+        unsigned long long* lines = NULL;
+        long n = read_sources(fa.sources_path, &text, &items, &lines);
+        if (n < 0) return CLI_INPUT;
+        rc = run_field(&fa, items, lines, (size_t)n);
+        free(text), free(items), free(lines);
+        return rc;
+    }
     size_t len = strlen(from);
     char* list = malloc(len + 1);
-    if (!list) {
+    char** items = malloc(MAX_SOURCES * sizeof *items);
+    if (!list || !items) {
+        free(list), free(items);
         cli_error(NULL, 0, "out of memory");
         return CLI_INPUT;
     }
     memcpy(list, from, len + 1);
-    int rc = run_field(mesh_path, list, ply, csv, max_dist);
-    free(list);
+    size_t count = split_specs(list, items, MAX_SOURCES);
+    rc = count ? run_field(&fa, items, NULL, count)
+               : cli_usage("field", "bad --from list (SPEC[;SPEC...], at most %d)", MAX_SOURCES);
+    free(list), free(items);
     return rc;
 }
 
 const cli_command cli_cmd_field = {
     "field",
-    "field MESH --from SPEC[;SPEC...] [-o FIELD.ply | --csv OUT.csv] [--max-distance D]",
-    "The exact geodesic distance from one or more surface points to every vertex (window\n"
-    "propagation, Xin & Wang's improved Chen-Han algorithm); with several sources, the distance to\n"
-    "the nearest.\n\n"
-    "  --from SPEC[;SPEC...]  sources:  v:IDX            a vertex\n"
+    "field MESH --from SPEC[;SPEC...] | --sources FILE [-o OUT.ply|.csv|.npy] [--max-distance D]",
+    "The exact geodesic distance from surface points to every vertex (window propagation: window\n"
+    "lists crossing one face at a time behind a front of vertices, after Qin et al. 2016 and Xin &\n"
+    "Wang 2009). Distance is intrinsic: faces' winding does not matter, and paths continue into\n"
+    "every face at a non-manifold edge.\n\n"
+    "  --from SPEC[;SPEC...]  one field, the distance to the nearest of these sources:\n"
+    "                                   v:IDX            a vertex\n"
     "                                   f:FACE:b0,b1,b2  a point of a face (barycentric)\n"
     "                                   e:HALFEDGE:t     a point of an edge (halfedge 3*face+corner)\n"
     "                                   p:x,y,z          the surface point closest to x,y,z\n"
-    "  -o FIELD.ply           write the mesh as binary PLY with a per-vertex double property\n"
-    "                         'distance' (draw it with: trigeo render MESH --field FIELD.ply -o OUT.png)\n"
-    "  --csv OUT.csv          write CSV rows vertex,distance (%.17g; '-' for stdout)\n"
-    "  --max-distance D       stop at distance D: farther vertices get inf\n\n"
-    "Unreachable vertices (other components, unused vertices) get inf. Without --csv - a summary\n"
-    "(vertices reached, largest distance, windows, seconds) goes to stdout. Quote the list: ';' is\n"
-    "special to the shell.\n",
+    "  --sources FILE         one field per source: FILE has one SPEC a line ('#' comments and\n"
+    "                         blank lines skipped; '-' reads stdin); the fields are computed in\n"
+    "                         parallel and written as a matrix, one row per source\n"
+    "  -o OUT                 the format follows the extension:\n"
+    "                           .ply  (--from) the mesh as binary PLY with a per-vertex double\n"
+    "                                 property 'distance' (trigeo render MESH --field OUT.ply)\n"
+    "                           .csv  --from: rows vertex,distance; --sources: one row of\n"
+    "                                 vertex_count distances per source, no header (%.17g)\n"
+    "                           .npy  NumPy float64: shape (vertices,) or (sources, vertices)\n"
+    "                         '-' writes CSV to stdout\n"
+    "  --csv OUT              the same as -o with CSV whatever the extension\n"
+    "  --max-distance D       stop at distance D (0 allowed): farther vertices get inf\n"
+    "  --threads N            --sources: threads (default: all cores)\n"
+    "  --quiet                no progress line (drawn on stderr when it is a terminal and the\n"
+    "                         work passes about a second)\n\n"
+    "Unreachable vertices (other components, unused vertices) get inf. Outputs are written to a\n"
+    "temporary name and renamed when complete: an error or Ctrl-C (exit 130) leaves no partial\n"
+    "file. Without -o - a summary (vertices reached, largest distance, windows, seconds) goes to\n"
+    "stdout. Quote the --from list: ';' is special to the shell.\n",
     run,
 };

@@ -103,15 +103,37 @@ static int report_single(void* user, const tg__field_run* run)
     tg_field_progress p;
     p.front_distance = run->front;
     p.settled_fraction = run->referenced ? (double)run->settled / (double)run->referenced : 1.0;
+    if (p.settled_fraction > 1.0) p.settled_fraction = 1.0; /* components joined by misoriented edges */
     p.rows_done = 0;
     p.row_count = 1;
     return sp->fn(sp->user, &p);
 }
 
-static size_t referenced_vertices(const tg_geodesic* g)
+/* The vertices the sources can reach at most: those of the sources' components (the share of
+ * them settled is the progress figure). */
+static size_t reachable_vertices(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count)
 {
+    uint32_t comps[8];
+    size_t nc = 0;
+    for (size_t i = 0; i < source_count && nc < 8; ++i) {
+        tg_surface_point cp = tg_surface_point_canonical(g->mesh, &sources[i]);
+        uint32_t f = TG_NONE;
+        if (cp.kind == TG_SURFACE_VERTEX)
+            f = g->vc_start[cp.index + 1] > g->vc_start[cp.index] ? g->vc[g->vc_start[cp.index]] / 3 : TG_NONE;
+        else if (cp.kind == TG_SURFACE_EDGE)
+            f = cp.index / 3;
+        else
+            f = cp.index;
+        if (f != TG_NONE) comps[nc++] = g->comp[f];
+    }
     size_t n = 0;
-    for (uint32_t v = 0; v < g->vertex_count; ++v) n += g->vc_start[v + 1] > g->vc_start[v];
+    for (uint32_t v = 0; v < g->vertex_count; ++v) {
+        if (g->vc_start[v + 1] == g->vc_start[v]) continue;
+        uint32_t c = g->comp[g->vc[g->vc_start[v]] / 3];
+        bool hit = source_count > 8;
+        for (size_t k = 0; k < nc && !hit; ++k) hit = comps[k] == c;
+        n += hit;
+    }
     return n;
 }
 
@@ -134,7 +156,7 @@ static tg_status run_field(tg_field_workspace* ws, const tg_surface_point* sourc
     run->cancel_flag = cancel;
     run->opt = opt;
     run->max_dist = opt && opt->limit == TG_FIELD_MAX_DISTANCE ? opt->max_distance : INFINITY;
-    run->referenced = referenced_vertices(ws->g);
+    run->referenced = reachable_vertices(ws->g, sources, source_count);
     tg__field_reset(ws);
     ws->peak_bytes = tg_field_workspace_memory_bytes(ws);
     for (size_t i = 0; i < source_count; ++i) {
@@ -174,4 +196,119 @@ tg_status tg_geodesic_field(const tg_geodesic* g, const tg_surface_point* source
     }
     tg_field_workspace_destroy(own);
     return st;
+}
+
+/* ---- many fields ---- */
+
+/* Shared state of a batch: rows done, the first error, and the caller's progress callback
+ * (called by one thread at a time). */
+typedef struct batch_state {
+    const tg_field_options* opt;
+    size_t rows, done;
+    volatile int stop; /* set on cancellation or failure: the other threads stop too */
+} batch_state;
+
+typedef struct batch_row {
+    batch_state* b;
+} batch_row;
+
+static int report_batch(void* user, const tg__field_run* run)
+{
+    batch_state* b = ((batch_row*)user)->b;
+    int stop = 0;
+#ifdef TG_HAVE_OPENMP
+#pragma omp critical(tg_field_batch_progress)
+#endif
+    {
+        tg_field_progress p;
+        double share = run->referenced ? (double)run->settled / (double)run->referenced : 1.0;
+        if (share > 1.0) share = 1.0;
+        p.front_distance = run->front;
+        p.rows_done = b->done;
+        p.row_count = b->rows;
+        p.settled_fraction = ((double)b->done + share) / (double)b->rows;
+        if (p.settled_fraction > 1.0) p.settled_fraction = 1.0;
+        stop = b->opt->progress(b->opt->progress_user, &p) != 0;
+        if (stop) b->stop = 1;
+    }
+    return stop;
+}
+
+static void stats_add(tg_field_stats* sum, const tg_field_stats* s)
+{
+    sum->windows_created += s->windows_created;
+    sum->windows_propagated += s->windows_propagated;
+    sum->windows_filtered += s->windows_filtered;
+    sum->pseudo_source_events += s->pseudo_source_events;
+    sum->pseudo_source_vertices = s->pseudo_source_vertices;
+    if (s->max_queue > sum->max_queue) sum->max_queue = s->max_queue;
+    if (s->peak_windows > sum->peak_windows) sum->peak_windows = s->peak_windows;
+    if (s->peak_bytes > sum->peak_bytes) sum->peak_bytes = s->peak_bytes;
+}
+
+tg_status tg_geodesic_field_batch(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+                                  const tg_field_options* options, int threads, double* out_matrix,
+                                  tg_field_stats* out_stats)
+{
+    if (threads < 0) return TG_ERR_INVALID_ARGUMENT;
+    tg_status st = check_args(g, sources, source_count, options, out_matrix);
+    if (st != TG_OK) return st;
+    size_t nv = g->vertex_count, cells;
+    if (tg__mul_overflows(source_count, nv, &cells) || cells > SIZE_MAX / sizeof(double)) return TG_ERR_INVALID_ARGUMENT;
+    if (source_count == 0) {
+        if (out_stats) memset(out_stats, 0, sizeof *out_stats);
+        return TG_OK;
+    }
+    const tg_allocator* alloc = options && options->allocator ? options->allocator : &g->allocator;
+    batch_state b = {options, source_count, 0, 0};
+    tg_field_stats sum;
+    memset(&sum, 0, sizeof sum);
+    tg_status first_error = TG_OK;
+    int nthreads = 1;
+#ifdef TG_HAVE_OPENMP
+    nthreads = threads > 0 ? threads : omp_get_max_threads();
+    if ((size_t)nthreads > source_count) nthreads = (int)source_count;
+#pragma omp parallel num_threads(nthreads)
+#endif
+    {
+        tg_field_workspace* ws = NULL;
+        tg_status mine = workspace_make(g, alloc, &ws);
+        tg_field_stats local;
+        memset(&local, 0, sizeof local);
+        batch_row row = {&b};
+        if (mine != TG_OK) b.stop = 1;
+#ifdef TG_HAVE_OPENMP
+#pragma omp for schedule(dynamic, 1)
+#endif
+        for (long long i = 0; i < (long long)source_count; ++i) {
+            if (b.stop || mine != TG_OK) continue;
+            tg__field_run run;
+            mine = run_field(ws, &sources[i], 1, options, options && options->progress ? report_batch : NULL, &row,
+                             &b.stop, &run);
+            if (mine != TG_OK) {
+                b.stop = 1;
+                continue;
+            }
+            copy_out(ws, run.max_dist, out_matrix + (size_t)i * nv);
+            stats_add(&local, &run.stats);
+#ifdef TG_HAVE_OPENMP
+#pragma omp atomic
+#endif
+            b.done++;
+        }
+#ifdef TG_HAVE_OPENMP
+#pragma omp critical(tg_field_batch_merge)
+#endif
+        {
+            stats_add(&sum, &local);
+            /* the most telling error: out of memory before cancellation before "stopped by another" */
+            if (mine == TG_ERR_OUT_OF_MEMORY || (mine != TG_OK && first_error == TG_OK)) first_error = mine;
+        }
+        tg_field_workspace_destroy(ws);
+    }
+    (void)nthreads;
+    if (first_error == TG_OK && b.done != source_count) first_error = TG_ERR_CANCELLED;
+    if (first_error != TG_OK) return first_error;
+    if (out_stats) *out_stats = sum;
+    return TG_OK;
 }

@@ -1,0 +1,181 @@
+/* cli_output.c - CLI outputs that never leave a partial file (written to a temporary name beside
+ * the target and renamed into place only when complete), Ctrl-C as a polite request to stop, a
+ * progress line on a terminal, and the NumPy .npy format.
+ * Based on: the CLI contract of the project's DESIGN.md; rename(2) being atomic within one file
+ * system (POSIX); the NPY format version 1.0 (NumPy Enhancement Proposal 1). */
+#define _POSIX_C_SOURCE 200809L
+#include "cli.h"
+
+#include <errno.h>
+#include <signal.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+/* ---- Ctrl-C ---- */
+
+static volatile sig_atomic_t interrupted;
+
+static void on_sigint(int sig)
+{
+    (void)sig;
+    if (interrupted) _exit(130); /* a second Ctrl-C: stop at once (temporary files may remain) */
+    interrupted = 1;
+}
+
+void cli_interrupt_install(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_sigint;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
+bool cli_interrupted(void)
+{
+    return interrupted != 0;
+}
+
+/* ---- progress line ---- */
+
+static double mono_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+void cli_progress_start(cli_progress* p, const char* what, bool quiet)
+{
+    memset(p, 0, sizeof *p);
+    p->what = what;
+    p->enabled = !quiet && isatty(STDERR_FILENO);
+    p->t0 = mono_s();
+    p->next = p->t0 + 1.0; /* only work that passes about a second draws a line */
+}
+
+void cli_progress_update(cli_progress* p, double fraction, const char* detail)
+{
+    if (!p->enabled) return;
+    double t = mono_s();
+    if (t < p->next) return;
+    p->next = t + 0.1;
+    p->drawn = true;
+    fprintf(stderr, "\r%s: %5.1f%%  %s  %.1f s   ", p->what, 100.0 * fraction, detail ? detail : "", t - p->t0);
+    fflush(stderr);
+}
+
+void cli_progress_end(cli_progress* p)
+{
+    if (p->drawn) {
+        fprintf(stderr, "\r%*s\r", 78, "");
+        fflush(stderr);
+    }
+    p->drawn = false;
+}
+
+/* ---- outputs ---- */
+
+FILE* cli_output_open(cli_output* o, const char* path)
+{
+    memset(o, 0, sizeof *o);
+    o->path = path;
+    if (!strcmp(path, "-")) {
+        o->f = stdout;
+        return o->f;
+    }
+    if (!cli_output_reserve(o, path)) return NULL;
+    o->f = fopen(o->tmp, "wb");
+    if (!o->f) {
+        cli_error(path, 0, "cannot open for writing: %s", strerror(errno));
+        free(o->tmp);
+        o->tmp = NULL;
+        return NULL;
+    }
+    return o->f;
+}
+
+bool cli_output_reserve(cli_output* o, const char* path)
+{
+    o->path = path;
+    size_t n = strlen(path);
+    o->tmp = malloc(n + 32);
+    if (!o->tmp) {
+        cli_error(path, 0, "out of memory");
+        return false;
+    }
+    /* beside the target (same directory, so the rename stays within one file system) */
+    snprintf(o->tmp, n + 32, "%s.tmp-%ld", path, (long)getpid());
+    return true;
+}
+
+int cli_output_commit(cli_output* o)
+{
+    int rc = CLI_OK;
+    if (o->f) {
+        bool bad = ferror(o->f) != 0;
+        if (o->f == stdout)
+            bad = fflush(stdout) != 0 || bad;
+        else
+            bad = fclose(o->f) != 0 || bad;
+        o->f = NULL;
+        if (bad) {
+            cli_error(o->path, 0, "write failed: %s", strerror(errno));
+            rc = CLI_INPUT;
+        }
+    }
+    if (o->tmp) {
+        if (rc == CLI_OK && rename(o->tmp, o->path) != 0) {
+            cli_error(o->path, 0, "cannot rename the finished output into place: %s", strerror(errno));
+            rc = CLI_INPUT;
+        }
+        if (rc != CLI_OK) remove(o->tmp);
+        free(o->tmp);
+        o->tmp = NULL;
+    }
+    return rc;
+}
+
+void cli_output_abort(cli_output* o)
+{
+    if (o->f && o->f != stdout) fclose(o->f);
+    o->f = NULL;
+    if (o->tmp) {
+        remove(o->tmp);
+        free(o->tmp);
+        o->tmp = NULL;
+    }
+}
+
+/* ---- .npy ---- */
+
+bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bool matrix)
+{
+    char dict[160];
+    if (matrix)
+        snprintf(dict, sizeof dict, "{'descr': '<f8', 'fortran_order': False, 'shape': (%zu, %zu), }", rows, cols);
+    else
+        snprintf(dict, sizeof dict, "{'descr': '<f8', 'fortran_order': False, 'shape': (%zu,), }", cols);
+    /* magic (6) + version (2) + header length (2) + dict padded with spaces and a newline to a
+     * multiple of 64 bytes, so that the data is aligned */
+    size_t len = strlen(dict), total = 10 + len + 1;
+    size_t pad = (64 - total % 64) % 64, hlen = len + pad + 1;
+    unsigned char pre[10] = {0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0, (unsigned char)(hlen & 0xFF), (unsigned char)(hlen >> 8)};
+    if (fwrite(pre, 1, 10, f) != 10 || fwrite(dict, 1, len, f) != len) return false;
+    for (size_t i = 0; i < pad; ++i)
+        if (fputc(' ', f) == EOF) return false;
+    if (fputc('\n', f) == EOF) return false;
+    size_t n = rows * cols;
+    for (size_t i = 0; i < n; ++i) {
+        uint64_t bits;
+        memcpy(&bits, &data[i], sizeof bits);
+        unsigned char b[8];
+        for (int k = 0; k < 8; ++k) b[k] = (unsigned char)(bits >> (8 * k)); /* little endian */
+        if (fwrite(b, 1, 8, f) != 8) return false;
+    }
+    return true;
+}

@@ -80,6 +80,7 @@ struct tg_field_workspace {
     tg__vec fifo;     /* uint32_t ring buffer of halfedges */
     size_t fifo_head;
     tg__vec scratch;  /* uint32_t: one list's windows while it is propagated */
+    tg__vec keys;     /* tg__win_key: their starts before trimming */
     size_t peak_bytes;
 };
 
@@ -140,11 +141,16 @@ static inline void tg__ring_interval(const tg_geodesic* g, uint32_t e, uint32_t 
     }
 }
 
-/* Trims the windows of one list against each other (ids[0..n), sorted here by b0): where one
- * window is shorter than another by the relative margin over a part of their common interval that
- * touches an end of the other, that part is cut from the other; windows left empty get b1 < b0.
- * Returns the number of pairs compared. */
-uint64_t tg__windows_trim(tg__window* pool, uint32_t* ids, size_t n);
+/* Trims the windows of one list against each other (ids[0..n), sorted here by b0; keys: scratch
+ * for n entries; len: the edge's length): touching windows of one source image are merged; where
+ * one window is shorter than another by the relative margin over a part of
+ * their common interval that touches an end of the other, that part is cut from the other;
+ * windows left empty get b1 <= b0. Returns the number of pairs compared. */
+typedef struct tg__win_key {
+    double key;
+    uint32_t id;
+} tg__win_key;
+uint64_t tg__windows_trim(tg__window* pool, uint32_t* ids, tg__win_key* keys, size_t n, double len);
 
 /* ---- propagation (field_propagate.c) ---- */
 

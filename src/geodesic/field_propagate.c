@@ -42,7 +42,7 @@ static void note_peak(tg_field_workspace* ws)
 {
     size_t b = ws->fixed_bytes + ws->win.capacity * sizeof(tg__window) + ws->free_ids.capacity * sizeof(uint32_t) +
                ws->heap.capacity * sizeof(tg__heap_item) + ws->fifo.capacity * sizeof(uint32_t) +
-               ws->scratch.capacity * sizeof(uint32_t);
+               ws->scratch.capacity * sizeof(uint32_t) + ws->keys.capacity * sizeof(tg__win_key);
     if (b > ws->peak_bytes) ws->peak_bytes = b;
 }
 
@@ -446,7 +446,10 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
     }
     uint32_t* ids = ws->scratch.data;
     size_t n = ws->scratch.count;
-    if (n > 1) tg__windows_trim(pool, ids, n);
+    if (n > 1) {
+        if (!tg__vec_reserve(&ws->allocator, &ws->keys, n)) return false;
+        tg__windows_trim(pool, ids, ws->keys.data, n, fr->len);
+    }
     /* rule 1: the shortest covering window to C over the list sets C and the edge side's split */
     uint32_t vc = g->tri[hp];
     for (size_t i = 0; i < n; ++i) {

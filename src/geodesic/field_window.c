@@ -14,11 +14,27 @@
  * by the same straight segment X -> q (a real path on the surface), so j may drop X. */
 #include "geodesic/field_internal.h"
 
+#include <stdlib.h>
+
 /* Two windows tie where they differ by less than this relative margin (rounding of distances
  * accumulated along different routes to the same source image); the tie goes to the window with
  * the smaller offset sigma (the more direct route), then to the lower one in the list. Each cut
  * on a tie moves a distance by at most this much. */
 #define TIE_REL 1e-13
+
+/* Two windows lit by the same source image (equal to this relative margin: the rounding of
+ * unfoldings along different chains of faces) whose intervals touch are one bundle of rays with
+ * one distance function, and are merged into one. Rays in a gap of this relative size between them
+ * are lit too (their paths bend by a second-order angle at most). */
+#define SAME_SOURCE_REL 1e-13
+
+static bool same_source(const tg__window* wi, const tg__window* wj, double len)
+{
+    double scale = fabs(wi->sx) + fabs(wi->sy) + wi->sigma + len;
+    double tol = SAME_SOURCE_REL * scale;
+    return fabs(wi->sx - wj->sx) <= tol && fabs(wi->sy - wj->sy) <= tol && fabs(wi->sigma - wj->sigma) <= tol &&
+           wj->b0 <= wi->b1 + tol;
+}
 
 /* Roots in (p, q) of D_i(x) = D_j(x), written to r (at most 2), sorted; returns the count. The
  * equation sqrt((x-a)^2+P) - sqrt((x-b)^2+Q) = alpha is squared twice (candidates that do not
@@ -107,26 +123,53 @@ static void trim_pair(tg__window* wi, tg__window* wj)
     }
 }
 
-uint64_t tg__windows_trim(tg__window* pool, uint32_t* ids, size_t n)
+static int cmp_key(const void* x, const void* y)
 {
-    /* insertion sort by b0 (lists are short) */
-    for (size_t i = 1; i < n; ++i) {
-        uint32_t x = ids[i];
-        double key = pool[x].b0;
-        size_t j = i;
-        while (j > 0 && pool[ids[j - 1]].b0 > key) {
-            ids[j] = ids[j - 1];
-            --j;
+    const tg__win_key *a = x, *b = y;
+    if (a->key != b->key) return a->key < b->key ? -1 : 1;
+    return (a->id > b->id) - (a->id < b->id);
+}
+
+uint64_t tg__windows_trim(tg__window* pool, uint32_t* ids, tg__win_key* keys, size_t n, double len)
+{
+    /* sort by b0: lists are built by prepending, so they usually arrive in descending order */
+    for (size_t i = 0; i < n; ++i) keys[n - 1 - i].key = pool[ids[i]].b0, keys[n - 1 - i].id = ids[i];
+    if (n <= 16) {
+        for (size_t i = 1; i < n; ++i) {
+            tg__win_key x = keys[i];
+            size_t j = i;
+            while (j > 0 && cmp_key(&keys[j - 1], &x) > 0) {
+                keys[j] = keys[j - 1];
+                --j;
+            }
+            keys[j] = x;
         }
-        ids[j] = x;
+    } else {
+        bool sorted = true;
+        for (size_t i = 1; i < n && sorted; ++i) sorted = cmp_key(&keys[i - 1], &keys[i]) <= 0;
+        if (!sorted) qsort(keys, n, sizeof *keys, cmp_key);
     }
+    for (size_t i = 0; i < n; ++i) ids[i] = keys[i].id;
+    /* merge runs of windows of one source image (a fan of thin faces splits one bundle of rays
+     * into as many windows as it has faces) */
+    size_t live = 0;
+    for (size_t j = 1; j < n; ++j) {
+        tg__window *wi = &pool[ids[live]], *wj = &pool[ids[j]];
+        if (same_source(wi, wj, len)) {
+            if (wj->b1 > wi->b1) wi->b1 = wj->b1;
+            wj->b1 = wj->b0; /* empty: dropped by the caller */
+        } else {
+            live = j;
+        }
+    }
+    /* trimming only raises starts and lowers ends, so once a later window's start before
+     * trimming reaches wi's end, no window after it overlaps wi */
     uint64_t pairs = 0;
     for (size_t i = 0; i < n; ++i) {
         tg__window* wi = &pool[ids[i]];
-        for (size_t j = i + 1; j < n && wi->b0 < wi->b1; ++j) {
+        for (size_t j = i + 1; j < n && wi->b0 < wi->b1 && keys[j].key < wi->b1; ++j) {
             tg__window* wj = &pool[ids[j]];
             if (!(wj->b0 < wj->b1)) continue;
-            if (wj->b0 >= wi->b1) break;
             trim_pair(wi, wj);
             pairs++;
         }

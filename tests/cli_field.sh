@@ -84,6 +84,52 @@ if os.path.exists(ply):
     r = run(flat, "--field", ply, "-o", png, cmd="render")
     check(r.returncode == 0 and os.path.getsize(png) > 1000, "render --field: exit %d %s" % (r.returncode, r.stderr))
 
+
+# --max-distance 0 means distance 0 (not "no limit"): only the source
+r = run(flat, "--from", "v:0", "--csv", "-", "--max-distance", "0")
+d = parse_csv(r.stdout) if r.returncode == 0 else None
+check(d is not None and d[0] == 0 and all(x == math.inf for x in d[1:]), "--max-distance 0: only the source")
+
+# --sources FILE: one field per source, a matrix in .npy (float64, rows = sources) and .csv
+def read_npy(path):
+    data = open(path, "rb").read()
+    check(data[:6] == b"\x93NUMPY" and data[6] == 1, "npy magic and version")
+    hlen = struct.unpack_from("<H", data, 8)[0]
+    header = data[10:10 + hlen].decode()
+    check((10 + hlen) % 64 == 0 and header.endswith("\n") and "'descr': '<f8'" in header, "npy header %r" % header)
+    shape = tuple(int(x) for x in header.split("(")[1].split(")")[0].split(",") if x.strip())
+    count = 1
+    for x in shape: count *= x
+    return shape, list(struct.unpack_from("<%dd" % count, data, 10 + hlen))
+srcs = os.path.join(tmp, "sources.txt")
+with open(srcs, "wb") as fh:
+    fh.write(b"\xef\xbb\xbf# a comment, a BOM, CRLF and blank lines\r\nv:0\r\n\n  f:10:0.2,0.3,0.5  \ne:31:0.25\n")
+pts = [vs[0], pos_face(10, (0.2, 0.3, 0.5)), pos_edge(31, 0.25)]
+npy = os.path.join(tmp, "m.npy")
+r = run(flat, "--sources", srcs, "-o", npy, "--threads", "2")
+check(r.returncode == 0, "--sources .npy: exit %d %s" % (r.returncode, r.stderr))
+if r.returncode == 0:
+    shape, vals = read_npy(npy)
+    check(shape == (3, len(vs)), "matrix shape %s" % (shape,))
+    worst = max(abs(vals[i * len(vs) + v] - dist(vs[v], pts[i])) for i in range(3) for v in range(base))
+    check(worst <= 1e-12 and all(vals[i * len(vs) + v] == math.inf for i in range(3) for v in range(base, len(vs))),
+          "matrix rows = fields of each source (worst %.3g)" % worst)
+    r2 = run(flat, "--from", "f:10:0.2,0.3,0.5", "-o", os.path.join(tmp, "one.npy"))
+    shape1, one = read_npy(os.path.join(tmp, "one.npy"))
+    check(r2.returncode == 0 and shape1 == (len(vs),) and one == vals[len(vs):2 * len(vs)], "row 1 == the single field")
+mcsv = os.path.join(tmp, "m.csv")
+r = run(flat, "--sources", srcs, "-o", mcsv)
+rows = [l.split(",") for l in open(mcsv).read().splitlines()] if r.returncode == 0 else []
+check(len(rows) == 3 and all(len(x) == len(vs) for x in rows) and float(rows[2][5]) == vals[2 * len(vs) + 5],
+      "--sources .csv: 3 rows of %d" % len(vs))
+# a bad line names file and line; no output file, not even a temporary one
+bad = os.path.join(tmp, "bad.txt")
+open(bad, "w").write("v:0\nv:1\nv:99999\n")
+out = os.path.join(tmp, "bad.npy")
+err_r = run(flat, "--sources", bad, "-o", out)
+check(err_r.returncode == 2 and (bad + ":3:") in err_r.stderr, "bad source line: %d %r" % (err_r.returncode, err_r.stderr))
+check(not [f for f in os.listdir(tmp) if f.startswith("bad.npy")], "no partial output: %s" % os.listdir(tmp))
+
 # errors: usage (1), input (2), message format
 def err(args, code, needle):
     r = run(*args)
@@ -98,6 +144,10 @@ err([flat, "--from", "v:1", "--bogus"], 1, "--bogus")
 err([flat, "--from", "v:99999"], 2, "out of range")
 err([flat, "--from", "v:1;f:1:0.5,0.6,0.5"], 2, "sum")
 err([os.path.join(tmp, "missing.obj"), "--from", "v:1"], 2, "missing.obj")
+err([flat, "--sources", srcs], 1, "-o")
+err([flat, "--sources", srcs, "--from", "v:1", "-o", npy], 1, "either")
+err([flat, "--from", "v:1", "-o", os.path.join(tmp, "x.txt")], 1, "extension")
+err([flat, "--sources", os.path.join(tmp, "none.txt"), "-o", npy], 2, "none.txt")
 err([flat, "--from", "v:1", "-o", os.path.join(tmp, "no", "such", "dir.ply")], 2, "dir.ply")
 
 # a corpus mesh, the default demo mesh: every vertex reached, finite, 0 at the source

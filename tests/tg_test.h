@@ -3,6 +3,8 @@
 #ifndef TG_TEST_H
 #define TG_TEST_H
 
+#include <stdbool.h>
+
 #include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
@@ -119,26 +121,31 @@ static inline int tg_test_for_each_corpus_mesh(void (*fn)(const char* dir, const
 typedef struct tg_test_counting {
     long allocs, frees, fail_after;
 } tg_test_counting;
+/* The counters are updated atomically: batch entry points allocate from several threads. */
+static inline bool tg_test_c_take(tg_test_counting* c)
+{
+    long n = __atomic_load_n(&c->allocs, __ATOMIC_SEQ_CST);
+    do {
+        if (c->fail_after >= 0 && n >= c->fail_after) return false;
+    } while (!__atomic_compare_exchange_n(&c->allocs, &n, n + 1, false, __ATOMIC_SEQ_CST, __ATOMIC_SEQ_CST));
+    return true;
+}
 static inline void* tg_test_c_alloc(void* u, size_t n)
 {
-    tg_test_counting* c = (tg_test_counting*)u;
-    if (c->fail_after >= 0 && c->allocs >= c->fail_after) return NULL;
-    c->allocs++;
-    return malloc(n);
+    return tg_test_c_take((tg_test_counting*)u) ? malloc(n) : NULL;
 }
 static inline void* tg_test_c_realloc(void* u, void* p, size_t n)
 {
     tg_test_counting* c = (tg_test_counting*)u;
     if (!p) return tg_test_c_alloc(u, n);
-    if (c->fail_after >= 0 && c->allocs >= c->fail_after) return NULL;
-    c->allocs++;
-    c->frees++;
+    if (!tg_test_c_take(c)) return NULL;
+    __atomic_fetch_add(&c->frees, 1, __ATOMIC_SEQ_CST);
     return realloc(p, n);
 }
 static inline void tg_test_c_free(void* u, void* p)
 {
     tg_test_counting* c = (tg_test_counting*)u;
-    if (p) c->frees++;
+    if (p) __atomic_fetch_add(&c->frees, 1, __ATOMIC_SEQ_CST);
     free(p);
 }
 #define tg_test_failing_allocator(counter) {tg_test_c_alloc, tg_test_c_realloc, tg_test_c_free, (counter)}

@@ -1,0 +1,351 @@
+/* test_field_engine.c - the exact field engine's contract beyond the distances themselves:
+ * distance is intrinsic (a mesh with flipped faces, or every face flipped, gives the field of the
+ * consistently oriented mesh; duplicate faces count once), a workspace reused for a second field
+ * allocates nothing, progress is reported and cancellation leaves outputs untouched and nothing
+ * leaked, the batch equals single fields bit for bit on any thread count, max_distance 0 means
+ * distance 0, and every allocation of every new entry point may fail cleanly (on a mesh of more
+ * than 4096 faces). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <trigeo.h>
+
+#include "tg_test.h"
+
+static tg_mesh* load(const char* file)
+{
+    return tg_test_load_corpus_mesh(tg_test_meshes_dir(), file);
+}
+
+/* A copy of m's arrays with `edit` applied to its triangles (and extra faces appended). */
+static tg_mesh* remesh(const tg_mesh* m, void (*edit)(uint32_t* tri, size_t nf, size_t* io_nf), size_t extra)
+{
+    size_t nv = tg_mesh_vertex_count(m), nf = tg_mesh_face_count(m);
+    uint32_t* tri = malloc(3 * (nf + extra) * sizeof *tri);
+    memcpy(tri, tg_mesh_triangles(m), 3 * nf * sizeof *tri);
+    edit(tri, nf, &nf);
+    tg_mesh* out = NULL;
+    tg_diag d;
+    CHECK_STATUS(tg_mesh_create(tg_mesh_positions(m), nv, tri, nf, NULL, &d, &out), TG_OK);
+    free(tri);
+    return out;
+}
+
+static void flip_every_seventh(uint32_t* tri, size_t nf, size_t* io_nf)
+{
+    (void)io_nf;
+    for (size_t f = 0; f < 1400 && f < nf; f += 7) {
+        uint32_t t = tri[3 * f + 1];
+        tri[3 * f + 1] = tri[3 * f + 2], tri[3 * f + 2] = t;
+    }
+}
+
+static void flip_all(uint32_t* tri, size_t nf, size_t* io_nf)
+{
+    (void)io_nf;
+    for (size_t f = 0; f < nf; ++f) {
+        uint32_t t = tri[3 * f];
+        tri[3 * f] = tri[3 * f + 2], tri[3 * f + 2] = t;
+    }
+}
+
+/* 300 faces duplicated, every other copy with the opposite winding */
+static void duplicate_some(uint32_t* tri, size_t nf, size_t* io_nf)
+{
+    size_t n = nf;
+    for (size_t f = 0; f < 300; ++f) {
+        size_t src = (f * 17) % nf;
+        tri[3 * n] = tri[3 * src];
+        tri[3 * n + 1] = tri[3 * src + (f & 1 ? 2 : 1)];
+        tri[3 * n + 2] = tri[3 * src + (f & 1 ? 1 : 2)];
+        n++;
+    }
+    *io_nf = n;
+}
+
+static void field_of(const tg_mesh* m, const tg_surface_point* s, size_t count, double* out, tg_field_stats* st)
+{
+    tg_geodesic* g = NULL;
+    CHECK_STATUS(tg_geodesic_create(m, NULL, &g), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(g, s, count, NULL, out, st), TG_OK);
+    tg_geodesic_destroy(g);
+}
+
+static double max_finite(const double* d, size_t n)
+{
+    double m = 0;
+    for (size_t v = 0; v < n; ++v)
+        if (isfinite(d[v]) && d[v] > m) m = d[v];
+    return m;
+}
+
+static void same_field(const char* what, const double* a, const double* b, size_t n)
+{
+    double tol = 1e-12 * max_finite(a, n), worst = 0;
+    size_t at = 0;
+    for (size_t v = 0; v < n; ++v) {
+        double e = isinf(a[v]) && isinf(b[v]) ? 0 : fabs(a[v] - b[v]);
+        if (!(e <= worst)) worst = e, at = v;
+    }
+    CHECK_MSG(worst <= tol, "%s: vertex %zu: %.17g vs %.17g", what, at, a[at], b[at]);
+}
+
+/* ---- orientation and duplicates ---- */
+
+static void test_intrinsic(void)
+{
+    tg_mesh* m = load("nvd_spot.obj");
+    if (!m) return;
+    size_t n = tg_mesh_vertex_count(m);
+    double* ref = malloc(n * sizeof *ref);
+    double* d = malloc(n * sizeof *d);
+    tg_surface_point srcs[3] = {tg_surface_vertex(0), tg_surface_face(2000, 0.2, 0.3, 0.5), tg_surface_edge(301, 0.3)};
+    for (int q = 0; q < 3; ++q) {
+        field_of(m, &srcs[q], 1, ref, NULL);
+        tg_mesh* f7 = remesh(m, flip_every_seventh, 0);
+        tg_mesh* fa = remesh(m, flip_all, 0);
+        tg_mesh* du = remesh(m, duplicate_some, 300);
+        CHECK(tg_mesh_get_report(f7)->misoriented_edges > 100);
+        CHECK_EQ_INT(tg_mesh_get_report(du)->duplicate_faces, 300);
+        field_of(f7, &srcs[q], 1, d, NULL);
+        same_field("every seventh face flipped", ref, d, n);
+        if (q == 0) /* the example: 0.1796 instead of 0.1611 at vertex 1150 */
+            CHECK_MSG(fabs(d[1150] - ref[1150]) <= 1e-12, "vertex 1150: %.17g vs %.17g", d[1150], ref[1150]);
+        /* the same points in the flipped faces: corners 0 and 2 swapped */
+        tg_surface_point fs = srcs[q];
+        if (fs.kind == TG_SURFACE_FACE) {
+            double b0 = fs.bary[0];
+            fs.bary[0] = fs.bary[2], fs.bary[2] = b0;
+        } else if (fs.kind == TG_SURFACE_EDGE) { /* corner k -> k + 1 becomes 2 - k -> 1 - k */
+            uint32_t f = fs.index / 3, k = fs.index % 3;
+            fs = tg_surface_edge(3 * f + (k == 1 ? 0 : k == 0 ? 1 : 2), 1.0 - fs.t);
+        }
+        field_of(fa, &fs, 1, d, NULL);
+        same_field("every face flipped", ref, d, n);
+        field_of(du, &srcs[q], 1, d, NULL);
+        same_field("300 duplicate faces", ref, d, n);
+        tg_mesh_destroy(f7), tg_mesh_destroy(fa), tg_mesh_destroy(du);
+    }
+    free(ref), free(d);
+    tg_mesh_destroy(m);
+}
+
+/* ---- workspace reuse, progress, cancellation ---- */
+
+typedef struct progress_log {
+    int calls;
+    int cancel_at; /* cancel on this call (1-based); 0: never */
+    double last_fraction;
+    int monotone;
+    size_t last_rows;
+} progress_log;
+
+static int on_progress(void* user, const tg_field_progress* p)
+{
+    progress_log* l = user;
+    l->calls++;
+    if (p->settled_fraction < l->last_fraction || p->settled_fraction > 1 || !(p->front_distance >= 0)) l->monotone = 0;
+    l->last_fraction = p->settled_fraction;
+    l->last_rows = p->row_count;
+    return l->cancel_at && l->calls >= l->cancel_at;
+}
+
+static void test_workspace_and_progress(void)
+{
+    tg_mesh* m = load("igl_armadillo.obj");
+    if (!m) return;
+    size_t n = tg_mesh_vertex_count(m);
+    tg_test_counting cnt = {0, 0, -1};
+    tg_allocator a = tg_test_failing_allocator(&cnt);
+    tg_geodesic_options go = {&a};
+    tg_geodesic* g = NULL;
+    CHECK_STATUS(tg_geodesic_create(m, &go, &g), TG_OK);
+    tg_field_workspace* ws = NULL;
+    CHECK_STATUS(tg_field_workspace_create(g, &ws), TG_OK);
+    double* d1 = malloc(n * sizeof *d1);
+    double* d2 = malloc(n * sizeof *d2);
+    tg_field_options o;
+    memset(&o, 0, sizeof o);
+    o.workspace = ws;
+    tg_surface_point s = tg_surface_vertex(1000);
+    CHECK_STATUS(tg_geodesic_field(g, &s, 1, &o, d1, NULL), TG_OK);
+    long after_first = cnt.allocs;
+    size_t bytes = tg_field_workspace_memory_bytes(ws);
+    CHECK_STATUS(tg_geodesic_field(g, &s, 1, &o, d2, NULL), TG_OK);
+    CHECK_MSG(cnt.allocs == after_first, "the second field allocated %ld blocks", cnt.allocs - after_first);
+    CHECK(tg_field_workspace_memory_bytes(ws) == bytes && bytes > 0);
+    CHECK(memcmp(d1, d2, n * sizeof *d1) == 0);
+    /* the same with a temporary workspace */
+    o.workspace = NULL;
+    CHECK_STATUS(tg_geodesic_field(g, &s, 1, &o, d2, NULL), TG_OK);
+    CHECK(memcmp(d1, d2, n * sizeof *d1) == 0);
+    /* progress: called (the run takes far more than 5 ms under any build), fractions in [0, 1] and
+     * never decreasing */
+    progress_log log = {0, 0, 0, 1, 0};
+    o.workspace = ws;
+    o.progress = on_progress;
+    o.progress_user = &log;
+    tg_surface_point far = tg_surface_face(100, 0.3, 0.3, 0.4);
+    CHECK_STATUS(tg_geodesic_field(g, &far, 1, &o, d2, NULL), TG_OK);
+    CHECK_MSG(log.calls >= 1, "progress calls: %d", log.calls);
+    CHECK(log.monotone && log.last_rows == 1);
+    /* cancellation on the first call: TG_ERR_CANCELLED, output untouched; then the workspace
+     * still works */
+    for (size_t v = 0; v < n; ++v) d2[v] = -7;
+    progress_log stop = {0, 1, 0, 1, 0};
+    o.progress_user = &stop;
+    tg_field_stats st;
+    st.windows_created = 4242;
+    CHECK_STATUS(tg_geodesic_field(g, &far, 1, &o, d2, &st), TG_ERR_CANCELLED);
+    CHECK_EQ_INT(stop.calls, 1);
+    int touched = 0;
+    for (size_t v = 0; v < n; ++v) touched += d2[v] != -7;
+    CHECK_EQ_INT(touched, 0);
+    CHECK(st.windows_created == 4242);
+    o.progress = NULL;
+    CHECK_STATUS(tg_geodesic_field(g, &s, 1, &o, d2, NULL), TG_OK);
+    CHECK(memcmp(d1, d2, n * sizeof *d1) == 0);
+    /* cancelled with a temporary workspace: nothing leaked */
+    o.workspace = NULL;
+    o.progress = on_progress;
+    stop.calls = 0;
+    CHECK_STATUS(tg_geodesic_field(g, &far, 1, &o, d2, NULL), TG_ERR_CANCELLED);
+    /* a workspace of another solver is refused */
+    tg_geodesic* g2 = NULL;
+    CHECK_STATUS(tg_geodesic_create(m, NULL, &g2), TG_OK);
+    o.workspace = ws;
+    o.progress = NULL;
+    CHECK_STATUS(tg_geodesic_field(g2, &s, 1, &o, d2, NULL), TG_ERR_INVALID_ARGUMENT);
+    tg_geodesic_destroy(g2);
+    tg_field_workspace_destroy(ws);
+    tg_geodesic_destroy(g);
+    CHECK_MSG(cnt.allocs == cnt.frees, "%ld allocations, %ld frees", cnt.allocs, cnt.frees);
+    free(d1), free(d2);
+    tg_mesh_destroy(m);
+}
+
+/* ---- batch, limits ---- */
+
+static void test_batch_and_limit(void)
+{
+    tg_mesh* m = load("nvd_spot.obj");
+    if (!m) return;
+    size_t n = tg_mesh_vertex_count(m);
+    tg_geodesic* g = NULL;
+    CHECK_STATUS(tg_geodesic_create(m, NULL, &g), TG_OK);
+    enum { K = 5 };
+    tg_surface_point s[K] = {tg_surface_vertex(7), tg_surface_face(3000, 0.1, 0.6, 0.3), tg_surface_edge(9001, 0.75),
+                             tg_surface_vertex(2929), tg_surface_face(17, 1.0 / 3, 1.0 / 3, 1.0 / 3)};
+    double* single = malloc(K * n * sizeof *single);
+    double* batch = malloc(K * n * sizeof *batch);
+    tg_field_stats sum, st;
+    memset(&sum, 0, sizeof sum);
+    for (int k = 0; k < K; ++k) {
+        CHECK_STATUS(tg_geodesic_field(g, &s[k], 1, NULL, single + (size_t)k * n, &st), TG_OK);
+        sum.windows_propagated += st.windows_propagated;
+    }
+    for (int threads = 0; threads <= 2; ++threads) {
+        memset(batch, 0, K * n * sizeof *batch);
+        CHECK_STATUS(tg_geodesic_field_batch(g, s, K, NULL, threads, batch, &st), TG_OK);
+        CHECK_MSG(memcmp(single, batch, K * n * sizeof *batch) == 0, "batch on %d threads differs from single fields",
+                  threads);
+        CHECK(st.windows_propagated == sum.windows_propagated);
+    }
+    /* progress in a batch reports rows; cancelling stops the batch */
+    progress_log log = {0, 0, 0, 1, 0};
+    tg_field_options o;
+    memset(&o, 0, sizeof o);
+    o.progress = on_progress;
+    o.progress_user = &log;
+    CHECK_STATUS(tg_geodesic_field_batch(g, s, K, &o, 2, batch, NULL), TG_OK);
+    CHECK(log.calls == 0 || log.last_rows == K);
+    /* invalid sources and arguments: nothing written */
+    for (size_t i = 0; i < K * n; ++i) batch[i] = -3;
+    tg_surface_point bad[2] = {tg_surface_vertex(1), tg_surface_vertex((uint32_t)n)};
+    CHECK_STATUS(tg_geodesic_field_batch(g, bad, 2, NULL, 0, batch, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_field_batch(g, s, K, NULL, -1, batch, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK(batch[0] == -3 && batch[K * n - 1] == -3);
+    CHECK_STATUS(tg_geodesic_field_batch(g, s, 0, NULL, 0, batch, NULL), TG_OK);
+    /* max_distance 0 is distance 0: the source vertex only */
+    memset(&o, 0, sizeof o);
+    o.limit = TG_FIELD_MAX_DISTANCE;
+    o.max_distance = 0;
+    CHECK_STATUS(tg_geodesic_field(g, &s[0], 1, &o, batch, &st), TG_OK);
+    size_t finite = 0;
+    for (size_t v = 0; v < n; ++v) finite += isfinite(batch[v]);
+    CHECK_EQ_INT(finite, 1);
+    CHECK(batch[7] == 0.0);
+    /* a limit keeps exactly the vertices within it, with their exact distances */
+    o.max_distance = 0.4;
+    CHECK_STATUS(tg_geodesic_field(g, &s[1], 1, &o, batch, &st), TG_OK);
+    for (size_t v = 0; v < n; ++v) {
+        double want = single[n + v] <= 0.4 ? single[n + v] : INFINITY;
+        CHECK_MSG(batch[v] == want, "limit 0.4: vertex %zu: %.17g vs %.17g", v, batch[v], want);
+    }
+    o.limit = (tg_field_limit)7;
+    CHECK_STATUS(tg_geodesic_field(g, &s[1], 1, &o, batch, NULL), TG_ERR_INVALID_ARGUMENT);
+    o.limit = TG_FIELD_MAX_DISTANCE;
+    o.max_distance = -1;
+    CHECK_STATUS(tg_geodesic_field(g, &s[1], 1, &o, batch, NULL), TG_ERR_INVALID_ARGUMENT);
+    free(single), free(batch);
+    tg_geodesic_destroy(g);
+    tg_mesh_destroy(m);
+}
+
+/* ---- every allocation may fail ---- */
+
+static void test_allocation_failures(void)
+{
+    tg_mesh* m = load("nvd_spot.obj"); /* 5856 faces */
+    if (!m) return;
+    CHECK(tg_mesh_face_count(m) > 4096);
+    size_t n = tg_mesh_vertex_count(m);
+    tg_surface_point s[2] = {tg_surface_face(1234, 0.2, 0.2, 0.6), tg_surface_vertex(99)};
+    double* ref = malloc(2 * n * sizeof *ref);
+    double* out = malloc(2 * n * sizeof *out);
+    tg_geodesic* g0 = NULL;
+    CHECK_STATUS(tg_geodesic_create(m, NULL, &g0), TG_OK);
+    CHECK_STATUS(tg_geodesic_field_batch(g0, s, 2, NULL, 1, ref, NULL), TG_OK);
+    tg_geodesic_destroy(g0);
+    long total = -1;
+    int failures = 0;
+    for (long k = 0;; ++k) {
+        tg_test_counting c = {0, 0, k};
+        tg_allocator a = tg_test_failing_allocator(&c);
+        tg_geodesic_options go = {&a};
+        tg_geodesic* g = NULL;
+        tg_field_workspace* ws = NULL;
+        for (size_t i = 0; i < 2 * n; ++i) out[i] = -5;
+        tg_status st = tg_geodesic_create(m, &go, &g);
+        if (st == TG_OK) st = tg_field_workspace_create(g, &ws);
+        tg_field_options o;
+        memset(&o, 0, sizeof o);
+        o.workspace = ws;
+        if (st == TG_OK) st = tg_geodesic_field(g, &s[0], 1, &o, out, NULL);
+        if (st == TG_OK) st = tg_geodesic_field(g, &s[1], 1, &o, out + n, NULL);
+        if (st == TG_OK) st = tg_geodesic_field_batch(g, s, 2, NULL, 2, out, NULL);
+        tg_field_workspace_destroy(ws);
+        tg_geodesic_destroy(g);
+        CHECK_MSG(c.allocs == c.frees, "fail at %ld: %ld allocations, %ld frees", k, c.allocs, c.frees);
+        if (st == TG_OK) {
+            total = k;
+            CHECK(memcmp(out, ref, 2 * n * sizeof *out) == 0);
+            break;
+        }
+        failures++;
+        CHECK_MSG(st == TG_ERR_OUT_OF_MEMORY, "fail at %ld: %s", k, tg_status_name(st));
+        if (k > 100000) break;
+    }
+    CHECK_MSG(total > 20 && failures == total, "allocation points: %ld", total);
+    free(ref), free(out);
+    tg_mesh_destroy(m);
+}
+
+int main(void)
+{
+    test_intrinsic();
+    test_workspace_and_progress();
+    test_batch_and_limit();
+    test_allocation_failures();
+    return tg_test_finish();
+}

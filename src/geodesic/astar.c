@@ -10,44 +10,19 @@
 
 #include <string.h>
 
-/* ---- binary min-heap on (key, node); ties by lower node id for determinism ---- */
-
-static bool heap_less(const tg__heap_item* a, const tg__heap_item* b)
-{
-    return a->key < b->key || (a->key == b->key && a->node < b->node);
-}
+/* ---- the heap's storage (tg__heap_insert / tg__heap_take do the ordering) ---- */
 
 static bool heap_push(tg_geodesic_workspace* ws, size_t* n, double key, uint32_t node)
 {
     if (!tg__buf_reserve(ws, &ws->heap, *n + 1, sizeof(tg__heap_item))) return false;
-    tg__heap_item* h = ws->heap.p;
     tg__heap_item it = {key, node};
-    size_t i = (*n)++;
-    while (i > 0) {
-        size_t p = (i - 1) / 2;
-        if (!heap_less(&it, &h[p])) break;
-        h[i] = h[p];
-        i = p;
-    }
-    h[i] = it;
+    tg__heap_insert(ws->heap.p, n, it);
     return true;
 }
 
 static tg__heap_item heap_pop(tg_geodesic_workspace* ws, size_t* n)
 {
-    tg__heap_item* h = ws->heap.p;
-    tg__heap_item top = h[0], last = h[--*n];
-    size_t i = 0, count = *n;
-    for (;;) {
-        size_t c = 2 * i + 1;
-        if (c >= count) break;
-        if (c + 1 < count && heap_less(&h[c + 1], &h[c])) c++;
-        if (!heap_less(&h[c], &last)) break;
-        h[i] = h[c];
-        i = c;
-    }
-    if (count) h[i] = last;
-    return top;
+    return tg__heap_take(ws->heap.p, n);
 }
 
 /* ---- endpoints ---- */

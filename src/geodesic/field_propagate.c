@@ -66,46 +66,16 @@ static void win_release(tg_field_workspace* ws, uint32_t id)
     ((uint32_t*)ws->free_ids.data)[ws->free_ids.count++] = id;
 }
 
-/* ---- the vertex front: a lazy binary min-heap on (distance, vertex) ---- */
-
-static bool item_less(const tg__heap_item* a, const tg__heap_item* b)
-{
-    return a->key < b->key || (a->key == b->key && a->node < b->node);
-}
+/* ---- the vertex front: the layer's heap on (distance, vertex), lazy (stale entries skipped) ---- */
 
 static bool front_push(tg__field_run* run, double key, uint32_t v)
 {
     tg_field_workspace* ws = run->ws;
     if (!tg__vec_reserve(&ws->allocator, &ws->heap, 1)) return false;
-    tg__heap_item* h = ws->heap.data;
     tg__heap_item it = {key, v};
-    size_t i = ws->heap.count++;
-    while (i > 0) {
-        size_t p = (i - 1) / 2;
-        if (!item_less(&it, &h[p])) break;
-        h[i] = h[p];
-        i = p;
-    }
-    h[i] = it;
+    tg__heap_insert(ws->heap.data, &ws->heap.count, it);
     if (ws->heap.count > run->stats.max_queue) run->stats.max_queue = ws->heap.count;
     return true;
-}
-
-static tg__heap_item front_pop(tg_field_workspace* ws)
-{
-    tg__heap_item* h = ws->heap.data;
-    tg__heap_item top = h[0], last = h[--ws->heap.count];
-    size_t i = 0, n = ws->heap.count;
-    for (;;) {
-        size_t c = 2 * i + 1;
-        if (c >= n) break;
-        if (c + 1 < n && item_less(&h[c + 1], &h[c])) c++;
-        if (!item_less(&h[c], &last)) break;
-        h[i] = h[c];
-        i = c;
-    }
-    if (n) h[i] = last;
-    return top;
 }
 
 /* Records distance d for vertex v if shorter, and puts it on the front. */
@@ -537,7 +507,7 @@ tg_status tg__field_propagate(tg__field_run* run)
         }
         ws->fifo.count = ws->fifo_head = 0;
         if (!ws->heap.count) break;
-        tg__heap_item it = front_pop(ws);
+        tg__heap_item it = tg__heap_take(ws->heap.data, &ws->heap.count);
         uint32_t v = it.node;
         if (it.key != ws->dist[v]) continue; /* a shorter distance was queued since */
         if (it.key > run->max_dist) {

@@ -120,6 +120,44 @@ struct tg_geodesic_workspace {
     tg__buf fan, spokes, tvals;
 };
 
+/* ---- the binary min-heap on (key, node) of the geodesic layer (A* and the field's vertex front);
+ * ties go to the lower node id, for determinism. The caller owns the array and its growth. ---- */
+
+static inline bool tg__heap_less(const tg__heap_item* a, const tg__heap_item* b)
+{
+    return a->key < b->key || (a->key == b->key && a->node < b->node);
+}
+
+/* Inserts it into h[0..*n) (h must have room for *n + 1 items). */
+static inline void tg__heap_insert(tg__heap_item* h, size_t* n, tg__heap_item it)
+{
+    size_t i = (*n)++;
+    while (i > 0) {
+        size_t p = (i - 1) / 2;
+        if (!tg__heap_less(&it, &h[p])) break;
+        h[i] = h[p];
+        i = p;
+    }
+    h[i] = it;
+}
+
+/* Removes and returns the least item of h[0..*n) (*n > 0). */
+static inline tg__heap_item tg__heap_take(tg__heap_item* h, size_t* n)
+{
+    tg__heap_item top = h[0], last = h[--*n];
+    size_t i = 0, count = *n;
+    for (;;) {
+        size_t c = 2 * i + 1;
+        if (c >= count) break;
+        if (c + 1 < count && tg__heap_less(&h[c + 1], &h[c])) c++;
+        if (!tg__heap_less(&h[c], &last)) break;
+        h[i] = h[c];
+        i = c;
+    }
+    if (count) h[i] = last;
+    return top;
+}
+
 /* ---- workspace buffers ---- */
 
 /* Ensures buf holds at least count * elem bytes (keeping content); false on overflow/OOM. */

@@ -659,10 +659,12 @@ tg_status tg_fan_path_minimize(const double p0[3], const double p1[3], const dou
 /* ============================================================================================== */
 /* TG-SECTION-GEODESIC */
 
-/** A geodesic path solver over one mesh (seed 002 §5 and the straightener beyond it).
- *  Built once per mesh by tg_geodesic_create: it keeps a pointer to the mesh (which must outlive
- *  it and is never modified) plus vertex adjacency and vertex-corner tables (about 50 bytes per
- *  vertex). Immutable after creation; any number of threads may query it at once, each with its
+/** A geodesic path and distance field solver over one mesh (seed 002 §5, the straightener
+ *  beyond it, and the exact field engine). Built once per mesh by tg_geodesic_create: it keeps a
+ *  pointer to the mesh (which must outlive it and is never modified) plus vertex adjacency and
+ *  vertex-corner tables (about 50 bytes per vertex) and the field engine's per-mesh tables
+ *  (halfedge frames and edge rings, its own consistently wound triangles and opposites: about
+ *  100 bytes per face). Immutable after creation; any number of threads may query it at once, each with its
  *  own tg_geodesic_workspace. */
 typedef struct tg_geodesic tg_geodesic;
 
@@ -786,8 +788,11 @@ void tg_path_get_view(const tg_path* path, tg_path_view* out_view);
  *  options->method. The result is a locally shortest path (a geodesic) in the homotopy class the
  *  edge path leads to; where several geodesics join the endpoints (around a cone point, a handle)
  *  it need not be the globally shortest one.
- *  Paths cross only manifold edges (two consistently oriented faces, non-zero length);
- *  non-manifold edges, pinched vertices and coincident vertices are passed through vertices.
+ *  Paths cross every edge shared by exactly two faces (non-zero length) whatever the faces'
+ *  winding: the solver winds each component's faces consistently once, at creation (a
+ *  non-orientable component keeps one wall per conflict), and a duplicate face counts once;
+ *  non-manifold edges (three or more faces), pinched vertices and coincident vertices are passed
+ *  through vertices (the exact fields continue across non-manifold edges; paths do not yet).
  *  Endpoints in different components give status TG_PATH_UNREACHABLE, length +inf and TG_OK.
  *  Every returned path lies on the surface and its length never exceeds initial_length; the
  *  straightener's converged paths have max_angle_defect <= 1e-10 in practice (reported, not

@@ -2,9 +2,10 @@
 // Surface_mesh_shortest_path (an exact window propagation too, Xin and Wang 2009), on the same
 // mesh (loaded through trigeo, so both see identical vertices) from the same source vertices.
 //
-// usage: field_cgal MESH [--sources N] [--seed S]
-//   the sources are bench_field's (same generator and seed). Per source prints one markdown row:
-//   | mesh | faces | source | trigeo s | CGAL s | CGAL peak heap MiB | max rel diff |
+// usage: field_cgal MESH [--sources N] [--seed S] [--vertex V] [--no-cgal]
+//   the sources are bench_field's (same generator and seed), or the vertex V. Per source prints:
+//   | mesh | faces | source | trigeo s | trigeo windows | trigeo MiB | CGAL s | CGAL peak heap MiB | max rel diff |
+//   (--no-cgal: trigeo only, for meshes where CGAL would need tens of GB)
 //   times are CPU seconds of the calling thread (CGAL: build_sequence_tree plus one distance query
 //   per vertex; trigeo: tg_geodesic_field); "max rel diff" is max |d_cgal - d_trigeo| / max(d, 1e-12
 //   diagonal) over the vertices. CGAL needs a manifold surface: meshes it cannot take are reported.
@@ -31,8 +32,10 @@ static double thread_cpu()
 
 int main(int argc, char** argv)
 {
-    if (argc < 2) peer::die("usage: field_cgal MESH [--sources N] [--seed S]", "");
+    if (argc < 2) peer::die("usage: field_cgal MESH [--sources N] [--seed S] [--vertex V] [--no-cgal]", "");
     int sources = 3;
+    long vertex = -1;
+    bool cgal = true;
     unsigned long long seed = 1;
     for (int i = 2; i < argc; ++i) {
         std::string a = argv[i];
@@ -40,6 +43,10 @@ int main(int argc, char** argv)
             sources = std::atoi(argv[++i]);
         else if (a == "--seed" && i + 1 < argc)
             seed = std::strtoull(argv[++i], nullptr, 10);
+        else if (a == "--vertex" && i + 1 < argc)
+            vertex = std::atol(argv[++i]), sources = 1;
+        else if (a == "--no-cgal")
+            cgal = false;
         else
             peer::die("unknown argument", a);
     }
@@ -53,7 +60,7 @@ int main(int argc, char** argv)
     Mesh mesh;
     std::vector<Mesh::Vertex_index> vid(nv);
     for (size_t v = 0; v < nv; ++v) vid[v] = mesh.add_vertex(K::Point_3(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]));
-    for (size_t f = 0; f < nf; ++f)
+    for (size_t f = 0; cgal && f < nf; ++f)
         if (mesh.add_face(vid[tri[3 * f]], vid[tri[3 * f + 1]], vid[tri[3 * f + 2]]) == Mesh::null_face()) {
             std::printf("| %s | %zu | - | - | - | - | CGAL's Surface_mesh refuses face %zu (non-manifold) |\n", name.c_str(), nf, f);
             return 0;
@@ -71,11 +78,17 @@ int main(int argc, char** argv)
     uint64_t s = seed * 0x9E3779B97F4A7C15ull + 1; // bench_field's source generator
     for (int q = 0; q < sources; ++q) {
         s ^= s >> 12, s ^= s << 25, s ^= s >> 27;
-        uint32_t v = tri[(s * 2685821657736338717ull) % (3 * nf)];
+        uint32_t v = vertex >= 0 ? (uint32_t)vertex : tri[(s * 2685821657736338717ull) % (3 * nf)];
         tg_surface_point src = tg_surface_vertex(v);
+        tg_field_stats st;
         double t0 = thread_cpu();
-        if (tg_geodesic_field(g, &src, 1, nullptr, ours.data(), nullptr) != TG_OK) peer::die("field failed", argv[1]);
+        if (tg_geodesic_field(g, &src, 1, nullptr, ours.data(), &st) != TG_OK) peer::die("field failed", argv[1]);
         double t_ours = thread_cpu() - t0;
+        if (!cgal) {
+            std::printf("| %s | %zu | v:%u | %.3f | %.2fM | %.1f | - | - | - |\n", name.c_str(), nf, v, t_ours,
+                        (double)st.windows_propagated * 1e-6, (double)st.peak_bytes / (1024.0 * 1024.0));
+            continue;
+        }
 
         double heap0 = peer::heap_bytes(), peak = heap0;
         t0 = thread_cpu();
@@ -94,7 +107,8 @@ int main(int argc, char** argv)
             double den = std::max(ours[w], 1e-12 * diag);
             worst = std::max(worst, std::fabs(theirs[w] - ours[w]) / den);
         }
-        std::printf("| %s | %zu | v:%u | %.3f | %.3f | %.1f | %.1e |\n", name.c_str(), nf, v, t_ours, t_cgal,
+        std::printf("| %s | %zu | v:%u | %.3f | %.2fM | %.1f | %.3f | %.1f | %.1e |\n", name.c_str(), nf, v, t_ours,
+                    (double)st.windows_propagated * 1e-6, (double)st.peak_bytes / (1024.0 * 1024.0), t_cgal,
                     (peak - heap0) / (1024.0 * 1024.0), worst);
         std::fflush(stdout);
     }

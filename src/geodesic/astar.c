@@ -42,6 +42,7 @@ tg_status tg__endpoint_make(tg_geodesic_workspace* ws, const tg_surface_point* s
     const tg_geodesic* g = ws->geo;
     memset(e, 0, sizeof *e);
     tg_surface_point c = tg_surface_point_canonical(g->mesh, sp);
+    c = tg__surface_to_solver(g, c);
     e->node = tg__node_from_surface(&c);
     tg_v3_store(tg__node_pos(g, &e->node), e->xyz);
     if (e->node.kind == TG__NODE_VERTEX) {

@@ -33,6 +33,7 @@ enum {
                        once), or a face with a repeated vertex index: not part of the surface for
                        windows */
     TG__F_FLAT = 2, /* zero area (corners collinear to rounding): rays are carried across it once */
+    TG__F_FLIPPED = 4, /* wound the other way in the solver than in the file (corners 0, 2, 1) */
 };
 
 /* A window: the interval [b0, b1] (distances from tri[h]) of the edge of halfedge h, lit from
@@ -103,7 +104,11 @@ typedef struct tg__field_run {
 
 /* ---- per-mesh tables (field_mesh.c) ---- */
 
-/* Builds g->frame, g->ring, g->vflags, g->fflags. false on allocation failure. */
+/* Rings of halfedges per edge, skipped faces, and the solver's consistently wound triangles and
+ * opposites (g->tri, g->opp); run first, before any table indexed by corner. false on allocation
+ * failure (tg__field_mesh_free cleans up). */
+bool tg__orient_build(tg_geodesic* g);
+/* Builds g->frame and g->vflags (after tg__orient_build). false on allocation failure. */
 bool tg__field_mesh_build(tg_geodesic* g);
 void tg__field_mesh_free(tg_geodesic* g);
 size_t tg__field_mesh_bytes(const tg_geodesic* g);

@@ -98,6 +98,88 @@ static bool build_rings(tg_geodesic* g, const tg_allocator* a)
     return true;
 }
 
+/* Winds the faces of every component consistently (breadth-first over edges shared by exactly
+ * two kept faces), so that the solver's opposite halfedges cross every such edge whatever the
+ * file's winding. Faces that must turn get the corner order (0, 2, 1) in the solver's own copy of
+ * the triangles (TG__F_FLIPPED); a non-orientable component keeps one edge per conflict
+ * misoriented (no opposite: a wall for paths, not for windows). */
+static bool orient_faces(tg_geodesic* g, const tg_allocator* a, bool* out_flipped)
+{
+    size_t nf = g->face_count;
+    uint32_t* queue = tg__alloc_array(a, nf ? nf : 1, sizeof(uint32_t));
+    uint8_t* seen = tg__calloc_array(a, nf ? nf : 1, 1);
+    if (!queue || !seen) {
+        tg__free(a, queue);
+        tg__free(a, seen);
+        return false;
+    }
+    const uint32_t* t = g->tri;
+    bool flipped = false;
+    for (size_t root = 0; root < nf; ++root) {
+        if (seen[root] || (g->fflags[root] & TG__F_SKIP)) continue;
+        size_t head = 0, tail = 0;
+        queue[tail++] = (uint32_t)root;
+        seen[root] = 1;
+        while (head < tail) {
+            uint32_t f = queue[head++];
+            bool ff = (g->fflags[f] & TG__F_FLIPPED) != 0;
+            for (uint32_t k = 0; k < 3; ++k) {
+                uint32_t h = 3 * f + k, o = g->ring[h];
+                if (o == h || g->ring[o] != h) continue; /* boundary or non-manifold */
+                uint32_t q = o / 3;
+                if (seen[q]) continue;
+                /* same direction in the file: q must be wound the other way from f */
+                bool same = t[o] == t[h];
+                if (same != ff) g->fflags[q] |= TG__F_FLIPPED, flipped = true;
+                seen[q] = 1;
+                queue[tail++] = q;
+            }
+        }
+    }
+    tg__free(a, queue);
+    tg__free(a, seen);
+    *out_flipped = flipped;
+    return true;
+}
+
+/* The solver's opposite halfedges: the other halfedge of an edge shared by exactly two kept faces
+ * that runs the other way (after orient_faces, every such edge but non-orientable conflicts). */
+static void build_opposites(tg_geodesic* g)
+{
+    size_t nh = 3 * (size_t)g->face_count;
+    for (size_t h = 0; h < nh; ++h) {
+        uint32_t o = g->ring[h];
+        bool two = o != h && g->ring[o] == h;
+        g->own_opp[h] = two && g->tri[o] == g->tri[tg_halfedge_next((uint32_t)h)] ? o : TG_NONE;
+    }
+}
+
+bool tg__orient_build(tg_geodesic* g)
+{
+    const tg_allocator* a = &g->allocator;
+    size_t nf = g->face_count, nh = 3 * nf;
+    g->ring = tg__alloc_array(a, nh ? nh : 1, sizeof(uint32_t));
+    g->fflags = tg__calloc_array(a, nf ? nf : 1, 1);
+    g->own_opp = tg__alloc_array(a, nh ? nh : 1, sizeof(uint32_t));
+    bool flipped = false;
+    if (!g->ring || !g->fflags || !g->own_opp || !build_rings(g, a) || !orient_faces(g, a, &flipped)) return false;
+    if (flipped) {
+        g->own_tri = tg__alloc_array(a, nh ? nh : 1, sizeof(uint32_t));
+        if (!g->own_tri) return false;
+        for (size_t f = 0; f < nf; ++f) {
+            const uint32_t* t = g->mesh->tri + 3 * f;
+            bool fl = (g->fflags[f] & TG__F_FLIPPED) != 0;
+            g->own_tri[3 * f] = t[0], g->own_tri[3 * f + 1] = t[fl ? 2 : 1], g->own_tri[3 * f + 2] = t[fl ? 1 : 2];
+        }
+        g->tri = g->own_tri;
+        for (size_t f = 0; f < nf; ++f) g->fflags[f] &= (uint8_t)~TG__F_SKIP;
+        if (!build_rings(g, a)) return false; /* halfedge numbers changed with the corners */
+    }
+    build_opposites(g);
+    g->opp = g->own_opp;
+    return true;
+}
+
 /* Frames, flat faces, and the vertex angle sums (into angle[], V doubles). */
 static void build_frames(tg_geodesic* g, double* angle)
 {
@@ -175,19 +257,20 @@ void tg__field_mesh_free(tg_geodesic* g)
     tg__free(&g->allocator, g->ring);
     tg__free(&g->allocator, g->vflags);
     tg__free(&g->allocator, g->fflags);
-    g->frame = NULL, g->ring = NULL, g->vflags = NULL, g->fflags = NULL;
+    tg__free(&g->allocator, g->own_tri);
+    tg__free(&g->allocator, g->own_opp);
+    g->frame = NULL, g->ring = NULL, g->vflags = NULL, g->fflags = NULL, g->own_tri = NULL, g->own_opp = NULL;
 }
 
 bool tg__field_mesh_build(tg_geodesic* g)
 {
     const tg_allocator* a = &g->allocator;
     size_t nv = g->vertex_count, nf = g->face_count, nh = 3 * nf;
+    (void)nf;
     g->frame = tg__alloc_array(a, nh ? nh : 1, sizeof(tg__frame));
-    g->ring = tg__alloc_array(a, nh ? nh : 1, sizeof(uint32_t));
     g->vflags = tg__calloc_array(a, nv ? nv : 1, 1);
-    g->fflags = tg__calloc_array(a, nf ? nf : 1, 1);
     double* angle = tg__alloc_array(a, nv ? nv : 1, sizeof(double));
-    bool ok = g->frame && g->ring && g->vflags && g->fflags && angle && build_rings(g, a);
+    bool ok = g->frame && g->vflags && angle;
     if (ok) {
         build_frames(g, angle);
         classify_vertices(g, angle);
@@ -200,5 +283,5 @@ bool tg__field_mesh_build(tg_geodesic* g)
 size_t tg__field_mesh_bytes(const tg_geodesic* g)
 {
     size_t nv = g->vertex_count, nf = g->face_count;
-    return 3 * nf * (sizeof(tg__frame) + sizeof(uint32_t)) + nv + nf;
+    return 3 * nf * (sizeof(tg__frame) + 2 * sizeof(uint32_t) + (g->own_tri ? sizeof(uint32_t) : 0)) + nv + nf;
 }

@@ -252,7 +252,7 @@ tg_status tg__field_seed(tg__field_run* run, const tg_surface_point* sp)
 {
     tg_field_workspace* ws = run->ws;
     const tg_geodesic* g = ws->g;
-    tg_surface_point cp = tg_surface_point_canonical(g->mesh, sp);
+    tg_surface_point cp = tg__surface_to_solver(g, tg_surface_point_canonical(g->mesh, sp));
     tg__node node = tg__node_from_surface(&cp);
     double p[3];
     tg_v3_store(tg__node_pos(g, &node), p);

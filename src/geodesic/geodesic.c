@@ -191,7 +191,8 @@ tg_status tg_geodesic_create(const tg_mesh* mesh, const tg_geodesic_options* opt
     g->tri = mesh->tri;
     g->opp = mesh->opp;
     g->comp = mesh->comp;
-    if (!build_corners(g) || !build_order(g) || !build_adjacency(g) || !tg__field_mesh_build(g)) {
+    if (!tg__orient_build(g) || !build_corners(g) || !build_order(g) || !build_adjacency(g) ||
+        !tg__field_mesh_build(g)) {
         tg_geodesic_destroy(g);
         return TG_ERR_OUT_OF_MEMORY;
     }

@@ -19,8 +19,8 @@ struct tg_geodesic {
     uint32_t vertex_count;
     uint32_t face_count;
     const double* xyz;
-    const uint32_t* tri;
-    const uint32_t* opp;
+    const uint32_t* tri; /* the solver's triangles: the mesh's, or own_tri when faces were re-wound */
+    const uint32_t* opp; /* the solver's opposites (own_opp) */
     const uint32_t* comp;
     /* The edge graph for A*, in an internal vertex order (Morton order of the positions, so that
      * the region a search explores is contiguous in memory): internal id u is mesh vertex
@@ -37,7 +37,10 @@ struct tg_geodesic {
     uint32_t* ring;          /* 3F: next halfedge of the same edge (any orientation; itself: no other) */
     uint8_t* vflags;         /* V: TG__V_* */
     uint8_t* fflags;         /* F: TG__F_* */
+    uint32_t* own_tri;       /* the triangles re-wound consistently, when any face had to turn */
+    uint32_t* own_opp;       /* 3F: opposites of the solver's triangles */
 };
+
 
 /* A point of a path: a mesh vertex, a point on an edge, or a point inside a face (endpoints only).
  * Edge points keep both t (from tri[id]) and s = 1 - t: the smaller of the two is exact, which
@@ -215,6 +218,13 @@ static inline tg__node tg__node_edge(uint32_t h, double t, double s)
     tg__node n = {TG__NODE_EDGE, h, t, s, {0.0, 0.0, 0.0}};
     return n;
 }
+
+/* Faces may be wound differently in the solver than in the mesh (TG__F_FLIPPED: corners 0, 2, 1),
+ * so surface points cross between the two numberings here, both ways (the map is its own
+ * inverse): a face point swaps its last two barycentrics; an edge point on halfedge 3f + k moves to
+ * 3f + (2 - k), running the other way (t and s swap). */
+tg_surface_point tg__surface_to_solver(const tg_geodesic* g, tg_surface_point p);
+void tg__node_to_mesh(const tg_geodesic* g, tg__node* n);
 
 /* ---- fans around a vertex (fan.c) ---- */
 

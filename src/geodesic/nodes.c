@@ -2,7 +2,7 @@
  * Based on: barycentric coordinates on triangles; differences formed relative to a corner so
  *   that points near a vertex keep their relative precision (Higham, "Accuracy and Stability of
  *   Numerical Algorithms", 2nd ed., §2: avoid subtracting nearly equal rounded quantities). */
-#include "geodesic/geodesic_internal.h"
+#include "geodesic/field_internal.h"
 
 bool tg__node_bary(const tg_geodesic* g, const tg__node* p, uint32_t f, double b[3])
 {
@@ -141,4 +141,28 @@ uint32_t tg__common_face(const tg_geodesic* g, const tg__node* a, const tg__node
         if (face_holds(g, f, a) && face_holds(g, f, b)) return f;
     }
     return TG_NONE;
+}
+
+tg_surface_point tg__surface_to_solver(const tg_geodesic* g, tg_surface_point p)
+{
+    if (p.kind == TG_SURFACE_FACE && (g->fflags[p.index] & TG__F_FLIPPED)) {
+        double b = p.bary[1];
+        p.bary[1] = p.bary[2], p.bary[2] = b;
+    } else if (p.kind == TG_SURFACE_EDGE && (g->fflags[p.index / 3] & TG__F_FLIPPED)) {
+        uint32_t f = p.index / 3, k = p.index % 3;
+        p = tg_surface_edge(3 * f + (2 - k), 1.0 - p.t);
+    }
+    return p;
+}
+
+void tg__node_to_mesh(const tg_geodesic* g, tg__node* n)
+{
+    if (n->kind == TG__NODE_FACE && (g->fflags[n->id] & TG__F_FLIPPED)) {
+        double b = n->bary[1];
+        n->bary[1] = n->bary[2], n->bary[2] = b;
+    } else if (n->kind == TG__NODE_EDGE && (g->fflags[n->id / 3] & TG__F_FLIPPED)) {
+        uint32_t f = n->id / 3, k = n->id % 3;
+        double t = n->t;
+        n->id = 3 * f + (2 - k), n->t = n->s, n->s = t;
+    }
 }

@@ -106,11 +106,14 @@ static bool path_reserve(tg_path* p, size_t n)
 
 /* The public form of a node: edge points name the halfedge from their nearer end (t <= 1/2) when
  * the edge has an opposite, so that t is the exact one of the pair. */
-static tg_surface_point node_to_surface(const tg_geodesic* g, const tg__node* n)
+static tg_surface_point node_to_surface(const tg_geodesic* g, const tg__node* solver_node)
 {
+    tg__node m = *solver_node, *n = &m;
+    tg__node_to_mesh(g, n); /* the mesh's numbering from here on */
     if (n->kind == TG__NODE_VERTEX) return tg_surface_vertex(n->id);
     if (n->kind == TG__NODE_FACE) return tg_surface_face(n->id, n->bary[0], n->bary[1], n->bary[2]);
-    if (n->t > n->s && g->opp[n->id] != TG_NONE) return tg_surface_edge(g->opp[n->id], n->s);
+    const uint32_t* mopp = g->mesh->opp;
+    if (n->t > n->s && mopp[n->id] != TG_NONE) return tg_surface_edge(mopp[n->id], n->s);
     return tg_surface_edge(n->id, n->t);
 }
 

@@ -27,6 +27,7 @@ void tg_field_workspace_destroy(tg_field_workspace* ws)
     tg__vec_free(&a, &ws->fifo);
     tg__vec_free(&a, &ws->scratch);
     tg__vec_free(&a, &ws->keys);
+    tg__vec_free(&a, &ws->hits);
     tg__free(&a, ws);
 }
 
@@ -44,6 +45,7 @@ static tg_status workspace_make(const tg_geodesic* g, const tg_allocator* alloc,
     ws->fifo.elem = sizeof(uint32_t);
     ws->scratch.elem = sizeof(uint32_t);
     ws->keys.elem = sizeof(tg__win_key);
+    ws->hits.elem = sizeof(tg__corner_hit);
     size_t nv = g->vertex_count ? g->vertex_count : 1, nh = 3 * (size_t)g->face_count;
     if (!nh) nh = 1;
     ws->dist = tg__alloc_array(alloc, nv, sizeof(double));
@@ -75,7 +77,8 @@ size_t tg_field_workspace_memory_bytes(const tg_field_workspace* ws)
     if (!ws) return 0;
     return ws->fixed_bytes + ws->win.capacity * sizeof(tg__window) + ws->free_ids.capacity * sizeof(uint32_t) +
            ws->heap.capacity * sizeof(tg__heap_item) + ws->fifo.capacity * sizeof(uint32_t) +
-           ws->scratch.capacity * sizeof(uint32_t) + ws->keys.capacity * sizeof(tg__win_key);
+           ws->scratch.capacity * sizeof(uint32_t) + ws->keys.capacity * sizeof(tg__win_key) +
+           ws->hits.capacity * ws->hits.elem;
 }
 
 /* ---- one field ---- */

@@ -62,6 +62,14 @@ typedef struct tg__window {
  * angle e is e wide, and paths through it are longer than the rays beside it only to order e^2). */
 #define TG__FLAT_ANGLE_REL 1e-9
 
+/* Where window w meets the face's opposite corner C: orientation of C against its two boundary
+ * rays, and the distance and edge point of its ray to C when it covers C. */
+typedef struct tg__corner_hit {
+    int o0, o1;
+    int covers;
+    double dc, xc;
+} tg__corner_hit;
+
 struct tg_field_workspace {
     const tg_geodesic* g;
     tg_allocator allocator;
@@ -82,6 +90,7 @@ struct tg_field_workspace {
     size_t fifo_head;
     tg__vec scratch;  /* uint32_t: one list's windows while it is propagated */
     tg__vec keys;     /* tg__win_key: their starts before trimming */
+    tg__vec hits;     /* tg__corner_hit: how each meets the face's opposite corner */
     size_t peak_bytes;
 };
 

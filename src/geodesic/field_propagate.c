@@ -42,7 +42,8 @@ static void note_peak(tg_field_workspace* ws)
 {
     size_t b = ws->fixed_bytes + ws->win.capacity * sizeof(tg__window) + ws->free_ids.capacity * sizeof(uint32_t) +
                ws->heap.capacity * sizeof(tg__heap_item) + ws->fifo.capacity * sizeof(uint32_t) +
-               ws->scratch.capacity * sizeof(uint32_t) + ws->keys.capacity * sizeof(tg__win_key);
+               ws->scratch.capacity * sizeof(uint32_t) + ws->keys.capacity * sizeof(tg__win_key) +
+               ws->hits.capacity * ws->hits.elem;
     if (b > ws->peak_bytes) ws->peak_bytes = b;
 }
 
@@ -301,17 +302,11 @@ static bool push_child(tg__field_run* run, const tg__window* w, uint32_t e, cons
     return push_through(run, e, t_lo * len, t_hi * len, x, y, w->sigma, via_flat);
 }
 
-/* Where window w meets the face's opposite corner C: orientation of C against its two boundary
- * rays, and the distance and edge point of its ray to C when it covers C. */
-typedef struct corner_hit {
-    int o0, o1;
-    int covers;
-    double dc, xc;
-} corner_hit;
 
-static corner_hit hit_corner(const tg__window* w, const tg__frame* fr)
+
+static tg__corner_hit hit_corner(const tg__window* w, const tg__frame* fr)
 {
-    corner_hit r;
+    tg__corner_hit r;
     const double src[2] = {w->sx, w->sy}, c[2] = {fr->cx, fr->cy};
     const double x0[2] = {w->b0, 0.0}, x1[2] = {w->b1, 0.0};
     /* > 0: C is left of the ray, which passes right of C */
@@ -345,7 +340,7 @@ static corner_hit hit_corner(const tg__window* w, const tg__frame* fr)
 /* Propagates window w into the face of h: the part left of C lights edge CA, the part right of
  * C edge CB; covering windows that reach C less shortly than the edge side's best are cut where
  * their rays cross the best one's ray to C inside the face (one angle, one split). */
-static bool cross_face(tg__field_run* run, uint32_t h, const tg__window* w, int flat)
+static bool cross_face(tg__field_run* run, uint32_t h, const tg__window* w, tg__corner_hit hc, int flat)
 {
     tg_field_workspace* ws = run->ws;
     const tg_geodesic* g = ws->g;
@@ -353,7 +348,6 @@ static bool cross_face(tg__field_run* run, uint32_t h, const tg__window* w, int 
     const tg__frame* fr = &g->frame[h];
     double len = fr->len;
     const double src[2] = {w->sx, w->sy}, a[2] = {0.0, 0.0}, b[2] = {len, 0.0}, c[2] = {fr->cx, fr->cy};
-    corner_hit hc = hit_corner(w, fr);
     bool has_l = false, has_r = false;
     double lo_l = w->b0, hi_l = w->b1, lo_r = w->b0, hi_r = w->b1;
     if (hc.o1 <= 0) {
@@ -422,10 +416,12 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
     }
     /* rule 1: the shortest covering window to C over the list sets C and the edge side's split */
     uint32_t vc = g->tri[hp];
+    if (!tg__vec_reserve(&ws->allocator, &ws->hits, n)) return false;
+    tg__corner_hit* hits = ws->hits.data;
     for (size_t i = 0; i < n; ++i) {
         const tg__window* w = &pool[ids[i]];
         if (!(w->b0 < w->b1)) continue;
-        corner_hit hc = hit_corner(w, fr);
+        tg__corner_hit hc = hits[i] = hit_corner(w, fr);
         if (hc.covers && hc.dc < ws->split_d[h]) {
             if (!flat) ws->split_d[h] = hc.dc, ws->split_x[h] = hc.xc;
             if (!relax_vertex(run, vc, hc.dc)) return false;
@@ -440,7 +436,7 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
         }
         run->stats.windows_propagated++;
 
-        if (!cross_face(run, h, &w, flat)) return false;
+        if (!cross_face(run, h, &w, hits[i], flat)) return false;
     }
     return true;
 }

@@ -14,7 +14,6 @@
  * by the same straight segment X -> q (a real path on the surface), so j may drop X. */
 #include "geodesic/field_internal.h"
 
-#include <stdlib.h>
 
 /* Two windows tie where they differ by less than this relative margin (rounding of distances
  * accumulated along different routes to the same source image); the tie goes to the window with
@@ -134,20 +133,22 @@ uint64_t tg__windows_trim(tg__window* pool, uint32_t* ids, tg__win_key* keys, si
 {
     /* sort by b0: lists are built by prepending, so they usually arrive in descending order */
     for (size_t i = 0; i < n; ++i) keys[n - 1 - i].key = pool[ids[i]].b0, keys[n - 1 - i].id = ids[i];
-    if (n <= 16) {
-        for (size_t i = 1; i < n; ++i) {
-            tg__win_key x = keys[i];
-            size_t j = i;
-            while (j > 0 && cmp_key(&keys[j - 1], &x) > 0) {
-                keys[j] = keys[j - 1];
-                --j;
+    bool sorted = true;
+    for (size_t i = 1; i < n && sorted; ++i) sorted = cmp_key(&keys[i - 1], &keys[i]) <= 0;
+    if (!sorted) { /* Shell sort (Ciura's gaps): in place, no allocation, fine for the rare long list */
+        static const size_t gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};
+        for (size_t gi = 0; gi < sizeof gaps / sizeof gaps[0]; ++gi) {
+            size_t gap = gaps[gi];
+            for (size_t i = gap; i < n; ++i) {
+                tg__win_key x = keys[i];
+                size_t j = i;
+                while (j >= gap && cmp_key(&keys[j - gap], &x) > 0) {
+                    keys[j] = keys[j - gap];
+                    j -= gap;
+                }
+                keys[j] = x;
             }
-            keys[j] = x;
         }
-    } else {
-        bool sorted = true;
-        for (size_t i = 1; i < n && sorted; ++i) sorted = cmp_key(&keys[i - 1], &keys[i]) <= 0;
-        if (!sorted) qsort(keys, n, sizeof *keys, cmp_key);
     }
     for (size_t i = 0; i < n; ++i) ids[i] = keys[i].id;
     /* merge runs of windows of one source image (a fan of thin faces splits one bundle of rays

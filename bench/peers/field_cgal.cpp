@@ -101,12 +101,19 @@ int main(int argc, char** argv)
             for (size_t w = 0; w < nv; ++w) theirs[w] = sp.shortest_distance_to_source_points(vid[w]).first;
         }
         double t_cgal = thread_cpu() - t0;
-        double worst = 0;
+        double worst = 0, worst_abs = 0, far = 0;
+        size_t at = 0;
         for (size_t w = 0; w < nv; ++w) {
             if (!std::isfinite(ours[w]) || theirs[w] < 0) continue; // unreachable in both
             double den = std::max(ours[w], 1e-12 * diag);
             worst = std::max(worst, std::fabs(theirs[w] - ours[w]) / den);
+            if (std::fabs(theirs[w] - ours[w]) > worst_abs) worst_abs = std::fabs(theirs[w] - ours[w]), at = w;
+            far = std::max(far, ours[w]);
         }
+        std::fprintf(stderr,
+                     "field_cgal: %s v:%u: largest |difference| %.3g = %.2g of the largest distance %.17g (vertex %zu: "
+                     "trigeo %.17g, CGAL %.17g)\n",
+                     name.c_str(), v, worst_abs, far > 0 ? worst_abs / far : 0.0, far, at, ours[at], theirs[at]);
         std::printf("| %s | %zu | v:%u | %.3f | %.2fM | %.1f | %.3f | %.1f | %.1e |\n", name.c_str(), nf, v, t_ours,
                     (double)st.windows_propagated * 1e-6, (double)st.peak_bytes / (1024.0 * 1024.0), t_cgal,
                     (peak - heap0) / (1024.0 * 1024.0), worst);

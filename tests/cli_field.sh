@@ -130,6 +130,42 @@ err_r = run(flat, "--sources", bad, "-o", out)
 check(err_r.returncode == 2 and (bad + ":3:") in err_r.stderr, "bad source line: %d %r" % (err_r.returncode, err_r.stderr))
 check(not [f for f in os.listdir(tmp) if f.startswith("bad.npy")], "no partial output: %s" % os.listdir(tmp))
 
+# a terminal on stderr: a progress line once the work passes about a second; Ctrl-C (SIGINT) stops
+# it with exit 130 and leaves no file, not even the temporary one
+import pty, signal, time, select
+kitten = os.path.join(meshes, "fcpw_kitten.obj")
+many = os.path.join(tmp, "many.txt")
+open(many, "w").write("".join("v:%d\n" % (997 * i) for i in range(40)))
+outm = os.path.join(tmp, "stopped.npy")
+master, slave = pty.openpty()
+proc = subprocess.Popen([trigeo, "field", kitten, "--sources", many, "-o", outm, "--threads", "1"],
+                        stdout=subprocess.DEVNULL, stderr=slave)
+os.close(slave)
+seen, t0 = b"", time.time()
+while b"%" not in seen and time.time() - t0 < 120 and proc.poll() is None:
+    r, _, _ = select.select([master], [], [], 0.5)
+    if r:
+        try: seen += os.read(master, 4096)
+        except OSError: break
+check(b"field:" in seen and b"fields" in seen, "progress line on a terminal: %r" % seen[-200:])
+proc.send_signal(signal.SIGINT)
+try: rc = proc.wait(timeout=60)
+except subprocess.TimeoutExpired: proc.kill(); rc = None
+try:
+    while True:
+        r, _, _ = select.select([master], [], [], 0.2)
+        if not r: break
+        chunk = os.read(master, 4096)
+        if not chunk: break
+        seen += chunk
+except OSError: pass
+os.close(master)
+check(rc == 130 and b"interrupted" in seen, "Ctrl-C: exit %s, stderr %r" % (rc, seen[-200:]))
+check(not [f for f in os.listdir(tmp) if f.startswith("stopped.npy")], "Ctrl-C: no partial output: %s" % os.listdir(tmp))
+# --quiet, or stderr not a terminal: no progress line
+r = run(flat, "--sources", srcs, "-o", npy)
+check("%" not in r.stderr, "no progress line when stderr is not a terminal: %r" % r.stderr)
+
 # errors: usage (1), input (2), message format
 def err(args, code, needle):
     r = run(*args)

@@ -927,6 +927,21 @@ typedef struct tg_field_stats {
 tg_status tg_geodesic_field(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
                             const tg_field_options* options, double* out_vertex_distance, tg_field_stats* out_stats);
 
+/** The exact geodesic distance from the sources to arbitrary surface points (inside faces, on
+ *  edges, vertices), and optionally to every vertex, in one propagation: each point's distance is
+ *  the least over the windows whose rays reach it while they cross its face, the paths through
+ *  the face's corners, and the sources in the face (so it is exact like the vertex distances).
+ *  points: point_count valid surface points (NULL when 0); out_point_distance: point_count
+ *  doubles (+inf where unreachable or beyond the limit); out_vertex_distance: vertex_count
+ *  doubles, or NULL when only the points are wanted. Everything else as tg_geodesic_field
+ *  (which is this call without points). Errors: as tg_geodesic_field, and
+ *  TG_ERR_INVALID_ARGUMENT for an invalid point or NULL points / out_point_distance with a
+ *  non-zero point_count; on error the outputs are untouched. Cost: the field's, plus the windows
+ *  crossing the points' faces times the points in them. */
+tg_status tg_geodesic_field_at(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+                               const tg_surface_point* points, size_t point_count, const tg_field_options* options,
+                               double* out_point_distance, double* out_vertex_distance, tg_field_stats* out_stats);
+
 /** Many fields at once: row i of out_matrix (row-major, source_count x vertex_count doubles) is
  *  the field of sources[i] alone, exactly as tg_geodesic_field computes it (bit-identical). Rows
  *  are computed in parallel with OpenMP on `threads` threads (0: the OpenMP default; 1: this

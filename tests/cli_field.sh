@@ -130,6 +130,23 @@ err_r = run(flat, "--sources", bad, "-o", out)
 check(err_r.returncode == 2 and (bad + ":3:") in err_r.stderr, "bad source line: %d %r" % (err_r.returncode, err_r.stderr))
 check(not [f for f in os.listdir(tmp) if f.startswith("bad.npy")], "no partial output: %s" % os.listdir(tmp))
 
+# --at POINTS: the distance at surface points (SPEC or "x y z" a line), one a line
+atf = os.path.join(tmp, "points.txt")
+open(atf, "w").write("f:10:0.2,0.3,0.5\n# a comment\n0.3 0.4 0.7\ne:31:0.25\nv:5\n")
+want = [dist(vs[12], p) for p in (pos_face(10, (0.2, 0.3, 0.5)), (0.3, 0.4, 0.0), pos_edge(31, 0.25), vs[5])]
+r = run(flat, "--from", "v:12", "--at", atf)
+got = [float(x) for x in r.stdout.split()] if r.returncode == 0 else []
+check(len(got) == 4 and all(abs(a - b) <= 1e-12 for a, b in zip(got, want)), "--at: %s vs %s (%s)" % (got, want, r.stderr))
+r = run(flat, "--from", "v:12", "--at", atf, "-o", os.path.join(tmp, "at.npy"))
+if r.returncode == 0:
+    shape, vals = read_npy(os.path.join(tmp, "at.npy"))
+    check(shape == (4,) and vals == got, "--at .npy: %s %s" % (shape, vals))
+else:
+    check(False, "--at -o .npy: exit %d %s" % (r.returncode, r.stderr))
+open(atf, "w").write("v:1\n1 2\n")
+err_r = run(flat, "--from", "v:12", "--at", atf)
+check(err_r.returncode == 2 and (atf + ":2:") in err_r.stderr, "--at bad line: %d %r" % (err_r.returncode, err_r.stderr))
+
 # a terminal on stderr: a progress line once the work passes about a second; Ctrl-C (SIGINT) stops
 # it with exit 130 and leaves no file, not even the temporary one
 import pty, signal, time, select

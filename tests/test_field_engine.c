@@ -339,6 +339,90 @@ static void test_batch_and_limit(void)
     tg_mesh_destroy(m);
 }
 
+/* ---- distance at surface points ---- */
+
+/* d(S -> P) from the query at P equals d(P -> S) from a field seeded at P (another code path:
+ * P's windows start at P itself), for random face and edge points P and vertex sources S. */
+static void test_points_symmetry(const char* file, int pairs)
+{
+    tg_mesh* m = load(file);
+    if (!m) return;
+    size_t n = tg_mesh_vertex_count(m);
+    tg_geodesic* g = NULL;
+    CHECK_STATUS(tg_geodesic_create(m, NULL, &g), TG_OK);
+    double* field = malloc(n * sizeof *field);
+    double* vd = malloc(n * sizeof *vd);
+    tg_rng rng = {31};
+    enum { PTS = 8 };
+    double worst = 0;
+    for (int q = 0; q < pairs; ++q) {
+        tg_surface_point pts[PTS];
+        for (int i = 0; i < PTS; ++i) pts[i] = tg_test_random_surface_point(&rng, m, NULL);
+        uint32_t s = tg_mesh_triangles(m)[tg_rng_next(&rng) % (3 * tg_mesh_face_count(m))];
+        tg_surface_point src = tg_surface_vertex(s);
+        double at[PTS];
+        CHECK_STATUS(tg_geodesic_field_at(g, &src, 1, pts, PTS, NULL, at, vd, NULL), TG_OK);
+        CHECK_STATUS(tg_geodesic_field(g, &src, 1, NULL, field, NULL), TG_OK);
+        CHECK(memcmp(field, vd, n * sizeof *vd) == 0); /* the vertex field is the same with points */
+        for (int i = 0; i < PTS; ++i) {
+            CHECK_STATUS(tg_geodesic_field(g, &pts[i], 1, NULL, field, NULL), TG_OK);
+            double e = fabs(at[i] - field[s]);
+            double tol = 1e-12 * (1 + field[s]);
+            if (e > worst) worst = e;
+            CHECK_MSG(e <= tol || (isinf(at[i]) && isinf(field[s])), "%s: d(v:%u -> point %d) %.17g, reverse %.17g", file, s,
+                      i, at[i], field[s]);
+        }
+    }
+    printf("%s: %d point queries, worst |d(S->P) - d(P->S)| %.3g\n", file, pairs * PTS, worst);
+    free(field), free(vd);
+    tg_geodesic_destroy(g);
+    tg_mesh_destroy(m);
+}
+
+static void test_points_api(void)
+{
+    tg_mesh* m = load("nvd_spot.obj");
+    if (!m) return;
+    size_t n = tg_mesh_vertex_count(m);
+    tg_geodesic* g = NULL;
+    CHECK_STATUS(tg_geodesic_create(m, NULL, &g), TG_OK);
+    double* vd = malloc(n * sizeof *vd);
+    tg_surface_point src = tg_surface_face(10, 0.3, 0.3, 0.4);
+    CHECK_STATUS(tg_geodesic_field(g, &src, 1, NULL, vd, NULL), TG_OK);
+    /* a vertex query is the vertex's distance; the source itself is at 0; a point in the source's
+     * face is at its straight distance */
+    const uint32_t* t = tg_mesh_triangles(m);
+    tg_surface_point pts[4] = {tg_surface_vertex(t[3 * 2000]), src, tg_surface_face(10, 0.5, 0.25, 0.25),
+                               tg_surface_edge(31, 0.5)};
+    double at[4], a[3], b[3];
+    CHECK_STATUS(tg_geodesic_field_at(g, &src, 1, pts, 4, NULL, at, NULL, NULL), TG_OK);
+    CHECK(at[0] == vd[t[3 * 2000]]);
+    CHECK(at[1] == 0.0);
+    tg_surface_point_position(m, &src, a);
+    tg_surface_point_position(m, &pts[2], b);
+    CHECK_NEAR(at[2], sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2])),
+               1e-15);
+    /* a limit: points beyond it get inf */
+    tg_field_options o;
+    memset(&o, 0, sizeof o);
+    o.limit = TG_FIELD_MAX_DISTANCE;
+    CHECK(at[2] < at[3]);
+    o.max_distance = 0.5 * (at[2] + at[3]);
+    double lim[4];
+    CHECK_STATUS(tg_geodesic_field_at(g, &src, 1, pts, 4, &o, lim, NULL, NULL), TG_OK);
+    CHECK_MSG(lim[1] == 0.0 && lim[2] == at[2] && isinf(lim[3]), "limit %.17g: %.17g %.17g %.17g (unlimited %.17g %.17g %.17g)", o.max_distance, lim[1], lim[2], lim[3], at[1], at[2], at[3]);
+    /* bad arguments leave the outputs untouched */
+    tg_surface_point bad = tg_surface_face(10, 0.5, 0.6, 0.5);
+    lim[0] = 9;
+    CHECK_STATUS(tg_geodesic_field_at(g, &src, 1, &bad, 1, NULL, lim, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_field_at(g, &src, 1, pts, 4, NULL, NULL, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_field_at(g, &src, 1, NULL, 2, NULL, lim, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK(lim[0] == 9);
+    free(vd);
+    tg_geodesic_destroy(g);
+    tg_mesh_destroy(m);
+}
+
 /* ---- every allocation may fail ---- */
 
 static void test_allocation_failures(void)
@@ -371,6 +455,10 @@ static void test_allocation_failures(void)
         if (st == TG_OK) st = tg_geodesic_field(g, &s[0], 1, &o, out, NULL);
         if (st == TG_OK) st = tg_geodesic_field(g, &s[1], 1, &o, out + n, NULL);
         if (st == TG_OK) st = tg_geodesic_field_batch(g, s, 2, NULL, 2, out, NULL);
+        double at[2] = {-5, -5};
+        if (st == TG_OK) st = tg_geodesic_field_at(g, &s[1], 1, s, 2, &o, at, NULL, NULL);
+        /* at the source itself 0; at the face point, by symmetry, row 0's distance at vertex 99 */
+        if (st == TG_OK) CHECK(at[1] == 0.0 && fabs(at[0] - ref[99]) <= 1e-12 * (1 + ref[99]));
         tg_field_workspace_destroy(ws);
         tg_geodesic_destroy(g);
         CHECK_MSG(c.allocs == c.frees, "fail at %ld: %ld allocations, %ld frees", k, c.allocs, c.frees);
@@ -394,6 +482,16 @@ int main(void)
     test_paths_intrinsic();
     test_workspace_and_progress();
     test_batch_and_limit();
+    test_points_api();
+#ifdef TG_UNDER_ASAN
+    int rounds = 2;
+#else
+    int rounds = 6;
+#endif
+    test_points_symmetry("nvd_spot.obj", rounds);
+    test_points_symmetry("cgal_fandisk.off", rounds);
+    test_points_symmetry("c3d_suzanne.obj", rounds); /* 3 components, boundaries */
+    test_points_symmetry("openfoam_terrain.stl.gz", 1); /* flat CAD, slivers */
     test_allocation_failures();
     return tg_test_finish();
 }

@@ -85,10 +85,11 @@ static int on_progress(void* user, const tg_field_progress* p)
     return cli_interrupted();
 }
 
-/* Reads a sources file: one SPEC a line; blank lines and '#' comments skipped. Returns the number
- * of sources (texts copied into *out_text, pointers into it in *out_items), or -1 after printing
- * the error (file and line). */
-static long read_sources(const char* path, char** out_text, char*** out_items, unsigned long long** out_lines)
+/* Reads a sources or points file: one item a line; a leading BOM, blank lines and '#' comments
+ * skipped. Returns the number of items (texts copied into *out_text, pointers into it in
+ * *out_items, their line numbers in *out_lines), or -1 after printing the error. */
+static long read_lines(const char* path, const char* what, char** out_text, char*** out_items,
+                       unsigned long long** out_lines)
 {
     FILE* f = strcmp(path, "-") ? fopen(path, "rb") : stdin;
     if (!f) {
@@ -105,7 +106,7 @@ static long read_sources(const char* path, char** out_text, char*** out_items, u
             if (!text) break;
         }
         if (c == 0) {
-            cli_error(path, 0, "binary data (a NUL byte): not a sources file");
+            cli_error(path, 0, "binary data (a NUL byte): not a %s file", what);
             free(text);
             if (f != stdin) fclose(f);
             return -1;
@@ -152,7 +153,7 @@ static long read_sources(const char* path, char** out_text, char*** out_items, u
         if (!end) break;
     }
     if (n == 0) {
-        cli_error(path, 0, "no sources (one SPEC a line: v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)");
+        cli_error(path, 0, "no %s (one SPEC a line: v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", what);
         free(text), free(items), free(at);
         return -1;
     }
@@ -187,26 +188,47 @@ typedef struct field_args {
     bool quiet;
     bool matrix;          /* --sources: one row per source */
     const char* sources_path;
+    const char* at_path;  /* --at: distances at these points */
+    char** at_items;
+    unsigned long long* at_lines;
+    size_t at_count;
 } field_args;
 
 /* Resolves the spec texts items[0..count) (lines: from the sources file, named in errors).
  * CLI_OK, CLI_USAGE (a --from spec that does not parse) or CLI_INPUT (error printed). */
-static int resolve_all(const field_args* fa, tg_mesh* mesh, tg_bvh** bvh, char** items, const unsigned long long* lines,
-                        size_t count, tg_surface_point* pts)
+/* "x y z" (three numbers separated by blanks or commas) as a p: spec. */
+static bool parse_xyz(const char* s, cli_spec* out)
+{
+    char buf[256];
+    size_t n = strlen(s);
+    if (n >= sizeof buf) return false;
+    memcpy(buf, s, n + 1);
+    memset(out, 0, sizeof *out);
+    out->kind = 'p';
+    int k = 0;
+    for (char* tok = strtok(buf, " \t,"); tok; tok = strtok(NULL, " \t,")) {
+        if (k == 3 || !cli_parse_double(tok, &out->v[k])) return false;
+        k++;
+    }
+    return k == 3;
+}
+
+static int resolve_all(const field_args* fa, const char* file, bool allow_xyz, tg_mesh* mesh, tg_bvh** bvh, char** items,
+                       const unsigned long long* lines, size_t count, tg_surface_point* pts)
 {
     for (size_t i = 0; i < count; ++i) {
         cli_spec sp;
-        if (!cli_parse_spec(items[i], &sp)) {
+        if (!cli_parse_spec(items[i], &sp) && !(allow_xyz && parse_xyz(items[i], &sp))) {
             if (lines)
-                cli_error(fa->sources_path, lines[i], "bad source '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)",
-                          items[i]);
+                cli_error(file, lines[i], "bad %s '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z%s)",
+                          allow_xyz ? "point" : "source", items[i], allow_xyz ? " or x y z" : "");
             else
                 cli_usage("field", "bad source '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", items[i]);
             return lines ? CLI_INPUT : CLI_USAGE;
         }
         char where[4096];
         if (lines)
-            snprintf(where, sizeof where, "%s:%llu", fa->sources_path, lines[i]);
+            snprintf(where, sizeof where, "%s:%llu", file, lines[i]);
         else
             snprintf(where, sizeof where, "%s", fa->mesh_path);
         if (!cli_resolve_spec(where, mesh, bvh, items[i], &sp, &pts[i])) return CLI_INPUT;
@@ -219,7 +241,8 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     int rc = CLI_INPUT;
     tg_bvh* bvh = NULL;
     tg_geodesic* geo = NULL;
-    double* dist = NULL;
+    double *dist = NULL, *at_d = NULL;
+    tg_surface_point* at_pts = NULL;
     tg_surface_point* pts = malloc(count * sizeof *pts);
     tg_mesh* mesh = pts ? cli_load_mesh(fa->mesh_path) : NULL;
     if (!pts) cli_error(NULL, 0, "out of memory");
@@ -228,7 +251,16 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
         cli_error(fa->mesh_path, 0, "the mesh has no faces");
         goto done;
     }
-    if ((rc = resolve_all(fa, mesh, &bvh, items, lines, count, pts)) != CLI_OK) goto done;
+    if ((rc = resolve_all(fa, fa->sources_path, false, mesh, &bvh, items, lines, count, pts)) != CLI_OK) goto done;
+    at_pts = fa->at_count ? malloc(fa->at_count * sizeof *at_pts) : NULL;
+    at_d = fa->at_count ? malloc(fa->at_count * sizeof *at_d) : NULL;
+    if (fa->at_count && (!at_pts || !at_d)) {
+        cli_error(NULL, 0, "out of memory");
+        goto done;
+    }
+    if (fa->at_count &&
+        (rc = resolve_all(fa, fa->at_path, true, mesh, &bvh, fa->at_items, fa->at_lines, fa->at_count, at_pts)) != CLI_OK)
+        goto done;
     rc = CLI_INPUT;
     size_t n = tg_mesh_vertex_count(mesh), rows = fa->matrix ? count : 1;
     if (n && rows > SIZE_MAX / sizeof(double) / n) {
@@ -251,7 +283,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     if (st == TG_OK && fa->matrix)
         st = tg_geodesic_field_batch(geo, pts, count, &o, fa->threads, dist, &stats);
     else if (st == TG_OK)
-        st = tg_geodesic_field(geo, pts, count, &o, dist, &stats);
+        st = tg_geodesic_field_at(geo, pts, count, at_pts, fa->at_count, &o, at_d, dist, &stats);
     double secs = now_s() - t0;
     cli_progress_end(&prog);
     if (st == TG_ERR_CANCELLED) {
@@ -261,6 +293,30 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     }
     if (st != TG_OK) {
         cli_error(fa->mesh_path, 0, "%s", tg_status_string(st));
+        goto done;
+    }
+    if (fa->at_count) { /* one distance a line (or a .npy vector), to -o or stdout */
+        const char* path = fa->out ? fa->out : "-";
+        if (fa->format == OUT_NPY) {
+            rc = write_table(path, OUT_NPY, at_d, 1, fa->at_count, false);
+        } else {
+            cli_output out;
+            FILE* f = cli_output_open(&out, path);
+            bool ok = f != NULL;
+            for (size_t i = 0; ok && i < fa->at_count; ++i) ok = fprintf(f, "%.17g\n", at_d[i]) > 0;
+            if (!f) {
+                rc = CLI_INPUT;
+            } else if (!ok) {
+                cli_error(path, 0, "write failed: %s", strerror(errno));
+                cli_output_abort(&out);
+                rc = CLI_INPUT;
+            } else {
+                rc = cli_output_commit(&out);
+            }
+        }
+        if (rc != CLI_OK) goto done;
+        if (strcmp(path, "-")) print_summary(count, false, dist, rows, n, secs, &stats);
+        rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
         goto done;
     }
     if (fa->out && fa->format == OUT_PLY) {
@@ -283,7 +339,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     if (!fa->out || strcmp(fa->out, "-")) print_summary(count, fa->matrix, dist, rows, n, secs, &stats);
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
-    free(pts), free(dist);
+    free(pts), free(dist), free(at_pts), free(at_d);
     tg_geodesic_destroy(geo);
     tg_bvh_destroy(bvh);
     tg_mesh_destroy(mesh);
@@ -301,7 +357,7 @@ static int run(int argc, char** argv)
         if (!strcmp(a, "--quiet")) {
             fa.quiet = true;
         } else if (!strcmp(a, "--from") || !strcmp(a, "-o") || !strcmp(a, "--csv") || !strcmp(a, "--max-distance") ||
-                   !strcmp(a, "--sources") || !strcmp(a, "--threads")) {
+                   !strcmp(a, "--sources") || !strcmp(a, "--threads") || !strcmp(a, "--at")) {
             if (i + 1 >= argc) return cli_usage("field", "%s needs a value", a);
             const char* val = argv[++i];
             if (!strcmp(a, "--from"))
@@ -314,6 +370,8 @@ static int run(int argc, char** argv)
                 fa.sources_path = val;
             else if (!strcmp(a, "--threads"))
                 threads = val;
+            else if (!strcmp(a, "--at"))
+                fa.at_path = val;
             else
                 maxd = val;
         } else if (a[0] == '-' && a[1]) {
@@ -332,9 +390,12 @@ static int run(int argc, char** argv)
         fa.format = OUT_CSV;
     } else if (fa.out) {
         fa.format = !strcmp(fa.out, "-") ? OUT_CSV : format_of(fa.out);
-        if (fa.format == OUT_NONE) return cli_usage("field", "-o %s: the extension must be .ply, .csv or .npy", fa.out);
+        if (fa.format == OUT_NONE && !(fa.at_path && strrchr(fa.out, '.') && !strcmp(strrchr(fa.out, '.'), ".txt")))
+            return cli_usage("field", "-o %s: the extension must be .ply, .csv or .npy", fa.out);
     }
     fa.matrix = fa.sources_path != NULL;
+    if (fa.at_path && fa.matrix) return cli_usage("field", "--at goes with --from, not --sources");
+    if (fa.at_path && fa.out && fa.format == OUT_PLY) return cli_usage("field", "--at writes distances: -o OUT.csv, .npy or .txt");
     if (fa.matrix && !fa.out) return cli_usage("field", "--sources needs -o MATRIX.npy or -o MATRIX.csv");
     if (fa.matrix && fa.format == OUT_PLY) return cli_usage("field", "--sources writes a matrix: -o MATRIX.npy or .csv");
     if (maxd && (!cli_parse_double(maxd, &fa.max_dist) || !(fa.max_dist >= 0)))
@@ -348,17 +409,24 @@ static int run(int argc, char** argv)
         char* text = NULL;
         char** items = NULL;
         unsigned long long* lines = NULL;
-        long n = read_sources(fa.sources_path, &text, &items, &lines);
+        long n = read_lines(fa.sources_path, "sources", &text, &items, &lines);
         if (n < 0) return CLI_INPUT;
         rc = run_field(&fa, items, lines, (size_t)n);
         free(text), free(items), free(lines);
         return rc;
+    }
+    char* at_text = NULL;
+    if (fa.at_path) {
+        long na = read_lines(fa.at_path, "points", &at_text, &fa.at_items, &fa.at_lines);
+        if (na < 0) return CLI_INPUT;
+        fa.at_count = (size_t)na;
     }
     size_t len = strlen(from);
     char* list = malloc(len + 1);
     char** items = malloc(MAX_SOURCES * sizeof *items);
     if (!list || !items) {
         free(list), free(items);
+        free(at_text), free(fa.at_items), free(fa.at_lines);
         cli_error(NULL, 0, "out of memory");
         return CLI_INPUT;
     }
@@ -367,12 +435,13 @@ static int run(int argc, char** argv)
     rc = count ? run_field(&fa, items, NULL, count)
                : cli_usage("field", "bad --from list (SPEC[;SPEC...], at most %d)", MAX_SOURCES);
     free(list), free(items);
+    free(at_text), free(fa.at_items), free(fa.at_lines);
     return rc;
 }
 
 const cli_command cli_cmd_field = {
     "field",
-    "field MESH --from SPEC[;SPEC...] | --sources FILE [-o OUT.ply|.csv|.npy] [--max-distance D]",
+    "field MESH --from SPEC[;SPEC...] [--at POINTS] | --sources FILE [-o OUT.ply|.csv|.npy] [--max-distance D]",
     "The exact geodesic distance from surface points to every vertex (window propagation: window\n"
     "lists crossing one face at a time behind a front of vertices, after Qin et al. 2016 and Xin &\n"
     "Wang 2009). Distance is intrinsic: faces' winding does not matter, and paths continue into\n"
@@ -393,6 +462,10 @@ const cli_command cli_cmd_field = {
     "                           .npy  NumPy float64: shape (vertices,) or (sources, vertices)\n"
     "                         '-' writes CSV to stdout\n"
     "  --csv OUT              the same as -o with CSV whatever the extension\n"
+    "  --at POINTS            with --from: the distance at these surface points instead of the\n"
+    "                         vertices: POINTS has one SPEC or \"x y z\" a line (x y z: the closest\n"
+    "                         surface point); one distance a line (%.17g) to -o (.txt, .csv or\n"
+    "                         .npy) or stdout\n"
     "  --max-distance D       stop at distance D (0 allowed): farther vertices get inf\n"
     "  --threads N            --sources: threads (default: all cores)\n"
     "  --quiet                no progress line (drawn on stderr when it is a terminal and the\n"

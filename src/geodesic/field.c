@@ -28,6 +28,9 @@ void tg_field_workspace_destroy(tg_field_workspace* ws)
     tg__vec_free(&a, &ws->scratch);
     tg__vec_free(&a, &ws->keys);
     tg__vec_free(&a, &ws->hits);
+    tg__vec_free(&a, &ws->qpairs);
+    tg__vec_free(&a, &ws->qdist);
+    tg__free(&a, ws->qface);
     tg__free(&a, ws);
 }
 
@@ -78,7 +81,7 @@ size_t tg_field_workspace_memory_bytes(const tg_field_workspace* ws)
     return ws->fixed_bytes + ws->win.capacity * sizeof(tg__window) + ws->free_ids.capacity * sizeof(uint32_t) +
            ws->heap.capacity * sizeof(tg__heap_item) + ws->fifo.capacity * sizeof(uint32_t) +
            ws->scratch.capacity * sizeof(uint32_t) + ws->keys.capacity * sizeof(tg__win_key) +
-           ws->hits.capacity * ws->hits.elem;
+           ws->hits.capacity * ws->hits.elem + ws->qpairs.capacity * ws->qpairs.elem + ws->qdist.capacity * sizeof(double);
 }
 
 /* ---- one field ---- */
@@ -151,8 +154,9 @@ static uint64_t pseudo_count(const tg_geodesic* g)
 
 /* Runs one field on ws (validated arguments); the distances stay in ws->dist. */
 static tg_status run_field(tg_field_workspace* ws, const tg_surface_point* sources, size_t source_count,
-                           const tg_field_options* opt, int (*hook)(void*, const tg__field_run*), void* hook_user,
-                           volatile int* cancel, tg__field_run* run)
+                           const tg_surface_point* points, size_t point_count, const tg_field_options* opt,
+                           int (*hook)(void*, const tg__field_run*), void* hook_user, volatile int* cancel,
+                           tg__field_run* run)
 {
     memset(run, 0, sizeof *run);
     run->ws = ws;
@@ -163,12 +167,11 @@ static tg_status run_field(tg_field_workspace* ws, const tg_surface_point* sourc
     run->max_dist = opt && opt->limit == TG_FIELD_MAX_DISTANCE ? opt->max_distance : INFINITY;
     run->referenced = reachable_vertices(ws->g, sources, source_count);
     tg__field_reset(ws);
+    tg_status st = tg__field_queries_setup(run, points, point_count);
     ws->peak_bytes = tg_field_workspace_memory_bytes(ws);
-    for (size_t i = 0; i < source_count; ++i) {
-        tg_status st = tg__field_seed(run, &sources[i]);
-        if (st != TG_OK) return st;
-    }
-    tg_status st = tg__field_propagate(run);
+    for (size_t i = 0; st == TG_OK && i < source_count; ++i) st = tg__field_seed(run, &sources[i]);
+    if (st == TG_OK) st = tg__field_propagate(run);
+    if (point_count) tg__field_queries_finish(run, st == TG_OK); /* also clears the face marks */
     run->stats.pseudo_source_vertices = pseudo_count(ws->g);
     run->stats.peak_bytes = ws->peak_bytes;
     return st;
@@ -179,11 +182,17 @@ static void copy_out(const tg_field_workspace* ws, double max_dist, double* out)
     for (uint32_t v = 0; v < ws->g->vertex_count; ++v) out[v] = ws->dist[v] <= max_dist ? ws->dist[v] : INFINITY;
 }
 
-tg_status tg_geodesic_field(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
-                            const tg_field_options* options, double* out_vertex_distance, tg_field_stats* out_stats)
+tg_status tg_geodesic_field_at(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+                               const tg_surface_point* points, size_t point_count, const tg_field_options* options,
+                               double* out_point_distance, double* out_vertex_distance, tg_field_stats* out_stats)
 {
-    tg_status st = check_args(g, sources, source_count, options, out_vertex_distance);
+    if (!g || (point_count > 0 && (!points || !out_point_distance)) || (source_count > 0 && !sources))
+        return TG_ERR_INVALID_ARGUMENT;
+    static double unused;
+    tg_status st = check_args(g, sources, source_count, options, out_vertex_distance ? out_vertex_distance : &unused);
     if (st != TG_OK) return st;
+    for (size_t i = 0; i < point_count; ++i)
+        if (tg_surface_point_validate(g->mesh, &points[i], NULL) != TG_OK) return TG_ERR_INVALID_ARGUMENT;
     tg_field_workspace* ws = options ? options->workspace : NULL;
     tg_field_workspace* own = NULL;
     if (ws && ws->g != g) return TG_ERR_INVALID_ARGUMENT;
@@ -194,13 +203,22 @@ tg_status tg_geodesic_field(const tg_geodesic* g, const tg_surface_point* source
     }
     single_progress sp = {options ? options->progress : NULL, options ? options->progress_user : NULL};
     tg__field_run run;
-    st = run_field(ws, sources, source_count, options, sp.fn ? report_single : NULL, &sp, NULL, &run);
+    st = run_field(ws, sources, source_count, points, point_count, options, sp.fn ? report_single : NULL, &sp, NULL,
+                   &run);
     if (st == TG_OK) {
-        copy_out(ws, run.max_dist, out_vertex_distance);
+        if (out_vertex_distance) copy_out(ws, run.max_dist, out_vertex_distance);
+        if (point_count) memcpy(out_point_distance, run.qdist, point_count * sizeof(double));
         if (out_stats) *out_stats = run.stats;
     }
     tg_field_workspace_destroy(own);
     return st;
+}
+
+tg_status tg_geodesic_field(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+                            const tg_field_options* options, double* out_vertex_distance, tg_field_stats* out_stats)
+{
+    if (!out_vertex_distance) return TG_ERR_INVALID_ARGUMENT;
+    return tg_geodesic_field_at(g, sources, source_count, NULL, 0, options, NULL, out_vertex_distance, out_stats);
 }
 
 /* ---- many fields ---- */
@@ -288,8 +306,8 @@ tg_status tg_geodesic_field_batch(const tg_geodesic* g, const tg_surface_point* 
         for (long long i = 0; i < (long long)source_count; ++i) {
             if (b.stop || mine != TG_OK) continue;
             tg__field_run run;
-            mine = run_field(ws, &sources[i], 1, options, options && options->progress ? report_batch : NULL, &row,
-                             &b.stop, &run);
+            mine = run_field(ws, &sources[i], 1, NULL, 0, options, options && options->progress ? report_batch : NULL,
+                             &row, &b.stop, &run);
             if (mine != TG_OK) {
                 b.stop = 1;
                 continue;

@@ -9,7 +9,8 @@
  *   field_mesh.c       per-mesh tables: halfedge frames, edge rings, pseudo-source vertices
  *   field_window.c     window geometry: distances, children across a face, trimming of windows
  *   field_propagate.c  the wavefront: seeding, list propagation, the vertex front, progress
- *   field.c            the public entry points (workspace, single field, batch)
+ *   field_query.c      queries on the field: the distance at arbitrary surface points
+ *   field.c            the public entry points (workspace, single field, points, batch)
  */
 #ifndef TG_FIELD_INTERNAL_H
 #define TG_FIELD_INTERNAL_H
@@ -91,6 +92,10 @@ struct tg_field_workspace {
     tg__vec scratch;  /* uint32_t: one list's windows while it is propagated */
     tg__vec keys;     /* tg__win_key: their starts before trimming */
     tg__vec hits;     /* tg__corner_hit: how each meets the face's opposite corner */
+    /* query points (field_query.c) */
+    tg__vec qpairs;   /* (face, query, barycentrics), sorted by face */
+    tg__vec qdist;    /* double: distance per query point while a run is under way */
+    uint8_t* qface;   /* F: 1 for a face holding query points during a run (made on first use) */
     size_t peak_bytes;
 };
 
@@ -108,6 +113,10 @@ typedef struct tg__field_run {
     volatile int* cancel_flag; /* batch: shared cancellation, may be NULL */
     int (*progress)(void* user, const struct tg__field_run* run);
     void* progress_user;
+    /* query points (field_query.c); qcount 0: none */
+    const tg_surface_point* qpoints;
+    size_t qcount;
+    double* qdist;
     tg_field_stats stats;
 } tg__field_run;
 
@@ -165,6 +174,20 @@ typedef struct tg__win_key {
     uint32_t id;
 } tg__win_key;
 uint64_t tg__windows_trim(tg__window* pool, uint32_t* ids, tg__win_key* keys, size_t n, double len);
+
+/* ---- queries on the field (field_query.c) ---- */
+
+/* Registers the (validated) query points for a run: their distances start at +inf in run->qdist
+ * (workspace memory). */
+tg_status tg__field_queries_setup(tg__field_run* run, const tg_surface_point* points, size_t count);
+/* The windows ids[0..n) of the list of h, trimmed, about to cross face h / 3: evaluated at the
+ * query points in that face that their rays reach. */
+void tg__field_queries_cross(tg__field_run* run, uint32_t h, const tg__window* pool, const uint32_t* ids, size_t n);
+/* A point source (or a point a zero-area face carries) at distance sigma inside face f. */
+void tg__field_queries_source(tg__field_run* run, const double src[3], double sigma, uint32_t f);
+/* After the propagation (ok) the corners' paths, vertex queries and the distance limit; in any
+ * case the face marks are cleared for the next run. */
+void tg__field_queries_finish(tg__field_run* run, bool ok);
 
 /* ---- propagation (field_propagate.c) ---- */
 

@@ -225,6 +225,7 @@ static bool relax_neighbours(tg__field_run* run, uint32_t v)
 static bool emit_face_point(tg__field_run* run, const double p[3], double sigma, uint32_t f, uint32_t from)
 {
     const tg_geodesic* g = run->ws->g;
+    tg__field_queries_source(run, p, sigma, f);
     for (int k = 0; k < 3; ++k) {
         uint32_t v = g->tri[3 * (size_t)f + (size_t)k];
         tg_vec3 r = tg_v3_sub(tg_v3_load(p), tg__gpos(g, v));
@@ -414,6 +415,7 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
         if (!tg__vec_reserve(&ws->allocator, &ws->keys, n)) return false;
         tg__windows_trim(pool, ids, ws->keys.data, n, fr->len);
     }
+    tg__field_queries_cross(run, h, pool, ids, n);
     /* rule 1: the shortest covering window to C over the list sets C and the edge side's split */
     uint32_t vc = g->tri[hp];
     if (!tg__vec_reserve(&ws->allocator, &ws->hits, n)) return false;

@@ -1,0 +1,183 @@
+/* field_query.c - queries on an exact field: the geodesic distance at arbitrary surface points
+ * (inside faces, on edges), evaluated while the windows cross the faces that hold them.
+ * Based on: J. S. B. Mitchell, D. M. Mount and C. H. Papadimitriou, "The discrete geodesic
+ *   problem", SIAM J. Comput. 16(4), 1987, §4 (the distance at a point of a face is the least over
+ *   the windows whose rays reach it, the face's corners, and the sources in the face).
+ *
+ * Why this is exact: the shortest path to a point P of face f either starts at a source in f, or
+ * bends last at a corner of f (a pseudo-source: the corner term dist(c) + |cP|), or enters f
+ * straight through an edge point x from a window that is shortest at x. Filters drop or cut a
+ * window only where another path is shorter at x, and the window that is shortest at x survives
+ * them, so it is evaluated at P when its list crosses f. Windows are evaluated before the cuts of
+ * one angle, one split (which concern points beyond f). */
+#include "geodesic/field_internal.h"
+
+#include <string.h>
+
+/* A query pair: query point `id` lies in face `face` with barycentrics `b` (solver numbering). */
+typedef struct query_pair {
+    uint32_t face, id;
+    double b[3];
+} query_pair;
+
+static bool pair_add(tg_field_workspace* ws, uint32_t face, uint32_t id, const double b[3])
+{
+    if (!tg__vec_reserve(&ws->allocator, &ws->qpairs, 1)) return false;
+    query_pair* p = (query_pair*)ws->qpairs.data + ws->qpairs.count++;
+    p->face = face, p->id = id;
+    memcpy(p->b, b, sizeof p->b);
+    return true;
+}
+
+static int cmp_pair(const query_pair* a, const query_pair* b)
+{
+    if (a->face != b->face) return a->face < b->face ? -1 : 1;
+    return (a->id > b->id) - (a->id < b->id);
+}
+
+tg_status tg__field_queries_setup(tg__field_run* run, const tg_surface_point* points, size_t count)
+{
+    tg_field_workspace* ws = run->ws;
+    const tg_geodesic* g = ws->g;
+    ws->qpairs.count = 0;
+    ws->qpairs.elem = sizeof(query_pair);
+    run->qpoints = points;
+    run->qcount = 0;
+    run->qdist = NULL;
+    if (!count) return TG_OK;
+    ws->qdist.elem = sizeof(double);
+    ws->qdist.count = 0;
+    if (!tg__vec_reserve(&ws->allocator, &ws->qdist, count)) return TG_ERR_OUT_OF_MEMORY;
+    double* out = run->qdist = ws->qdist.data;
+    if (!ws->qface) {
+        ws->qface = tg__calloc_array(&ws->allocator, g->face_count ? g->face_count : 1, 1);
+        if (!ws->qface) return TG_ERR_OUT_OF_MEMORY;
+        ws->fixed_bytes += g->face_count;
+    }
+    for (size_t i = 0; i < count; ++i) {
+        out[i] = INFINITY;
+        tg_surface_point p = tg__surface_to_solver(g, tg_surface_point_canonical(g->mesh, &points[i]));
+        if (p.kind == TG_SURFACE_FACE) {
+            if (!pair_add(ws, p.index, (uint32_t)i, p.bary)) return TG_ERR_OUT_OF_MEMORY;
+        } else if (p.kind == TG_SURFACE_EDGE) {
+            /* every kept face at the edge holds the point */
+            uint32_t h = p.index, va = g->tri[h], vb = g->tri[tg_halfedge_next(h)];
+            for (uint32_t k = g->vc_start[va]; k < g->vc_start[va + 1]; ++k) {
+                uint32_t f = g->vc[k] / 3;
+                int ca = tg__corner_of(g, f, va), cb = tg__corner_of(g, f, vb);
+                if ((g->fflags[f] & TG__F_SKIP) || cb < 0) continue;
+                double b[3] = {0.0, 0.0, 0.0};
+                b[ca] = 1.0 - p.t, b[cb] = p.t;
+                if (!pair_add(ws, f, (uint32_t)i, b)) return TG_ERR_OUT_OF_MEMORY;
+            }
+        } /* vertices: read from the vertex distances at the end */
+    }
+    /* sort by face (insertion sort: query sets are small next to the work of a field) */
+    query_pair* q = ws->qpairs.data;
+    size_t n = ws->qpairs.count;
+    for (size_t i = 1; i < n; ++i) {
+        query_pair x = q[i];
+        size_t j = i;
+        while (j > 0 && cmp_pair(&q[j - 1], &x) > 0) {
+            q[j] = q[j - 1];
+            --j;
+        }
+        q[j] = x;
+    }
+    for (size_t i = 0; i < n; ++i) ws->qface[q[i].face] = 1;
+    run->qcount = count;
+    return TG_OK;
+}
+
+/* The pairs of face f: [*out_begin, *out_end) of the sorted array. */
+static void pairs_of(const tg_field_workspace* ws, uint32_t f, size_t* out_begin, size_t* out_end)
+{
+    const query_pair* q = ws->qpairs.data;
+    size_t lo = 0, hi = ws->qpairs.count;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (q[mid].face < f) lo = mid + 1;
+        else hi = mid;
+    }
+    size_t end = lo;
+    while (end < ws->qpairs.count && q[end].face == f) ++end;
+    *out_begin = lo, *out_end = end;
+}
+
+/* The 3D point of a pair. */
+static tg_vec3 pair_pos(const tg_geodesic* g, const query_pair* p)
+{
+    tg_vec3 r = tg_v3_scale(tg__gpos(g, g->tri[3 * (size_t)p->face]), p->b[0]);
+    r = tg_v3_add(r, tg_v3_scale(tg__gpos(g, g->tri[3 * (size_t)p->face + 1]), p->b[1]));
+    return tg_v3_add(r, tg_v3_scale(tg__gpos(g, g->tri[3 * (size_t)p->face + 2]), p->b[2]));
+}
+
+void tg__field_queries_cross(tg__field_run* run, uint32_t h, const tg__window* pool, const uint32_t* ids, size_t n)
+{
+    tg_field_workspace* ws = run->ws;
+    uint32_t f = h / 3;
+    if (!run->qcount || !ws->qface[f]) return;
+    const tg_geodesic* g = ws->g;
+    const tg__frame* fr = &g->frame[h];
+    uint32_t k = h % 3;
+    size_t begin, end;
+    pairs_of(ws, f, &begin, &end);
+    const query_pair* q = ws->qpairs.data;
+    for (size_t j = begin; j < end; ++j) {
+        /* the point in h's frame: corner k at (0, 0), k + 1 at (len, 0), k + 2 at (cx, cy) */
+        double bb = q[j].b[(k + 1) % 3], bc = q[j].b[(k + 2) % 3];
+        double px = bb * fr->len + bc * fr->cx, py = bc * fr->cy;
+        double snap = 1e-12 * fr->len; /* as the corner snap of field_propagate.c */
+        for (size_t i = 0; i < n; ++i) {
+            const tg__window* w = &pool[ids[i]];
+            if (!(w->b0 < w->b1)) continue;
+            /* where the ray from the source image to the point crosses the edge */
+            double xs = w->sx + (px - w->sx) * (-w->sy) / (py - w->sy);
+            if (!(xs >= w->b0 - snap && xs <= w->b1 + snap)) continue;
+            double dx = px - w->sx, dy = py - w->sy;
+            double d = w->sigma + sqrt(dx * dx + dy * dy);
+            if (d < run->qdist[q[j].id]) run->qdist[q[j].id] = d;
+        }
+    }
+}
+
+void tg__field_queries_source(tg__field_run* run, const double src[3], double sigma, uint32_t f)
+{
+    tg_field_workspace* ws = run->ws;
+    if (!run->qcount || !ws->qface[f]) return;
+    size_t begin, end;
+    pairs_of(ws, f, &begin, &end);
+    const query_pair* q = ws->qpairs.data;
+    for (size_t j = begin; j < end; ++j) {
+        double d = sigma + tg_v3_dist(pair_pos(ws->g, &q[j]), tg_v3_load(src));
+        if (d < run->qdist[q[j].id]) run->qdist[q[j].id] = d;
+    }
+}
+
+void tg__field_queries_finish(tg__field_run* run, bool ok)
+{
+    tg_field_workspace* ws = run->ws;
+    const tg_geodesic* g = ws->g;
+    const query_pair* q = ws->qpairs.data;
+    if (!ok || !run->qcount) { /* only clear the face marks */
+        for (size_t j = 0; ws->qface && j < ws->qpairs.count; ++j) ws->qface[q[j].face] = 0;
+        ws->qpairs.count = 0;
+        return;
+    }
+    for (size_t j = 0; j < ws->qpairs.count; ++j) {
+        /* paths bending last at a corner of the face */
+        tg_vec3 p = pair_pos(g, &q[j]);
+        for (int c = 0; c < 3; ++c) {
+            uint32_t v = g->tri[3 * (size_t)q[j].face + (size_t)c];
+            double d = ws->dist[v] + tg_v3_dist(p, tg__gpos(g, v));
+            if (d < run->qdist[q[j].id]) run->qdist[q[j].id] = d;
+        }
+        ws->qface[q[j].face] = 0;
+    }
+    for (size_t i = 0; i < run->qcount; ++i) {
+        tg_surface_point p = tg_surface_point_canonical(g->mesh, &run->qpoints[i]);
+        if (p.kind == TG_SURFACE_VERTEX) run->qdist[i] = ws->dist[p.index];
+        if (!(run->qdist[i] <= run->max_dist)) run->qdist[i] = INFINITY;
+    }
+    ws->qpairs.count = 0;
+}

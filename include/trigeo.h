@@ -715,8 +715,31 @@ typedef enum tg_path_method {
      *  until a pass shortens the path by at most tolerance * length. */
     TG_PATH_RELAX = 1,
     /** No shortening: the initial shortest edge path (Dijkstra/A*) only. */
-    TG_PATH_EDGE = 2
+    TG_PATH_EDGE = 2,
+    /** The globally shortest path, proven: the straightened path bounds an exact window
+     *  propagation from `from` (tg_geodesic_field's engine, stopped at that length), which gives
+     *  the exact distance to `to`; the path is traced back from `to` along the ray of the window
+     *  that reached it, through the faces it crossed, to the pseudo-source vertex it came from,
+     *  and on to `from`. The view's global is TG_PATH_PROVEN. */
+    TG_PATH_EXACT = 3
 } tg_path_method;
+
+/** Whether a path is proven globally shortest. */
+typedef enum tg_path_global {
+    TG_PATH_UNPROVEN = 0, /**< locally shortest (certificate), not shown to be globally shortest */
+    TG_PATH_PROVEN = 1    /**< an exact computation showed no path shorter by 1e-9 relative exists */
+} tg_path_global;
+
+/** "proven", "unproven"; "unknown" for other values. Never NULL. */
+const char* tg_path_global_name(tg_path_global global);
+
+/** Whether tg_geodesic_path checks its result against the exact distance. */
+typedef enum tg_path_certify {
+    TG_PATH_CERTIFY_OFF = 0, /**< default: no check (global is TG_PATH_UNPROVEN unless method EXACT) */
+    /** After the method: the exact distance within the path's length; a path within 1e-9 of it
+     *  becomes TG_PATH_PROVEN, and a longer one is replaced by the exact path (TG_PATH_EXACT's). */
+    TG_PATH_CERTIFY_ON = 1
+} tg_path_certify;
 
 /** The outcome of a query, stored in the path. */
 typedef enum tg_path_status {
@@ -739,6 +762,7 @@ typedef struct tg_path_options {
     /** RELAX: options of the seed's kernels (tg_edge_path_minimize, tg_fan_path_minimize). NULL:
      *  15 digits by bisection (§2.4) and the conjugate-gradient fan search (§3.4.2). */
     const tg_geodesic_kernel_options* kernel;
+    tg_path_certify certify; /**< TG_PATH_CERTIFY_OFF by default */
 } tg_path_options;
 
 /** A geodesic path: a caller-owned result object reused across queries (its buffers grow to the
@@ -765,6 +789,9 @@ typedef struct tg_path_view {
      *  0 for a path with no interior point. */
     double max_angle_defect;
     tg_path_status status;
+    /** TG_PATH_PROVEN only when an exact computation showed that no path shorter by more than
+     *  1e-9 relative exists (method TG_PATH_EXACT, or certify); else TG_PATH_UNPROVEN. */
+    tg_path_global global;
     uint32_t iterations;             /**< sweeps (STRAIGHTEN) or passes (RELAX) performed */
     uint32_t edge_path_vertices;     /**< mesh vertices on the initial edge path */
 } tg_path_view;

@@ -83,13 +83,29 @@ for out in (None, os.path.join(tmp, "out.csv")):
     check(r.returncode == 0, "batch exit %d %s" % (r.returncode, r.stderr))
     text = open(out).read() if out else r.stdout
     rows = [l.split(",") for l in text.strip().splitlines()]
-    check(rows and rows[0] == ["i", "length", "points", "status", "max_angle_defect", "microseconds"], "CSV header %s" % rows[:1])
+    check(rows and rows[0] == ["i", "length", "points", "status", "max_angle_defect", "microseconds", "global"],
+          "CSV header %s" % rows[:1])
+    check(all(r[6] == "unproven" for r in rows[1:]), "without --certify nothing is proven: %s" % rows[1:])
     check(len(rows) == 4, "CSV rows: %d" % len(rows))
     if len(rows) == 4:
         check(abs(float(rows[1][1]) - dist(vs[0], vs[80])) <= 1e-12, "batch v row %s" % rows[1])
         check(abs(float(rows[2][1]) - dist(pos_face(3, (0.2, 0.3, 0.5)), pos_face(90, (0.1, 0.1, 0.8)))) <= 1e-12, "batch p row %s" % rows[2])
         check(rows[3][3] == "unreachable" and rows[3][1] == "inf" and rows[3][2] == "0", "batch unreachable row %s" % rows[3])
         check(all(r[3] in ("converged", "unreachable") and float(r[5]) >= 0 for r in rows[1:]), "batch statuses")
+
+# --certify and --method exact: proven, with the exact length (Euclidean on the flat sheet)
+for extra in (["--certify"], ["--method", "exact"]):
+    r = run(flat, "--pairs", pairs, *extra)
+    rows = [l.split(",") for l in r.stdout.strip().splitlines()]
+    check(r.returncode == 0 and len(rows) == 4, "%s: exit %d %s" % (extra, r.returncode, r.stderr))
+    if len(rows) == 4:
+        check(rows[1][6] == "proven" and rows[2][6] == "proven", "%s: proven rows %s" % (extra, rows[1:3]))
+        check(abs(float(rows[2][1]) - dist(pos_face(3, (0.2, 0.3, 0.5)), pos_face(90, (0.1, 0.1, 0.8)))) <= 1e-12,
+              "%s: exact length %s" % (extra, rows[2]))
+r = run(flat, "--from", "f:3:0.2,0.3,0.5", "--to", "v:80", "--method", "exact", "--json")
+check(r.returncode == 0 and '"global": "proven"' in r.stdout, "--json global key: %s" % r.stdout[:300])
+r = run(flat, "--from", "f:3:0.2,0.3,0.5", "--to", "v:80")
+check(r.returncode == 0 and "global             unproven" in r.stdout, "summary global line: %s" % r.stdout)
 
 # errors: usage (1), input (2), message format
 def err(args, code, needle, stdin=None):

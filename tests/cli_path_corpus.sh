@@ -27,7 +27,7 @@ for r in rows:
     if p.returncode != 0:
         fail("%s: exit %d: %s" % (r[0], p.returncode, p.stderr.strip())); continue
     out = [l.split(",") for l in p.stdout.strip().splitlines()]
-    if out[0] != ["i", "length", "points", "status", "max_angle_defect", "microseconds"] or len(out) != 4:
+    if out[0] != ["i", "length", "points", "status", "max_angle_defect", "microseconds", "global"] or len(out) != 4:
         fail("%s: bad CSV %r" % (r[0], out[:2])); continue
     ok = True
     for row in out[1:]:
@@ -43,6 +43,20 @@ for r in rows:
     # a face to itself: length 0
     if ok and float(out[3][1]) != 0.0:
         fail("%s: same point, length %s" % (r[0], out[3][1])); ok = False
+    # --certify: every converged path proven globally shortest (an exact propagation bounded by
+    # its length), never longer than the straightened one, still certified straight
+    if ok:
+        pc = subprocess.run([trigeo, "path", path, "--pairs", "-", "--certify"], input=pairs, capture_output=True, text=True)
+        cert = [l.split(",") for l in pc.stdout.strip().splitlines()]
+        if pc.returncode != 0 or len(cert) != 4:
+            fail("%s: --certify exit %d %s" % (r[0], pc.returncode, pc.stderr.strip())); ok = False
+        else:
+            for a, b in zip(out[1:], cert[1:]):
+                if b[3] == "converged" and not (b[6] == "proven" and float(b[1]) <= float(a[1]) * (1 + 1e-12)
+                                                and float(b[4]) <= 1e-10):
+                    fail("%s: --certify row %s (straightened %s)" % (r[0], b, a)); ok = False; break
+                if b[3] != "converged" and b[3] != a[3]:
+                    fail("%s: --certify status %s vs %s" % (r[0], b, a)); ok = False; break
     if ok:
         passed += 1
 print("%d passed, %d failed" % (passed, failed))

@@ -49,7 +49,8 @@ static void print_json(FILE* f, const char* mesh_path, const char* method, const
 {
     fprintf(f, "{\n  \"mesh\": ");
     json_string(f, mesh_path);
-    fprintf(f, ",\n  \"method\": \"%s\",\n  \"status\": \"%s\",\n  \"length\": ", method, tg_path_status_name(v->status));
+    fprintf(f, ",\n  \"method\": \"%s\",\n  \"status\": \"%s\",\n  \"global\": \"%s\",\n  \"length\": ", method,
+            tg_path_status_name(v->status), tg_path_global_name(v->global));
     json_number(f, v->length);
     fprintf(f, ",\n  \"initial_length\": ");
     json_number(f, v->initial_length);
@@ -75,6 +76,8 @@ static void print_summary(FILE* f, const tg_path_view* v)
         vertices += v->points[i].kind == TG_SURFACE_VERTEX;
     }
     fprintf(f, "status             %s\n", tg_path_status_name(v->status));
+    fprintf(f, "global             %s\n", v->global == TG_PATH_PROVEN ? "proven shortest (exact check)"
+                                                                     : "unproven (locally shortest only; --certify proves)");
     fprintf(f, "length             %.17g\n", v->length);
     fprintf(f, "edge path length   %.17g\n", v->initial_length);
     fprintf(f, "points             %zu (%d edge crossings, %d vertex passages)\n", v->point_count, crossings, vertices);
@@ -158,7 +161,7 @@ static int run_pairs(const char* mesh_path, const char* pairs_path, const char* 
         cli_error(out_path, 0, "cannot open for writing: %s", strerror(errno));
         goto done;
     }
-    fprintf(out, "i,length,points,status,max_angle_defect,microseconds\n");
+    fprintf(out, "i,length,points,status,max_angle_defect,microseconds,global\n");
     char line[4096];
     unsigned long long lineno = 0, i = 0;
     while (fgets(line, sizeof line, in)) {
@@ -181,8 +184,8 @@ static int run_pairs(const char* mesh_path, const char* pairs_path, const char* 
         }
         tg_path_view v;
         tg_path_get_view(path, &v);
-        fprintf(out, "%llu,%.17g,%zu,%s,%.17g,%.3f\n", i++, v.length, v.point_count, tg_path_status_name(v.status),
-                v.max_angle_defect, us);
+        fprintf(out, "%llu,%.17g,%zu,%s,%.17g,%.3f,%s\n", i++, v.length, v.point_count, tg_path_status_name(v.status),
+                v.max_angle_defect, us, tg_path_global_name(v.global));
     }
     if (ferror(in)) {
         cli_error(pairs_path, 0, "read error");
@@ -260,7 +263,7 @@ done:
 static int run(int argc, char** argv)
 {
     const char *mesh_path = NULL, *from = NULL, *to = NULL, *pairs = NULL, *out_path = NULL, *method = "straighten";
-    bool json = false;
+    bool json = false, certify = false;
     tg_path_options o;
     memset(&o, 0, sizeof o);
     for (int i = 1; i < argc; ++i) {
@@ -281,6 +284,8 @@ static int run(int argc, char** argv)
                 method = val;
         } else if (!strcmp(a, "--json")) {
             json = true;
+        } else if (!strcmp(a, "--certify")) {
+            certify = true;
         } else if (a[0] == '-' && a[1]) {
             return cli_usage("path", "unknown option '%s'", a);
         } else if (!mesh_path) {
@@ -295,8 +300,11 @@ static int run(int argc, char** argv)
         o.method = TG_PATH_RELAX;
     else if (!strcmp(method, "edge"))
         o.method = TG_PATH_EDGE;
+    else if (!strcmp(method, "exact"))
+        o.method = TG_PATH_EXACT;
     else
-        return cli_usage("path", "--method must be straighten, relax or edge, not '%s'", method);
+        return cli_usage("path", "--method must be straighten, relax, edge or exact, not '%s'", method);
+    if (certify) o.certify = TG_PATH_CERTIFY_ON;
     if (!mesh_path) return cli_usage("path", "missing MESH");
     if (pairs) {
         if (from || to) return cli_usage("path", "--pairs excludes --from and --to");
@@ -309,7 +317,7 @@ static int run(int argc, char** argv)
 
 const cli_command cli_cmd_path = {
     "path",
-    "path MESH (--from SPEC --to SPEC [-o PATH.obj] [--json] | --pairs PAIRS [-o OUT.csv]) [--method M]",
+    "path MESH (--from SPEC --to SPEC [-o PATH.obj] [--json] | --pairs PAIRS [-o OUT.csv]) [--method M] [--certify]",
     "Geodesic paths on the surface between any two surface points (never snapped to a vertex):\n"
     "the shortest edge path (A*) with the endpoints inserted virtually, then shortened.\n\n"
     "  --from SPEC, --to SPEC   endpoints:  v:IDX            a vertex\n"
@@ -319,10 +327,17 @@ const cli_command cli_cmd_path = {
     "  -o PATH.obj              write the path as an OBJ polyline (v and l records)\n"
     "  --json                   print surface points, faces, 3D points, length, status, certificate\n"
     "  --pairs PAIRS            batch: one pair a line, \"v SRC TGT\" or \"p F0 b0 b1 b2 F1 c0 c1 c2\";\n"
-    "                           CSV i,length,points,status,max_angle_defect,microseconds to stdout\n"
-    "                           or -o OUT.csv ('-' reads PAIRS from stdin)\n"
+    "                           CSV i,length,points,status,max_angle_defect,microseconds,global to\n"
+    "                           stdout or -o OUT.csv ('-' reads PAIRS from stdin)\n"
     "  --method M               straighten (default: funnel over unfolded strips, vertex re-routing),\n"
-    "                           relax (the seed's relaxation), edge (the initial edge path only)\n\n"
+    "                           relax (the seed's relaxation), edge (the initial edge path only),\n"
+    "                           exact (the globally shortest path: an exact window propagation from\n"
+    "                           the source, bounded by the straightened length, traced back from the\n"
+    "                           target through the windows and pseudo-source vertices)\n"
+    "  --certify                after the method, check against the exact distance: a path within\n"
+    "                           1e-9 of it is proven, a longer one is replaced by the exact path\n\n"
+    "global: proven when an exact computation showed no path shorter by 1e-9 relative exists\n"
+    "(--method exact, --certify), else unproven (locally shortest, possibly not globally).\n"
     "Status is converged, iteration_cap or unreachable (endpoints in different components: no\n"
     "points, length inf). The certificate (max angle defect, radians) is the largest deviation from\n"
     "straightness over edge crossings and vertex passages. Indices are 0-based in file order.\n",

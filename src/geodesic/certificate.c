@@ -25,19 +25,23 @@ typedef struct placed_face {
     double xy[3][2]; /* 2D position of each corner */
 } placed_face;
 
-/* The halfedge of face f on the edge of halfedge h, or TG_NONE. */
+/* The halfedge of face f on the edge of halfedge h, or TG_NONE: any face at the edge, whatever its
+ * winding (paths of the exact method cross non-manifold edges and the wall a non-orientable
+ * component keeps, as the 2-complex's geodesics do). */
 static uint32_t halfedge_in(const tg_geodesic* g, uint32_t h, uint32_t f)
 {
     if (h / 3 == f) return h;
-    uint32_t o = g->opp[h];
-    return o != TG_NONE && o / 3 == f ? o : TG_NONE;
+    for (uint32_t o = g->ring[h]; o != h; o = g->ring[o])
+        if (o / 3 == f) return o;
+    return TG_NONE;
 }
 
-/* Unfolds the face across halfedge h of the placed (counterclockwise) face pf. */
-static bool unfold_across(const tg_geodesic* g, placed_face* pf, uint32_t h)
+/* Unfolds the face `to` across halfedge h of the placed (counterclockwise) face pf. */
+static bool unfold_across(const tg_geodesic* g, placed_face* pf, uint32_t h, uint32_t to)
 {
-    uint32_t q = g->opp[h];
-    if (q == TG_NONE || h / 3 != pf->f) return false;
+    uint32_t q = halfedge_in(g, h, to);
+    if (q == TG_NONE || q == h || h / 3 != pf->f) return false;
+    bool same = g->tri[q] == g->tri[h]; /* wound the same way: mirrored in the plane */
     double r[2] = {pf->xy[h % 3][0], pf->xy[h % 3][1]};
     double l[2] = {pf->xy[(h % 3 + 1) % 3][0], pf->xy[(h % 3 + 1) % 3][1]};
     tg_vec3 pr = tg__gpos(g, g->tri[h]);
@@ -49,8 +53,10 @@ static bool unfold_across(const tg_geodesic* g, placed_face* pf, uint32_t h)
     double x = tg_v3_dot(d, e) / ee, y = tg_v3_len(tg_v3_cross(d, e)) / ee;
     double dx = l[0] - r[0], dy = l[1] - r[1];
     pf->f = q / 3;
-    pf->xy[qk][0] = l[0], pf->xy[qk][1] = l[1];
-    pf->xy[(qk + 1) % 3][0] = r[0], pf->xy[(qk + 1) % 3][1] = r[1];
+    const double* q0 = same ? r : l;
+    const double* q1 = same ? l : r;
+    pf->xy[qk][0] = q0[0], pf->xy[qk][1] = q0[1];
+    pf->xy[(qk + 1) % 3][0] = q1[0], pf->xy[(qk + 1) % 3][1] = q1[1];
     pf->xy[(qk + 2) % 3][0] = r[0] + x * dx + y * dy;
     pf->xy[(qk + 2) % 3][1] = r[1] + x * dy - y * dx;
     return true;
@@ -138,13 +144,13 @@ static double crossing_defect(const tg_geodesic* g, const tg__node* nodes, const
     for (size_t j = i - 1; ok && j > i0; --j) {
         if (faces[j - 1] == back.f) continue;
         uint32_t he = halfedge_in(g, nodes[j].id, back.f);
-        ok = nodes[j].kind == TG__NODE_EDGE && he != TG_NONE && unfold_across(g, &back, he) && back.f == faces[j - 1];
+        ok = nodes[j].kind == TG__NODE_EDGE && he != TG_NONE && unfold_across(g, &back, he, faces[j - 1]);
     }
     ok = ok && place_node(g, &back, &nodes[i0], pp);
     for (size_t j = i; ok && j < i1; ++j) {
         if (faces[j] == pf.f) continue; /* the path touches the edge without crossing it */
         uint32_t he = halfedge_in(g, nodes[j].id, pf.f);
-        ok = nodes[j].kind == TG__NODE_EDGE && he != TG_NONE && unfold_across(g, &pf, he) && pf.f == faces[j];
+        ok = nodes[j].kind == TG__NODE_EDGE && he != TG_NONE && unfold_across(g, &pf, he, faces[j]);
     }
     ok = ok && place_node(g, &pf, &nodes[i1], pn);
     /* no distinct neighbour on a side: the crossing is at a degenerate point (coincident

@@ -31,10 +31,12 @@ void tg_field_workspace_destroy(tg_field_workspace* ws)
     tg__vec_free(&a, &ws->qpairs);
     tg__vec_free(&a, &ws->qdist);
     tg__free(&a, ws->qface);
+    tg__free(&a, ws->pred);
+    tg__vec_free(&a, &ws->qpred);
     tg__free(&a, ws);
 }
 
-static tg_status workspace_make(const tg_geodesic* g, const tg_allocator* alloc, tg_field_workspace** out)
+tg_status tg__field_workspace_make(const tg_geodesic* g, const tg_allocator* alloc, tg_field_workspace** out)
 {
     *out = NULL;
     tg_field_workspace* ws = tg__alloc(alloc, sizeof *ws);
@@ -72,7 +74,7 @@ tg_status tg_field_workspace_create(const tg_geodesic* g, tg_field_workspace** o
     if (!out) return TG_ERR_INVALID_ARGUMENT;
     *out = NULL;
     if (!g) return TG_ERR_INVALID_ARGUMENT;
-    return workspace_make(g, &g->allocator, out);
+    return tg__field_workspace_make(g, &g->allocator, out);
 }
 
 size_t tg_field_workspace_memory_bytes(const tg_field_workspace* ws)
@@ -152,13 +154,18 @@ static uint64_t pseudo_count(const tg_geodesic* g)
     return n;
 }
 
-/* Runs one field on ws (validated arguments); the distances stay in ws->dist. */
-static tg_status run_field(tg_field_workspace* ws, const tg_surface_point* sources, size_t source_count,
-                           const tg_surface_point* points, size_t point_count, const tg_field_options* opt,
-                           int (*hook)(void*, const tg__field_run*), void* hook_user, volatile int* cancel,
-                           tg__field_run* run)
+tg_status tg__field_execute(tg_field_workspace* ws, const tg_surface_point* sources, size_t source_count,
+                            const tg_surface_point* points, size_t point_count, const tg_field_options* opt,
+                            int (*hook)(void*, const tg__field_run*), void* hook_user, volatile int* cancel, int track,
+                            tg__field_run* run)
 {
     memset(run, 0, sizeof *run);
+    run->track = track;
+    if (track && !ws->pred) {
+        ws->pred = tg__alloc_array(&ws->allocator, ws->g->vertex_count ? ws->g->vertex_count : 1, sizeof(tg__pred));
+        if (!ws->pred) return TG_ERR_OUT_OF_MEMORY;
+        ws->fixed_bytes += ws->g->vertex_count * sizeof(tg__pred);
+    }
     run->ws = ws;
     run->progress = hook;
     run->progress_user = hook_user;
@@ -197,14 +204,14 @@ tg_status tg_geodesic_field_at(const tg_geodesic* g, const tg_surface_point* sou
     tg_field_workspace* own = NULL;
     if (ws && ws->g != g) return TG_ERR_INVALID_ARGUMENT;
     if (!ws) {
-        st = workspace_make(g, options && options->allocator ? options->allocator : &g->allocator, &own);
+        st = tg__field_workspace_make(g, options && options->allocator ? options->allocator : &g->allocator, &own);
         if (st != TG_OK) return st;
         ws = own;
     }
     single_progress sp = {options ? options->progress : NULL, options ? options->progress_user : NULL};
     tg__field_run run;
-    st = run_field(ws, sources, source_count, points, point_count, options, sp.fn ? report_single : NULL, &sp, NULL,
-                   &run);
+    st = tg__field_execute(ws, sources, source_count, points, point_count, options, sp.fn ? report_single : NULL, &sp,
+                           NULL, 0, &run);
     if (st == TG_OK) {
         if (out_vertex_distance) copy_out(ws, run.max_dist, out_vertex_distance);
         if (point_count) memcpy(out_point_distance, run.qdist, point_count * sizeof(double));
@@ -295,7 +302,7 @@ tg_status tg_geodesic_field_batch(const tg_geodesic* g, const tg_surface_point* 
 #endif
     {
         tg_field_workspace* ws = NULL;
-        tg_status mine = workspace_make(g, alloc, &ws);
+        tg_status mine = tg__field_workspace_make(g, alloc, &ws);
         tg_field_stats local;
         memset(&local, 0, sizeof local);
         batch_row row = {&b};
@@ -306,8 +313,8 @@ tg_status tg_geodesic_field_batch(const tg_geodesic* g, const tg_surface_point* 
         for (long long i = 0; i < (long long)source_count; ++i) {
             if (b.stop || mine != TG_OK) continue;
             tg__field_run run;
-            mine = run_field(ws, &sources[i], 1, NULL, 0, options, options && options->progress ? report_batch : NULL,
-                             &row, &b.stop, &run);
+            mine = tg__field_execute(ws, &sources[i], 1, NULL, 0, options,
+                                     options && options->progress ? report_batch : NULL, &row, &b.stop, 0, &run);
             if (mine != TG_OK) {
                 b.stop = 1;
                 continue;

@@ -46,8 +46,23 @@ typedef struct tg__window {
     double sx, sy;
     double sigma;
     uint32_t next;     /* next window in the same list, TG_NONE at the end */
-    uint32_t via_flat; /* 1: unfolded through a zero-area face, may not cross another at once */
+    uint32_t tag;      /* origin (low 31 bits): the pseudo-source vertex whose image is (sx, sy), or
+                          TG__ORIGIN_SOURCE; bit 31 (TG__VIA_FLAT): unfolded through a zero-area face,
+                          so it may not cross another at once */
 } tg__window;
+
+#define TG__ORIGIN_SOURCE 0x7FFFFFFFu
+#define TG__VIA_FLAT 0x80000000u
+
+/* How a vertex (or a query point) got its distance, for tracing the path back (recorded only
+ * when a run asks for it): along the ray of a window that crossed halfedge h (its source image
+ * (sx, sy) in h's frame, its origin), along an edge from the vertex `origin` (h == TG_NONE), or
+ * straight inside face f from a point source or a vertex `origin` (h == TG__PRED_FACE | f). */
+typedef struct tg__pred {
+    uint32_t h, origin;
+    double sx, sy;
+} tg__pred;
+#define TG__PRED_FACE 0x80000000u
 
 /* Window filters drop a window (part) only when another real path is shorter by more than this
  * relative margin: well above the rounding of a distance accumulated over thousands of unfoldings
@@ -96,6 +111,8 @@ struct tg_field_workspace {
     tg__vec qpairs;   /* (face, query, barycentrics), sorted by face */
     tg__vec qdist;    /* double: distance per query point while a run is under way */
     uint8_t* qface;   /* F: 1 for a face holding query points during a run (made on first use) */
+    tg__pred* pred;   /* V: predecessors, when a run traces paths (made on first use) */
+    tg__vec qpred;    /* tg__pred per query point, likewise */
     size_t peak_bytes;
 };
 
@@ -117,6 +134,7 @@ typedef struct tg__field_run {
     const tg_surface_point* qpoints;
     size_t qcount;
     double* qdist;
+    int track;            /* record predecessors (ws->pred, ws->qpred) for tracing paths back */
     tg_field_stats stats;
 } tg__field_run;
 
@@ -184,10 +202,22 @@ tg_status tg__field_queries_setup(tg__field_run* run, const tg_surface_point* po
  * query points in that face that their rays reach. */
 void tg__field_queries_cross(tg__field_run* run, uint32_t h, const tg__window* pool, const uint32_t* ids, size_t n);
 /* A point source (or a point a zero-area face carries) at distance sigma inside face f. */
-void tg__field_queries_source(tg__field_run* run, const double src[3], double sigma, uint32_t f);
+void tg__field_queries_source(tg__field_run* run, const double src[3], double sigma, uint32_t f, uint32_t origin);
 /* After the propagation (ok) the corners' paths, vertex queries and the distance limit; in any
  * case the face marks are cleared for the next run. */
 void tg__field_queries_finish(tg__field_run* run, bool ok);
+
+/* ---- runs (field.c) ---- */
+
+/* A workspace for g with the given allocator. */
+tg_status tg__field_workspace_make(const tg_geodesic* g, const tg_allocator* alloc, tg_field_workspace** out);
+/* One run on ws with validated arguments: sources, query points (their distances in run->qdist),
+ * options (limit), a progress hook, a shared cancellation flag (may be NULL), and track: record
+ * predecessors for tracing paths back. The vertex distances stay in ws->dist. */
+tg_status tg__field_execute(tg_field_workspace* ws, const tg_surface_point* sources, size_t source_count,
+                            const tg_surface_point* points, size_t point_count, const tg_field_options* opt,
+                            int (*hook)(void*, const tg__field_run*), void* hook_user, volatile int* cancel, int track,
+                            tg__field_run* run);
 
 /* ---- propagation (field_propagate.c) ---- */
 

@@ -79,12 +79,13 @@ static bool front_push(tg__field_run* run, double key, uint32_t v)
     return true;
 }
 
-/* Records distance d for vertex v if shorter, and puts it on the front. */
-static bool relax_vertex(tg__field_run* run, uint32_t v, double d)
+/* Records distance d for vertex v if shorter (reached as `how` says), and puts it on the front. */
+static bool relax_vertex(tg__field_run* run, uint32_t v, double d, tg__pred how)
 {
     tg_field_workspace* ws = run->ws;
     if (!(d < ws->dist[v])) return true;
     ws->dist[v] = d;
+    if (run->track) ws->pred[v] = how;
     if (d > run->max_dist) return true;
     return front_push(run, d, v);
 }
@@ -129,7 +130,7 @@ static bool dominated(const tg__field_run* run, uint32_t h, double c0, double c1
 /* Adds the window [c0, c1] on halfedge h with source image (x, y) and offset sigma to h's list,
  * unless it is empty, grazing, dominated or beyond the distance limit. */
 static bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, double x, double y, double sigma,
-                        uint32_t via_flat)
+                        uint32_t tag)
 {
     tg_field_workspace* ws = run->ws;
     const tg_geodesic* g = ws->g;
@@ -149,7 +150,7 @@ static bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, do
     uint32_t id = win_alloc(ws);
     if (id == TG_NONE) return false;
     tg__window* w = &((tg__window*)ws->win.data)[id];
-    w->b0 = c0, w->b1 = c1, w->sx = x, w->sy = y, w->sigma = sigma, w->via_flat = via_flat;
+    w->b0 = c0, w->b1 = c1, w->sx = x, w->sy = y, w->sigma = sigma, w->tag = tag;
     w->next = ws->head[h];
     ws->head[h] = id;
     run->stats.windows_created++;
@@ -162,21 +163,22 @@ static bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, do
  * (y > 0: inside the face) at offset sigma continues as a window into every other face at the
  * edge. */
 static bool push_through(tg__field_run* run, uint32_t e, double t0, double t1, double x, double y, double sigma,
-                         uint32_t via_flat)
+                         uint32_t tag)
 {
     const tg_geodesic* g = run->ws->g;
     for (uint32_t o = g->ring[e]; o != e; o = g->ring[o]) {
         double ox, oy, c0, c1;
         tg__ring_point(g, e, o, x, y, &ox, &oy);
         tg__ring_interval(g, e, o, t0, t1, &c0, &c1);
-        if (!push_window(run, o, c0, c1, ox, oy, sigma, via_flat)) return false;
+        if (!push_window(run, o, c0, c1, ox, oy, sigma, tag)) return false;
     }
     return true;
 }
 
 /* ---- sources and pseudo-sources ---- */
 
-static bool emit_face_point(tg__field_run* run, const double p[3], double sigma, uint32_t f, uint32_t from);
+static bool emit_face_point(tg__field_run* run, const double p[3], double sigma, uint32_t f, uint32_t from,
+                            uint32_t origin);
 
 /* Emits from vertex v at its current distance into every face around it (each face's opposite
  * edge lit from v, which is that edge's opposite corner), and relaxes its neighbours along the
@@ -193,8 +195,8 @@ static bool emit_vertex(tg__field_run* run, uint32_t v)
         uint32_t e = 3 * f + (k + 1) % 3;
         const tg__frame* fr = &g->frame[e];
         if (g->fflags[f] & TG__F_FLAT) { /* v may lie on the opposite edge: emit across it too */
-            if (!emit_face_point(run, g->xyz + 3 * (size_t)v, sigma, f, TG_NONE)) return false;
-        } else if (!push_through(run, e, 0.0, fr->len, fr->cx, fr->cy, sigma, 0)) {
+            if (!emit_face_point(run, g->xyz + 3 * (size_t)v, sigma, f, TG_NONE, v)) return false;
+        } else if (!push_through(run, e, 0.0, fr->len, fr->cx, fr->cy, sigma, v)) {
             return false;
         }
     }
@@ -212,8 +214,9 @@ static bool relax_neighbours(tg__field_run* run, uint32_t v)
         uint32_t c = g->vc[i], f = c / 3, k = c % 3;
         if (g->fflags[f] & TG__F_SKIP) continue;
         uint32_t hn = 3 * f + (k + 1) % 3, hp = 3 * f + (k + 2) % 3;
-        if (!relax_vertex(run, g->tri[hn], d + g->frame[c].len)) return false;
-        if (!relax_vertex(run, g->tri[hp], d + g->frame[hp].len)) return false;
+        tg__pred along = {TG_NONE, v, 0.0, 0.0};
+        if (!relax_vertex(run, g->tri[hn], d + g->frame[c].len, along)) return false;
+        if (!relax_vertex(run, g->tri[hp], d + g->frame[hp].len, along)) return false;
     }
     return true;
 }
@@ -222,30 +225,32 @@ static bool relax_neighbours(tg__field_run* run, uint32_t v)
  * and each edge of f not containing p is lit from p into the faces beyond. When p lies inside an
  * edge of f (an edge point, or a point of a zero-area face), it also lies in the other faces at
  * that edge and emits there (once: `from` is the halfedge already crossed, or TG_NONE). */
-static bool emit_face_point(tg__field_run* run, const double p[3], double sigma, uint32_t f, uint32_t from)
+static bool emit_face_point(tg__field_run* run, const double p[3], double sigma, uint32_t f, uint32_t from,
+                            uint32_t origin)
 {
     const tg_geodesic* g = run->ws->g;
-    tg__field_queries_source(run, p, sigma, f);
+    tg__field_queries_source(run, p, sigma, f, origin);
+    tg__pred inside = {TG__PRED_FACE | f, origin, 0.0, 0.0};
     for (int k = 0; k < 3; ++k) {
         uint32_t v = g->tri[3 * (size_t)f + (size_t)k];
         tg_vec3 r = tg_v3_sub(tg_v3_load(p), tg__gpos(g, v));
-        if (!relax_vertex(run, v, sigma + tg_v3_len(r))) return false;
+        if (!relax_vertex(run, v, sigma + tg_v3_len(r), inside)) return false;
     }
     for (uint32_t k = 0; k < 3; ++k) {
         uint32_t h = 3 * f + k;
         double len = g->frame[h].len;
         if (!(len > 0.0) || h == from) continue;
-        tg_vec3 origin = tg__gpos(g, g->tri[h]);
-        tg_vec3 u = tg_v3_scale(tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_next(h)]), origin), 1.0 / len);
-        tg_vec3 r = tg_v3_sub(tg_v3_load(p), origin);
+        tg_vec3 o3 = tg__gpos(g, g->tri[h]);
+        tg_vec3 u = tg_v3_scale(tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_next(h)]), o3), 1.0 / len);
+        tg_vec3 r = tg_v3_sub(tg_v3_load(p), o3);
         double x = tg_v3_dot(r, u), y = tg_v3_len(tg_v3_cross(u, r));
         if (y <= TG__GRAZING_REL * (fabs(x) + len)) {
             if (from == TG_NONE && x > 0.0 && x < len)
                 for (uint32_t o = g->ring[h]; o != h; o = g->ring[o])
-                    if (!emit_face_point(run, p, sigma, o / 3, o)) return false;
+                    if (!emit_face_point(run, p, sigma, o / 3, o, origin)) return false;
             continue;
         }
-        if (!push_through(run, h, 0.0, len, x, y, sigma, 0)) return false;
+        if (!push_through(run, h, 0.0, len, x, y, sigma, origin)) return false;
     }
     return true;
 }
@@ -262,16 +267,17 @@ tg_status tg__field_seed(tg__field_run* run, const tg_surface_point* sp)
     if (node.kind == TG__NODE_VERTEX) {
         /* emitted when it leaves the front, like a pseudo-source, whatever its kind */
         ws->inside[node.id] |= VS_SOURCE;
-        ok = relax_vertex(run, node.id, 0.0);
+        tg__pred none = {TG_NONE, TG__ORIGIN_SOURCE, 0.0, 0.0};
+        ok = relax_vertex(run, node.id, 0.0, none);
     } else if (node.kind == TG__NODE_FACE) {
-        ok = emit_face_point(run, p, 0.0, node.id, TG_NONE);
+        ok = emit_face_point(run, p, 0.0, node.id, TG_NONE, TG__ORIGIN_SOURCE);
     } else {
         /* an edge point lies in every face holding both ends of its edge */
         uint32_t va = g->tri[node.id], vb = g->tri[tg_halfedge_next(node.id)];
         for (uint32_t i = g->vc_start[va]; ok && i < g->vc_start[va + 1]; ++i) {
             uint32_t f = g->vc[i] / 3;
             if (!(g->fflags[f] & TG__F_SKIP) && tg__corner_of(g, f, vb) >= 0)
-                ok = emit_face_point(run, p, 0.0, f, TG_NONE);
+                ok = emit_face_point(run, p, 0.0, f, TG_NONE, TG__ORIGIN_SOURCE);
         }
     }
     return ok ? TG_OK : TG_ERR_OUT_OF_MEMORY;
@@ -300,7 +306,8 @@ static bool push_child(tg__field_run* run, const tg__window* w, uint32_t e, cons
     double ux = (d[0] - o[0]) / len, uy = (d[1] - o[1]) / len;
     double rx = w->sx - o[0], ry = w->sy - o[1];
     double x = rx * ux + ry * uy, y = ux * ry - uy * rx;
-    return push_through(run, e, t_lo * len, t_hi * len, x, y, w->sigma, via_flat);
+    uint32_t tag = (w->tag & ~TG__VIA_FLAT) | (via_flat ? TG__VIA_FLAT : 0u);
+    return push_through(run, e, t_lo * len, t_hi * len, x, y, w->sigma, tag);
 }
 
 
@@ -398,7 +405,7 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
     for (; id != TG_NONE;) {
         tg__window* w = &pool[id];
         uint32_t next = w->next;
-        bool keep = crossable && !(flat && w->via_flat);
+        bool keep = crossable && !(flat && (w->tag & TG__VIA_FLAT));
         if (keep && dominated(run, h, w->b0, w->b1, tg__win_dist(w, w->b0), tg__win_dist(w, w->b1))) keep = false;
         if (keep && !tg__vec_reserve(&ws->allocator, &ws->scratch, 1)) return false;
         if (keep) {
@@ -426,7 +433,8 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
         tg__corner_hit hc = hits[i] = hit_corner(w, fr);
         if (hc.covers && hc.dc < ws->split_d[h]) {
             if (!flat) ws->split_d[h] = hc.dc, ws->split_x[h] = hc.xc;
-            if (!relax_vertex(run, vc, hc.dc)) return false;
+            tg__pred ray = {h, w->tag & ~TG__VIA_FLAT, w->sx, w->sy};
+            if (!relax_vertex(run, vc, hc.dc, ray)) return false;
         }
     }
     for (size_t i = 0; i < n; ++i) {

@@ -49,6 +49,11 @@ tg_status tg__field_queries_setup(tg__field_run* run, const tg_surface_point* po
     ws->qdist.count = 0;
     if (!tg__vec_reserve(&ws->allocator, &ws->qdist, count)) return TG_ERR_OUT_OF_MEMORY;
     double* out = run->qdist = ws->qdist.data;
+    if (run->track) {
+        ws->qpred.elem = sizeof(tg__pred);
+        ws->qpred.count = 0;
+        if (!tg__vec_reserve(&ws->allocator, &ws->qpred, count)) return TG_ERR_OUT_OF_MEMORY;
+    }
     if (!ws->qface) {
         ws->qface = tg__calloc_array(&ws->allocator, g->face_count ? g->face_count : 1, 1);
         if (!ws->qface) return TG_ERR_OUT_OF_MEMORY;
@@ -136,12 +141,18 @@ void tg__field_queries_cross(tg__field_run* run, uint32_t h, const tg__window* p
             if (!(xs >= w->b0 - snap && xs <= w->b1 + snap)) continue;
             double dx = px - w->sx, dy = py - w->sy;
             double d = w->sigma + sqrt(dx * dx + dy * dy);
-            if (d < run->qdist[q[j].id]) run->qdist[q[j].id] = d;
+            if (d < run->qdist[q[j].id]) {
+                run->qdist[q[j].id] = d;
+                if (run->track) {
+                    tg__pred ray = {h, w->tag & ~TG__VIA_FLAT, w->sx, w->sy};
+                    ((tg__pred*)ws->qpred.data)[q[j].id] = ray;
+                }
+            }
         }
     }
 }
 
-void tg__field_queries_source(tg__field_run* run, const double src[3], double sigma, uint32_t f)
+void tg__field_queries_source(tg__field_run* run, const double src[3], double sigma, uint32_t f, uint32_t origin)
 {
     tg_field_workspace* ws = run->ws;
     if (!run->qcount || !ws->qface[f]) return;
@@ -150,7 +161,13 @@ void tg__field_queries_source(tg__field_run* run, const double src[3], double si
     const query_pair* q = ws->qpairs.data;
     for (size_t j = begin; j < end; ++j) {
         double d = sigma + tg_v3_dist(pair_pos(ws->g, &q[j]), tg_v3_load(src));
-        if (d < run->qdist[q[j].id]) run->qdist[q[j].id] = d;
+        if (d < run->qdist[q[j].id]) {
+            run->qdist[q[j].id] = d;
+            if (run->track) {
+                tg__pred inside = {TG__PRED_FACE | f, origin, 0.0, 0.0};
+                ((tg__pred*)ws->qpred.data)[q[j].id] = inside;
+            }
+        }
     }
 }
 
@@ -170,7 +187,13 @@ void tg__field_queries_finish(tg__field_run* run, bool ok)
         for (int c = 0; c < 3; ++c) {
             uint32_t v = g->tri[3 * (size_t)q[j].face + (size_t)c];
             double d = ws->dist[v] + tg_v3_dist(p, tg__gpos(g, v));
-            if (d < run->qdist[q[j].id]) run->qdist[q[j].id] = d;
+            if (d < run->qdist[q[j].id]) {
+                run->qdist[q[j].id] = d;
+                if (run->track) {
+                    tg__pred inside = {TG__PRED_FACE | q[j].face, v, 0.0, 0.0};
+                    ((tg__pred*)ws->qpred.data)[q[j].id] = inside;
+                }
+            }
         }
         ws->qface[q[j].face] = 0;
     }

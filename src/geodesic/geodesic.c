@@ -240,6 +240,7 @@ void tg_geodesic_workspace_destroy(tg_geodesic_workspace* ws)
     tg_allocator a = ws->allocator;
     tg__free(&a, ws->nodes_a);
     tg__free(&a, ws->tmark);
+    tg_field_workspace_destroy(ws->field);
 #define WS_FREE_(m) tg__free(&a, ws->m.p);
     WS_BUFFERS(WS_FREE_)
 #undef WS_FREE_
@@ -273,7 +274,7 @@ tg_status tg_geodesic_workspace_create(const tg_geodesic* g, tg_geodesic_workspa
 size_t tg_geodesic_workspace_memory_bytes(const tg_geodesic_workspace* ws)
 {
     if (!ws) return 0;
-    size_t bytes = ws->fixed_bytes;
+    size_t bytes = ws->fixed_bytes + tg_field_workspace_memory_bytes(ws->field);
 #define WS_BYTES_(m) bytes += ws->m.cap;
     WS_BUFFERS(WS_BYTES_)
 #undef WS_BYTES_

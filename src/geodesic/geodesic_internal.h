@@ -121,6 +121,8 @@ struct tg_geodesic_workspace {
     tg__buf merged, faces, uxy, uvert, urange, ucorner, pleft, pright, deque, apex, dval;
     /* fan and relaxation scratch */
     tg__buf fan, spokes, tvals;
+    /* the exact method's field workspace (made on first use) */
+    struct tg_field_workspace* field;
 };
 
 /* ---- the binary min-heap on (key, node) of the geodesic layer (A* and the field's vertex front);
@@ -307,6 +309,14 @@ tg_status tg__funnel(tg_geodesic_workspace* ws, const tg__node* a, const tg__nod
 size_t tg__sleeve_crossings(tg_geodesic_workspace* ws, const tg__node* a, const tg__node* b,
                             uint32_t face0, const uint32_t* portals, size_t m, tg__node* out_nodes,
                             uint32_t* out_faces);
+
+/* ---- exact paths (path_exact.c) ---- */
+
+/* The exact distance from `from` to `to` (validated), computed within `limit` (+inf beyond), and
+ * the shortest path traced back, into ws->nodes[0] / ws->segf[0] (*out_count nodes; 0 when
+ * unreachable within the limit, or when the trace could not be completed). */
+tg_status tg__exact_path(tg_geodesic_workspace* ws, const tg_surface_point* from, const tg_surface_point* to,
+                         double limit, size_t* out_count, double* out_distance);
 
 /* ---- certificate (certificate.c) ---- */
 

@@ -1,0 +1,285 @@
+/* path_exact.c - exact shortest paths: the exact field from the source, bounded by the length of
+ * a known path, gives the distance to the target; the path is then traced back from the target
+ * along the ray of the window that reached it, through the faces it crossed, to the
+ * pseudo-source vertex that window came from, and so on to the source.
+ * Based on: J. S. B. Mitchell, D. M. Mount and C. H. Papadimitriou, "The discrete geodesic
+ *   problem", SIAM J. Comput. 16(4), 1987, §6 (backtracing a shortest path through the windows
+ *   and the pseudo-sources); S.-Q. Xin and G.-J. Wang, ACM TOG 28(4), 2009 (§5, tracing the path
+ *   back from the window of the target).
+ *
+ * The field records, for every vertex and for the target, how its distance was reached (tg__pred):
+ * along a window's ray (its source image in the frame of the edge it crossed into the face, and
+ * its origin: a pseudo-source vertex or the source), along an edge, or straight inside a face.
+ * A window's ray is a straight line in the unfolding of the faces it crossed, so walking back
+ * from the target towards the source image, face by face, crosses exactly those faces and ends
+ * on the origin. */
+#include "core/predicates.h"
+#include "geodesic/field_internal.h"
+
+#include <string.h>
+
+/* The trace ends on its origin when the unfolded image lies within this share of the local
+ * scale of the origin's position (the unfoldings are exact to ~1e-15 per face). */
+#define LAND_REL 1e-9
+
+typedef struct trace {
+    tg_geodesic_workspace* ws;
+    size_t n; /* nodes so far (target first); segment i (nodes i, i + 1) lies in face segf[i] */
+} trace;
+
+static bool add_node(trace* t, tg__node node, uint32_t face_before)
+{
+    tg_geodesic_workspace* ws = t->ws;
+    if (!tg__buf_reserve(ws, &ws->nodes[0], t->n + 1, sizeof(tg__node)) ||
+        !tg__buf_reserve(ws, &ws->segf[0], t->n + 1, sizeof(uint32_t)))
+        return false;
+    ((tg__node*)ws->nodes[0].p)[t->n] = node;
+    if (t->n > 0) ((uint32_t*)ws->segf[0].p)[t->n - 1] = face_before;
+    t->n++;
+    return true;
+}
+
+/* Coordinates of the 3D point p in the frame of halfedge h. */
+static void frame_xy(const tg_geodesic* g, uint32_t h, tg_vec3 p, double out[2])
+{
+    tg_vec3 a = tg__gpos(g, g->tri[h]);
+    tg_vec3 u = tg_v3_scale(tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_next(h)]), a), 1.0 / g->frame[h].len);
+    tg_vec3 r = tg_v3_sub(p, a);
+    out[0] = tg_v3_dot(r, u);
+    out[1] = tg_v3_len(tg_v3_cross(u, r));
+}
+
+/* Corner positions of face o / 3 in o's frame: tri[o], tri[next o], tri[prev o]. */
+static void corners_xy(const tg__frame* fr, double out[3][2])
+{
+    out[0][0] = 0.0, out[0][1] = 0.0;
+    out[1][0] = fr->len, out[1][1] = 0.0;
+    out[2][0] = fr->cx, out[2][1] = fr->cy;
+}
+
+/* Does the origin land in face o / 3 at the image s (in o's frame)? Then its node. */
+static bool lands(const tg_geodesic* g, uint32_t o, const double s[2], uint32_t origin, const tg__node* source,
+                  tg__node* out)
+{
+    const tg__frame* fr = &g->frame[o];
+    double scale = fr->len + fabs(s[0]) + fabs(s[1]);
+    if (origin != TG__ORIGIN_SOURCE || source->kind == TG__NODE_VERTEX) {
+        uint32_t v = origin != TG__ORIGIN_SOURCE ? origin : source->id;
+        double c[3][2];
+        corners_xy(fr, c);
+        uint32_t ids[3] = {g->tri[o], g->tri[tg_halfedge_next(o)], g->tri[tg_halfedge_prev(o)]};
+        for (int k = 0; k < 3; ++k)
+            if (ids[k] == v && hypot(s[0] - c[k][0], s[1] - c[k][1]) <= LAND_REL * scale) {
+                *out = tg__node_vertex(v);
+                return true;
+            }
+        return false;
+    }
+    /* a point source: the image, put back on this face's plane, must be the source itself (a
+     * source in a zero-area face is reached through the faces around it) */
+    if (!(fr->cy > 0.0)) return false;
+    tg_vec3 a = tg__gpos(g, g->tri[o]);
+    tg_vec3 u = tg_v3_scale(tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_next(o)]), a), 1.0 / fr->len);
+    tg_vec3 c = tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_prev(o)]), a);
+    tg_vec3 v = tg_v3_scale(tg_v3_sub(c, tg_v3_scale(u, tg_v3_dot(c, u))), 1.0 / fr->cy);
+    tg_vec3 p = tg_v3_add(a, tg_v3_add(tg_v3_scale(u, s[0]), tg_v3_scale(v, s[1])));
+    tg_vec3 sp = tg__node_pos(g, source);
+    if (tg_v3_dist(p, sp) > LAND_REL * scale) return false;
+    double b[3];
+    if (tg__node_bary(g, source, o / 3, b)) {
+        *out = *source;
+        return true;
+    }
+    /* the source lies in a zero-area face next to this one, on the edge they share: name it as a
+     * point of that edge, so that the path's first segment lies in this face */
+    for (uint32_t k = 0; k < 3; ++k) {
+        uint32_t h = 3 * (o / 3) + k;
+        tg_vec3 e0 = tg__gpos(g, g->tri[h]), ed = tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_next(h)]), e0);
+        double ll = tg_v3_dot(ed, ed);
+        if (!(ll > 0.0)) continue;
+        double t = tg_v3_dot(tg_v3_sub(sp, e0), ed) / ll;
+        if (t < 0.0 || t > 1.0) continue;
+        if (tg_v3_dist(tg_v3_add(e0, tg_v3_scale(ed, t)), sp) <= LAND_REL * scale) {
+            *out = tg__node_edge(h, t, 1.0 - t);
+            return true;
+        }
+    }
+    return false;
+}
+
+/* A branch point of the walk: an edge with several other faces (non-manifold). */
+typedef struct branch {
+    size_t n;     /* nodes when the walk left the edge */
+    uint32_t e;   /* the edge's halfedge in the face the walk came from */
+    uint32_t o;   /* the partner tried last */
+    double xe;    /* where the walk crossed it, in e's frame */
+    double s[2];  /* the image in e's frame (beyond the edge: s[1] < 0) */
+} branch;
+
+/* Walks from the crossing xe of halfedge e (image s beyond it, in e's frame) through the faces
+ * beyond, appending each edge crossing, until the origin; then appends the origin's node. At an
+ * edge with several faces beyond it (non-manifold) each is tried in turn, depth first. */
+static bool walk(trace* t, uint32_t e, double xe, const double s_in[2], uint32_t origin, const tg__node* source,
+                 tg__node* out_origin)
+{
+    const tg_geodesic* g = t->ws->geo;
+    branch stack[32];
+    int depth = 0;
+    size_t guard = 8 * (size_t)g->face_count + 64;
+    double s[2] = {s_in[0], s_in[1]};
+    uint32_t o = g->ring[e];
+    for (;;) {
+        bool dead = o == e || guard-- == 0;
+        if (!dead && g->ring[o] != e && depth < 32) { /* more faces at this edge: remember */
+            branch b = {t->n, e, o, xe, {s[0], s[1]}};
+            stack[depth++] = b;
+        }
+        if (!dead) {
+            double x[2], sp[2], unused;
+            tg__ring_point(g, e, o, xe, 0.0, &x[0], &unused);
+            x[1] = 0.0;
+            tg__ring_point(g, e, o, s[0], s[1], &sp[0], &sp[1]);
+            uint32_t f = o / 3;
+            tg__node landed;
+            if (lands(g, o, sp, origin, source, &landed)) {
+                *out_origin = landed;
+                return add_node(t, landed, f);
+            }
+            double c[3][2];
+            corners_xy(&g->frame[o], c);
+            /* out through B -> C (next) when C is left of the ray (it passes right of C), else
+             * through C -> A (prev) */
+            int side = tg__orient2d_sign(x, sp, c[2]);
+            uint32_t xh = side > 0 ? tg_halfedge_next(o) : tg_halfedge_prev(o);
+            const double* p0 = side > 0 ? c[1] : c[2];
+            const double* p1 = side > 0 ? c[2] : c[0];
+            double len = g->frame[xh].len;
+            double dx = sp[0] - x[0], dy = sp[1] - x[1], ex = p1[0] - p0[0], ey = p1[1] - p0[1];
+            double den = ex * dy - ey * dx;
+            double tt = den != 0.0 ? ((x[0] - p0[0]) * dy - (x[1] - p0[1]) * dx) / den : 0.0;
+            if (!(tt >= 0.0)) tt = 0.0;
+            if (!(tt <= 1.0)) tt = 1.0;
+            if (!(len > 0.0)) {
+                dead = true;
+            } else {
+                /* the image in the exit edge's frame: face f on its +y side, the image beyond */
+                double ux = ex / len, uy = ey / len, rx = sp[0] - p0[0], ry = sp[1] - p0[1];
+                double ns0 = rx * ux + ry * uy, ns1 = ux * ry - uy * rx;
+                if (!(ns1 < 0.0)) {
+                    dead = true; /* the image is in this face, yet the origin is not here */
+                } else {
+                    if (!add_node(t, tg__node_edge(xh, tt, 1.0 - tt), f)) return false;
+                    s[0] = ns0, s[1] = ns1, xe = tt * len, e = xh;
+                    o = g->ring[e];
+                    continue;
+                }
+            }
+        }
+        /* a dead end: back to the last branch point with another face to try */
+        bool resumed = false;
+        while (depth > 0 && !resumed) {
+            branch* b = &stack[depth - 1];
+            uint32_t next = g->ring[b->o];
+            if (next == b->e) {
+                depth--;
+                continue;
+            }
+            b->o = next;
+            t->n = b->n;
+            e = b->e, xe = b->xe, s[0] = b->s[0], s[1] = b->s[1], o = next;
+            depth--; /* re-pushed (with this face) at the top of the loop when more remain */
+            resumed = true;
+        }
+        if (!resumed) return false;
+    }
+}
+
+/* Follows the predecessors from node `cur` (reached as `how`) back to the source. */
+static bool trace_back(trace* t, tg__node cur, tg__pred how, const tg__node* source)
+{
+    tg_geodesic_workspace* ws = t->ws;
+    const tg_geodesic* g = ws->geo;
+    const tg_field_workspace* fws = ws->field;
+    for (size_t hops = 0; hops <= (size_t)g->vertex_count + 2; ++hops) {
+        tg__node next;
+        if (how.h == TG_NONE) { /* along an edge from vertex origin, or the vertex source itself */
+            if (how.origin == TG__ORIGIN_SOURCE) return true;
+            next = tg__node_vertex(how.origin);
+            uint32_t f = tg__common_face(g, &cur, &next, TG_NONE);
+            if (f == TG_NONE || !add_node(t, next, f)) return false;
+        } else if (how.h & TG__PRED_FACE) { /* straight inside face f from a vertex or the source */
+            uint32_t f = how.h & ~TG__PRED_FACE;
+            next = how.origin == TG__ORIGIN_SOURCE ? *source : tg__node_vertex(how.origin);
+            if (!add_node(t, next, f)) return false;
+            if (how.origin == TG__ORIGIN_SOURCE) return true;
+        } else { /* back along the window's ray through edge h towards its source image */
+            uint32_t h = how.h;
+            double p[2], s[2] = {how.sx, how.sy};
+            frame_xy(g, h, tg__node_pos(g, &cur), p);
+            double xs = s[0] + (p[0] - s[0]) * (-s[1]) / (p[1] - s[1]);
+            double len = g->frame[h].len;
+            if (!(xs >= 0.0)) xs = 0.0;
+            if (!(xs <= len)) xs = len;
+            if (!tg__node_on_edge(g, &cur, h)) {
+                double tt = xs / len;
+                if (!add_node(t, tg__node_edge(h, tt, 1.0 - tt), h / 3)) return false;
+            }
+            /* s is beyond h already (s[1] < 0 in h's frame): walk on into the faces behind */
+            if (!walk(t, h, xs, s, how.origin, source, &next)) return false;
+            if (how.origin == TG__ORIGIN_SOURCE) return true;
+        }
+        cur = next;
+        how = fws->pred[next.id];
+    }
+    return false;
+}
+
+tg_status tg__exact_path(tg_geodesic_workspace* ws, const tg_surface_point* from, const tg_surface_point* to,
+                         double limit, size_t* out_count, double* out_distance)
+{
+    const tg_geodesic* g = ws->geo;
+    *out_count = 0;
+    *out_distance = INFINITY;
+    if (!ws->field) {
+        tg_status st = tg__field_workspace_make(g, &ws->allocator, &ws->field);
+        if (st != TG_OK) return st;
+    }
+    tg_field_options o;
+    memset(&o, 0, sizeof o);
+    o.limit = TG_FIELD_MAX_DISTANCE;
+    o.max_distance = limit;
+    tg__field_run run;
+    tg_status st = tg__field_execute(ws->field, from, 1, to, 1, &o, NULL, NULL, NULL, 1, &run);
+    if (st != TG_OK) return st;
+    double d = run.qdist[0];
+    *out_distance = d;
+    if (!(d < INFINITY)) return TG_OK;
+    tg_surface_point ts = tg__surface_to_solver(g, tg_surface_point_canonical(g->mesh, to));
+    tg_surface_point ss = tg__surface_to_solver(g, tg_surface_point_canonical(g->mesh, from));
+    tg__node target = tg__node_from_surface(&ts), source = tg__node_from_surface(&ss);
+    trace t = {ws, 0};
+    tg__pred how = ((const tg__pred*)ws->field->qpred.data)[0];
+    if (target.kind == TG__NODE_VERTEX) how = ws->field->pred[target.id];
+    if (!add_node(&t, target, TG_NONE)) return TG_ERR_OUT_OF_MEMORY;
+    if (tg__node_same(g, &target, &source)) {
+        *out_count = 1;
+        return TG_OK;
+    }
+    if (!trace_back(&t, target, how, &source)) {
+        *out_count = 0; /* traced nothing usable: the caller keeps its own path */
+        return TG_OK;
+    }
+    /* target-first -> source-first */
+    tg__node* nodes = ws->nodes[0].p;
+    uint32_t* faces = ws->segf[0].p;
+    for (size_t i = 0, j = t.n - 1; i < j; ++i, --j) {
+        tg__node x = nodes[i];
+        nodes[i] = nodes[j], nodes[j] = x;
+    }
+    for (size_t i = 0, j = t.n - 2; t.n >= 2 && i < j; ++i, --j) {
+        uint32_t x = faces[i];
+        faces[i] = faces[j], faces[j] = x;
+    }
+    *out_count = t.n;
+    return TG_OK;
+}

@@ -2,7 +2,11 @@
  * face-point pairs and near pairs (Euclidean distance at most a fraction of the bounding-box
  * diagonal), for each method, with the initial path's share, certificates and memory.
  *
- * usage: bench_path MESH [--pairs N] [--reps R] [--relax N] [--relax-near-only] [--near F]
+ * usage: bench_path MESH [--pairs N] [--reps R] [--relax N] [--relax-near-only] [--near F] [--exact N]
+ *   --exact N: the exact method and the default with --certify on the first N pairs of each set,
+ *   and for every method the share of those pairs where its path is globally shortest (within
+ *   1e-9 of the exact distance from tg_geodesic_field_at, a full propagation) and how many it
+ *   labelled proven (last column).
  *   --pairs N (default 1000) pairs per set; every pair is timed R times (default 3) and its median
  *   is kept. The seed's relaxation, orders of magnitude slower, runs once on the first --relax N
  *   pairs of each set (default 10; with --relax-near-only only in the near set). --near F adds the
@@ -59,6 +63,8 @@ typedef struct pair {
     tg_surface_point a, b;
 } pair;
 
+#define CERTIFY_METHOD ((tg_path_method)100)
+
 typedef struct ctx {
     tg_geodesic* geo;
     tg_geodesic_workspace* ws;
@@ -71,7 +77,9 @@ static double time_query(ctx* c, const pair* p, tg_path_method method, int reps,
 {
     tg_path_options o;
     memset(&o, 0, sizeof o);
-    o.method = method;
+    /* CERTIFY_METHOD: the default method with the exact check */
+    o.method = method == CERTIFY_METHOD ? TG_PATH_STRAIGHTEN : method;
+    o.certify = method == CERTIFY_METHOD ? TG_PATH_CERTIFY_ON : TG_PATH_CERTIFY_OFF;
     double t[16], w[16];
     if (reps > 16) reps = 16;
     for (int r = 0; r < reps; ++r) {
@@ -86,42 +94,60 @@ static double time_query(ctx* c, const pair* p, tg_path_method method, int reps,
 }
 
 static void run_set(ctx* c, const char* mesh, size_t faces, const char* set, const pair* pairs, size_t n, int reps,
-                    size_t relax_pairs)
+                    size_t relax_pairs, size_t exact_pairs)
 {
     double* total = malloc(n * sizeof *total);
     double* init = malloc(n * sizeof *init);
     double* points = malloc(n * sizeof *points);
     double* walls = malloc(n * sizeof *walls);
-    if (!total || !init || !points || !walls) die("out of memory", NULL);
-    double init_sum_s = 0, init_sum_r = 0;
+    double* exact_len = malloc(n * sizeof *exact_len);
+    if (!total || !init || !points || !walls || !exact_len) die("out of memory", NULL);
+    double init_sum = 0;
     /* the initial path alone (TG_PATH_EDGE) */
     for (size_t i = 0; i < n; ++i) init[i] = time_query(c, &pairs[i], TG_PATH_EDGE, reps, NULL);
-    for (int m = 0; m < 2; ++m) {
-        tg_path_method method = m ? TG_PATH_RELAX : TG_PATH_STRAIGHTEN;
-        size_t count = m ? (relax_pairs < n ? relax_pairs : n) : n;
+    size_t ne = exact_pairs < n ? exact_pairs : n;
+    /* the reference: the exact distance from the field engine's point query (a full, unbounded
+     * propagation, independent of the methods timed below) */
+    for (size_t i = 0; i < ne; ++i)
+        if (tg_geodesic_field_at(c->geo, &pairs[i].a, 1, &pairs[i].b, 1, NULL, &exact_len[i], NULL, NULL) != TG_OK)
+            die("field_at failed", NULL);
+    /* exact lengths first: the reference for the other methods' share of globally shortest paths */
+    const tg_path_method methods[4] = {TG_PATH_EXACT, TG_PATH_STRAIGHTEN, CERTIFY_METHOD, TG_PATH_RELAX};
+    const char* names[4] = {"exact", "straighten", "straighten --certify", "relax"};
+    for (int m = 0; m < 4; ++m) {
+        tg_path_method method = methods[m];
+        size_t count = method == TG_PATH_RELAX ? (relax_pairs < n ? relax_pairs : n)
+                       : method == TG_PATH_STRAIGHTEN ? n : ne;
         if (count == 0) continue;
-        size_t converged = 0;
+        size_t converged = 0, proven = 0, global_ok = 0, judged = 0;
         double worst_cert = 0, sum_total = 0, sum_init = 0;
         for (size_t i = 0; i < count; ++i) {
-            total[i] = time_query(c, &pairs[i], method, m ? 1 : reps, &walls[i]);
+            total[i] = time_query(c, &pairs[i], method, method == TG_PATH_RELAX ? 1 : reps, &walls[i]);
             tg_path_view v;
             tg_path_get_view(c->path, &v);
             converged += v.status == TG_PATH_CONVERGED;
+            proven += v.global == TG_PATH_PROVEN;
+            if (i < ne) {
+                judged++;
+                global_ok += v.length <= exact_len[i] * (1 + 1e-9) || (isinf(v.length) && isinf(exact_len[i]));
+            }
             if (v.max_angle_defect > worst_cert) worst_cert = v.max_angle_defect;
             points[i] = (double)v.point_count;
             sum_total += total[i];
             sum_init += init[i];
         }
-        if (m == 0) init_sum_s = sum_init / sum_total;
-        else init_sum_r = sum_init / sum_total;
+        init_sum = sum_init / sum_total;
         double* init_copy = malloc(count * sizeof *init_copy);
         if (!init_copy) die("out of memory", NULL);
         memcpy(init_copy, init, count * sizeof *init_copy);
         double med = bench_quantile(total, count, 0.5), p90 = bench_quantile(total, count, 0.9), mx = bench_quantile(total, count, 1.0);
-        printf("| %s | %zu | %s | %s | %zu | %.3f | %.3f | %.3f | %.3f | %.3f | %.0f%% | %zu/%zu | %.2g | %.0f |\n", mesh,
-               faces, set, m ? "relax" : "straighten", count, 1e3 * med, 1e3 * p90, 1e3 * mx,
-               1e3 * bench_quantile(walls, count, 0.5), 1e3 * bench_quantile(init_copy, count, 0.5),
-               100.0 * (m ? init_sum_r : init_sum_s), converged, count, worst_cert, bench_quantile(points, count, 0.5));
+        char global[64] = "-";
+        if (judged) snprintf(global, sizeof global, "%.1f%% (%zu/%zu), %zu proven", 100.0 * (double)global_ok / (double)judged,
+                             global_ok, judged, proven);
+        printf("| %s | %zu | %s | %s | %zu | %.3f | %.3f | %.3f | %.3f | %.3f | %.0f%% | %zu/%zu | %.2g | %.0f | %s |\n", mesh,
+               faces, set, names[m], count, 1e3 * med, 1e3 * p90, 1e3 * mx, 1e3 * bench_quantile(walls, count, 0.5),
+               1e3 * bench_quantile(init_copy, count, 0.5), 100.0 * init_sum, converged, count, worst_cert,
+               bench_quantile(points, count, 0.5), global);
         fflush(stdout);
         free(init_copy);
     }
@@ -129,12 +155,13 @@ static void run_set(ctx* c, const char* mesh, size_t faces, const char* set, con
     free(init);
     free(points);
     free(walls);
+    free(exact_len);
 }
 
 int main(int argc, char** argv)
 {
     const char* path = NULL;
-    size_t n = 1000, relax_pairs = 10;
+    size_t n = 1000, relax_pairs = 10, exact_pairs = 0;
     int reps = 3, relax_near_only = 0;
     double near = 0.0;
     for (int i = 1; i < argc; ++i) {
@@ -145,6 +172,8 @@ int main(int argc, char** argv)
             reps = atoi(argv[++i]);
         else if (!strcmp(a, "--relax") && i + 1 < argc)
             relax_pairs = (size_t)strtoul(argv[++i], NULL, 10);
+        else if (!strcmp(a, "--exact") && i + 1 < argc)
+            exact_pairs = (size_t)strtoul(argv[++i], NULL, 10);
         else if (!strcmp(a, "--relax-near-only"))
             relax_near_only = 1;
         else if (!strcmp(a, "--near") && i + 1 < argc)
@@ -152,7 +181,7 @@ int main(int argc, char** argv)
         else if (a[0] != '-' && !path)
             path = a;
         else
-            die("usage: bench_path MESH [--pairs N] [--reps R] [--relax N] [--relax-near-only] [--near F]", NULL);
+            die("usage: bench_path MESH [--pairs N] [--reps R] [--relax N] [--relax-near-only] [--near F] [--exact N]", NULL);
     }
     if (!path || n == 0 || reps < 1) die("usage: bench_path MESH [--pairs N] [--reps R] [--relax N] [--relax-near-only] [--near F]", NULL);
     const char* name = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
@@ -176,12 +205,12 @@ int main(int argc, char** argv)
         pairs[i].a = tg_surface_vertex((uint32_t)(rng_next(&s) % verts));
         pairs[i].b = tg_surface_vertex((uint32_t)(rng_next(&s) % verts));
     }
-    run_set(&c, name, faces, "vertex pairs", pairs, n, reps, relax_near_only ? 0 : relax_pairs);
+    run_set(&c, name, faces, "vertex pairs", pairs, n, reps, relax_near_only ? 0 : relax_pairs, exact_pairs);
     for (size_t i = 0; i < n; ++i) {
         pairs[i].a = random_face_point(&s, faces);
         pairs[i].b = random_face_point(&s, faces);
     }
-    run_set(&c, name, faces, "face-point pairs", pairs, n, reps, relax_near_only ? 0 : relax_pairs);
+    run_set(&c, name, faces, "face-point pairs", pairs, n, reps, relax_near_only ? 0 : relax_pairs, exact_pairs);
     if (near > 0) {
         double diag = 0;
         for (int k = 0; k < 3; ++k) diag += (rep->bbox_max[k] - rep->bbox_min[k]) * (rep->bbox_max[k] - rep->bbox_min[k]);
@@ -199,7 +228,7 @@ int main(int argc, char** argv)
         }
         char set[64];
         snprintf(set, sizeof set, "face points <= %g%% diag", 100 * near);
-        run_set(&c, name, faces, set, pairs, n, reps, relax_pairs);
+        run_set(&c, name, faces, set, pairs, n, reps, relax_pairs, exact_pairs);
     }
     struct rusage ru;
     getrusage(RUSAGE_SELF, &ru);

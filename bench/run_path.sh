@@ -14,14 +14,15 @@ pairs=${TG_BENCH_PATH_PAIRS:-1000}
 reps=${TG_BENCH_REPS:-3}
 relax=${TG_BENCH_RELAX_PAIRS:-10}
 bp=$build/bench/bench_path
-printf '| mesh | faces | set | method | pairs | median ms | p90 ms | max ms | median wall ms | initial path median ms | initial share | converged | max certificate rad | median points |\n'
-printf '|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n'
+exact=${TG_BENCH_EXACT_PAIRS:-200}
+printf '| mesh | faces | set | method | pairs | median ms | p90 ms | max ms | median wall ms | initial path median ms | initial share | converged | max certificate rad | median points | globally shortest |\n'
+printf '|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n'
 footer=()
 for m in "$meshes/fcpw_kitten.obj" "$meshes/igl_armadillo.obj" "$large/armadillo_1m.ply"; do
     [ -e "$m" ] || { echo "run_path.sh: missing $m" >&2; continue; }
     extra=()
-    case "$m" in *armadillo_1m.ply) extra=(--near 0.1 --relax-near-only) ;; esac
-    out=$("$bp" "$m" --pairs "$pairs" --reps "$reps" --relax "$relax" "${extra[@]}")
+    case "$m" in *armadillo_1m.ply) extra=(--near 0.1 --relax-near-only) ;; *) extra=(--near 0.1) ;; esac
+    out=$("$bp" "$m" --pairs "$pairs" --reps "$reps" --relax "$relax" --exact "$exact" "${extra[@]}")
     grep '^|' <<<"$out"
     footer+=("$(grep '^#' <<<"$out")")
 done

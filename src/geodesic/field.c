@@ -157,10 +157,11 @@ static uint64_t pseudo_count(const tg_geodesic* g)
 tg_status tg__field_execute(tg_field_workspace* ws, const tg_surface_point* sources, size_t source_count,
                             const tg_surface_point* points, size_t point_count, const tg_field_options* opt,
                             int (*hook)(void*, const tg__field_run*), void* hook_user, volatile int* cancel, int track,
-                            tg__field_run* run)
+                            const double* astar_target, tg__field_run* run)
 {
     memset(run, 0, sizeof *run);
     run->track = track;
+    if (astar_target) run->astar = 1, run->target = tg_v3_load(astar_target);
     if (track && !ws->pred) {
         ws->pred = tg__alloc_array(&ws->allocator, ws->g->vertex_count ? ws->g->vertex_count : 1, sizeof(tg__pred));
         if (!ws->pred) return TG_ERR_OUT_OF_MEMORY;
@@ -211,7 +212,7 @@ tg_status tg_geodesic_field_at(const tg_geodesic* g, const tg_surface_point* sou
     single_progress sp = {options ? options->progress : NULL, options ? options->progress_user : NULL};
     tg__field_run run;
     st = tg__field_execute(ws, sources, source_count, points, point_count, options, sp.fn ? report_single : NULL, &sp,
-                           NULL, 0, &run);
+                           NULL, 0, NULL, &run);
     if (st == TG_OK) {
         if (out_vertex_distance) copy_out(ws, run.max_dist, out_vertex_distance);
         if (point_count) memcpy(out_point_distance, run.qdist, point_count * sizeof(double));
@@ -314,7 +315,7 @@ tg_status tg_geodesic_field_batch(const tg_geodesic* g, const tg_surface_point* 
             if (b.stop || mine != TG_OK) continue;
             tg__field_run run;
             mine = tg__field_execute(ws, &sources[i], 1, NULL, 0, options,
-                                     options && options->progress ? report_batch : NULL, &row, &b.stop, 0, &run);
+                                     options && options->progress ? report_batch : NULL, &row, &b.stop, 0, NULL, &run);
             if (mine != TG_OK) {
                 b.stop = 1;
                 continue;

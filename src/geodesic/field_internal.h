@@ -135,6 +135,9 @@ typedef struct tg__field_run {
     size_t qcount;
     double* qdist;
     int track;            /* record predecessors (ws->pred, ws->qpred) for tracing paths back */
+    int astar;            /* order the front by distance plus the Euclidean distance to `target`,
+                             and bound windows the same way (a single target within max_dist) */
+    tg_vec3 target;
     tg_field_stats stats;
 } tg__field_run;
 
@@ -212,12 +215,13 @@ void tg__field_queries_finish(tg__field_run* run, bool ok);
 /* A workspace for g with the given allocator. */
 tg_status tg__field_workspace_make(const tg_geodesic* g, const tg_allocator* alloc, tg_field_workspace** out);
 /* One run on ws with validated arguments: sources, query points (their distances in run->qdist),
- * options (limit), a progress hook, a shared cancellation flag (may be NULL), and track: record
- * predecessors for tracing paths back. The vertex distances stay in ws->dist. */
+ * options (limit), a progress hook, a shared cancellation flag (may be NULL), track: record
+ * predecessors for tracing paths back, and astar_target (NULL: none): the one point whose
+ * distance is wanted, to order and bound the work toward it (A*). The vertex distances stay in ws->dist. */
 tg_status tg__field_execute(tg_field_workspace* ws, const tg_surface_point* sources, size_t source_count,
                             const tg_surface_point* points, size_t point_count, const tg_field_options* opt,
                             int (*hook)(void*, const tg__field_run*), void* hook_user, volatile int* cancel, int track,
-                            tg__field_run* run);
+                            const double* astar_target, tg__field_run* run);
 
 /* ---- propagation (field_propagate.c) ---- */
 

@@ -80,14 +80,36 @@ static bool front_push(tg__field_run* run, double key, uint32_t v)
 }
 
 /* Records distance d for vertex v if shorter (reached as `how` says), and puts it on the front. */
+/* The front's key of vertex v at distance d: d, plus (A*) the Euclidean distance to the target,
+ * an admissible bound of the rest of any path through v. */
+static double front_key(const tg__field_run* run, uint32_t v, double d)
+{
+    if (!run->astar) return d;
+    return d + tg_v3_dist(tg__gpos(run->ws->g, v), run->target);
+}
+
 static bool relax_vertex(tg__field_run* run, uint32_t v, double d, tg__pred how)
 {
     tg_field_workspace* ws = run->ws;
     if (!(d < ws->dist[v])) return true;
     ws->dist[v] = d;
     if (run->track) ws->pred[v] = how;
-    if (d > run->max_dist) return true;
-    return front_push(run, d, v);
+    double key = front_key(run, v, d);
+    if (key > run->max_dist) return true;
+    return front_push(run, key, v);
+}
+
+/* A*: the Euclidean distance from the target to the part [c0, c1] of the edge of h, a lower bound
+ * of the rest of any path through a window there. */
+static double target_gap(const tg__field_run* run, uint32_t h, double c0, double c1)
+{
+    const tg_geodesic* g = run->ws->g;
+    tg_vec3 a = tg__gpos(g, g->tri[h]);
+    tg_vec3 u = tg_v3_scale(tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_next(h)]), a), 1.0 / g->frame[h].len);
+    double x = tg_v3_dot(tg_v3_sub(run->target, a), u);
+    if (x < c0) x = c0;
+    if (x > c1) x = c1;
+    return tg_v3_dist(tg_v3_add(a, tg_v3_scale(u, x)), run->target);
 }
 
 /* ---- lists and the FIFO ---- */
@@ -146,6 +168,7 @@ static bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, do
         return true;
     }
     double key = (x > c0 && x < c1) ? sigma - y : (d0 < d1 ? d0 : d1);
+    if (run->astar) key += target_gap(run, h, c0, c1);
     if (key > run->max_dist) return true;
     uint32_t id = win_alloc(ws);
     if (id == TG_NONE) return false;
@@ -512,21 +535,25 @@ tg_status tg__field_propagate(tg__field_run* run)
             if (!keep_going(run)) return TG_ERR_CANCELLED;
         }
         ws->fifo.count = ws->fifo_head = 0;
-        if (!ws->heap.count) break;
-        tg__heap_item it = tg__heap_take(ws->heap.data, &ws->heap.count);
+        tg__heap_item it = {INFINITY, 0};
+        if (ws->heap.count) it = tg__heap_take(ws->heap.data, &ws->heap.count);
         uint32_t v = it.node;
-        if (it.key != ws->dist[v]) continue; /* a shorter distance was queued since */
-        if (it.key > run->max_dist) {
-            if (!run->all_ready) { /* past the limit: every window within it must still cross */
+        if (it.key > run->max_dist || !(it.key < INFINITY)) {
+            /* past the limit, or the front is empty while vertices beyond the limit were never
+             * queued: every window within the limit must still cross, whatever its vertices */
+            if (!run->all_ready && run->max_dist < INFINITY) {
                 run->all_ready = 1;
                 for (uint32_t h = 0; h < 3 * g->face_count; ++h)
                     if (!enqueue(run, h)) return TG_ERR_OUT_OF_MEMORY;
+                continue;
             }
+            if (!ws->heap.count && !(it.key < INFINITY)) break;
             continue;
         }
+        if (it.key != front_key(run, v, ws->dist[v])) continue; /* a shorter distance was queued since */
         if (!(ws->inside[v] & VS_INSIDE)) run->settled++;
         ws->inside[v] |= VS_INSIDE;
-        run->front = it.key;
+        run->front = ws->dist[v];
         if ((g->vflags[v] & TG__V_PSEUDO) || (ws->inside[v] & VS_SOURCE)) {
             ws->inside[v] &= (uint8_t)~VS_SOURCE;
             if (!emit_vertex(run, v)) return TG_ERR_OUT_OF_MEMORY;

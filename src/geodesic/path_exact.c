@@ -249,7 +249,9 @@ tg_status tg__exact_path(tg_geodesic_workspace* ws, const tg_surface_point* from
     o.limit = TG_FIELD_MAX_DISTANCE;
     o.max_distance = limit;
     tg__field_run run;
-    tg_status st = tg__field_execute(ws->field, from, 1, to, 1, &o, NULL, NULL, NULL, 1, &run);
+    double tp[3];
+    tg_surface_point_position(g->mesh, to, tp);
+    tg_status st = tg__field_execute(ws->field, from, 1, to, 1, &o, NULL, NULL, NULL, 1, tp, &run);
     if (st != TG_OK) return st;
     double d = run.qdist[0];
     *out_distance = d;

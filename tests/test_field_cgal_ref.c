@@ -1,0 +1,132 @@
+/* test_field_cgal_ref.c - exact fields against an independent exact implementation: CGAL's
+ * Surface_mesh_shortest_path (Xin & Wang's window propagation, exact predicates), whose distances
+ * for a vertex, a face point 1e-3 from an edge and a face point source on 11 corpus meshes (scans,
+ * CAD, open surfaces with holes, genus 3) are committed in tests/ref/ with the script that made
+ * them (tests/ref/make_field_refs.sh). Sources exactly on an edge are not compared: CGAL 5.5
+ * misplaces them (its distance to an end vertex of the source's own edge comes out below the
+ * Euclidean distance); they are checked by symmetry (test_field_engine) and known answers. Every reference vertex must agree within 1e-12 of the field's
+ * largest distance, inf where CGAL finds no path. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <trigeo.h>
+
+#include "tg_test.h"
+
+static const char* ref_dir(void)
+{
+    static char dir[4096];
+    snprintf(dir, sizeof dir, "%s", __FILE__);
+    char* slash = strrchr(dir, '/');
+    if (slash) snprintf(slash, sizeof dir - (size_t)(slash - dir), "/ref");
+    return dir;
+}
+
+static bool parse_source(const char* s, tg_surface_point* out)
+{
+    unsigned idx;
+    double a, b, c;
+    if (sscanf(s, "v:%u", &idx) == 1 && s[0] == 'v') {
+        *out = tg_surface_vertex(idx);
+        return true;
+    }
+    if (s[0] == 'e' && sscanf(s, "e:%u:%lf", &idx, &a) == 2) {
+        *out = tg_surface_edge(idx, a);
+        return true;
+    }
+    if (s[0] == 'f' && sscanf(s, "f:%u:%lf,%lf,%lf", &idx, &a, &b, &c) == 4) {
+        *out = tg_surface_face(idx, a, b, c);
+        return true;
+    }
+    return false;
+}
+
+typedef struct entry {
+    unsigned v;
+    double d;
+} entry;
+
+/* Compares the field of one source with its reference entries. */
+static void compare(const char* file, tg_geodesic* g, size_t nv, const char* spec, const entry* e, size_t n)
+{
+    tg_surface_point s;
+    if (!parse_source(spec, &s)) {
+        CHECK_MSG(0, "%s: bad source '%s'", file, spec);
+        return;
+    }
+    double* d = malloc(nv * sizeof *d);
+    CHECK_STATUS(tg_geodesic_field(g, &s, 1, NULL, d, NULL), TG_OK);
+    double far = 0, worst = 0;
+    for (size_t i = 0; i < n; ++i)
+        if (isfinite(e[i].d) && e[i].d > far) far = e[i].d;
+    size_t at = 0;
+    for (size_t i = 0; i < n; ++i) {
+        CHECK(e[i].v < nv);
+        if (e[i].v >= nv) break;
+        double ours = d[e[i].v];
+        if (isinf(e[i].d) || isinf(ours)) {
+            CHECK_MSG(isinf(e[i].d) && isinf(ours), "%s %s: vertex %u: trigeo %.17g, CGAL %.17g", file, spec, e[i].v, ours,
+                      e[i].d);
+            continue;
+        }
+        double diff = fabs(ours - e[i].d);
+        if (diff > worst) worst = diff, at = i;
+    }
+    CHECK_MSG(worst <= 1e-12 * far, "%s %s: vertex %u: trigeo %.17g, CGAL %.17g (%.2g of the largest distance)", file, spec,
+              e[at].v, d[e[at].v], e[at].d, far > 0 ? worst / far : 0.0);
+    printf("%s %s: %zu vertices, largest difference %.2g of the largest distance %.6g\n", file, spec, n,
+           far > 0 ? worst / far : 0.0, far);
+    free(d);
+}
+
+static void check_file(const char* path)
+{
+    FILE* f = fopen(path, "r");
+    CHECK_MSG(f != NULL, "cannot open %s", path);
+    if (!f) return;
+    char line[512], mesh[256] = "", spec[256] = "";
+    entry* e = malloc(200000 * sizeof *e);
+    size_t n = 0;
+    tg_mesh* m = NULL;
+    tg_geodesic* g = NULL;
+    int sources = 0;
+    while (fgets(line, sizeof line, f)) {
+        if (line[0] == '#') continue;
+        if (!strncmp(line, "mesh ", 5)) {
+            sscanf(line + 5, "%255s", mesh);
+            m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), mesh);
+            if (!m) break;
+            CHECK_STATUS(tg_geodesic_create(m, NULL, &g), TG_OK);
+        } else if (!strncmp(line, "source ", 7)) {
+            if (spec[0] && g) compare(mesh, g, tg_mesh_vertex_count(m), spec, e, n), sources++;
+            sscanf(line + 7, "%255s", spec);
+            n = 0;
+        } else {
+            char val[64];
+            if (n < 200000 && sscanf(line, "%u %63s", &e[n].v, val) == 2) {
+                e[n].d = strcmp(val, "inf") ? strtod(val, NULL) : INFINITY;
+                n++;
+            }
+        }
+    }
+    if (spec[0] && g) compare(mesh, g, tg_mesh_vertex_count(m), spec, e, n), sources++;
+    CHECK_MSG(sources == 3, "%s: %d sources", path, sources);
+    fclose(f);
+    free(e);
+    tg_geodesic_destroy(g);
+    tg_mesh_destroy(m);
+}
+
+int main(void)
+{
+    const char* files[] = {"nvd_spot", "igl_bunny", "cgal_fandisk", "cgal_elephant-with-holes", "oded_plane_holes",
+                           "igl_decimated-knight", "cgal_pinion", "igl_3holes", "lpm_blub_triangulated", "cgal_turbine",
+                           "c3d_teapot"};
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; ++i) {
+        char path[8192];
+        snprintf(path, sizeof path, "%s/%s.ref", ref_dir(), files[i]);
+        check_file(path);
+    }
+    return tg_test_finish();
+}

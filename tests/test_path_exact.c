@@ -11,31 +11,15 @@
 #include <trigeo.h>
 
 #include "tg_test.h"
+#include "tg_test_geodesic.h"
 
-typedef struct ctx {
-    tg_mesh* m;
-    tg_geodesic* g;
-    tg_geodesic_workspace* ws;
-    tg_path* p;
-} ctx;
-
-static bool open_ctx(ctx* c, const char* file)
+/* the corpus mesh file with the shared fixture (solver, workspace, path) of tg_test_geodesic.h */
+static bool open_corpus(ctx* c, const char* file)
 {
-    memset(c, 0, sizeof *c);
-    c->m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), file);
-    if (!c->m) return false;
-    CHECK_STATUS(tg_geodesic_create(c->m, NULL, &c->g), TG_OK);
-    CHECK_STATUS(tg_geodesic_workspace_create(c->g, &c->ws), TG_OK);
-    CHECK_STATUS(tg_path_create(NULL, &c->p), TG_OK);
+    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), file);
+    if (!m) return false;
+    *c = open_ctx_for(m);
     return true;
-}
-
-static void close_ctx(ctx* c)
-{
-    tg_path_destroy(c->p);
-    tg_geodesic_workspace_destroy(c->ws);
-    tg_geodesic_destroy(c->g);
-    tg_mesh_destroy(c->m);
 }
 
 /* Does segment i of the path lie in its face? Both ends' barycentrics in it are >= -1e-9. */
@@ -75,12 +59,12 @@ static int worst_kind_fail;
 static void check_meshes_pairs(const char* file, int pairs)
 {
     ctx c;
-    if (!open_ctx(&c, file)) return;
+    if (!open_corpus(&c, file)) return;
     tg_rng rng = {1234567};
     int proven = 0, shorter = 0, reached = 0;
     /* Far-from-origin coordinates (openfoam_terrain is in UTM metres, 4.8e6 away, 1500 across)
      * cost precision in every 3D difference: the angle and length checks scale with the ratio. */
-    const tg_mesh_report* rep = tg_mesh_get_report(c.m);
+    const tg_mesh_report* rep = tg_mesh_get_report(c.mesh);
     double far = 0, diag = 0;
     for (int k = 0; k < 3; ++k) {
         far = fmax(far, fmax(fabs(rep->bbox_min[k]), fabs(rep->bbox_max[k])));
@@ -89,24 +73,24 @@ static void check_meshes_pairs(const char* file, int pairs)
     double offset = fmax(1.0, far / sqrt(diag));
     double worst_len = 0, worst_cert = 0;
     for (int q = 0; q < pairs; ++q) {
-        tg_surface_point a = tg_test_random_surface_point(&rng, c.m, NULL);
-        tg_surface_point b = tg_test_random_surface_point(&rng, c.m, NULL);
+        tg_surface_point a = tg_test_random_surface_point(&rng, c.mesh, NULL);
+        tg_surface_point b = tg_test_random_surface_point(&rng, c.mesh, NULL);
         double d;
-        CHECK_STATUS(tg_geodesic_field_at(c.g, &a, 1, &b, 1, NULL, &d, NULL, NULL), TG_OK);
+        CHECK_STATUS(tg_geodesic_field_at(c.geo, &a, 1, &b, 1, NULL, &d, NULL, NULL), TG_OK);
         /* the default method: never proven */
         tg_path_options o;
         memset(&o, 0, sizeof o);
         tg_path_view v;
-        CHECK_STATUS(tg_geodesic_path(c.g, c.ws, &a, &b, &o, c.p), TG_OK);
-        tg_path_get_view(c.p, &v);
+        CHECK_STATUS(tg_geodesic_path(c.geo, c.ws, &a, &b, &o, c.path), TG_OK);
+        tg_path_get_view(c.path, &v);
         CHECK_MSG(v.global == TG_PATH_UNPROVEN, "%s pair %d: the default method labelled its path proven", file, q);
         double straight = v.length;
         /* the exact method and the exact check */
         for (int mode = 0; mode < 2; ++mode) {
             o.method = mode ? TG_PATH_STRAIGHTEN : TG_PATH_EXACT;
             o.certify = mode ? TG_PATH_CERTIFY_ON : TG_PATH_CERTIFY_OFF;
-            CHECK_STATUS(tg_geodesic_path(c.g, c.ws, &a, &b, &o, c.p), TG_OK);
-            tg_path_get_view(c.p, &v);
+            CHECK_STATUS(tg_geodesic_path(c.geo, c.ws, &a, &b, &o, c.path), TG_OK);
+            tg_path_get_view(c.path, &v);
             if (!isfinite(d)) {
                 CHECK_MSG(v.status == TG_PATH_UNREACHABLE && isinf(v.length), "%s pair %d: unreachable", file, q);
                 continue;
@@ -131,17 +115,17 @@ static void check_meshes_pairs(const char* file, int pairs)
             CHECK(v.status == TG_PATH_CONVERGED);
             for (size_t i = 0; i < v.point_count; ++i) {
                 double x[3];
-                if (tg_surface_point_validate(c.m, &v.points[i], NULL) != TG_OK) {
+                if (tg_surface_point_validate(c.mesh, &v.points[i], NULL) != TG_OK) {
                     CHECK_MSG(0, "%s pair %d: point %zu invalid", file, q, i);
                     break;
                 }
-                tg_surface_point_position(c.m, &v.points[i], x);
+                tg_surface_point_position(c.mesh, &v.points[i], x);
                 double off = fabs(x[0] - v.xyz[3 * i]) + fabs(x[1] - v.xyz[3 * i + 1]) + fabs(x[2] - v.xyz[3 * i + 2]);
                 if (off > 1e-9 * (1 + d)) {
                     CHECK_MSG(0, "%s pair %d: point %zu off its position by %.3g", file, q, i, off);
                     break;
                 }
-                if (i + 1 < v.point_count && !segment_in_face(c.m, &v, i)) {
+                if (i + 1 < v.point_count && !segment_in_face(c.mesh, &v, i)) {
                     CHECK_MSG(0, "%s pair %d (mode %d): segment %zu not in face %u", file, q, mode, i, v.faces[i]);
                     worst_kind_fail++;
                     break;
@@ -197,23 +181,23 @@ static void test_allocation_failures(void)
 static void test_api(void)
 {
     ctx c;
-    if (!open_ctx(&c, "nvd_spot.obj")) return;
+    if (!open_corpus(&c, "nvd_spot.obj")) return;
     tg_surface_point a = tg_surface_vertex(1), b = tg_surface_vertex(2);
     tg_path_options o;
     memset(&o, 0, sizeof o);
     o.certify = (tg_path_certify)3;
-    CHECK_STATUS(tg_geodesic_path(c.g, c.ws, &a, &b, &o, c.p), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_path(c.geo, c.ws, &a, &b, &o, c.path), TG_ERR_INVALID_ARGUMENT);
     o.certify = TG_PATH_CERTIFY_OFF;
     o.method = (tg_path_method)9;
-    CHECK_STATUS(tg_geodesic_path(c.g, c.ws, &a, &b, &o, c.p), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_path(c.geo, c.ws, &a, &b, &o, c.path), TG_ERR_INVALID_ARGUMENT);
     CHECK_EQ_STR(tg_path_global_name(TG_PATH_PROVEN), "proven");
     CHECK_EQ_STR(tg_path_global_name(TG_PATH_UNPROVEN), "unproven");
     CHECK_EQ_STR(tg_path_global_name((tg_path_global)5), "unknown");
     /* a point to itself */
     o.method = TG_PATH_EXACT;
-    CHECK_STATUS(tg_geodesic_path(c.g, c.ws, &a, &a, &o, c.p), TG_OK);
+    CHECK_STATUS(tg_geodesic_path(c.geo, c.ws, &a, &a, &o, c.path), TG_OK);
     tg_path_view v;
-    tg_path_get_view(c.p, &v);
+    tg_path_get_view(c.path, &v);
     CHECK(v.length == 0.0 && v.global == TG_PATH_PROVEN);
     close_ctx(&c);
 }

@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <zlib.h>
 
 /* Decompressed inputs larger than this are refused: halfedge ids are 32-bit, so no usable mesh
@@ -127,6 +128,12 @@ tg_status tg__read_file(const char* path, const tg_allocator* a, tg_diag* diag, 
         tg__diag_set(diag, path, 0, 0, 0, "cannot open: %s", strerror(errno));
         return TG_ERR_IO;
     }
+    struct stat sb;
+    if (fstat(fileno(f), &sb) == 0 && S_ISDIR(sb.st_mode)) {
+        fclose(f);
+        tg__diag_set(diag, path, 0, 0, 0, "is a directory, not a mesh file");
+        return TG_ERR_IO;
+    }
     unsigned char magic[2] = {0, 0};
     size_t got = fread(magic, 1, 2, f);
     if (ends_with_ci(path, ".gz") || (got == 2 && magic[0] == 0x1f && magic[1] == 0x8b)) {
@@ -208,9 +215,24 @@ static const char* format_name(tg_format f)
     }
 }
 
+/* A UTF-8 byte-order mark (Windows tools write one before text): skipped before a text format,
+ * so that the first record is read like any other. A binary STL keeps its 80-byte header whole. */
+static bool has_bom(const char* data, size_t size)
+{
+    return size >= 3 && (unsigned char)data[0] == 0xEF && (unsigned char)data[1] == 0xBB &&
+           (unsigned char)data[2] == 0xBF;
+}
+
 static tg_status parse_buffer(const char* data, size_t size, const char* name, tg_format format,
                               const tg_allocator* a, tg_diag* diag, tg_mesh** out_mesh)
 {
+    if (has_bom(data, size)) {
+        tg_format text = format == TG_FORMAT_AUTO ? tg__detect_format(name, data + 3, size - 3) : format;
+        bool binary_stl = text == TG_FORMAT_STL && size >= 84 &&
+                          tg__detect_format(NULL, data, size) == TG_FORMAT_STL &&
+                          !(size - 3 >= 5 && !strncmp(data + 3, "solid", 5));
+        if (!binary_stl) data += 3, size -= 3, format = text;
+    }
     if (format == TG_FORMAT_AUTO) format = tg__detect_format(name, data, size);
     tg__reader_fn reader = format == TG_FORMAT_OBJ ? tg__read_obj
                          : format == TG_FORMAT_OFF ? tg__read_off

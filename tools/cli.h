@@ -70,6 +70,9 @@ void cli_output_abort(cli_output* o);
 /* Writes a float64 array as NumPy .npy: (rows, cols) when matrix, else (cols,). */
 bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bool matrix);
 
+/* Past a leading UTF-8 byte-order mark, if any (text written by Windows tools). */
+char* cli_skip_bom(char* text);
+
 /* SIGINT and SIGTERM set a flag that long work polls (a second Ctrl-C exits at once). */
 void cli_interrupt_install(void);
 bool cli_interrupted(void);

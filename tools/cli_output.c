@@ -151,6 +151,12 @@ void cli_output_abort(cli_output* o)
     }
 }
 
+char* cli_skip_bom(char* text)
+{
+    const unsigned char* u = (const unsigned char*)text;
+    return u[0] == 0xEF && u[1] == 0xBB && u[2] == 0xBF ? text + 3 : text;
+}
+
 /* ---- .npy ---- */
 
 bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bool matrix)

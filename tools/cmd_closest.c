@@ -58,7 +58,7 @@ static size_t parse_queries(const char* name, char* text, double** out)
     size_t count = 0, cap = 1024;
     double* xyz = malloc(3 * cap * sizeof *xyz);
     unsigned long long line = 0;
-    char* s = text;
+    char* s = cli_skip_bom(text);
     while (xyz && *s) {
         char* end = strchr(s, '\n');
         if (end) *end = '\0';
@@ -116,6 +116,7 @@ static int write_csv(FILE* f, size_t n, const tg_closest_hit* hits, const tg_sig
                 h->point[2], h->bary[0], h->bary[1], h->bary[2]);
         if (signed_hits) fprintf(f, ",%d", signed_hits[i].sign);
         fputc('\n', f);
+        if ((i & 4095) == 4095 && cli_interrupted()) return 1; /* Ctrl-C: nothing is kept */
     }
     return ferror(f) ? -1 : 0;
 }
@@ -167,6 +168,7 @@ static int run(int argc, char** argv)
     }
     if (!mesh_path || !query_path) return cli_usage("closest", "missing %s", mesh_path ? "QUERIES" : "MESH");
 
+    cli_interrupt_install();
     size_t size = 0;
     char* text = read_all(query_path, &size);
     if (!text) return CLI_INPUT;
@@ -203,19 +205,22 @@ static int run(int argc, char** argv)
         cli_error(mesh_path, 0, "%s", tg_status_string(st));
         goto done;
     }
-    FILE* f = out_path ? fopen(out_path, "w") : stdout;
-    if (!f) {
-        cli_error(out_path, 0, "cannot write: %s", strerror(errno));
-        goto done;
-    }
+    /* to a temporary name renamed when complete: an error or Ctrl-C leaves no partial file */
+    cli_output out;
+    FILE* f = cli_output_open(&out, out_path ? out_path : "-");
+    if (!f) goto done;
     int werr = write_csv(f, n, hits, shits);
-    if (out_path && fclose(f)) werr = -1;
-    if (!out_path && fflush(stdout)) werr = -1;
     if (werr) {
-        cli_error(out_path ? out_path : "-", 0, "write error");
+        if (werr > 0) {
+            cli_error(out_path ? out_path : "-", 0, "interrupted: nothing written");
+            rc = 130;
+        } else {
+            cli_error(out_path ? out_path : "-", 0, "write error: %s", strerror(errno));
+        }
+        cli_output_abort(&out);
         goto done;
     }
-    rc = CLI_OK;
+    rc = cli_output_commit(&out);
 done:
     free(shits);
     free(hits);

@@ -135,8 +135,7 @@ static long read_lines(const char* path, const char* what, char** out_text, char
         return -1;
     }
     long n = 0;
-    char* s = text;
-    if ((unsigned char)s[0] == 0xEF && (unsigned char)s[1] == 0xBB && (unsigned char)s[2] == 0xBF) s += 3; /* BOM */
+    char* s = cli_skip_bom(text);
     for (unsigned long long line = 1; *s || line == 1; ++line) {
         char* end = strchr(s, '\n');
         char* next = end ? end + 1 : s + strlen(s);

@@ -135,20 +135,72 @@ static bool parse_pair(const char* name, unsigned long long line, char* s, tg_me
     return true;
 }
 
-static int run_pairs(const char* mesh_path, const char* pairs_path, const char* out_path, const tg_path_options* o)
+/* One pair of the PAIRS file, parsed before any path is computed. */
+typedef struct pair_in {
+    tg_surface_point a, b;
+    unsigned long long line;
+} pair_in;
+
+/* Reads and validates every pair (a leading BOM, blank lines and '#' comments skipped); returns
+ * the count, or -1 after printing "PAIRS:LINE: message". */
+static long read_pairs(const char* pairs_path, tg_mesh* mesh, pair_in** out)
 {
     FILE* in = strcmp(pairs_path, "-") ? fopen(pairs_path, "r") : stdin;
     if (!in) {
         cli_error(pairs_path, 0, "cannot open: %s", strerror(errno));
-        return CLI_INPUT;
+        return -1;
     }
+    size_t n = 0, cap = 256;
+    pair_in* pairs = malloc(cap * sizeof *pairs);
+    char line[4096];
+    unsigned long long lineno = 0;
+    long result = -1;
+    while (pairs && fgets(line, sizeof line, in)) {
+        ++lineno;
+        if (!strchr(line, '\n') && !feof(in)) {
+            cli_error(pairs_path, lineno, "line too long");
+            goto done;
+        }
+        line[strcspn(line, "\n")] = '\0';
+        char* text = lineno == 1 ? cli_skip_bom(line) : line;
+        const char* p = text + strspn(text, " \t\r");
+        if (!*p || *p == '#') continue;
+        if (n == cap) {
+            pair_in* grown = realloc(pairs, 2 * cap * sizeof *pairs);
+            if (!grown) break;
+            pairs = grown, cap *= 2;
+        }
+        if (!parse_pair(pairs_path, lineno, text, mesh, &pairs[n].a, &pairs[n].b)) goto done;
+        pairs[n++].line = lineno;
+    }
+    if (!pairs || n == cap) {
+        cli_error(pairs_path, lineno, "out of memory");
+    } else if (ferror(in)) {
+        cli_error(pairs_path, 0, "read error");
+    } else {
+        result = (long)n;
+    }
+done:
+    if (in != stdin) fclose(in);
+    if (result < 0) free(pairs), pairs = NULL;
+    *out = pairs;
+    return result;
+}
+
+static int run_pairs(const char* mesh_path, const char* pairs_path, const char* out_path, const tg_path_options* o)
+{
     int rc = CLI_INPUT;
-    FILE* out = NULL;
     tg_geodesic* geo = NULL;
     tg_geodesic_workspace* ws = NULL;
     tg_path* path = NULL;
+    pair_in* pairs = NULL;
+    cli_output out;
+    bool opened = false;
     tg_mesh* mesh = cli_load_mesh(mesh_path);
     if (!mesh) goto done;
+    /* every pair is checked before any output exists */
+    long n = read_pairs(pairs_path, mesh, &pairs);
+    if (n < 0) goto done;
     tg_status st = tg_geodesic_create(mesh, NULL, &geo);
     if (st == TG_OK) st = tg_geodesic_workspace_create(geo, &ws);
     if (st == TG_OK) st = tg_path_create(NULL, &path);
@@ -156,58 +208,40 @@ static int run_pairs(const char* mesh_path, const char* pairs_path, const char* 
         cli_error(mesh_path, 0, "%s", tg_status_string(st));
         goto done;
     }
-    out = out_path ? fopen(out_path, "w") : stdout;
-    if (!out) {
-        cli_error(out_path, 0, "cannot open for writing: %s", strerror(errno));
-        goto done;
-    }
-    fprintf(out, "i,length,points,status,max_angle_defect,microseconds,global\n");
-    char line[4096];
-    unsigned long long lineno = 0, i = 0;
-    while (fgets(line, sizeof line, in)) {
-        ++lineno;
-        if (!strchr(line, '\n') && !feof(in)) {
-            cli_error(pairs_path, lineno, "line too long");
+    cli_interrupt_install();
+    FILE* f = cli_output_open(&out, out_path ? out_path : "-");
+    if (!f) goto done;
+    opened = true;
+    fprintf(f, "i,length,points,status,max_angle_defect,microseconds,global\n");
+    for (long i = 0; i < n; ++i) {
+        if (cli_interrupted()) {
+            cli_error(pairs_path, pairs[i].line, "interrupted: nothing written");
+            rc = 130;
             goto done;
         }
-        line[strcspn(line, "\n")] = '\0';
-        const char* p = line + strspn(line, " \t\r");
-        if (!*p || *p == '#') continue;
-        tg_surface_point a, b;
-        if (!parse_pair(pairs_path, lineno, line, mesh, &a, &b)) goto done;
         double t0 = now_us();
-        st = tg_geodesic_path(geo, ws, &a, &b, o, path);
+        st = tg_geodesic_path(geo, ws, &pairs[i].a, &pairs[i].b, o, path);
         double us = now_us() - t0;
         if (st != TG_OK) {
-            cli_error(pairs_path, lineno, "%s", tg_status_string(st));
+            cli_error(pairs_path, pairs[i].line, "%s", tg_status_string(st));
             goto done;
         }
         tg_path_view v;
         tg_path_get_view(path, &v);
-        fprintf(out, "%llu,%.17g,%zu,%s,%.17g,%.3f,%s\n", i++, v.length, v.point_count, tg_path_status_name(v.status),
+        fprintf(f, "%ld,%.17g,%zu,%s,%.17g,%.3f,%s\n", i, v.length, v.point_count, tg_path_status_name(v.status),
                 v.max_angle_defect, us, tg_path_global_name(v.global));
     }
-    if (ferror(in)) {
-        cli_error(pairs_path, 0, "read error");
-        goto done;
-    }
-    rc = CLI_OK;
+    opened = false;
+    rc = cli_output_commit(&out);
 done:
-    if (out && out != stdout && fclose(out) != 0 && rc == CLI_OK) {
-        cli_error(out_path, 0, "write failed");
-        rc = CLI_INPUT;
-    } else if (out == stdout && fflush(stdout) != 0 && rc == CLI_OK) {
-        rc = CLI_INPUT;
-    }
-    if (in != stdin) fclose(in);
+    if (opened) cli_output_abort(&out);
+    free(pairs);
     tg_path_destroy(path);
     tg_geodesic_workspace_destroy(ws);
     tg_geodesic_destroy(geo);
     tg_mesh_destroy(mesh);
     return rc;
 }
-
-/* ---- single path ---- */
 
 static int run_single(const char* mesh_path, const char* from, const char* to, const char* out_path, bool json,
                       const char* method_name, const tg_path_options* o)

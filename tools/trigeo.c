@@ -107,7 +107,23 @@ static const cli_command* find_command(const char* name)
     return NULL;
 }
 
+static int dispatch(int argc, char** argv);
+
+/* Every exit goes through here: output that could not be written (a full disk, /dev/full, a
+ * closed pipe) is an error, exit 2, never a silent success. */
 int main(int argc, char** argv)
+{
+    int rc = dispatch(argc, argv);
+    int err = 0;
+    if (fflush(stdout) != 0 || ferror(stdout)) err = errno ? errno : EIO;
+    if (err) {
+        cli_error("-", 0, "cannot write the output to stdout: %s", strerror(err));
+        return rc == CLI_OK ? CLI_INPUT : rc;
+    }
+    return rc;
+}
+
+static int dispatch(int argc, char** argv)
 {
     if (argc < 2) {
         print_overview(stderr);

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# cli_outputs.sh: what the CLI writes and reads at the edges (issue 12 items 1, 4, 5, 6):
+# text inputs that start with a UTF-8 byte-order mark (mesh, queries, pairs, sources) read like
+# the same text without it; a directory given as a mesh is named as one; output that cannot be
+# written (/dev/full) is exit 2, not a silent success; a bad pairs or queries line leaves no output
+# file at all (inputs are checked before anything is written; outputs go to a temporary name).
+set -u
+trigeo=${TG_TRIGEO:?}
+meshes=${TG_MESHES_DIR:?}
+exec /usr/bin/env python3 - "$trigeo" "$meshes" <<'PY'
+import os, subprocess, sys, tempfile
+trigeo, meshes = sys.argv[1], sys.argv[2]
+sys.dont_write_bytecode = True
+sys.path.insert(0, os.path.join(os.environ["TG_SOURCE_DIR"], "tests"))
+import cli_common
+from cli_common import check
+def run(*args, stdin=None, stdout=subprocess.PIPE):
+    return subprocess.run([trigeo, *args], input=stdin, stdout=stdout, stderr=subprocess.PIPE)
+tmp = tempfile.mkdtemp()
+BOM = b"\xef\xbb\xbf"
+spot = os.path.join(meshes, "nvd_spot.obj")
+
+# a BOM before a mesh: the issue's example has 5 vertices, not 4
+obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 9 9 9\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
+for name, data in (("plain.obj", obj), ("bom.obj", BOM + obj)):
+    open(os.path.join(tmp, name), "wb").write(data)
+a = run("info", os.path.join(tmp, "plain.obj"), "--json").stdout
+b = run("info", os.path.join(tmp, "bom.obj"), "--json").stdout
+check(b'"vertices": 5' in b and a.replace(b"plain.obj", b"X") == b.replace(b"bom.obj", b"X"),
+      "BOM mesh reads like the plain one: %r" % b[:120])
+
+# a BOM before queries, pairs and sources
+q = b"0 0 0\n0.2 0.1 0.5\n"
+r0, r1 = run("closest", spot, "-", stdin=q), run("closest", spot, "-", stdin=BOM + q)
+check(r1.returncode == 0 and r0.stdout == r1.stdout, "BOM queries: %r" % r1.stderr)
+p = b"v 0 100\nv 5 2000\n"
+r0, r1 = run("path", spot, "--pairs", "-", stdin=p), run("path", spot, "--pairs", "-", stdin=BOM + p)
+strip = lambda out: [l.split(b",")[:5] for l in out.splitlines()]  # without the timing column
+check(r1.returncode == 0 and strip(r0.stdout) == strip(r1.stdout), "BOM pairs: %r" % r1.stderr)
+src = os.path.join(tmp, "src.txt")
+open(src, "wb").write(BOM + b"v:0\nv:7\n")
+r = run("field", spot, "--sources", src, "-o", os.path.join(tmp, "m.csv"))
+check(r.returncode == 0, "BOM sources: %r" % r.stderr)
+
+# a directory as a mesh
+r = run("info", tmp + "/")
+check(r.returncode == 2 and b"directory" in r.stderr, "directory: %d %r" % (r.returncode, r.stderr))
+
+# output that cannot be written
+with open("/dev/full", "wb") as full:
+    for args in (["info", spot, "--json"], ["info", spot], ["closest", spot, "-"], ["path", spot, "--from", "v:0", "--to", "v:9"]):
+        r = run(*args, stdin=q, stdout=full)
+        check(r.returncode == 2 and b"No space" in r.stderr, "%s > /dev/full: exit %d %r" % (args[0], r.returncode, r.stderr))
+
+# a bad line late in the input: no output file, not even a temporary one
+pairs = os.path.join(tmp, "pairs.txt")
+open(pairs, "w").write("".join("v %d %d\n" % (i, i + 1) for i in range(1001)) + "v 0 99999\n")
+out = os.path.join(tmp, "paths.csv")
+r = run("path", spot, "--pairs", pairs, "-o", out)
+check(r.returncode == 2 and (pairs + ":1002:").encode() in r.stderr, "bad pair row 1002: %d %r" % (r.returncode, r.stderr))
+queries = os.path.join(tmp, "q.txt")
+open(queries, "w").write("0 0 0\n" * 500 + "0 0 nan\n")
+out2 = os.path.join(tmp, "closest.csv")
+r = run("closest", spot, queries, "-o", out2)
+check(r.returncode == 2 and (queries + ":501:").encode() in r.stderr, "bad query row 501: %d %r" % (r.returncode, r.stderr))
+left = [f for f in os.listdir(tmp) if f.startswith(("paths.csv", "closest.csv"))]
+check(not left, "no partial outputs: %s" % left)
+# and the good runs do write their files
+r = run("path", spot, "--pairs", "-", "-o", out, stdin=b"v 0 1\n")
+r2 = run("closest", spot, "-", "-o", out2, stdin=q)
+check(r.returncode == 0 and r2.returncode == 0 and os.path.exists(out) and os.path.exists(out2), "good runs write")
+check(not [f for f in os.listdir(tmp) if ".tmp-" in f], "no temporary files left: %s" % os.listdir(tmp))
+cli_common.finish()
+PY

@@ -67,6 +67,10 @@ bool cli_output_reserve(cli_output* o, const char* path);
 int cli_output_commit(cli_output* o);
 /* Closes and removes the temporary file. */
 void cli_output_abort(cli_output* o);
+/* After a library writer wrote o->tmp (cli_output_reserve) with status st: renames it into place,
+ * or prints the error under the user's file name and removes it. CLI_OK, CLI_USAGE (invalid
+ * argument) or CLI_INPUT. */
+int cli_output_finish_library(cli_output* o, tg_status st, const tg_diag* d);
 /* Writes a float64 array as NumPy .npy: (rows, cols) when matrix, else (cols,). */
 bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bool matrix);
 

@@ -140,6 +140,15 @@ int cli_output_commit(cli_output* o)
     return rc;
 }
 
+int cli_output_finish_library(cli_output* o, tg_status st, const tg_diag* d)
+{
+    if (st == TG_OK) return cli_output_commit(o);
+    /* the library named the temporary file: name the one the user asked for */
+    cli_error(o->path, 0, "%s", d && d->message[0] ? d->message : tg_status_string(st));
+    cli_output_abort(o);
+    return st == TG_ERR_INVALID_ARGUMENT ? CLI_USAGE : CLI_INPUT;
+}
+
 void cli_output_abort(cli_output* o)
 {
     if (o->f && o->f != stdout) fclose(o->f);

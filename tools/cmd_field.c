@@ -326,12 +326,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
         if (!cli_output_reserve(&out, fa->out)) goto done;
         out.f = NULL;
         st = tg_mesh_write_ply(mesh, out.tmp, &sc, 1, &d);
-        if (st != TG_OK) {
-            cli_error(fa->out, 0, "%s", d.message[0] ? d.message : tg_status_string(st));
-            cli_output_abort(&out);
-            goto done;
-        }
-        if ((rc = cli_output_commit(&out)) != CLI_OK) goto done;
+        if ((rc = cli_output_finish_library(&out, st, &d)) != CLI_OK) goto done;
     } else if (fa->out && (rc = write_table(fa->out, fa->format, dist, rows, n, fa->matrix)) != CLI_OK) {
         goto done;
     }

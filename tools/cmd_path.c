@@ -272,13 +272,13 @@ static int run_single(const char* mesh_path, const char* from, const char* to, c
     }
     tg_path_view v;
     tg_path_get_view(path, &v);
-    if (out_path) {
+    if (out_path) { /* to a temporary name, renamed when complete */
         tg_diag d;
-        st = tg_path_write_obj(path, out_path, &d);
-        if (st != TG_OK) {
-            cli_error_diag(&d, st);
-            goto done;
-        }
+        memset(&d, 0, sizeof d);
+        cli_output out;
+        if (!cli_output_reserve(&out, out_path)) goto done;
+        out.f = NULL;
+        if (cli_output_finish_library(&out, tg_path_write_obj(path, out.tmp, &d), &d) != CLI_OK) goto done;
     }
     if (json)
         print_json(stdout, mesh_path, method_name, &v);

@@ -144,12 +144,15 @@ static int run(int argc, char** argv)
         if (!poly) rc = CLI_INPUT;
         o.polyline = poly;
     }
-    if (rc == CLI_OK) {
+    if (rc == CLI_OK) { /* to a temporary name, renamed when complete */
         tg_diag d;
-        tg_status st = tg_render_png(mesh, &o, out, &d);
-        if (st != TG_OK) {
-            cli_error_diag(&d, st);
-            rc = st == TG_ERR_INVALID_ARGUMENT ? CLI_USAGE : CLI_INPUT;
+        memset(&d, 0, sizeof d);
+        cli_output png;
+        if (!cli_output_reserve(&png, out)) {
+            rc = CLI_INPUT;
+        } else {
+            png.f = NULL;
+            rc = cli_output_finish_library(&png, tg_render_png(mesh, &o, png.tmp, &d), &d);
         }
     }
     free(poly);

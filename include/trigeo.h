@@ -25,6 +25,23 @@
 extern "C" {
 #endif
 
+/* TG_API marks what libtrigeo exports: everything else in the library is hidden
+ * (-fvisibility=hidden). On Windows it is dllexport while building the DLL (TG_BUILDING_DLL) and
+ * dllimport for its users (unless TG_STATIC). */
+#ifndef TG_API
+#if defined(_WIN32) && !defined(TG_STATIC)
+#if defined(TG_BUILDING_DLL)
+#define TG_API __declspec(dllexport)
+#else
+#define TG_API __declspec(dllimport)
+#endif
+#elif defined(__GNUC__) || defined(__clang__)
+#define TG_API __attribute__((visibility("default")))
+#else
+#define TG_API
+#endif
+#endif
+
 /* ============================================================================================== */
 /* Version                                                                                        */
 /* ============================================================================================== */
@@ -36,7 +53,7 @@ extern "C" {
 #define TG_VERSION (TG_VERSION_MAJOR * 10000 + TG_VERSION_MINOR * 100 + TG_VERSION_PATCH)
 
 /** The library's version as "MAJOR.MINOR.PATCH". Static storage; never NULL; thread-safe. */
-const char* tg_version(void);
+TG_API const char* tg_version(void);
 
 /* ============================================================================================== */
 /* Status codes and diagnostics                                                                   */
@@ -63,9 +80,9 @@ typedef enum tg_status {
 } tg_status;
 
 /** Short identifier of a status, e.g. "parse". Unknown values give "unknown". Never NULL. */
-const char* tg_status_name(tg_status status);
+TG_API const char* tg_status_name(tg_status status);
 /** One sentence describing a status. Unknown values give "unknown status". Never NULL. */
-const char* tg_status_string(tg_status status);
+TG_API const char* tg_status_string(tg_status status);
 
 /** Where and why input was rejected. Filled by parsers and validators when the caller passes a
  *  non-NULL tg_diag*; all strings are NUL-terminated (truncated if longer than their arrays).
@@ -149,7 +166,7 @@ typedef struct tg_mesh_report {
  *  Returns TG_ERR_INVALID_MESH (with diag naming the element) for an out-of-range index or a
  *  non-finite coordinate, TG_ERR_INVALID_ARGUMENT for NULL arrays with non-zero counts.
  *  Complexity O(V + F) time and memory. Thread-safe (no shared state). */
-tg_status tg_mesh_create(const double* xyz, size_t vertex_count, const uint32_t* triangles,
+TG_API tg_status tg_mesh_create(const double* xyz, size_t vertex_count, const uint32_t* triangles,
                          size_t face_count, const tg_mesh_options* options, tg_diag* diag,
                          tg_mesh** out_mesh);
 
@@ -158,47 +175,47 @@ tg_status tg_mesh_create(const double* xyz, size_t vertex_count, const uint32_t*
  *  bit-identical positions in first-seen order). format: TG_FORMAT_AUTO or a forced format.
  *  Errors: TG_ERR_IO (cannot open/read), TG_ERR_PARSE (malformed), TG_ERR_INVALID_MESH,
  *  TG_ERR_UNSUPPORTED; diag (may be NULL) gets file, line or byte offset, and a sentence. */
-tg_status tg_mesh_load(const char* path, tg_format format, const tg_mesh_options* options,
+TG_API tg_status tg_mesh_load(const char* path, tg_format format, const tg_mesh_options* options,
                        tg_diag* diag, tg_mesh** out_mesh);
 
 /** Parses a mesh from memory (uncompressed bytes). name is used in diagnostics and, with
  *  TG_FORMAT_AUTO, for the extension; it may be NULL. Same errors as tg_mesh_load. */
-tg_status tg_mesh_load_memory(const void* data, size_t size, const char* name, tg_format format,
+TG_API tg_status tg_mesh_load_memory(const void* data, size_t size, const char* name, tg_format format,
                               const tg_mesh_options* options, tg_diag* diag, tg_mesh** out_mesh);
 
 /** Frees a mesh. NULL is a no-op. */
-void tg_mesh_destroy(tg_mesh* mesh);
+TG_API void tg_mesh_destroy(tg_mesh* mesh);
 
 /** Element counts. O(1). */
-size_t tg_mesh_vertex_count(const tg_mesh* mesh);
-size_t tg_mesh_face_count(const tg_mesh* mesh);
+TG_API size_t tg_mesh_vertex_count(const tg_mesh* mesh);
+TG_API size_t tg_mesh_face_count(const tg_mesh* mesh);
 /** Array views valid for the mesh's lifetime: positions (3 doubles per vertex), triangles
  *  (3 indices per face), opposite halfedges (3 per face), one outgoing halfedge per vertex
  *  (TG_NONE for unreferenced vertices; a boundary halfedge where the vertex has one, so that a
  *  walk around the vertex covers its whole fan), and a component id per face (0-based, numbered
  *  in order of first face). */
-const double* tg_mesh_positions(const tg_mesh* mesh);
-const uint32_t* tg_mesh_triangles(const tg_mesh* mesh);
-const uint32_t* tg_mesh_opposites(const tg_mesh* mesh);
-const uint32_t* tg_mesh_vertex_halfedges(const tg_mesh* mesh);
-const uint32_t* tg_mesh_face_components(const tg_mesh* mesh);
+TG_API const double* tg_mesh_positions(const tg_mesh* mesh);
+TG_API const uint32_t* tg_mesh_triangles(const tg_mesh* mesh);
+TG_API const uint32_t* tg_mesh_opposites(const tg_mesh* mesh);
+TG_API const uint32_t* tg_mesh_vertex_halfedges(const tg_mesh* mesh);
+TG_API const uint32_t* tg_mesh_face_components(const tg_mesh* mesh);
 /** The report computed at creation. Never NULL for a valid mesh. */
-const tg_mesh_report* tg_mesh_get_report(const tg_mesh* mesh);
+TG_API const tg_mesh_report* tg_mesh_get_report(const tg_mesh* mesh);
 /** Bytes owned by the mesh object (arrays and header). */
-size_t tg_mesh_memory_bytes(const tg_mesh* mesh);
+TG_API size_t tg_mesh_memory_bytes(const tg_mesh* mesh);
 
 /** Halfedge helpers (inline): next and previous within a face, face of a halfedge. */
 static inline uint32_t tg_halfedge_next(uint32_t h) { return h - h % 3 + (h % 3 + 1) % 3; }
 static inline uint32_t tg_halfedge_prev(uint32_t h) { return h - h % 3 + (h % 3 + 2) % 3; }
 static inline uint32_t tg_halfedge_face(uint32_t h) { return h / 3; }
 /** Start and end vertex of halfedge h. h must be < 3 * face_count. */
-uint32_t tg_mesh_halfedge_from(const tg_mesh* mesh, uint32_t h);
-uint32_t tg_mesh_halfedge_to(const tg_mesh* mesh, uint32_t h);
+TG_API uint32_t tg_mesh_halfedge_from(const tg_mesh* mesh, uint32_t h);
+TG_API uint32_t tg_mesh_halfedge_to(const tg_mesh* mesh, uint32_t h);
 
 /* ---- Writers ---- */
 
 /** Writes the mesh as Wavefront OBJ ("v x y z" with %.17g, "f a b c" 1-based). */
-tg_status tg_mesh_write_obj(const tg_mesh* mesh, const char* path, tg_diag* diag);
+TG_API tg_status tg_mesh_write_obj(const tg_mesh* mesh, const char* path, tg_diag* diag);
 
 /** A named per-vertex scalar written as a PLY property (double). */
 typedef struct tg_vertex_scalar {
@@ -209,14 +226,14 @@ typedef struct tg_vertex_scalar {
 /** Writes the mesh as binary little-endian PLY: vertex x,y,z (double) plus the given per-vertex
  *  scalar properties (double), face vertex_indices (uchar count, uint index). scalar_count may be
  *  0 (scalars NULL). */
-tg_status tg_mesh_write_ply(const tg_mesh* mesh, const char* path, const tg_vertex_scalar* scalars,
+TG_API tg_status tg_mesh_write_ply(const tg_mesh* mesh, const char* path, const tg_vertex_scalar* scalars,
                             size_t scalar_count, tg_diag* diag);
 
 /** Reads the named per-vertex scalar property of a PLY file written by tg_mesh_write_ply (or any
  *  PLY whose vertex element has that numeric property). out_values: vertex_count doubles (NULL to
  *  ask for the count only); capacity: their number; *out_count receives the vertex count.
  *  TG_ERR_CAPACITY if capacity is too small; TG_ERR_PARSE if the property is absent. */
-tg_status tg_ply_read_vertex_scalar(const char* path, const char* name, double* out_values,
+TG_API tg_status tg_ply_read_vertex_scalar(const char* path, const char* name, double* out_values,
                                     size_t capacity, size_t* out_count, tg_diag* diag);
 
 /* ============================================================================================== */
@@ -289,7 +306,7 @@ typedef struct tg_point_triangle {
  *  p, v0, v1, v2: 3 doubles each, finite, with coordinate differences below 1e150 in magnitude
  *  (so squared lengths do not overflow). out: non-NULL. All pointers may alias each other
  *  except out. O(1), no allocation, thread-safe. */
-void tg_point_triangle_3d(const double p[3], const double v0[3], const double v1[3], const double v2[3],
+TG_API void tg_point_triangle_3d(const double p[3], const double v0[3], const double v1[3], const double v2[3],
                           tg_point_triangle* out);
 
 /** Closest point of the triangle (v0, v1, v2) to p in 3D, robust on every triangle: well-shaped,
@@ -304,18 +321,18 @@ void tg_point_triangle_3d(const double p[3], const double v0[3], const double v1
  *
  *  p, v0, v1, v2: 3 doubles each, finite, with coordinate differences below 1e150 in magnitude.
  *  out: non-NULL. Pointers may alias each other except out. O(1), no allocation, thread-safe. */
-void tg_point_triangle_robust_3d(const double p[3], const double v0[3], const double v1[3],
+TG_API void tg_point_triangle_robust_3d(const double p[3], const double v0[3], const double v1[3],
                                  const double v2[3], tg_point_triangle* out);
 
 /** 2D version of tg_point_triangle_3d (seed region algorithm): p and the vertices are 2 doubles;
  *  out->closest[2] is set to 0. Same contract and caveats. */
-void tg_point_triangle_2d(const double p[2], const double v0[2], const double v1[2], const double v2[2],
+TG_API void tg_point_triangle_2d(const double p[2], const double v0[2], const double v1[2], const double v2[2],
                           tg_point_triangle* out);
 
 /** 2D version of tg_point_triangle_robust_3d: p and the vertices are 2 doubles; out->closest[2] is
  *  set to 0. Same contract and guarantees. Results equal (==) those of the 3D kernel on the same
  *  triangle and point embedded at z = 0. */
-void tg_point_triangle_robust_2d(const double p[2], const double v0[2], const double v1[2],
+TG_API void tg_point_triangle_robust_2d(const double p[2], const double v0[2], const double v1[2],
                                  const double v2[2], tg_point_triangle* out);
 
 /** n-dimensional version of tg_point_triangle_3d (seed region algorithm; the seed notes that it
@@ -324,14 +341,14 @@ void tg_point_triangle_robust_2d(const double p[2], const double v0[2], const do
  *  min(n, 3) coordinates (the rest 0).
  *  n == 0 gives sqdist 0 and VERTEX0; n == 1 is accepted (a triangle on a line is a segment).
  *  O(n), no allocation, thread-safe. */
-void tg_point_triangle_nd(size_t n, const double* p, const double* v0, const double* v1, const double* v2,
+TG_API void tg_point_triangle_nd(size_t n, const double* p, const double* v0, const double* v1, const double* v2,
                           double* out_closest, tg_point_triangle* out);
 
 /** n-dimensional version of tg_point_triangle_robust_3d; same arguments as tg_point_triangle_nd.
  *  For n == 3 the results equal (==, same operations in the same order) those of
  *  tg_point_triangle_robust_3d, for n == 2 those of tg_point_triangle_robust_2d, and likewise for
  *  the region variant. O(n), no allocation, thread-safe. */
-void tg_point_triangle_robust_nd(size_t n, const double* p, const double* v0, const double* v1,
+TG_API void tg_point_triangle_robust_nd(size_t n, const double* p, const double* v0, const double* v1,
                                  const double* v2, double* out_closest, tg_point_triangle* out);
 
 /* TG-SECTION-KERNELS-PT-END */
@@ -380,15 +397,15 @@ static inline tg_surface_point tg_surface_face(uint32_t face, double b0, double 
  *  in [-1e-12, 1 + 1e-12] and summing to 1 within 1e-9 (a tolerance for values read from text);
  *  a vertex must be referenced by some face. Returns TG_OK or TG_ERR_INVALID_ARGUMENT with a
  *  sentence in diag (may be NULL). O(1). Thread-safe. */
-tg_status tg_surface_point_validate(const tg_mesh* mesh, const tg_surface_point* point, tg_diag* diag);
+TG_API tg_status tg_surface_point_validate(const tg_mesh* mesh, const tg_surface_point* point, tg_diag* diag);
 
 /** The 3D position of a (valid) surface point. O(1). Thread-safe. */
-void tg_surface_point_position(const tg_mesh* mesh, const tg_surface_point* point, double out_xyz[3]);
+TG_API void tg_surface_point_position(const tg_mesh* mesh, const tg_surface_point* point, double out_xyz[3]);
 
 /** The same location expressed canonically: a face point with a barycentric coordinate that is
  *  exactly 0 becomes an edge point, an edge point with t exactly 0 or 1 becomes a vertex. Never
  *  changes the position. O(1). */
-tg_surface_point tg_surface_point_canonical(const tg_mesh* mesh, const tg_surface_point* point);
+TG_API tg_surface_point tg_surface_point_canonical(const tg_mesh* mesh, const tg_surface_point* point);
 
 /* TG-SECTION-SURFACE-POINT-END */
 
@@ -438,17 +455,17 @@ typedef struct tg_bvh_options {
  *  *out_bvh is NULL.
  *  Complexity: O(F log F) time, about 50 bytes per face (see tg_bvh_memory_bytes).
  *  Thread-safe (reads the mesh only). */
-tg_status tg_bvh_create(const tg_mesh* mesh, const tg_bvh_options* options, tg_bvh** out_bvh);
+TG_API tg_status tg_bvh_create(const tg_mesh* mesh, const tg_bvh_options* options, tg_bvh** out_bvh);
 
 /** Frees a BVH (not its mesh). NULL is a no-op. Workspaces created for it must not be used after. */
-void tg_bvh_destroy(tg_bvh* bvh);
+TG_API void tg_bvh_destroy(tg_bvh* bvh);
 
 /** The mesh the BVH was built over. O(1). */
-const tg_mesh* tg_bvh_mesh(const tg_bvh* bvh);
+TG_API const tg_mesh* tg_bvh_mesh(const tg_bvh* bvh);
 
 /** Bytes owned by the BVH (nodes, its copy of the triangles in tree order, winding data and
  *  header), excluding the tg_mesh. O(1). */
-size_t tg_bvh_memory_bytes(const tg_bvh* bvh);
+TG_API size_t tg_bvh_memory_bytes(const tg_bvh* bvh);
 
 /** Per-thread query scratch (the traversal stack). A workspace may be used with the BVH it was
  *  created for, by one thread at a time. */
@@ -456,10 +473,10 @@ typedef struct tg_bvh_workspace tg_bvh_workspace;
 
 /** Creates a workspace for bvh (a few kilobytes, allocated with the BVH's allocator).
  *  Returns TG_OK, TG_ERR_INVALID_ARGUMENT (NULL argument) or TG_ERR_OUT_OF_MEMORY. Thread-safe. */
-tg_status tg_bvh_workspace_create(const tg_bvh* bvh, tg_bvh_workspace** out_workspace);
+TG_API tg_status tg_bvh_workspace_create(const tg_bvh* bvh, tg_bvh_workspace** out_workspace);
 
 /** Frees a workspace. NULL is a no-op. */
-void tg_bvh_workspace_destroy(tg_bvh_workspace* workspace);
+TG_API void tg_bvh_workspace_destroy(tg_bvh_workspace* workspace);
 
 /** The closest point of the mesh to a query point. */
 typedef struct tg_closest_hit {
@@ -477,7 +494,7 @@ typedef struct tg_closest_hit {
  *  max_dist_sq, or a workspace of another BVH.
  *  Complexity: O(log F) node visits for typical meshes, O(F) worst case. Thread-safe with one
  *  workspace per thread. */
-tg_status tg_bvh_closest(const tg_bvh* bvh, tg_bvh_workspace* workspace, const double xyz[3],
+TG_API tg_status tg_bvh_closest(const tg_bvh* bvh, tg_bvh_workspace* workspace, const double xyz[3],
                          double max_dist_sq, tg_closest_hit* out_hit);
 
 /** tg_bvh_closest for count points (xyz: 3 * count doubles; out_hits: count entries, in input
@@ -488,7 +505,7 @@ tg_status tg_bvh_closest(const tg_bvh* bvh, tg_bvh_workspace* workspace, const d
  *  Returns TG_ERR_INVALID_ARGUMENT (NULL with count > 0, a non-finite point, a NaN or negative
  *  max_dist_sq, threads < 0; out_hits is then unspecified) or TG_ERR_OUT_OF_MEMORY.
  *  Thread-safe. */
-tg_status tg_bvh_closest_batch(const tg_bvh* bvh, const double* xyz, size_t count,
+TG_API tg_status tg_bvh_closest_batch(const tg_bvh* bvh, const double* xyz, size_t count,
                                double max_dist_sq, int threads, tg_closest_hit* out_hits);
 
 /** How the inside/outside sign of a distance is decided. */
@@ -503,7 +520,7 @@ typedef enum tg_sign_method {
 } tg_sign_method;
 
 /** The method TG_SIGN_AUTO resolves to for this BVH's mesh (other values are returned as is). */
-tg_sign_method tg_bvh_sign_method(const tg_bvh* bvh, tg_sign_method method);
+TG_API tg_sign_method tg_bvh_sign_method(const tg_bvh* bvh, tg_sign_method method);
 
 /** A closest point with an inside/outside sign. Faces are taken counter-clockwise seen from
  *  outside (right-hand normals point out): inside a closed, so oriented mesh is negative. */
@@ -525,13 +542,13 @@ typedef struct tg_signed_hit {
  *  Returns TG_ERR_INVALID_ARGUMENT for a NULL argument, a non-finite xyz, an unknown method or a
  *  workspace of another BVH. Complexity: one closest-point query, plus one winding-number
  *  evaluation for TG_SIGN_WINDING. Thread-safe with one workspace per thread. */
-tg_status tg_bvh_signed_distance(const tg_bvh* bvh, tg_bvh_workspace* workspace,
+TG_API tg_status tg_bvh_signed_distance(const tg_bvh* bvh, tg_bvh_workspace* workspace,
                                  const double xyz[3], tg_sign_method method,
                                  tg_signed_hit* out_hit);
 
 /** tg_bvh_signed_distance for count points (same ordering and threads as tg_bvh_closest_batch;
  *  answers identical to the single-point call). */
-tg_status tg_bvh_signed_distance_batch(const tg_bvh* bvh, const double* xyz, size_t count,
+TG_API tg_status tg_bvh_signed_distance_batch(const tg_bvh* bvh, const double* xyz, size_t count,
                                        tg_sign_method method, int threads,
                                        tg_signed_hit* out_hits);
 
@@ -545,7 +562,7 @@ tg_status tg_bvh_signed_distance_batch(const tg_bvh* bvh, const double* xyz, siz
  *  Returns TG_ERR_INVALID_ARGUMENT for a NULL argument, a non-finite xyz or a foreign workspace.
  *  Complexity: O(log F) clusters plus the triangles near xyz; O(F) without dipole data.
  *  Thread-safe with one workspace per thread. */
-tg_status tg_bvh_winding_number(const tg_bvh* bvh, tg_bvh_workspace* workspace, const double xyz[3],
+TG_API tg_status tg_bvh_winding_number(const tg_bvh* bvh, tg_bvh_workspace* workspace, const double xyz[3],
                                 double* out_winding_number);
 
 /** The surface point closest to xyz, canonical (tg_surface_point_canonical: a barycentric
@@ -553,7 +570,7 @@ tg_status tg_bvh_winding_number(const tg_bvh* bvh, tg_bvh_workspace* workspace, 
  *  be NULL) receives the closest-point answer it came from. Returns TG_ERR_INVALID_ARGUMENT as
  *  tg_bvh_closest, and for an empty mesh (no surface point exists). Thread-safe with one
  *  workspace per thread. */
-tg_status tg_bvh_locate(const tg_bvh* bvh, tg_bvh_workspace* workspace, const double xyz[3],
+TG_API tg_status tg_bvh_locate(const tg_bvh* bvh, tg_bvh_workspace* workspace, const double xyz[3],
                         tg_surface_point* out_point, tg_closest_hit* out_hit);
 
 /* TG-SECTION-SPATIAL-END */
@@ -612,7 +629,7 @@ typedef struct tg_geodesic_kernel_options {
  *  by a power of two. Non-finite input, or finite input whose differences overflow, returns +inf
  *  with t = 0. Cost: O(digits) square roots (O(1) with TG_ROOT_UNFOLD). Thread-safe, no
  *  allocation. */
-double tg_edge_path_minimize(const double p0[3], const double a[3], const double b[3], const double p1[3],
+TG_API double tg_edge_path_minimize(const double p0[3], const double a[3], const double b[3], const double p1[3],
                              const tg_geodesic_kernel_options* opts, double* out_t);
 
 /** A fan of m + 1 triangles around vertex V (seed 002 §3-4): the path enters at P0 (a point of
@@ -648,7 +665,7 @@ double tg_edge_path_minimize(const double p0[3], const double a[3], const double
  *  (m <= 64 uses the stack only, about 12 KB). Cost per iteration: O(m) square roots times the
  *  1D root cost (O(digits) for bisection, a few for NEWTON, 1 for UNFOLD in sweeps).
  *  Thread-safe. */
-tg_status tg_fan_path_minimize(const double p0[3], const double p1[3], const double v[3], const double* w,
+TG_API tg_status tg_fan_path_minimize(const double p0[3], const double p1[3], const double v[3], const double* w,
                                size_t m, const double* t_init, const tg_geodesic_kernel_options* opts,
                                double* out_t, double* out_length, int* out_decreased);
 
@@ -676,15 +693,15 @@ typedef struct tg_geodesic_options {
  *  tg_geodesic_destroy). options may be NULL. Errors: TG_ERR_INVALID_ARGUMENT (NULL mesh or out),
  *  TG_ERR_OUT_OF_MEMORY. On failure *out_geodesic is NULL. O(V + F log(valence)) time, O(V + F)
  *  memory. Thread-safe (no shared state). */
-tg_status tg_geodesic_create(const tg_mesh* mesh, const tg_geodesic_options* options,
+TG_API tg_status tg_geodesic_create(const tg_mesh* mesh, const tg_geodesic_options* options,
                              tg_geodesic** out_geodesic);
 
 /** Frees the solver. NULL is a no-op. Workspaces created from it must be destroyed first or at
  *  least never used again. */
-void tg_geodesic_destroy(tg_geodesic* geodesic);
+TG_API void tg_geodesic_destroy(tg_geodesic* geodesic);
 
 /** Bytes owned by the solver (tables and header, not the mesh). O(1). NULL gives 0. */
-size_t tg_geodesic_memory_bytes(const tg_geodesic* geodesic);
+TG_API size_t tg_geodesic_memory_bytes(const tg_geodesic* geodesic);
 
 /** Per-thread scratch for path queries: arrays sized once for the mesh (about 16 bytes per
  *  vertex) and buffers that grow to the largest path seen, so repeated queries do not allocate.
@@ -694,14 +711,14 @@ typedef struct tg_geodesic_workspace tg_geodesic_workspace;
 
 /** Creates a workspace for queries on geodesic. Errors: TG_ERR_INVALID_ARGUMENT,
  *  TG_ERR_OUT_OF_MEMORY (then *out_workspace is NULL). O(V) time and memory. */
-tg_status tg_geodesic_workspace_create(const tg_geodesic* geodesic,
+TG_API tg_status tg_geodesic_workspace_create(const tg_geodesic* geodesic,
                                        tg_geodesic_workspace** out_workspace);
 
 /** Frees a workspace. NULL is a no-op. */
-void tg_geodesic_workspace_destroy(tg_geodesic_workspace* workspace);
+TG_API void tg_geodesic_workspace_destroy(tg_geodesic_workspace* workspace);
 
 /** Bytes currently owned by the workspace (fixed arrays plus grown buffers). NULL gives 0. */
-size_t tg_geodesic_workspace_memory_bytes(const tg_geodesic_workspace* workspace);
+TG_API size_t tg_geodesic_workspace_memory_bytes(const tg_geodesic_workspace* workspace);
 
 /** How the initial edge path is shortened. */
 typedef enum tg_path_method {
@@ -731,7 +748,7 @@ typedef enum tg_path_global {
 } tg_path_global;
 
 /** "proven", "unproven"; "unknown" for other values. Never NULL. */
-const char* tg_path_global_name(tg_path_global global);
+TG_API const char* tg_path_global_name(tg_path_global global);
 
 /** Whether tg_geodesic_path checks its result against the exact distance. */
 typedef enum tg_path_certify {
@@ -749,7 +766,7 @@ typedef enum tg_path_status {
 } tg_path_status;
 
 /** "converged", "iteration_cap", "unreachable"; "unknown" for other values. Never NULL. */
-const char* tg_path_status_name(tg_path_status status);
+TG_API const char* tg_path_status_name(tg_path_status status);
 
 /** Query options. NULL or all-zero means defaults. */
 typedef struct tg_path_options {
@@ -798,14 +815,14 @@ typedef struct tg_path_view {
 
 /** Creates an empty path object. allocator may be NULL (libc). Errors: TG_ERR_INVALID_ARGUMENT,
  *  TG_ERR_OUT_OF_MEMORY. */
-tg_status tg_path_create(const tg_allocator* allocator, tg_path** out_path);
+TG_API tg_status tg_path_create(const tg_allocator* allocator, tg_path** out_path);
 
 /** Frees a path object. NULL is a no-op. */
-void tg_path_destroy(tg_path* path);
+TG_API void tg_path_destroy(tg_path* path);
 
 /** Fills *out_view with the path's current content (an empty, unreachable path before the first
  *  query). O(1). */
-void tg_path_get_view(const tg_path* path, tg_path_view* out_view);
+TG_API void tg_path_get_view(const tg_path* path, tg_path_view* out_view);
 
 /** Computes a geodesic path from `from` to `to` (any surface points: vertex, edge point, face
  *  point; never snapped to a vertex) into `path`.
@@ -828,14 +845,14 @@ void tg_path_get_view(const tg_path* path, tg_path_view* out_view);
  *  point, unknown method), TG_ERR_OUT_OF_MEMORY (a buffer could not grow; path is then empty).
  *  Complexity: A* is O(n log n) in the n explored vertices; straightening is O(k) per sweep in the
  *  k faces of the path's strips. Thread-safe for distinct workspaces and paths. */
-tg_status tg_geodesic_path(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
+TG_API tg_status tg_geodesic_path(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                            const tg_surface_point* from, const tg_surface_point* to,
                            const tg_path_options* options, tg_path* path);
 
 /** Writes the path as a Wavefront OBJ polyline: one "v x y z" (%.17g) per point and one
  *  "l 1 2 ... n" record (nothing but a comment for an unreachable path). Errors: TG_ERR_IO with
  *  diag (may be NULL), TG_ERR_INVALID_ARGUMENT. */
-tg_status tg_path_write_obj(const tg_path* path, const char* filename, tg_diag* diag);
+TG_API tg_status tg_path_write_obj(const tg_path* path, const char* filename, tg_diag* diag);
 
 /* TG-SECTION-GEODESIC-END */
 
@@ -854,13 +871,13 @@ typedef struct tg_field_workspace tg_field_workspace;
 /** Creates a field workspace for g (which must outlive it), using g's allocator.
  *  Errors: TG_ERR_INVALID_ARGUMENT (NULL argument), TG_ERR_OUT_OF_MEMORY (then *out_workspace is
  *  NULL). O(V + F) time and memory. */
-tg_status tg_field_workspace_create(const tg_geodesic* g, tg_field_workspace** out_workspace);
+TG_API tg_status tg_field_workspace_create(const tg_geodesic* g, tg_field_workspace** out_workspace);
 
 /** Frees a field workspace. NULL is a no-op. */
-void tg_field_workspace_destroy(tg_field_workspace* workspace);
+TG_API void tg_field_workspace_destroy(tg_field_workspace* workspace);
 
 /** Bytes currently owned by the workspace (fixed arrays plus grown pools). NULL gives 0. */
-size_t tg_field_workspace_memory_bytes(const tg_field_workspace* workspace);
+TG_API size_t tg_field_workspace_memory_bytes(const tg_field_workspace* workspace);
 
 /** What a progress callback is told. */
 typedef struct tg_field_progress {
@@ -951,7 +968,7 @@ typedef struct tg_field_stats {
  *  Complexity: typically a small multiple of n^1.5 window crossings for n vertices (O(n^2 log n)
  *  worst case); memory: the workspace plus about 56 bytes per live window. Thread-safe: g is only
  *  read; concurrent calls need distinct workspaces and output arrays. */
-tg_status tg_geodesic_field(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+TG_API tg_status tg_geodesic_field(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
                             const tg_field_options* options, double* out_vertex_distance, tg_field_stats* out_stats);
 
 /** The exact geodesic distance from the sources to arbitrary surface points (inside faces, on
@@ -965,7 +982,7 @@ tg_status tg_geodesic_field(const tg_geodesic* g, const tg_surface_point* source
  *  TG_ERR_INVALID_ARGUMENT for an invalid point or NULL points / out_point_distance with a
  *  non-zero point_count; on error the outputs are untouched. Cost: the field's, plus the windows
  *  crossing the points' faces times the points in them. */
-tg_status tg_geodesic_field_at(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+TG_API tg_status tg_geodesic_field_at(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
                                const tg_surface_point* points, size_t point_count, const tg_field_options* options,
                                double* out_point_distance, double* out_vertex_distance, tg_field_stats* out_stats);
 
@@ -981,7 +998,7 @@ tg_status tg_geodesic_field_at(const tg_geodesic* g, const tg_surface_point* sou
  *  is written only once complete, so on error (or cancellation) out_matrix holds some complete
  *  rows and leaves the others untouched, never a partial row; out_stats is untouched.
  *  Thread-safe as tg_geodesic_field. */
-tg_status tg_geodesic_field_batch(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+TG_API tg_status tg_geodesic_field_batch(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
                                   const tg_field_options* options, int threads, double* out_matrix,
                                   tg_field_stats* out_stats);
 
@@ -1019,7 +1036,7 @@ typedef struct tg_render_options {
  *  same inputs give the same bytes. Errors: TG_ERR_INVALID_ARGUMENT (NULL mesh/path, size out of
  *  range, polyline_count > 0 with NULL polyline), TG_ERR_OUT_OF_MEMORY, TG_ERR_IO (cannot write).
  *  Cost: O(F + pixels * supersample^2). Thread-safe (no shared state). */
-tg_status tg_render_png(const tg_mesh* mesh, const tg_render_options* options, const char* png_path,
+TG_API tg_status tg_render_png(const tg_mesh* mesh, const tg_render_options* options, const char* png_path,
                         tg_diag* diag);
 
 /* TG-SECTION-RENDER-END */

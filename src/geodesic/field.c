@@ -248,7 +248,7 @@ static int report_batch(void* user, const tg__field_run* run)
     batch_state* b = ((batch_row*)user)->b;
     int stop = 0;
 #ifdef TG_HAVE_OPENMP
-#pragma omp critical(tg_field_batch_progress)
+#pragma omp critical
 #endif
     {
         tg_field_progress p;
@@ -328,7 +328,7 @@ tg_status tg_geodesic_field_batch(const tg_geodesic* g, const tg_surface_point* 
             b.done++;
         }
 #ifdef TG_HAVE_OPENMP
-#pragma omp critical(tg_field_batch_merge)
+#pragma omp critical
 #endif
         {
             stats_add(&sum, &local);

@@ -7,6 +7,7 @@
 #   make bench   benchmarks against the peers (Embree, CGAL), tables on stdout
 #   make fuzz    libFuzzer targets for a bounded time each (FUZZ_SECONDS, default 60)
 #   make build   release build only (build/)
+#   make install PREFIX=DIR   the CLI, libraries, header, pkg-config file and CMake package
 
 SHELL := /bin/bash
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
@@ -19,7 +20,9 @@ CMAKE_FLAGS ?=
 DEPS := cmake make gcc g++ clang libclang-rt-14-dev libomp-dev zlib1g-dev libpng-dev libgmp-dev pkg-config python3 locales
 BENCH_DEPS := libembree-dev libcgal-dev libeigen3-dev time
 
-.PHONY: all deps bench-deps build demo test test-release test-asan bench fuzz clean large
+.PHONY: all deps bench-deps build demo test test-release test-asan bench fuzz clean large install
+
+PREFIX ?= /usr/local
 
 all: build
 
@@ -32,6 +35,10 @@ bench-deps:
 build: deps
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=gcc -DCMAKE_CXX_COMPILER=g++ $(CMAKE_FLAGS) >/dev/null
 	cmake --build $(BUILD) -j $(JOBS)
+
+# the CLI, libtrigeo (shared and static), trigeo.h, trigeo.pc and the CMake package under PREFIX
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 demo: build
 	@bash scripts/demo.sh $(BUILD)/trigeo

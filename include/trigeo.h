@@ -3,7 +3,7 @@
  * This header is the API reference. Every declaration has a doc block stating its behaviour,
  * return values, parameter contracts (sizes, NULL-ability, units), complexity and thread-safety.
  *
- * Conventions (see ../shared/STYLE.md of the project):
+ * Conventions:
  *  - Every fallible function returns tg_status (TG_OK == 0). On failure, *out is NULL, nothing
  *    leaks and the caller's state is unchanged.
  *  - Built objects (tg_mesh, tg_bvh, ...) are opaque and immutable after creation; queries on them
@@ -137,9 +137,8 @@ typedef enum tg_format {
     TG_FORMAT_STL
 } tg_format;
 
-/** The validation report, computed once at creation. Counts follow the definitions of the
- *  project's mesh corpus (shared/meshes/README.md): edges are undirected vertex pairs used by at
- *  least one triangle, ignoring pairs (a, a) of triangles with a repeated index. */
+/** The validation report, computed once at creation. Edges are undirected vertex pairs used by
+ *  at least one triangle, ignoring pairs (a, a) of triangles with a repeated index. */
 typedef struct tg_mesh_report {
     uint64_t vertices;              /**< vertex records (file order) */
     uint64_t faces;                 /**< triangles (after fan triangulation) */
@@ -239,7 +238,6 @@ TG_API tg_status tg_ply_read_vertex_scalar(const char* path, const char* name, d
 /* ============================================================================================== */
 /* Point-triangle distance (src/kernels) - section owned by the point-triangle kernels           */
 /* ============================================================================================== */
-/* TG-SECTION-KERNELS-PT */
 
 /** The feature of a triangle on which a closest point lies. Derived from the final (s, t) (see
  *  tg_point_triangle): s == 0 && t == 0 -> VERTEX0; s == 1 -> VERTEX1; t == 1 -> VERTEX2;
@@ -351,12 +349,10 @@ TG_API void tg_point_triangle_nd(size_t n, const double* p, const double* v0, co
 TG_API void tg_point_triangle_robust_nd(size_t n, const double* p, const double* v0, const double* v1,
                                  const double* v2, double* out_closest, tg_point_triangle* out);
 
-/* TG-SECTION-KERNELS-PT-END */
 
 /* ============================================================================================== */
 /* Surface points (src/mesh)                                                                      */
 /* ============================================================================================== */
-/* TG-SECTION-SURFACE-POINT */
 
 /** Kinds of surface point. */
 typedef enum tg_surface_point_kind {
@@ -407,12 +403,10 @@ TG_API void tg_surface_point_position(const tg_mesh* mesh, const tg_surface_poin
  *  changes the position. O(1). */
 TG_API tg_surface_point tg_surface_point_canonical(const tg_mesh* mesh, const tg_surface_point* point);
 
-/* TG-SECTION-SURFACE-POINT-END */
 
 /* ============================================================================================== */
 /* BVH, closest point, signed distance (src/spatial)                                              */
 /* ============================================================================================== */
-/* TG-SECTION-SPATIAL */
 
 /** A bounding volume hierarchy over the triangles of a tg_mesh, for closest-point, signed-distance,
  *  winding-number and surface-location queries. Immutable after creation; every query is
@@ -573,12 +567,10 @@ TG_API tg_status tg_bvh_winding_number(const tg_bvh* bvh, tg_bvh_workspace* work
 TG_API tg_status tg_bvh_locate(const tg_bvh* bvh, tg_bvh_workspace* workspace, const double xyz[3],
                         tg_surface_point* out_point, tg_closest_hit* out_hit);
 
-/* TG-SECTION-SPATIAL-END */
 
 /* ============================================================================================== */
 /* Geodesic kernels: two-triangle and fan minimizers (src/kernels, seed 002 §2-4)                 */
 /* ============================================================================================== */
-/* TG-SECTION-KERNELS-GEODESIC */
 
 /** Search strategies of the fan minimizer after its initial descent step (seed 002 §3.4.2). */
 typedef enum tg_fan_strategy {
@@ -669,12 +661,10 @@ TG_API tg_status tg_fan_path_minimize(const double p0[3], const double p1[3], co
                                size_t m, const double* t_init, const tg_geodesic_kernel_options* opts,
                                double* out_t, double* out_length, int* out_decreased);
 
-/* TG-SECTION-KERNELS-GEODESIC-END */
 
 /* ============================================================================================== */
 /* Geodesic paths (src/geodesic)                                                                  */
 /* ============================================================================================== */
-/* TG-SECTION-GEODESIC */
 
 /** A geodesic path and distance field solver over one mesh (seed 002 §5, the straightener
  *  beyond it, and the exact field engine). Built once per mesh by tg_geodesic_create: it keeps a
@@ -854,12 +844,10 @@ TG_API tg_status tg_geodesic_path(const tg_geodesic* geodesic, tg_geodesic_works
  *  diag (may be NULL), TG_ERR_INVALID_ARGUMENT. */
 TG_API tg_status tg_path_write_obj(const tg_path* path, const char* filename, tg_diag* diag);
 
-/* TG-SECTION-GEODESIC-END */
 
 /* ============================================================================================== */
 /* Exact geodesic distance fields (src/geodesic/field.c)                                          */
 /* ============================================================================================== */
-/* TG-SECTION-FIELD */
 
 /** Per-thread scratch for exact fields: per-vertex and per-halfedge arrays sized once for the
  *  mesh (about 17 bytes per vertex and 60 bytes per face) plus the window pool, queues and
@@ -1002,12 +990,10 @@ TG_API tg_status tg_geodesic_field_batch(const tg_geodesic* g, const tg_surface_
                                   const tg_field_options* options, int threads, double* out_matrix,
                                   tg_field_stats* out_stats);
 
-/* TG-SECTION-FIELD-END */
 
 /* ============================================================================================== */
 /* Pictures (src/render)                                                                          */
 /* ============================================================================================== */
-/* TG-SECTION-RENDER */
 
 /** What to draw and how. A zero-initialised struct (or NULL) means: 960 x 720 pixels, the default
  *  three-quarter view, the mesh in neutral grey, no overlay. */
@@ -1039,7 +1025,6 @@ typedef struct tg_render_options {
 TG_API tg_status tg_render_png(const tg_mesh* mesh, const tg_render_options* options, const char* png_path,
                         tg_diag* diag);
 
-/* TG-SECTION-RENDER-END */
 
 #ifdef __cplusplus
 }

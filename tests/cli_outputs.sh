@@ -42,6 +42,17 @@ open(src, "wb").write(BOM + b"v:0\nv:7\n")
 r = run("field", spot, "--sources", src, "-o", os.path.join(tmp, "m.csv"))
 check(r.returncode == 0, "BOM sources: %r" % r.stderr)
 
+# a gzip bomb (256 MiB of zeros in a .stl.gz of 250 KB): refused as it is read, long before the
+# 8 GiB input limit (issue 12 item 3)
+import gzip
+bomb = os.path.join(tmp, "bomb.stl.gz")
+with gzip.open(bomb, "wb", compresslevel=1) as g:
+    chunk = bytes(1 << 20)
+    for _ in range(256):
+        g.write(chunk)
+r = run("info", bomb)
+check(r.returncode == 2 and b"gzip bomb" in r.stderr, "gzip bomb: %d %r" % (r.returncode, r.stderr))
+
 # a directory as a mesh
 r = run("info", tmp + "/")
 check(r.returncode == 2 and b"directory" in r.stderr, "directory: %d %r" % (r.returncode, r.stderr))

@@ -435,13 +435,16 @@ typedef struct tg_bvh_options {
     const tg_allocator* allocator;    /**< NULL: libc. Also used by workspaces and batch queries. */
     uint32_t max_leaf_size;           /**< largest leaf, 1..15; 0: default (12) */
     tg_bvh_winding_data winding_data; /**< see tg_bvh_winding_data */
+    /** threads for the build (OpenMP): 0 the OpenMP default, 1 this thread only (no thread is
+     *  started), n at most n; negative: TG_ERR_INVALID_ARGUMENT. The tree is the same whatever. */
+    int threads;
 } tg_bvh_options;
 
 /** Builds a 4-wide BVH over all faces of mesh: top levels split in Morton order, subtrees of at
  *  most 4096 faces by the binned surface area heuristic; 128-byte nodes holding axis-aligned and
  *  oriented boxes of their four children; leaves store their triangles' vertices contiguously.
- *  With OpenMP the subtrees, leaves and boxes are built on all cores; the tree is the same
- *  whatever the number of threads. With the default allocator on Linux the large arrays are
+ *  With OpenMP the subtrees, leaves and boxes are built on options->threads threads (default:
+ *  all cores); the tree is the same whatever the number of threads. With the default allocator on Linux the large arrays are
  *  advised as transparent huge pages.
  *  Any valid mesh is accepted, including an empty one (every query then finds nothing).
  *  Returns TG_OK; TG_ERR_INVALID_ARGUMENT for a NULL mesh or out_bvh or an option out of range;

@@ -53,6 +53,26 @@ with gzip.open(bomb, "wb", compresslevel=1) as g:
 r = run("info", bomb)
 check(r.returncode == 2 and b"gzip bomb" in r.stderr, "gzip bomb: %d %r" % (r.returncode, r.stderr))
 
+# threads (issue 12 item 7): under a tight address-space limit one thread still works (--threads
+# reaches the BVH build too), and more threads than can be started is a clean error, exit 2,
+# not libgomp ending the process (not under AddressSanitizer, which reserves terabytes)
+import resource
+asan = b"__asan_init" in subprocess.run(["nm", trigeo], capture_output=True).stdout
+def limited(kb, *args, stdin=b"0 0 0\n"):
+    lim = lambda: resource.setrlimit(resource.RLIMIT_AS, (kb * 1024, kb * 1024))
+    return subprocess.run([trigeo, *args], input=stdin, capture_output=True, preexec_fn=lim)
+if not asan:
+    done = False
+    for kb in (12000, 14000, 16000, 20000, 10000):
+        one = limited(kb, "closest", spot, "-", "--threads", "1")
+        many = limited(kb, "closest", spot, "-", "--threads", "64")
+        if one.returncode == 0 and many.returncode != 0:
+            check(many.returncode == 2 and b"cannot start" in many.stderr and b"libgomp" not in many.stderr,
+                  "64 threads under %d KB: %d %r" % (kb, many.returncode, many.stderr))
+            done = True
+            break
+    check(done, "no address-space limit where one thread works and 64 do not")
+
 # a directory as a mesh
 r = run("info", tmp + "/")
 check(r.returncode == 2 and b"directory" in r.stderr, "directory: %d %r" % (r.returncode, r.stderr))

@@ -74,6 +74,10 @@ int cli_output_finish_library(cli_output* o, tg_status st, const tg_diag* d);
 /* Writes a float64 array as NumPy .npy: (rows, cols) when matrix, else (cols,). */
 bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bool matrix);
 
+/* Can `threads` threads (0: one per core) be started? Prints why not (naming `what`): OpenMP's
+ * runtime would end the process instead of failing. */
+bool cli_threads_available(int threads, const char* what);
+
 /* Past a leading UTF-8 byte-order mark, if any (text written by Windows tools). */
 char* cli_skip_bom(char* text);
 

@@ -7,6 +7,7 @@
 #include "cli.h"
 
 #include <errno.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -164,6 +165,32 @@ char* cli_skip_bom(char* text)
 {
     const unsigned char* u = (const unsigned char*)text;
     return u[0] == 0xEF && u[1] == 0xBB && u[2] == 0xBF ? text + 3 : text;
+}
+
+/* ---- threads ---- */
+
+static void* idle_thread(void* arg)
+{
+    return arg;
+}
+
+bool cli_threads_available(int threads, const char* what)
+{
+    long n = threads > 0 ? threads : sysconf(_SC_NPROCESSORS_ONLN);
+    if (n > 256) n = 256;
+    pthread_t t[256];
+    long made = 0;
+    int err = 0;
+    /* the OpenMP runtime starts n - 1 threads with default attributes, and exits the process if it
+     * cannot: start them once here, where a failure can be reported */
+    for (; made < n - 1; ++made)
+        if ((err = pthread_create(&t[made], NULL, idle_thread, NULL)) != 0) break;
+    for (long i = 0; i < made; ++i) pthread_join(t[i], NULL);
+    if (err) {
+        cli_error(NULL, 0, "%s: cannot start %ld threads (%s); try --threads 1", what, n, strerror(err));
+        return false;
+    }
+    return true;
 }
 
 /* ---- .npy ---- */

@@ -169,6 +169,7 @@ static int run(int argc, char** argv)
     if (!mesh_path || !query_path) return cli_usage("closest", "missing %s", mesh_path ? "QUERIES" : "MESH");
 
     cli_interrupt_install();
+    if (!cli_threads_available((int)threads, "closest")) return CLI_INPUT;
     size_t size = 0;
     char* text = read_all(query_path, &size);
     if (!text) return CLI_INPUT;
@@ -189,6 +190,7 @@ static int run(int argc, char** argv)
     }
     tg_bvh_options o = {0};
     o.winding_data = !want_sign ? TG_BVH_WINDING_NEVER : method == TG_SIGN_WINDING ? TG_BVH_WINDING_ALWAYS : TG_BVH_WINDING_AUTO;
+    o.threads = (int)threads; /* the build too, not only the queries */
     tg_status st = tg_bvh_create(mesh, &o, &bvh);
     if (st == TG_OK && want_sign) {
         tg_sign_method used = tg_bvh_sign_method(bvh, method);

@@ -398,6 +398,7 @@ static int run(int argc, char** argv)
     if (threads && (!cli_parse_uint(threads, &nt) || nt > 1024))
         return cli_usage("field", "--threads needs a number in 0..1024, not '%s'", threads);
     fa.threads = (int)nt;
+    if (fa.sources_path && !cli_threads_available(fa.threads, "field")) return CLI_INPUT;
     int rc;
     if (fa.matrix) {
         char* text = NULL;

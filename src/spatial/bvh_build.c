@@ -556,11 +556,11 @@ static tg_status morton_prims(const tg_bvh* bvh, builder* bd, uint32_t n, uint32
     tg_status st = TG_ERR_OUT_OF_MEMORY;
     if (!cell) goto done;
 #ifdef TG_HAVE_OPENMP
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for num_threads(tg__bvh_threads(bvh)) schedule(static)
 #endif
     for (long v = 0; v < nv; ++v) cell[v] = vertex_cell(bvh, m->xyz + 3 * (size_t)v);
 #ifdef TG_HAVE_OPENMP
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for num_threads(tg__bvh_threads(bvh)) schedule(static)
 #endif
     for (long f = 0; f < (long)n; ++f) {
         const uint32_t* t = m->tri + 3 * (size_t)f;
@@ -576,7 +576,7 @@ static tg_status morton_prims(const tg_bvh* bvh, builder* bd, uint32_t n, uint32
     kv = tg__morton_sort_pairs(kv, tmp, n, hist);
     bprim* p = bd->prims;
 #ifdef TG_HAVE_OPENMP
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for num_threads(tg__bvh_threads(bvh)) schedule(static)
 #endif
     for (long i = 0; i < (long)n; ++i) {
         /* two stages: the face's row of tri, then (once it has arrived) its vertex rows */
@@ -723,7 +723,7 @@ static tg_status build_tree(const tg_bvh* bvh, builder* bd, uint32_t n, const so
     if (st != TG_OK) return st;
     long tc = (long)task_count;
 #ifdef TG_HAVE_OPENMP
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for num_threads(tg__bvh_threads(bvh)) schedule(dynamic, 1)
 #endif
     for (long t = 0; t < tc; ++t) {
         subtree* s = &tasks[t];
@@ -845,7 +845,7 @@ static tg_status make_leaves(tg_bvh* bvh, bprim* bp, const sorted_faces* sf, voi
     tg_status st = TG_ERR_OUT_OF_MEMORY;
     if (!slot_u || !slot_word || !first || !end || !leaf_word || !leaf_u || !stack) goto done;
 #ifdef TG_HAVE_OPENMP
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for num_threads(tg__bvh_threads(bvh)) schedule(dynamic, 256)
 #endif
     for (long n = 0; n < nodes; ++n) {
         const tg__bvh_node* node = &bvh->nodes[n];
@@ -887,7 +887,7 @@ static tg_status make_leaves(tg_bvh* bvh, bprim* bp, const sorted_faces* sf, voi
     if (!bvh->leaves) goto done;
     bvh->leaf_words = at;
 #ifdef TG_HAVE_OPENMP
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for num_threads(tg__bvh_threads(bvh)) schedule(dynamic, 256)
 #endif
     for (long n = 0; n < nodes; ++n) {
         tg__bvh_node* node = &bvh->nodes[n];
@@ -949,12 +949,14 @@ tg_status tg_bvh_create(const tg_mesh* mesh, const tg_bvh_options* opts, tg_bvh*
     if (opts) o = *opts;
     if (o.max_leaf_size > TG__BVH_MAX_LEAF) return TG_ERR_INVALID_ARGUMENT;
     if ((unsigned)o.winding_data > (unsigned)TG_BVH_WINDING_NEVER) return TG_ERR_INVALID_ARGUMENT;
+    if (o.threads < 0) return TG_ERR_INVALID_ARGUMENT;
     if (mesh->face_count >= (size_t)1 << 31) return TG_ERR_UNSUPPORTED;
     const tg_allocator* a = o.allocator;
     tg_bvh* bvh = tg__alloc(a, sizeof *bvh);
     if (!bvh) return TG_ERR_OUT_OF_MEMORY;
     memset(bvh, 0, sizeof *bvh);
     if (a) bvh->allocator = *a;
+    bvh->build_threads = o.threads;
     bvh->mesh = mesh;
     bvh->auto_method = auto_sign_method(mesh);
     choose_frame(bvh);

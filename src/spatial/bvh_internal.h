@@ -107,6 +107,7 @@ typedef struct tg__bvh_entry {
 
 struct tg_bvh {
     tg_allocator allocator;
+    int build_threads; /* tg_bvh_options.threads: 0 the OpenMP default */
     const tg_mesh* mesh;
     double origin[3]; /* local = (x - origin) * scale */
     double scale;     /* a power of two */
@@ -216,5 +217,14 @@ tg_status tg__bvh_run_batch(const tg_bvh* bvh, const double* xyz, size_t count, 
 tg_status tg__bvh_build_clusters(tg_bvh* bvh);
 /* Generalized winding number at p (world coordinates), using ws's stack. */
 double tg__bvh_winding(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p);
+
+/* The number of threads of the build's parallel loops. */
+#ifdef TG_HAVE_OPENMP
+#include <omp.h>
+static inline int tg__bvh_threads(const tg_bvh* bvh)
+{
+    return bvh->build_threads > 0 ? bvh->build_threads : omp_get_max_threads();
+}
+#endif
 
 #endif

@@ -258,7 +258,7 @@ tg_status tg__bvh_build_obbs(tg_bvh* bvh, void* scratch, size_t scratch_bytes, c
     moments *node_mo = all, *leaf_mo = all + bvh->node_count + 1;
     /* the leaves' moments, in parallel */
 #ifdef TG_HAVE_OPENMP
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for num_threads(tg__bvh_threads(bvh)) schedule(dynamic, 256)
 #endif
     for (long n = 0; n < count; ++n) {
         const tg__bvh_node* node = &bvh->nodes[n];
@@ -279,7 +279,7 @@ tg_status tg__bvh_build_obbs(tg_bvh* bvh, void* scratch, size_t scratch_bytes, c
     }
     /* frames and intervals: independent per node */
 #ifdef TG_HAVE_OPENMP
-#pragma omp parallel for schedule(dynamic, 64)
+#pragma omp parallel for num_threads(tg__bvh_threads(bvh)) schedule(dynamic, 64)
 #endif
     for (long n = 0; n < count; ++n) {
         tg__bvh_node* node = &bvh->nodes[n];

@@ -144,7 +144,7 @@ tg_status tg__read_file(const char* path, const tg_allocator* a, tg_diag* diag, 
         return TG_ERR_IO;
     }
     struct stat sb;
-    if (fstat(fileno(f), &sb) == 0 && S_ISDIR(sb.st_mode)) {
+    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
         fclose(f);
         tg__diag_set(diag, path, 0, 0, 0, "is a directory, not a mesh file");
         return TG_ERR_IO;

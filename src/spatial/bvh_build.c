@@ -667,7 +667,14 @@ static tg_status build_top(builder* top, const uint32_t* keys, uint32_t n, subtr
             range_bounds(top->prims, &cand[s]);
             inner += cand[s].end - cand[s].begin > SUBTREE_MAX;
         }
-        if (!nodes_reserve(top, (size_t)inner) || (count + TG__BVH_WIDTH > cap && !(cap *= 2, tasks = tg__realloc(top->a, tasks, cap * sizeof *tasks)))) {
+        bool grown = nodes_reserve(top, (size_t)inner);
+        if (grown && count + TG__BVH_WIDTH > cap) {
+            /* on failure the old block stays owned (and is freed below): never lose it */
+            void* bigger = tg__realloc(top->a, tasks, 2 * cap * sizeof *tasks);
+            if (bigger) tasks = bigger, cap *= 2;
+            grown = bigger != NULL;
+        }
+        if (!grown) {
             st = TG_ERR_OUT_OF_MEMORY;
             break;
         }

@@ -391,7 +391,17 @@ static void test_small_fans(void)
         int dec = -1;
         CHECK_STATUS(tg_fan_path_minimize(p0, p1, v, NULL, 0, NULL, NULL, &t0, &l, &dec), TG_OK);
         CHECK_NEAR(l, dist3(p0, p1), 1e-15);
-        CHECK_EQ_INT(dec, dist3(p0, p1) < (dist3(p0, v) + dist3(v, p1)) * (1 - 1e-12) ? 1 : dec);
+        /* decreased: the straight segment is shorter than the path through V */
+        CHECK_EQ_INT(dec, dist3(p0, p1) < (dist3(p0, v) + dist3(v, p1)) * (1 - 1e-12) ? 1 : 0);
+    }
+    {
+        /* V on the segment P0 P1 (exactly: the midpoint of integer points): nothing to decrease */
+        const double q0[3] = {0, 0, 0}, q1[3] = {2, 4, 6}, mid[3] = {1, 2, 3};
+        double l, t0 = 7;
+        int dec = -1;
+        CHECK_STATUS(tg_fan_path_minimize(q0, q1, mid, NULL, 0, NULL, NULL, &t0, &l, &dec), TG_OK);
+        CHECK_EQ_INT(dec, 0);
+        CHECK(l == dist3(q0, q1));
     }
 }
 

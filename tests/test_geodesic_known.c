@@ -197,8 +197,43 @@ static void test_cone(void)
     close_ctx(&c);
 }
 
+/* The certificate must see a bend: the edge path (TG_PATH_EDGE) bends at its vertices, and a
+ * straightening stopped after one sweep is not straight yet; then the status must not claim
+ * convergence (issue 12 item 17: a certificate that always reports 0 passed every test). */
+static void test_certificate_sees_bends(void)
+{
+    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), "nvd_spot.obj");
+    if (!m) return;
+    ctx c = open_ctx_for(m);
+    tg_path_options o;
+    memset(&o, 0, sizeof o);
+    int capped = 0;
+    double worst_edge = 1e9;
+    for (uint32_t q = 0; q < 20; ++q) {
+        tg_surface_point a = tg_surface_vertex(q * 101), b = tg_surface_vertex(2929 - q * 97);
+        o.method = TG_PATH_EDGE;
+        o.max_iterations = 0;
+        CHECK_STATUS(tg_geodesic_path(c.geo, c.ws, &a, &b, &o, c.path), TG_OK);
+        tg_path_view v;
+        tg_path_get_view(c.path, &v);
+        if (v.point_count > 2 && v.max_angle_defect < worst_edge) worst_edge = v.max_angle_defect;
+        o.method = TG_PATH_STRAIGHTEN;
+        o.max_iterations = 1;
+        CHECK_STATUS(tg_geodesic_path(c.geo, c.ws, &a, &b, &o, c.path), TG_OK);
+        tg_path_get_view(c.path, &v);
+        if (v.status == TG_PATH_ITERATION_CAP) capped++;
+        /* not converged exactly when the certificate says the path is not straight */
+        if (v.max_angle_defect > 1e-10)
+            CHECK_MSG(v.status != TG_PATH_CONVERGED, "pair %u: defect %.3g yet converged", q, v.max_angle_defect);
+    }
+    CHECK_MSG(worst_edge > 1e-3, "edge paths bend by at least %.3g rad", worst_edge);
+    CHECK_MSG(capped > 0, "no pair needed more than one sweep");
+    close_ctx(&c);
+}
+
 int main(void)
 {
+    test_certificate_sees_bends();
     test_flat();
     test_cube();
     test_cylinder();

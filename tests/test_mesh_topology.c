@@ -343,8 +343,53 @@ static void test_surface_points(void)
     tg_mesh_destroy(m);
 }
 
+/* Halfedge helpers against the definition (3f + k; next k + 1, prev k + 2 mod 3; face h / 3), and
+ * the memory figure against the arrays a mesh must hold (issue 12 item 21). */
+static void test_halfedge_helpers_and_memory(void)
+{
+    for (uint32_t f = 0; f < 1000; f += 37)
+        for (uint32_t k = 0; k < 3; ++k) {
+            uint32_t h = 3 * f + k;
+            CHECK_EQ_INT(tg_halfedge_next(h), 3 * f + (k + 1) % 3);
+            CHECK_EQ_INT(tg_halfedge_prev(h), 3 * f + (k + 2) % 3);
+            CHECK_EQ_INT(tg_halfedge_face(h), f);
+            CHECK_EQ_INT(tg_halfedge_next(tg_halfedge_next(tg_halfedge_next(h))), h);
+        }
+    /* a grid of n x n quads: the memory grows with the mesh and covers its arrays */
+    size_t last = 0;
+    for (int n = 2; n <= 32; n *= 2) {
+        size_t nv = (size_t)(n + 1) * (n + 1), nf = (size_t)2 * n * n;
+        double* xyz = malloc(3 * nv * sizeof *xyz);
+        uint32_t* tri = malloc(3 * nf * sizeof *tri);
+        for (int i = 0; i <= n; ++i)
+            for (int j = 0; j <= n; ++j) {
+                double* p = xyz + 3 * ((size_t)i * (n + 1) + (size_t)j);
+                p[0] = i, p[1] = j, p[2] = 0;
+            }
+        size_t f = 0;
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) {
+                uint32_t a = (uint32_t)(i * (n + 1) + j), b = a + 1, c = a + (uint32_t)n + 1, d = c + 1;
+                uint32_t* t = tri + 6 * f++;
+                t[0] = a, t[1] = b, t[2] = d, t[3] = a, t[4] = d, t[5] = c;
+            }
+        tg_mesh* m = NULL;
+        CHECK_STATUS(tg_mesh_create(xyz, nv, tri, nf, NULL, NULL, &m), TG_OK);
+        size_t bytes = tg_mesh_memory_bytes(m);
+        /* positions, triangles, opposites, components at least; at most 256 bytes a face */
+        size_t least = nv * 3 * sizeof(double) + nf * (3 + 3 + 1) * sizeof(uint32_t);
+        CHECK_MSG(bytes >= least && bytes <= 256 * nf + 4096 && bytes > last, "%d x %d grid: %zu bytes (at least %zu)", n,
+                  n, bytes, least);
+        last = bytes;
+        tg_mesh_destroy(m);
+        free(xyz), free(tri);
+    }
+    CHECK_EQ_INT(tg_mesh_memory_bytes(NULL), 0);
+}
+
 int main(void)
 {
+    test_halfedge_helpers_and_memory();
     test_tetrahedron();
     test_open_strip();
     test_bowtie();

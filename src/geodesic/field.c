@@ -237,7 +237,29 @@ typedef struct batch_state {
     const tg_field_options* opt;
     size_t rows, done;
     volatile int stop; /* set on cancellation or failure: the other threads stop too */
+#ifdef TG_HAVE_OPENMP
+    omp_lock_t lock; /* one thread at a time in the callback and the merge (a lock, not a named
+                        critical section: those are exported symbols of the library) */
+#endif
 } batch_state;
+
+static void batch_lock(batch_state* b)
+{
+#ifdef TG_HAVE_OPENMP
+    omp_set_lock(&b->lock);
+#else
+    (void)b;
+#endif
+}
+
+static void batch_unlock(batch_state* b)
+{
+#ifdef TG_HAVE_OPENMP
+    omp_unset_lock(&b->lock);
+#else
+    (void)b;
+#endif
+}
 
 typedef struct batch_row {
     batch_state* b;
@@ -247,9 +269,7 @@ static int report_batch(void* user, const tg__field_run* run)
 {
     batch_state* b = ((batch_row*)user)->b;
     int stop = 0;
-#ifdef TG_HAVE_OPENMP
-#pragma omp critical
-#endif
+    batch_lock(b);
     {
         tg_field_progress p;
         double share = run->referenced ? (double)run->settled / (double)run->referenced : 1.0;
@@ -262,6 +282,7 @@ static int report_batch(void* user, const tg__field_run* run)
         stop = b->opt->progress(b->opt->progress_user, &p) != 0;
         if (stop) b->stop = 1;
     }
+    batch_unlock(b);
     return stop;
 }
 
@@ -291,7 +312,12 @@ tg_status tg_geodesic_field_batch(const tg_geodesic* g, const tg_surface_point* 
         return TG_OK;
     }
     const tg_allocator* alloc = options && options->allocator ? options->allocator : &g->allocator;
-    batch_state b = {options, source_count, 0, 0};
+    batch_state b;
+    memset(&b, 0, sizeof b);
+    b.opt = options, b.rows = source_count;
+#ifdef TG_HAVE_OPENMP
+    omp_init_lock(&b.lock);
+#endif
     tg_field_stats sum;
     memset(&sum, 0, sizeof sum);
     tg_status first_error = TG_OK;
@@ -322,21 +348,22 @@ tg_status tg_geodesic_field_batch(const tg_geodesic* g, const tg_surface_point* 
             }
             copy_out(ws, run.max_dist, out_matrix + (size_t)i * nv);
             stats_add(&local, &run.stats);
-#ifdef TG_HAVE_OPENMP
-#pragma omp atomic
-#endif
+            batch_lock(&b);
             b.done++;
+            batch_unlock(&b);
         }
-#ifdef TG_HAVE_OPENMP
-#pragma omp critical
-#endif
+        batch_lock(&b);
         {
             stats_add(&sum, &local);
             /* the most telling error: out of memory before cancellation before "stopped by another" */
             if (mine == TG_ERR_OUT_OF_MEMORY || (mine != TG_OK && first_error == TG_OK)) first_error = mine;
         }
+        batch_unlock(&b);
         tg_field_workspace_destroy(ws);
     }
+#ifdef TG_HAVE_OPENMP
+    omp_destroy_lock(&b.lock);
+#endif
     (void)nthreads;
     if (first_error == TG_OK && b.done != source_count) first_error = TG_ERR_CANCELLED;
     if (first_error != TG_OK) return first_error;

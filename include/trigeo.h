@@ -448,7 +448,8 @@ typedef struct tg_bvh_options {
  *  advised as transparent huge pages.
  *  Any valid mesh is accepted, including an empty one (every query then finds nothing).
  *  Returns TG_OK; TG_ERR_INVALID_ARGUMENT for a NULL mesh or out_bvh or an option out of range;
- *  TG_ERR_OUT_OF_MEMORY; TG_ERR_UNSUPPORTED beyond 2^31 faces or 32 GiB of leaf data. On failure
+ *  TG_ERR_OUT_OF_MEMORY; TG_ERR_UNSUPPORTED beyond 2^31 faces or 32 GiB of leaf data, or for
+ *  coordinates beyond +-1e150 (squared distances would overflow). On failure
  *  *out_bvh is NULL.
  *  Complexity: O(F log F) time, about 50 bytes per face (see tg_bvh_memory_bytes).
  *  Thread-safe (reads the mesh only). */
@@ -683,7 +684,8 @@ typedef struct tg_geodesic_options {
 } tg_geodesic_options;
 
 /** Builds the solver for mesh (not copied; must stay alive and unchanged until
- *  tg_geodesic_destroy). options may be NULL. Errors: TG_ERR_INVALID_ARGUMENT (NULL mesh or out),
+ *  tg_geodesic_destroy). options may be NULL. Errors: TG_ERR_UNSUPPORTED (coordinates beyond
+ *  +-1e150: squared lengths would overflow), TG_ERR_INVALID_ARGUMENT (NULL mesh or out),
  *  TG_ERR_OUT_OF_MEMORY. On failure *out_geodesic is NULL. O(V + F log(valence)) time, O(V + F)
  *  memory. Thread-safe (no shared state). */
 TG_API tg_status tg_geodesic_create(const tg_mesh* mesh, const tg_geodesic_options* options,
@@ -755,10 +757,13 @@ typedef enum tg_path_certify {
 typedef enum tg_path_status {
     TG_PATH_CONVERGED = 0,     /**< the method's stopping criterion was met */
     TG_PATH_ITERATION_CAP = 1, /**< max_iterations was reached; the path is valid but may be longer */
-    TG_PATH_UNREACHABLE = 2    /**< the endpoints lie in different components: no points, length +inf */
+    TG_PATH_UNREACHABLE = 2,   /**< the endpoints lie in different components: no points, length +inf */
+    /** STRAIGHTEN stopped, yet its path is not straight: the certificate exceeds 1e-8 rad (a mesh
+     *  whose scale makes angles unmeasurable, e.g. coordinates near 1e-300); never "converged" */
+    TG_PATH_STALLED = 3
 } tg_path_status;
 
-/** "converged", "iteration_cap", "unreachable"; "unknown" for other values. Never NULL. */
+/** "converged", "iteration_cap", "unreachable", "stalled"; "unknown" for other values. Never NULL. */
 TG_API const char* tg_path_status_name(tg_path_status status);
 
 /** Query options. NULL or all-zero means defaults. */

@@ -89,6 +89,39 @@ int main(void)
         CHECK(tg_mesh_positions(m)[3] == 1.0);
         tg_mesh_destroy(m);
     }
+    /* coordinates beyond +-1e150: no distances computed there, never wrong ones (issue 12 item 2);
+     * the query point bound likewise */
+    {
+        double big[9] = {0, 0, 0, 1e300, 0, 0, 0, 1, 0}, small[9] = {0, 0, 0, 1e-300, 0, 0, 0, 1e-300, 0};
+        double fine[9] = {0, 0, 0, 1e140, 0, 0, 0, 1e140, 0};
+        uint32_t t3[3] = {0, 1, 2};
+        tg_mesh* mm = NULL;
+        tg_diag dd;
+        /* such a mesh loads (any finite coordinate round-trips), but no distance structure takes it */
+        CHECK_STATUS(tg_mesh_create(big, 3, t3, 1, NULL, &dd, &mm), TG_OK);
+        tg_bvh* bb = NULL;
+        tg_geodesic* gg = NULL;
+        CHECK_STATUS(tg_bvh_create(mm, NULL, &bb), TG_ERR_UNSUPPORTED);
+        CHECK_STATUS(tg_geodesic_create(mm, NULL, &gg), TG_ERR_UNSUPPORTED);
+        tg_mesh_destroy(mm);
+        mm = NULL;
+        CHECK_STATUS(tg_mesh_create(small, 3, t3, 1, NULL, &dd, &mm), TG_OK); /* tiny is fine */
+        tg_mesh_destroy(mm);
+        mm = NULL;
+        CHECK_STATUS(tg_mesh_create(fine, 3, t3, 1, NULL, &dd, &mm), TG_OK);
+        tg_bvh* bvh = NULL;
+        tg_bvh_workspace* bw = NULL;
+        CHECK_STATUS(tg_bvh_create(mm, NULL, &bvh), TG_OK);
+        CHECK_STATUS(tg_bvh_workspace_create(bvh, &bw), TG_OK);
+        tg_closest_hit h;
+        double far[3] = {0, 0, 1e200}, near[3] = {0, 0, 1e149};
+        CHECK_STATUS(tg_bvh_closest(bvh, bw, far, INFINITY, &h), TG_ERR_INVALID_ARGUMENT);
+        CHECK_STATUS(tg_bvh_closest(bvh, bw, near, INFINITY, &h), TG_OK);
+        CHECK(isfinite(h.sqdist) && h.sqdist > 1e297);
+        tg_bvh_workspace_destroy(bw);
+        tg_bvh_destroy(bvh);
+        tg_mesh_destroy(mm);
+    }
     /* a directory */
     tg_mesh* dir = NULL;
     tg_diag d;

@@ -26,6 +26,9 @@ void cli_error(const char* file, unsigned long long line, const char* fmt, ...)
 void cli_error_diag(const tg_diag* d, tg_status st);
 /* Loads a mesh, printing the error and returning NULL on failure. */
 tg_mesh* cli_load_mesh(const char* path);
+/* The same for commands that compute distances: also refuses coordinates beyond +-1e150, where
+ * squared distances overflow double, naming the limit. */
+tg_mesh* cli_load_mesh_for_distances(const char* path);
 /* Usage error: message plus "see trigeo help CMD"; returns CLI_USAGE. */
 int cli_usage(const char* cmd, const char* fmt, ...)
 #if defined(__GNUC__)

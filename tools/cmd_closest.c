@@ -85,6 +85,11 @@ static size_t parse_queries(const char* name, char* text, double** out)
                     free(xyz);
                     return (size_t)-1;
                 }
+                if (fabs(v) > 1e150) { /* the library's range: squared distances would overflow */
+                    cli_error(name, line, "coordinate %d is %g, beyond the supported range of +-1e150", k + 1, v);
+                    free(xyz);
+                    return (size_t)-1;
+                }
                 xyz[3 * count + (size_t)k] = v;
                 p = skip_blanks(after);
             }
@@ -179,7 +184,7 @@ static int run(int argc, char** argv)
     if (n == (size_t)-1) return CLI_INPUT;
 
     int rc = CLI_INPUT;
-    tg_mesh* mesh = cli_load_mesh(mesh_path);
+    tg_mesh* mesh = cli_load_mesh_for_distances(mesh_path);
     tg_bvh* bvh = NULL;
     tg_closest_hit* hits = NULL;
     tg_signed_hit* shits = NULL;

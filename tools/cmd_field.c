@@ -243,7 +243,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     double *dist = NULL, *at_d = NULL;
     tg_surface_point* at_pts = NULL;
     tg_surface_point* pts = malloc(count * sizeof *pts);
-    tg_mesh* mesh = pts ? cli_load_mesh(fa->mesh_path) : NULL;
+    tg_mesh* mesh = pts ? cli_load_mesh_for_distances(fa->mesh_path) : NULL;
     if (!pts) cli_error(NULL, 0, "out of memory");
     if (!mesh) goto done;
     if (tg_mesh_face_count(mesh) == 0) {

@@ -196,7 +196,7 @@ static int run_pairs(const char* mesh_path, const char* pairs_path, const char* 
     pair_in* pairs = NULL;
     cli_output out;
     bool opened = false;
-    tg_mesh* mesh = cli_load_mesh(mesh_path);
+    tg_mesh* mesh = cli_load_mesh_for_distances(mesh_path);
     if (!mesh) goto done;
     /* every pair is checked before any output exists */
     long n = read_pairs(pairs_path, mesh, &pairs);
@@ -254,7 +254,7 @@ static int run_single(const char* mesh_path, const char* from, const char* to, c
     tg_geodesic* geo = NULL;
     tg_geodesic_workspace* ws = NULL;
     tg_path* path = NULL;
-    tg_mesh* mesh = cli_load_mesh(mesh_path);
+    tg_mesh* mesh = cli_load_mesh_for_distances(mesh_path);
     tg_surface_point a, b;
     if (!mesh) goto done;
     if (tg_mesh_face_count(mesh) == 0) {

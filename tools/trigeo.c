@@ -57,6 +57,23 @@ tg_mesh* cli_load_mesh(const char* path)
     return mesh;
 }
 
+tg_mesh* cli_load_mesh_for_distances(const char* path)
+{
+    tg_mesh* m = cli_load_mesh(path);
+    if (!m) return NULL;
+    const tg_mesh_report* r = tg_mesh_get_report(m);
+    for (int k = 0; k < 3; ++k)
+        if (tg_mesh_vertex_count(m) && !(r->bbox_min[k] >= -1e150 && r->bbox_max[k] <= 1e150)) {
+            cli_error(path, 0,
+                      "coordinates reach %g, beyond the supported range of +-1e150 for distances (squared "
+                      "distances would overflow): rescale the mesh",
+                      fabs(r->bbox_min[k]) > fabs(r->bbox_max[k]) ? r->bbox_min[k] : r->bbox_max[k]);
+            tg_mesh_destroy(m);
+            return NULL;
+        }
+    return m;
+}
+
 int cli_usage(const char* cmd, const char* fmt, ...)
 {
     va_list ap;

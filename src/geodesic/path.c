@@ -24,6 +24,9 @@ struct tg_path {
  * distance (issue 10: "within 1e-9 relative"); the exact field is bounded by the path's length
  * plus this margin. */
 #define PROVEN_REL 1e-9
+/* A converged straightening certifies far below this (1e-10 in practice, BENCHMARKS.md); above
+ * it the path is not called converged. */
+#define STALLED_DEFECT 1e-8
 
 /* Defaults of tg_path_options (see the header for their meaning). */
 #define DEFAULT_MAX_ITERATIONS 10000u
@@ -41,6 +44,7 @@ const char* tg_path_status_name(tg_path_status s)
     case TG_PATH_CONVERGED: return "converged";
     case TG_PATH_ITERATION_CAP: return "iteration_cap";
     case TG_PATH_UNREACHABLE: return "unreachable";
+    case TG_PATH_STALLED: return "stalled";
     default: return "unknown";
     }
 }
@@ -249,6 +253,10 @@ tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, cons
     path->iterations = r.iterations;
     path->edge_path_vertices = vertices;
     path->status = r.capped ? TG_PATH_ITERATION_CAP : TG_PATH_CONVERGED;
+    /* a straightened path the certificate does not see as straight has not converged, whatever
+     * the sweeps concluded (issue 12 item 2: degenerate-by-underflow faces) */
+    if (method == TG_PATH_STRAIGHTEN && path->status == TG_PATH_CONVERGED && path->max_angle_defect > STALLED_DEFECT)
+        path->status = TG_PATH_STALLED;
     if (exact || certify == TG_PATH_CERTIFY_ON) {
         st = prove(g, ws, from, to, exact, path);
         if (st != TG_OK) {

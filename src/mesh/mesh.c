@@ -476,6 +476,7 @@ void tg_mesh_destroy(tg_mesh* m)
     tg__free(&a, m);
 }
 
+
 static tg_status validate(const double* xyz, size_t nv, const uint32_t* tri, size_t nf,
                           const char* name, tg_diag* diag)
 {
@@ -484,7 +485,9 @@ static tg_status validate(const double* xyz, size_t nv, const uint32_t* tri, siz
             tg__diag_set(diag, name, 0, 0, 0, "vertex %zu has a non-finite coordinate", i / 3);
             return TG_ERR_INVALID_MESH;
         }
+
     }
+
     for (size_t i = 0; i < 3 * nf; ++i) {
         if (tri[i] >= nv) {
             tg__diag_set(diag, name, 0, 0, 0, "face %zu references vertex %u, but there are %zu vertices",

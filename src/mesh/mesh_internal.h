@@ -17,6 +17,19 @@ struct tg_mesh {
     tg_mesh_report report;
 };
 
+/* The coordinate range in which squared distances stay finite in double (issue 12 item 2):
+ * |x| <= 1e150 keeps sums of three squares below 1e301. Meshes beyond it load, write and report
+ * (any finite coordinate round-trips), but distance structures refuse them rather than answer
+ * wrongly. */
+#define TG_MESH_MAX_COORDINATE 1e150
+static inline bool tg__mesh_in_distance_range(const tg_mesh* m)
+{
+    for (int k = 0; k < 3; ++k)
+        if (!(m->report.bbox_min[k] >= -TG_MESH_MAX_COORDINATE && m->report.bbox_max[k] <= TG_MESH_MAX_COORDINATE))
+            return m->vertex_count == 0;
+    return true;
+}
+
 /* Creates a mesh taking ownership of xyz and tri (allocated with `a`); they are freed on failure.
  * Used by the readers to avoid a copy. */
 tg_status tg__mesh_create_owned(double* xyz, size_t vertex_count, uint32_t* tri, size_t face_count,

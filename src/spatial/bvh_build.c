@@ -958,6 +958,7 @@ tg_status tg_bvh_create(const tg_mesh* mesh, const tg_bvh_options* opts, tg_bvh*
     if ((unsigned)o.winding_data > (unsigned)TG_BVH_WINDING_NEVER) return TG_ERR_INVALID_ARGUMENT;
     if (o.threads < 0) return TG_ERR_INVALID_ARGUMENT;
     if (mesh->face_count >= (size_t)1 << 31) return TG_ERR_UNSUPPORTED;
+    if (!tg__mesh_in_distance_range(mesh)) return TG_ERR_UNSUPPORTED;
     const tg_allocator* a = o.allocator;
     tg_bvh* bvh = tg__alloc(a, sizeof *bvh);
     if (!bvh) return TG_ERR_OUT_OF_MEMORY;

@@ -227,4 +227,11 @@ static inline int tg__bvh_threads(const tg_bvh* bvh)
 }
 #endif
 
+/* A query point the BVH answers: finite, and within +-1e150 like mesh coordinates (tg_mesh_create
+ * refuses larger ones), so that squared distances cannot overflow into a wrong answer. */
+static inline bool tg__query_point_ok(const double* p)
+{
+    return fabs(p[0]) <= 1e150 && fabs(p[1]) <= 1e150 && fabs(p[2]) <= 1e150; /* false for NaN too */
+}
+
 #endif

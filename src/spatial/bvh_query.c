@@ -254,7 +254,6 @@ static void closest(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p, do
     fill_hit(&q, hit);
 }
 
-static bool finite3(const double* p) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
 
 /* ---- workspaces ---- */
 
@@ -317,7 +316,7 @@ static tg_status run_batch(const tg_bvh* bvh, const double* xyz, size_t count, i
 {
     const tg_allocator* a = &bvh->allocator;
     for (size_t i = 0; i < count; ++i)
-        if (!finite3(xyz + 3 * i)) return TG_ERR_INVALID_ARGUMENT;
+        if (!tg__query_point_ok(xyz + 3 * i)) return TG_ERR_INVALID_ARGUMENT;
     int nt = 1;
 #ifdef TG_HAVE_OPENMP
     nt = threads > 0 ? threads : omp_get_max_threads();
@@ -393,7 +392,7 @@ tg_status tg_bvh_closest(const tg_bvh* bvh, tg_bvh_workspace* ws, const double x
                          tg_closest_hit* out_hit)
 {
     if (!bvh || !ws || !xyz || !out_hit || ws->bvh != bvh) return TG_ERR_INVALID_ARGUMENT;
-    if (!finite3(xyz) || !(max_dist_sq >= 0.0)) return TG_ERR_INVALID_ARGUMENT;
+    if (!tg__query_point_ok(xyz) || !(max_dist_sq >= 0.0)) return TG_ERR_INVALID_ARGUMENT;
     closest(bvh, ws, xyz, max_dist_sq, TG_NONE, out_hit);
     return TG_OK;
 }
@@ -410,7 +409,7 @@ tg_status tg_bvh_closest_batch(const tg_bvh* bvh, const double* xyz, size_t coun
 tg_status tg_bvh_locate(const tg_bvh* bvh, tg_bvh_workspace* ws, const double xyz[3], tg_surface_point* out_point,
                         tg_closest_hit* out_hit)
 {
-    if (!bvh || !ws || !xyz || !out_point || ws->bvh != bvh || !finite3(xyz)) return TG_ERR_INVALID_ARGUMENT;
+    if (!bvh || !ws || !xyz || !out_point || ws->bvh != bvh || !tg__query_point_ok(xyz)) return TG_ERR_INVALID_ARGUMENT;
     tg_closest_hit h;
     closest(bvh, ws, xyz, INFINITY, TG_NONE, &h);
     if (out_hit) *out_hit = h;

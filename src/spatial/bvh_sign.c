@@ -123,12 +123,11 @@ static void signed_one(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p,
 }
 
 static bool valid_method(tg_sign_method m) { return m == TG_SIGN_AUTO || m == TG_SIGN_PSEUDONORMAL || m == TG_SIGN_WINDING; }
-static bool finite3(const double* p) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
 
 tg_status tg_bvh_signed_distance(const tg_bvh* bvh, tg_bvh_workspace* ws, const double xyz[3], tg_sign_method method,
                                  tg_signed_hit* out_hit)
 {
-    if (!bvh || !ws || !xyz || !out_hit || ws->bvh != bvh || !finite3(xyz) || !valid_method(method))
+    if (!bvh || !ws || !xyz || !out_hit || ws->bvh != bvh || !tg__query_point_ok(xyz) || !valid_method(method))
         return TG_ERR_INVALID_ARGUMENT;
     signed_query(bvh, ws, xyz, tg_bvh_sign_method(bvh, method), TG_NONE, out_hit);
     return TG_OK;
@@ -144,7 +143,7 @@ tg_status tg_bvh_signed_distance_batch(const tg_bvh* bvh, const double* xyz, siz
 
 tg_status tg_bvh_winding_number(const tg_bvh* bvh, tg_bvh_workspace* ws, const double xyz[3], double* out)
 {
-    if (!bvh || !ws || !xyz || !out || ws->bvh != bvh || !finite3(xyz)) return TG_ERR_INVALID_ARGUMENT;
+    if (!bvh || !ws || !xyz || !out || ws->bvh != bvh || !tg__query_point_ok(xyz)) return TG_ERR_INVALID_ARGUMENT;
     *out = tg__bvh_winding(bvh, ws, xyz);
     return TG_OK;
 }

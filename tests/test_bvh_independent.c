@@ -110,11 +110,7 @@ static void check_mesh(const char* file, int queries)
 
 int main(void)
 {
-#ifdef TG_UNDER_ASAN
-    int q = 20;
-#else
-    int q = 100;
-#endif
+    int q = TG_TEST_WORK(100, 20);
     check_mesh("nvd_spot.obj", q);
     check_mesh("cgal_fandisk.off", q);
     check_mesh("c3d_suzanne.obj", q);

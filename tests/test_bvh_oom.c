@@ -33,11 +33,7 @@ int main(void)
     long total = -1;
     /* every allocation point of the top levels, where the task stack grows, then a dense sample
      * (every 5th) of the subtree and leaf builds */
-#ifdef TG_UNDER_ASAN
-    const long stride = 25;
-#else
-    const long stride = 5;
-#endif
+    const long stride = TG_TEST_WORK(5, 25);
     for (long k = 0;; k += k < 120 ? 1 : stride) {
         tg_test_counting c = {0, 0, k};
         tg_allocator a = tg_test_failing_allocator(&c);

@@ -483,11 +483,7 @@ int main(void)
     test_workspace_and_progress();
     test_batch_and_limit();
     test_points_api();
-#ifdef TG_UNDER_ASAN
-    int rounds = 2;
-#else
-    int rounds = 6;
-#endif
+    int rounds = TG_TEST_WORK(6, 2);
     test_points_symmetry("nvd_spot.obj", rounds);
     test_points_symmetry("cgal_fandisk.off", rounds);
     test_points_symmetry("c3d_suzanne.obj", rounds); /* 3 components, boundaries */

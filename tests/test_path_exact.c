@@ -204,11 +204,7 @@ static void test_api(void)
 
 int main(void)
 {
-#ifdef TG_UNDER_ASAN
-    int pairs = 4;
-#else
-    int pairs = 20;
-#endif
+    int pairs = TG_TEST_WORK(20, 4);
     test_api();
     /* scans, CAD, open, several components, non-manifold, non-orientable, slivers */
     const char* meshes[] = {"nvd_spot.obj",         "igl_armadillo.obj", "cgal_fandisk.off",     "c3d_suzanne.obj",

@@ -86,6 +86,12 @@ static inline const char* tg_test_meshes_dir(void)
 #define TG_UNDER_ASAN 1
 #endif
 #endif
+/* A workload size: `full` normally, `asan` under AddressSanitizer. */
+#ifdef TG_UNDER_ASAN
+#define TG_TEST_WORK(full, asan) (asan)
+#else
+#define TG_TEST_WORK(full, asan) (full)
+#endif
 
 /* Calls fn(dir, file, index, ctx) for every mesh listed in the corpus's MANIFEST.tsv (first
  * column), in order; returns the number of meshes, or -1 (with a failed check) if the manifest

@@ -563,6 +563,13 @@ TG_API tg_status tg_bvh_signed_distance_batch(const tg_bvh* bvh, const double* x
 TG_API tg_status tg_bvh_winding_number(const tg_bvh* bvh, tg_bvh_workspace* workspace, const double xyz[3],
                                 double* out_winding_number);
 
+/** tg_bvh_winding_number for count points (xyz: 3 * count doubles; out_winding_numbers: count
+ *  values in input order, identical to the single-point call), in Morton order on `threads`
+ *  threads as tg_bvh_closest_batch. Errors: TG_ERR_INVALID_ARGUMENT (NULL with count > 0, a
+ *  non-finite point, threads < 0), TG_ERR_OUT_OF_MEMORY. Thread-safe. */
+TG_API tg_status tg_bvh_winding_number_batch(const tg_bvh* bvh, const double* xyz, size_t count, int threads,
+                                             double* out_winding_numbers);
+
 /** The surface point closest to xyz, canonical (tg_surface_point_canonical: a barycentric
  *  coordinate that is exactly 0 makes it an edge point, t exactly 0 or 1 a vertex). out_hit (may
  *  be NULL) receives the closest-point answer it came from. Returns TG_ERR_INVALID_ARGUMENT as

@@ -362,7 +362,16 @@ static void test_hierarchical_and_batch(void)
                   h.distance == hb[i].distance && h.winding_number == hb[i].winding_number && h.method == hb[i].method);
         }
     }
+    double wb[N];
+    CHECK_STATUS(tg_bvh_winding_number_batch(fast.bvh, q, N, 2, wb), TG_OK);
+    for (int i = 0; i < N; ++i) {
+        double w;
+        CHECK_STATUS(tg_bvh_winding_number(fast.bvh, fast.ws, q + 3 * i, &w), TG_OK);
+        CHECK_MSG(w == wb[i], "winding batch %d: %.17g, single %.17g", i, wb[i], w);
+    }
     double bad[3] = {0, NAN, 0};
+    CHECK_STATUS(tg_bvh_winding_number_batch(fast.bvh, bad, 1, 1, wb), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_bvh_winding_number_batch(fast.bvh, q, N, -1, wb), TG_ERR_INVALID_ARGUMENT);
     tg_signed_hit h;
     CHECK_STATUS(tg_bvh_signed_distance(fast.bvh, fast.ws, bad, TG_SIGN_AUTO, &h), TG_ERR_INVALID_ARGUMENT);
     CHECK_STATUS(tg_bvh_signed_distance(fast.bvh, fast.ws, q, (tg_sign_method)7, &h), TG_ERR_INVALID_ARGUMENT);

@@ -147,3 +147,17 @@ tg_status tg_bvh_winding_number(const tg_bvh* bvh, tg_bvh_workspace* ws, const d
     *out = tg__bvh_winding(bvh, ws, xyz);
     return TG_OK;
 }
+
+static void winding_one(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p, uint32_t* hint, void* ctx,
+                        size_t index)
+{
+    (void)hint;
+    ((double*)ctx)[index] = tg__bvh_winding(bvh, ws, p);
+}
+
+tg_status tg_bvh_winding_number_batch(const tg_bvh* bvh, const double* xyz, size_t count, int threads,
+                                      double* out_winding_numbers)
+{
+    if (!bvh || (count && (!xyz || !out_winding_numbers)) || threads < 0) return TG_ERR_INVALID_ARGUMENT;
+    return tg__bvh_run_batch(bvh, xyz, count, threads, winding_one, out_winding_numbers);
+}

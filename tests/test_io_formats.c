@@ -642,6 +642,29 @@ static void test_gz_files(void)
         tg_mesh_destroy(m);
         remove(path);
     }
+    /* a truncated .gz (its trailer cut, or cut mid-stream) is an error naming the file, never a
+     * silently shorter mesh */
+    temp_path(path, sizeof path, "test_io_formats_pyramid_full.off.gz");
+    CHECK(write_gz(path, plain, strlen(plain)));
+    f = fopen(path, "rb");
+    unsigned char gzb[512];
+    size_t gzn = f ? fread(gzb, 1, sizeof gzb, f) : 0;
+    if (f) fclose(f);
+    remove(path);
+    for (size_t cut = 1; cut <= 9; cut += 4) {
+        temp_path(path, sizeof path, "test_io_formats_truncated.off.gz");
+        f = fopen(path, "wb");
+        CHECK(f && gzn > cut);
+        if (!f) break;
+        fwrite(gzb, 1, gzn - cut, f);
+        fclose(f);
+        m = NULL;
+        memset(&d, 0, sizeof d);
+        CHECK_STATUS(tg_mesh_load(path, TG_FORMAT_AUTO, NULL, &d, &m), TG_ERR_PARSE);
+        CHECK(m == NULL && strstr(d.message, "truncated") != NULL);
+        CHECK_EQ_STR(d.file, path);
+        remove(path);
+    }
     /* a missing file is an I/O error naming the path */
     temp_path(path, sizeof path, "test_io_formats_does_not_exist.obj");
     m = NULL;

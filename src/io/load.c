@@ -101,7 +101,17 @@ static tg_status read_gz(const char* path, const tg_allocator* a, tg_diag* diag,
             st = TG_ERR_PARSE;
             break;
         }
-        if (n == 0) break;
+        if (n == 0) {
+            int zerr = Z_OK;
+            gzerror(gz, &zerr);
+            if (zerr == Z_BUF_ERROR) { /* the input ended inside a gzip stream */
+                tg__diag_set(diag, path, 0, 0, buf.count,
+                             "truncated gzip data: the file ends inside the compressed stream (after %zu bytes)",
+                             buf.count);
+                st = TG_ERR_PARSE;
+            }
+            break;
+        }
         buf.count += (size_t)n;
         z_off_t in = gzoffset(gz);
         if (in >= 0 && buf.count > TG_GZIP_RATIO_SLACK &&

@@ -17,7 +17,8 @@ BENCH_BUILD ?= build-bench
 FUZZ_SECONDS ?= 60
 CMAKE_FLAGS ?=
 
-DEPS := cmake make gcc g++ clang libclang-rt-14-dev libomp-dev zlib1g-dev libpng-dev libgmp-dev pkg-config python3 locales
+DEPS := cmake make gcc g++ clang libclang-rt-14-dev libomp-dev zlib1g-dev libpng-dev libgmp-dev pkg-config python3 locales \
+        python3-numpy python3-pytest python3-distributed
 BENCH_DEPS := libembree-dev libcgal-dev libeigen3-dev time
 
 .PHONY: all deps bench-deps build demo test test-release test-asan bench fuzz clean large install

@@ -1,0 +1,76 @@
+"""trigeo.dask on a 2-worker LocalCluster (processes): equal to the serial calls bit for bit,
+meshes cached on the workers, a failing chunk raises the worker's error naming the chunk."""
+import os
+
+import numpy as np
+import pytest
+
+import trigeo
+import trigeo.dask as tgd
+from conftest import SPOT, corpus
+
+distributed = pytest.importorskip("distributed")
+
+
+@pytest.fixture(scope="module")
+def client():
+    env = {"PYTHONPATH": os.pathsep.join([os.path.join(os.path.dirname(__file__), "..")] +
+                                        os.environ.get("PYTHONPATH", "").split(os.pathsep))}
+    if "TRIGEO_LIB" in os.environ:
+        env["TRIGEO_LIB"] = os.environ["TRIGEO_LIB"]
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                                       env=env)
+    c = distributed.Client(cluster)
+    yield c
+    c.close()
+    cluster.close()
+
+
+def test_closest_equals_serial(client):
+    m = trigeo.load(SPOT)
+    rng = np.random.default_rng(11)
+    q = rng.uniform(-1, 1, size=(5000, 3))
+    got = tgd.closest(client, SPOT, q, chunk=700)
+    want = m.closest(q)
+    for g, w in zip(got, want):
+        assert g.dtype == w.dtype and np.array_equal(g, w)
+
+
+def test_path_lengths_equal_serial(client):
+    path = corpus("igl_decimated-knight.off")
+    m = trigeo.load(path)
+    rng = np.random.default_rng(12)
+    pairs = rng.integers(0, m.vertex_count, size=(60, 2))
+    for method in ("straighten", "exact"):
+        got = tgd.path_lengths(client, m, pairs, method=method, chunk=7)
+        assert np.array_equal(got, m.path_lengths(pairs, method=method))
+    froms = [trigeo.SurfacePoint(3, (0.2, 0.3, 0.5)), 10]
+    tos = [trigeo.SurfacePoint.edge(30, 0.25), trigeo.SurfacePoint(700, (0.1, 0.1, 0.8))]
+    assert np.array_equal(tgd.path_lengths(client, path, (froms, tos), chunk=1), m.path_lengths((froms, tos)))
+
+
+def test_distance_matrix_from_arrays_scattered_once(client):
+    m = trigeo.load(SPOT)
+    arrays_mesh = trigeo.Mesh(m.vertices, m.faces)
+    sources = [0, 100, 2000, trigeo.SurfacePoint(5, (0.3, 0.3, 0.4))]
+    got = tgd.distance_matrix(client, arrays_mesh, sources, chunk=1)
+    assert np.array_equal(got, m.distance_matrix(sources))
+    first = arrays_mesh._dask_arrays
+    got2 = tgd.distance_matrix(client, arrays_mesh, sources[:2], chunk=1)
+    assert arrays_mesh._dask_arrays is first and np.array_equal(got2, got[:2])
+    # each worker built each mesh once and kept it: the spot file, the knight file, the arrays
+    counts = client.run(tgd.cached_meshes)
+    assert all(1 <= n <= 3 for n in counts.values())
+
+
+def test_failing_chunk_raises_the_workers_error(client, tmp_path):
+    m = trigeo.load(SPOT)
+    pairs = np.array([[0, 1]] * 10 + [[0, 2929]] * 10)
+    pts = [trigeo.SurfacePoint(5, (0.3, 0.3, 0.4))] * 5 + [trigeo.SurfacePoint(5, (0.9, 0.9, 0.4))]
+    with pytest.raises(trigeo.InvalidArgumentError, match=r"chunk 1 \(items 4-5\)"):
+        tgd.path_lengths(client, SPOT, (pts, pts), chunk=4)
+    bad = tmp_path / "bad.obj"
+    bad.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n")
+    with pytest.raises(trigeo.InvalidMeshError, match=r"chunk 0 .*bad.obj:4"):
+        tgd.closest(client, str(bad), np.zeros((3, 3)))
+    assert np.isfinite(tgd.path_lengths(client, SPOT, pairs, chunk=6)).all()

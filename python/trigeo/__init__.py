@@ -1,0 +1,896 @@
+"""trigeo: exact distances and shortest paths on triangle meshes, with NumPy arrays in and out.
+
+A pure-Python package over the C library libtrigeo.so (ctypes; no compiled extension). The
+library is found through the TRIGEO_LIB environment variable if set, else the repository's
+build/libtrigeo.so (after `make`), else the system loader (after `make install`).
+
+    import trigeo
+    mesh = trigeo.load("data/nvd_spot.obj")          # OBJ, OFF, PLY, STL, optionally .gz
+    d, face, p = mesh.closest(points)                # closest surface points, exact in double
+    path = mesh.path(0, 1200)                        # geodesic between two vertices
+    print(path.length, path.points.shape, path.global_)
+    dist = mesh.field([0])                           # exact geodesic distance to every vertex
+    mesh.render("spot.png", path=path, field=dist)
+
+Surface points are given as a vertex index (int), a trigeo.SurfacePoint (a face point with
+barycentric coordinates, an edge point on a halfedge, or a vertex), or an (x, y, z) position,
+which is snapped to the closest surface point.
+
+Every C call releases the GIL, so Python threads run queries in parallel; batch calls also take
+a `threads` argument (0: all cores) and run on C threads. Errors raise trigeo.Error subclasses
+carrying the file, line and reason. Objects: Mesh, Path, SurfacePoint; functions: load.
+For batches over many machines, see trigeo.dask.
+"""
+from __future__ import annotations
+
+import ctypes
+import math
+import os
+import threading
+from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
+from typing import Any, Callable, Iterator, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _lib as _c
+from ._lib import lib as _L
+
+__all__ = [
+    "load", "Mesh", "Path", "SurfacePoint", "version", "Error", "InvalidArgumentError", "OutOfMemoryError",
+    "FileError", "ParseError", "InvalidMeshError", "UnsupportedError", "CapacityError", "CancelledError",
+]
+
+__version__ = _L.tg_version().decode()
+
+
+def version() -> str:
+    """The version of the loaded libtrigeo.so, e.g. "0.1.0"."""
+    return _L.tg_version().decode()
+
+
+# ---------------------------------------------------------------------------------------------
+# Errors
+# ---------------------------------------------------------------------------------------------
+
+class Error(Exception):
+    """A trigeo failure. Attributes: status (the library's short name, e.g. "parse"), file, line,
+    column (1-based; 0 when not a text position) and reason (the sentence without location)."""
+
+    status = "error"
+
+    def __init__(self, message: str, file: str = "", line: int = 0, column: int = 0, reason: str = ""):
+        super().__init__(message)
+        self.file, self.line, self.column = file, line, column
+        self.reason = reason or message
+
+    def __reduce__(self):  # picklable, so a Dask worker's error reaches the client as it is
+        return (type(self), (str(self), self.file, self.line, self.column, self.reason))
+
+
+class InvalidArgumentError(Error, ValueError):
+    """An argument is out of range or inconsistent (wrong shape, NaN, bad index, bad surface point)."""
+    status = "invalid_argument"
+
+
+class OutOfMemoryError(Error, MemoryError):
+    """Memory allocation failed or a size overflowed."""
+    status = "out_of_memory"
+
+
+class FileError(Error, OSError):
+    """A file could not be opened, read or written."""
+    status = "io"
+
+
+class ParseError(Error, ValueError):
+    """The input file is malformed; .file, .line and .column say where."""
+    status = "parse"
+
+
+class InvalidMeshError(Error, ValueError):
+    """The data cannot describe a mesh (bad index, NaN or infinite coordinate)."""
+    status = "invalid_mesh"
+
+
+class UnsupportedError(Error):
+    """The format or feature is not supported (e.g. coordinates beyond +-1e150)."""
+    status = "unsupported"
+
+
+class CapacityError(Error):
+    """An output buffer is too small."""
+    status = "capacity"
+
+
+class CancelledError(Error):
+    """A progress callback asked to stop."""
+    status = "cancelled"
+
+
+_ERRORS = [None, InvalidArgumentError, OutOfMemoryError, FileError, ParseError, InvalidMeshError,
+           UnsupportedError, CapacityError, CancelledError]
+
+
+def _raise(status: int, what: str, diag: Optional[_c.Diag] = None) -> None:
+    """Raises the Error subclass of a non-zero status, with the diag's location and reason."""
+    cls = _ERRORS[status] if 0 < status < len(_ERRORS) else Error
+    reason = _L.tg_status_string(status).decode()
+    file, line, column = "", 0, 0
+    if diag is not None:
+        file = diag.file.decode(errors="replace")
+        line, column = int(diag.line), int(diag.column)
+        if diag.message:
+            reason = diag.message.decode(errors="replace")
+    where = file + (f":{line}" if line else "") + (f":{column}" if line and column else "")
+    message = f"{where}: {reason}" if where else f"{what}: {reason}"
+    raise cls(message, file, line, column, reason)
+
+
+def _check(status: int, what: str, diag: Optional[_c.Diag] = None) -> None:
+    if status:
+        _raise(status, what, diag)
+
+
+def _bad(message: str) -> InvalidArgumentError:
+    return InvalidArgumentError(message)
+
+
+# ---------------------------------------------------------------------------------------------
+# Surface points
+# ---------------------------------------------------------------------------------------------
+
+class SurfacePoint:
+    """A location on a mesh surface.
+
+    SurfacePoint(face, (b0, b1, b2))   a point in a face, by barycentric coordinates of its
+                                       corners 0, 1, 2 (each in [0, 1], summing to 1)
+    SurfacePoint.vertex(v)             mesh vertex v
+    SurfacePoint.edge(h, t)            (1 - t) * from(h) + t * to(h) on halfedge h = 3 * face + i,
+                                       which runs from corner i to corner (i + 1) % 3 of face
+
+    Attributes: kind ("vertex", "edge" or "face"), index, t, bary. Equal points compare equal.
+    """
+
+    __slots__ = ("kind", "index", "t", "bary")
+    _KINDS = ("vertex", "edge", "face")
+
+    def __init__(self, face: int, bary: Sequence[float] = (1 / 3, 1 / 3, 1 / 3), *, kind: str = "face",
+                 t: float = 0.0):
+        if kind not in self._KINDS:
+            raise _bad(f"SurfacePoint kind must be one of {self._KINDS}, not {kind!r}")
+        object.__setattr__(self, "kind", kind)
+        object.__setattr__(self, "index", _index(face, "SurfacePoint index"))
+        object.__setattr__(self, "t", float(t))
+        b = tuple(float(x) for x in bary) if kind == "face" else (0.0, 0.0, 0.0)
+        if len(b) != 3:
+            raise _bad(f"SurfacePoint needs 3 barycentric coordinates, got {len(b)}")
+        object.__setattr__(self, "bary", b)
+
+    def __setattr__(self, name, value):
+        raise AttributeError("SurfacePoint is immutable")
+
+    @classmethod
+    def vertex(cls, v: int) -> "SurfacePoint":
+        """Mesh vertex v."""
+        return cls(v, kind="vertex")
+
+    @classmethod
+    def edge(cls, halfedge: int, t: float) -> "SurfacePoint":
+        """The point at parameter t in [0, 1] along halfedge (3 * face + i)."""
+        return cls(halfedge, kind="edge", t=t)
+
+    @classmethod
+    def face(cls, face: int, bary: Sequence[float]) -> "SurfacePoint":
+        """A point in a face by barycentric coordinates."""
+        return cls(face, bary)
+
+    def __repr__(self) -> str:
+        if self.kind == "vertex":
+            return f"SurfacePoint.vertex({self.index})"
+        if self.kind == "edge":
+            return f"SurfacePoint.edge({self.index}, {self.t!r})"
+        return f"SurfacePoint({self.index}, {self.bary!r})"
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, SurfacePoint) and (self.kind, self.index, self.t, self.bary) == (
+            other.kind, other.index, other.t, other.bary)
+
+    def __hash__(self) -> int:
+        return hash((self.kind, self.index, self.t, self.bary))
+
+    def __reduce__(self):
+        return (_make_surface_point, (self.kind, self.index, self.t, self.bary))
+
+    def _to_c(self) -> _c.SurfacePointC:
+        return _c.SurfacePointC(self._KINDS.index(self.kind), self.index, self.t,
+                                (ctypes.c_double * 3)(*self.bary))
+
+    @classmethod
+    def _from_c(cls, p: _c.SurfacePointC) -> "SurfacePoint":
+        kind = cls._KINDS[p.kind]
+        return cls(p.index, tuple(p.bary), kind=kind, t=p.t)
+
+
+def _make_surface_point(kind, index, t, bary):
+    return SurfacePoint(index, bary, kind=kind, t=t)
+
+
+def _index(x: Any, what: str) -> int:
+    if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, np.integer)):
+        raise _bad(f"{what} must be an integer, not {type(x).__name__}")
+    i = int(x)
+    if not 0 <= i < 0xFFFFFFFF:
+        raise _bad(f"{what} {i} is out of range")
+    return i
+
+
+# ---------------------------------------------------------------------------------------------
+# Array helpers
+# ---------------------------------------------------------------------------------------------
+
+def _points(points: Any, what: str = "points") -> np.ndarray:
+    """(k, 3) C-contiguous float64, finite; a C-contiguous float64 input is returned as it is."""
+    a = np.asarray(points)
+    if a.dtype.kind not in "fiu" or a.dtype == np.float16:
+        raise _bad(f"{what} must be numbers (float64 preferred), not dtype {a.dtype}")
+    if a.ndim == 1 and a.shape[0] == 3:
+        a = a.reshape(1, 3)
+    if a.ndim != 2 or a.shape[1] != 3:
+        raise _bad(f"{what} must have shape (k, 3), not {a.shape}")
+    a = np.ascontiguousarray(a, dtype=np.float64)
+    finite = np.isfinite(a).all(axis=1)
+    if not finite.all():
+        i = int(np.argmin(finite))
+        raise _bad(f"{what}[{i}] is not finite: {a[i].tolist()}")
+    return a
+
+
+def _threads(threads: int) -> int:
+    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 0:
+        raise _bad(f"threads must be an integer >= 0 (0: all cores), not {threads!r}")
+    return int(threads)
+
+
+def _ptr(a: np.ndarray, ctype=ctypes.c_double):
+    return a.ctypes.data_as(ctypes.POINTER(ctype))
+
+
+class _ArrayView:
+    """Exposes library memory to NumPy while keeping its owner alive (the array's base)."""
+
+    def __init__(self, owner: Any, address: int, shape: tuple, typestr: str):
+        self._owner = owner
+        self.__array_interface__ = {"data": (address, True), "shape": shape, "typestr": typestr, "version": 3}
+
+
+def _view(owner: Any, pointer, shape: tuple, typestr: str) -> np.ndarray:
+    address = ctypes.cast(pointer, ctypes.c_void_p).value or 0
+    if address == 0 or 0 in shape:
+        return np.empty(shape, dtype=np.dtype(typestr))
+    a = np.asarray(_ArrayView(owner, address, shape, typestr))
+    a.flags.writeable = False
+    return a
+
+
+class _Pool:
+    """Per-call scratch objects (workspaces, path objects), created on demand and reused, one per
+    concurrent caller."""
+
+    def __init__(self, create: Callable[[], int], destroy: Callable[[int], None]):
+        self._create, self._destroy = create, destroy
+        self._free: list = []
+        self._lock = threading.Lock()
+
+    @contextmanager
+    def take(self) -> Iterator[int]:
+        with self._lock:
+            h = self._free.pop() if self._free else None
+        if h is None:
+            h = self._create()
+        try:
+            yield h
+        finally:
+            with self._lock:
+                self._free.append(h)
+
+    def close(self) -> None:
+        with self._lock:
+            for h in self._free:
+                self._destroy(h)
+            self._free = []
+
+
+def _new(create: Callable, *args) -> int:
+    out = ctypes.c_void_p()
+    _check(create(*args, ctypes.byref(out)), create.__name__)
+    return out.value
+
+
+# ---------------------------------------------------------------------------------------------
+# Progress callbacks: Ctrl-C and the user's callback both stop a long field
+# ---------------------------------------------------------------------------------------------
+
+class _Progress:
+    """The progress callback of a field call. On the main thread the C call runs on a helper
+    thread while the main thread waits, so Ctrl-C raises KeyboardInterrupt there as usual; the
+    callback (on whichever thread the library calls it) then asks the library to stop."""
+
+    def __init__(self, user: Optional[Callable[[float], Any]]):
+        self.user, self.error, self.cancel = user, None, False
+        self.fn = _c.PROGRESS_FN(self._call)
+
+    def _call(self, _user, progress) -> int:
+        if self.cancel or self.error is not None:
+            return 1
+        if self.user is None:
+            return 0
+        try:
+            return 1 if self.user(float(progress.contents.settled_fraction)) is False else 0
+        except BaseException as e:  # stop the C call; re-raised by finish()
+            self.error = e
+            return 1
+
+    def run(self, call: Callable[[], int]) -> int:
+        if threading.current_thread() is not threading.main_thread():
+            return call()
+        result: list = []
+        t = threading.Thread(target=lambda: result.append(call()), name="trigeo-field", daemon=True)
+        t.start()
+        try:
+            while t.is_alive():
+                t.join(0.05)
+        except BaseException:
+            self.cancel = True  # KeyboardInterrupt: the library stops at its next callback
+            t.join()
+            raise
+        return result[0] if result else TG_ERR_CANCELLED_
+
+    def finish(self, status: int, what: str) -> None:
+        if self.error is not None:
+            raise self.error
+        _check(status, what)
+
+
+TG_ERR_CANCELLED_ = 8
+
+
+# ---------------------------------------------------------------------------------------------
+# Mesh
+# ---------------------------------------------------------------------------------------------
+
+_FORMATS = {"auto": 0, "obj": 1, "off": 2, "ply": 3, "stl": 4}
+_SIGN = {"auto": 0, "pseudonormal": 1, "winding": 2}
+_METHODS = {"straighten": 0, "relax": 1, "edge": 2, "exact": 3}
+_HIT = np.dtype(_c.ClosestHit)
+_SIGNED = np.dtype(_c.SignedHit)
+
+
+def load(path: Union[str, os.PathLike], format: str = "auto") -> "Mesh":
+    """Loads a mesh file: OBJ, OFF, PLY (ascii or binary), STL (ascii or binary), optionally
+    gzip-compressed (.gz). format: "auto" (by extension, then content), "obj", "off", "ply" or
+    "stl". Polygons are fan-triangulated; vertices keep file order. Raises FileError,
+    ParseError (with .file and .line), InvalidMeshError or UnsupportedError."""
+    if format not in _FORMATS:
+        raise _bad(f"format must be one of {sorted(_FORMATS)}, not {format!r}")
+    p = os.fsencode(os.fspath(path))
+    diag = _c.Diag()
+    h = ctypes.c_void_p()
+    st = _L.tg_mesh_load(p, _FORMATS[format], None, ctypes.byref(diag), ctypes.byref(h))
+    _check(st, os.fsdecode(p), diag)
+    m = Mesh.__new__(Mesh)
+    m._init(h.value, source=os.path.abspath(os.fsdecode(p)))
+    return m
+
+
+class Mesh:
+    """An immutable triangle mesh and its lazily built query structures (a BVH for closest
+    points, a geodesic solver for paths and fields), kept for the mesh's lifetime.
+
+    Mesh(vertices, faces): vertices an (n, 3) array of finite numbers, faces an (m, 3) array of
+    vertex indices (any integer dtype; C-contiguous float64 and uint32 arrays are passed to the
+    library without an intermediate copy; the library keeps its own copy). Meshes from files
+    come from trigeo.load. Any mesh real files contain is accepted: boundaries, several
+    components, non-manifold edges, degenerate and duplicate faces (see .report).
+
+    Thread-safe: any number of threads may query one Mesh at once.
+    """
+
+    def __init__(self, vertices: Any, faces: Any):
+        v = np.asarray(vertices)
+        f = np.asarray(faces)
+        if v.ndim != 2 or v.shape[1] != 3 or v.dtype.kind not in "fiu":
+            raise _bad(f"vertices must be an (n, 3) array of numbers, not shape {v.shape} dtype {v.dtype}")
+        if f.ndim != 2 or f.shape[1] != 3 or f.dtype.kind not in "iu":
+            raise _bad(f"faces must be an (m, 3) integer array, not shape {f.shape} dtype {f.dtype}")
+        if f.size:
+            lo, hi = int(f.min()), int(f.max())
+            if lo < 0 or hi >= v.shape[0]:
+                bad = int(np.argmax(((f < 0) | (f >= v.shape[0])).any(axis=1)))
+                raise _bad(f"faces[{bad}] = {f[bad].tolist()} has an index outside [0, {v.shape[0]})")
+        v = np.ascontiguousarray(v, dtype=np.float64)
+        f = np.ascontiguousarray(f, dtype=np.uint32)
+        finite = np.isfinite(v).all(axis=1)
+        if not finite.all():
+            i = int(np.argmin(finite))
+            raise InvalidMeshError(f"vertices[{i}] is not finite: {v[i].tolist()}")
+        diag = _c.Diag()
+        h = ctypes.c_void_p()
+        st = _L.tg_mesh_create(_ptr(v), v.shape[0], _ptr(f, ctypes.c_uint32), f.shape[0], None,
+                               ctypes.byref(diag), ctypes.byref(h))
+        _check(st, "Mesh", diag)
+        self._init(h.value, source=None)
+
+    def _init(self, handle: int, source: Optional[str]) -> None:
+        self._dask_arrays = None  # trigeo.dask: (client, key, future) of the scattered arrays
+        self._owner = _MeshHandle(handle)
+        self._h = handle
+        self._source = source
+        self._lock = threading.Lock()
+        self._bvh = None
+        self._geo = None
+        self._bvh_ws = _Pool(lambda: _new(_L.tg_bvh_workspace_create, self._bvh),
+                             _L.tg_bvh_workspace_destroy)
+        self._geo_ws = _Pool(lambda: _new(_L.tg_geodesic_workspace_create, self._geo),
+                             _L.tg_geodesic_workspace_destroy)
+        self._field_ws = _Pool(lambda: _new(_L.tg_field_workspace_create, self._geo),
+                               _L.tg_field_workspace_destroy)
+        self._paths = _Pool(lambda: _new(_L.tg_path_create, None), _L.tg_path_destroy)
+
+    # -- lifetime ---------------------------------------------------------------------------
+
+    def close(self) -> None:
+        """Frees the library's objects now (also done when the Mesh is garbage-collected).
+        Arrays previously returned by .vertices and .faces stay valid."""
+        h = getattr(self, "_h", None)
+        if not h:
+            return
+        for pool in (self._bvh_ws, self._geo_ws, self._field_ws, self._paths):
+            pool.close()
+        if self._geo:
+            _L.tg_geodesic_destroy(self._geo)
+        if self._bvh:
+            _L.tg_bvh_destroy(self._bvh)
+        self._geo = self._bvh = None
+        self._h = None
+        self._owner = None  # the C mesh goes with the last view of its arrays
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:
+            pass
+
+    def __enter__(self) -> "Mesh":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def __reduce__(self):  # pickling copies the arrays (trigeo.dask sends paths or scatters once)
+        return (Mesh, (np.array(self.vertices), np.array(self.faces)))
+
+    def _handle(self) -> int:
+        if not self._h:
+            raise _bad("this Mesh was closed")
+        return self._h
+
+    def _get_bvh(self, threads: int = 0) -> int:
+        with self._lock:
+            if self._bvh is None:
+                o = _c.BvhOptions()
+                o.threads = threads
+                self._bvh = _new(_L.tg_bvh_create, self._handle(), ctypes.byref(o))
+            return self._bvh
+
+    def _get_geo(self) -> int:
+        with self._lock:
+            if self._geo is None:
+                self._geo = _new(_L.tg_geodesic_create, self._handle(), None)
+            return self._geo
+
+    # -- data -------------------------------------------------------------------------------
+
+    @property
+    def vertex_count(self) -> int:
+        """Number of vertices."""
+        return int(_L.tg_mesh_vertex_count(self._handle()))
+
+    @property
+    def face_count(self) -> int:
+        """Number of triangles."""
+        return int(_L.tg_mesh_face_count(self._handle()))
+
+    @property
+    def vertices(self) -> np.ndarray:
+        """(n, 3) float64, a read-only view of the library's positions (no copy)."""
+        return _view(self._owner, _L.tg_mesh_positions(self._handle()), (self.vertex_count, 3), "<f8")
+
+    @property
+    def faces(self) -> np.ndarray:
+        """(m, 3) uint32, a read-only view of the library's triangles (no copy)."""
+        return _view(self._owner, _L.tg_mesh_triangles(self._handle()), (self.face_count, 3), "<u4")
+
+    @property
+    def source(self) -> Optional[str]:
+        """The absolute path the mesh was loaded from, or None for a mesh made from arrays."""
+        return self._source
+
+    @property
+    def report(self) -> dict:
+        """The validation report computed at load: counts of vertices, faces, edges, components,
+        boundary edges and loops, non-manifold edges and vertices, misoriented edges, degenerate,
+        duplicate faces, unreferenced vertices, Euler characteristic, genus (-1 unless a closed
+        manifold), closed_manifold (bool), bbox_min and bbox_max."""
+        r = _L.tg_mesh_get_report(self._handle()).contents
+        out = {name: int(getattr(r, name)) for name, _ in _c.MeshReport._fields_[:14]}
+        out["closed_manifold"] = bool(r.closed_manifold)
+        out["bbox_min"] = tuple(r.bbox_min)
+        out["bbox_max"] = tuple(r.bbox_max)
+        return out
+
+    def __repr__(self) -> str:
+        if not getattr(self, "_h", None):
+            return "<trigeo.Mesh (closed)>"
+        where = f" from {self._source!r}" if self._source else ""
+        return f"<trigeo.Mesh {self.vertex_count} vertices, {self.face_count} faces{where}>"
+
+    # -- point queries ------------------------------------------------------------------------
+
+    def closest(self, points: Any, threads: int = 0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The closest surface point to each of k query points (exact in double, equal to a linear
+        scan over all faces; the lowest face index wins ties).
+
+        points: (k, 3) or (3,). threads: 0 all cores, n at most n. Returns (distance (k,) float64,
+        face (k,) int64, point (k, 3) float64); face is -1 and distance inf on an empty mesh."""
+        p = _points(points)
+        threads = _threads(threads)
+        hits = np.empty(p.shape[0], dtype=_HIT)
+        bvh = self._get_bvh(threads)
+        st = _L.tg_bvh_closest_batch(bvh, _ptr(p), p.shape[0], math.inf, threads,
+                                     hits.ctypes.data_as(ctypes.POINTER(_c.ClosestHit)))
+        _check(st, "closest")
+        return _hits(hits)
+
+    def signed_distance(self, points: Any, method: str = "auto",
+                        threads: int = 0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Signed distance to the surface: negative inside (faces counter-clockwise seen from
+        outside). method: "pseudonormal" (angle-weighted pseudonormal at the closest feature;
+        exact on closed manifolds), "winding" (generalized winding number >= 1/2 is inside; robust
+        on open or broken meshes) or "auto" (pseudonormal on a consistently oriented closed
+        manifold without degenerate faces, else winding). Returns (signed distance (k,), face
+        (k,), closest point (k, 3)); 0 exactly on the surface."""
+        if method not in _SIGN:
+            raise _bad(f"method must be one of {sorted(_SIGN)}, not {method!r}")
+        p = _points(points)
+        threads = _threads(threads)
+        hits = np.empty(p.shape[0], dtype=_SIGNED)
+        bvh = self._get_bvh(threads)
+        st = _L.tg_bvh_signed_distance_batch(bvh, _ptr(p), p.shape[0], _SIGN[method], threads,
+                                             hits.ctypes.data_as(ctypes.POINTER(_c.SignedHit)))
+        _check(st, "signed_distance")
+        _, face, point = _hits(hits["hit"])
+        return hits["distance"].copy(), face, point
+
+    def winding_number(self, points: Any, threads: int = 0) -> np.ndarray:
+        """The generalized winding number at each point: 1 inside and 0 outside a closed,
+        consistently oriented mesh, fractional near holes (hierarchical evaluation, typically
+        within 1e-2 of the exact sum). Returns (k,) float64."""
+        p = _points(points)
+        threads = _threads(threads)
+        out = np.empty(p.shape[0])
+        st = _L.tg_bvh_winding_number_batch(self._get_bvh(threads), _ptr(p), p.shape[0], threads, _ptr(out))
+        _check(st, "winding_number")
+        return out
+
+    def locate(self, xyz: Any) -> SurfacePoint:
+        """The surface point closest to position xyz (a face, edge or vertex point)."""
+        p = _points(xyz, "xyz")
+        if p.shape[0] != 1:
+            raise _bad(f"locate takes one position, not {p.shape[0]}")
+        return SurfacePoint._from_c(self._locate(p[0]))
+
+    def _locate(self, p: np.ndarray) -> _c.SurfacePointC:
+        out = _c.SurfacePointC()
+        bvh = self._get_bvh()
+        with self._bvh_ws.take() as ws:
+            st = _L.tg_bvh_locate(bvh, ws, _ptr(p), ctypes.byref(out), None)
+        _check(st, "locate")
+        return out
+
+    # -- surface points -----------------------------------------------------------------------
+
+    def _surface_point(self, x: Any, what: str) -> _c.SurfacePointC:
+        """Converts a vertex index, SurfacePoint or (x, y, z) and validates it on this mesh."""
+        if isinstance(x, SurfacePoint):
+            sp = x._to_c()
+        elif isinstance(x, (int, np.integer)) and not isinstance(x, (bool, np.bool_)):
+            sp = _c.SurfacePointC(0, _index(x, what), 0.0)
+        else:
+            try:
+                p = np.asarray(x, dtype=np.float64)
+            except (TypeError, ValueError):
+                raise _bad(f"{what} must be a vertex index, a SurfacePoint or (x, y, z), not {x!r}") from None
+            if p.shape != (3,):
+                raise _bad(f"{what} must be a vertex index, a SurfacePoint or (x, y, z), not {x!r}")
+            return self._locate(_points(p, what)[0])
+        diag = _c.Diag()
+        if _L.tg_surface_point_validate(self._handle(), ctypes.byref(sp), ctypes.byref(diag)):
+            raise _bad(f"{what}: {diag.message.decode(errors='replace') or 'invalid surface point'}")
+        return sp
+
+    def _surface_points(self, xs: Any, what: str) -> ctypes.Array:
+        """A list of sources or points: an int or integer array (vertices), a float (k, 3) array
+        or one (x, y, z) (positions), a SurfacePoint, or a sequence of any of those."""
+        if isinstance(xs, (SurfacePoint, int, np.integer)):
+            xs = [xs]
+        elif not isinstance(xs, (list, tuple)) or (xs and not any(isinstance(x, SurfacePoint) for x in xs)):
+            a = np.asarray(xs)
+            if a.dtype.kind in "iu" and a.ndim <= 1:
+                xs = [int(i) for i in a.reshape(-1)]
+                if xs and (min(xs) < 0 or max(xs) >= self.vertex_count):
+                    i = next(k for k, v in enumerate(xs) if not 0 <= v < self.vertex_count)
+                    raise _bad(f"{what}[{i}] = {xs[i]} is not a vertex (the mesh has {self.vertex_count})")
+            elif a.dtype.kind in "fiu" and a.size:
+                p = _points(a, what)
+                out = (_c.SurfacePointC * p.shape[0])()
+                for i in range(p.shape[0]):
+                    out[i] = self._locate(p[i])
+                return out
+            elif a.size == 0:
+                xs = []
+            else:
+                raise _bad(f"{what}: cannot read {type(xs).__name__} of dtype {a.dtype} as surface points")
+        out = (_c.SurfacePointC * len(xs))()
+        for i, x in enumerate(xs):
+            out[i] = self._surface_point(x, f"{what}[{i}]")
+        return out
+
+    # -- paths --------------------------------------------------------------------------------
+
+    def path(self, a: Any, b: Any, method: str = "straighten", certify: bool = False) -> "Path":
+        """The geodesic (shortest on-surface) path from a to b.
+
+        a, b: a vertex index, a SurfacePoint, or an (x, y, z) snapped to the closest surface
+        point. method: "straighten" (default: the shortest edge path straightened into a locally
+        shortest path, certified straight), "exact" (the globally shortest path, proven, by exact
+        window propagation toward b), "relax" (the seed's relaxation) or "edge" (the shortest
+        edge path only). certify=True checks the result against the exact distance and replaces
+        it with the exact path if a shorter one exists, so the path comes out proven.
+        Endpoints in different components give a Path with status "unreachable" and length inf."""
+        if method not in _METHODS:
+            raise _bad(f"method must be one of {sorted(_METHODS)}, not {method!r}")
+        spa = self._surface_point(a, "a")
+        spb = self._surface_point(b, "b")
+        opts = _c.PathOptions(_METHODS[method], 0, 0.0, None, 1 if certify else 0)
+        geo = self._get_geo()
+        with self._geo_ws.take() as ws, self._paths.take() as ph:
+            _check(_L.tg_geodesic_path(geo, ws, ctypes.byref(spa), ctypes.byref(spb), ctypes.byref(opts), ph), "path")
+            view = _c.PathView()
+            _L.tg_path_get_view(ph, ctypes.byref(view))
+            return Path._from_view(view)
+
+    def path_lengths(self, pairs: Any, method: str = "straighten", threads: int = 0,
+                     certify: bool = False) -> np.ndarray:
+        """Lengths of many geodesic paths (inf where the endpoints are not connected).
+
+        pairs: a (k, 2) integer array of vertex pairs, or a tuple (froms, tos) of two equally long
+        sequences of endpoints as path() takes them. Every endpoint is checked before any path
+        is computed. method, certify: as path(). threads: 0 all cores; the pairs are shared out
+        among that many threads, each with its own workspace. Returns (k,) float64, the same
+        numbers as k calls of path()."""
+        if method not in _METHODS:
+            raise _bad(f"method must be one of {sorted(_METHODS)}, not {method!r}")
+        threads = _threads(threads)
+        if isinstance(pairs, tuple) and len(pairs) == 2 and not isinstance(pairs[0], (int, np.integer)):
+            froms = self._surface_points(pairs[0], "froms")
+            tos = self._surface_points(pairs[1], "tos")
+            if len(froms) != len(tos):
+                raise _bad(f"froms and tos differ in length ({len(froms)} and {len(tos)})")
+        else:
+            pa = np.asarray(pairs)
+            if pa.ndim != 2 or pa.shape[1] != 2 or (pa.size and pa.dtype.kind not in "iu"):
+                raise _bad(f"pairs must be a (k, 2) integer array of vertices, not shape {pa.shape} dtype {pa.dtype}")
+            froms = self._surface_points(pa[:, 0].astype(np.int64), "pairs[:, 0]")
+            tos = self._surface_points(pa[:, 1].astype(np.int64), "pairs[:, 1]")
+        k = len(froms)
+        out = np.empty(k)
+        if k == 0:
+            return out
+        geo = self._get_geo()
+        opts = _c.PathOptions(_METHODS[method], 0, 0.0, None, 1 if certify else 0)
+        nt = (os.cpu_count() or 1) if threads == 0 else threads
+        nt = max(1, min(nt, k))
+
+        def run(lo: int, hi: int) -> None:
+            view = _c.PathView()
+            with self._geo_ws.take() as ws, self._paths.take() as ph:
+                for i in range(lo, hi):
+                    _check(_L.tg_geodesic_path(geo, ws, ctypes.byref(froms[i]), ctypes.byref(tos[i]), ctypes.byref(opts), ph),
+                           f"path_lengths: pair {i}")
+                    _L.tg_path_get_view(ph, ctypes.byref(view))
+                    out[i] = view.length
+
+        if nt == 1:
+            run(0, k)
+        else:
+            step = max(1, min(64, k // (4 * nt)))
+            with ThreadPoolExecutor(nt) as ex:
+                for f in [ex.submit(run, lo, min(k, lo + step)) for lo in range(0, k, step)]:
+                    f.result()
+        return out
+
+    # -- fields -------------------------------------------------------------------------------
+
+    def _field_options(self, max_distance: Optional[float], progress: _Progress) -> _c.FieldOptions:
+        o = _c.FieldOptions()
+        if max_distance is not None and max_distance != math.inf:
+            md = float(max_distance)
+            if not md >= 0.0:
+                raise _bad(f"max_distance must be >= 0 (or None for no limit), not {max_distance!r}")
+            o.limit, o.max_distance = 1, md
+        o.progress = progress.fn
+        return o
+
+    def field(self, sources: Any, max_distance: Optional[float] = None,
+              progress: Optional[Callable[[float], Any]] = None) -> np.ndarray:
+        """The exact geodesic distance from the nearest source to every vertex, by window
+        propagation (Chen-Han / VTP), exact up to rounding.
+
+        sources: a vertex index, a list or integer array of vertices, SurfacePoints (on faces or
+        edges too), or (k, 3) positions snapped to the surface. max_distance: stop there (vertices
+        beyond get inf). progress: called with the settled fraction in [0, 1] every few ms; return
+        False to cancel (CancelledError). Ctrl-C stops the computation too. Returns (n,) float64;
+        inf where no path reaches (other components, unused vertices)."""
+        src = self._surface_points(sources, "sources")
+        pr = _Progress(progress)
+        o = self._field_options(max_distance, pr)
+        out = np.empty(self.vertex_count)
+        geo = self._get_geo()
+        with self._field_ws.take() as ws:
+            o.workspace = ws
+            st = pr.run(lambda: _L.tg_geodesic_field(geo, src, len(src), ctypes.byref(o), _ptr(out), None))
+        pr.finish(st, "field")
+        return out
+
+    def field_at(self, sources: Any, points: Any, max_distance: Optional[float] = None) -> np.ndarray:
+        """The exact geodesic distance from the sources to arbitrary surface points (in faces, on
+        edges, vertices) in one propagation. sources as field(); points: SurfacePoints, vertex
+        indices or (k, 3) positions. Returns (k,) float64."""
+        src = self._surface_points(sources, "sources")
+        pts = self._surface_points(points, "points")
+        pr = _Progress(None)
+        o = self._field_options(max_distance, pr)
+        out = np.empty(len(pts))
+        geo = self._get_geo()
+        with self._field_ws.take() as ws:
+            o.workspace = ws
+            st = pr.run(lambda: _L.tg_geodesic_field_at(geo, src, len(src), pts, len(pts), ctypes.byref(o),
+                                                        _ptr(out), None, None))
+        pr.finish(st, "field_at")
+        return out
+
+    def distance_matrix(self, sources: Any, max_distance: Optional[float] = None, threads: int = 0,
+                        progress: Optional[Callable[[float], Any]] = None) -> np.ndarray:
+        """One exact field per source: row i is field([sources[i]]) exactly (bit-identical).
+        Rows run in parallel on `threads` C threads (0: all cores). Returns (K, n) float64."""
+        src = self._surface_points(sources, "sources")
+        threads = _threads(threads)
+        pr = _Progress(progress)
+        o = self._field_options(max_distance, pr)
+        n = self.vertex_count
+        out = np.empty((len(src), n))
+        geo = self._get_geo()
+        st = pr.run(lambda: _L.tg_geodesic_field_batch(geo, src, len(src), ctypes.byref(o), threads, _ptr(out), None))
+        pr.finish(st, "distance_matrix")
+        return out
+
+    # -- pictures -----------------------------------------------------------------------------
+
+    def render(self, png_path: Union[str, os.PathLike], path: Any = None, field: Any = None, view: Any = None,
+               width: int = 960, height: int = 720, isolines: int = 16) -> None:
+        """Writes a PNG picture of the mesh (orthographic, shaded), with an optional path (a Path
+        or a (k, 3) polyline, drawn as a red tube) and an optional per-vertex field (n values,
+        coloured dark blue to yellow with isolines; inf drawn grey). view: the direction the
+        camera looks along, e.g. (0, 0, -1); None: a three-quarter view. isolines: 0 for none."""
+        o = _c.RenderOptions()
+        if not (isinstance(width, (int, np.integer)) and isinstance(height, (int, np.integer))
+                and 1 <= width <= 8192 and 1 <= height <= 8192):
+            raise _bad(f"width and height must be integers in [1, 8192], not {width!r}, {height!r}")
+        o.width, o.height = int(width), int(height)
+        o.isolines = int(isolines) if isolines > 0 else -1
+        keep = []
+        if view is not None:
+            v = _points(view, "view")[0]
+            if not np.any(v):
+                raise _bad("view must be a non-zero direction")
+            o.view_dir = (ctypes.c_double * 3)(*v)
+        if field is not None:
+            fa = np.ascontiguousarray(field, dtype=np.float64)
+            if fa.shape != (self.vertex_count,):
+                raise _bad(f"field must have one value per vertex ({self.vertex_count}), not shape {fa.shape}")
+            keep.append(fa)
+            o.vertex_scalar = _ptr(fa)
+        if path is not None:
+            pts = path.points if isinstance(path, Path) else path
+            pl = _points(pts, "path") if len(pts) else np.empty((0, 3))
+            keep.append(pl)
+            o.polyline, o.polyline_count = _ptr(pl), pl.shape[0]
+        diag = _c.Diag()
+        st = _L.tg_render_png(self._handle(), ctypes.byref(o), os.fsencode(os.fspath(png_path)), ctypes.byref(diag))
+        _check(st, os.fspath(png_path), diag)
+
+
+def _hits(hits: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    face = hits["face"].astype(np.int64)
+    face[face == _c.NONE] = -1
+    return np.sqrt(hits["sqdist"]), face, np.ascontiguousarray(hits["point"])
+
+
+class _MeshHandle:
+    """Owns the C mesh. The Mesh and every NumPy view of the mesh's arrays hold a reference, so
+    the arrays stay valid after Mesh.close() until the last view is gone."""
+
+    __slots__ = ("value",)
+
+    def __init__(self, value: int):
+        self.value = value
+
+    def __del__(self):
+        if self.value:
+            _L.tg_mesh_destroy(self.value)
+            self.value = None
+
+
+# ---------------------------------------------------------------------------------------------
+# Path
+# ---------------------------------------------------------------------------------------------
+
+class Path:
+    """A geodesic path (from Mesh.path). Attributes:
+
+    length            float, the sum of the 3D segment lengths (inf when unreachable)
+    points            (k, 3) float64: from, every edge crossing and vertex passage, to
+    faces             (k - 1,) int64: the face each segment lies in
+    surface_points    list of k SurfacePoints (the same points on the mesh)
+    status            "converged", "iteration_cap", "unreachable" or "stalled"
+    max_angle_defect  the certificate, radians: the largest deviation from straight over the
+                      crossings and vertex passages (0 for a straight path)
+    global_           "proven" (an exact computation showed no shorter path exists) or "unproven"
+    proven            bool, global_ == "proven"
+    initial_length    the length of the initial shortest edge path
+    iterations        straightening sweeps or relaxation passes performed
+    """
+
+    __slots__ = ("length", "points", "faces", "surface_points", "status", "max_angle_defect", "global_",
+                 "initial_length", "iterations")
+
+    @classmethod
+    def _from_view(cls, v: _c.PathView) -> "Path":
+        p = cls.__new__(cls)
+        k = int(v.point_count)
+        p.length = float(v.length)
+        p.initial_length = float(v.initial_length)
+        p.max_angle_defect = float(v.max_angle_defect)
+        p.status = _L.tg_path_status_name(v.status).decode()
+        p.global_ = _L.tg_path_global_name(v.global_).decode()
+        p.iterations = int(v.iterations)
+        if k:
+            p.points = np.ctypeslib.as_array(v.xyz, shape=(k, 3)).copy()
+            p.faces = np.ctypeslib.as_array(v.faces, shape=(k - 1,)).astype(np.int64) if k > 1 else np.empty(0, np.int64)
+            p.surface_points = [SurfacePoint._from_c(v.points[i]) for i in range(k)]
+        else:
+            p.points, p.faces, p.surface_points = np.empty((0, 3)), np.empty(0, np.int64), []
+        return p
+
+    @property
+    def proven(self) -> bool:
+        """True when the path is proven globally shortest."""
+        return self.global_ == "proven"
+
+    def __len__(self) -> int:
+        return self.points.shape[0]
+
+    def __repr__(self) -> str:
+        return (f"<trigeo.Path length={self.length!r} points={len(self)} status={self.status} "
+                f"global={self.global_} max_angle_defect={self.max_angle_defect:.3g}>")

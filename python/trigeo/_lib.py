@@ -1,0 +1,182 @@
+"""The C side: finding libtrigeo.so and declaring its structs and functions for ctypes.
+
+Every declaration mirrors include/trigeo.h (the API reference); nothing here computes.
+ctypes releases the GIL for the duration of every call through a CDLL, so Python threads run
+trigeo queries in parallel.
+"""
+from __future__ import annotations
+
+import ctypes
+import ctypes.util
+import os
+from ctypes import POINTER, c_char, c_char_p, c_double, c_int, c_int64, c_size_t, c_uint32, c_uint64, c_void_p
+
+__all__ = ["lib", "lib_path"]
+
+_HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def _candidates() -> list[tuple[str, str]]:
+    """(description, path or soname) in the order they are tried."""
+    out = []
+    env = os.environ.get("TRIGEO_LIB")
+    if env:
+        out.append(("TRIGEO_LIB", env))
+        return out  # an explicit choice is never silently replaced by another library
+    repo_build = os.path.normpath(os.path.join(_HERE, "..", "..", "build", "libtrigeo.so"))
+    out.append(("the repository's build", repo_build))
+    found = ctypes.util.find_library("trigeo")
+    out.append(("the system loader", found or "libtrigeo.so.0"))
+    return out
+
+
+def _load() -> tuple[ctypes.CDLL, str]:
+    tried = []
+    for what, path in _candidates():
+        if os.sep in path and not os.path.exists(path):
+            tried.append(f"{what}: {path} (no such file)")
+            continue
+        try:
+            return ctypes.CDLL(path), path
+        except OSError as e:
+            tried.append(f"{what}: {path} ({e})")
+    raise ImportError(
+        "trigeo: cannot load libtrigeo.so; looked at\n  " + "\n  ".join(tried) +
+        "\nBuild it with `make` in the repository, install it (`make install`), or set TRIGEO_LIB "
+        "to the library's path.")
+
+
+lib, lib_path = _load()
+
+NONE = 0xFFFFFFFF
+
+
+class Diag(ctypes.Structure):
+    _fields_ = [("file", c_char * 256), ("line", c_uint64), ("column", c_uint64), ("byte_offset", c_uint64),
+                ("message", c_char * 256)]
+
+
+class Allocator(ctypes.Structure):
+    _fields_ = [("alloc", c_void_p), ("realloc", c_void_p), ("free", c_void_p), ("user", c_void_p)]
+
+
+class MeshReport(ctypes.Structure):
+    _fields_ = [(name, c_uint64) for name in (
+        "vertices", "faces", "edges", "components", "boundary_edges", "boundary_loops", "nonmanifold_edges",
+        "nonmanifold_vertices", "misoriented_edges", "degenerate_faces", "duplicate_faces",
+        "unreferenced_vertices")] + [
+        ("euler_characteristic", c_int64), ("genus", c_int64), ("closed_manifold", c_int),
+        ("bbox_min", c_double * 3), ("bbox_max", c_double * 3)]
+
+
+class SurfacePointC(ctypes.Structure):
+    _fields_ = [("kind", c_int), ("index", c_uint32), ("t", c_double), ("bary", c_double * 3)]
+
+
+class ClosestHit(ctypes.Structure):
+    _fields_ = [("face", c_uint32), ("feature", c_int), ("sqdist", c_double), ("point", c_double * 3),
+                ("bary", c_double * 3)]
+
+
+class SignedHit(ctypes.Structure):
+    _fields_ = [("hit", ClosestHit), ("distance", c_double), ("sign", c_int), ("method", c_int),
+                ("winding_number", c_double)]
+
+
+class BvhOptions(ctypes.Structure):
+    _fields_ = [("allocator", c_void_p), ("max_leaf_size", c_uint32), ("winding_data", c_int), ("threads", c_int)]
+
+
+class KernelOptions(ctypes.Structure):
+    _fields_ = [("digits", c_int), ("max_iterations", c_int), ("strategy", c_int), ("root_method", c_int)]
+
+
+class PathOptions(ctypes.Structure):
+    _fields_ = [("method", c_int), ("max_iterations", c_uint32), ("tolerance", c_double),
+                ("kernel", POINTER(KernelOptions)), ("certify", c_int)]
+
+
+class PathView(ctypes.Structure):
+    _fields_ = [("point_count", c_size_t), ("points", POINTER(SurfacePointC)), ("xyz", POINTER(c_double)),
+                ("faces", POINTER(c_uint32)), ("length", c_double), ("initial_length", c_double),
+                ("max_angle_defect", c_double), ("status", c_int), ("global_", c_int), ("iterations", c_uint32),
+                ("edge_path_vertices", c_uint32)]
+
+
+class FieldProgress(ctypes.Structure):
+    _fields_ = [("front_distance", c_double), ("settled_fraction", c_double), ("rows_done", c_size_t),
+                ("row_count", c_size_t)]
+
+
+PROGRESS_FN = ctypes.CFUNCTYPE(c_int, c_void_p, POINTER(FieldProgress))
+
+
+class FieldOptions(ctypes.Structure):
+    _fields_ = [("allocator", c_void_p), ("limit", c_int), ("max_distance", c_double), ("workspace", c_void_p),
+                ("progress", PROGRESS_FN), ("progress_user", c_void_p)]
+
+
+class RenderOptions(ctypes.Structure):
+    _fields_ = [("width", c_int), ("height", c_int), ("view_dir", c_double * 3), ("up", c_double * 3),
+                ("vertex_scalar", POINTER(c_double)), ("isolines", c_int), ("polyline", POINTER(c_double)),
+                ("polyline_count", c_size_t), ("supersample", c_int)]
+
+
+_vp = c_void_p
+_pvp = POINTER(c_void_p)
+_pd = POINTER(c_double)
+_pu32 = POINTER(c_uint32)
+_psp = POINTER(SurfacePointC)
+_pdiag = POINTER(Diag)
+
+_SIGNATURES = {
+    "tg_version": (c_char_p, []),
+    "tg_status_name": (c_char_p, [c_int]),
+    "tg_status_string": (c_char_p, [c_int]),
+    "tg_mesh_create": (c_int, [_pd, c_size_t, _pu32, c_size_t, _vp, _pdiag, _pvp]),
+    "tg_mesh_load": (c_int, [c_char_p, c_int, _vp, _pdiag, _pvp]),
+    "tg_mesh_destroy": (None, [_vp]),
+    "tg_mesh_vertex_count": (c_size_t, [_vp]),
+    "tg_mesh_face_count": (c_size_t, [_vp]),
+    "tg_mesh_positions": (_pd, [_vp]),
+    "tg_mesh_triangles": (_pu32, [_vp]),
+    "tg_mesh_get_report": (POINTER(MeshReport), [_vp]),
+    "tg_mesh_memory_bytes": (c_size_t, [_vp]),
+    "tg_mesh_halfedge_from": (c_uint32, [_vp, c_uint32]),
+    "tg_mesh_halfedge_to": (c_uint32, [_vp, c_uint32]),
+    "tg_surface_point_validate": (c_int, [_vp, _psp, _pdiag]),
+    "tg_surface_point_position": (None, [_vp, _psp, _pd]),
+    "tg_bvh_create": (c_int, [_vp, POINTER(BvhOptions), _pvp]),
+    "tg_bvh_destroy": (None, [_vp]),
+    "tg_bvh_memory_bytes": (c_size_t, [_vp]),
+    "tg_bvh_workspace_create": (c_int, [_vp, _pvp]),
+    "tg_bvh_workspace_destroy": (None, [_vp]),
+    "tg_bvh_closest_batch": (c_int, [_vp, _pd, c_size_t, c_double, c_int, POINTER(ClosestHit)]),
+    "tg_bvh_signed_distance_batch": (c_int, [_vp, _pd, c_size_t, c_int, c_int, POINTER(SignedHit)]),
+    "tg_bvh_winding_number_batch": (c_int, [_vp, _pd, c_size_t, c_int, _pd]),
+    "tg_bvh_sign_method": (c_int, [_vp, c_int]),
+    "tg_bvh_locate": (c_int, [_vp, _vp, _pd, _psp, POINTER(ClosestHit)]),
+    "tg_geodesic_create": (c_int, [_vp, _vp, _pvp]),
+    "tg_geodesic_destroy": (None, [_vp]),
+    "tg_geodesic_memory_bytes": (c_size_t, [_vp]),
+    "tg_geodesic_workspace_create": (c_int, [_vp, _pvp]),
+    "tg_geodesic_workspace_destroy": (None, [_vp]),
+    "tg_path_create": (c_int, [_vp, _pvp]),
+    "tg_path_destroy": (None, [_vp]),
+    "tg_path_get_view": (None, [_vp, POINTER(PathView)]),
+    "tg_path_status_name": (c_char_p, [c_int]),
+    "tg_path_global_name": (c_char_p, [c_int]),
+    "tg_geodesic_path": (c_int, [_vp, _vp, _psp, _psp, POINTER(PathOptions), _vp]),
+    "tg_path_write_obj": (c_int, [_vp, c_char_p, _pdiag]),
+    "tg_field_workspace_create": (c_int, [_vp, _pvp]),
+    "tg_field_workspace_destroy": (None, [_vp]),
+    "tg_geodesic_field": (c_int, [_vp, _psp, c_size_t, POINTER(FieldOptions), _pd, _vp]),
+    "tg_geodesic_field_at": (c_int, [_vp, _psp, c_size_t, _psp, c_size_t, POINTER(FieldOptions), _pd, _pd, _vp]),
+    "tg_geodesic_field_batch": (c_int, [_vp, _psp, c_size_t, POINTER(FieldOptions), c_int, _pd, _vp]),
+    "tg_render_png": (c_int, [_vp, POINTER(RenderOptions), c_char_p, _pdiag]),
+}
+
+for _name, (_res, _args) in _SIGNATURES.items():
+    _f = getattr(lib, _name)
+    _f.restype = _res
+    _f.argtypes = _args

@@ -1,0 +1,169 @@
+"""trigeo batches on a Dask cluster (LocalCluster, SSH cluster, HPC schedulers via dask-jobqueue).
+
+    from dask.distributed import Client, LocalCluster
+    import trigeo, trigeo.dask
+
+    if __name__ == "__main__":          # required: see below
+        with LocalCluster(n_workers=2, threads_per_worker=1) as cluster, Client(cluster) as client:
+            d, face, p = trigeo.dask.closest(client, "mesh.ply", points)
+            lengths = trigeo.dask.path_lengths(client, "mesh.ply", pairs)
+            matrix = trigeo.dask.distance_matrix(client, "mesh.ply", [0, 10, 20])
+
+The work is split into chunks, one task each. The mesh reaches each worker once and stays
+there, with its BVH and geodesic solver, for every later task and call:
+- given a path (str or os.PathLike, or a Mesh loaded from a file), each worker loads that
+  file itself, so the path must be readable on the workers (a shared filesystem);
+- given a Mesh made from arrays, its vertices and faces are scattered to the workers once.
+Results come back in input order and are bit-identical to the serial Mesh calls. A chunk that
+fails raises the worker's trigeo.Error (same class) in the client, its message naming the
+chunk.
+
+Worker processes start by re-importing the main module: a script that starts a LocalCluster
+with processes must do so under `if __name__ == "__main__":`, and such a script cannot be
+piped to `python3 -` (both hang: the workers re-run the cluster start). Each task runs its
+chunk on `threads` C threads (default 1: Dask runs one task per worker thread).
+"""
+from __future__ import annotations
+
+import os
+import threading
+import uuid
+from collections import OrderedDict
+from typing import Any, Optional, Union
+
+import numpy as np
+
+import trigeo
+
+__all__ = ["closest", "path_lengths", "distance_matrix", "cached_meshes"]
+
+# Worker side: meshes by key, kept across tasks (a few at most; least recently used dropped).
+_CACHE: "OrderedDict[tuple, trigeo.Mesh]" = OrderedDict()
+_CACHE_LOCK = threading.Lock()
+_CACHE_SIZE = 4
+
+
+def cached_meshes() -> int:
+    """How many meshes this process keeps for Dask tasks (for tests and monitoring)."""
+    with _CACHE_LOCK:
+        return len(_CACHE)
+
+
+def _worker_mesh(source: tuple, arrays: Any = None) -> trigeo.Mesh:
+    """The mesh of a task, loaded or built once per worker process."""
+    if source[0] == "path":
+        st = os.stat(source[1])
+        key = ("path", source[1], st.st_mtime_ns, st.st_size)
+    else:
+        key = source
+    with _CACHE_LOCK:
+        m = _CACHE.get(key)
+        if m is not None:
+            _CACHE.move_to_end(key)
+            return m
+    m = trigeo.load(source[1]) if source[0] == "path" else trigeo.Mesh(arrays[0], arrays[1])
+    with _CACHE_LOCK:
+        m = _CACHE.setdefault(key, m)
+        _CACHE.move_to_end(key)
+        while len(_CACHE) > _CACHE_SIZE:
+            _CACHE.popitem(last=False)
+    return m
+
+
+class _Source:
+    """What a task needs to find its mesh: ("path", abspath) or ("arrays", token) with the
+    scattered arrays' future."""
+
+    def __init__(self, client: Any, mesh: Union[str, os.PathLike, trigeo.Mesh]):
+        if isinstance(mesh, trigeo.Mesh) and mesh.source is None:
+            # scattered once per client and mesh; later calls reuse the workers' copies
+            cached = getattr(mesh, "_dask_arrays", None)
+            if cached is None or cached[0] is not client or cached[2].status != "finished":
+                [future] = client.scatter([(np.array(mesh.vertices), np.array(mesh.faces))], broadcast=True)
+                cached = (client, ("arrays", uuid.uuid4().hex), future)
+                mesh._dask_arrays = cached
+            self.key, self.arrays = cached[1], cached[2]
+        else:
+            path = mesh.source if isinstance(mesh, trigeo.Mesh) else os.path.abspath(os.fspath(mesh))
+            self.key, self.arrays = ("path", path), None
+
+
+def _run(kind: str, source: tuple, arrays: Any, chunk: int, lo: int, hi: int, args: tuple) -> Any:
+    try:
+        m = _worker_mesh(source, arrays)
+        if kind == "closest":
+            return m.closest(args[0], threads=args[1])
+        if kind == "path_lengths":
+            froms, tos, method, certify, threads = args
+            return m.path_lengths((froms, tos), method=method, certify=certify, threads=threads)
+        sources, max_distance, threads = args
+        return m.distance_matrix(sources, max_distance=max_distance, threads=threads)
+    except trigeo.Error as e:
+        raise type(e)(f"{kind}: chunk {chunk} (items {lo}-{hi - 1}): {e}", e.file, e.line, e.column,
+                      e.reason) from None
+
+
+def _map(client: Any, kind: str, mesh: Any, n: int, chunk: int, slicer, *extra) -> list:
+    if not isinstance(chunk, int) or chunk < 1:
+        raise trigeo.InvalidArgumentError(f"chunk must be a positive integer, not {chunk!r}")
+    src = _Source(client, mesh)
+    futures = []
+    for c, lo in enumerate(range(0, n, chunk)):
+        hi = min(n, lo + chunk)
+        futures.append(client.submit(_run, kind, src.key, src.arrays, c, lo, hi, slicer(lo, hi) + extra,
+                                     pure=False, key=f"trigeo-{kind}-{uuid.uuid4().hex}-{c}"))
+    try:
+        return client.gather(futures)
+    finally:
+        for f in futures:
+            f.release()
+
+
+def closest(client: Any, mesh: Union[str, os.PathLike, trigeo.Mesh], points: Any, chunk: int = 262144,
+            threads: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Mesh.closest over a cluster: points (k, 3) in chunks of `chunk` rows. Returns (distance
+    (k,), face (k,), point (k, 3)), identical to mesh.closest(points)."""
+    p = trigeo._points(points)
+    if p.shape[0] == 0:
+        return np.empty(0), np.empty(0, np.int64), np.empty((0, 3))
+    parts = _map(client, "closest", mesh, p.shape[0], chunk, lambda lo, hi: (p[lo:hi],), threads)
+    return tuple(np.concatenate([r[i] for r in parts]) for i in range(3))
+
+
+def path_lengths(client: Any, mesh: Union[str, os.PathLike, trigeo.Mesh], pairs: Any,
+                 method: str = "straighten", chunk: int = 256, certify: bool = False,
+                 threads: int = 1) -> np.ndarray:
+    """Mesh.path_lengths over a cluster: pairs a (k, 2) integer array of vertices, or (froms,
+    tos) as Mesh.path_lengths takes them, in chunks of `chunk` pairs. Returns (k,) lengths."""
+    if isinstance(pairs, tuple) and len(pairs) == 2 and not isinstance(pairs[0], (int, np.integer)):
+        froms, tos = list(pairs[0]) if not isinstance(pairs[0], np.ndarray) else pairs[0], pairs[1]
+        if not isinstance(tos, np.ndarray):
+            tos = list(tos)
+    else:
+        pa = np.asarray(pairs)
+        if pa.ndim != 2 or pa.shape[1] != 2 or (pa.size and pa.dtype.kind not in "iu"):
+            raise trigeo.InvalidArgumentError(
+                f"pairs must be a (k, 2) integer array of vertices, not shape {pa.shape} dtype {pa.dtype}")
+        froms, tos = pa[:, 0].astype(np.int64), pa[:, 1].astype(np.int64)
+    if len(froms) != len(tos):
+        raise trigeo.InvalidArgumentError(f"froms and tos differ in length ({len(froms)} and {len(tos)})")
+    if len(froms) == 0:
+        return np.empty(0)
+    parts = _map(client, "path_lengths", mesh, len(froms), chunk, lambda lo, hi: (froms[lo:hi], tos[lo:hi]),
+                 method, certify, threads)
+    return np.concatenate(parts)
+
+
+def distance_matrix(client: Any, mesh: Union[str, os.PathLike, trigeo.Mesh], sources: Any, chunk: int = 1,
+                    max_distance: Optional[float] = None, threads: int = 1) -> np.ndarray:
+    """Mesh.distance_matrix over a cluster: sources (vertex indices, SurfacePoints or
+    positions) in chunks of `chunk` rows. Returns the (K, n) matrix, row i bit-identical to
+    mesh.field(sources[i])."""
+    if isinstance(sources, (int, np.integer, trigeo.SurfacePoint)):
+        sources = [sources]
+    src = list(sources) if not isinstance(sources, np.ndarray) else sources
+    if len(src) == 0:
+        raise trigeo.InvalidArgumentError("distance_matrix needs at least one source")
+    parts = _map(client, "distance_matrix", mesh, len(src), chunk, lambda lo, hi: (src[lo:hi],), max_distance,
+                 threads)
+    return np.concatenate(parts, axis=0)

@@ -32,6 +32,8 @@ void tg_field_workspace_destroy(tg_field_workspace* ws)
     tg__vec_free(&a, &ws->qdist);
     tg__free(&a, ws->qface);
     tg__free(&a, ws->pred);
+    tg__vec_free(&a, &ws->touched_v);
+    tg__vec_free(&a, &ws->touched_h);
     tg__vec_free(&a, &ws->qpred);
     tg__free(&a, ws);
 }
@@ -51,6 +53,8 @@ tg_status tg__field_workspace_make(const tg_geodesic* g, const tg_allocator* all
     ws->scratch.elem = sizeof(uint32_t);
     ws->keys.elem = sizeof(tg__win_key);
     ws->hits.elem = sizeof(tg__corner_hit);
+    ws->touched_v.elem = ws->touched_h.elem = sizeof(uint32_t);
+    ws->touched_all = 1;
     size_t nv = g->vertex_count ? g->vertex_count : 1, nh = 3 * (size_t)g->face_count;
     if (!nh) nh = 1;
     ws->dist = tg__alloc_array(alloc, nv, sizeof(double));
@@ -83,7 +87,8 @@ size_t tg_field_workspace_memory_bytes(const tg_field_workspace* ws)
     return ws->fixed_bytes + ws->win.capacity * sizeof(tg__window) + ws->free_ids.capacity * sizeof(uint32_t) +
            ws->heap.capacity * sizeof(tg__heap_item) + ws->fifo.capacity * sizeof(uint32_t) +
            ws->scratch.capacity * sizeof(uint32_t) + ws->keys.capacity * sizeof(tg__win_key) +
-           ws->hits.capacity * ws->hits.elem + ws->qpairs.capacity * ws->qpairs.elem + ws->qdist.capacity * sizeof(double);
+           ws->hits.capacity * ws->hits.elem + ws->qpairs.capacity * ws->qpairs.elem + ws->qdist.capacity * sizeof(double) +
+           (ws->touched_v.capacity + ws->touched_h.capacity) * sizeof(uint32_t);
 }
 
 /* ---- one field ---- */
@@ -121,11 +126,13 @@ static int report_single(void* user, const tg__field_run* run)
 
 /* The vertices the sources can reach at most: those of the sources' components (the share of
  * them settled is the progress figure). */
+/* Referenced vertices in the components of the sources (the progress denominator): O(sources). */
 static size_t reachable_vertices(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count)
 {
+    if (source_count > 8) return (size_t)g->referenced;
     uint32_t comps[8];
-    size_t nc = 0;
-    for (size_t i = 0; i < source_count && nc < 8; ++i) {
+    size_t nc = 0, n = 0;
+    for (size_t i = 0; i < source_count; ++i) {
         tg_surface_point cp = tg_surface_point_canonical(g->mesh, &sources[i]);
         uint32_t f = TG_NONE;
         if (cp.kind == TG_SURFACE_VERTEX)
@@ -134,23 +141,11 @@ static size_t reachable_vertices(const tg_geodesic* g, const tg_surface_point* s
             f = cp.index / 3;
         else
             f = cp.index;
-        if (f != TG_NONE) comps[nc++] = g->comp[f];
+        if (f == TG_NONE) continue;
+        bool seen = false;
+        for (size_t k = 0; k < nc; ++k) seen |= comps[k] == g->comp[f];
+        if (!seen) comps[nc++] = g->comp[f], n += g->comp_vertices[g->comp[f]];
     }
-    size_t n = 0;
-    for (uint32_t v = 0; v < g->vertex_count; ++v) {
-        if (g->vc_start[v + 1] == g->vc_start[v]) continue;
-        uint32_t c = g->comp[g->vc[g->vc_start[v]] / 3];
-        bool hit = source_count > 8;
-        for (size_t k = 0; k < nc && !hit; ++k) hit = comps[k] == c;
-        n += hit;
-    }
-    return n;
-}
-
-static uint64_t pseudo_count(const tg_geodesic* g)
-{
-    uint64_t n = 0;
-    for (uint32_t v = 0; v < g->vertex_count; ++v) n += g->vflags[v] & TG__V_PSEUDO;
     return n;
 }
 
@@ -180,7 +175,7 @@ tg_status tg__field_execute(tg_field_workspace* ws, const tg_surface_point* sour
     for (size_t i = 0; st == TG_OK && i < source_count; ++i) st = tg__field_seed(run, &sources[i]);
     if (st == TG_OK) st = tg__field_propagate(run);
     if (point_count) tg__field_queries_finish(run, st == TG_OK); /* also clears the face marks */
-    run->stats.pseudo_source_vertices = pseudo_count(ws->g);
+    run->stats.pseudo_source_vertices = ws->g->pseudo_total;
     run->stats.peak_bytes = ws->peak_bytes;
     return st;
 }

@@ -113,6 +113,12 @@ struct tg_field_workspace {
     uint8_t* qface;   /* F: 1 for a face holding query points during a run (made on first use) */
     tg__pred* pred;   /* V: predecessors, when a run traces paths (made on first use) */
     tg__vec qpred;    /* tg__pred per query point, likewise */
+    /* What a run wrote, so that the next run resets only that (a run bounded to a small region
+     * then costs nothing per vertex of the mesh): vertices whose dist or inside changed and
+     * halfedges whose head, queued or split_d changed (uint32_t each; flagged in inside and
+     * queued). touched_all: reset everything (first run, or a list could not grow). */
+    tg__vec touched_v, touched_h;
+    int touched_all;
     size_t peak_bytes;
 };
 

@@ -265,7 +265,29 @@ void tg__field_mesh_free(tg_geodesic* g)
     tg__free(&g->allocator, g->fflags);
     tg__free(&g->allocator, g->own_tri);
     tg__free(&g->allocator, g->own_opp);
+    tg__free(&g->allocator, g->comp_vertices);
     g->frame = NULL, g->ring = NULL, g->vflags = NULL, g->fflags = NULL, g->own_tri = NULL, g->own_opp = NULL;
+    g->comp_vertices = NULL;
+}
+
+/* Per-mesh counts a run reports (so that a run bounded to a small region costs nothing per
+ * vertex of the mesh): referenced vertices per component, and pseudo-source vertices. */
+static bool count_vertices(tg_geodesic* g)
+{
+    uint32_t nc = 0;
+    for (uint32_t f = 0; f < g->face_count; ++f)
+        if (g->comp[f] + 1 > nc) nc = g->comp[f] + 1;
+    g->comp_count = nc;
+    g->comp_vertices = tg__calloc_array(&g->allocator, nc ? nc : 1, sizeof(uint32_t));
+    if (!g->comp_vertices) return false;
+    g->referenced = g->pseudo_total = 0;
+    for (uint32_t v = 0; v < g->vertex_count; ++v) {
+        g->pseudo_total += g->vflags[v] & TG__V_PSEUDO;
+        if (g->vc_start[v + 1] == g->vc_start[v]) continue;
+        g->comp_vertices[g->comp[g->vc[g->vc_start[v]] / 3]]++;
+        g->referenced++;
+    }
+    return true;
 }
 
 bool tg__field_mesh_build(tg_geodesic* g)
@@ -280,6 +302,7 @@ bool tg__field_mesh_build(tg_geodesic* g)
     if (ok) {
         build_frames(g, angle);
         classify_vertices(g, angle);
+        ok = count_vertices(g);
     }
     tg__free(a, angle);
     if (!ok) tg__field_mesh_free(g);
@@ -291,5 +314,5 @@ size_t tg__field_mesh_bytes(const tg_geodesic* g)
     size_t nv = g->vertex_count, nf = g->face_count;
     return 3 * nf * (sizeof(tg__frame) + sizeof(uint32_t) + (g->own_tri ? sizeof(uint32_t) : 0) +
                      (g->own_opp ? sizeof(uint32_t) : 0)) +
-           nv + nf;
+           nv + nf + (size_t)g->comp_count * sizeof(uint32_t);
 }

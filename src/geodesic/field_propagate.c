@@ -21,7 +21,31 @@
 #include <string.h>
 #include <time.h>
 
-enum { VS_INSIDE = 1, VS_SOURCE = 2 };
+enum { VS_INSIDE = 1, VS_SOURCE = 2, VS_TOUCHED = 4 }; /* ws->inside */
+enum { Q_QUEUED = 1, Q_TOUCHED = 2 };                  /* ws->queued */
+
+/* Notes that a run wrote vertex v's or halfedge h's entries (tg__field_reset undoes only those).
+ * false when the list could not grow (out of memory). */
+static bool touch_vertex(tg_field_workspace* ws, uint32_t v)
+{
+    if (ws->inside[v] & VS_TOUCHED) return true;
+    if (!ws->touched_all) {
+        if (!tg__vec_reserve(&ws->allocator, &ws->touched_v, 1)) return false;
+        ((uint32_t*)ws->touched_v.data)[ws->touched_v.count++] = v;
+    }
+    ws->inside[v] |= VS_TOUCHED;
+    return true;
+}
+static bool touch_halfedge(tg_field_workspace* ws, uint32_t h)
+{
+    if (ws->queued[h] & Q_TOUCHED) return true;
+    if (!ws->touched_all) {
+        if (!tg__vec_reserve(&ws->allocator, &ws->touched_h, 1)) return false;
+        ((uint32_t*)ws->touched_h.data)[ws->touched_h.count++] = h;
+    }
+    ws->queued[h] |= Q_TOUCHED;
+    return true;
+}
 
 /* How many list propagations pass between two looks at the clock for progress. */
 #define CHECK_EVERY 256
@@ -92,6 +116,7 @@ static bool relax_vertex(tg__field_run* run, uint32_t v, double d, tg__pred how)
 {
     tg_field_workspace* ws = run->ws;
     if (!(d < ws->dist[v])) return true;
+    if (!touch_vertex(ws, v)) return false;
     ws->dist[v] = d;
     if (run->track) ws->pred[v] = how;
     double key = front_key(run, v, d);
@@ -124,7 +149,7 @@ static bool list_ready(const tg__field_run* run, uint32_t h)
 static bool enqueue(tg__field_run* run, uint32_t h)
 {
     tg_field_workspace* ws = run->ws;
-    if (ws->queued[h] || ws->head[h] == TG_NONE) return true;
+    if ((ws->queued[h] & Q_QUEUED) || ws->head[h] == TG_NONE) return true;
     if (ws->fifo_head > 4096 && ws->fifo_head * 2 > ws->fifo.count) { /* compact the consumed front */
         uint32_t* q = ws->fifo.data;
         memmove(q, q + ws->fifo_head, (ws->fifo.count - ws->fifo_head) * sizeof *q);
@@ -133,7 +158,7 @@ static bool enqueue(tg__field_run* run, uint32_t h)
     }
     if (!tg__vec_reserve(&ws->allocator, &ws->fifo, 1)) return false;
     ((uint32_t*)ws->fifo.data)[ws->fifo.count++] = h;
-    ws->queued[h] = 1;
+    ws->queued[h] |= Q_QUEUED;
     note_peak(ws);
     return true;
 }
@@ -174,6 +199,7 @@ static bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, do
     if (id == TG_NONE) return false;
     tg__window* w = &((tg__window*)ws->win.data)[id];
     w->b0 = c0, w->b1 = c1, w->sx = x, w->sy = y, w->sigma = sigma, w->tag = tag;
+    if (!touch_halfedge(ws, h)) return false;
     w->next = ws->head[h];
     ws->head[h] = id;
     run->stats.windows_created++;
@@ -289,6 +315,7 @@ tg_status tg__field_seed(tg__field_run* run, const tg_surface_point* sp)
     bool ok = true;
     if (node.kind == TG__NODE_VERTEX) {
         /* emitted when it leaves the front, like a pseudo-source, whatever its kind */
+        if (!touch_vertex(ws, node.id)) return TG_ERR_OUT_OF_MEMORY;
         ws->inside[node.id] |= VS_SOURCE;
         tg__pred none = {TG_NONE, TG__ORIGIN_SOURCE, 0.0, 0.0};
         ok = relax_vertex(run, node.id, 0.0, none);
@@ -455,7 +482,10 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
         if (!(w->b0 < w->b1)) continue;
         tg__corner_hit hc = hits[i] = hit_corner(w, fr);
         if (hc.covers && hc.dc < ws->split_d[h]) {
-            if (!flat) ws->split_d[h] = hc.dc, ws->split_x[h] = hc.xc;
+            if (!flat) {
+                if (!touch_halfedge(ws, h)) return false;
+                ws->split_d[h] = hc.dc, ws->split_x[h] = hc.xc;
+            }
             tg__pred ray = {h, w->tag & ~TG__VIA_FLAT, w->sx, w->sy};
             if (!relax_vertex(run, vc, hc.dc, ray)) return false;
         }
@@ -479,11 +509,21 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
 void tg__field_reset(tg_field_workspace* ws)
 {
     const tg_geodesic* g = ws->g;
-    size_t nv = g->vertex_count, nh = 3 * (size_t)g->face_count;
-    for (size_t v = 0; v < nv; ++v) ws->dist[v] = INFINITY;
-    memset(ws->inside, 0, nv);
-    memset(ws->queued, 0, nh);
-    for (size_t h = 0; h < nh; ++h) ws->head[h] = TG_NONE, ws->split_d[h] = INFINITY;
+    if (ws->touched_all) {
+        size_t nv = g->vertex_count, nh = 3 * (size_t)g->face_count;
+        for (size_t v = 0; v < nv; ++v) ws->dist[v] = INFINITY;
+        memset(ws->inside, 0, nv);
+        memset(ws->queued, 0, nh);
+        for (size_t h = 0; h < nh; ++h) ws->head[h] = TG_NONE, ws->split_d[h] = INFINITY;
+    } else {
+        const uint32_t* tv = ws->touched_v.data;
+        const uint32_t* th = ws->touched_h.data;
+        for (size_t i = 0; i < ws->touched_v.count; ++i) ws->dist[tv[i]] = INFINITY, ws->inside[tv[i]] = 0;
+        for (size_t i = 0; i < ws->touched_h.count; ++i)
+            ws->head[th[i]] = TG_NONE, ws->split_d[th[i]] = INFINITY, ws->queued[th[i]] = 0;
+    }
+    ws->touched_all = 0;
+    ws->touched_v.count = ws->touched_h.count = 0;
     ws->win.count = 0;
     ws->free_ids.count = 0;
     ws->heap.count = 0;
@@ -530,7 +570,7 @@ tg_status tg__field_propagate(tg__field_run* run)
     for (;;) {
         while (ws->fifo_head < ws->fifo.count) {
             uint32_t h = ((uint32_t*)ws->fifo.data)[ws->fifo_head++];
-            ws->queued[h] = 0;
+            ws->queued[h] &= (uint8_t)~Q_QUEUED;
             if (!propagate_list(run, h)) return TG_ERR_OUT_OF_MEMORY;
             if (!keep_going(run)) return TG_ERR_CANCELLED;
         }
@@ -543,8 +583,13 @@ tg_status tg__field_propagate(tg__field_run* run)
              * queued: every window within the limit must still cross, whatever its vertices */
             if (!run->all_ready && run->max_dist < INFINITY) {
                 run->all_ready = 1;
-                for (uint32_t h = 0; h < 3 * g->face_count; ++h)
-                    if (!enqueue(run, h)) return TG_ERR_OUT_OF_MEMORY;
+                if (ws->touched_all) {
+                    for (uint32_t h = 0; h < 3 * g->face_count; ++h)
+                        if (!enqueue(run, h)) return TG_ERR_OUT_OF_MEMORY;
+                } else { /* only halfedges that ever held a list can hold one */
+                    for (size_t i = 0; i < ws->touched_h.count; ++i)
+                        if (!enqueue(run, ((const uint32_t*)ws->touched_h.data)[i])) return TG_ERR_OUT_OF_MEMORY;
+                }
                 continue;
             }
             if (!ws->heap.count && !(it.key < INFINITY)) break;

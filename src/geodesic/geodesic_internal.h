@@ -39,6 +39,10 @@ struct tg_geodesic {
     uint8_t* fflags;         /* F: TG__F_* */
     uint32_t* own_tri;       /* the triangles re-wound consistently, when any face had to turn */
     uint32_t* own_opp;       /* 3F: opposites of the solver's triangles */
+    uint32_t* comp_vertices; /* per component (of comp): its referenced vertices */
+    uint32_t comp_count;
+    uint64_t referenced;     /* vertices used by some face */
+    uint64_t pseudo_total;   /* vertices flagged TG__V_PSEUDO */
 };
 
 

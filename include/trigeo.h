@@ -706,8 +706,9 @@ TG_API void tg_geodesic_destroy(tg_geodesic* geodesic);
 TG_API size_t tg_geodesic_memory_bytes(const tg_geodesic* geodesic);
 
 /** Per-thread scratch for path queries: arrays sized once for the mesh (about 16 bytes per
- *  vertex) and buffers that grow to the largest path seen, so repeated queries do not allocate.
- *  A query touches only the entries of the region it explores. Not thread-safe: one workspace
+ *  vertex) and buffers that grow to the largest path seen, so repeated queries do not allocate
+ *  (except TG_PATH_RELAX across a fan of over 64 edges: the fan kernel's scratch, from the
+ *  solver's allocator like everything else). A query touches only the entries of the region it explores. Not thread-safe: one workspace
  *  per thread. */
 typedef struct tg_geodesic_workspace tg_geodesic_workspace;
 

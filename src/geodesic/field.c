@@ -287,7 +287,8 @@ static void stats_add(tg_field_stats* sum, const tg_field_stats* s)
     sum->windows_propagated += s->windows_propagated;
     sum->windows_filtered += s->windows_filtered;
     sum->pseudo_source_events += s->pseudo_source_events;
-    sum->pseudo_source_vertices = s->pseudo_source_vertices;
+    /* a property of the mesh, the same in every row; a thread that ran no row adds a zero */
+    if (s->pseudo_source_vertices > sum->pseudo_source_vertices) sum->pseudo_source_vertices = s->pseudo_source_vertices;
     if (s->max_queue > sum->max_queue) sum->max_queue = s->max_queue;
     if (s->peak_windows > sum->peak_windows) sum->peak_windows = s->peak_windows;
     if (s->peak_bytes > sum->peak_bytes) sum->peak_bytes = s->peak_bytes;

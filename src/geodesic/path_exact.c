@@ -25,14 +25,17 @@
 typedef struct trace {
     tg_geodesic_workspace* ws;
     size_t n; /* nodes so far (target first); segment i (nodes i, i + 1) lies in face segf[i] */
+    bool out_of_memory; /* a buffer could not grow: the walk stopped for that, not a dead end */
 } trace;
 
 static bool add_node(trace* t, tg__node node, uint32_t face_before)
 {
     tg_geodesic_workspace* ws = t->ws;
     if (!tg__buf_reserve(ws, &ws->nodes[0], t->n + 1, sizeof(tg__node)) ||
-        !tg__buf_reserve(ws, &ws->segf[0], t->n + 1, sizeof(uint32_t)))
+        !tg__buf_reserve(ws, &ws->segf[0], t->n + 1, sizeof(uint32_t))) {
+        t->out_of_memory = true;
         return false;
+    }
     ((tg__node*)ws->nodes[0].p)[t->n] = node;
     if (t->n > 0) ((uint32_t*)ws->segf[0].p)[t->n - 1] = face_before;
     t->n++;
@@ -259,7 +262,7 @@ tg_status tg__exact_path(tg_geodesic_workspace* ws, const tg_surface_point* from
     tg_surface_point ts = tg__surface_to_solver(g, tg_surface_point_canonical(g->mesh, to));
     tg_surface_point ss = tg__surface_to_solver(g, tg_surface_point_canonical(g->mesh, from));
     tg__node target = tg__node_from_surface(&ts), source = tg__node_from_surface(&ss);
-    trace t = {ws, 0};
+    trace t = {ws, 0, false};
     tg__pred how = ((const tg__pred*)ws->field->qpred.data)[0];
     if (target.kind == TG__NODE_VERTEX) how = ws->field->pred[target.id];
     if (!add_node(&t, target, TG_NONE)) return TG_ERR_OUT_OF_MEMORY;
@@ -268,8 +271,10 @@ tg_status tg__exact_path(tg_geodesic_workspace* ws, const tg_surface_point* from
         return TG_OK;
     }
     if (!trace_back(&t, target, how, &source)) {
-        *out_count = 0; /* traced nothing usable: the caller keeps its own path */
-        return TG_OK;
+        /* traced nothing usable: the caller keeps its own path; but a trace cut short by memory
+         * is an error, not a path that cannot be traced (it would pass for an unproven one) */
+        *out_count = 0;
+        return t.out_of_memory ? TG_ERR_OUT_OF_MEMORY : TG_OK;
     }
     /* target-first -> source-first */
     tg__node* nodes = ws->nodes[0].p;

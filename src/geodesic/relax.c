@@ -7,6 +7,7 @@
  * One addition to §5, documented at relax_run: a run of edge points converging onto one vertex is
  * re-solved as that vertex's fan, since coordinate-wise moves cannot carry it past the vertex. */
 #include "geodesic/geodesic_internal.h"
+#include "kernels/fan_path.h"
 
 #include <string.h>
 
@@ -111,7 +112,8 @@ static tg_status fan_step(tg_geodesic_workspace* ws, relax_out* o, uint32_t v, c
         }
         double len;
         int decreased = 0;
-        tg_status st = tg_fan_path_minimize(p0, p1, vx, w, m - lo, NULL, kopt, tv + (size_t)side * cap, &len, &decreased);
+        tg_status st = tg__fan_path_minimize_with(&ws->allocator, p0, p1, vx, w, m - lo, NULL, kopt,
+                                                  tv + (size_t)side * cap, &len, &decreased);
         if (st == TG_ERR_OUT_OF_MEMORY) return st;
         if (st != TG_OK || !(len < best)) continue;
         best = len, best_side = side, best_lo = lo, best_m = m, best_start = start;

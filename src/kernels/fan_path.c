@@ -747,9 +747,10 @@ static double full_length(const double* q0, const double* q1, const double* d, s
     return sum + tg_v3_dist(tg_v3_load(q1), prev);
 }
 
-tg_status tg_fan_path_minimize(const double p0[3], const double p1[3], const double v[3], const double* w,
-                               size_t m, const double* t_init, const tg_geodesic_kernel_options* opts,
-                               double* out_t, double* out_length, int* out_decreased)
+tg_status tg__fan_path_minimize_with(const tg_allocator* a, const double p0[3], const double p1[3], const double v[3],
+                                     const double* w, size_t m, const double* t_init,
+                                     const tg_geodesic_kernel_options* opts, double* out_t, double* out_length,
+                                     int* out_decreased)
 {
     if (out_decreased) *out_decreased = 0;
     if (!p0 || !p1 || !v || !out_length || (m > 0 && (!w || !out_t))) return TG_ERR_INVALID_ARGUMENT;
@@ -771,11 +772,11 @@ tg_status tg_fan_path_minimize(const double p0[3], const double p1[3], const dou
     double* buf = stack;
     size_t* group = stack_group;
     if (m > FAN_STACK_EDGES) {
-        heap = (double*)tg__alloc_array(NULL, doubles_count, sizeof(double));
-        heap_group = (size_t*)tg__alloc_array(NULL, m, sizeof(size_t));
+        heap = (double*)tg__alloc_array(a, doubles_count, sizeof(double));
+        heap_group = (size_t*)tg__alloc_array(a, m, sizeof(size_t));
         if (!heap || !heap_group) {
-            tg__free(NULL, heap);
-            tg__free(NULL, heap_group);
+            tg__free(a, heap);
+            tg__free(a, heap_group);
             return TG_ERR_OUT_OF_MEMORY;
         }
         buf = heap;
@@ -859,7 +860,14 @@ tg_status tg_fan_path_minimize(const double p0[3], const double p1[3], const dou
         }
     }
 done:
-    tg__free(NULL, heap);
-    tg__free(NULL, heap_group);
+    tg__free(a, heap);
+    tg__free(a, heap_group);
     return status;
+}
+
+tg_status tg_fan_path_minimize(const double p0[3], const double p1[3], const double v[3], const double* w,
+                               size_t m, const double* t_init, const tg_geodesic_kernel_options* opts,
+                               double* out_t, double* out_length, int* out_decreased)
+{
+    return tg__fan_path_minimize_with(NULL, p0, p1, v, w, m, t_init, opts, out_t, out_length, out_decreased);
 }

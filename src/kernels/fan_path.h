@@ -25,4 +25,11 @@ double tg__fan_initial_decrease(const double q0[3], const double q1[3], const do
  * Q0 -> s u_0 D_0 -> ... -> s u_{n-1} D_{n-1} -> Q1. For tests of the decrease direction. */
 double tg__fan_directional_slope(const double q0[3], const double q1[3], const double* d, size_t n, const double* u);
 
+/* tg_fan_path_minimize with the scratch of fans over 64 edges taken from allocator a (NULL:
+ * libc), so that the path solver's queries allocate only through the solver's allocator. */
+tg_status tg__fan_path_minimize_with(const tg_allocator* a, const double p0[3], const double p1[3], const double v[3],
+                                     const double* w, size_t m, const double* t_init,
+                                     const tg_geodesic_kernel_options* opts, double* out_t, double* out_length,
+                                     int* out_decreased);
+
 #endif

@@ -118,5 +118,46 @@ r = run("path", spot, "--pairs", "-", "-o", out, stdin=b"v 0 1\n")
 r2 = run("closest", spot, "-", "-o", out2, stdin=q)
 check(r.returncode == 0 and r2.returncode == 0 and os.path.exists(out) and os.path.exists(out2), "good runs write")
 check(not [f for f in os.listdir(tmp) if ".tmp-" in f], "no temporary files left: %s" % os.listdir(tmp))
+
+# issue 12 item 14: one CLI language
+r = run("help", "help")
+check(r.returncode == 0 and b"usage: trigeo help" in r.stdout, "trigeo help help: %r" % r.stdout[:80])
+r = run("help", "nonsense")
+check(r.returncode == 1 and b"unknown command" in r.stderr, "trigeo help nonsense is a usage error")
+spot_bytes = open(spot, "rb").read()
+want = run("info", spot, "--json").stdout.replace(spot.encode(), b"X")
+for args in (("info", "-", "--json", "--format", "obj"), ("info", "--format", "obj", "-", "--json"), ("info", "-", "--json")):
+    r = run(*args, stdin=spot_bytes)
+    check(r.returncode == 0 and r.stdout.replace(b'"-"', b'"X"') == want, "mesh from stdin %s: %r" % (args, r.stderr))
+r = run("info", "-", "--format", "3ds", stdin=spot_bytes)
+check(r.returncode == 1 and b"--format" in r.stderr, "bad --format is a usage error")
+r = run("info", "-", "--format", "ply", stdin=spot_bytes)
+check(r.returncode == 2 and r.stderr.startswith(b"trigeo: -"), "a forced wrong format names '-': %r" % r.stderr)
+r = run("closest", "-", "-", stdin=spot_bytes)
+check(r.returncode == 1 and b"standard input" in r.stderr, "two inputs from stdin refused: %r" % r.stderr)
+# barycentrics within 1e-6 of summing to 1 are rescaled; farther off refused (exit 2)
+a = run("path", spot, "--from", "f:3832:0.2,0.3,0.5", "--to", "v:0", "--json").stdout
+b = run("path", spot, "--from", "f:3832:0.2000001,0.3,0.5", "--to", "v:0", "--json")
+c = run("path", spot, "--from", "f:3832:0.21,0.3,0.5", "--to", "v:0", "--json")
+check(b.returncode == 0 and b'"length"' in b.stdout and c.returncode == 2, "bary rescaled within 1e-6: %r %r" % (b.stderr, c.stderr))
+# pairs: "f" face points, the older "p" with nine fields, "p" positions; the same lengths
+pf = os.path.join(tmp, "forms.txt")
+open(pf, "w").write("f 3832 0.2 0.3 0.5 4380 0.3 0.3 0.4\np 3832 0.2 0.3 0.5 4380 0.3 0.3 0.4\n"
+                     "f 3832 0.2 0.3 0.5000004 4380 0.3 0.3 0.4\n")
+r = run("path", spot, "--pairs", pf)
+rows = [l.split(b",") for l in r.stdout.splitlines()[1:]]
+check(r.returncode == 0 and len(rows) == 3 and rows[0][1] == rows[1][1] and abs(float(rows[2][1]) - float(rows[0][1])) < 1e-6,
+      "f and old p pair forms agree: %r %r" % (r.stdout[:200], r.stderr))
+js = run("path", spot, "--from", "f:3832:0.2,0.3,0.5", "--to", "f:4380:0.3,0.3,0.4", "--json").stdout.decode()
+import json
+pts = json.loads(js)["xyz"] if "xyz" in json.loads(js) else None
+if pts:
+    p0, p1 = pts[0], pts[-1]
+    open(pf, "w").write("p %.17g %.17g %.17g %.17g %.17g %.17g\n" % (*p0, *p1))
+    r = run("path", spot, "--pairs", pf)
+    got = r.stdout.splitlines()[1].split(b",") if r.returncode == 0 else None
+    check(got is not None and abs(float(got[1]) - float(rows[0][1])) < 1e-9, "p position pairs: %r %r" % (r.stdout, r.stderr))
+else:
+    check(False, "path --json has no xyz key: %r" % js[:200])
 cli_common.finish()
 PY

@@ -47,6 +47,14 @@ typedef struct cli_spec {
 } cli_spec;
 /* Parses v:IDX | f:FACE:b0,b1,b2 | e:HALFEDGE:t | p:x,y,z; false on a syntax error. */
 bool cli_parse_spec(const char* s, cli_spec* out);
+/* Barycentric coordinates read from text that sum to 1 within this are rescaled to sum to 1
+ * (the library itself accepts 1e-9); farther off, they are refused. */
+#define CLI_BARY_RENORMALIZE 1e-6
+/* A face point from barycentrics as read from text (renormalized within CLI_BARY_RENORMALIZE). */
+tg_surface_point cli_face_point(uint32_t face, const double b[3]);
+/* The surface point closest to xyz (through the BVH *bvh, built on first use); false for an
+ * empty mesh or out of memory. */
+bool cli_locate(tg_mesh* mesh, tg_bvh** bvh, const double xyz[3], tg_surface_point* out);
 /* Resolves a spec on the mesh (p: through the BVH *bvh, built on first use; the caller destroys
  * it). Prints the error and returns false when the location is invalid. */
 bool cli_resolve_spec(const char* mesh_path, tg_mesh* mesh, tg_bvh** bvh, const char* text, const cli_spec* sp,

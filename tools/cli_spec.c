@@ -26,6 +26,25 @@ static bool parse_doubles(const char* s, int n, double* out)
     return true;
 }
 
+tg_surface_point cli_face_point(uint32_t face, const double b[3])
+{
+    double sum = b[0] + b[1] + b[2];
+    if (isfinite(sum) && fabs(sum - 1.0) <= CLI_BARY_RENORMALIZE && sum != 1.0)
+        return tg_surface_face(face, b[0] / sum, b[1] / sum, b[2] / sum);
+    return tg_surface_face(face, b[0], b[1], b[2]);
+}
+
+bool cli_locate(tg_mesh* mesh, tg_bvh** bvh, const double xyz[3], tg_surface_point* out)
+{
+    tg_status st = TG_OK;
+    tg_bvh_workspace* ws = NULL;
+    if (!*bvh) st = tg_bvh_create(mesh, NULL, bvh);
+    if (st == TG_OK) st = tg_bvh_workspace_create(*bvh, &ws);
+    if (st == TG_OK) st = tg_bvh_locate(*bvh, ws, xyz, out, NULL);
+    tg_bvh_workspace_destroy(ws);
+    return st == TG_OK;
+}
+
 /* v:IDX | f:FACE:b0,b1,b2 | e:HALFEDGE:t | p:x,y,z. false on a syntax error. */
 bool cli_parse_spec(const char* s, cli_spec* out)
 {
@@ -51,14 +70,8 @@ bool cli_resolve_spec(const char* mesh_path, tg_mesh* mesh, tg_bvh** bvh, const 
                       tg_surface_point* out)
 {
     if (sp->kind == 'p') {
-        tg_status st = TG_OK;
-        tg_bvh_workspace* ws = NULL;
-        if (!*bvh) st = tg_bvh_create(mesh, NULL, bvh);
-        if (st == TG_OK) st = tg_bvh_workspace_create(*bvh, &ws);
-        if (st == TG_OK) st = tg_bvh_locate(*bvh, ws, sp->v, out, NULL);
-        tg_bvh_workspace_destroy(ws);
-        if (st != TG_OK) {
-            cli_error(mesh_path, 0, "cannot locate '%s' on the surface: %s", text, tg_status_string(st));
+        if (!cli_locate(mesh, bvh, sp->v, out)) {
+            cli_error(mesh_path, 0, "cannot locate '%s' on the surface (an empty mesh, or out of memory)", text);
             return false;
         }
         return true;
@@ -73,7 +86,7 @@ bool cli_resolve_spec(const char* mesh_path, tg_mesh* mesh, tg_bvh** bvh, const 
     else if (sp->kind == 'e')
         *out = tg_surface_edge(i, sp->v[0]);
     else
-        *out = tg_surface_face(i, sp->v[0], sp->v[1], sp->v[2]);
+        *out = cli_face_point(i, sp->v);
     tg_diag d;
     memset(&d, 0, sizeof d);
     if (tg_surface_point_validate(mesh, out, &d) != TG_OK) {

@@ -94,9 +94,11 @@ static double now_us(void)
     return (double)t.tv_sec * 1e6 + (double)t.tv_nsec * 1e-3;
 }
 
-/* Parses one PAIRS line into two surface points; false after printing "PAIRS:LINE: message". */
-static bool parse_pair(const char* name, unsigned long long line, char* s, tg_mesh* mesh, tg_surface_point* a,
-                       tg_surface_point* b)
+/* Parses one PAIRS line into two surface points: "v SRC TGT" (vertices), "f F0 b0 b1 b2 F1 c0 c1
+ * c2" (face points; the older "p" with these nine fields is read the same), "p x0 y0 z0 x1 y1 z1"
+ * (positions, located on the surface); false after printing "PAIRS:LINE: message". */
+static bool parse_pair(const char* name, unsigned long long line, char* s, tg_mesh* mesh, tg_bvh** bvh,
+                       tg_surface_point* a, tg_surface_point* b)
 {
     char* tok[9];
     int n = 0;
@@ -104,6 +106,10 @@ static bool parse_pair(const char* name, unsigned long long line, char* s, tg_me
     bool extra = strtok(NULL, " \t\r") != NULL;
     unsigned long long i0, i1;
     double c[6];
+    /* the six numbers: tokens 2-4 and 6-8 of the face form, 1-6 of the position form */
+    static const int face_tok[6] = {2, 3, 4, 6, 7, 8}, pos_tok[6] = {1, 2, 3, 4, 5, 6};
+    bool nums = (n == 9 || n == 7) && !extra;
+    for (int k = 0; nums && k < 6; ++k) nums = cli_parse_double(tok[n == 9 ? face_tok[k] : pos_tok[k]], &c[k]);
     if (n == 3 && !extra && !strcmp(tok[0], "v") && cli_parse_uint(tok[1], &i0) && cli_parse_uint(tok[2], &i1)) {
         if (i0 > UINT32_MAX || i1 > UINT32_MAX) {
             cli_error(name, line, "vertex index out of range");
@@ -111,17 +117,21 @@ static bool parse_pair(const char* name, unsigned long long line, char* s, tg_me
         }
         *a = tg_surface_vertex((uint32_t)i0);
         *b = tg_surface_vertex((uint32_t)i1);
-    } else if (n == 9 && !extra && !strcmp(tok[0], "p") && cli_parse_uint(tok[1], &i0) && cli_parse_uint(tok[5], &i1) &&
-               cli_parse_double(tok[2], &c[0]) && cli_parse_double(tok[3], &c[1]) && cli_parse_double(tok[4], &c[2]) &&
-               cli_parse_double(tok[6], &c[3]) && cli_parse_double(tok[7], &c[4]) && cli_parse_double(tok[8], &c[5])) {
+    } else if (n == 9 && nums && (!strcmp(tok[0], "f") || !strcmp(tok[0], "p")) && cli_parse_uint(tok[1], &i0) &&
+               cli_parse_uint(tok[5], &i1)) {
         if (i0 > UINT32_MAX || i1 > UINT32_MAX) {
             cli_error(name, line, "face index out of range");
             return false;
         }
-        *a = tg_surface_face((uint32_t)i0, c[0], c[1], c[2]);
-        *b = tg_surface_face((uint32_t)i1, c[3], c[4], c[5]);
+        *a = cli_face_point((uint32_t)i0, c);
+        *b = cli_face_point((uint32_t)i1, c + 3);
+    } else if (n == 7 && nums && !strcmp(tok[0], "p")) {
+        if (!cli_locate(mesh, bvh, c, a) || !cli_locate(mesh, bvh, c + 3, b)) {
+            cli_error(name, line, "cannot locate the positions on the surface (an empty mesh, or out of memory)");
+            return false;
+        }
     } else {
-        cli_error(name, line, "expected \"v SRC TGT\" or \"p F0 b0 b1 b2 F1 c0 c1 c2\"");
+        cli_error(name, line, "expected \"v SRC TGT\", \"f F0 b0 b1 b2 F1 c0 c1 c2\" or \"p x0 y0 z0 x1 y1 z1\"");
         return false;
     }
     tg_diag d;
@@ -143,7 +153,7 @@ typedef struct pair_in {
 
 /* Reads and validates every pair (a leading BOM, blank lines and '#' comments skipped); returns
  * the count, or -1 after printing "PAIRS:LINE: message". */
-static long read_pairs(const char* pairs_path, tg_mesh* mesh, pair_in** out)
+static long read_pairs(const char* pairs_path, tg_mesh* mesh, tg_bvh** bvh, pair_in** out)
 {
     FILE* in = strcmp(pairs_path, "-") ? fopen(pairs_path, "r") : stdin;
     if (!in) {
@@ -170,7 +180,7 @@ static long read_pairs(const char* pairs_path, tg_mesh* mesh, pair_in** out)
             if (!grown) break;
             pairs = grown, cap *= 2;
         }
-        if (!parse_pair(pairs_path, lineno, text, mesh, &pairs[n].a, &pairs[n].b)) goto done;
+        if (!parse_pair(pairs_path, lineno, text, mesh, bvh, &pairs[n].a, &pairs[n].b)) goto done;
         pairs[n++].line = lineno;
     }
     if (!pairs || n == cap) {
@@ -194,12 +204,13 @@ static int run_pairs(const char* mesh_path, const char* pairs_path, const char* 
     tg_geodesic_workspace* ws = NULL;
     tg_path* path = NULL;
     pair_in* pairs = NULL;
+    tg_bvh* bvh = NULL; /* for "p" position pairs, built on first use */
     cli_output out;
     bool opened = false;
     tg_mesh* mesh = cli_load_mesh_for_distances(mesh_path);
     if (!mesh) goto done;
     /* every pair is checked before any output exists */
-    long n = read_pairs(pairs_path, mesh, &pairs);
+    long n = read_pairs(pairs_path, mesh, &bvh, &pairs);
     if (n < 0) goto done;
     tg_status st = tg_geodesic_create(mesh, NULL, &geo);
     if (st == TG_OK) st = tg_geodesic_workspace_create(geo, &ws);
@@ -236,6 +247,7 @@ static int run_pairs(const char* mesh_path, const char* pairs_path, const char* 
 done:
     if (opened) cli_output_abort(&out);
     free(pairs);
+    tg_bvh_destroy(bvh);
     tg_path_destroy(path);
     tg_geodesic_workspace_destroy(ws);
     tg_geodesic_destroy(geo);
@@ -355,12 +367,15 @@ const cli_command cli_cmd_path = {
     "Geodesic paths on the surface between any two surface points (never snapped to a vertex):\n"
     "the shortest edge path (A*) with the endpoints inserted virtually, then shortened.\n\n"
     "  --from SPEC, --to SPEC   endpoints:  v:IDX            a vertex\n"
-    "                                       f:FACE:b0,b1,b2  a point of a face (barycentric)\n"
+    "                                       f:FACE:b0,b1,b2  a point of a face (barycentric; within 1e-6\n"
+    "                                                    of summing to 1 they are rescaled)\n"
     "                                       e:HALFEDGE:t     a point of an edge (halfedge 3*face+corner)\n"
     "                                       p:x,y,z          the surface point closest to x,y,z\n"
     "  -o PATH.obj              write the path as an OBJ polyline (v and l records)\n"
     "  --json                   print surface points, faces, 3D points, length, status, certificate\n"
-    "  --pairs PAIRS            batch: one pair a line, \"v SRC TGT\" or \"p F0 b0 b1 b2 F1 c0 c1 c2\";\n"
+    "  --pairs PAIRS            batch: one pair a line: \"v SRC TGT\" (vertices), \"f F0 b0 b1 b2 F1 c0 c1 c2\"\n"
+    "                           (face points; \"p\" with these nine fields is read the same) or\n"
+    "                           \"p x0 y0 z0 x1 y1 z1\" (the surface points closest to two positions);\n"
     "                           CSV i,length,points,status,max_angle_defect,microseconds,global to\n"
     "                           stdout or -o OUT.csv ('-' reads PAIRS from stdin)\n"
     "  --method M               straighten (default: funnel over unfolded strips, vertex re-routing),\n"

@@ -172,6 +172,6 @@ const cli_command cli_cmd_render = {
     "                     is grey\n"
     "  --view X,Y,Z       direction the camera looks along (default 0.55,-0.35,1)\n"
     "  --up X,Y,Z         camera up (default +y)\n"
-    "  --size WxH         image size in pixels (default 960x720)\n",
+    "  --size WxH         image size in pixels, each side 16..8192 (default 960x720)\n",
     run,
 };

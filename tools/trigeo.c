@@ -45,11 +45,54 @@ void cli_error_diag(const tg_diag* d, tg_status st)
     }
 }
 
+/* --format of the command line (any command): the mesh's format instead of its extension. */
+static tg_format mesh_format = TG_FORMAT_AUTO;
+
+/* The mesh bytes from standard input (a mesh named "-"), uncompressed; NULL after an error. */
+static char* read_stdin(size_t* out_size)
+{
+    size_t cap = 1 << 20, n = 0;
+    char* buf = malloc(cap);
+    while (buf) {
+        if (n == cap) {
+            char* grown = cap <= ((size_t)8 << 30) ? realloc(buf, cap * 2) : NULL;
+            if (!grown) {
+                free(buf);
+                cli_error("-", 0, cap > ((size_t)8 << 30) ? "standard input exceeds 8 GiB" : "out of memory reading standard input");
+                return NULL;
+            }
+            buf = grown, cap *= 2;
+        }
+        size_t got = fread(buf + n, 1, cap - n, stdin);
+        n += got;
+        if (got == 0) {
+            if (ferror(stdin)) {
+                free(buf);
+                cli_error("-", 0, "cannot read standard input: %s", strerror(errno));
+                return NULL;
+            }
+            *out_size = n;
+            return buf;
+        }
+    }
+    cli_error("-", 0, "out of memory reading standard input");
+    return NULL;
+}
+
 tg_mesh* cli_load_mesh(const char* path)
 {
     tg_diag diag;
     tg_mesh* mesh = NULL;
-    tg_status st = tg_mesh_load(path, TG_FORMAT_AUTO, NULL, &diag, &mesh);
+    tg_status st;
+    if (!strcmp(path, "-")) {
+        size_t n = 0;
+        char* data = read_stdin(&n);
+        if (!data) return NULL;
+        st = tg_mesh_load_memory(data, n, "-", mesh_format, NULL, &diag, &mesh);
+        free(data);
+    } else {
+        st = tg_mesh_load(path, mesh_format, NULL, &diag, &mesh);
+    }
     if (st != TG_OK) {
         cli_error_diag(&diag, st);
         return NULL;
@@ -113,7 +156,8 @@ static void print_overview(FILE* f)
     fprintf(f, "usage: trigeo COMMAND [ARGS...]\n\ncommands:\n");
     for (size_t i = 0; i < COMMAND_COUNT; ++i) fprintf(f, "  trigeo %s\n", commands[i]->synopsis);
     fprintf(f, "  trigeo help [COMMAND]\n  trigeo --version\n\n");
-    fprintf(f, "Meshes: OBJ, OFF, PLY (ascii, binary), STL (ascii, binary), optionally .gz.\n");
+    fprintf(f, "Meshes: OBJ, OFF, PLY (ascii, binary), STL (ascii, binary), optionally .gz; '-' reads the\n"
+               "mesh from standard input (uncompressed; the format from --format obj|off|ply|stl or the content).\n");
     fprintf(f, "Indices are 0-based in file order. Exit codes: 0 ok, 1 usage, 2 input/IO error.\n");
 }
 
@@ -160,8 +204,13 @@ static int dispatch(int argc, char** argv)
             print_overview(stdout);
             return CLI_OK;
         }
+        if (!strcmp(argv[2], "help")) {
+            printf("usage: trigeo help [COMMAND]\n\nWithout COMMAND: the list of commands. With one: its full help (the same as\n"
+                   "'trigeo COMMAND --help'). Commands: info, closest, path, field, render, help.\n");
+            return CLI_OK;
+        }
         const cli_command* c = find_command(argv[2]);
-        if (!c) return cli_usage(NULL, "unknown command '%s'", argv[2]);
+        if (!c) return cli_usage(NULL, "unknown command '%s' (commands: info, closest, path, field, render, help)", argv[2]);
         printf("usage: trigeo %s\n\n%s", c->synopsis, c->help);
         return CLI_OK;
     }
@@ -170,6 +219,24 @@ static int dispatch(int argc, char** argv)
         cli_error(NULL, 0, "unknown command '%s' (try 'trigeo --help')", cmd);
         return CLI_USAGE;
     }
+    /* --format FMT (every command): taken out here, it applies to the mesh */
+    for (int i = 2; i < argc; ++i) {
+        if (strcmp(argv[i], "--format")) continue;
+        static const char* const names[] = {"obj", "off", "ply", "stl"};
+        static const tg_format formats[] = {TG_FORMAT_OBJ, TG_FORMAT_OFF, TG_FORMAT_PLY, TG_FORMAT_STL};
+        int k = 0;
+        while (i + 1 < argc && k < 4 && strcmp(argv[i + 1], names[k])) ++k;
+        if (i + 1 >= argc || k == 4) return cli_usage(cmd, "--format takes obj, off, ply or stl");
+        mesh_format = formats[k];
+        for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
+        argc -= 2;
+        --i;
+    }
+    /* a mesh read from standard input leaves none for another input */
+    if (argc > 2 && !strcmp(argv[2], "-"))
+        for (int i = 3; i < argc; ++i)
+            if (!strcmp(argv[i], "-") && strcmp(argv[i - 1], "-o") && strcmp(argv[i - 1], "--csv"))
+                return cli_usage(cmd, "the mesh is read from standard input ('-'): another input cannot be too");
     for (int i = 2; i < argc; ++i) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             printf("usage: trigeo %s\n\n%s", c->synopsis, c->help);

@@ -249,6 +249,22 @@ static bool write_fixture_files(const tg_mesh* m)
  * skip). */
 enum { POLY_COLS = 40, POLY_ROWS = 30 };
 
+
+/* The body of a text OFF or ASCII PLY file: vertex rows (each followed by `vertex_tail`), then
+ * one "n i0 i1 ..." row per polygon; closes f. false on a write error. */
+static bool write_text_polygons(FILE* f, const double* xyz, uint32_t nv, const uint32_t* start, const uint32_t* idx,
+                                size_t faces, const char* vertex_tail)
+{
+    for (uint32_t v = 0; v < nv; ++v)
+        fprintf(f, "%.17g %.17g %.17g%s\n", xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2], vertex_tail);
+    for (size_t k = 0; k < faces; ++k) {
+        fprintf(f, "%u", start[k + 1] - start[k]);
+        for (uint32_t c = start[k]; c < start[k + 1]; ++c) fprintf(f, " %u", idx[c]);
+        fprintf(f, "\n");
+    }
+    return fclose(f) == 0;
+}
+
 static bool write_polygon_files(void)
 {
     const uint32_t w = POLY_COLS + 1, apex = (POLY_ROWS + 1) * w, nv = apex + 1;
@@ -303,13 +319,7 @@ static bool write_polygon_files(void)
     tmp_path(path, sizeof path, "poly.off");
     if ((f = fopen(path, "w"))) {
         fprintf(f, "OFF\n%u %zu 0\n", nv, faces);
-        for (uint32_t v = 0; v < nv; ++v) fprintf(f, "%.17g %.17g %.17g\n", xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
-        for (size_t k = 0; k < faces; ++k) {
-            fprintf(f, "%u", start[k + 1] - start[k]);
-            for (uint32_t c = start[k]; c < start[k + 1]; ++c) fprintf(f, " %u", idx[c]);
-            fprintf(f, "\n");
-        }
-        ok = fclose(f) == 0 && ok;
+        ok = write_text_polygons(f, xyz, nv, start, idx, faces, "") && ok;
     } else {
         ok = false;
     }
@@ -319,13 +329,7 @@ static bool write_polygon_files(void)
                    "property double z\nproperty float confidence\nelement face %zu\nproperty list uchar int vertex_indices\n"
                    "end_header\n",
                 nv, faces);
-        for (uint32_t v = 0; v < nv; ++v) fprintf(f, "%.17g %.17g %.17g 0.5\n", xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
-        for (size_t k = 0; k < faces; ++k) {
-            fprintf(f, "%u", start[k + 1] - start[k]);
-            for (uint32_t c = start[k]; c < start[k + 1]; ++c) fprintf(f, " %u", idx[c]);
-            fprintf(f, "\n");
-        }
-        ok = fclose(f) == 0 && ok;
+        ok = write_text_polygons(f, xyz, nv, start, idx, faces, " 0.5") && ok;
     } else {
         ok = false;
     }

@@ -35,6 +35,17 @@ def run_cli(*args: str, stdin: str = None) -> subprocess.CompletedProcess:
     return subprocess.run([cli_path(), *args], input=stdin, capture_output=True, text=True, check=False)
 
 
+def grid(n: int, amplitude: float = 0.05):
+    """An n x n height-field grid mesh (vertices, faces), gently bumpy."""
+    import numpy as np
+    i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
+    z = amplitude * np.sin(i.ravel() * 0.3) * np.cos(j.ravel() * 0.2)
+    v = np.stack([i.ravel(), j.ravel(), z], axis=1).astype(float)
+    a = (i[:-1, :-1] * n + j[:-1, :-1]).ravel()
+    f = np.concatenate([np.stack([a, a + n, a + n + 1], 1), np.stack([a, a + n + 1, a + 1], 1)])
+    return v, f
+
+
 @pytest.fixture(scope="session")
 def spot() -> "trigeo.Mesh":
     return trigeo.load(SPOT)

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import trigeo
-from conftest import SPOT
+from conftest import SPOT, grid
 
 
 def test_hierarchy():
@@ -138,7 +138,7 @@ def test_cancel_and_progress(spot):
         seen.append(fraction)
         return False
 
-    big = trigeo.Mesh(*_grid(200))
+    big = trigeo.Mesh(*grid(200))
     with pytest.raises(trigeo.CancelledError):
         big.field(0, progress=stop)
     assert seen and 0.0 <= seen[0] <= 1.0
@@ -160,11 +160,3 @@ def test_render_errors(spot, tmp_path):
         spot.render(tmp_path / "a.png", view=(0, 0, 0))
     with pytest.raises(trigeo.FileError):
         spot.render(tmp_path / "no" / "dir" / "a.png")
-
-
-def _grid(n):
-    i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
-    v = np.stack([i.ravel(), j.ravel(), 0.05 * np.sin(i.ravel() * 0.3) * np.cos(j.ravel() * 0.2)], axis=1).astype(float)
-    a = (i[:-1, :-1] * n + j[:-1, :-1]).ravel()
-    f = np.concatenate([np.stack([a, a + n, a + n + 1], 1), np.stack([a, a + n + 1, a + 1], 1)])
-    return v, f

@@ -11,7 +11,7 @@ import time
 import numpy as np
 
 import trigeo
-from conftest import REPO, SPOT
+from conftest import REPO, SPOT, grid
 
 
 def test_threads_share_a_mesh():
@@ -43,7 +43,7 @@ def test_threads_share_a_mesh():
 
 def test_gil_released_during_c_calls():
     """While one thread is inside a long C call, another thread keeps running Python code."""
-    v, f = _grid(400)
+    v, f = grid(400, 0.3)
     m = trigeo.Mesh(v, f)
     ticks = []
     done = threading.Event()
@@ -73,8 +73,8 @@ def test_ctrl_c_stops_long_fields():
         sys.path.insert(0, {os.path.join(REPO, 'python')!r})
         sys.path.insert(0, {os.path.dirname(__file__)!r})
         import trigeo
-        from test_threads import _grid
-        m = trigeo.Mesh(*_grid(700))
+        from conftest import grid
+        m = trigeo.Mesh(*grid(700, 0.3))
         print("ready", flush=True)
         try:
             m.distance_matrix(list(range(0, 4000, 100)), threads=1)  # 40 fields: many seconds
@@ -91,11 +91,3 @@ def test_ctrl_c_stops_long_fields():
     waited = time.perf_counter() - t0
     p.communicate(timeout=60)
     assert line == "interrupted" and waited < 1.0  # uninterrupted, the field takes seconds
-
-
-def _grid(n):
-    i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
-    v = np.stack([i.ravel(), j.ravel(), 0.3 * np.sin(i.ravel() * 0.3) * np.cos(j.ravel() * 0.2)], axis=1).astype(float)
-    a = (i[:-1, :-1] * n + j[:-1, :-1]).ravel()
-    f = np.concatenate([np.stack([a, a + n, a + n + 1], 1), np.stack([a, a + n + 1, a + 1], 1)])
-    return v, f

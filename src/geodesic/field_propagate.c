@@ -24,28 +24,21 @@
 enum { VS_INSIDE = 1, VS_SOURCE = 2, VS_TOUCHED = 4 }; /* ws->inside */
 enum { Q_QUEUED = 1, Q_TOUCHED = 2 };                  /* ws->queued */
 
-/* Notes that a run wrote vertex v's or halfedge h's entries (tg__field_reset undoes only those).
- * false when the list could not grow (out of memory). */
-static bool touch_vertex(tg_field_workspace* ws, uint32_t v)
+/* Notes that a run wrote the entries of vertex or halfedge `id` (flag `bit` in `flags[id]`, the
+ * id appended to `list`), so that tg__field_reset undoes only those. false when the list could not
+ * grow (out of memory). */
+static bool touch(tg_field_workspace* ws, uint8_t* flags, uint8_t bit, tg__vec* list, uint32_t id)
 {
-    if (ws->inside[v] & VS_TOUCHED) return true;
+    if (flags[id] & bit) return true;
     if (!ws->touched_all) {
-        if (!tg__vec_reserve(&ws->allocator, &ws->touched_v, 1)) return false;
-        ((uint32_t*)ws->touched_v.data)[ws->touched_v.count++] = v;
+        if (!tg__vec_reserve(&ws->allocator, list, 1)) return false;
+        ((uint32_t*)list->data)[list->count++] = id;
     }
-    ws->inside[v] |= VS_TOUCHED;
+    flags[id] |= bit;
     return true;
 }
-static bool touch_halfedge(tg_field_workspace* ws, uint32_t h)
-{
-    if (ws->queued[h] & Q_TOUCHED) return true;
-    if (!ws->touched_all) {
-        if (!tg__vec_reserve(&ws->allocator, &ws->touched_h, 1)) return false;
-        ((uint32_t*)ws->touched_h.data)[ws->touched_h.count++] = h;
-    }
-    ws->queued[h] |= Q_TOUCHED;
-    return true;
-}
+#define touch_vertex(ws, v) touch((ws), (ws)->inside, VS_TOUCHED, &(ws)->touched_v, (v))
+#define touch_halfedge(ws, h) touch((ws), (ws)->queued, Q_TOUCHED, &(ws)->touched_h, (h))
 
 /* How many list propagations pass between two looks at the clock for progress. */
 #define CHECK_EVERY 256

@@ -62,7 +62,7 @@ static double now_us(void)
     return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
 }
 
-typedef struct column { const char* name; int strategy, root; } column;
+typedef struct column { const char* name; tg_fan_strategy strategy; tg_root_method root; } column;
 
 int main(int argc, char** argv)
 {

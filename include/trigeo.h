@@ -613,27 +613,30 @@ typedef enum tg_root_method {
 
 /** Options of the geodesic kernels. A NULL pointer or a zero-initialised struct means defaults. */
 typedef struct tg_geodesic_kernel_options {
-    int digits;         /**< decimal digits of accuracy of each 1D root (seed §2.4); 0: 15; clamped to [1, 17] */
+    int digits;         /**< decimal digits of accuracy of each 1D root (seed §2.4); 0: 15; at most 17 */
     int max_iterations; /**< cap on the fan search's outer iterations (one sweep over all coordinates,
                              or one CG / Newton step); 0: 100 + 50 (m + 1)^2 for COORDINATE and
                              POWELL (linear convergence), 100 + 20 (m + 1) for CG and NEWTON */
-    int strategy;       /**< tg_fan_strategy; 0: TG_FAN_COORDINATE (the seed's choice) */
-    int root_method;    /**< tg_root_method; 0: TG_ROOT_BISECTION (the seed's choice) */
+    tg_fan_strategy strategy;   /**< 0: TG_FAN_COORDINATE (the seed's choice) */
+    tg_root_method root_method; /**< 0: TG_ROOT_BISECTION (the seed's choice) */
 } tg_geodesic_kernel_options;
+/* Options out of range (digits < 0 or > 17, max_iterations < 0, an unknown strategy or root
+ * method) make every function taking them return TG_ERR_INVALID_ARGUMENT. */
 
 /** Two triangles sharing the edge AB (seed 002 §2): the shortest path P0 -> M -> P1 with
  *  M = A + t (B - A), t in [0, 1], minimizing L(t) = |M - P0| + |P1 - M| (eq. 2). L is convex
  *  (eq. 7-8), so: L'(0) >= 0 gives t = 0; else L'(1) <= 0 gives t = 1; else the unique root of
  *  L' in (0, 1) by bisection (or the method chosen in opts). Works in 3D directly: P0 and P1 need
  *  not be coplanar with AB (each leg lies in its own triangle); no unfolding is needed.
- *  p0, a, b, p1: 3 doubles each, finite. opts: NULL for defaults. out_t: receives t in [0, 1]
- *  (may be NULL). Returns L(t) (>= 0). Degenerate input is handled without NaN: A == B gives
- *  t = 0; P0 or P1 on the line AB uses one-sided derivatives; data of extreme magnitude is rescaled
- *  by a power of two. Non-finite input, or finite input whose differences overflow, returns +inf
- *  with t = 0. Cost: O(digits) square roots (O(1) with TG_ROOT_UNFOLD). Thread-safe, no
- *  allocation. */
-TG_API double tg_edge_path_minimize(const double p0[3], const double a[3], const double b[3], const double p1[3],
-                             const tg_geodesic_kernel_options* opts, double* out_t);
+ *  p0, a, b, p1: 3 doubles each, finite. opts: NULL for defaults. out_length: receives L(t)
+ *  (>= 0); out_t: receives t in [0, 1] (may be NULL). Degenerate input is handled without NaN:
+ *  A == B gives t = 0; P0 or P1 on the line AB uses one-sided derivatives; data of extreme
+ *  magnitude is rescaled by a power of two. Returns TG_OK; TG_ERR_INVALID_ARGUMENT for a NULL
+ *  pointer (out_t excepted), non-finite input, finite input whose differences overflow, or
+ *  options out of range (outputs then untouched). Cost: O(digits) square roots (O(1) with
+ *  TG_ROOT_UNFOLD). Thread-safe, no allocation. */
+TG_API tg_status tg_edge_path_minimize(const double p0[3], const double a[3], const double b[3], const double p1[3],
+                                       const tg_geodesic_kernel_options* opts, double* out_length, double* out_t);
 
 /** A fan of m + 1 triangles around vertex V (seed 002 §3-4): the path enters at P0 (a point of
  *  the first triangle, usually its far vertex or a point on its outer edge), crosses the m interior
@@ -663,8 +666,8 @@ TG_API double tg_edge_path_minimize(const double p0[3], const double a[3], const
  *  point; P0 or P1 at V, collinear points and extreme magnitudes are handled. The search always
  *  terminates (iteration caps); the strategies reach the minimum to ~1e-12 relative with their
  *  default caps (COORDINATE: ~1e-10 on long, badly scaled fans; its rate is linear).
- *  Returns TG_OK; TG_ERR_INVALID_ARGUMENT for NULL pointers, non-finite input or finite input
- *  whose differences overflow; TG_ERR_OUT_OF_MEMORY if m > 64 and scratch allocation fails
+ *  Returns TG_OK; TG_ERR_INVALID_ARGUMENT for NULL pointers, non-finite input, finite input
+ *  whose differences overflow or options out of range; TG_ERR_OUT_OF_MEMORY if m > 64 and scratch allocation fails
  *  (m <= 64 uses the stack only, about 12 KB). Cost per iteration: O(m) square roots times the
  *  1D root cost (O(digits) for bisection, a few for NEWTON, 1 for UNFOLD in sweeps).
  *  Thread-safe. */
@@ -780,11 +783,12 @@ typedef struct tg_path_options {
     uint32_t max_iterations; /**< cap on straightening sweeps or relaxation passes; 0: 10000 */
     /** Stopping tolerance, dimensionless; 0: default. STRAIGHTEN: a vertex passage is re-routed
      *  when its smaller side angle is below pi - tolerance radians (default 1e-12). RELAX: stop
-     *  when a pass shortens the path by at most tolerance * length (default 1e-13). */
+     *  when a pass shortens the path by at most tolerance * length (default 1e-13). Negative, NaN
+     *  or infinite: TG_ERR_INVALID_ARGUMENT. */
     double tolerance;
     /** RELAX: options of the seed's kernels (tg_edge_path_minimize, tg_fan_path_minimize). NULL:
      *  15 digits by bisection (§2.4) and the conjugate-gradient fan search (§3.4.2). */
-    const tg_geodesic_kernel_options* kernel;
+    const tg_geodesic_kernel_options* kernel; /**< out of range: TG_ERR_INVALID_ARGUMENT */
     tg_path_certify certify; /**< TG_PATH_CERTIFY_OFF by default */
 } tg_path_options;
 

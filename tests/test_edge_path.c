@@ -7,15 +7,24 @@
 #include "kernels/edge_path.h"
 #include "tg_test.h"
 
-static const int methods[3] = {TG_ROOT_BISECTION, TG_ROOT_NEWTON, TG_ROOT_QUADRATIC};
+static const tg_root_method methods[3] = {TG_ROOT_BISECTION, TG_ROOT_NEWTON, TG_ROOT_QUADRATIC};
 static const char* method_names[3] = {"bisection", "newton", "quadratic"};
 
-static double run(const double p0[3], const double a[3], const double b[3], const double p1[3], int method,
-                  double* t)
+/* The edge kernel's length (and t); a failed call is a failed check and NAN. */
+static double edge_len(const double p0[3], const double a[3], const double b[3], const double p1[3],
+                       const tg_geodesic_kernel_options* o, double* t)
+{
+    double len = NAN;
+    CHECK_STATUS(tg_edge_path_minimize(p0, a, b, p1, o, &len, t), TG_OK);
+    return len;
+}
+
+static double run(const double p0[3], const double a[3], const double b[3], const double p1[3],
+                  tg_root_method method, double* t)
 {
     tg_geodesic_kernel_options o = {0};
     o.root_method = method;
-    return tg_edge_path_minimize(p0, a, b, p1, &o, t);
+    return edge_len(p0, a, b, p1, &o, t);
 }
 
 static double dist3(const double* p, const double* q)
@@ -78,7 +87,7 @@ static void test_example_2_3(void)
     }
     /* The same configuration mirrored (A and B swapped) puts the minimum at t = 1. */
     double t = -1;
-    double len = tg_edge_path_minimize(p0, b, a, p1, NULL, &t);
+    double len = edge_len(p0, b, a, p1, NULL, &t);
     CHECK(t == 1.0);
     CHECK_NEAR(len, sqrt(2.0) + sqrt(5.0), 4 * DBL_EPSILON * 4);
 }
@@ -90,13 +99,13 @@ static void test_iteration_count(void)
     o.digits = 8;
     CHECK_EQ_INT(tg__root_opts_make(&o).iterations, 27);
     CHECK_EQ_INT(tg__root_opts_make(NULL).iterations, 50);
-    o.digits = 40;
+    o.digits = 17;
     CHECK_EQ_INT(tg__root_opts_make(&o).iterations, 57);
     /* With 8 digits the root is still within 2^-27 of 1/6. */
     const double p0[3] = {1, -1, 0}, p1[3] = {0, 1, 0}, a[3] = {0, 0, 0}, b[3] = {2, 2, 0};
     o.digits = 8;
     double t;
-    tg_edge_path_minimize(p0, a, b, p1, &o, &t);
+    edge_len(p0, a, b, p1, &o, &t);
     CHECK_NEAR(t, 1.0 / 6.0, ldexp(1.0, -27));
     CHECK_MSG(fabs(t - 1.0 / 6.0) > 1e-15, "8 digits should not be exact (t = %.17g)", t);
 }
@@ -232,12 +241,30 @@ static void test_extreme(void)
         }
     }
     const double p0[3] = {NAN, 0, 0}, z[3] = {0, 0, 0}, x[3] = {1, 0, 0};
-    double t = -1;
-    CHECK(tg_edge_path_minimize(p0, z, x, z, NULL, &t) == INFINITY);
-    CHECK(t == 0.0);
+    double t = -1, len = -1;
+    CHECK_STATUS(tg_edge_path_minimize(p0, z, x, z, NULL, &len, &t), TG_ERR_INVALID_ARGUMENT);
+    CHECK(t == -1 && len == -1); /* outputs untouched on error */
     const double big[3] = {DBL_MAX, 0, 0}, nbig[3] = {-DBL_MAX, 0, 0};
-    CHECK(tg_edge_path_minimize(big, nbig, x, z, NULL, &t) == INFINITY);
-    CHECK(tg_edge_path_minimize(big, z, x, z, NULL, NULL) > 0); /* NULL out_t is allowed */
+    CHECK_STATUS(tg_edge_path_minimize(big, nbig, x, z, NULL, &len, &t), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_edge_path_minimize(big, z, x, z, NULL, &len, NULL), TG_OK); /* NULL out_t is allowed */
+    CHECK(len > 0);
+    CHECK_STATUS(tg_edge_path_minimize(big, z, x, z, NULL, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_edge_path_minimize(NULL, z, x, z, NULL, &len, &t), TG_ERR_INVALID_ARGUMENT);
+    /* options out of range are refused, not clamped (issue 12 item 13) */
+    const double q0[3] = {1, -1, 0}, q1[3] = {0, 1, 0}, b2[3] = {2, 2, 0};
+    tg_geodesic_kernel_options bad[5];
+    memset(bad, 0, sizeof bad);
+    bad[0].digits = 18, bad[1].digits = -1, bad[2].max_iterations = -5;
+    bad[3].strategy = (tg_fan_strategy)4, bad[4].root_method = (tg_root_method)9;
+    double w[3] = {1, 1, 0}, tf[1], lf;
+    for (int k = 0; k < 5; ++k) {
+        CHECK_STATUS(tg_edge_path_minimize(q0, z, b2, q1, &bad[k], &len, &t), TG_ERR_INVALID_ARGUMENT);
+        CHECK_STATUS(tg_fan_path_minimize(q0, q1, z, w, 1, NULL, &bad[k], tf, &lf, NULL), TG_ERR_INVALID_ARGUMENT);
+    }
+    tg_geodesic_kernel_options ok = {0};
+    ok.digits = 17, ok.max_iterations = 3, ok.strategy = TG_FAN_NEWTON, ok.root_method = TG_ROOT_UNFOLD;
+    CHECK_STATUS(tg_edge_path_minimize(q0, z, b2, q1, &ok, &len, &t), TG_OK);
+    CHECK_NEAR(t, 1.0 / 6.0, 1e-15);
 }
 
 int main(void)

@@ -135,7 +135,7 @@ typedef struct run_result {
 } run_result;
 
 static run_result run(const double* p0, const double* p1, const double* v, const double* w, size_t m,
-                      const double* t_init, int strategy, int root)
+                      const double* t_init, tg_fan_strategy strategy, tg_root_method root)
 {
     run_result r;
     tg_geodesic_kernel_options o = {0};
@@ -148,7 +148,7 @@ static run_result run(const double* p0, const double* p1, const double* v, const
 
 #define NSTRAT 4
 static const int strategies[NSTRAT] = {TG_FAN_COORDINATE, TG_FAN_POWELL, TG_FAN_CG, TG_FAN_NEWTON};
-static const int roots[3] = {TG_ROOT_BISECTION, TG_ROOT_NEWTON, TG_ROOT_UNFOLD};
+static const tg_root_method roots[3] = {TG_ROOT_BISECTION, TG_ROOT_NEWTON, TG_ROOT_UNFOLD};
 static const char* strategy_names[NSTRAT] = {"coordinate", "powell", "cg", "newton"};
 /* Relative accuracy each strategy reaches with its default iteration cap on the random fans
  * (measured worst cases: coordinate 9e-12 on 12-triangle non-convex fans, where its linear rate
@@ -383,8 +383,8 @@ static void test_small_fans(void)
             p0[c] = tg_rng_range(&rng, -1, 1), p1[c] = tg_rng_range(&rng, -1, 1);
             v[c] = tg_rng_range(&rng, -1, 1), w[c] = tg_rng_range(&rng, -1, 1);
         }
-        double te;
-        double le = tg_edge_path_minimize(p0, v, w, p1, NULL, &te);
+        double te, le = NAN;
+        CHECK_STATUS(tg_edge_path_minimize(p0, v, w, p1, NULL, &le, &te), TG_OK);
         run_result r = run(p0, p1, v, w, 1, NULL, TG_FAN_COORDINATE, TG_ROOT_BISECTION);
         CHECK_MSG(fabs(r.len - le) <= 1e-14 * le, "m = 1: fan %.17g, edge kernel %.17g", r.len, le);
         double l, t0 = 7;

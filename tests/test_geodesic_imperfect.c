@@ -215,6 +215,18 @@ static void test_duplicate_and_unreferenced(void)
     memset(&o, 0, sizeof o);
     o.method = (tg_path_method)7;
     CHECK_STATUS(tg_geodesic_path(c.geo, c.ws, &a, &a, &o, c.path), TG_ERR_INVALID_ARGUMENT);
+    /* options out of range are refused, not silently replaced by defaults (issue 12 item 13) */
+    tg_geodesic_kernel_options k;
+    memset(&k, 0, sizeof k);
+    const double tols[3] = {-1e-9, NAN, INFINITY};
+    for (int m = 0; m < 2; ++m)
+        for (int i = 0; i < 4; ++i) {
+            memset(&o, 0, sizeof o);
+            o.method = m ? TG_PATH_RELAX : TG_PATH_STRAIGHTEN;
+            if (i < 3) o.tolerance = tols[i];
+            else k.digits = 99, o.kernel = &k;
+            CHECK_STATUS(tg_geodesic_path(c.geo, c.ws, &a, &a, &o, c.path), TG_ERR_INVALID_ARGUMENT);
+        }
     close_sheet(&c);
 }
 

@@ -2,6 +2,7 @@
  * Based on: seed 002 §5 (endpoints, initial edge path, shortening) and the project's DESIGN.md
  *   (tg_path: points with every crossing and vertex passage, faces, length, status, certificate). */
 #include "geodesic/geodesic_internal.h"
+#include "kernels/edge_path.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -215,10 +216,13 @@ tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, cons
         return TG_ERR_INVALID_ARGUMENT;
     tg_path_certify certify = options ? options->certify : TG_PATH_CERTIFY_OFF;
     if (certify != TG_PATH_CERTIFY_OFF && certify != TG_PATH_CERTIFY_ON) return TG_ERR_INVALID_ARGUMENT;
+    if (options && (!(options->tolerance >= 0.0) || !isfinite(options->tolerance) ||
+                    !tg__kernel_options_valid(options->kernel)))
+        return TG_ERR_INVALID_ARGUMENT; /* out of range: refused, not replaced by a default */
     bool exact = method == TG_PATH_EXACT;
     if (exact) method = TG_PATH_STRAIGHTEN; /* its path is the bound of the exact propagation */
     uint32_t max_it = options && options->max_iterations ? options->max_iterations : DEFAULT_MAX_ITERATIONS;
-    double tol = options && options->tolerance > 0.0 && isfinite(options->tolerance)
+    double tol = options && options->tolerance > 0.0
                      ? options->tolerance
                      : method == TG_PATH_RELAX ? DEFAULT_RELAX_TOL : DEFAULT_STRAIGHTEN_TOL;
     /* RELAX's kernels: the caller's, or the seed's bisection (§2.4) with 15 digits and the

@@ -38,8 +38,8 @@ static void relax_edge(const tg_geodesic* g, relax_out* o, const tg__node* x, co
     tg_v3_store(tg__gpos(g, g->tri[tg_halfedge_next(h)]), b);
     tg_vec3 xp = tg__node_pos(g, x);
     double old_len = tg_v3_dist(tg_v3_load(p0), xp) + tg_v3_dist(xp, tg_v3_load(p1));
-    double t;
-    double len = tg_edge_path_minimize(p0, a, b, p1, kopt, &t);
+    double t = 0.0, len = INFINITY;
+    if (tg_edge_path_minimize(p0, a, b, p1, kopt, &len, &t) != TG_OK) len = INFINITY; /* keeps x */
     tg__node y = *x;
     if (len < old_len) {
         if (t <= 0.0)

@@ -25,13 +25,18 @@
  * relative differences of 2^-100 within the data still square to normal numbers. */
 #define KERNEL_SAFE_EXPONENT 400
 
+bool tg__kernel_options_valid(const tg_geodesic_kernel_options* opts)
+{
+    if (!opts) return true;
+    return opts->digits >= 0 && opts->digits <= TG_KERNEL_MAX_DIGITS && opts->max_iterations >= 0 &&
+           (unsigned)opts->strategy <= (unsigned)TG_FAN_NEWTON && (unsigned)opts->root_method <= (unsigned)TG_ROOT_UNFOLD;
+}
+
 tg__root_opts tg__root_opts_make(const tg_geodesic_kernel_options* opts)
 {
     tg__root_opts ro;
     int digits = (opts && opts->digits > 0) ? opts->digits : TG_KERNEL_DEFAULT_DIGITS;
-    if (digits > TG_KERNEL_MAX_DIGITS) digits = TG_KERNEL_MAX_DIGITS;
-    ro.method = opts ? opts->root_method : TG_ROOT_BISECTION;
-    if (ro.method < TG_ROOT_BISECTION || ro.method > TG_ROOT_UNFOLD) ro.method = TG_ROOT_BISECTION;
+    ro.method = opts ? (int)opts->root_method : TG_ROOT_BISECTION;
     /* n = ceil(digits * log2(10)) (seed §2.4); 8 digits give 27 as in the seed's example. */
     ro.iterations = (int)ceil(digits * 3.321928094887362);
     return ro;
@@ -259,20 +264,16 @@ static double edge_quadratic_minimize(const tg__norm_sum* f, const double p0[3],
     return best_len;
 }
 
-double tg_edge_path_minimize(const double p0[3], const double a[3], const double b[3], const double p1[3],
-                             const tg_geodesic_kernel_options* opts, double* out_t)
+tg_status tg_edge_path_minimize(const double p0[3], const double a[3], const double b[3], const double p1[3],
+                                const tg_geodesic_kernel_options* opts, double* out_length, double* out_t)
 {
+    if (!p0 || !a || !b || !p1 || !out_length || !tg__kernel_options_valid(opts)) return TG_ERR_INVALID_ARGUMENT;
     double t = 0.0;
     /* L(t) = |(A - P0) + t D| + |(A - P1) + t D| (eq. 2). */
     double x[6] = {a[0] - p0[0], a[1] - p0[1], a[2] - p0[2], a[0] - p1[0], a[1] - p1[1], a[2] - p1[2]};
     double y[6] = {b[0] - a[0], b[1] - a[1], b[2] - a[2], b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    for (int i = 0; i < 6; i++) {
-        /* Non-finite input, or differences of finite input that overflow. */
-        if (!isfinite(x[i]) || !isfinite(y[i])) {
-            if (out_t) *out_t = 0.0;
-            return INFINITY;
-        }
-    }
+    for (int i = 0; i < 6; i++)
+        if (!isfinite(x[i]) || !isfinite(y[i])) return TG_ERR_INVALID_ARGUMENT; /* non-finite, or overflowing */
     /* t does not depend on the unit of length: rescale extreme data by a power of two (exact) so
      * that squared lengths neither overflow nor underflow. */
     double scale = tg__kernel_rescale(x, 6, y, 6);
@@ -297,5 +298,6 @@ double tg_edge_path_minimize(const double p0[3], const double a[3], const double
         len /= scale;
     }
     if (out_t) *out_t = t;
-    return len;
+    *out_length = len;
+    return TG_OK;
 }

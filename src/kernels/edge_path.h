@@ -6,6 +6,7 @@
 #ifndef TG_KERNELS_EDGE_PATH_H
 #define TG_KERNELS_EDGE_PATH_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "trigeo.h"
@@ -20,7 +21,10 @@ typedef struct tg__root_opts {
     int iterations;
 } tg__root_opts;
 
-/* Resolves options (NULL or zero fields: defaults; digits clamped to [1, 17]). */
+/* Whether options are in range (NULL is): digits 0..17, max_iterations >= 0, a known strategy and
+ * root method. */
+bool tg__kernel_options_valid(const tg_geodesic_kernel_options* opts);
+/* Resolves valid options (NULL or zero fields: defaults). */
 tg__root_opts tg__root_opts_make(const tg_geodesic_kernel_options* opts);
 
 /* f(s) = sum_k |x_k + s y_k| over count terms, x and y holding 3 * count doubles: a convex

@@ -753,7 +753,8 @@ tg_status tg__fan_path_minimize_with(const tg_allocator* a, const double p0[3], 
                                      int* out_decreased)
 {
     if (out_decreased) *out_decreased = 0;
-    if (!p0 || !p1 || !v || !out_length || (m > 0 && (!w || !out_t))) return TG_ERR_INVALID_ARGUMENT;
+    if (!p0 || !p1 || !v || !out_length || (m > 0 && (!w || !out_t)) || !tg__kernel_options_valid(opts))
+        return TG_ERR_INVALID_ARGUMENT;
     if (!all_finite(p0, 3) || !all_finite(p1, 3) || !all_finite(v, 3) || (m > 0 && !all_finite(w, 3 * m)) ||
         (t_init && !all_finite(t_init, m)))
         return TG_ERR_INVALID_ARGUMENT;

@@ -150,7 +150,7 @@ static bool copy_step(tg_geodesic_workspace* ws, int cur, size_t i, size_t* np, 
 /* One sweep: re-routes the decided passages run by run. Returns the new pivot count in *out_np
  * and the total length before/after in *io_len. */
 static tg_status sweep(tg_geodesic_workspace* ws, int cur, size_t np, const decision* dec, size_t* out_np,
-                       size_t* accepted, bool* out_retry, bool* io_banned)
+                       size_t* accepted, bool* out_retry)
 {
     *out_retry = false;
     int nxt = 1 - cur;
@@ -199,10 +199,8 @@ static tg_status sweep(tg_geodesic_workspace* ws, int cur, size_t np, const deci
                 if (!copy_step(ws, cur, r, &onp, &onq)) return TG_ERR_OUT_OF_MEMORY;
                 if (j - i > 2) ((tg__sleeve*)ws->slv[nxt].p)[onp - 2].fresh = 1;
             }
-            if (j - i > 2)
-                *out_retry = true;
-            else
-                *io_banned = true; /* a single passage that cannot be re-routed: not converged */
+            if (j - i > 2) *out_retry = true; /* a single passage that cannot be re-routed stays (the
+                                                  caller's certificate then tells it is not straight) */
         }
         i = j;
     }
@@ -289,8 +287,6 @@ static void polish(const tg_geodesic* g, tg__node* nodes, const uint32_t* faces,
     }
 }
 
-#define STALL_SWEEPS 3
-
 tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_sweeps, double angle_tol,
                          tg__shorten_result* out)
 {
@@ -318,14 +314,7 @@ tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_s
     int cur = 0;
     size_t np = count;
     double limit = TG__PI - angle_tol;
-    /* Every accepted re-routing shortens the path in exact arithmetic; sweeps that neither
-     * shorten it in floating point nor change its passages are numerical stalls (a passage whose
-     * side angle is measured below pi - tolerance but whose funnel returns the same path): after
-     * STALL_SWEEPS of them the loop stops, and the status says the criterion was not met. */
-    double total = 0.0;
-    for (size_t i = 0; i + 1 < np; ++i) total += slv[i].len;
-    int stalls = 0;
-    bool single = false, banned = false;
+    bool single = false;
     for (;;) {
         if (!tg__buf_reserve(ws, &ws->decide, np, sizeof(decision))) return TG_ERR_OUT_OF_MEMORY;
         decision* dec = ws->decide.p;
@@ -336,8 +325,7 @@ tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_s
         }
         size_t accepted = 0, next_np = 0;
         bool retry = false;
-        size_t prev_np = np;
-        tg_status st = sweep(ws, cur, np, dec, &next_np, &accepted, &retry, &banned);
+        tg_status st = sweep(ws, cur, np, dec, &next_np, &accepted, &retry);
         if (st != TG_OK) return st;
         out->iterations++;
         cur = 1 - cur;
@@ -347,26 +335,6 @@ tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_s
             out->capped = 1; /* every re-routing was rejected: stop rather than repeat it */
             break;
         }
-        const tg__sleeve* ns = ws->slv[cur].p;
-        double next_total = 0.0;
-        for (size_t i = 0; i + 1 < np; ++i) next_total += ns[i].len;
-        /* progress: shorter, or (second-order changes below rounding) other passages */
-        bool same = np == prev_np;
-        const tg__node *pa = ws->piv[cur].p, *pb = ws->piv[1 - cur].p;
-        for (size_t i = 0; same && i < np; ++i) same = pa[i].kind == pb[i].kind && pa[i].id == pb[i].id;
-        stalls = next_total < total || retry || !same ? 0 : stalls + 1;
-        total = next_total;
-        if (stalls >= STALL_SWEEPS) {
-            out->capped = 1;
-            break;
-        }
-    }
-    if (banned) {
-        /* a rejected passage may have been settled since by its neighbours' re-routing */
-        tg__sleeve* fs = ws->slv[cur].p;
-        for (size_t i = 0; i + 1 < np; ++i) fs[i].fresh = 1;
-        if (!tg__buf_reserve(ws, &ws->decide, np, sizeof(decision))) return TG_ERR_OUT_OF_MEMORY;
-        if (decide_all(ws, cur, np, limit, false, ws->decide.p) > 0) out->capped = 1;
     }
     tg_status st = expand(ws, cur, np, &out->count);
     if (st == TG_OK) polish(g, ws->nodes[0].p, ws->segf[0].p, out->count);

@@ -47,7 +47,7 @@ def closest_overhead(path, n):
     hits = np.empty(n, dtype=np.dtype(_lib.ClosestHit))
     hp = hits.ctypes.data_as(ctypes.POINTER(_lib.ClosestHit))
     qp = q.ctypes.data_as(ctypes.POINTER(ctypes.c_double))
-    print(f"## Closest points: {os.path.basename(path)} ({mesh.face_count} faces), {n} near queries, random order\n")
+    print(f"### Closest points: {os.path.basename(path)} ({mesh.face_count} faces), {n} near queries, random order\n")
     print("| threads | C batch (ctypes, s) | Python Mesh.closest (s) | overhead | ns/query C | ns/query Python |")
     print("|---|---|---|---|---|---|")
     for threads in (1, 2):
@@ -78,7 +78,7 @@ def dask_throughput(path, npairs, nsources):
     t0 = time.perf_counter()
     want_m = mesh.distance_matrix(sources, threads=1)
     t_m = time.perf_counter() - t0
-    print(f"## Dask: {os.path.basename(path)} ({mesh.face_count} faces), {npairs} path_lengths pairs "
+    print(f"### Dask: {os.path.basename(path)} ({mesh.face_count} faces), {npairs} path_lengths pairs "
           f"(chunks of 100), {nsources} distance_matrix rows (chunks of 1)\n")
     print("| run | path_lengths s | pairs/s | distance_matrix s | rows/s | warm-up s (mesh load on workers) |")
     print("|---|---|---|---|---|---|")

@@ -60,6 +60,15 @@ bool cli_locate(tg_mesh* mesh, tg_bvh** bvh, const double xyz[3], tg_surface_poi
 bool cli_resolve_spec(const char* mesh_path, tg_mesh* mesh, tg_bvh** bvh, const char* text, const cli_spec* sp,
                       tg_surface_point* out);
 
+/* ---- inputs (cli_output.c) ---- */
+
+/* The CLI's one growth rule: makes *p (an array of *cap elements of elem bytes, realloc'd) hold
+ * at least `need` elements, doubling; false (nothing changed) on overflow or out of memory. */
+bool cli_grow(void** p, size_t* cap, size_t need, size_t elem);
+/* The whole of a file (standard input for "-") as a NUL-terminated buffer of *out_size bytes;
+ * NULL after printing why. */
+char* cli_read_all(const char* path, size_t* out_size);
+
 /* ---- outputs, Ctrl-C and progress (cli_output.c) ---- */
 
 /* A file output written to a temporary name beside `path` and renamed into place by

@@ -221,3 +221,49 @@ bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bo
     }
     return true;
 }
+
+bool cli_grow(void** p, size_t* cap, size_t need, size_t elem)
+{
+    if (need <= *cap) return true;
+    size_t c = *cap ? *cap : 16;
+    while (c < need) {
+        if (c > SIZE_MAX / 2) return false;
+        c *= 2;
+    }
+    if (c > SIZE_MAX / elem) return false;
+    void* grown = realloc(*p, c * elem);
+    if (!grown) return false;
+    *p = grown, *cap = c;
+    return true;
+}
+
+char* cli_read_all(const char* path, size_t* out_size)
+{
+    FILE* f = strcmp(path, "-") ? fopen(path, "rb") : stdin;
+    if (!f) {
+        cli_error(path, 0, "cannot open: %s", strerror(errno));
+        return NULL;
+    }
+    size_t cap = 0, n = 0;
+    char* buf = NULL;
+    bool ok = true;
+    for (;;) {
+        if (!cli_grow((void**)&buf, &cap, n + 65536, 1)) {
+            ok = false;
+            break;
+        }
+        size_t got = fread(buf + n, 1, cap - 1 - n, f);
+        n += got;
+        if (got == 0) break;
+    }
+    int bad = ferror(f);
+    if (f != stdin) fclose(f);
+    if (!ok || bad) {
+        cli_error(path, 0, bad ? "read error: %s" : "out of memory%s", bad ? strerror(errno) : "");
+        free(buf);
+        return NULL;
+    }
+    buf[n] = '\0';
+    *out_size = n;
+    return buf;
+}

@@ -7,43 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The whole of a file (or stdin for "-") as a NUL-terminated buffer; NULL after printing why. */
-static char* read_all(const char* path, size_t* out_size)
-{
-    FILE* f = strcmp(path, "-") ? fopen(path, "rb") : stdin;
-    if (!f) {
-        cli_error(path, 0, "cannot open: %s", strerror(errno));
-        return NULL;
-    }
-    size_t cap = 1 << 16, n = 0;
-    char* buf = malloc(cap);
-    while (buf) {
-        if (n + 1 >= cap) {
-            char* grown = cap > (size_t)-1 / 2 ? NULL : realloc(buf, cap * 2);
-            if (!grown) {
-                free(buf);
-                buf = NULL;
-                break;
-            }
-            buf = grown;
-            cap *= 2;
-        }
-        size_t got = fread(buf + n, 1, cap - 1 - n, f);
-        n += got;
-        if (got == 0) break;
-    }
-    int bad = ferror(f);
-    if (f != stdin) fclose(f);
-    if (!buf || bad) {
-        cli_error(path, 0, bad ? "read error" : "out of memory");
-        free(buf);
-        return NULL;
-    }
-    buf[n] = '\0';
-    *out_size = n;
-    return buf;
-}
-
 static const char* skip_blanks(const char* s)
 {
     while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\v' || *s == '\f') ++s;
@@ -65,12 +28,7 @@ static size_t parse_queries(const char* name, char* text, double** out)
         ++line;
         const char* p = skip_blanks(s);
         if (*p && *p != '#') {
-            if (count == cap) {
-                double* grown = cap > ((size_t)-1 / 2) / (6 * sizeof *xyz) ? NULL : realloc(xyz, 6 * cap * sizeof *xyz);
-                if (!grown) break;
-                xyz = grown;
-                cap *= 2;
-            }
+            if (!cli_grow((void**)&xyz, &cap, count + 1, 3 * sizeof *xyz)) break;
             for (int k = 0; k < 3; ++k) {
                 char* after;
                 errno = 0;
@@ -176,7 +134,7 @@ static int run(int argc, char** argv)
     cli_interrupt_install();
     if (!cli_threads_available((int)threads, "closest")) return CLI_INPUT;
     size_t size = 0;
-    char* text = read_all(query_path, &size);
+    char* text = cli_read_all(query_path, &size);
     if (!text) return CLI_INPUT;
     double* xyz = NULL;
     size_t n = parse_queries(query_path, text, &xyz);

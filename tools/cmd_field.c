@@ -91,40 +91,14 @@ static int on_progress(void* user, const tg_field_progress* p)
 static long read_lines(const char* path, const char* what, char** out_text, char*** out_items,
                        unsigned long long** out_lines)
 {
-    FILE* f = strcmp(path, "-") ? fopen(path, "rb") : stdin;
-    if (!f) {
-        cli_error(path, 0, "cannot open: %s", strerror(errno));
-        return -1;
-    }
-    size_t cap = 4096, len = 0;
-    char* text = malloc(cap);
-    for (int c; text && (c = fgetc(f)) != EOF;) {
-        if (len + 2 > cap) {
-            char* t = realloc(text, cap *= 2);
-            if (!t) free(text);
-            text = t;
-            if (!text) break;
-        }
-        if (c == 0) {
-            cli_error(path, 0, "binary data (a NUL byte): not a %s file", what);
-            free(text);
-            if (f != stdin) fclose(f);
-            return -1;
-        }
-        text[len++] = (char)c;
-    }
-    bool read_error = ferror(f) != 0;
-    if (f != stdin) fclose(f);
-    if (!text) {
-        cli_error(path, 0, "out of memory");
-        return -1;
-    }
-    if (read_error) {
-        cli_error(path, 0, "read failed");
+    size_t len = 0;
+    char* text = cli_read_all(path, &len);
+    if (!text) return -1;
+    if (memchr(text, 0, len)) {
+        cli_error(path, 0, "binary data (a NUL byte): not a %s file", what);
         free(text);
         return -1;
     }
-    text[len] = '\0';
     size_t lines = 1;
     for (size_t i = 0; i < len; ++i) lines += text[i] == '\n';
     char** items = malloc(lines * sizeof *items);

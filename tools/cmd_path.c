@@ -175,11 +175,7 @@ static long read_pairs(const char* pairs_path, tg_mesh* mesh, tg_bvh** bvh, pair
         char* text = lineno == 1 ? cli_skip_bom(line) : line;
         const char* p = text + strspn(text, " \t\r");
         if (!*p || *p == '#') continue;
-        if (n == cap) {
-            pair_in* grown = realloc(pairs, 2 * cap * sizeof *pairs);
-            if (!grown) break;
-            pairs = grown, cap *= 2;
-        }
+        if (!cli_grow((void**)&pairs, &cap, n + 1, sizeof *pairs)) break;
         if (!parse_pair(pairs_path, lineno, text, mesh, bvh, &pairs[n].a, &pairs[n].b)) goto done;
         pairs[n++].line = lineno;
     }

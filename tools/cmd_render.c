@@ -27,10 +27,9 @@ static double* read_polyline(const char* path, size_t* out_count)
         char* p = line;
         while (*p == ' ' || *p == '\t') p++;
         if (p[0] == 'v' && (p[1] == ' ' || p[1] == '\t')) {
-            if (nv == cap) {
-                double* g = realloc(v, (cap *= 2) * 3 * sizeof *v);
-                if (!g) { ok = false; break; }
-                v = g;
+            if (!cli_grow((void**)&v, &cap, nv + 1, 3 * sizeof *v)) {
+                ok = false;
+                break;
             }
             char* end = p + 1;
             for (int k = 0; k < 3 && ok; ++k) {
@@ -57,10 +56,9 @@ static double* read_polyline(const char* path, size_t* out_count)
                     ok = false;
                     break;
                 }
-                if (nl == lcap) {
-                    size_t* g = realloc(order, (lcap *= 2) * sizeof *order);
-                    if (!g) { ok = false; break; }
-                    order = g;
+                if (!cli_grow((void**)&order, &lcap, nl + 1, sizeof *order)) {
+                    ok = false;
+                    break;
                 }
                 order[nl++] = (size_t)k;
             }

@@ -48,37 +48,6 @@ void cli_error_diag(const tg_diag* d, tg_status st)
 /* --format of the command line (any command): the mesh's format instead of its extension. */
 static tg_format mesh_format = TG_FORMAT_AUTO;
 
-/* The mesh bytes from standard input (a mesh named "-"), uncompressed; NULL after an error. */
-static char* read_stdin(size_t* out_size)
-{
-    size_t cap = 1 << 20, n = 0;
-    char* buf = malloc(cap);
-    while (buf) {
-        if (n == cap) {
-            char* grown = cap <= ((size_t)8 << 30) ? realloc(buf, cap * 2) : NULL;
-            if (!grown) {
-                free(buf);
-                cli_error("-", 0, cap > ((size_t)8 << 30) ? "standard input exceeds 8 GiB" : "out of memory reading standard input");
-                return NULL;
-            }
-            buf = grown, cap *= 2;
-        }
-        size_t got = fread(buf + n, 1, cap - n, stdin);
-        n += got;
-        if (got == 0) {
-            if (ferror(stdin)) {
-                free(buf);
-                cli_error("-", 0, "cannot read standard input: %s", strerror(errno));
-                return NULL;
-            }
-            *out_size = n;
-            return buf;
-        }
-    }
-    cli_error("-", 0, "out of memory reading standard input");
-    return NULL;
-}
-
 tg_mesh* cli_load_mesh(const char* path)
 {
     tg_diag diag;
@@ -86,7 +55,7 @@ tg_mesh* cli_load_mesh(const char* path)
     tg_status st;
     if (!strcmp(path, "-")) {
         size_t n = 0;
-        char* data = read_stdin(&n);
+        char* data = cli_read_all("-", &n);
         if (!data) return NULL;
         st = tg_mesh_load_memory(data, n, "-", mesh_format, NULL, &diag, &mesh);
         free(data);

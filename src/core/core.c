@@ -121,19 +121,22 @@ void tg__diag_set(tg_diag* diag, const char* file, uint64_t line, uint64_t colum
     va_end(ap);
 }
 
+size_t tg__grow_capacity(size_t cap, size_t need, size_t first)
+{
+    if (need <= cap) return cap;
+    size_t c = cap ? cap : first;
+    while (c < need) {
+        if (c > SIZE_MAX / 2) return need;
+        c *= 2;
+    }
+    return c;
+}
+
 bool tg__vec_reserve(const tg_allocator* a, tg__vec* v, size_t extra)
 {
     if (extra <= v->capacity - v->count) return true;
     if (extra > SIZE_MAX - v->count) return false;
-    size_t need = v->count + extra;
-    size_t cap = v->capacity ? v->capacity : 64;
-    while (cap < need) {
-        if (cap > SIZE_MAX / 2) {
-            cap = need;
-            break;
-        }
-        cap *= 2;
-    }
+    size_t cap = tg__grow_capacity(v->capacity, v->count + extra, 64);
     size_t bytes;
     if (tg__mul_overflows(cap, v->elem, &bytes)) return false;
     void* p = tg__realloc(a, v->data, bytes);

@@ -54,6 +54,11 @@ void tg__c_locale_leave(tg__c_locale l);
 /* strtod in the "C" locale. */
 double tg__strtod_c(const char* s, char** end);
 
+/* The one growth rule of the library's buffers: the capacity (in elements or bytes) that holds
+ * `need`, doubling from `cap` (or from `first` when cap is 0); `need` itself when doubling would
+ * overflow. Returns cap when it already holds need. */
+size_t tg__grow_capacity(size_t cap, size_t need, size_t first);
+
 /* A growable byte/element buffer for readers (amortised doubling, checked sizes). */
 typedef struct tg__vec {
     void* data;

@@ -217,11 +217,7 @@ bool tg__buf_reserve(tg_geodesic_workspace* ws, tg__buf* b, size_t count, size_t
     size_t need;
     if (tg__mul_overflows(count ? count : 1, elem, &need)) return false;
     if (need <= b->cap) return true;
-    size_t cap = b->cap ? b->cap : 256;
-    while (cap < need) {
-        if (cap > SIZE_MAX / 2) return false;
-        cap *= 2;
-    }
+    size_t cap = tg__grow_capacity(b->cap, need, 256);
     void* p = tg__realloc(&ws->allocator, b->p, cap);
     if (!p) return false;
     b->p = p;

@@ -109,8 +109,8 @@ void tg_path_get_view(const tg_path* p, tg_path_view* v)
 static bool path_reserve(tg_path* p, size_t n)
 {
     if (n <= p->capacity) return true;
-    size_t cap = p->capacity ? p->capacity : 16;
-    while (cap < n) cap *= 2;
+    size_t cap = tg__grow_capacity(p->capacity, n, 16), bytes;
+    if (tg__mul_overflows(cap, 3 * sizeof(double), &bytes)) return false;
     tg_surface_point* pts = tg__realloc(&p->allocator, p->points, cap * sizeof *pts);
     if (pts) p->points = pts;
     double* xyz = pts ? tg__realloc(&p->allocator, p->xyz, cap * 3 * sizeof *xyz) : NULL;

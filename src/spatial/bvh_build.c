@@ -349,11 +349,8 @@ static void apply_split(builder* bd, const range* r, range* left, range* right)
 static bool nodes_reserve(builder* bd, size_t extra)
 {
     if (bd->node_count + extra <= bd->node_capacity) return true;
-    size_t cap = bd->node_capacity ? bd->node_capacity : 64;
-    while (cap < bd->node_count + extra) {
-        if (cap > SIZE_MAX / 2 / sizeof(tg__bvh_node)) return false;
-        cap *= 2;
-    }
+    size_t cap = tg__grow_capacity(bd->node_capacity, bd->node_count + extra, 64);
+    if (cap > SIZE_MAX / sizeof(tg__bvh_node) - 1) return false;
     bool mapped;
     size_t bytes = (cap + 1) * sizeof(tg__bvh_node);
     void* raw = tg__bvh_big_alloc(bd->a, bytes, &mapped);
@@ -670,8 +667,9 @@ static tg_status build_top(builder* top, const uint32_t* keys, uint32_t n, subtr
         bool grown = nodes_reserve(top, (size_t)inner);
         if (grown && count + TG__BVH_WIDTH > cap) {
             /* on failure the old block stays owned (and is freed below): never lose it */
-            void* bigger = tg__realloc(top->a, tasks, 2 * cap * sizeof *tasks);
-            if (bigger) tasks = bigger, cap *= 2;
+            size_t grown_cap = tg__grow_capacity(cap, count + TG__BVH_WIDTH, 64);
+            void* bigger = tg__realloc(top->a, tasks, grown_cap * sizeof *tasks);
+            if (bigger) tasks = bigger, cap = grown_cap;
             grown = bigger != NULL;
         }
         if (!grown) {

@@ -4,6 +4,7 @@
  *   Systems", §3.4) built by counting sort; vertices renumbered along a Morton (Z-order) curve
  *   (Morton 1966) so that graph searches touch nearby memory (the locality argument of Isenburg &
  *   Lindstrom, "Streaming Meshes", 2005, §2). */
+#include "core/morton.h"
 #include "geodesic/field_internal.h"
 
 #include <stdlib.h>
@@ -57,65 +58,38 @@ static bool build_corners(tg_geodesic* g)
     return true;
 }
 
-/* Spreads the low 21 bits of x to every third bit (Morton interleave). */
-static uint64_t spread3(uint64_t x)
-{
-    x &= 0x1FFFFF;
-    x = (x | x << 32) & 0x1F00000000FFFFull;
-    x = (x | x << 16) & 0x1F0000FF0000FFull;
-    x = (x | x << 8) & 0x100F00F00F00F00Full;
-    x = (x | x << 4) & 0x10C30C30C30C30C3ull;
-    x = (x | x << 2) & 0x1249249249249249ull;
-    return x;
-}
-
-/* order[] = vertices sorted by the Morton code of their position (21 bits per axis over the
- * bounding box; ties by index), by a least-significant-digit radix sort, 16 bits per pass. */
+/* order[] = vertices sorted by the Morton code of their position (10 bits per axis over the
+ * bounding box; ties by index: the sort is stable), with the library's Morton code and sort. */
 static bool build_order(tg_geodesic* g)
 {
     const tg_allocator* a = &g->allocator;
     size_t nv = g->vertex_count;
     const tg_mesh_report* r = &g->mesh->report;
-    uint64_t* key = tg__alloc_array(a, 2 * (nv ? nv : 1), sizeof(uint64_t));
-    uint32_t* tmp = tg__alloc_array(a, nv ? nv : 1, sizeof(uint32_t));
-    uint32_t* count = tg__alloc_array(a, 65536, sizeof(uint32_t));
+    uint64_t* kv = tg__alloc_array(a, 2 * (nv ? nv : 1), sizeof(uint64_t));
+    uint32_t* hist = tg__alloc_array(a, 1024, sizeof(uint32_t));
     g->order = tg__alloc_array(a, nv ? nv : 1, sizeof(uint32_t));
     g->rank = tg__alloc_array(a, nv ? nv : 1, sizeof(uint32_t));
-    bool ok = key && tmp && count && g->order && g->rank;
+    bool ok = kv && hist && g->order && g->rank;
     if (ok) {
         double scale[3];
         for (int k = 0; k < 3; ++k) {
             double ext = r->bbox_max[k] - r->bbox_min[k];
-            scale[k] = ext > 0.0 ? 2097151.0 / ext : 0.0;
+            scale[k] = ext > 0.0 ? 1023.0 / ext : 0.0;
         }
         for (size_t v = 0; v < nv; ++v) {
-            uint64_t c = 0;
+            uint32_t c = 0;
             for (int k = 0; k < 3; ++k) {
                 double q = (g->xyz[3 * v + (size_t)k] - r->bbox_min[k]) * scale[k];
-                uint64_t qi = q > 0.0 ? (uint64_t)(q < 2097151.0 ? q : 2097151.0) : 0;
-                c |= spread3(qi) << k;
+                c |= tg__morton_spread3(q > 0.0 ? (uint32_t)(q < 1023.0 ? q : 1023.0) : 0) << k;
             }
-            key[v] = c;
-            g->order[v] = (uint32_t)v;
+            kv[v] = (uint64_t)c << 32 | v;
         }
-        /* stable passes keep equal codes in index order */
-        for (int shift = 0; shift < 64; shift += 16) {
-            memset(count, 0, 65536 * sizeof(uint32_t));
-            for (size_t i = 0; i < nv; ++i) count[(key[g->order[i]] >> shift) & 0xFFFF]++;
-            uint32_t sum = 0;
-            for (size_t d = 0; d < 65536; ++d) {
-                uint32_t c = count[d];
-                count[d] = sum;
-                sum += c;
-            }
-            for (size_t i = 0; i < nv; ++i) tmp[count[(key[g->order[i]] >> shift) & 0xFFFF]++] = g->order[i];
-            memcpy(g->order, tmp, nv * sizeof(uint32_t));
-        }
+        const uint64_t* sorted = tg__morton_sort_pairs(kv, kv + nv, nv, hist);
+        for (size_t u = 0; u < nv; ++u) g->order[u] = (uint32_t)sorted[u];
         for (size_t u = 0; u < nv; ++u) g->rank[g->order[u]] = (uint32_t)u;
     }
-    tg__free(a, key);
-    tg__free(a, tmp);
-    tg__free(a, count);
+    tg__free(a, kv);
+    tg__free(a, hist);
     return ok;
 }
 

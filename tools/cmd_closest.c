@@ -84,14 +84,13 @@ static int write_csv(FILE* f, size_t n, const tg_closest_hit* hits, const tg_sig
     return ferror(f) ? -1 : 0;
 }
 
-static const char* method_reason(const tg_mesh* mesh, tg_sign_method requested)
+/* Why the library chose `used` (tg_bvh_sign_method decides; this only words it). */
+static const char* method_reason(tg_sign_method requested, tg_sign_method used)
 {
     if (requested != TG_SIGN_AUTO) return "as requested";
-    const tg_mesh_report* r = tg_mesh_get_report(mesh);
-    if (!r->closed_manifold) return "the mesh is not a closed manifold";
-    if (r->misoriented_edges) return "the mesh has inconsistently oriented edges";
-    if (r->degenerate_faces) return "the mesh has degenerate faces";
-    return "closed, consistently oriented manifold";
+    return used == TG_SIGN_PSEUDONORMAL
+               ? "auto: a closed, consistently oriented manifold without degenerate faces"
+               : "auto: not a closed, consistently oriented manifold without degenerate faces (see trigeo info)";
 }
 
 static int run(int argc, char** argv)
@@ -159,7 +158,7 @@ static int run(int argc, char** argv)
         tg_sign_method used = tg_bvh_sign_method(bvh, method);
         fprintf(stderr, "trigeo: closest: sign from %s (%s)\n",
                 used == TG_SIGN_PSEUDONORMAL ? "angle-weighted pseudonormals" : "the generalized winding number",
-                method_reason(mesh, method));
+                method_reason(method, used));
         shits = malloc((n ? n : 1) * sizeof *shits);
         st = shits ? tg_bvh_signed_distance_batch(bvh, xyz, n, method, (int)threads, shits) : TG_ERR_OUT_OF_MEMORY;
     } else if (st == TG_OK) {

@@ -1,4 +1,4 @@
-/* test_predicates_gmp.c - orient2d / orient3d against exact rational arithmetic (GMP mpq).
+/* test_predicates_gmp.c - orient2d against exact rational arithmetic (GMP mpq).
  * Based on: Shewchuk (1997) for the predicates under test; the grid test of Kettner, Mehlhorn,
  *   Pion, Schirra and Yap, "Classroom examples of robustness problems in geometric computations"
  *   (2008): orient2d(p, q, r) with q = (12, 12), r = (24, 24) and p on a 256 x 256 grid of
@@ -25,48 +25,11 @@ static int q_sign_orient2d(const double a[2], const double b[2], const double c[
     return s;
 }
 
-static int q_sign_orient3d(const double a[3], const double b[3], const double c[3], const double d[3])
-{
-    mpq_t m[3][3], t, u, det;
-    const double* rows[3] = {a, b, c};
-    mpq_inits(t, u, det, NULL);
-    for (int i = 0; i < 3; i++) {
-        for (int j = 0; j < 3; j++) {
-            mpq_init(m[i][j]);
-            mpq_set_d(m[i][j], rows[i][j]);
-            mpq_set_d(t, d[j]);
-            mpq_sub(m[i][j], m[i][j], t);
-        }
-    }
-    mpq_set_ui(det, 0, 1);
-    for (int j = 0; j < 3; j++) {
-        int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-        mpq_mul(t, m[1][j1], m[2][j2]);
-        mpq_mul(u, m[1][j2], m[2][j1]);
-        mpq_sub(t, t, u);
-        mpq_mul(t, t, m[0][j]);
-        mpq_add(det, det, t);
-    }
-    int s = mpq_sgn(det);
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) mpq_clear(m[i][j]);
-    mpq_clears(t, u, det, NULL);
-    return s;
-}
-
 static int sgn(double v) { return (v > 0.0) - (v < 0.0); }
 
 static double naive2d(const double a[2], const double b[2], const double c[2])
 {
     return (a[0] - c[0]) * (b[1] - c[1]) - (a[1] - c[1]) * (b[0] - c[0]);
-}
-
-static double naive3d(const double a[3], const double b[3], const double c[3], const double d[3])
-{
-    double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
-    double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
-    double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
-    return adx * (bdy * cdz - bdz * cdy) + ady * (bdz * cdx - bdx * cdz) + adz * (bdx * cdy - bdy * cdx);
 }
 
 /* Counts disagreements with GMP of the filtered and the exact-only predicate, over one query. */
@@ -81,17 +44,6 @@ static void check2d(tally* t, const double a[2], const double b[2], const double
     if (sgn(tg__orient2d_exact(a, b, c)) != ref) t->exact_wrong++;
     if (tg__orient2d_sign(a, b, c) != ref) t->filtered_wrong++;
     if (sgn(naive2d(a, b, c)) != ref) t->naive_wrong++;
-}
-
-static void check3d(tally* t, const double a[3], const double b[3], const double c[3], const double d[3])
-{
-    int ref = q_sign_orient3d(a, b, c, d);
-    t->queries++;
-    if (ref == 0) t->zeros++;
-    if (sgn(tg__orient3d(a, b, c, d)) != ref) t->filtered_wrong++;
-    if (sgn(tg__orient3d_exact(a, b, c, d)) != ref) t->exact_wrong++;
-    if (tg__orient3d_sign(a, b, c, d) != ref) t->filtered_wrong++;
-    if (sgn(naive3d(a, b, c, d)) != ref) t->naive_wrong++;
 }
 
 static void report(const char* name, const tally* t)
@@ -111,13 +63,6 @@ static void test_known_values(void)
     const double p[2] = {3, 3}, q[2] = {-7, -7}, r[2] = {1e10, 1e10};
     CHECK_EQ_INT(tg__orient2d_sign(p, q, r), 0);
     CHECK(tg__orient2d(p, p, r) == 0.0);
-    /* Shewchuk's convention: positive when d is below the plane of counterclockwise a, b, c. */
-    const double A[3] = {0, 0, 0}, B[3] = {1, 0, 0}, C[3] = {0, 1, 0}, below[3] = {0, 0, -1}, above[3] = {0.2, 0.3, 2};
-    CHECK(tg__orient3d(A, B, C, below) == 1.0);
-    CHECK_EQ_INT(tg__orient3d_sign(A, B, C, above), -1);
-    const double onplane[3] = {5, -7, 0};
-    CHECK_EQ_INT(tg__orient3d_sign(A, B, C, onplane), 0);
-    CHECK_EQ_INT(tg__orient3d_sign(A, B, C, C), 0);
 }
 
 /* The classic grid: p = (0.5 + i u, 0.5 + j u), u = 2^-53, against the line through (12, 12) and
@@ -188,91 +133,11 @@ static void test_random2d(void)
     report("orient2d random scales", &t);
 }
 
-/* 3D grid: d = (0.5 + i u, 0.5 + j u, 0.5) against the plane through (12,12,12), (24,24,24) and
- * (1, 2, 3), which contains the line x = y = z through (0.5, 0.5, 0.5). */
-static void test_grid3d(void)
-{
-    tally t = {0};
-    const double a[3] = {12, 12, 12}, b[3] = {24, 24, 24}, c[3] = {1, 2, 3};
-    const double u = ldexp(1.0, -53);
-    for (int i = 0; i < 128; i++) {
-        for (int j = 0; j < 128; j++) {
-            double d[3] = {0.5 + i * u, 0.5 + j * u, 0.5};
-            check3d(&t, a, b, c, d);
-            check3d(&t, d, a, b, c);
-            check3d(&t, b, d, c, a);
-        }
-    }
-    report("orient3d grid", &t);
-    CHECK_MSG(t.naive_wrong > 0, "the 3D grid did not trip the naive determinant (%d wrong)", t.naive_wrong);
-}
-
-/* Points computed on a plane (a + s (b - a) + r (c - a)) and moved by -1..1 ulp per axis. */
-static void test_plane_ulps3d(void)
-{
-    tally t = {0};
-    tg_rng rng = {777};
-    for (int k = 0; k < 300; k++) {
-        double scale = ldexp(1.0, (int)(tg_rng_next(&rng) % 80) - 40);
-        double p[3][3];
-        for (int i = 0; i < 3; i++)
-            for (int j = 0; j < 3; j++) p[i][j] = tg_rng_range(&rng, -1, 1) * scale;
-        double s = tg_rng_range(&rng, -1, 2), r = tg_rng_range(&rng, -1, 2);
-        double d0[3];
-        for (int j = 0; j < 3; j++) d0[j] = p[0][j] + s * (p[1][j] - p[0][j]) + r * (p[2][j] - p[0][j]);
-        for (int dx = -1; dx <= 1; dx++) {
-            for (int dy = -1; dy <= 1; dy++) {
-                for (int dz = -1; dz <= 1; dz++) {
-                    double d[3] = {d0[0], d0[1], d0[2]};
-                    if (dx) d[0] = nextafter(d[0], dx > 0 ? INFINITY : -INFINITY);
-                    if (dy) d[1] = nextafter(d[1], dy > 0 ? INFINITY : -INFINITY);
-                    if (dz) d[2] = nextafter(d[2], dz > 0 ? INFINITY : -INFINITY);
-                    check3d(&t, p[0], p[1], p[2], d);
-                    check3d(&t, d, p[2], p[0], p[1]);
-                }
-            }
-        }
-    }
-    /* Exactly coplanar integer points. */
-    for (int k = 0; k < 200; k++) {
-        double o[3], e1[3], e2[3];
-        for (int j = 0; j < 3; j++) {
-            o[j] = (double)(int64_t)(tg_rng_next(&rng) % 200001) - 100000.0;
-            e1[j] = (double)(int64_t)(tg_rng_next(&rng) % 2001) - 1000.0;
-            e2[j] = (double)(int64_t)(tg_rng_next(&rng) % 2001) - 1000.0;
-        }
-        double a[3], b[3], c[3], d[3];
-        for (int j = 0; j < 3; j++) {
-            a[j] = o[j];
-            b[j] = o[j] + 3 * e1[j] - e2[j];
-            c[j] = o[j] - 5 * e1[j] + 2 * e2[j];
-            d[j] = o[j] + 7 * e1[j] + 11 * e2[j];
-        }
-        CHECK_EQ_INT(tg__orient3d_sign(a, b, c, d), 0);
-        check3d(&t, a, b, c, d);
-    }
-    report("orient3d plane +-1 ulp", &t);
-}
-
-static void test_random3d(void)
-{
-    tally t = {0};
-    tg_rng rng = {4242};
-    for (int k = 0; k < 20000; k++) {
-        double scale = ldexp(1.0, (int)(tg_rng_next(&rng) % 300) - 150);
-        double p[4][3];
-        for (int i = 0; i < 4; i++)
-            for (int j = 0; j < 3; j++) p[i][j] = tg_rng_range(&rng, -1, 1) * scale;
-        check3d(&t, p[0], p[1], p[2], p[3]);
-    }
-    report("orient3d random scales", &t);
-}
-
 /* Mixed magnitudes inside one query: the exact sums must carry components of very different
  * exponents (1e-40 next to 1e40). */
 static void test_mixed_magnitudes(void)
 {
-    tally t2 = {0}, t3 = {0};
+    tally t2 = {0};
     tg_rng rng = {99};
     for (int k = 0; k < 5000; k++) {
         double p[4][3];
@@ -283,10 +148,8 @@ static void test_mixed_magnitudes(void)
         for (int j = 0; j < 3; j++) p[3][j] = p[0][j] + 0.5 * (p[1][j] - p[0][j]) + 0.25 * (p[2][j] - p[0][j]);
         double c2[2] = {p[0][0] + 0.5 * (p[1][0] - p[0][0]), p[0][1] + 0.5 * (p[1][1] - p[0][1])};
         check2d(&t2, p[0], p[1], c2);
-        check3d(&t3, p[0], p[1], p[2], p[3]);
     }
     report("orient2d mixed magnitudes", &t2);
-    report("orient3d mixed magnitudes", &t3);
 }
 
 int main(void)
@@ -295,9 +158,6 @@ int main(void)
     test_grid2d();
     test_line_ulps2d();
     test_random2d();
-    test_grid3d();
-    test_plane_ulps3d();
-    test_random3d();
     test_mixed_magnitudes();
     return tg_test_finish();
 }

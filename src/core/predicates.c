@@ -1,10 +1,9 @@
-/* predicates.c - orient2d / orient3d: floating-point filter, then exact expansion arithmetic.
+/* predicates.c - orient2d: floating-point filter, then exact expansion arithmetic.
  * Based on: J. R. Shewchuk, "Adaptive Precision Floating-Point Arithmetic and Fast Robust
  *   Geometric Predicates" (1997): Theorem 7 (Two-Sum), Theorem 6 (Fast-Two-Sum), Theorem 17
  *   (Split) and Theorem 18 (Two-Product, Dekker), Theorem 13 (Fast-Expansion-Sum with zero
- *   elimination), Theorem 19 (Scale-Expansion); §4.3 error bounds of the floating-point
- *   determinants: |err| <= (3 + 16 eps) eps * permanent for orient2d and (7 + 56 eps) eps *
- *   permanent for orient3d, eps = 2^-53.
+ *   elimination); §4.3 error bound of the floating-point determinant: |err| <= (3 + 16 eps) eps *
+ *   permanent for orient2d, eps = 2^-53.
  *
  * The filter answers almost every query with the plain floating-point determinant. When the
  * determinant is within its error bound of zero, the determinant is recomputed exactly as a
@@ -20,7 +19,6 @@
 #define PRED_SPLITTER 134217729.0 /* 2^27 + 1 */
 /* Forward error bounds of the filtered determinants, relative to their permanents (§4.3). */
 #define PRED_ORIENT2D_BOUND ((3.0 + 16.0 * PRED_EPS) * PRED_EPS)
-#define PRED_ORIENT3D_BOUND ((7.0 + 56.0 * PRED_EPS) * PRED_EPS)
 
 /* ---- error-free transformations (§2.3-2.5) ---- */
 
@@ -122,25 +120,6 @@ static int expansion_sum(int elen, const double* e, int flen, const double* f, d
     return hi;
 }
 
-/* h = e * b; returns the length of h (at most 2 elen). h must not alias e. Scale-Expansion with
- * zero elimination (Theorem 19). */
-static int scale_expansion(int elen, const double* e, double b, double* h)
-{
-    double q, hh, prod, lo, sum;
-    int hi = 0;
-    two_product(e[0], b, &q, &hh);
-    if (hh != 0.0) h[hi++] = hh;
-    for (int i = 1; i < elen; i++) {
-        two_product(e[i], b, &prod, &lo);
-        two_sum(q, lo, &sum, &hh);
-        if (hh != 0.0) h[hi++] = hh;
-        fast_two_sum(prod, sum, &q, &hh);
-        if (hh != 0.0) h[hi++] = hh;
-    }
-    if (q != 0.0 || hi == 0) h[hi++] = q;
-    return hi;
-}
-
 /* The sign-carrying component: the last (largest) one of a zero-eliminated expansion. */
 static inline double expansion_most_significant(int len, const double* e) { return e[len - 1]; }
 
@@ -193,67 +172,8 @@ double tg__orient2d(const double a[2], const double b[2], const double c[2])
     return tg__orient2d_exact(a, b, c);
 }
 
-/* ---- orient3d ---- */
-
-/* det [p; q; r] of three xyz rows, exactly: px (qy rz - qz ry) + py (qz rx - qx rz)
- * + pz (qx ry - qy rx). Returns the length (at most 24). */
-static int det3_exact(const double p[3], const double q[3], const double r[3], double* h)
-{
-    double myz[4], mzx[4], mxy[4], t1[8], t2[8], t3[8], s12[16];
-    int nyz = minor2(q[1], r[2], q[2], r[1], myz);
-    int nzx = minor2(q[2], r[0], q[0], r[2], mzx);
-    int nxy = minor2(q[0], r[1], q[1], r[0], mxy);
-    int n1 = scale_expansion(nyz, myz, p[0], t1);
-    int n2 = scale_expansion(nzx, mzx, p[1], t2);
-    int n3 = scale_expansion(nxy, mxy, p[2], t3);
-    int n12 = expansion_sum(n1, t1, n2, t2, s12);
-    return expansion_sum(n12, s12, n3, t3, h);
-}
-
-double tg__orient3d_exact(const double a[3], const double b[3], const double c[3], const double d[3])
-{
-    /* det [a - d; b - d; c - d] = det [a 1; b 1; c 1; d 1] (subtract the last row from the others),
-     * and the 4x4 determinant expanded along its column of ones is
-     * det3(a,b,c) - det3(a,b,d) + det3(a,c,d) - det3(b,c,d): again products of inputs only. */
-    double abc[24], abd[24], acd[24], bcd[24], s1[48], s2[48], det[96];
-    int nabc = det3_exact(a, b, c, abc);
-    int nabd = det3_exact(a, b, d, abd);
-    int nacd = det3_exact(a, c, d, acd);
-    int nbcd = det3_exact(b, c, d, bcd);
-    for (int i = 0; i < nabd; i++) abd[i] = -abd[i];
-    for (int i = 0; i < nbcd; i++) bcd[i] = -bcd[i];
-    int n1 = expansion_sum(nabc, abc, nabd, abd, s1);
-    int n2 = expansion_sum(nacd, acd, nbcd, bcd, s2);
-    int n = expansion_sum(n1, s1, n2, s2, det);
-    return expansion_most_significant(n, det);
-}
-
-double tg__orient3d(const double a[3], const double b[3], const double c[3], const double d[3])
-{
-    double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
-    double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
-    double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
-    double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
-    double cdxady = cdx * ady, adxcdy = adx * cdy;
-    double adxbdy = adx * bdy, bdxady = bdx * ady;
-    double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
-    double permanent = (fabs(bdxcdy) + fabs(cdxbdy)) * fabs(adz) + (fabs(cdxady) + fabs(adxcdy)) * fabs(bdz) +
-                       (fabs(adxbdy) + fabs(bdxady)) * fabs(cdz);
-    double errbound = PRED_ORIENT3D_BOUND * permanent;
-    /* Strict inequalities: with permanent == 0 the determinant is exactly 0 only if every product
-     * is, which the exact path confirms cheaply. */
-    if (det > errbound || -det > errbound) return det;
-    return tg__orient3d_exact(a, b, c, d);
-}
-
 int tg__orient2d_sign(const double a[2], const double b[2], const double c[2])
 {
     double d = tg__orient2d(a, b, c);
     return (d > 0.0) - (d < 0.0);
-}
-
-int tg__orient3d_sign(const double a[3], const double b[3], const double c[3], const double d[3])
-{
-    double v = tg__orient3d(a, b, c, d);
-    return (v > 0.0) - (v < 0.0);
 }

@@ -16,18 +16,11 @@
  * negative when clockwise, exactly 0 when collinear. Equals det [a - c; b - c]. */
 double tg__orient2d(const double a[2], const double b[2], const double c[2]);
 
-/* Six times the signed volume of tetrahedron (a, b, c, d): positive when d lies below the plane
- * through a, b, c, "below" meaning that a, b, c appear counterclockwise seen from above; negative
- * when above; exactly 0 when coplanar. Equals det [a - d; b - d; c - d]. */
-double tg__orient3d(const double a[3], const double b[3], const double c[3], const double d[3]);
-
-/* The sign (-1, 0, +1) of tg__orient2d / tg__orient3d. */
+/* The sign (-1, 0, +1) of tg__orient2d. */
 int tg__orient2d_sign(const double a[2], const double b[2], const double c[2]);
-int tg__orient3d_sign(const double a[3], const double b[3], const double c[3], const double d[3]);
 
-/* The exact-arithmetic paths alone (no filter), for tests and for callers that already know the
- * filter cannot decide. Same contracts as above. */
+/* The exact-arithmetic path alone (no filter), for tests and for callers that already know the
+ * filter cannot decide. Same contract as above. */
 double tg__orient2d_exact(const double a[2], const double b[2], const double c[2]);
-double tg__orient3d_exact(const double a[3], const double b[3], const double c[3], const double d[3]);
 
 #endif

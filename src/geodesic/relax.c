@@ -52,15 +52,15 @@ static void relax_edge(const tg_geodesic* g, relax_out* o, const tg__node* x, co
     push(g, o, &y, f_in);
 }
 
-/* Fan step around v between the last output node (in face f_in) and `next` (in f_out): the fan
+/* The seed's fan minimization around v between the last output node (in face f_in) and `next` (in f_out): the fan
  * minimization on each available side, started at V as the seed does; the shorter result is
  * taken when it beats `current`. Portals at the ends of the fan that hold the end points are
  * dropped first: crossing the edge an end point lies on is never needed, and the kernel treats an
  * end point on its first or last spoke as degenerate. On success pushes the spoke points and sets
  * *f_next to the face of the segment towards next. */
-static tg_status fan_step(tg_geodesic_workspace* ws, relax_out* o, uint32_t v, const tg__node* next, uint32_t f_in,
-                          uint32_t f_out, double current, const tg__node* skip_edge,
-                          const tg_geodesic_kernel_options* kopt, bool* done, uint32_t* f_next)
+static tg_status relax_fan(tg_geodesic_workspace* ws, relax_out* o, uint32_t v, const tg__node* next, uint32_t f_in,
+                          uint32_t f_out, double current, const tg_geodesic_kernel_options* kopt, bool* done,
+                          uint32_t* f_next)
 {
     const tg_geodesic* g = ws->geo;
     *done = false;
@@ -97,9 +97,6 @@ static tg_status fan_step(tg_geodesic_workspace* ws, relax_out* o, uint32_t v, c
         uint32_t* ps = portals + (size_t)side * cap;
         size_t m = tg__fan_portals(g, v, f_in, prev, f_out, next, side, ps, cap);
         if (m == SIZE_MAX) continue;
-        bool skip = false;
-        for (size_t k = 0; skip_edge && k < m && !skip; ++k) skip = tg__node_on_edge(g, skip_edge, ps[k]);
-        if (skip) continue;
         size_t lo = 0;
         while (lo < m && tg__node_on_edge(g, prev, ps[lo])) lo++;
         while (m > lo && tg__node_on_edge(g, next, ps[m - 1])) m--;
@@ -169,7 +166,7 @@ static tg_status relax_run(tg_geodesic_workspace* ws, relax_out* o, const tg__no
     const tg__node* prev = &o->nodes[o->n - 1];
     double cur = tg__node_dist(g, prev, &run[0], f_in) + tg__node_dist(g, &run[count - 1], next, f_out);
     for (size_t k = 0; k + 1 < count; ++k) cur += tg_v3_dist(tg__node_pos(g, &run[k]), tg__node_pos(g, &run[k + 1]));
-    return fan_step(ws, o, v, next, f_in, f_out, cur, NULL, kopt, done, f_next);
+    return relax_fan(ws, o, v, next, f_in, f_out, cur, kopt, done, f_next);
 }
 
 static double path_length(const tg_geodesic* g, const tg__node* nodes, const uint32_t* faces, size_t n)
@@ -235,7 +232,7 @@ static tg_status relax_pass(tg_geodesic_workspace* ws, size_t n, const tg_geodes
         } else if (x->kind == TG__NODE_VERTEX) {
             const tg__node* prev = &o.nodes[o.n - 1];
             double through = tg__node_dist(g, prev, x, f_in) + tg__node_dist(g, x, &nodes[i + 1], f_out);
-            st = fan_step(ws, &o, x->id, &nodes[i + 1], f_in, f_out, through, NULL, kopt, &done, &f_next);
+            st = relax_fan(ws, &o, x->id, &nodes[i + 1], f_in, f_out, through, kopt, &done, &f_next);
             if (!done) push(g, &o, x, f_in);
         } else {
             push(g, &o, x, f_in);

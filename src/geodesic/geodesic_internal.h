@@ -232,7 +232,7 @@ static inline tg__node tg__node_edge(uint32_t h, double t, double s)
 tg_surface_point tg__surface_to_solver(const tg_geodesic* g, tg_surface_point p);
 void tg__node_to_mesh(const tg_geodesic* g, tg__node* n);
 
-/* ---- fans around a vertex (fan.c) ---- */
+/* ---- vertex passages: fans of faces around a vertex (vertex_passage.c) ---- */
 
 /* Interior angle of face f at corner k, in [0, pi]; 0 for a zero-length side. */
 double tg__corner_angle(const tg_geodesic* g, uint32_t f, int k);
@@ -313,6 +313,26 @@ tg_status tg__funnel(tg_geodesic_workspace* ws, const tg__node* a, const tg__nod
 size_t tg__sleeve_crossings(tg_geodesic_workspace* ws, const tg__node* a, const tg__node* b,
                             uint32_t face0, const uint32_t* portals, size_t m, tg__node* out_nodes,
                             uint32_t* out_faces);
+
+/* ---- the result object (path_object.c) ---- */
+
+struct tg_path {
+    tg_allocator allocator;
+    tg_surface_point* points;
+    double* xyz;
+    uint32_t* faces;
+    size_t count, capacity;
+    double length, initial_length, max_angle_defect;
+    tg_path_status status;
+    tg_path_global global;
+    uint32_t iterations;
+    uint32_t edge_path_vertices;
+};
+
+/* Empties a path (unreachable, length +inf). */
+void tg__path_clear(tg_path* p);
+/* Room for n points; false when the arrays could not grow. */
+bool tg__path_reserve(tg_path* p, size_t n);
 
 /* ---- exact paths (path_exact.c) ---- */
 

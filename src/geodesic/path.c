@@ -1,25 +1,10 @@
-/* path.c - tg_path (the caller-owned result), tg_geodesic_path (the query), tg_path_write_obj.
+/* path.c - tg_geodesic_path, the query: endpoints, initial edge path, shortening, the exact check.
  * Based on: seed 002 §5 (endpoints, initial edge path, shortening) and the project's DESIGN.md
  *   (tg_path: points with every crossing and vertex passage, faces, length, status, certificate). */
 #include "geodesic/geodesic_internal.h"
 #include "kernels/edge_path.h"
 
-#include <errno.h>
-#include <stdio.h>
 #include <string.h>
-
-struct tg_path {
-    tg_allocator allocator;
-    tg_surface_point* points;
-    double* xyz;
-    uint32_t* faces;
-    size_t count, capacity;
-    double length, initial_length, max_angle_defect;
-    tg_path_status status;
-    tg_path_global global;
-    uint32_t iterations;
-    uint32_t edge_path_vertices;
-};
 
 /* A path counts as globally shortest when it is within this relative margin of the exact
  * distance (issue 10: "within 1e-9 relative"); the exact field is bounded by the path's length
@@ -33,94 +18,6 @@ struct tg_path {
 #define DEFAULT_MAX_ITERATIONS 10000u
 #define DEFAULT_STRAIGHTEN_TOL 1e-12 /* radians: ~4500 ulps of pi, above the rounding of angle sums */
 #define DEFAULT_RELAX_TOL 1e-13      /* relative length decrease per pass */
-
-const char* tg_path_global_name(tg_path_global global)
-{
-    return global == TG_PATH_PROVEN ? "proven" : global == TG_PATH_UNPROVEN ? "unproven" : "unknown";
-}
-
-const char* tg_path_status_name(tg_path_status s)
-{
-    switch (s) {
-    case TG_PATH_CONVERGED: return "converged";
-    case TG_PATH_ITERATION_CAP: return "iteration_cap";
-    case TG_PATH_UNREACHABLE: return "unreachable";
-    case TG_PATH_STALLED: return "stalled";
-    default: return "unknown";
-    }
-}
-
-static void path_clear(tg_path* p)
-{
-    p->count = 0;
-    p->length = p->initial_length = INFINITY;
-    p->max_angle_defect = 0.0;
-    p->status = TG_PATH_UNREACHABLE;
-    p->global = TG_PATH_UNPROVEN;
-    p->iterations = 0;
-    p->edge_path_vertices = 0;
-}
-
-tg_status tg_path_create(const tg_allocator* a, tg_path** out)
-{
-    if (!out) return TG_ERR_INVALID_ARGUMENT;
-    *out = NULL;
-    tg_path* p = tg__alloc(a, sizeof *p);
-    if (!p) return TG_ERR_OUT_OF_MEMORY;
-    memset(p, 0, sizeof *p);
-    if (a) p->allocator = *a;
-    path_clear(p);
-    *out = p;
-    return TG_OK;
-}
-
-void tg_path_destroy(tg_path* p)
-{
-    if (!p) return;
-    tg_allocator a = p->allocator;
-    tg__free(&a, p->points);
-    tg__free(&a, p->xyz);
-    tg__free(&a, p->faces);
-    tg__free(&a, p);
-}
-
-void tg_path_get_view(const tg_path* p, tg_path_view* v)
-{
-    if (!v) return;
-    memset(v, 0, sizeof *v);
-    if (!p) {
-        v->length = v->initial_length = INFINITY;
-        v->status = TG_PATH_UNREACHABLE;
-        return;
-    }
-    v->point_count = p->count;
-    v->points = p->points;
-    v->xyz = p->xyz;
-    v->faces = p->faces;
-    v->length = p->length;
-    v->initial_length = p->initial_length;
-    v->max_angle_defect = p->max_angle_defect;
-    v->status = p->status;
-    v->global = p->global;
-    v->iterations = p->iterations;
-    v->edge_path_vertices = p->edge_path_vertices;
-}
-
-static bool path_reserve(tg_path* p, size_t n)
-{
-    if (n <= p->capacity) return true;
-    size_t cap = tg__grow_capacity(p->capacity, n, 16), bytes;
-    if (tg__mul_overflows(cap, 3 * sizeof(double), &bytes)) return false;
-    tg_surface_point* pts = tg__realloc(&p->allocator, p->points, cap * sizeof *pts);
-    if (pts) p->points = pts;
-    double* xyz = pts ? tg__realloc(&p->allocator, p->xyz, cap * 3 * sizeof *xyz) : NULL;
-    if (xyz) p->xyz = xyz;
-    uint32_t* faces = xyz ? tg__realloc(&p->allocator, p->faces, cap * sizeof *faces) : NULL;
-    if (faces) p->faces = faces;
-    if (!faces) return false;
-    p->capacity = cap;
-    return true;
-}
 
 /* The public form of a node: edge points name the halfedge from their nearer end (t <= 1/2) when
  * the edge has an opposite, so that t is the exact one of the pair. */
@@ -150,7 +47,7 @@ static tg_status fill_path(const tg_geodesic* g, tg_geodesic_workspace* ws, size
         faces[0] = tg__common_face(g, &nodes[0], &nodes[0], TG_NONE);
         n = 2;
     }
-    if (!path_reserve(path, n)) return TG_ERR_OUT_OF_MEMORY;
+    if (!tg__path_reserve(path, n)) return TG_ERR_OUT_OF_MEMORY;
     double len = 0.0;
     for (size_t i = 0; i < n; ++i) {
         path->points[i] = node_to_surface(g, &nodes[i]);
@@ -208,7 +105,7 @@ tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, cons
                            const tg_surface_point* to, const tg_path_options* options, tg_path* path)
 {
     if (!g || !ws || !from || !to || !path || ws->geo != g) return TG_ERR_INVALID_ARGUMENT;
-    path_clear(path);
+    tg__path_clear(path);
     if (tg_surface_point_validate(g->mesh, from, NULL) != TG_OK || tg_surface_point_validate(g->mesh, to, NULL) != TG_OK)
         return TG_ERR_INVALID_ARGUMENT;
     tg_path_method method = options ? options->method : TG_PATH_STRAIGHTEN;
@@ -250,7 +147,7 @@ tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, cons
         st = tg__relax(ws, n, max_it, tol, &kopt, &r);
     if (st == TG_OK) st = fill_path(g, ws, r.count, path);
     if (st != TG_OK) {
-        path_clear(path);
+        tg__path_clear(path);
         return st;
     }
     path->initial_length = initial;
@@ -264,38 +161,9 @@ tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, cons
     if (exact || certify == TG_PATH_CERTIFY_ON) {
         st = prove(g, ws, from, to, exact, path);
         if (st != TG_OK) {
-            path_clear(path);
+            tg__path_clear(path);
             return st;
         }
-    }
-    return TG_OK;
-}
-
-tg_status tg_path_write_obj(const tg_path* p, const char* filename, tg_diag* diag)
-{
-    tg__diag_clear(diag, filename ? filename : "");
-    if (!p || !filename) return TG_ERR_INVALID_ARGUMENT;
-    FILE* f = fopen(filename, "w");
-    if (!f) {
-        tg__diag_set(diag, filename, 0, 0, 0, "cannot open for writing: %s", strerror(errno));
-        return TG_ERR_IO;
-    }
-    tg__c_locale loc = tg__c_locale_enter(); /* '.' separators whatever the host's LC_NUMERIC */
-    fprintf(f, "# trigeo geodesic path: %zu points, length %.17g, status %s, max angle defect %.3g rad\n",
-            p->count, p->length, tg_path_status_name(p->status), p->max_angle_defect);
-    for (size_t i = 0; i < p->count; ++i)
-        fprintf(f, "v %.17g %.17g %.17g\n", p->xyz[3 * i], p->xyz[3 * i + 1], p->xyz[3 * i + 2]);
-    tg__c_locale_leave(loc);
-    if (p->count >= 2) {
-        fputs("l", f);
-        for (size_t i = 0; i < p->count; ++i) fprintf(f, " %zu", i + 1);
-        fputc('\n', f);
-    }
-    bool bad = ferror(f) != 0;
-    if (fclose(f) != 0) bad = true;
-    if (bad) {
-        tg__diag_set(diag, filename, 0, 0, 0, "write failed");
-        return TG_ERR_IO;
     }
     return TG_OK;
 }

@@ -1,4 +1,4 @@
-/* fan.c - fans of faces around a vertex: corner angles, the two side angles of a vertex passage,
+/* vertex_passage.c - a path passing a vertex, through the fan of faces around it: corner angles, the two side angles of a vertex passage,
  * and the portals crossed when a passage is re-routed through one side.
  * Based on: seed 002 §5 and Figure 5.1 (a path through a mesh vertex can be relaxed into the fan
  *   on either side; on a boundary vertex only the interior side exists); Mitchell, Mount &

@@ -371,27 +371,6 @@ static void test_locate(void)
 
 /* Every allocation of create, workspace_create and a batch may fail: the status says so and
  * nothing leaks (ASan checks the leaks). */
-typedef struct fail_alloc {
-    int countdown; /* the allocation that fails (0: none) */
-    int calls;
-} fail_alloc;
-static void* fa_alloc(void* u, size_t n)
-{
-    fail_alloc* f = u;
-    if (++f->calls == f->countdown) return NULL;
-    return malloc(n);
-}
-static void* fa_realloc(void* u, void* p, size_t n)
-{
-    fail_alloc* f = u;
-    if (++f->calls == f->countdown) return NULL;
-    return realloc(p, n);
-}
-static void fa_free(void* u, void* p)
-{
-    (void)u;
-    free(p);
-}
 
 static void test_allocation_failures(void)
 {
@@ -401,8 +380,8 @@ static void test_allocation_failures(void)
     double* q = make_queries(&r, m, 50);
     int ok_at = 0;
     for (int k = 1; k < 200 && !ok_at; ++k) {
-        fail_alloc f = {k, 0};
-        tg_allocator a = {fa_alloc, fa_realloc, fa_free, &f};
+        tg_test_counting f = {0, 0, k - 1, 0}; /* the k-th allocation and every later one fail */
+        tg_allocator a = tg_test_failing_allocator(&f);
         tg_bvh_options o = {0};
         o.allocator = &a;
         o.winding_data = TG_BVH_WINDING_ALWAYS;

@@ -35,7 +35,7 @@ int main(void)
      * (every 5th) of the subtree and leaf builds */
     const long stride = TG_TEST_WORK(5, 25);
     for (long k = 0;; k += k < 120 ? 1 : stride) {
-        tg_test_counting c = {0, 0, k};
+        tg_test_counting c = {0, 0, k, 0};
         tg_allocator a = tg_test_failing_allocator(&c);
         tg_bvh_options o;
         memset(&o, 0, sizeof o);

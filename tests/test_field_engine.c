@@ -202,7 +202,7 @@ static void test_workspace_and_progress(void)
     tg_mesh* m = load("igl_armadillo.obj");
     if (!m) return;
     size_t n = tg_mesh_vertex_count(m);
-    tg_test_counting cnt = {0, 0, -1};
+    tg_test_counting cnt = {0, 0, -1, 0};
     tg_allocator a = tg_test_failing_allocator(&cnt);
     tg_geodesic_options go = {&a};
     tg_geodesic* g = NULL;
@@ -441,7 +441,7 @@ static void test_allocation_failures(void)
     long total = -1;
     int failures = 0;
     for (long k = 0;; ++k) {
-        tg_test_counting c = {0, 0, k};
+        tg_test_counting c = {0, 0, k, 0};
         tg_allocator a = tg_test_failing_allocator(&c);
         tg_geodesic_options go = {&a};
         tg_geodesic* g = NULL;

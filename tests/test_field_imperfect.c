@@ -243,7 +243,7 @@ static void test_allocator(void)
     static double ref[MAXV];
     tg_surface_point s = tg_surface_vertex(17);
     CHECK_STATUS(tg_geodesic_field(c.geo, &s, 1, NULL, ref, NULL), TG_OK);
-    tg_test_counting cnt = {0, 0, -1};
+    tg_test_counting cnt = {0, 0, -1, 0};
     tg_allocator a = tg_test_failing_allocator(&cnt);
     tg_field_options o;
     memset(&o, 0, sizeof o);
@@ -254,7 +254,7 @@ static void test_allocator(void)
     CHECK_EQ_INT(cnt.allocs, cnt.frees);
     CHECK(used > 8);
     for (long k = 0; k < used; ++k) {
-        tg_test_counting f = {0, 0, k};
+        tg_test_counting f = {0, 0, k, 0};
         tg_allocator fa = tg_test_failing_allocator(&f);
         o.allocator = &fa;
         for (size_t v = 0; v < nv; ++v) fd[v] = -1;

@@ -7,47 +7,6 @@
 
 #include <trigeo.h>
 
-/* ---- a counting allocator: live bytes and the largest single request ---- */
-
-typedef struct counting {
-    size_t live_blocks;
-    size_t largest;
-} counting;
-
-typedef struct block_header {
-    size_t size;
-    size_t pad; /* keeps the payload 16-byte aligned */
-} block_header;
-
-static void* c_alloc(void* user, size_t size)
-{
-    counting* c = user;
-    if (size > c->largest) c->largest = size;
-    block_header* h = malloc(sizeof *h + size);
-    if (!h) return NULL;
-    h->size = size;
-    c->live_blocks++;
-    return h + 1;
-}
-
-static void* c_realloc(void* user, void* ptr, size_t size)
-{
-    counting* c = user;
-    if (!ptr) return c_alloc(user, size);
-    if (size > c->largest) c->largest = size;
-    block_header* h = realloc((block_header*)ptr - 1, sizeof *h + size);
-    if (!h) return NULL;
-    h->size = size;
-    return h + 1;
-}
-
-static void c_free(void* user, void* ptr)
-{
-    counting* c = user;
-    if (!ptr) return;
-    c->live_blocks--;
-    free((block_header*)ptr - 1);
-}
 
 /* ---- the case runner ---- */
 
@@ -64,8 +23,8 @@ typedef struct bad_case {
 static void run_case(const bad_case* bc)
 {
     size_t size = bc->size ? bc->size : strlen(bc->text);
-    counting cnt = {0, 0};
-    tg_allocator alloc = {c_alloc, c_realloc, c_free, &cnt};
+    tg_test_counting cnt = {0, 0, -1, 0};
+    tg_allocator alloc = tg_test_failing_allocator(&cnt);
     tg_mesh_options opt = {&alloc};
     tg_diag d;
     memset(&d, 0x55, sizeof d); /* garbage in: the loader must fill it */
@@ -75,7 +34,7 @@ static void run_case(const bad_case* bc)
               tg_status_name(bc->expected), st == TG_OK ? "loaded" : d.message);
     CHECK_MSG(m == NULL, "%s: *out_mesh not NULL on failure", bc->what);
     if (st == TG_OK) tg_mesh_destroy(m);
-    CHECK_MSG(cnt.live_blocks == 0, "%s: %zu blocks leaked", bc->what, cnt.live_blocks);
+    CHECK_MSG(cnt.allocs == cnt.frees, "%s: %ld blocks leaked", bc->what, cnt.allocs - cnt.frees);
     CHECK_MSG(strcmp(d.file, "bad.input") == 0, "%s: diag.file is '%.40s'", bc->what, d.file);
     CHECK_MSG(d.message[0] != '\0' && strlen(d.message) < sizeof d.message, "%s: empty diag message", bc->what);
     CHECK_MSG(d.line > 0 || d.byte_offset > 0, "%s: neither line nor byte offset set (%s)", bc->what, d.message);
@@ -414,8 +373,8 @@ static void check_prefixes(const char* what, tg_format fmt, const unsigned char*
 {
     int loaded = 0, failed = 0, bad = 0;
     for (size_t n = 0; n <= size; ++n) {
-        counting cnt = {0, 0};
-        tg_allocator alloc = {c_alloc, c_realloc, c_free, &cnt};
+        tg_test_counting cnt = {0, 0, -1, 0};
+        tg_allocator alloc = tg_test_failing_allocator(&cnt);
         tg_mesh_options opt = {&alloc};
         tg_diag d;
         tg_mesh* m = NULL;
@@ -429,7 +388,7 @@ static void check_prefixes(const char* what, tg_format fmt, const unsigned char*
             bad += m != NULL || d.message[0] == '\0' || (d.line == 0 && d.byte_offset == 0) ||
                    (st != TG_ERR_PARSE && st != TG_ERR_INVALID_MESH);
         }
-        bad += cnt.live_blocks != 0;
+        bad += cnt.allocs != cnt.frees;
     }
     CHECK_MSG(bad == 0, "%s: %d of %zu prefixes misbehaved", what, bad, size + 1);
     /* the whole file loads; the empty prefix fails */

@@ -254,7 +254,7 @@ static void test_allocator_hooks(void)
 {
     const double x[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
     const uint32_t t[] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
-    tg_test_counting c = {0, 0, -1};
+    tg_test_counting c = {0, 0, -1, 0};
     tg_allocator a = tg_test_failing_allocator(&c);
     tg_mesh_options o = {&a};
     tg_mesh* m = NULL;
@@ -265,7 +265,7 @@ static void test_allocator_hooks(void)
     CHECK_EQ_INT(c.allocs, c.frees);
     /* every failure point: out-of-memory status, NULL out, nothing leaked */
     for (long k = 0; k < used; ++k) {
-        tg_test_counting f = {0, 0, k};
+        tg_test_counting f = {0, 0, k, 0};
         tg_allocator fa = tg_test_failing_allocator(&f);
         tg_mesh_options fo = {&fa};
         tg_mesh* fm = (tg_mesh*)&fm;

@@ -148,7 +148,7 @@ static void test_allocation_failures(void)
     tg_surface_point a = tg_surface_face(12, 0.2, 0.3, 0.5), b = tg_surface_vertex(2000);
     long k = 0;
     for (;; ++k) {
-        tg_test_counting cnt = {0, 0, k};
+        tg_test_counting cnt = {0, 0, k, 0};
         tg_allocator al = tg_test_failing_allocator(&cnt);
         tg_geodesic_options go = {&al};
         tg_geodesic* g = NULL;

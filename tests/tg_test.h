@@ -120,13 +120,21 @@ static inline int tg_test_for_each_corpus_mesh(void (*fn)(const char* dir, const
     return meshes;
 }
 
-/* An allocator that counts blocks and fails every request from the fail_after-th on (-1: never),
- * for out-of-memory tests at every allocation. A successful realloc is a failure point too and
- * counts as one block freed and one allocated, so allocs == frees whenever nothing leaked. Use
- * tg_test_failing_allocator(&counter) as the tg_allocator. */
+/* The tests' one allocator: it counts blocks, records the largest single request, and fails
+ * every request from the fail_after-th on (-1: never), for out-of-memory tests at every
+ * allocation. A successful realloc is a failure point too and counts as one block freed and one
+ * allocated, so allocs == frees whenever nothing leaked. Use tg_test_failing_allocator(&counter)
+ * as the tg_allocator; {0, 0, -1} counts without failing. */
 typedef struct tg_test_counting {
     long allocs, frees, fail_after;
+    size_t largest;
 } tg_test_counting;
+static inline void tg_test_c_note_size(tg_test_counting* c, size_t n)
+{
+    size_t m = __atomic_load_n(&c->largest, __ATOMIC_SEQ_CST);
+    while (n > m && !__atomic_compare_exchange_n(&c->largest, &m, n, false, __ATOMIC_SEQ_CST, __ATOMIC_SEQ_CST)) {
+    }
+}
 /* The counters are updated atomically: batch entry points allocate from several threads. */
 static inline bool tg_test_c_take(tg_test_counting* c)
 {
@@ -138,12 +146,14 @@ static inline bool tg_test_c_take(tg_test_counting* c)
 }
 static inline void* tg_test_c_alloc(void* u, size_t n)
 {
+    tg_test_c_note_size((tg_test_counting*)u, n);
     return tg_test_c_take((tg_test_counting*)u) ? malloc(n) : NULL;
 }
 static inline void* tg_test_c_realloc(void* u, void* p, size_t n)
 {
     tg_test_counting* c = (tg_test_counting*)u;
     if (!p) return tg_test_c_alloc(u, n);
+    tg_test_c_note_size(c, n);
     if (!tg_test_c_take(c)) return NULL;
     __atomic_fetch_add(&c->frees, 1, __ATOMIC_SEQ_CST);
     return realloc(p, n);

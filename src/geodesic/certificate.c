@@ -44,21 +44,14 @@ static bool unfold_across(const tg_geodesic* g, placed_face* pf, uint32_t h, uin
     bool same = g->tri[q] == g->tri[h]; /* wound the same way: mirrored in the plane */
     double r[2] = {pf->xy[h % 3][0], pf->xy[h % 3][1]};
     double l[2] = {pf->xy[(h % 3 + 1) % 3][0], pf->xy[(h % 3 + 1) % 3][1]};
-    tg_vec3 pr = tg__gpos(g, g->tri[h]);
-    tg_vec3 e = tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_next(h)]), pr);
     uint32_t qk = q % 3;
-    tg_vec3 d = tg_v3_sub(tg__gpos(g, g->tri[q - qk + (qk + 2) % 3]), pr);
-    double ee = tg_v3_dot(e, e);
-    if (!(ee > 0.0)) return false;
-    double x = tg_v3_dot(d, e) / ee, y = tg_v3_len(tg_v3_cross(d, e)) / ee;
-    double dx = l[0] - r[0], dy = l[1] - r[1];
+    if (!(tg_v3_dist(tg__gpos(g, g->tri[h]), tg__gpos(g, g->tri[tg_halfedge_next(h)])) > 0.0)) return false;
     pf->f = q / 3;
+    tg__unfold_apex(g, h, g->tri[q - qk + (qk + 2) % 3], r, l, pf->xy[(qk + 2) % 3]);
     const double* q0 = same ? r : l;
     const double* q1 = same ? l : r;
     pf->xy[qk][0] = q0[0], pf->xy[qk][1] = q0[1];
     pf->xy[(qk + 1) % 3][0] = q1[0], pf->xy[(qk + 1) % 3][1] = q1[1];
-    pf->xy[(qk + 2) % 3][0] = r[0] + x * dx + y * dy;
-    pf->xy[(qk + 2) % 3][1] = r[1] + x * dy - y * dx;
     return true;
 }
 
@@ -76,24 +69,6 @@ static bool place_node(const tg_geodesic* g, const placed_face* pf, const tg__no
         out[1] += b[i] * (pf->xy[i][1] - pf->xy[k][1]);
     }
     return true;
-}
-
-/* Lays face f counterclockwise with corner k at the origin and side k -> k+1 along +x. */
-static void place_first(const tg_geodesic* g, uint32_t f, int k, placed_face* pf)
-{
-    const uint32_t* t = g->tri + 3 * (size_t)f;
-    tg_vec3 o = tg__gpos(g, t[k]);
-    tg_vec3 e1 = tg_v3_sub(tg__gpos(g, t[(k + 1) % 3]), o), e2 = tg_v3_sub(tg__gpos(g, t[(k + 2) % 3]), o);
-    double l1 = tg_v3_len(e1);
-    pf->f = f;
-    pf->xy[k][0] = pf->xy[k][1] = 0.0;
-    pf->xy[(k + 1) % 3][0] = l1, pf->xy[(k + 1) % 3][1] = 0.0;
-    if (l1 > 0.0) {
-        pf->xy[(k + 2) % 3][0] = tg_v3_dot(e1, e2) / l1;
-        pf->xy[(k + 2) % 3][1] = tg_v3_len(tg_v3_cross(e1, e2)) / l1;
-    } else {
-        pf->xy[(k + 2) % 3][0] = tg_v3_len(e2), pf->xy[(k + 2) % 3][1] = 0.0;
-    }
 }
 
 static double angle_2d(const double* p, const double* x, const double* n)
@@ -137,7 +112,8 @@ static double crossing_defect(const tg_geodesic* g, const tg__node* nodes, const
     uint32_t near_v = x->t <= x->s ? g->tri[h] : g->tri[tg_halfedge_next(h)];
     int k = tg__corner_of(g, fx, near_v);
     placed_face pf;
-    place_first(g, fx, k < 0 ? 0 : k, &pf);
+    pf.f = fx;
+    tg__unfold_first(g, fx, k < 0 ? 0 : k, pf.xy);
     double px[2], pp[2], pn[2];
     bool ok = place_node(g, &pf, x, px);
     placed_face back = pf;

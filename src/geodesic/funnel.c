@@ -56,18 +56,7 @@ static bool sleeve_reserve(tg_geodesic_workspace* ws, size_t m, sleeve2d* s)
 static bool unfold(const tg_geodesic* g, uint32_t face0, const uint32_t* portals, size_t m, int ko, sleeve2d* s)
 {
     const uint32_t* t = g->tri + 3 * (size_t)face0;
-    tg_vec3 p0 = tg__gpos(g, t[ko]);
-    tg_vec3 e1 = tg_v3_sub(tg__gpos(g, t[(ko + 1) % 3]), p0), e2 = tg_v3_sub(tg__gpos(g, t[(ko + 2) % 3]), p0);
-    double l1 = tg_v3_len(e1);
-    int k1 = (ko + 1) % 3, k2 = (ko + 2) % 3;
-    s->xy[2 * ko] = 0.0, s->xy[2 * ko + 1] = 0.0;
-    s->xy[2 * k1] = l1, s->xy[2 * k1 + 1] = 0.0;
-    if (l1 > 0.0) {
-        s->xy[2 * k2] = tg_v3_dot(e1, e2) / l1;
-        s->xy[2 * k2 + 1] = tg_v3_len(tg_v3_cross(e1, e2)) / l1;
-    } else {
-        s->xy[2 * k2] = tg_v3_len(e2), s->xy[2 * k2 + 1] = 0.0;
-    }
+    tg__unfold_first(g, face0, ko, (double(*)[2])s->xy);
     int cu[3] = {0, 1, 2};
     for (int k = 0; k < 3; ++k) {
         s->vert[k] = t[k];
@@ -84,19 +73,8 @@ static bool unfold(const tg_geodesic* g, uint32_t face0, const uint32_t* portals
         uint32_t ru = (uint32_t)cu[p % 3], lu = (uint32_t)cu[(p % 3 + 1) % 3];
         uint32_t qf = q - q % 3, qk = q % 3;
         uint32_t c = g->tri[qf + (qk + 2) % 3];
-        tg_vec3 pr = tg__gpos(g, g->tri[p]);
-        tg_vec3 e = tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_next(p)]), pr);
-        tg_vec3 d3 = tg_v3_sub(tg__gpos(g, c), pr);
-        double ee = tg_v3_dot(e, e);
-        /* coordinates of the new vertex along the portal and across it, in portal lengths */
-        double x = ee > 0.0 ? tg_v3_dot(d3, e) / ee : 0.0;
-        double y = ee > 0.0 ? tg_v3_len(tg_v3_cross(d3, e)) / ee : 0.0;
-        const double *r2 = s->xy + 2 * ru, *l2 = s->xy + 2 * lu;
-        double dx = l2[0] - r2[0], dy = l2[1] - r2[1];
         size_t u = j + 2;
-        /* forward (away from the previous face) is the portal direction turned clockwise */
-        s->xy[2 * u] = r2[0] + x * dx + y * dy;
-        s->xy[2 * u + 1] = r2[1] + x * dy - y * dx;
+        tg__unfold_apex(g, p, c, s->xy + 2 * ru, s->xy + 2 * lu, s->xy + 2 * u);
         s->vert[u] = c;
         s->range[2 * u] = (uint32_t)j, s->range[2 * u + 1] = (uint32_t)j;
         s->left[j] = lu, s->right[j] = ru;

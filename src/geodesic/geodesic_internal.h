@@ -314,6 +314,17 @@ size_t tg__sleeve_crossings(tg_geodesic_workspace* ws, const tg__node* a, const 
                             uint32_t face0, const uint32_t* portals, size_t m, tg__node* out_nodes,
                             uint32_t* out_faces);
 
+/* ---- unfolding faces into the plane (unfold.c) ---- */
+
+/* The 2D corners of face f laid counterclockwise with corner k at the origin and its side
+ * k -> k + 1 along +x (xy[i]: corner i). */
+void tg__unfold_first(const tg_geodesic* g, uint32_t f, int k, double xy[3][2]);
+/* The 2D position of vertex `apex` of the face beyond the edge of halfedge h, whose end vertices
+ * tri[h] and tri[next h] lie at r and l in the plane (the placed face on h's left, i.e. the
+ * apex goes to the right of r -> l). A zero-length edge puts the apex at r. */
+void tg__unfold_apex(const tg_geodesic* g, uint32_t h, uint32_t apex, const double r[2], const double l[2],
+                     double out[2]);
+
 /* ---- the result object (path_object.c) ---- */
 
 struct tg_path {

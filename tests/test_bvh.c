@@ -129,17 +129,11 @@ static soup grid(size_t n, double offset)
 /* Mixed queries: on faces, near faces, at vertices, far away, in the bounding box. */
 static double* make_queries(tg_rng* r, const tg_mesh* m, size_t n)
 {
-    const tg_mesh_report* rep = tg_mesh_get_report(m);
     const double* x = tg_mesh_positions(m);
     const uint32_t* t = tg_mesh_triangles(m);
     size_t nf = tg_mesh_face_count(m);
-    double diag = 0.0, c[3];
-    for (int k = 0; k < 3; ++k) {
-        double e = rep->bbox_max[k] - rep->bbox_min[k];
-        diag += e * e;
-        c[k] = 0.5 * (rep->bbox_max[k] + rep->bbox_min[k]);
-    }
-    diag = sqrt(diag);
+    const tg_mesh_report* rep = tg_mesh_get_report(m);
+    double c[3], diag = tg_test_mesh_box(m, c);
     if (diag == 0.0) diag = 1.0;
     double* q = malloc(3 * n * sizeof(double));
     for (size_t i = 0; i < n; ++i) {

@@ -203,17 +203,11 @@ static void make_queries(const tg_mesh* m, size_t n, uint64_t seed, double* q)
 {
     tg_rng r = {seed | 1};
     if (tg_mesh_face_count(m) == 0) { memset(q, 0, 3 * n * sizeof *q); return; }
-    const tg_mesh_report* rep = tg_mesh_get_report(m);
     const double* x = tg_mesh_positions(m);
     const uint32_t* t = tg_mesh_triangles(m);
     size_t nf = tg_mesh_face_count(m);
-    double diag = 0.0, c[3];
-    for (int k = 0; k < 3; ++k) {
-        double e = rep->bbox_max[k] - rep->bbox_min[k];
-        diag += e * e;
-        c[k] = 0.5 * (rep->bbox_max[k] + rep->bbox_min[k]);
-    }
-    diag = diag > 0.0 ? sqrt(diag) : 1.0;
+    const tg_mesh_report* rep = tg_mesh_get_report(m);
+    double c[3], diag = tg_test_mesh_box(m, c);
     for (size_t i = 0; i < n; ++i) {
         double* p = q + 3 * i;
         const uint32_t* f = t + 3 * (tg_rng_next(&r) % nf);

@@ -554,6 +554,16 @@ static tg_status write_one(const tg_mesh* m, bool ply, const char* path)
     return ply ? tg_mesh_write_ply(m, path, &sc, 1, NULL) : tg_mesh_write_obj(m, path, NULL);
 }
 
+
+/* The file at path holds exactly the reference bytes (what the default allocator's run wrote). */
+static void check_file_is(const char* path, const char* reference, size_t size, const char* what)
+{
+    size_t n = 0;
+    char* d = read_whole(path, &n);
+    CHECK_MSG(d && n == size && same_bytes(d, reference, n), "%s: %s differs from the default allocator's", what, path);
+    free(d);
+}
+
 static tg_status try_write(sweep* s, void* ctx)
 {
     write_ctx* w = ctx;
@@ -564,13 +574,7 @@ static tg_status try_write(sweep* s, void* ctx)
     arm(s);
     tg_status st = write_one(m, w->ply, path);
     disarm(s);
-    if (st == TG_OK) {
-        size_t n = 0;
-        char* d = read_whole(path, &n);
-        CHECK_MSG(d && n == w->size && same_bytes(d, w->reference, n), "%s: the file differs from the default allocator's",
-                  s->name);
-        free(d);
-    }
+    if (st == TG_OK) check_file_is(path, w->reference, w->size, s->name);
     tg_mesh_destroy(m);
     return st;
 }
@@ -1281,13 +1285,7 @@ static tg_status try_render(sweep* s, void* ctx)
     arm(s);
     tg_status st = tg_render_png(m, &rc->options, path, NULL);
     disarm(s);
-    if (st == TG_OK) {
-        size_t n = 0;
-        char* d = read_whole(path, &n);
-        CHECK_MSG(d && n == rc->size && same_bytes(d, rc->reference, n), "%s: the image differs from the default allocator's",
-                  s->name);
-        free(d);
-    }
+    if (st == TG_OK) check_file_is(path, rc->reference, rc->size, s->name);
     tg_mesh_destroy(m);
     return st;
 }

@@ -166,6 +166,19 @@ static inline void tg_test_c_free(void* u, void* p)
 }
 #define tg_test_failing_allocator(counter) {tg_test_c_alloc, tg_test_c_realloc, tg_test_c_free, (counter)}
 
+/* The diagonal of the mesh's bounding box (1 for a point-sized or empty box) and its centre. */
+static inline double tg_test_mesh_box(const tg_mesh* m, double centre[3])
+{
+    const tg_mesh_report* rep = tg_mesh_get_report(m);
+    double diag = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        double e = rep->bbox_max[k] - rep->bbox_min[k];
+        diag += e * e;
+        centre[k] = 0.5 * (rep->bbox_max[k] + rep->bbox_min[k]);
+    }
+    return diag > 0.0 ? sqrt(diag) : 1.0;
+}
+
 /* Deterministic xorshift64* generator for property tests. */
 typedef struct tg_rng { uint64_t s; } tg_rng;
 static inline uint64_t tg_rng_next(tg_rng* r)

@@ -159,5 +159,16 @@ if pts:
     check(got is not None and abs(float(got[1]) - float(rows[0][1])) < 1e-9, "p position pairs: %r %r" % (r.stdout, r.stderr))
 else:
     check(False, "path --json has no xyz key: %r" % js[:200])
+# -o everywhere, the extension picks the format
+ij, it = os.path.join(tmp, "info.json"), os.path.join(tmp, "info.txt")
+r1, r2 = run("info", spot, "-o", ij), run("info", spot, "-o", it)
+check(r1.returncode == 0 and json.load(open(ij))["vertices"] == 2930 and open(it).read().startswith(spot),
+      "info -o OUT.json / OUT.txt: %r %r" % (r1.stderr, r2.stderr))
+pj = os.path.join(tmp, "p.json")
+r = run("path", spot, "--from", "v:0", "--to", "v:9", "-o", pj)
+want = json.loads(run("path", spot, "--from", "v:0", "--to", "v:9", "--json").stdout)
+check(r.returncode == 0 and json.load(open(pj)) == want, "path -o PATH.json is the --json document")
+r = run("path", spot, "--from", "v:0", "--to", "v:9", "-o", os.path.join(tmp, "p.txt"))
+check(r.returncode == 1 and not os.path.exists(os.path.join(tmp, "p.txt")), "path -o with an unknown extension is a usage error")
 cli_common.finish()
 PY

@@ -91,6 +91,9 @@ void cli_output_abort(cli_output* o);
  * or prints the error under the user's file name and removes it. CLI_OK, CLI_USAGE (invalid
  * argument) or CLI_INPUT. */
 int cli_output_finish_library(cli_output* o, tg_status st, const tg_diag* d);
+/* Does `path` end with `ext` (".json", ".csv", ...; case-insensitive)? The CLI's -o picks the
+ * output format by extension. */
+bool cli_ext_is(const char* path, const char* ext);
 /* Writes a float64 array as NumPy .npy: (rows, cols) when matrix, else (cols,). */
 bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bool matrix);
 

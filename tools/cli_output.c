@@ -12,6 +12,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -266,4 +267,10 @@ char* cli_read_all(const char* path, size_t* out_size)
     buf[n] = '\0';
     *out_size = n;
     return buf;
+}
+
+bool cli_ext_is(const char* path, const char* ext)
+{
+    size_t n = strlen(path), e = strlen(ext);
+    return n >= e && !strcasecmp(path + n - e, ext);
 }

@@ -3,70 +3,74 @@
 
 #include <string.h>
 
-static void print_json(const char* path, const tg_mesh_report* r)
+static void print_json(FILE* f, const char* path, const tg_mesh_report* r)
 {
-    printf("{\n  \"file\": \"");
+    fprintf(f, "{\n  \"file\": \"");
     for (const char* p = path; *p; ++p) {
-        if (*p == '"' || *p == '\\') putchar('\\');
-        if ((unsigned char)*p < 0x20) printf("\\u%04x", (unsigned char)*p);
-        else putchar(*p);
+        if (*p == '"' || *p == '\\') fputc('\\', f);
+        if ((unsigned char)*p < 0x20) fprintf(f, "\\u%04x", (unsigned char)*p);
+        else fputc(*p, f);
     }
-    printf("\",\n");
-    printf("  \"vertices\": %llu,\n", (unsigned long long)r->vertices);
-    printf("  \"faces\": %llu,\n", (unsigned long long)r->faces);
-    printf("  \"edges\": %llu,\n", (unsigned long long)r->edges);
-    printf("  \"components\": %llu,\n", (unsigned long long)r->components);
-    printf("  \"boundary_edges\": %llu,\n", (unsigned long long)r->boundary_edges);
-    printf("  \"boundary_loops\": %llu,\n", (unsigned long long)r->boundary_loops);
-    printf("  \"nonmanifold_edges\": %llu,\n", (unsigned long long)r->nonmanifold_edges);
-    printf("  \"nonmanifold_vertices\": %llu,\n", (unsigned long long)r->nonmanifold_vertices);
-    printf("  \"misoriented_edges\": %llu,\n", (unsigned long long)r->misoriented_edges);
-    printf("  \"degenerate_faces\": %llu,\n", (unsigned long long)r->degenerate_faces);
-    printf("  \"duplicate_faces\": %llu,\n", (unsigned long long)r->duplicate_faces);
-    printf("  \"unreferenced_vertices\": %llu,\n", (unsigned long long)r->unreferenced_vertices);
-    printf("  \"euler_characteristic\": %lld,\n", (long long)r->euler_characteristic);
-    printf("  \"closed_manifold\": %s,\n", r->closed_manifold ? "true" : "false");
+    fprintf(f, "\",\n");
+    fprintf(f, "  \"vertices\": %llu,\n", (unsigned long long)r->vertices);
+    fprintf(f, "  \"faces\": %llu,\n", (unsigned long long)r->faces);
+    fprintf(f, "  \"edges\": %llu,\n", (unsigned long long)r->edges);
+    fprintf(f, "  \"components\": %llu,\n", (unsigned long long)r->components);
+    fprintf(f, "  \"boundary_edges\": %llu,\n", (unsigned long long)r->boundary_edges);
+    fprintf(f, "  \"boundary_loops\": %llu,\n", (unsigned long long)r->boundary_loops);
+    fprintf(f, "  \"nonmanifold_edges\": %llu,\n", (unsigned long long)r->nonmanifold_edges);
+    fprintf(f, "  \"nonmanifold_vertices\": %llu,\n", (unsigned long long)r->nonmanifold_vertices);
+    fprintf(f, "  \"misoriented_edges\": %llu,\n", (unsigned long long)r->misoriented_edges);
+    fprintf(f, "  \"degenerate_faces\": %llu,\n", (unsigned long long)r->degenerate_faces);
+    fprintf(f, "  \"duplicate_faces\": %llu,\n", (unsigned long long)r->duplicate_faces);
+    fprintf(f, "  \"unreferenced_vertices\": %llu,\n", (unsigned long long)r->unreferenced_vertices);
+    fprintf(f, "  \"euler_characteristic\": %lld,\n", (long long)r->euler_characteristic);
+    fprintf(f, "  \"closed_manifold\": %s,\n", r->closed_manifold ? "true" : "false");
     if (r->genus >= 0)
-        printf("  \"genus\": %lld,\n", (long long)r->genus);
+        fprintf(f, "  \"genus\": %lld,\n", (long long)r->genus);
     else
-        printf("  \"genus\": null,\n");
-    printf("  \"bbox_min\": [%.17g, %.17g, %.17g],\n", r->bbox_min[0], r->bbox_min[1], r->bbox_min[2]);
-    printf("  \"bbox_max\": [%.17g, %.17g, %.17g]\n}\n", r->bbox_max[0], r->bbox_max[1], r->bbox_max[2]);
+        fprintf(f, "  \"genus\": null,\n");
+    fprintf(f, "  \"bbox_min\": [%.17g, %.17g, %.17g],\n", r->bbox_min[0], r->bbox_min[1], r->bbox_min[2]);
+    fprintf(f, "  \"bbox_max\": [%.17g, %.17g, %.17g]\n}\n", r->bbox_max[0], r->bbox_max[1], r->bbox_max[2]);
 }
 
-static void print_text(const char* path, const tg_mesh_report* r, size_t bytes)
+static void print_text(FILE* f, const char* path, const tg_mesh_report* r, size_t bytes)
 {
-    printf("%s\n", path);
-    printf("  vertices               %llu\n", (unsigned long long)r->vertices);
-    printf("  faces                  %llu\n", (unsigned long long)r->faces);
-    printf("  edges                  %llu\n", (unsigned long long)r->edges);
-    printf("  components             %llu\n", (unsigned long long)r->components);
-    printf("  boundary edges         %llu in %llu loop(s)\n", (unsigned long long)r->boundary_edges,
+    fprintf(f, "%s\n", path);
+    fprintf(f, "  vertices               %llu\n", (unsigned long long)r->vertices);
+    fprintf(f, "  faces                  %llu\n", (unsigned long long)r->faces);
+    fprintf(f, "  edges                  %llu\n", (unsigned long long)r->edges);
+    fprintf(f, "  components             %llu\n", (unsigned long long)r->components);
+    fprintf(f, "  boundary edges         %llu in %llu loop(s)\n", (unsigned long long)r->boundary_edges,
            (unsigned long long)r->boundary_loops);
-    printf("  non-manifold edges     %llu\n", (unsigned long long)r->nonmanifold_edges);
-    printf("  non-manifold vertices  %llu\n", (unsigned long long)r->nonmanifold_vertices);
-    printf("  misoriented edges      %llu\n", (unsigned long long)r->misoriented_edges);
-    printf("  degenerate faces       %llu\n", (unsigned long long)r->degenerate_faces);
-    printf("  duplicate faces        %llu\n", (unsigned long long)r->duplicate_faces);
-    printf("  unreferenced vertices  %llu\n", (unsigned long long)r->unreferenced_vertices);
-    printf("  Euler characteristic   %lld\n", (long long)r->euler_characteristic);
+    fprintf(f, "  non-manifold edges     %llu\n", (unsigned long long)r->nonmanifold_edges);
+    fprintf(f, "  non-manifold vertices  %llu\n", (unsigned long long)r->nonmanifold_vertices);
+    fprintf(f, "  misoriented edges      %llu\n", (unsigned long long)r->misoriented_edges);
+    fprintf(f, "  degenerate faces       %llu\n", (unsigned long long)r->degenerate_faces);
+    fprintf(f, "  duplicate faces        %llu\n", (unsigned long long)r->duplicate_faces);
+    fprintf(f, "  unreferenced vertices  %llu\n", (unsigned long long)r->unreferenced_vertices);
+    fprintf(f, "  Euler characteristic   %lld\n", (long long)r->euler_characteristic);
     if (r->genus >= 0)
-        printf("  genus                  %lld (closed manifold)\n", (long long)r->genus);
+        fprintf(f, "  genus                  %lld (closed manifold)\n", (long long)r->genus);
     else
-        printf("  genus                  n/a (%s)\n", r->closed_manifold ? "non-orientable" : "not a closed manifold");
-    printf("  bounding box           [%.6g, %.6g, %.6g] - [%.6g, %.6g, %.6g]\n", r->bbox_min[0],
+        fprintf(f, "  genus                  n/a (%s)\n", r->closed_manifold ? "non-orientable" : "not a closed manifold");
+    fprintf(f, "  bounding box           [%.6g, %.6g, %.6g] - [%.6g, %.6g, %.6g]\n", r->bbox_min[0],
            r->bbox_min[1], r->bbox_min[2], r->bbox_max[0], r->bbox_max[1], r->bbox_max[2]);
-    printf("  memory                 %.1f MiB (%.1f bytes/face)\n", bytes / 1048576.0,
+    fprintf(f, "  memory                 %.1f MiB (%.1f bytes/face)\n", bytes / 1048576.0,
            r->faces ? (double)bytes / (double)r->faces : 0.0);
 }
 
 static int run(int argc, char** argv)
 {
-    const char* path = NULL;
+    const char *path = NULL, *out_path = NULL;
     bool json = false;
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--json"))
             json = true;
+        else if (!strcmp(argv[i], "-o")) {
+            if (++i >= argc) return cli_usage("info", "-o needs a file name");
+            out_path = argv[i];
+        }
         else if (argv[i][0] == '-' && argv[i][1])
             return cli_usage("info", "unknown option '%s'", argv[i]);
         else if (!path)
@@ -78,20 +82,28 @@ static int run(int argc, char** argv)
     tg_mesh* mesh = cli_load_mesh(path);
     if (!mesh) return CLI_INPUT;
     const tg_mesh_report* r = tg_mesh_get_report(mesh);
-    if (json)
-        print_json(path, r);
-    else
-        print_text(path, r, tg_mesh_memory_bytes(mesh));
+    if (out_path && cli_ext_is(out_path, ".json")) json = true; /* the extension picks the format */
+    cli_output out;
+    FILE* f = cli_output_open(&out, out_path ? out_path : "-");
+    int rc = CLI_INPUT;
+    if (f) {
+        if (json)
+            print_json(f, path, r);
+        else
+            print_text(f, path, r, tg_mesh_memory_bytes(mesh));
+        rc = cli_output_commit(&out);
+    }
     tg_mesh_destroy(mesh);
-    return CLI_OK;
+    return rc;
 }
 
 const cli_command cli_cmd_info = {
-    "info", "info MESH [--json]",
+    "info", "info MESH [--json] [-o OUT.json|OUT.txt]",
     "Loads MESH and prints its validation report: counts of vertices, faces, edges, components,\n"
     "boundary edges and loops, non-manifold edges and (pinched) vertices, inconsistently oriented\n"
     "edges, degenerate (zero-area) and duplicate faces, unreferenced vertices, the Euler\n"
     "characteristic, the genus when the mesh is a closed manifold, and the bounding box.\n\n"
-    "  --json   machine-readable output; genus is null when not a closed manifold\n",
+    "  --json   machine-readable output; genus is null when not a closed manifold\n"
+    "  -o OUT   write the report to OUT (OUT.json: the JSON form), complete or not at all\n",
     run,
 };

@@ -280,7 +280,13 @@ static int run_single(const char* mesh_path, const char* from, const char* to, c
     }
     tg_path_view v;
     tg_path_get_view(path, &v);
-    if (out_path) { /* to a temporary name, renamed when complete */
+    if (out_path && cli_ext_is(out_path, ".json")) { /* the JSON document to a file */
+        cli_output out;
+        FILE* f = cli_output_open(&out, out_path);
+        if (!f) goto done;
+        print_json(f, mesh_path, method_name, &v);
+        if (cli_output_commit(&out) != CLI_OK) goto done;
+    } else if (out_path) { /* the OBJ polyline, to a temporary name renamed when complete */
         tg_diag d;
         memset(&d, 0, sizeof d);
         cli_output out;
@@ -354,12 +360,14 @@ static int run(int argc, char** argv)
         return run_pairs(mesh_path, pairs, out_path, &o);
     }
     if (!from || !to) return cli_usage("path", "missing %s (or --pairs FILE)", from ? "--to" : "--from");
+    if (out_path && !cli_ext_is(out_path, ".obj") && !cli_ext_is(out_path, ".json"))
+        return cli_usage("path", "-o takes PATH.obj (the polyline) or PATH.json (the whole answer)");
     return run_single(mesh_path, from, to, out_path, json, method, &o);
 }
 
 const cli_command cli_cmd_path = {
     "path",
-    "path MESH (--from SPEC --to SPEC [-o PATH.obj] [--json] | --pairs PAIRS [-o OUT.csv]) [--method M] [--certify]",
+    "path MESH (--from SPEC --to SPEC [-o PATH.obj|.json] [--json] | --pairs PAIRS [-o OUT.csv]) [--method M] [--certify]",
     "Geodesic paths on the surface between any two surface points (never snapped to a vertex):\n"
     "the shortest edge path (A*) with the endpoints inserted virtually, then shortened.\n\n"
     "  --from SPEC, --to SPEC   endpoints:  v:IDX            a vertex\n"
@@ -367,7 +375,8 @@ const cli_command cli_cmd_path = {
     "                                                    of summing to 1 they are rescaled)\n"
     "                                       e:HALFEDGE:t     a point of an edge (halfedge 3*face+corner)\n"
     "                                       p:x,y,z          the surface point closest to x,y,z\n"
-    "  -o PATH.obj              write the path as an OBJ polyline (v and l records)\n"
+    "  -o PATH.obj|PATH.json    write the path as an OBJ polyline (v and l records), or the\n"
+    "                           JSON document of --json (the format follows the extension)\n"
     "  --json                   print surface points, faces, 3D points, length, status, certificate\n"
     "  --pairs PAIRS            batch: one pair a line: \"v SRC TGT\" (vertices), \"f F0 b0 b1 b2 F1 c0 c1 c2\"\n"
     "                           (face points; \"p\" with these nine fields is read the same) or\n"

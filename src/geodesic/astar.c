@@ -187,10 +187,10 @@ static uint32_t edge_face(const tg_geodesic* g, uint32_t a, uint32_t b)
 }
 
 tg_status tg__initial_path(tg_geodesic_workspace* ws, const tg__endpoint* src, const tg__endpoint* dst,
-                           size_t* out_count, double* out_length)
+                           tg__route* out, double* out_length)
 {
     const tg_geodesic* g = ws->geo;
-    *out_count = 0;
+    out->count = 0;
     *out_length = INFINITY;
     if (src->comp != dst->comp) return TG_OK;
     next_generation(ws);
@@ -201,11 +201,10 @@ tg_status tg__initial_path(tg_geodesic_workspace* ws, const tg__endpoint* src, c
     /* walk parents back, then reverse into nodes + segment faces */
     size_t n = 0;
     for (uint32_t u = dst->graph_id; u != TG_NONE; u = ws->nodes_a[u].parent) n++;
-    if (!tg__buf_reserve(ws, &ws->nodes[0], n, sizeof(tg__node)) ||
-        !tg__buf_reserve(ws, &ws->segf[0], n, sizeof(uint32_t)))
+    if (!tg__buf_reserve(ws, &out->nodes, n, sizeof(tg__node)) || !tg__buf_reserve(ws, &out->faces, n, sizeof(uint32_t)))
         return TG_ERR_OUT_OF_MEMORY;
-    tg__node* nodes = ws->nodes[0].p;
-    uint32_t* faces = ws->segf[0].p;
+    tg__node* nodes = out->nodes.p;
+    uint32_t* faces = out->faces.p;
     size_t i = n;
     for (uint32_t u = dst->graph_id; u != TG_NONE; u = ws->nodes_a[u].parent) {
         --i;
@@ -225,7 +224,7 @@ tg_status tg__initial_path(tg_geodesic_workspace* ws, const tg__endpoint* src, c
         if (f == TG_NONE) return TG_ERR_INVALID_ARGUMENT; /* unreachable by construction */
         faces[k] = f;
     }
-    *out_count = n;
+    out->count = n;
     *out_length = ws->nodes_a[dst->graph_id].g;
     return TG_OK;
 }

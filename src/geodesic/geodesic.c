@@ -201,7 +201,7 @@ bool tg__buf_reserve(tg_geodesic_workspace* ws, tg__buf* b, size_t count, size_t
 
 /* Every tg__buf member, for destruction and accounting. */
 #define WS_BUFFERS(X)                                                                              \
-    X(heap) X(ep_nbr[0]) X(ep_nbr[1]) X(nodes[0]) X(nodes[1]) X(segf[0]) X(segf[1]) X(piv[0]) X(piv[1]) X(slv[0])  \
+    X(heap) X(ep_nbr[0]) X(ep_nbr[1]) X(route.nodes) X(route.faces) X(spare.nodes) X(spare.faces) X(piv[0]) X(piv[1]) X(slv[0])  \
     X(slv[1]) X(portals[0]) X(portals[1]) X(decide) X(merged) X(faces) X(uxy) X(uvert) X(urange) X(ucorner)   \
     X(pleft) X(pright) X(deque) X(apex) X(dval) X(fan) X(spokes) X(tvals)
 

@@ -104,6 +104,15 @@ typedef struct tg__sleeve {
                                           the unfolding; -1: measure towards near_a / near_b */
 } tg__sleeve;
 
+/* A route: the node path the stages of a query hand each other (initial edge path -> shortened
+ * path -> exact trace -> the caller's tg_path): nodes[0..count) and the face of each of the
+ * count - 1 segments, in buffers owned by the workspace. */
+typedef struct tg__route {
+    tg__buf nodes; /* tg__node */
+    tg__buf faces; /* uint32_t */
+    size_t count;
+} tg__route;
+
 struct tg_geodesic_workspace {
     const tg_geodesic* geo;
     tg_allocator allocator;
@@ -116,8 +125,8 @@ struct tg_geodesic_workspace {
     tg__buf heap;
     /* endpoints' neighbour lists (source, target) */
     tg__buf ep_nbr[2];
-    /* working paths (node arrays + segment faces), double-buffered */
-    tg__buf nodes[2], segf[2];
+    /* the query's route, and the second buffer of the relaxation's passes */
+    tg__route route, spare;
     /* straightener state, double-buffered */
     tg__buf piv[2], slv[2], portals[2];
     tg__buf decide;
@@ -279,23 +288,22 @@ uint32_t tg__common_face(const tg_geodesic* g, const tg__node* a, const tg__node
 /* Builds the endpoint (canonical node, graph id, virtual neighbours). */
 tg_status tg__endpoint_make(tg_geodesic_workspace* ws, const tg_surface_point* p, int which,
                             tg__endpoint* out);
-/* A* from src to dst over the edge graph plus the virtual edges. Writes the node path (nodes +
- * segment faces) into ws->nodes[0] / ws->segf[0], sets *out_count (nodes) and *out_length.
- * Returns TG_OK with *out_count == 0 when dst is unreachable. */
+/* A* from src to dst over the edge graph plus the virtual edges: the node path into *out (its
+ * count 0 when dst is unreachable) and its length into *out_length. */
 tg_status tg__initial_path(tg_geodesic_workspace* ws, const tg__endpoint* src, const tg__endpoint* dst,
-                           size_t* out_count, double* out_length);
+                           tg__route* out, double* out_length);
 
 /* ---- shortening (straighten.c, relax.c) ---- */
 
+/* Both shorten the route in place. */
 typedef struct tg__shorten_result {
-    size_t count;        /* nodes of the result in ws->nodes[0] / ws->segf[0] */
     uint32_t iterations;
     int capped;          /* the iteration cap was reached */
 } tg__shorten_result;
 
-tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_sweeps, double angle_tol,
+tg_status tg__straighten(tg_geodesic_workspace* ws, tg__route* route, uint32_t max_sweeps, double angle_tol,
                          tg__shorten_result* out);
-tg_status tg__relax(tg_geodesic_workspace* ws, size_t count, uint32_t max_passes, double rel_tol,
+tg_status tg__relax(tg_geodesic_workspace* ws, tg__route* route, uint32_t max_passes, double rel_tol,
                     const tg_geodesic_kernel_options* kernel, tg__shorten_result* out);
 
 /* ---- sleeves (funnel.c) ---- */
@@ -348,10 +356,10 @@ bool tg__path_reserve(tg_path* p, size_t n);
 /* ---- exact paths (path_exact.c) ---- */
 
 /* The exact distance from `from` to `to` (validated), computed within `limit` (+inf beyond), and
- * the shortest path traced back, into ws->nodes[0] / ws->segf[0] (*out_count nodes; 0 when
- * unreachable within the limit, or when the trace could not be completed). */
+ * the shortest path traced back into *out (count 0 when unreachable within the limit, or when
+ * the trace could not be completed). */
 tg_status tg__exact_path(tg_geodesic_workspace* ws, const tg_surface_point* from, const tg_surface_point* to,
-                         double limit, size_t* out_count, double* out_distance);
+                         double limit, tg__route* out, double* out_distance);
 
 /* ---- certificate (certificate.c) ---- */
 

@@ -32,17 +32,18 @@ static tg_surface_point node_to_surface(const tg_geodesic* g, const tg__node* so
     return tg_surface_edge(n->id, n->t);
 }
 
-/* Fills the path from the node path in ws->nodes[0] / segf[0]. */
-static tg_status fill_path(const tg_geodesic* g, tg_geodesic_workspace* ws, size_t n, tg_path* path)
+/* Fills the caller's path from a route. */
+static tg_status fill_path(const tg_geodesic* g, tg_geodesic_workspace* ws, tg__route* route, tg_path* path)
 {
-    tg__node* nodes = ws->nodes[0].p;
-    uint32_t* faces = ws->segf[0].p;
+    size_t n = route->count;
+    tg__node* nodes = route->nodes.p;
+    uint32_t* faces = route->faces.p;
     if (n == 1) {
         /* from == to: two points joined by an empty segment in a face holding the point */
-        if (!tg__buf_reserve(ws, &ws->nodes[0], 2, sizeof(tg__node)) || !tg__buf_reserve(ws, &ws->segf[0], 2, sizeof(uint32_t)))
+        if (!tg__buf_reserve(ws, &route->nodes, 2, sizeof(tg__node)) || !tg__buf_reserve(ws, &route->faces, 2, sizeof(uint32_t)))
             return TG_ERR_OUT_OF_MEMORY;
-        nodes = ws->nodes[0].p;
-        faces = ws->segf[0].p;
+        nodes = route->nodes.p;
+        faces = route->faces.p;
         nodes[1] = nodes[0];
         faces[0] = tg__common_face(g, &nodes[0], &nodes[0], TG_NONE);
         n = 2;
@@ -70,16 +71,17 @@ static tg_status prove(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg
                        const tg_surface_point* to, bool exact, tg_path* path)
 {
     double bound = path->length * (1.0 + PROVEN_REL);
-    size_t n = 0;
+    tg__route* traced_route = &ws->route;
     double d = INFINITY;
-    tg_status st = tg__exact_path(ws, from, to, bound, &n, &d);
+    tg_status st = tg__exact_path(ws, from, to, bound, traced_route, &d);
     if (st != TG_OK) return st;
+    size_t n = traced_route->count;
     bool straight_ok = path->length <= d * (1.0 + PROVEN_REL);
     /* the traced path, if any, and whether its length is the distance */
     double traced = n == 1 ? 0.0 : INFINITY;
     if (n >= 2) {
-        const tg__node* nodes = ws->nodes[0].p;
-        const uint32_t* faces = ws->segf[0].p;
+        const tg__node* nodes = traced_route->nodes.p;
+        const uint32_t* faces = traced_route->faces.p;
         traced = 0.0;
         for (size_t i = 0; i + 1 < n; ++i) traced += tg__node_dist(g, &nodes[i], &nodes[i + 1], faces[i]);
     }
@@ -87,7 +89,7 @@ static tg_status prove(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg
     if (traced_ok && (exact || !straight_ok)) {
         double initial = path->initial_length;
         uint32_t vertices = path->edge_path_vertices;
-        st = fill_path(g, ws, n, path);
+        st = fill_path(g, ws, traced_route, path);
         if (st != TG_OK) return st;
         path->initial_length = initial;
         path->edge_path_vertices = vertices;
@@ -133,19 +135,20 @@ tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, cons
     tg__endpoint src, dst;
     tg_status st = tg__endpoint_make(ws, from, 0, &src);
     if (st == TG_OK) st = tg__endpoint_make(ws, to, 1, &dst);
-    size_t n = 0;
+    tg__route* route = &ws->route; /* initial edge path -> shortened path -> the caller's path */
     double initial = INFINITY;
-    if (st == TG_OK) st = tg__initial_path(ws, &src, &dst, &n, &initial);
+    if (st == TG_OK) st = tg__initial_path(ws, &src, &dst, route, &initial);
     if (st != TG_OK) return st;
+    size_t n = route->count;
     if (n == 0) return TG_OK; /* unreachable: cleared path */
     uint32_t vertices = 0;
-    for (size_t i = 0; i < n; ++i) vertices += ((const tg__node*)ws->nodes[0].p)[i].kind == TG__NODE_VERTEX;
-    tg__shorten_result r = {n, 0, 0};
+    for (size_t i = 0; i < n; ++i) vertices += ((const tg__node*)route->nodes.p)[i].kind == TG__NODE_VERTEX;
+    tg__shorten_result r = {0, 0};
     if (method == TG_PATH_STRAIGHTEN && n > 2)
-        st = tg__straighten(ws, n, max_it, tol, &r);
+        st = tg__straighten(ws, route, max_it, tol, &r);
     else if (method == TG_PATH_RELAX && n > 2)
-        st = tg__relax(ws, n, max_it, tol, &kopt, &r);
-    if (st == TG_OK) st = fill_path(g, ws, r.count, path);
+        st = tg__relax(ws, route, max_it, tol, &kopt, &r);
+    if (st == TG_OK) st = fill_path(g, ws, route, path);
     if (st != TG_OK) {
         tg__path_clear(path);
         return st;

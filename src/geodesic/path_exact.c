@@ -24,20 +24,21 @@
 
 typedef struct trace {
     tg_geodesic_workspace* ws;
-    size_t n; /* nodes so far (target first); segment i (nodes i, i + 1) lies in face segf[i] */
+    tg__route* route; /* the nodes so far (target first); segment i lies in face faces[i] */
+    size_t n;
     bool out_of_memory; /* a buffer could not grow: the walk stopped for that, not a dead end */
 } trace;
 
 static bool add_node(trace* t, tg__node node, uint32_t face_before)
 {
     tg_geodesic_workspace* ws = t->ws;
-    if (!tg__buf_reserve(ws, &ws->nodes[0], t->n + 1, sizeof(tg__node)) ||
-        !tg__buf_reserve(ws, &ws->segf[0], t->n + 1, sizeof(uint32_t))) {
+    if (!tg__buf_reserve(ws, &t->route->nodes, t->n + 1, sizeof(tg__node)) ||
+        !tg__buf_reserve(ws, &t->route->faces, t->n + 1, sizeof(uint32_t))) {
         t->out_of_memory = true;
         return false;
     }
-    ((tg__node*)ws->nodes[0].p)[t->n] = node;
-    if (t->n > 0) ((uint32_t*)ws->segf[0].p)[t->n - 1] = face_before;
+    ((tg__node*)t->route->nodes.p)[t->n] = node;
+    if (t->n > 0) ((uint32_t*)t->route->faces.p)[t->n - 1] = face_before;
     t->n++;
     return true;
 }
@@ -238,10 +239,10 @@ static bool trace_back(trace* t, tg__node cur, tg__pred how, const tg__node* sou
 }
 
 tg_status tg__exact_path(tg_geodesic_workspace* ws, const tg_surface_point* from, const tg_surface_point* to,
-                         double limit, size_t* out_count, double* out_distance)
+                         double limit, tg__route* out, double* out_distance)
 {
     const tg_geodesic* g = ws->geo;
-    *out_count = 0;
+    out->count = 0;
     *out_distance = INFINITY;
     if (!ws->field) {
         tg_status st = tg__field_workspace_make(g, &ws->allocator, &ws->field);
@@ -262,23 +263,23 @@ tg_status tg__exact_path(tg_geodesic_workspace* ws, const tg_surface_point* from
     tg_surface_point ts = tg__surface_to_solver(g, tg_surface_point_canonical(g->mesh, to));
     tg_surface_point ss = tg__surface_to_solver(g, tg_surface_point_canonical(g->mesh, from));
     tg__node target = tg__node_from_surface(&ts), source = tg__node_from_surface(&ss);
-    trace t = {ws, 0, false};
+    trace t = {ws, out, 0, false};
     tg__pred how = ((const tg__pred*)ws->field->qpred.data)[0];
     if (target.kind == TG__NODE_VERTEX) how = ws->field->pred[target.id];
     if (!add_node(&t, target, TG_NONE)) return TG_ERR_OUT_OF_MEMORY;
     if (tg__node_same(g, &target, &source)) {
-        *out_count = 1;
+        out->count = 1;
         return TG_OK;
     }
     if (!trace_back(&t, target, how, &source)) {
         /* traced nothing usable: the caller keeps its own path; but a trace cut short by memory
          * is an error, not a path that cannot be traced (it would pass for an unproven one) */
-        *out_count = 0;
+        out->count = 0;
         return t.out_of_memory ? TG_ERR_OUT_OF_MEMORY : TG_OK;
     }
     /* target-first -> source-first */
-    tg__node* nodes = ws->nodes[0].p;
-    uint32_t* faces = ws->segf[0].p;
+    tg__node* nodes = out->nodes.p;
+    uint32_t* faces = out->faces.p;
     for (size_t i = 0, j = t.n - 1; i < j; ++i, --j) {
         tg__node x = nodes[i];
         nodes[i] = nodes[j], nodes[j] = x;
@@ -287,6 +288,6 @@ tg_status tg__exact_path(tg_geodesic_workspace* ws, const tg_surface_point* from
         uint32_t x = faces[i];
         faces[i] = faces[j], faces[j] = x;
     }
-    *out_count = t.n;
+    out->count = t.n;
     return TG_OK;
 }

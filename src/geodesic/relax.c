@@ -195,16 +195,18 @@ static size_t pass_bound(const tg_geodesic* g, const tg__node* nodes, size_t n)
 }
 
 /* One pass over the interior points (Gauss-Seidel: each step sees the updated previous point). */
-static tg_status relax_pass(tg_geodesic_workspace* ws, size_t n, const tg_geodesic_kernel_options* kopt, size_t* out_n)
+static tg_status relax_pass(tg_geodesic_workspace* ws, tg__route* route, const tg_geodesic_kernel_options* kopt)
 {
     const tg_geodesic* g = ws->geo;
-    size_t bound = pass_bound(g, ws->nodes[0].p, n);
-    if (!tg__buf_reserve(ws, &ws->nodes[1], bound, sizeof(tg__node)) ||
-        !tg__buf_reserve(ws, &ws->segf[1], bound, sizeof(uint32_t)))
+    size_t n = route->count;
+    size_t bound = pass_bound(g, route->nodes.p, n);
+    tg__route* next = &ws->spare; /* the pass writes here; the two swap at the end */
+    if (!tg__buf_reserve(ws, &next->nodes, bound, sizeof(tg__node)) ||
+        !tg__buf_reserve(ws, &next->faces, bound, sizeof(uint32_t)))
         return TG_ERR_OUT_OF_MEMORY;
-    const tg__node* nodes = ws->nodes[0].p;
-    const uint32_t* faces = ws->segf[0].p;
-    relax_out o = {ws->nodes[1].p, ws->segf[1].p, 0};
+    const tg__node* nodes = route->nodes.p;
+    const uint32_t* faces = route->faces.p;
+    relax_out o = {next->nodes.p, next->faces.p, 0};
     o.nodes[o.n++] = nodes[0];
     uint32_t f_in = faces[0]; /* the face of the segment from the last output point to nodes[i] */
     for (size_t i = 1; i + 1 < n; ++i) {
@@ -245,35 +247,31 @@ static tg_status relax_pass(tg_geodesic_workspace* ws, size_t n, const tg_geodes
         o.faces[0] = f_in;
         o.nodes[o.n++] = nodes[n - 1];
     }
-    tg__buf tb = ws->nodes[0];
-    ws->nodes[0] = ws->nodes[1], ws->nodes[1] = tb;
-    tb = ws->segf[0];
-    ws->segf[0] = ws->segf[1], ws->segf[1] = tb;
-    *out_n = o.n;
+    next->count = o.n;
+    tg__route swapped = *route;
+    *route = *next, *next = swapped;
     return TG_OK;
 }
 
-tg_status tg__relax(tg_geodesic_workspace* ws, size_t count, uint32_t max_passes, double rel_tol,
+tg_status tg__relax(tg_geodesic_workspace* ws, tg__route* route, uint32_t max_passes, double rel_tol,
                     const tg_geodesic_kernel_options* kernel, tg__shorten_result* out)
 {
     const tg_geodesic* g = ws->geo;
     memset(out, 0, sizeof *out);
     tg_geodesic_kernel_options kopt = *kernel;
-    size_t n = count;
-    double len = path_length(g, ws->nodes[0].p, ws->segf[0].p, n);
+    double len = path_length(g, route->nodes.p, route->faces.p, route->count);
     for (;;) {
         if (out->iterations >= max_passes) {
             out->capped = 1;
             break;
         }
-        tg_status st = relax_pass(ws, n, &kopt, &n);
+        tg_status st = relax_pass(ws, route, &kopt);
         if (st != TG_OK) return st;
         out->iterations++;
-        double new_len = path_length(g, ws->nodes[0].p, ws->segf[0].p, n);
+        double new_len = path_length(g, route->nodes.p, route->faces.p, route->count);
         bool stalled = !(len - new_len > rel_tol * new_len);
         len = new_len;
         if (stalled) break;
     }
-    out->count = n;
     return TG_OK;
 }

@@ -208,19 +208,19 @@ static tg_status sweep(tg_geodesic_workspace* ws, int cur, size_t np, const deci
     return TG_OK;
 }
 
-/* Expands pivots and sleeves into nodes with every edge crossing (into ws->nodes[0], segf[0]). */
-static tg_status expand(tg_geodesic_workspace* ws, int cur, size_t np, size_t* out_count)
+/* Expands pivots and sleeves into the route's nodes, with every edge crossing. */
+static tg_status expand(tg_geodesic_workspace* ws, int cur, size_t np, tg__route* route)
 {
     const tg__sleeve* slv = ws->slv[cur].p;
     size_t total = 1;
     for (size_t i = 0; i + 1 < np; ++i) total += slv[i].portal_end - slv[i].portal_begin + 1;
-    if (!tg__buf_reserve(ws, &ws->nodes[0], total, sizeof(tg__node)) ||
-        !tg__buf_reserve(ws, &ws->segf[0], total, sizeof(uint32_t)))
+    if (!tg__buf_reserve(ws, &route->nodes, total, sizeof(tg__node)) ||
+        !tg__buf_reserve(ws, &route->faces, total, sizeof(uint32_t)))
         return TG_ERR_OUT_OF_MEMORY;
     const tg__node* piv = ws->piv[cur].p;
     const uint32_t* portals = ws->portals[cur].p;
-    tg__node* nodes = ws->nodes[0].p;
-    uint32_t* faces = ws->segf[0].p;
+    tg__node* nodes = route->nodes.p;
+    uint32_t* faces = route->faces.p;
     size_t n = 0;
     nodes[n++] = piv[0];
     for (size_t i = 0; i + 1 < np; ++i) {
@@ -228,7 +228,7 @@ static tg_status expand(tg_geodesic_workspace* ws, int cur, size_t np, size_t* o
         n += tg__sleeve_crossings(ws, &piv[i], &piv[i + 1], s->face0, portals + s->portal_begin,
                                   s->portal_end - s->portal_begin, nodes + n, faces + n - 1);
     }
-    *out_count = n;
+    route->count = n;
     return TG_OK;
 }
 
@@ -287,17 +287,18 @@ static void polish(const tg_geodesic* g, tg__node* nodes, const uint32_t* faces,
     }
 }
 
-tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_sweeps, double angle_tol,
+tg_status tg__straighten(tg_geodesic_workspace* ws, tg__route* route, uint32_t max_sweeps, double angle_tol,
                          tg__shorten_result* out)
 {
     const tg_geodesic* g = ws->geo;
+    size_t count = route->count;
     memset(out, 0, sizeof *out);
     if (!tg__buf_reserve(ws, &ws->piv[0], count, sizeof(tg__node)) ||
         !tg__buf_reserve(ws, &ws->slv[0], count, sizeof(tg__sleeve)) ||
         !tg__buf_reserve(ws, &ws->portals[0], 1, sizeof(uint32_t)))
         return TG_ERR_OUT_OF_MEMORY;
-    const tg__node* nodes = ws->nodes[0].p;
-    const uint32_t* faces = ws->segf[0].p;
+    const tg__node* nodes = route->nodes.p;
+    const uint32_t* faces = route->faces.p;
     tg__node* piv = ws->piv[0].p;
     tg__sleeve* slv = ws->slv[0].p;
     for (size_t i = 0; i < count; ++i) {
@@ -336,7 +337,7 @@ tg_status tg__straighten(tg_geodesic_workspace* ws, size_t count, uint32_t max_s
             break;
         }
     }
-    tg_status st = expand(ws, cur, np, &out->count);
-    if (st == TG_OK) polish(g, ws->nodes[0].p, ws->segf[0].p, out->count);
+    tg_status st = expand(ws, cur, np, route);
+    if (st == TG_OK) polish(g, route->nodes.p, route->faces.p, route->count);
     return st;
 }

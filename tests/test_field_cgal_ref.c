@@ -5,7 +5,8 @@
  * them (tests/ref/make_field_refs.sh). Sources exactly on an edge are not compared: CGAL 5.5
  * misplaces them (its distance to an end vertex of the source's own edge comes out below the
  * Euclidean distance); they are checked by symmetry (test_field_engine) and known answers. Every reference vertex must agree within 1e-12 of the field's
- * largest distance, inf where CGAL finds no path. */
+ * largest distance, inf where CGAL finds no path. The exact paths from each source to 20 of the
+ * reference vertices must have CGAL's length within 1e-9 relative, be proven and certified. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -47,6 +48,42 @@ typedef struct entry {
     double d;
 } entry;
 
+/* Exact paths (TG_PATH_EXACT) from the source to the first reference vertices: the length is
+ * CGAL's distance within 1e-9 relative (never shorter beyond rounding), the path is proven and
+ * certified straight (issue 10 item 5: an independent exact reference for paths). */
+static void compare_paths(const char* file, tg_geodesic* g, const char* spec, const tg_surface_point* s,
+                          const entry* e, size_t n, double far)
+{
+    tg_geodesic_workspace* ws = NULL;
+    tg_path* path = NULL;
+    CHECK_STATUS(tg_geodesic_workspace_create(g, &ws), TG_OK);
+    CHECK_STATUS(tg_path_create(NULL, &path), TG_OK);
+    tg_path_options o;
+    memset(&o, 0, sizeof o);
+    o.method = TG_PATH_EXACT;
+    size_t count = 0, want = TG_TEST_WORK(20, 4);
+    double worst = 0.0, cert = 0.0;
+    for (size_t i = 0; i < n && count < want && ws && path; ++i) {
+        if (!isfinite(e[i].d) || e[i].d < 1e-6 * far) continue; /* unreachable, or at the source */
+        tg_surface_point t = tg_surface_vertex(e[i].v);
+        CHECK_STATUS(tg_geodesic_path(g, ws, s, &t, &o, path), TG_OK);
+        tg_path_view v;
+        tg_path_get_view(path, &v);
+        double rel = (v.length - e[i].d) / e[i].d;
+        if (fabs(rel) > worst) worst = fabs(rel);
+        if (v.max_angle_defect > cert) cert = v.max_angle_defect;
+        CHECK_MSG(fabs(rel) <= 1e-9 && v.global == TG_PATH_PROVEN && v.max_angle_defect <= 1e-10,
+                  "%s %s -> v:%u: exact path %.17g (%s, certificate %.2g), CGAL %.17g", file, spec, e[i].v, v.length,
+                  tg_path_global_name(v.global), v.max_angle_defect, e[i].d);
+        count++;
+    }
+    CHECK_MSG(count == want, "%s %s: only %zu reachable reference vertices for paths", file, spec, count);
+    printf("%s %s: %zu exact paths, largest relative difference %.2g, largest certificate %.2g rad\n", file, spec, count,
+           worst, cert);
+    tg_path_destroy(path);
+    tg_geodesic_workspace_destroy(ws);
+}
+
 /* Compares the field of one source with its reference entries. */
 static void compare(const char* file, tg_geodesic* g, size_t nv, const char* spec, const entry* e, size_t n)
 {
@@ -78,6 +115,7 @@ static void compare(const char* file, tg_geodesic* g, size_t nv, const char* spe
     printf("%s %s: %zu vertices, largest difference %.2g of the largest distance %.6g\n", file, spec, n,
            far > 0 ? worst / far : 0.0, far);
     free(d);
+    compare_paths(file, g, spec, &s, e, n, far);
 }
 
 static void check_file(const char* path)

@@ -57,5 +57,11 @@ cmake -S "$tmp/cm" -B "$tmp/cm/build" -DCMAKE_PREFIX_PATH="$tmp/prefix" >"$tmp/c
   cmake --build "$tmp/cm/build" >>"$tmp/cm.log" 2>&1
 out=$("$tmp/cm/build/consumer" "$meshes/nvd_spot.obj" 2>&1)
 ok '[ "$out" = "trigeo $("$trigeo" --version | cut -d" " -f2) $want" ]' "CMake consumer: '$out' $(tail -n 5 "$tmp/cm.log" | tr '\n' ' ')"
+# the Python package installed beside the library, used from elsewhere, finds that library
+if /usr/bin/python3 -c "import numpy" 2>/dev/null; then
+  out=$(cd "$tmp" && env -u TRIGEO_LIB PYTHONPATH="$tmp/prefix/lib/python3/dist-packages" /usr/bin/python3 -c \
+    "import trigeo; print(trigeo._lib.lib_path); print('%.6f' % trigeo.load('$meshes/nvd_spot.obj').field(0)[1])" 2>&1)
+  ok '[ "$(sed -n 1p <<<"$out")" = "$tmp/prefix/lib/libtrigeo.so" ] && [ "$(sed -n 2p <<<"$out")" = "$want" ]' "installed Python package: '$out' (want $want)"
+fi
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -2,7 +2,8 @@
 
 A pure-Python package over the C library libtrigeo.so (ctypes; no compiled extension). The
 library is found through the TRIGEO_LIB environment variable if set, else the repository's
-build/libtrigeo.so (after `make`), else the system loader (after `make install`).
+build/libtrigeo.so (after `make`), else the library installed beside the package (`make install`
+puts both under PREFIX/lib), else the system loader.
 
     import trigeo
     mesh = trigeo.load("data/nvd_spot.obj")          # OBJ, OFF, PLY, STL, optionally .gz

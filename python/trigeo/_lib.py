@@ -14,6 +14,7 @@ from ctypes import POINTER, c_char, c_char_p, c_double, c_int, c_int64, c_size_t
 __all__ = ["lib", "lib_path"]
 
 _HERE = os.path.dirname(os.path.abspath(__file__))
+SONAME = "libtrigeo.so.0.1"  # CMakeLists.txt: SOVERSION major.minor while the version is 0.x
 
 
 def _candidates() -> list[tuple[str, str]]:
@@ -25,8 +26,11 @@ def _candidates() -> list[tuple[str, str]]:
         return out  # an explicit choice is never silently replaced by another library
     repo_build = os.path.normpath(os.path.join(_HERE, "..", "..", "build", "libtrigeo.so"))
     out.append(("the repository's build", repo_build))
+    # `make install`: PREFIX/LIBDIR/python3/dist-packages/trigeo beside PREFIX/LIBDIR/libtrigeo.so
+    installed = os.path.normpath(os.path.join(_HERE, "..", "..", "..", "libtrigeo.so"))
+    out.append(("the installed library beside the package", installed))
     found = ctypes.util.find_library("trigeo")
-    out.append(("the system loader", found or "libtrigeo.so.0"))
+    out.append(("the system loader", found or SONAME))
     return out
 
 

@@ -27,3 +27,21 @@ for m in "$meshes/fcpw_kitten.obj" "$meshes/igl_armadillo.obj" "$large/armadillo
     footer+=("$(grep '^#' <<<"$out")")
 done
 printf '%s\n' "${footer[@]}"
+
+# CGAL's Surface_mesh_shortest_path answers one pair only after propagating from the source over
+# the whole mesh (build_sequence_tree): its per-pair time is that of one source's field
+# (bench/peers/field_cgal, vertex 0, thread CPU). Beside it, the exact method's median per random
+# vertex pair in the same run (bench_path --exact on TG_BENCH_CGAL_PAIRS pairs, default 20).
+cgal=$build/bench/peers/field_cgal
+cpairs=${TG_BENCH_CGAL_PAIRS:-20}
+if [ -x "$cgal" ]; then
+    printf '\n| mesh | faces | CGAL s per pair | trigeo exact median ms per pair (random vertex pairs) | CGAL / trigeo |\n|---|---:|---:|---:|---:|\n'
+    for m in "$meshes/c3d_stanford-bunny.obj" "$meshes/igl_armadillo.obj" "$meshes/fcpw_kitten.obj"; do
+        c=$(OMP_NUM_THREADS=1 "$cgal" "$m" --vertex 0 2>/dev/null | tail -n 1 | awk -F'|' '{gsub(/ /, "", $8); print $8}')
+        row=$("$bp" "$m" --pairs "$cpairs" --reps 1 --relax 0 --exact "$cpairs" | grep '| vertex pairs | exact |')
+        faces=$(awk -F'|' '{gsub(/ /, "", $3); print $3}' <<<"$row")
+        t=$(awk -F'|' '{gsub(/ /, "", $7); print $7}' <<<"$row")
+        awk -v m="$(basename "$m")" -v f="$faces" -v c="$c" -v t="$t" \
+            'BEGIN { printf "| %s | %s | %s | %s | %.0fx |\n", m, f, c, t, (c * 1000) / t }'
+    done
+fi

@@ -119,3 +119,30 @@ def test_gz_and_other_formats():
     assert m.face_count > 0
     m = trigeo.load(corpus("c3d_horse.ply"))
     assert m.report["faces"] == m.face_count
+
+
+def test_save_round_trip(spot, tmp_path):
+    d = spot.field(0)
+    ply, obj = tmp_path / "spot.ply", tmp_path / "spot.obj"
+    spot.save(ply, fields={"distance": d, "height": spot.vertices[:, 1]})
+    spot.save(obj)
+    for p in (ply, obj):
+        m = trigeo.load(p)
+        assert np.array_equal(m.vertices, spot.vertices) and np.array_equal(m.faces, spot.faces)
+    # the field reads back through the CLI's renderer path (tg_ply_read_vertex_scalar)
+    from conftest import run_cli
+    r = run_cli("render", str(ply), "--field", str(ply), "--scalar", "distance", "-o", str(tmp_path / "f.png"))
+    assert r.returncode == 0, r.stderr
+    raw = ply.read_bytes()
+    assert b"property double distance" in raw and b"property double height" in raw
+    with pytest.raises(trigeo.InvalidArgumentError):
+        spot.save(tmp_path / "a.stl")
+    with pytest.raises(trigeo.InvalidArgumentError):
+        spot.save(obj, fields={"distance": d})
+    for bad in ("bad name", "x", ""):
+        with pytest.raises(trigeo.InvalidArgumentError):
+            spot.save(ply, fields={bad: d})
+    with pytest.raises(trigeo.InvalidArgumentError):
+        spot.save(ply, fields={"d": d[:5]})
+    with pytest.raises(trigeo.FileError):
+        spot.save(tmp_path / "no" / "dir" / "x.ply")

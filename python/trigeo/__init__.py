@@ -786,6 +786,38 @@ class Mesh:
         pr.finish(st, "distance_matrix")
         return out
 
+    # -- files ------------------------------------------------------------------------------
+
+    def save(self, path: Union[str, os.PathLike], fields: Optional[dict] = None) -> None:
+        """Writes the mesh: PATH.obj (Wavefront OBJ) or PATH.ply (binary PLY, with one double
+        vertex property per entry of `fields`, a dict of name -> (n,) array, e.g.
+        {"distance": mesh.field(0)}, readable by ParaView, MeshLab, trimesh and `trigeo render
+        --field`). Names: 1-64 letters, digits and '_', not x, y or z. Raises FileError when the file
+        cannot be written."""
+        p = os.fspath(path)
+        low = p.lower()
+        if not (low.endswith(".obj") or low.endswith(".ply")):
+            raise _bad(f"save writes .obj or .ply files, not {p!r}")
+        fields = fields or {}
+        if fields and not low.endswith(".ply"):
+            raise _bad("per-vertex fields are written to PLY files (PATH.ply)")
+        keep, arr = [], (_c.VertexScalar * max(1, len(fields)))()
+        for i, (name, values) in enumerate(fields.items()):
+            if not isinstance(name, str):
+                raise _bad(f"field name {name!r} must be a string")  # its characters: the library checks
+            a = np.ascontiguousarray(values, dtype=np.float64)
+            if a.shape != (self.vertex_count,):
+                raise _bad(f"field {name!r} must have one value per vertex ({self.vertex_count}), not shape {a.shape}")
+            b = name.encode()
+            keep += [a, b]
+            arr[i].name, arr[i].values = b, _ptr(a)
+        diag = _c.Diag()
+        if low.endswith(".ply"):
+            st = _L.tg_mesh_write_ply(self._handle(), os.fsencode(p), arr, len(fields), ctypes.byref(diag))
+        else:
+            st = _L.tg_mesh_write_obj(self._handle(), os.fsencode(p), ctypes.byref(diag))
+        _check(st, p, diag)
+
     # -- pictures -----------------------------------------------------------------------------
 
     def render(self, png_path: Union[str, os.PathLike], path: Any = None, field: Any = None, view: Any = None,

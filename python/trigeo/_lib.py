@@ -107,6 +107,10 @@ class PathView(ctypes.Structure):
                 ("edge_path_vertices", c_uint32)]
 
 
+class VertexScalar(ctypes.Structure):
+    _fields_ = [("name", c_char_p), ("values", POINTER(c_double))]
+
+
 class FieldProgress(ctypes.Structure):
     _fields_ = [("front_distance", c_double), ("settled_fraction", c_double), ("rows_done", c_size_t),
                 ("row_count", c_size_t)]
@@ -145,6 +149,8 @@ _SIGNATURES = {
     "tg_mesh_positions": (_pd, [_vp]),
     "tg_mesh_triangles": (_pu32, [_vp]),
     "tg_mesh_get_report": (POINTER(MeshReport), [_vp]),
+    "tg_mesh_write_obj": (c_int, [_vp, c_char_p, _pdiag]),
+    "tg_mesh_write_ply": (c_int, [_vp, c_char_p, POINTER(VertexScalar), c_size_t, _pdiag]),
     "tg_mesh_memory_bytes": (c_size_t, [_vp]),
     "tg_mesh_halfedge_from": (c_uint32, [_vp, c_uint32]),
     "tg_mesh_halfedge_to": (c_uint32, [_vp, c_uint32]),

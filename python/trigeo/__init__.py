@@ -592,6 +592,8 @@ class Mesh:
         return SurfacePoint._from_c(self._locate(p[0]))
 
     def _locate(self, p: np.ndarray) -> _c.SurfacePointC:
+        if self.face_count == 0:
+            raise _bad("the mesh has no faces: there is no surface point to snap a position to")
         out = _c.SurfacePointC()
         bvh = self._get_bvh()
         with self._bvh_ws.take() as ws:

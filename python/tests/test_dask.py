@@ -46,7 +46,8 @@ def test_path_lengths_equal_serial(client):
         assert np.array_equal(got, m.path_lengths(pairs, method=method))
     froms = [trigeo.SurfacePoint(3, (0.2, 0.3, 0.5)), 10]
     tos = [trigeo.SurfacePoint.edge(30, 0.25), trigeo.SurfacePoint(700, (0.1, 0.1, 0.8))]
-    assert np.array_equal(tgd.path_lengths(client, path, (froms, tos), chunk=1), m.path_lengths((froms, tos)))
+    assert np.array_equal(tgd.path_lengths(client, path, froms=froms, tos=tos, chunk=1),
+                          m.path_lengths(froms=froms, tos=tos))
 
 
 def test_distance_matrix_from_arrays_scattered_once(client):
@@ -68,7 +69,7 @@ def test_failing_chunk_raises_the_workers_error(client, tmp_path):
     pairs = np.array([[0, 1]] * 10 + [[0, 2929]] * 10)
     pts = [trigeo.SurfacePoint(5, (0.3, 0.3, 0.4))] * 5 + [trigeo.SurfacePoint(5, (0.9, 0.9, 0.4))]
     with pytest.raises(trigeo.InvalidArgumentError, match=r"chunk 1 \(items 4-5\)"):
-        tgd.path_lengths(client, SPOT, (pts, pts), chunk=4)
+        tgd.path_lengths(client, SPOT, froms=pts, tos=pts, chunk=4)
     bad = tmp_path / "bad.obj"
     bad.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n")
     with pytest.raises(trigeo.InvalidMeshError, match=r"chunk 0 .*bad.obj:4"):

@@ -120,7 +120,13 @@ def test_bad_path_options(spot):
     with pytest.raises(trigeo.InvalidArgumentError, match=r"pairs\[:, 1\]\[1\]"):
         spot.path_lengths(np.array([[0, 1], [2, 5000]]))
     with pytest.raises(trigeo.InvalidArgumentError):
-        spot.path_lengths(([0, 1], [2]))
+        spot.path_lengths(froms=[0, 1], tos=[2])
+    with pytest.raises(trigeo.InvalidArgumentError):
+        spot.path_lengths(froms=[0, 1])
+    with pytest.raises(trigeo.InvalidArgumentError):
+        spot.path_lengths(np.array([[0, 1]]), froms=[0], tos=[1])
+    # a tuple of two pairs is two pairs, never (froms, tos)
+    assert np.array_equal(spot.path_lengths(((0, 1), (2, 3))), spot.path_lengths(np.array([[0, 1], [2, 3]])))
 
 
 def test_bad_field_options(spot):

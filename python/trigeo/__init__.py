@@ -673,29 +673,36 @@ class Mesh:
             _L.tg_path_get_view(ph, ctypes.byref(view))
             return Path._from_view(view)
 
-    def path_lengths(self, pairs: Any, method: str = "straighten", threads: int = 0,
-                     certify: bool = False) -> np.ndarray:
+    def _pair_points(self, pairs: Any, froms: Any, tos: Any) -> tuple:
+        """The endpoints of path_lengths' pairs, as two C arrays."""
+        if (pairs is None) == (froms is None and tos is None):
+            raise _bad("give either pairs (a (k, 2) array of vertices) or both froms= and tos=")
+        if pairs is None:
+            if froms is None or tos is None:
+                raise _bad("froms= and tos= go together")
+            a, b = self._surface_points(froms, "froms"), self._surface_points(tos, "tos")
+            if len(a) != len(b):
+                raise _bad(f"froms and tos differ in length ({len(a)} and {len(b)})")
+            return a, b
+        pa = np.asarray(pairs)
+        if pa.ndim != 2 or pa.shape[1] != 2 or (pa.size and pa.dtype.kind not in "iu"):
+            raise _bad(f"pairs must be a (k, 2) integer array of vertices, not shape {pa.shape} dtype {pa.dtype}")
+        return (self._surface_points(pa[:, 0].astype(np.int64), "pairs[:, 0]"),
+                self._surface_points(pa[:, 1].astype(np.int64), "pairs[:, 1]"))
+
+    def path_lengths(self, pairs: Any = None, method: str = "straighten", threads: int = 0,
+                     certify: bool = False, *, froms: Any = None, tos: Any = None) -> np.ndarray:
         """Lengths of many geodesic paths (inf where the endpoints are not connected).
 
-        pairs: a (k, 2) integer array of vertex pairs, or a tuple (froms, tos) of two equally long
-        sequences of endpoints as path() takes them. Every endpoint is checked before any path
-        is computed. method, certify: as path(). threads: 0 all cores; the pairs are shared out
-        among that many threads, each with its own workspace. Returns (k,) float64, the same
-        numbers as k calls of path()."""
+        pairs: a (k, 2) integer array of vertex pairs; or, instead, froms= and tos=: two equally
+        long sequences of endpoints as path() takes them (SurfacePoints, vertex indices, (x, y, z)
+        positions). Every endpoint is checked before any path is computed. method, certify: as
+        path(). threads: 0 all cores; the pairs are shared out among that many threads, each
+        with its own workspace. Returns (k,) float64, the same numbers as k calls of path()."""
         if method not in _METHODS:
             raise _bad(f"method must be one of {sorted(_METHODS)}, not {method!r}")
         threads = _threads(threads)
-        if isinstance(pairs, tuple) and len(pairs) == 2 and not isinstance(pairs[0], (int, np.integer)):
-            froms = self._surface_points(pairs[0], "froms")
-            tos = self._surface_points(pairs[1], "tos")
-            if len(froms) != len(tos):
-                raise _bad(f"froms and tos differ in length ({len(froms)} and {len(tos)})")
-        else:
-            pa = np.asarray(pairs)
-            if pa.ndim != 2 or pa.shape[1] != 2 or (pa.size and pa.dtype.kind not in "iu"):
-                raise _bad(f"pairs must be a (k, 2) integer array of vertices, not shape {pa.shape} dtype {pa.dtype}")
-            froms = self._surface_points(pa[:, 0].astype(np.int64), "pairs[:, 0]")
-            tos = self._surface_points(pa[:, 1].astype(np.int64), "pairs[:, 1]")
+        froms, tos = self._pair_points(pairs, froms, tos)
         k = len(froms)
         out = np.empty(k)
         if k == 0:

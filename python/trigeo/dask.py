@@ -95,7 +95,7 @@ def _run(kind: str, source: tuple, arrays: Any, chunk: int, lo: int, hi: int, ar
             return m.closest(args[0], threads=args[1])
         if kind == "path_lengths":
             froms, tos, method, certify, threads = args
-            return m.path_lengths((froms, tos), method=method, certify=certify, threads=threads)
+            return m.path_lengths(froms=froms, tos=tos, method=method, certify=certify, threads=threads)
         sources, max_distance, threads = args
         return m.distance_matrix(sources, max_distance=max_distance, threads=threads)
     except trigeo.Error as e:
@@ -130,15 +130,16 @@ def closest(client: Any, mesh: Union[str, os.PathLike, trigeo.Mesh], points: Any
     return tuple(np.concatenate([r[i] for r in parts]) for i in range(3))
 
 
-def path_lengths(client: Any, mesh: Union[str, os.PathLike, trigeo.Mesh], pairs: Any,
+def path_lengths(client: Any, mesh: Union[str, os.PathLike, trigeo.Mesh], pairs: Any = None,
                  method: str = "straighten", chunk: int = 256, certify: bool = False,
-                 threads: int = 1) -> np.ndarray:
-    """Mesh.path_lengths over a cluster: pairs a (k, 2) integer array of vertices, or (froms,
-    tos) as Mesh.path_lengths takes them, in chunks of `chunk` pairs. Returns (k,) lengths."""
-    if isinstance(pairs, tuple) and len(pairs) == 2 and not isinstance(pairs[0], (int, np.integer)):
-        froms, tos = list(pairs[0]) if not isinstance(pairs[0], np.ndarray) else pairs[0], pairs[1]
-        if not isinstance(tos, np.ndarray):
-            tos = list(tos)
+                 threads: int = 1, *, froms: Any = None, tos: Any = None) -> np.ndarray:
+    """Mesh.path_lengths over a cluster: pairs a (k, 2) integer array of vertices, or froms= and
+    tos= as Mesh.path_lengths takes them, in chunks of `chunk` pairs. Returns (k,) lengths."""
+    if (pairs is None) == (froms is None and tos is None) or (pairs is None and (froms is None or tos is None)):
+        raise trigeo.InvalidArgumentError("give either pairs (a (k, 2) array of vertices) or both froms= and tos=")
+    if pairs is None:
+        froms = froms if isinstance(froms, np.ndarray) else list(froms)
+        tos = tos if isinstance(tos, np.ndarray) else list(tos)
     else:
         pa = np.asarray(pairs)
         if pa.ndim != 2 or pa.shape[1] != 2 or (pa.size and pa.dtype.kind not in "iu"):

@@ -156,7 +156,21 @@ tg_status tg__field_execute(tg_field_workspace* ws, const tg_surface_point* sour
 {
     memset(run, 0, sizeof *run);
     run->track = track;
-    if (astar_target) run->astar = 1, run->target = tg_v3_load(astar_target);
+    if (astar_target) {
+        run->astar = 1, run->target = tg_v3_load(astar_target);
+        if (point_count == 1) { /* the vertices joined to the target by a segment in a face */
+            tg_surface_point p = tg__surface_to_solver(ws->g, tg_surface_point_canonical(ws->g->mesh, points));
+            const uint32_t* t = ws->g->tri;
+            if (p.kind == TG_SURFACE_VERTEX) {
+                run->tcorner[run->tcorners++] = p.index;
+            } else if (p.kind == TG_SURFACE_EDGE) {
+                run->tcorner[run->tcorners++] = t[p.index];
+                run->tcorner[run->tcorners++] = t[tg_halfedge_next(p.index)];
+            } else {
+                for (int k = 0; k < 3; ++k) run->tcorner[run->tcorners++] = t[3 * (size_t)p.index + (size_t)k];
+            }
+        }
+    }
     if (track && !ws->pred) {
         ws->pred = tg__alloc_array(&ws->allocator, ws->g->vertex_count ? ws->g->vertex_count : 1, sizeof(tg__pred));
         if (!ws->pred) return TG_ERR_OUT_OF_MEMORY;

@@ -73,6 +73,9 @@ typedef struct tg__pred {
  * such windows are dropped (else a source image on an end vertex of its own edge could circle that
  * vertex's fan forever). Faces with a corner this thin count as degenerate (TG__F_FLAT). */
 #define TG__GRAZING_REL 1e-12
+/* A*: the bound kept above the best distance to the target found so far, so that rounding of the
+ * lower bounds never drops the window of the shortest path. */
+#define TG__TIGHT_REL 1e-9
 /* A vertex whose total angle exceeds 2 pi by less than this relative margin is flat: straight rays
  * pass it on both sides and it emits no windows of its own (the shadow behind a saddle of excess
  * angle e is e wide, and paths through it are longer than the rays beside it only to order e^2). */
@@ -144,8 +147,19 @@ typedef struct tg__field_run {
     int astar;            /* order the front by distance plus the Euclidean distance to `target`,
                              and bound windows the same way (a single target within max_dist) */
     tg_vec3 target;
+    /* A*: max_dist follows the best distance to the target found so far (times 1 + TG__TIGHT_REL),
+     * from the windows that reach it and from the vertices tcorner[0..tcorners) whose straight
+     * segment to it lies in a face */
+    uint32_t tcorner[4];
+    int tcorners;
     tg_field_stats stats;
 } tg__field_run;
+
+static inline void tg__field_tighten(tg__field_run* run, double d)
+{
+    double b = d * (1.0 + TG__TIGHT_REL);
+    if (run->astar && b < run->max_dist) run->max_dist = b;
+}
 
 /* ---- per-mesh tables (field_mesh.c) ---- */
 

@@ -112,6 +112,8 @@ static bool relax_vertex(tg__field_run* run, uint32_t v, double d, tg__pred how)
     if (!touch_vertex(ws, v)) return false;
     ws->dist[v] = d;
     if (run->track) ws->pred[v] = how;
+    for (int i = 0; i < run->tcorners; ++i)
+        if (run->tcorner[i] == v) tg__field_tighten(run, d + tg_v3_dist(tg__gpos(ws->g, v), run->target));
     double key = front_key(run, v, d);
     if (key > run->max_dist) return true;
     return front_push(run, key, v);

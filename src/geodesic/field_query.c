@@ -143,6 +143,7 @@ void tg__field_queries_cross(tg__field_run* run, uint32_t h, const tg__window* p
             double d = w->sigma + sqrt(dx * dx + dy * dy);
             if (d < run->qdist[q[j].id]) {
                 run->qdist[q[j].id] = d;
+                tg__field_tighten(run, d);
                 if (run->track) {
                     tg__pred ray = {h, w->tag & ~TG__VIA_FLAT, w->sx, w->sy};
                     ((tg__pred*)ws->qpred.data)[q[j].id] = ray;
@@ -163,6 +164,7 @@ void tg__field_queries_source(tg__field_run* run, const double src[3], double si
         double d = sigma + tg_v3_dist(pair_pos(ws->g, &q[j]), tg_v3_load(src));
         if (d < run->qdist[q[j].id]) {
             run->qdist[q[j].id] = d;
+            tg__field_tighten(run, d);
             if (run->track) {
                 tg__pred inside = {TG__PRED_FACE | f, origin, 0.0, 0.0};
                 ((tg__pred*)ws->qpred.data)[q[j].id] = inside;

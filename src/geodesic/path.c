@@ -103,6 +103,35 @@ static tg_status prove(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg
     return TG_OK;
 }
 
+/* The exact method's own way: the exact propagation from `from`, ordered toward `to` and bounded
+ * by the best distance to it found so far, then the path traced back. *done is false when there is
+ * no traced path of the exact length (unreachable, or a trace that failed): the caller then
+ * straightens and checks. */
+static tg_status exact_direct(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* from,
+                              const tg_surface_point* to, tg_path* path, bool* done)
+{
+    *done = false;
+    tg__route* route = &ws->route;
+    double d = INFINITY;
+    tg_status st = tg__exact_path(ws, from, to, INFINITY, route, &d);
+    if (st != TG_OK || !(d < INFINITY) || route->count == 0) return st;
+    size_t n = route->count;
+    double traced = 0.0;
+    const tg__node* nodes = route->nodes.p;
+    const uint32_t* faces = route->faces.p;
+    for (size_t i = 0; i + 1 < n; ++i) traced += tg__node_dist(g, &nodes[i], &nodes[i + 1], faces[i]);
+    if (!(fabs(traced - d) <= PROVEN_REL * d)) return TG_OK;
+    st = fill_path(g, ws, route, path);
+    if (st != TG_OK) return st;
+    path->initial_length = path->length; /* no edge path is computed */
+    path->edge_path_vertices = 0;
+    path->iterations = 0;
+    path->status = TG_PATH_CONVERGED;
+    path->global = TG_PATH_PROVEN;
+    *done = true;
+    return TG_OK;
+}
+
 tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* from,
                            const tg_surface_point* to, const tg_path_options* options, tg_path* path)
 {
@@ -119,7 +148,6 @@ tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, cons
                     !tg__kernel_options_valid(options->kernel)))
         return TG_ERR_INVALID_ARGUMENT; /* out of range: refused, not replaced by a default */
     bool exact = method == TG_PATH_EXACT;
-    if (exact) method = TG_PATH_STRAIGHTEN; /* its path is the bound of the exact propagation */
     uint32_t max_it = options && options->max_iterations ? options->max_iterations : DEFAULT_MAX_ITERATIONS;
     double tol = options && options->tolerance > 0.0
                      ? options->tolerance
@@ -135,6 +163,14 @@ tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, cons
     tg__endpoint src, dst;
     tg_status st = tg__endpoint_make(ws, from, 0, &src);
     if (st == TG_OK) st = tg__endpoint_make(ws, to, 1, &dst);
+    if (st == TG_OK && exact) {
+        if (src.comp != dst.comp) return TG_OK; /* unreachable: cleared path */
+        bool done = false;
+        st = exact_direct(g, ws, from, to, path, &done);
+        if (st != TG_OK) tg__path_clear(path);
+        if (st != TG_OK || done) return st;
+        method = TG_PATH_STRAIGHTEN; /* no traced path: the straightened one, checked */
+    }
     tg__route* route = &ws->route; /* initial edge path -> shortened path -> the caller's path */
     double initial = INFINITY;
     if (st == TG_OK) st = tg__initial_path(ws, &src, &dst, route, &initial);

@@ -5,7 +5,7 @@
  *   "A Formal Basis for the Heuristic Determination of Minimum Cost Paths" (1968): A* with a
  *   consistent heuristic (the Euclidean distance to the target, a lower bound on every edge path
  *   by the triangle inequality) stops once the target is settled. Graph ids are the solver's
- *   internal (Morton-ordered) vertex ids; paths are returned in mesh ids. */
+ *   vertex ids (Morton-ordered, see tg_geodesic), then V and V + 1 for virtual endpoints. */
 #include "geodesic/geodesic_internal.h"
 
 #include <string.h>
@@ -46,7 +46,7 @@ tg_status tg__endpoint_make(tg_geodesic_workspace* ws, const tg_surface_point* s
     e->node = tg__node_from_surface(&c);
     tg_v3_store(tg__node_pos(g, &e->node), e->xyz);
     if (e->node.kind == TG__NODE_VERTEX) {
-        e->graph_id = g->rank[e->node.id];
+        e->graph_id = e->node.id;
         e->comp = g->comp[g->vc[g->vc_start[e->node.id]] / 3];
         return TG_OK;
     }
@@ -97,7 +97,7 @@ typedef struct astar {
 
 static tg_vec3 ipos(const tg_geodesic* g, uint32_t u)
 {
-    return tg_v3_load(g->pos + 3 * (size_t)u);
+    return tg_v3_load(g->xyz + 3 * (size_t)u);
 }
 
 /* Offers distance d with parent p to node u (internal id) at position x. */
@@ -136,7 +136,7 @@ static tg_status run_astar(astar* s, const tg__endpoint* src, const tg__endpoint
     tg_vec3 sx = tg_v3_load(src->xyz);
     *out_found = false;
     if (dst->is_virtual)
-        for (size_t i = 0; i < dst->nbr_count; ++i) ws->tmark[g->rank[dst->nbr[i]]] = s->open;
+        for (size_t i = 0; i < dst->nbr_count; ++i) ws->tmark[dst->nbr[i]] = s->open;
     if (!relax(s, src->graph_id, sx, 0.0, TG_NONE)) return TG_ERR_OUT_OF_MEMORY;
     while (s->heap_n) {
         tg__heap_item it = heap_pop(ws, &s->heap_n);
@@ -153,7 +153,7 @@ static tg_status run_astar(astar* s, const tg__endpoint* src, const tg__endpoint
             /* the virtual source: its split edges, and the direct segment to a virtual target
              * sharing one of its faces */
             for (size_t i = 0; i < src->nbr_count; ++i) {
-                uint32_t w = g->rank[src->nbr[i]];
+                uint32_t w = src->nbr[i];
                 tg_vec3 wx = ipos(g, w);
                 if (!relax(s, w, wx, tg_v3_dist(sx, wx), u)) return TG_ERR_OUT_OF_MEMORY;
             }
@@ -208,7 +208,7 @@ tg_status tg__initial_path(tg_geodesic_workspace* ws, const tg__endpoint* src, c
     size_t i = n;
     for (uint32_t u = dst->graph_id; u != TG_NONE; u = ws->nodes_a[u].parent) {
         --i;
-        nodes[i] = u == src->graph_id ? src->node : u == dst->graph_id ? dst->node : tg__node_vertex(g->order[u]);
+        nodes[i] = u == src->graph_id ? src->node : u == dst->graph_id ? dst->node : tg__node_vertex(u);
     }
     for (size_t k = 0; k + 1 < n; ++k) {
         const tg__node *a = &nodes[k], *b = &nodes[k + 1];

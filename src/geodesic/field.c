@@ -133,7 +133,7 @@ static size_t reachable_vertices(const tg_geodesic* g, const tg_surface_point* s
     uint32_t comps[8];
     size_t nc = 0, n = 0;
     for (size_t i = 0; i < source_count; ++i) {
-        tg_surface_point cp = tg_surface_point_canonical(g->mesh, &sources[i]);
+        tg_surface_point cp = tg__surface_to_solver(g, tg_surface_point_canonical(g->mesh, &sources[i]));
         uint32_t f = TG_NONE;
         if (cp.kind == TG_SURFACE_VERTEX)
             f = g->vc_start[cp.index + 1] > g->vc_start[cp.index] ? g->vc[g->vc_start[cp.index]] / 3 : TG_NONE;
@@ -196,7 +196,8 @@ tg_status tg__field_execute(tg_field_workspace* ws, const tg_surface_point* sour
 
 static void copy_out(const tg_field_workspace* ws, double max_dist, double* out)
 {
-    for (uint32_t v = 0; v < ws->g->vertex_count; ++v) out[v] = ws->dist[v] <= max_dist ? ws->dist[v] : INFINITY;
+    const uint32_t* vperm = ws->g->vperm; /* solver vertex u is the mesh's vperm[u] */
+    for (uint32_t u = 0; u < ws->g->vertex_count; ++u) out[vperm[u]] = ws->dist[u] <= max_dist ? ws->dist[u] : INFINITY;
 }
 
 tg_status tg_geodesic_field_at(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,

@@ -51,9 +51,12 @@ static bool build_rings(tg_geodesic* g, const tg_allocator* a)
                 /* same lowest vertex, sum and xor of three distinct indices: compare exactly */
                 uint32_t c = 0;
                 for (int k = 0; k < 3; ++k) c += tg__corner_of(g, e, t[3 * f + (size_t)k]) >= 0;
-                if (c == 3) {
-                    g->fflags[f] |= TG__F_SKIP;
-                    break;
+                if (c == 3) { /* the file's lower face of the two is kept */
+                    if (g->fperm[e] < g->fperm[f]) {
+                        g->fflags[f] |= TG__F_SKIP;
+                        break;
+                    }
+                    g->fflags[e] |= TG__F_SKIP;
                 }
             }
         }
@@ -115,7 +118,8 @@ static bool orient_faces(tg_geodesic* g, const tg_allocator* a, bool* out_flippe
     }
     const uint32_t* t = g->tri;
     bool flipped = false;
-    for (size_t root = 0; root < nf; ++root) {
+    for (size_t mroot = 0; mroot < nf; ++mroot) { /* roots in the file's order: its winding wins */
+        uint32_t root = g->finv[mroot];
         if (seen[root] || (g->fflags[root] & TG__F_SKIP)) continue;
         size_t head = 0, tail = 0;
         queue[tail++] = (uint32_t)root;
@@ -164,25 +168,16 @@ bool tg__orient_build(tg_geodesic* g)
     bool flipped = false;
     if (!g->ring || !g->fflags || !g->own_opp || !build_rings(g, a) || !orient_faces(g, a, &flipped)) return false;
     if (flipped) {
-        g->own_tri = tg__alloc_array(a, nh ? nh : 1, sizeof(uint32_t));
-        if (!g->own_tri) return false;
         for (size_t f = 0; f < nf; ++f) {
-            const uint32_t* t = g->mesh->tri + 3 * f;
-            bool fl = (g->fflags[f] & TG__F_FLIPPED) != 0;
-            g->own_tri[3 * f] = t[0], g->own_tri[3 * f + 1] = t[fl ? 2 : 1], g->own_tri[3 * f + 2] = t[fl ? 1 : 2];
+            if (!(g->fflags[f] & TG__F_FLIPPED)) continue;
+            uint32_t c = g->own_tri[3 * f + 1];
+            g->own_tri[3 * f + 1] = g->own_tri[3 * f + 2], g->own_tri[3 * f + 2] = c;
         }
-        g->tri = g->own_tri;
         for (size_t f = 0; f < nf; ++f) g->fflags[f] &= (uint8_t)~TG__F_SKIP;
         if (!build_rings(g, a)) return false; /* halfedge numbers changed with the corners */
     }
     build_opposites(g);
     g->opp = g->own_opp;
-    if (!flipped && memcmp(g->own_opp, g->mesh->opp, nh * sizeof(uint32_t)) == 0) {
-        /* the usual case: the mesh's own opposites (12 bytes a face saved) */
-        tg__free(a, g->own_opp);
-        g->own_opp = NULL;
-        g->opp = g->mesh->opp;
-    }
     return true;
 }
 
@@ -312,7 +307,6 @@ bool tg__field_mesh_build(tg_geodesic* g)
 size_t tg__field_mesh_bytes(const tg_geodesic* g)
 {
     size_t nv = g->vertex_count, nf = g->face_count;
-    return 3 * nf * (sizeof(tg__frame) + sizeof(uint32_t) + (g->own_tri ? sizeof(uint32_t) : 0) +
-                     (g->own_opp ? sizeof(uint32_t) : 0)) +
+    return 3 * nf * (sizeof(tg__frame) + 3 * sizeof(uint32_t)) + /* frame, ring, own_tri, own_opp */
            nv + nf + (size_t)g->comp_count * sizeof(uint32_t);
 }

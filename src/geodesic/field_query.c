@@ -201,7 +201,7 @@ void tg__field_queries_finish(tg__field_run* run, bool ok)
     }
     for (size_t i = 0; i < run->qcount; ++i) {
         tg_surface_point p = tg_surface_point_canonical(g->mesh, &run->qpoints[i]);
-        if (p.kind == TG_SURFACE_VERTEX) run->qdist[i] = ws->dist[p.index];
+        if (p.kind == TG_SURFACE_VERTEX) run->qdist[i] = ws->dist[g->vinv[p.index]];
         if (!(run->qdist[i] <= run->max_dist)) run->qdist[i] = INFINITY;
     }
     ws->qpairs.count = 0;

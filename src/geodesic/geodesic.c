@@ -58,42 +58,73 @@ static bool build_corners(tg_geodesic* g)
     return true;
 }
 
-/* order[] = vertices sorted by the Morton code of their position (10 bits per axis over the
- * bounding box; ties by index: the sort is stable), with the library's Morton code and sort. */
-static bool build_order(tg_geodesic* g)
+/* perm[0..n) = items sorted by the Morton codes in kv[i] >> 32 (kv[i]'s low half: i; stable, so
+ * ties keep their order), inv its inverse; kv has room for 2n entries. */
+static void morton_permutation(uint64_t* kv, size_t n, uint32_t* hist, uint32_t* perm, uint32_t* inv)
+{
+    const uint64_t* sorted = tg__morton_sort_pairs(kv, kv + n, n, hist);
+    for (size_t u = 0; u < n; ++u) perm[u] = (uint32_t)sorted[u];
+    for (size_t u = 0; u < n; ++u) inv[perm[u]] = (uint32_t)u;
+}
+
+/* The 30-bit Morton code of point p over the mesh's bounding box (10 bits per axis). */
+static uint64_t morton_code(const tg_mesh_report* r, const double scale[3], const double p[3])
+{
+    uint32_t c = 0;
+    for (int k = 0; k < 3; ++k) {
+        double q = (p[k] - r->bbox_min[k]) * scale[k];
+        c |= tg__morton_spread3(q > 0.0 ? (uint32_t)(q < 1023.0 ? q : 1023.0) : 0) << k;
+    }
+    return c;
+}
+
+/* The solver's numbering (see tg_geodesic) and its renumbered copies of the positions, the
+ * triangles and the face components. */
+static bool build_numbering(tg_geodesic* g)
 {
     const tg_allocator* a = &g->allocator;
-    size_t nv = g->vertex_count;
-    const tg_mesh_report* r = &g->mesh->report;
-    uint64_t* kv = tg__alloc_array(a, 2 * (nv ? nv : 1), sizeof(uint64_t));
+    const tg_mesh* m = g->mesh;
+    size_t nv = g->vertex_count, nf = g->face_count, n = nv > nf ? nv : nf;
+    const tg_mesh_report* r = &m->report;
+    uint64_t* kv = tg__alloc_array(a, 2 * (n ? n : 1), sizeof(uint64_t));
     uint32_t* hist = tg__alloc_array(a, 1024, sizeof(uint32_t));
-    g->order = tg__alloc_array(a, nv ? nv : 1, sizeof(uint32_t));
-    g->rank = tg__alloc_array(a, nv ? nv : 1, sizeof(uint32_t));
-    bool ok = kv && hist && g->order && g->rank;
+    g->vperm = tg__alloc_array(a, nv ? nv : 1, sizeof(uint32_t));
+    g->vinv = tg__alloc_array(a, nv ? nv : 1, sizeof(uint32_t));
+    g->fperm = tg__alloc_array(a, nf ? nf : 1, sizeof(uint32_t));
+    g->finv = tg__alloc_array(a, nf ? nf : 1, sizeof(uint32_t));
+    g->own_xyz = tg__alloc_array(a, 3 * (nv ? nv : 1), sizeof(double));
+    g->own_tri = tg__alloc_array(a, 3 * (nf ? nf : 1), sizeof(uint32_t));
+    g->own_comp = tg__alloc_array(a, nf ? nf : 1, sizeof(uint32_t));
+    bool ok = kv && hist && g->vperm && g->vinv && g->fperm && g->finv && g->own_xyz && g->own_tri && g->own_comp;
     if (ok) {
         double scale[3];
         for (int k = 0; k < 3; ++k) {
             double ext = r->bbox_max[k] - r->bbox_min[k];
             scale[k] = ext > 0.0 ? 1023.0 / ext : 0.0;
         }
-        for (size_t v = 0; v < nv; ++v) {
-            uint32_t c = 0;
-            for (int k = 0; k < 3; ++k) {
-                double q = (g->xyz[3 * v + (size_t)k] - r->bbox_min[k]) * scale[k];
-                c |= tg__morton_spread3(q > 0.0 ? (uint32_t)(q < 1023.0 ? q : 1023.0) : 0) << k;
-            }
-            kv[v] = (uint64_t)c << 32 | v;
+        for (size_t v = 0; v < nv; ++v) kv[v] = morton_code(r, scale, m->xyz + 3 * v) << 32 | v;
+        morton_permutation(kv, nv, hist, g->vperm, g->vinv);
+        for (size_t f = 0; f < nf; ++f) {
+            double c[3] = {0.0, 0.0, 0.0};
+            for (int k = 0; k < 3; ++k)
+                for (int j = 0; j < 3; ++j) c[j] += m->xyz[3 * (size_t)m->tri[3 * f + (size_t)k] + (size_t)j] / 3.0;
+            kv[f] = morton_code(r, scale, c) << 32 | f;
         }
-        const uint64_t* sorted = tg__morton_sort_pairs(kv, kv + nv, nv, hist);
-        for (size_t u = 0; u < nv; ++u) g->order[u] = (uint32_t)sorted[u];
-        for (size_t u = 0; u < nv; ++u) g->rank[g->order[u]] = (uint32_t)u;
+        morton_permutation(kv, nf, hist, g->fperm, g->finv);
+        for (size_t u = 0; u < nv; ++u) memcpy(g->own_xyz + 3 * u, m->xyz + 3 * (size_t)g->vperm[u], 3 * sizeof(double));
+        for (size_t f = 0; f < nf; ++f) {
+            size_t mf = g->fperm[f];
+            for (size_t k = 0; k < 3; ++k) g->own_tri[3 * f + k] = g->vinv[m->tri[3 * mf + k]];
+            g->own_comp[f] = m->comp[mf];
+        }
+        g->xyz = g->own_xyz, g->tri = g->own_tri, g->comp = g->own_comp;
     }
     tg__free(a, kv);
     tg__free(a, hist);
     return ok;
 }
 
-/* Positions and unique neighbours of every vertex in the internal order (edges of all faces,
+/* Unique neighbours of every vertex (edges of all faces,
  * including non-manifold and degenerate ones: every edge is a segment on the surface). */
 static bool build_adjacency(tg_geodesic* g)
 {
@@ -102,28 +133,25 @@ static bool build_adjacency(tg_geodesic* g)
     size_t total = 2 * (size_t)g->vc_start[nv];
     uint32_t* tmp = tg__alloc_array(a, total ? total : 1, sizeof(uint32_t));
     g->adj_start = tg__calloc_array(a, nv + 1, sizeof(uint32_t));
-    g->pos = tg__alloc_array(a, 3 * (nv ? nv : 1), sizeof(double));
-    if (!tmp || !g->adj_start || !g->pos) {
+    if (!tmp || !g->adj_start) {
         tg__free(a, tmp);
         return false;
     }
     size_t out = 0;
-    for (size_t u = 0; u < nv; ++u) {
-        uint32_t v = g->order[u];
-        memcpy(g->pos + 3 * u, g->xyz + 3 * (size_t)v, 3 * sizeof(double));
+    for (size_t v = 0; v < nv; ++v) {
         size_t begin = out;
         for (uint32_t i = g->vc_start[v]; i < g->vc_start[v + 1]; ++i) {
             uint32_t c = g->vc[i], f3 = c - c % 3;
             uint32_t w1 = g->tri[f3 + (c % 3 + 1) % 3], w2 = g->tri[f3 + (c % 3 + 2) % 3];
-            if (w1 != v) tmp[out++] = g->rank[w1];
-            if (w2 != v) tmp[out++] = g->rank[w2];
+            if (w1 != v) tmp[out++] = w1;
+            if (w2 != v) tmp[out++] = w2;
         }
         sort_u32(tmp + begin, out - begin);
         size_t k = begin;
         for (size_t i = begin; i < out; ++i)
             if (i == begin || tmp[i] != tmp[k - 1]) tmp[k++] = tmp[i];
         out = k;
-        g->adj_start[u + 1] = (uint32_t)out;
+        g->adj_start[v + 1] = (uint32_t)out;
     }
     g->adj = tg__realloc(a, tmp, (out ? out : 1) * sizeof(uint32_t));
     if (!g->adj) {
@@ -137,9 +165,12 @@ void tg_geodesic_destroy(tg_geodesic* g)
 {
     if (!g) return;
     tg_allocator a = g->allocator;
-    tg__free(&a, g->order);
-    tg__free(&a, g->rank);
-    tg__free(&a, g->pos);
+    tg__free(&a, g->vperm);
+    tg__free(&a, g->vinv);
+    tg__free(&a, g->fperm);
+    tg__free(&a, g->finv);
+    tg__free(&a, g->own_xyz);
+    tg__free(&a, g->own_comp);
     tg__free(&a, g->adj_start);
     tg__free(&a, g->adj);
     tg__free(&a, g->vc_start);
@@ -162,11 +193,7 @@ tg_status tg_geodesic_create(const tg_mesh* mesh, const tg_geodesic_options* opt
     g->mesh = mesh;
     g->vertex_count = (uint32_t)mesh->vertex_count;
     g->face_count = (uint32_t)mesh->face_count;
-    g->xyz = mesh->xyz;
-    g->tri = mesh->tri;
-    g->opp = mesh->opp;
-    g->comp = mesh->comp;
-    if (!tg__orient_build(g) || !build_corners(g) || !build_order(g) || !build_adjacency(g) ||
+    if (!build_numbering(g) || !tg__orient_build(g) || !build_corners(g) || !build_adjacency(g) ||
         !tg__field_mesh_build(g)) {
         tg_geodesic_destroy(g);
         return TG_ERR_OUT_OF_MEMORY;
@@ -181,6 +208,7 @@ size_t tg_geodesic_memory_bytes(const tg_geodesic* g)
     size_t nv = g->vertex_count;
     return sizeof *g + 2 * (nv + 1) * sizeof(uint32_t) + (size_t)g->adj_start[nv] * sizeof(uint32_t) +
            (size_t)g->vc_start[nv] * sizeof(uint32_t) + nv * (2 * sizeof(uint32_t) + 3 * sizeof(double)) +
+           (size_t)g->face_count * 3 * sizeof(uint32_t) +
            tg__field_mesh_bytes(g);
 }
 

@@ -18,18 +18,22 @@ struct tg_geodesic {
     const tg_mesh* mesh;
     uint32_t vertex_count;
     uint32_t face_count;
-    const double* xyz;
-    const uint32_t* tri; /* the solver's triangles: the mesh's, or own_tri when faces were re-wound */
-    const uint32_t* opp; /* the solver's opposites (own_opp) */
-    const uint32_t* comp;
-    /* The edge graph for A*, in an internal vertex order (Morton order of the positions, so that
-     * the region a search explores is contiguous in memory): internal id u is mesh vertex
-     * order[u]; mesh vertex v is internal id rank[v]. */
-    uint32_t* order;
-    uint32_t* rank;
-    double* pos;         /* 3 per internal id */
+    /* The solver's numbering: vertices sorted along a Morton (Z-order) curve of their positions,
+     * faces along the curve of their centroids, so that a search or a propagation over a region
+     * touches nearby memory whatever the order of the file. Solver vertex u is mesh vertex
+     * vperm[u] and mesh vertex v is solver vertex vinv[v]; faces likewise (fperm, finv), each
+     * face keeping its corners' order (unless re-wound: TG__F_FLIPPED). Every table below is in
+     * the solver's numbering; surface points are converted where they enter
+     * (tg__surface_to_solver) and leave (tg__node_to_mesh, tg__face_to_mesh, field outputs). */
+    uint32_t *vperm, *vinv, *fperm, *finv;
+    const double* xyz;   /* = own_xyz: 3 per solver vertex */
+    const uint32_t* tri; /* = own_tri: the solver's triangles, consistently wound */
+    const uint32_t* opp; /* = own_opp: the solver's opposites */
+    const uint32_t* comp; /* = own_comp: the mesh's component of each solver face */
+    double* own_xyz;
+    uint32_t* own_comp;
     uint32_t* adj_start; /* V + 1: neighbours of u are adj[adj_start[u] .. adj_start[u + 1]) */
-    uint32_t* adj;       /* unique neighbours (internal ids; every edge of every face), ascending */
+    uint32_t* adj;       /* unique neighbours (every edge of every face), ascending */
     uint32_t* vc_start;  /* V + 1: corners of v are vc[vc_start[v] .. vc_start[v + 1]) */
     uint32_t* vc;        /* corners 3f + k with tri[3f + k] == v, ascending (so by face) */
     /* The exact field engine's tables (field_mesh.c) */
@@ -37,7 +41,7 @@ struct tg_geodesic {
     uint32_t* ring;          /* 3F: next halfedge of the same edge (any orientation; itself: no other) */
     uint8_t* vflags;         /* V: TG__V_* */
     uint8_t* fflags;         /* F: TG__F_* */
-    uint32_t* own_tri;       /* the triangles re-wound consistently, when any face had to turn */
+    uint32_t* own_tri;       /* 3F: the triangles, renumbered and re-wound consistently */
     uint32_t* own_opp;       /* 3F: opposites of the solver's triangles */
     uint32_t* comp_vertices; /* per component (of comp): its referenced vertices */
     uint32_t comp_count;
@@ -234,12 +238,15 @@ static inline tg__node tg__node_edge(uint32_t h, double t, double s)
     return n;
 }
 
-/* Faces may be wound differently in the solver than in the mesh (TG__F_FLIPPED: corners 0, 2, 1),
- * so surface points cross between the two numberings here, both ways (the map is its own
- * inverse): a face point swaps its last two barycentrics; an edge point on halfedge 3f + k moves to
- * 3f + (2 - k), running the other way (t and s swap). */
+/* Surface points between the mesh's numbering and the solver's (vertices and faces renumbered,
+ * see tg_geodesic): a face may also be wound differently in the solver (TG__F_FLIPPED: corners
+ * 0, 2, 1), so that its face point swaps its last two barycentrics and its edge point on halfedge
+ * 3f + k moves to 3f + (2 - k), running the other way (t and s swap). tg__surface_to_solver takes
+ * a canonical mesh point, tg__node_to_mesh turns a solver node into the mesh's numbering, and
+ * tg__face_to_mesh a solver face. */
 tg_surface_point tg__surface_to_solver(const tg_geodesic* g, tg_surface_point p);
 void tg__node_to_mesh(const tg_geodesic* g, tg__node* n);
+static inline uint32_t tg__face_to_mesh(const tg_geodesic* g, uint32_t f) { return f == TG_NONE ? f : g->fperm[f]; }
 
 /* ---- vertex passages: fans of faces around a vertex (vertex_passage.c) ---- */
 

@@ -145,24 +145,40 @@ uint32_t tg__common_face(const tg_geodesic* g, const tg__node* a, const tg__node
 
 tg_surface_point tg__surface_to_solver(const tg_geodesic* g, tg_surface_point p)
 {
-    if (p.kind == TG_SURFACE_FACE && (g->fflags[p.index] & TG__F_FLIPPED)) {
-        double b = p.bary[1];
-        p.bary[1] = p.bary[2], p.bary[2] = b;
-    } else if (p.kind == TG_SURFACE_EDGE && (g->fflags[p.index / 3] & TG__F_FLIPPED)) {
-        uint32_t f = p.index / 3, k = p.index % 3;
-        p = tg_surface_edge(3 * f + (2 - k), 1.0 - p.t);
+    if (p.kind == TG_SURFACE_VERTEX) {
+        p.index = g->vinv[p.index];
+    } else if (p.kind == TG_SURFACE_FACE) {
+        p.index = g->finv[p.index];
+        if (g->fflags[p.index] & TG__F_FLIPPED) {
+            double b = p.bary[1];
+            p.bary[1] = p.bary[2], p.bary[2] = b;
+        }
+    } else if (p.kind == TG_SURFACE_EDGE) {
+        uint32_t f = g->finv[p.index / 3], k = p.index % 3;
+        if (g->fflags[f] & TG__F_FLIPPED)
+            p = tg_surface_edge(3 * f + (2 - k), 1.0 - p.t);
+        else
+            p.index = 3 * f + k;
     }
     return p;
 }
 
 void tg__node_to_mesh(const tg_geodesic* g, tg__node* n)
 {
-    if (n->kind == TG__NODE_FACE && (g->fflags[n->id] & TG__F_FLIPPED)) {
-        double b = n->bary[1];
-        n->bary[1] = n->bary[2], n->bary[2] = b;
-    } else if (n->kind == TG__NODE_EDGE && (g->fflags[n->id / 3] & TG__F_FLIPPED)) {
+    if (n->kind == TG__NODE_VERTEX) {
+        n->id = g->vperm[n->id];
+    } else if (n->kind == TG__NODE_FACE) {
+        if (g->fflags[n->id] & TG__F_FLIPPED) {
+            double b = n->bary[1];
+            n->bary[1] = n->bary[2], n->bary[2] = b;
+        }
+        n->id = g->fperm[n->id];
+    } else if (n->kind == TG__NODE_EDGE) {
         uint32_t f = n->id / 3, k = n->id % 3;
-        double t = n->t;
-        n->id = 3 * f + (2 - k), n->t = n->s, n->s = t;
+        if (g->fflags[f] & TG__F_FLIPPED) {
+            double t = n->t;
+            k = 2 - k, n->t = n->s, n->s = t;
+        }
+        n->id = 3 * g->fperm[f] + k;
     }
 }

@@ -54,7 +54,7 @@ static tg_status fill_path(const tg_geodesic* g, tg_geodesic_workspace* ws, tg__
         path->points[i] = node_to_surface(g, &nodes[i]);
         tg_v3_store(tg__node_pos(g, &nodes[i]), path->xyz + 3 * i);
         if (i + 1 < n) {
-            path->faces[i] = faces[i];
+            path->faces[i] = tg__face_to_mesh(g, faces[i]);
             len += tg__node_dist(g, &nodes[i], &nodes[i + 1], faces[i]);
         }
     }

@@ -204,8 +204,8 @@ TG_API const tg_mesh_report* tg_mesh_get_report(const tg_mesh* mesh);
 TG_API size_t tg_mesh_memory_bytes(const tg_mesh* mesh);
 
 /** Halfedge helpers (inline): next and previous within a face, face of a halfedge. */
-static inline uint32_t tg_halfedge_next(uint32_t h) { return h - h % 3 + (h % 3 + 1) % 3; }
-static inline uint32_t tg_halfedge_prev(uint32_t h) { return h - h % 3 + (h % 3 + 2) % 3; }
+static inline uint32_t tg_halfedge_next(uint32_t h) { return h % 3 == 2 ? h - 2 : h + 1; }
+static inline uint32_t tg_halfedge_prev(uint32_t h) { return h % 3 == 0 ? h + 2 : h - 1; }
 static inline uint32_t tg_halfedge_face(uint32_t h) { return h / 3; }
 /** Start and end vertex of halfedge h. h must be < 3 * face_count. */
 TG_API uint32_t tg_mesh_halfedge_from(const tg_mesh* mesh, uint32_t h);

@@ -362,7 +362,7 @@ TG_ERR_CANCELLED_ = 8
 
 _FORMATS = {"auto": 0, "obj": 1, "off": 2, "ply": 3, "stl": 4}
 _SIGN = {"auto": 0, "pseudonormal": 1, "winding": 2}
-_METHODS = {"straighten": 0, "relax": 1, "edge": 2, "exact": 3}
+_METHODS = {"exact": 0, "straighten": 1, "relax": 2, "edge": 3}  # tg_path_method; "exact" is the C default
 _HIT = np.dtype(_c.ClosestHit)
 _SIGNED = np.dtype(_c.SignedHit)
 

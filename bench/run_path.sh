@@ -2,10 +2,11 @@
 # run_path.sh BUILD LARGE MESHES: geodesic paths (issue 4). For fcpw_kitten.obj, igl_armadillo.obj
 # and armadillo_1m.ply: 1000 random vertex pairs and 1000 random face-point pairs (and, on
 # armadillo_1m.ply, 1000 face-point pairs at most 10% of the bounding-box diagonal apart), timed
-# per path (thread CPU time, median of TG_BENCH_REPS runs per pair, default 3) with the default
-# straightener; the seed's relaxation on the first TG_BENCH_RELAX_PAIRS pairs of each set (default
-# 10; on armadillo_1m.ply only in the near set, its long paths take minutes each). One table; a
-# footer line per mesh with setup time and memory.
+# per path (thread CPU time, median of TG_BENCH_REPS runs per pair, default 3) with the
+# straightener; the exact method (the default) and straightening with --certify on the first
+# TG_BENCH_EXACT_PAIRS pairs of each set (default 200); the seed's relaxation on the first
+# TG_BENCH_RELAX_PAIRS pairs of each set (default 10; on armadillo_1m.ply only in the near set,
+# its long paths take minutes each). One table; a footer line per mesh with setup time and memory.
 set -euo pipefail
 build=${1:?usage: run_path.sh BUILD LARGE MESHES}
 large=${2:?usage: run_path.sh BUILD LARGE MESHES}
@@ -38,7 +39,7 @@ if [ -x "$cgal" ]; then
     printf '\n| mesh | faces | CGAL s per pair | trigeo exact median ms per pair (random vertex pairs) | CGAL / trigeo |\n|---|---:|---:|---:|---:|\n'
     for m in "$meshes/c3d_stanford-bunny.obj" "$meshes/igl_armadillo.obj" "$meshes/fcpw_kitten.obj"; do
         c=$(OMP_NUM_THREADS=1 "$cgal" "$m" --vertex 0 2>/dev/null | tail -n 1 | awk -F'|' '{gsub(/ /, "", $8); print $8}')
-        row=$("$bp" "$m" --pairs "$cpairs" --reps 1 --relax 0 --exact "$cpairs" | grep '| vertex pairs | exact |')
+        row=$("$bp" "$m" --pairs "$cpairs" --reps 1 --relax 0 --exact "$cpairs" | grep '| vertex pairs | exact (default) |')
         faces=$(awk -F'|' '{gsub(/ /, "", $3); print $3}' <<<"$row")
         t=$(awk -F'|' '{gsub(/ /, "", $7); print $7}' <<<"$row")
         awk -v m="$(basename "$m")" -v f="$faces" -v c="$c" -v t="$t" \

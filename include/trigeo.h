@@ -711,7 +711,9 @@ TG_API size_t tg_geodesic_memory_bytes(const tg_geodesic* geodesic);
 /** Per-thread scratch for path queries: arrays sized once for the mesh (about 16 bytes per
  *  vertex) and buffers that grow to the largest path seen, so repeated queries do not allocate
  *  (except TG_PATH_RELAX across a fan of over 64 edges: the fan kernel's scratch, from the
- *  solver's allocator like everything else). A query touches only the entries of the region it explores. Not thread-safe: one workspace
+ *  solver's allocator like everything else). The first TG_PATH_EXACT query (the default) or
+ *  certified query adds a field workspace (about 130 bytes per face), kept for the next ones.
+ *  A query touches only the entries of the region it explores. Not thread-safe: one workspace
  *  per thread. */
 typedef struct tg_geodesic_workspace tg_geodesic_workspace;
 
@@ -726,25 +728,37 @@ TG_API void tg_geodesic_workspace_destroy(tg_geodesic_workspace* workspace);
 /** Bytes currently owned by the workspace (fixed arrays plus grown buffers). NULL gives 0. */
 TG_API size_t tg_geodesic_workspace_memory_bytes(const tg_geodesic_workspace* workspace);
 
-/** How the initial edge path is shortened. */
+/** How a path is found. TG_PATH_EXACT, the default, is the globally shortest path; the others
+ *  shorten the shortest edge path (A*) into a locally shortest one, faster but unproven. */
 typedef enum tg_path_method {
-    /** Default. Unfolds every run of edge crossings (a triangle strip) into the plane and
-     *  straightens it in one pass with a funnel (Lee & Preparata 1984); vertex passages whose
-     *  smaller side angle is below pi are re-routed through the fan on that side and the strip is
-     *  straightened again, until every vertex passage is locally shortest (Xin & Wang 2007). */
-    TG_PATH_STRAIGHTEN = 0,
+    /** Default. The globally shortest path, proven: an exact window propagation from `from`
+     *  (tg_geodesic_field's engine) ordered toward `to` (A*: a window's distance plus the
+     *  Euclidean distance from it to `to`) and bounded by the best distance to `to` found so far
+     *  (windows reaching it, the corners of its face), then the path traced back from `to` along
+     *  the ray of the window that reached it, through the faces it crossed, to the pseudo-source
+     *  vertex it came from, and on through the windows and pseudo-source vertices to `from`. No
+     *  edge path is computed, so in its view initial_length equals length and edge_path_vertices
+     *  and iterations are 0; global is TG_PATH_PROVEN. Cost: about 1-2 ms for near pairs on a
+     *  1M-face mesh, about 100 ms for random far pairs (about 10x TG_PATH_STRAIGHTEN's). Memory:
+     *  the field workspace (about 130 MB at 1M faces, tg_field_workspace's tables) allocated from
+     *  the solver's allocator on the workspace's first exact query and kept for the next.
+     *  Should the trace back fail to reproduce the exact distance (not seen on the test corpus),
+     *  the straightened path is checked as with certify instead: then it has an edge path and
+     *  is labelled proven only if within 1e-9 relative of the exact distance. */
+    TG_PATH_EXACT = 0,
+    /** The fast locally shortest path: unfolds every run of edge crossings of the edge path (a
+     *  triangle strip) into the plane and straightens it in one pass with a funnel (Lee &
+     *  Preparata 1984); vertex passages whose smaller side angle is below pi are re-routed through
+     *  the fan on that side and the strip is straightened again, until every vertex passage is
+     *  locally shortest (Xin & Wang 2007). A geodesic, not always the globally shortest one:
+     *  global is TG_PATH_UNPROVEN unless certify proves it. */
+    TG_PATH_STRAIGHTEN = 1,
     /** The seed's relaxation (seed 002 §5): passes over consecutive triples, two-triangle
      *  minimization at edge points (§2) and fan minimization on each side of a mesh vertex (§3-4),
-     *  until a pass shortens the path by at most tolerance * length. */
-    TG_PATH_RELAX = 1,
-    /** No shortening: the initial shortest edge path (Dijkstra/A*) only. */
-    TG_PATH_EDGE = 2,
-    /** The globally shortest path, proven: the straightened path bounds an exact window
-     *  propagation from `from` (tg_geodesic_field's engine, stopped at that length), which gives
-     *  the exact distance to `to`; the path is traced back from `to` along the ray of the window
-     *  that reached it, through the faces it crossed, to the pseudo-source vertex it came from,
-     *  and on to `from`. The view's global is TG_PATH_PROVEN. */
-    TG_PATH_EXACT = 3
+     *  until a pass shortens the path by at most tolerance * length. Unproven unless certify. */
+    TG_PATH_RELAX = 2,
+    /** No shortening: the initial shortest edge path (Dijkstra/A*) only. Unproven unless certify. */
+    TG_PATH_EDGE = 3
 } tg_path_method;
 
 /** Whether a path is proven globally shortest. */
@@ -758,9 +772,12 @@ TG_API const char* tg_path_global_name(tg_path_global global);
 
 /** Whether tg_geodesic_path checks its result against the exact distance. */
 typedef enum tg_path_certify {
-    TG_PATH_CERTIFY_OFF = 0, /**< default: no check (global is TG_PATH_UNPROVEN unless method EXACT) */
-    /** After the method: the exact distance within the path's length; a path within 1e-9 of it
-     *  becomes TG_PATH_PROVEN, and a longer one is replaced by the exact path (TG_PATH_EXACT's). */
+    /** default: no check (the default method, TG_PATH_EXACT, is proven without it; the other
+     *  methods' paths are TG_PATH_UNPROVEN) */
+    TG_PATH_CERTIFY_OFF = 0,
+    /** After STRAIGHTEN, RELAX or EDGE: the exact distance within the path's length; a path
+     *  within 1e-9 of it becomes TG_PATH_PROVEN, and a longer one is replaced by the exact path
+     *  (TG_PATH_EXACT's). Redundant with TG_PATH_EXACT, whose path is proven already. */
     TG_PATH_CERTIFY_ON = 1
 } tg_path_certify;
 
@@ -779,12 +796,13 @@ TG_API const char* tg_path_status_name(tg_path_status status);
 
 /** Query options. NULL or all-zero means defaults. */
 typedef struct tg_path_options {
-    tg_path_method method;   /**< TG_PATH_STRAIGHTEN (0) by default */
-    uint32_t max_iterations; /**< cap on straightening sweeps or relaxation passes; 0: 10000 */
+    tg_path_method method;   /**< TG_PATH_EXACT (0) by default */
+    /** cap on straightening sweeps or relaxation passes (not used by EXACT); 0: 10000 */
+    uint32_t max_iterations;
     /** Stopping tolerance, dimensionless; 0: default. STRAIGHTEN: a vertex passage is re-routed
      *  when its smaller side angle is below pi - tolerance radians (default 1e-12). RELAX: stop
-     *  when a pass shortens the path by at most tolerance * length (default 1e-13). Negative, NaN
-     *  or infinite: TG_ERR_INVALID_ARGUMENT. */
+     *  when a pass shortens the path by at most tolerance * length (default 1e-13). EXACT: not
+     *  used. Negative, NaN or infinite: TG_ERR_INVALID_ARGUMENT (whatever the method). */
     double tolerance;
     /** RELAX: options of the seed's kernels (tg_edge_path_minimize, tg_fan_path_minimize). NULL:
      *  15 digits by bisection (§2.4) and the conjugate-gradient fan search (§3.4.2). */
@@ -806,7 +824,9 @@ typedef struct tg_path_view {
     const double* xyz;               /**< 3 * point_count positions */
     const uint32_t* faces;           /**< point_count - 1 faces, one per segment */
     double length;                   /**< sum of 3D segment lengths; +inf when unreachable */
-    double initial_length;           /**< length of the initial shortest edge path; +inf when unreachable */
+    /** length of the initial shortest edge path; TG_PATH_EXACT computes none: there it equals
+     *  length; +inf when unreachable */
+    double initial_length;
     /** The certificate, radians: the largest straightness defect over edge crossings
      *  (|pi - unfolded angle|) and vertex passages (max(0, pi - smaller side angle), taking only
      *  the interior side at a boundary; 0 where the path passes between two fans of a pinched or
@@ -819,8 +839,8 @@ typedef struct tg_path_view {
     /** TG_PATH_PROVEN only when an exact computation showed that no path shorter by more than
      *  1e-9 relative exists (method TG_PATH_EXACT, or certify); else TG_PATH_UNPROVEN. */
     tg_path_global global;
-    uint32_t iterations;             /**< sweeps (STRAIGHTEN) or passes (RELAX) performed */
-    uint32_t edge_path_vertices;     /**< mesh vertices on the initial edge path */
+    uint32_t iterations;             /**< sweeps (STRAIGHTEN) or passes (RELAX) performed; 0 for EXACT */
+    uint32_t edge_path_vertices;     /**< mesh vertices on the initial edge path; 0 for EXACT */
 } tg_path_view;
 
 /** Creates an empty path object. allocator may be NULL (libc). Errors: TG_ERR_INVALID_ARGUMENT,
@@ -836,25 +856,31 @@ TG_API void tg_path_get_view(const tg_path* path, tg_path_view* out_view);
 
 /** Computes a geodesic path from `from` to `to` (any surface points: vertex, edge point, face
  *  point; never snapped to a vertex) into `path`.
- *  The endpoints are inserted virtually (the mesh is not modified), the shortest path in the edge
- *  graph plus the endpoints' virtual edges is found by A* with the Euclidean lower bound (binary
- *  heap, stopping at the target, work proportional to the explored region), then shortened by
- *  options->method. The result is a locally shortest path (a geodesic) in the homotopy class the
- *  edge path leads to; where several geodesics join the endpoints (around a cone point, a handle)
- *  it need not be the globally shortest one.
+ *  By default (TG_PATH_EXACT) the path is the globally shortest one, proven (global
+ *  TG_PATH_PROVEN): an exact window propagation from `from` toward `to`, traced back (see
+ *  tg_path_method). The other methods insert the endpoints virtually (the mesh is not modified),
+ *  find the shortest path in the edge graph plus the endpoints' virtual edges by A* with the
+ *  Euclidean lower bound (binary heap, stopping at the target, work proportional to the explored
+ *  region), then shorten it by options->method. Their result is a locally shortest path (a
+ *  geodesic) in the homotopy class the edge path leads to; where several geodesics join the
+ *  endpoints (around a cone point, a handle) it need not be the globally shortest one
+ *  (TG_PATH_UNPROVEN unless certify).
  *  Paths cross every edge shared by exactly two faces (non-zero length) whatever the faces'
  *  winding: the solver winds each component's faces consistently once, at creation (a
  *  non-orientable component keeps one wall per conflict), and a duplicate face counts once;
  *  non-manifold edges (three or more faces), pinched vertices and coincident vertices are passed
  *  through vertices (the exact fields continue across non-manifold edges; paths do not yet).
  *  Endpoints in different components give status TG_PATH_UNREACHABLE, length +inf and TG_OK.
- *  Every returned path lies on the surface and its length never exceeds initial_length; the
- *  straightener's converged paths have max_angle_defect <= 1e-10 in practice (reported, not
+ *  Every returned path lies on the surface and its length never exceeds initial_length; exact
+ *  and straightened converged paths have max_angle_defect <= 1e-10 in practice (reported, not
  *  assumed). The output endpoints are the canonical forms of from and to.
  *  Errors: TG_ERR_INVALID_ARGUMENT (NULL argument, workspace of another solver, invalid surface
  *  point, unknown method), TG_ERR_OUT_OF_MEMORY (a buffer could not grow; path is then empty).
- *  Complexity: A* is O(n log n) in the n explored vertices; straightening is O(k) per sweep in the
- *  k faces of the path's strips. Thread-safe for distinct workspaces and paths. */
+ *  Complexity: EXACT is the field's (tg_geodesic_field) over the region its A* order and bound
+ *  explore, about 1-2 ms for near pairs and 100 ms for far ones on a 1M-face mesh; A* is
+ *  O(n log n) in the n explored vertices; straightening is O(k) per sweep in the k faces of the
+ *  path's strips, about 10x faster than EXACT on far pairs. Thread-safe for distinct workspaces
+ *  and paths. */
 TG_API tg_status tg_geodesic_path(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                            const tg_surface_point* from, const tg_surface_point* to,
                            const tg_path_options* options, tg_path* path);

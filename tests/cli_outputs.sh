@@ -81,10 +81,11 @@ for args in (["closest", huge, "-"], ["path", huge, "--from", "v:0", "--to", "v:
     r = run(*args, stdin=b"0 0 0\n")
     check(r.returncode == 2 and b"1e150" in r.stderr and b"1e+300" in r.stderr, "huge mesh %s: %d %r" % (args[0], r.returncode, r.stderr))
 check(run("info", huge).returncode == 0, "info still reads a huge mesh")
-# a mesh near 1e-300: its angles cannot be measured, and a path there is "stalled", not "converged"
+# a mesh near 1e-300: its angles cannot be measured, and a straightened path there is "stalled",
+# not "converged"
 tiny = os.path.join(tmp, "tiny.obj")
 open(tiny, "w").write("v 0 0 0\nv 1e-300 0 0\nv 0 1e-300 0\nv 1e-300 1e-300 0\nf 1 2 3\nf 2 4 3\n")
-r = run("path", tiny, "--from", "f:0:0.6,0.2,0.2", "--to", "f:1:0.2,0.6,0.2")
+r = run("path", tiny, "--from", "f:0:0.6,0.2,0.2", "--to", "f:1:0.2,0.6,0.2", "--method", "straighten")
 check(r.returncode == 0 and b"status             stalled" in r.stdout, "tiny mesh path: %d %r" % (r.returncode, r.stdout[:200]))
 r = run("closest", spot, "-", stdin=b"0 0 0\n1e300 0 0\n")
 check(r.returncode == 2 and b"-:2:" in r.stderr and b"1e150" in r.stderr and not r.stdout,

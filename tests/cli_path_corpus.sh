@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # cli_path_corpus.sh: `trigeo path --pairs` on every mesh of the shared corpus, end to end through
-# the CLI: three face-point pairs per mesh (first, middle and last faces, centroids). Each row must
-# be converged with a certificate <= 1e-10 rad and a finite length, or unreachable with length inf
+# the CLI: three face-point pairs per mesh (first, middle and last faces, centroids). Each
+# straightened row must be converged with a certificate <= 1e-10 rad and a finite length, or
+# unreachable with length inf
 # exactly when the two faces lie in different components (checked against the vertex-connected
 # components of the mesh, computed here from `trigeo info`'s counts: a mesh with one component
-# must never report unreachable).
+# must never report unreachable). Straightening with --certify and the default method (exact)
+# must then prove every converged path, never longer than the straightened one.
 set -u
 trigeo=${TG_TRIGEO:?}
 meshes=${TG_MESHES_DIR:?}
@@ -23,7 +25,8 @@ for r in rows:
     F, comps = info["faces"], info["components"]
     c = "0.3333333333333333 0.3333333333333333 0.33333333333333337"
     pairs = "p 0 %s %d %s\np %d %s %d %s\np 0 %s 0 %s\n" % (c, F - 1, c, F // 2, c, F - 1, c, c, c)
-    p = subprocess.run([trigeo, "path", path, "--pairs", "-"], input=pairs, capture_output=True, text=True)
+    p = subprocess.run([trigeo, "path", path, "--pairs", "-", "--method", "straighten"], input=pairs,
+                       capture_output=True, text=True)
     if p.returncode != 0:
         fail("%s: exit %d: %s" % (r[0], p.returncode, p.stderr.strip())); continue
     out = [l.split(",") for l in p.stdout.strip().splitlines()]
@@ -43,20 +46,24 @@ for r in rows:
     # a face to itself: length 0
     if ok and float(out[3][1]) != 0.0:
         fail("%s: same point, length %s" % (r[0], out[3][1])); ok = False
-    # --certify: every converged path proven globally shortest (an exact propagation bounded by
-    # its length), never longer than the straightened one, still certified straight
-    if ok:
-        pc = subprocess.run([trigeo, "path", path, "--pairs", "-", "--certify"], input=pairs, capture_output=True, text=True)
+    # straightening with --certify (an exact propagation bounded by its length), and the default
+    # method (exact): every converged path proven globally shortest, never longer than the
+    # straightened one, still certified straight
+    for extra in (["--method", "straighten", "--certify"], []):
+        if not ok:
+            break
+        what = " ".join(extra) or "default"
+        pc = subprocess.run([trigeo, "path", path, "--pairs", "-", *extra], input=pairs, capture_output=True, text=True)
         cert = [l.split(",") for l in pc.stdout.strip().splitlines()]
         if pc.returncode != 0 or len(cert) != 4:
-            fail("%s: --certify exit %d %s" % (r[0], pc.returncode, pc.stderr.strip())); ok = False
+            fail("%s: %s exit %d %s" % (r[0], what, pc.returncode, pc.stderr.strip())); ok = False
         else:
             for a, b in zip(out[1:], cert[1:]):
                 if b[3] == "converged" and not (b[6] == "proven" and float(b[1]) <= float(a[1]) * (1 + 1e-12)
                                                 and float(b[4]) <= 1e-10):
-                    fail("%s: --certify row %s (straightened %s)" % (r[0], b, a)); ok = False; break
+                    fail("%s: %s row %s (straightened %s)" % (r[0], what, b, a)); ok = False; break
                 if b[3] != "converged" and b[3] != a[3]:
-                    fail("%s: --certify status %s vs %s" % (r[0], b, a)); ok = False; break
+                    fail("%s: %s status %s vs %s" % (r[0], what, b, a)); ok = False; break
     if ok:
         passed += 1
 print("%d passed, %d failed" % (passed, failed))

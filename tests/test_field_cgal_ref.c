@@ -6,7 +6,10 @@
  * misplaces them (its distance to an end vertex of the source's own edge comes out below the
  * Euclidean distance); they are checked by symmetry (test_field_engine) and known answers. Every reference vertex must agree within 1e-12 of the field's
  * largest distance, inf where CGAL finds no path. The exact paths from each source to 20 of the
- * reference vertices must have CGAL's length within 1e-9 relative, be proven and certified. */
+ * reference vertices must have CGAL's length within 1e-9 relative, be proven and certified.
+ * The default method (options all zero, and NULL options) on the same fixed pairs: the share of
+ * globally shortest paths (CGAL's length within 1e-9 relative) must be at least 98% (issue 10
+ * item 5), and every path it labels proven must be globally shortest. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -48,6 +51,38 @@ typedef struct entry {
     double d;
 } entry;
 
+/* The default method's record over every pair of every file: [0] all-zero options, [1] NULL. */
+typedef struct default_tally {
+    size_t pairs, shortest, proven;
+} default_tally;
+static default_tally default_tallies[2];
+
+/* Issue 10: the default method is globally shortest on at least this share of random pairs. */
+#define DEFAULT_SHORTEST_SHARE 0.98
+
+/* One pair through the default method, both ways of asking for it: tallied, and a path labelled
+ * proven must have CGAL's length within 1e-9 relative (the label's promise). */
+static void tally_default(const char* file, const char* spec, tg_geodesic* g, tg_geodesic_workspace* ws,
+                          const tg_surface_point* s, const entry* e, tg_path* path)
+{
+    tg_path_options zero;
+    memset(&zero, 0, sizeof zero);
+    tg_surface_point t = tg_surface_vertex(e->v);
+    for (int k = 0; k < 2; ++k) {
+        CHECK_STATUS(tg_geodesic_path(g, ws, s, &t, k ? NULL : &zero, path), TG_OK);
+        tg_path_view v;
+        tg_path_get_view(path, &v);
+        bool shortest = fabs(v.length - e->d) <= 1e-9 * e->d;
+        default_tally* d = &default_tallies[k];
+        d->pairs++;
+        d->shortest += shortest;
+        if (v.global != TG_PATH_PROVEN) continue;
+        d->proven++;
+        CHECK_MSG(shortest, "%s %s -> v:%u: the default (%s options) labelled proven a path of %.17g, CGAL %.17g", file,
+                  spec, e->v, k ? "NULL" : "zero", v.length, e->d);
+    }
+}
+
 /* Exact paths (TG_PATH_EXACT) from the source to the first reference vertices: the length is
  * CGAL's distance within 1e-9 relative (never shorter beyond rounding), the path is proven and
  * certified straight (issue 10 item 5: an independent exact reference for paths). */
@@ -75,6 +110,7 @@ static void compare_paths(const char* file, tg_geodesic* g, const char* spec, co
         CHECK_MSG(fabs(rel) <= 1e-9 && v.global == TG_PATH_PROVEN && v.max_angle_defect <= 1e-10,
                   "%s %s -> v:%u: exact path %.17g (%s, certificate %.2g), CGAL %.17g", file, spec, e[i].v, v.length,
                   tg_path_global_name(v.global), v.max_angle_defect, e[i].d);
+        tally_default(file, spec, g, ws, s, &e[i], path);
         count++;
     }
     CHECK_MSG(count == want, "%s %s: only %zu reachable reference vertices for paths", file, spec, count);
@@ -165,6 +201,15 @@ int main(void)
         char path[8192];
         snprintf(path, sizeof path, "%s/%s.ref", ref_dir(), files[i]);
         check_file(path);
+    }
+    for (int k = 0; k < 2; ++k) {
+        const default_tally* d = &default_tallies[k];
+        double share = d->pairs ? (double)d->shortest / (double)d->pairs : 0.0;
+        printf("default method (%s options): %zu of %zu pairs globally shortest (%.2f%%), %zu labelled proven\n",
+               k ? "NULL" : "zero", d->shortest, d->pairs, 100.0 * share, d->proven);
+        CHECK_MSG(d->pairs > 0 && share >= DEFAULT_SHORTEST_SHARE,
+                  "default method (%s options): globally shortest on %.2f%% of %zu pairs, below %.0f%%", k ? "NULL" : "zero",
+                  100.0 * share, d->pairs, 100.0 * DEFAULT_SHORTEST_SHARE);
     }
     return tg_test_finish();
 }

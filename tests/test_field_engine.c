@@ -131,7 +131,9 @@ static void test_intrinsic(void)
 }
 
 /* Paths too: on a mesh with flipped faces, the same lengths as on the original, and every point
- * of the path is a valid surface point of the flipped mesh at the path's own position. */
+ * of the path is a valid surface point of the flipped mesh at the path's own position; for the
+ * straightener (which walks the solver's rewound faces) and the default exact method (the field
+ * engine's own winding). */
 static void test_paths_intrinsic(void)
 {
     tg_mesh* m = load("nvd_spot.obj");
@@ -146,31 +148,41 @@ static void test_paths_intrinsic(void)
     CHECK_STATUS(tg_geodesic_workspace_create(g1, &w1), TG_OK);
     CHECK_STATUS(tg_path_create(NULL, &p0), TG_OK);
     CHECK_STATUS(tg_path_create(NULL, &p1), TG_OK);
-    tg_rng rng = {77};
-    int crossing_flipped = 0;
-    for (int q = 0; q < 40; ++q) {
-        tg_surface_point a = tg_surface_vertex((uint32_t)(tg_rng_next(&rng) % 1400));
-        /* a face point in a flipped face, given in each mesh's own corner order */
-        uint32_t f = 7 * (uint32_t)(tg_rng_next(&rng) % 200);
-        tg_surface_point b0 = tg_surface_face(f, 0.2, 0.3, 0.5), b1 = tg_surface_face(f, 0.2, 0.5, 0.3);
-        CHECK_STATUS(tg_geodesic_path(g0, w0, &a, &b0, NULL, p0), TG_OK);
-        CHECK_STATUS(tg_geodesic_path(g1, w1, &a, &b1, NULL, p1), TG_OK);
-        tg_path_view v0, v1;
-        tg_path_get_view(p0, &v0);
-        tg_path_get_view(p1, &v1);
-        CHECK_MSG(fabs(v0.length - v1.length) <= 1e-12 * v0.length, "path %d: %.17g vs %.17g", q, v0.length, v1.length);
-        CHECK(v1.status == TG_PATH_CONVERGED && v1.max_angle_defect <= 1e-10);
-        for (size_t i = 0; i < v1.point_count; ++i) {
-            double x[3];
-            CHECK_STATUS(tg_surface_point_validate(f7, &v1.points[i], NULL), TG_OK);
-            tg_surface_point_position(f7, &v1.points[i], x);
-            double e = fabs(x[0] - v1.xyz[3 * i]) + fabs(x[1] - v1.xyz[3 * i + 1]) + fabs(x[2] - v1.xyz[3 * i + 2]);
-            CHECK_MSG(e <= 1e-12, "path %d point %zu: position off by %.3g", q, i, e);
-            if (v1.points[i].kind == TG_SURFACE_EDGE && v1.points[i].index / 3 < 1400 && v1.points[i].index / 3 % 7 == 0)
-                crossing_flipped++;
+    tg_path_options straighten;
+    memset(&straighten, 0, sizeof straighten);
+    straighten.method = TG_PATH_STRAIGHTEN;
+    const tg_path_options* methods[2] = {&straighten, NULL}; /* NULL: the default, TG_PATH_EXACT */
+    for (int k = 0; k < 2; ++k) {
+        const tg_path_options* o = methods[k];
+        const char* name = o ? "straighten" : "default";
+        tg_rng rng = {77};
+        int crossing_flipped = 0;
+        for (int q = 0; q < 40; ++q) {
+            tg_surface_point a = tg_surface_vertex((uint32_t)(tg_rng_next(&rng) % 1400));
+            /* a face point in a flipped face, given in each mesh's own corner order */
+            uint32_t f = 7 * (uint32_t)(tg_rng_next(&rng) % 200);
+            tg_surface_point b0 = tg_surface_face(f, 0.2, 0.3, 0.5), b1 = tg_surface_face(f, 0.2, 0.5, 0.3);
+            CHECK_STATUS(tg_geodesic_path(g0, w0, &a, &b0, o, p0), TG_OK);
+            CHECK_STATUS(tg_geodesic_path(g1, w1, &a, &b1, o, p1), TG_OK);
+            tg_path_view v0, v1;
+            tg_path_get_view(p0, &v0);
+            tg_path_get_view(p1, &v1);
+            CHECK_MSG(fabs(v0.length - v1.length) <= 1e-12 * v0.length, "%s path %d: %.17g vs %.17g", name, q, v0.length,
+                      v1.length);
+            CHECK_MSG(v1.status == TG_PATH_CONVERGED && v1.max_angle_defect <= 1e-10, "%s path %d: %s, certificate %.3g",
+                      name, q, tg_path_status_name(v1.status), v1.max_angle_defect);
+            for (size_t i = 0; i < v1.point_count; ++i) {
+                double x[3];
+                CHECK_STATUS(tg_surface_point_validate(f7, &v1.points[i], NULL), TG_OK);
+                tg_surface_point_position(f7, &v1.points[i], x);
+                double e = fabs(x[0] - v1.xyz[3 * i]) + fabs(x[1] - v1.xyz[3 * i + 1]) + fabs(x[2] - v1.xyz[3 * i + 2]);
+                CHECK_MSG(e <= 1e-12, "%s path %d point %zu: position off by %.3g", name, q, i, e);
+                if (v1.points[i].kind == TG_SURFACE_EDGE && v1.points[i].index / 3 < 1400 && v1.points[i].index / 3 % 7 == 0)
+                    crossing_flipped++;
+            }
         }
+        CHECK_MSG(crossing_flipped > 20, "%s: %d crossings of flipped faces", name, crossing_flipped);
     }
-    CHECK(crossing_flipped > 20);
     tg_path_destroy(p0), tg_path_destroy(p1);
     tg_geodesic_workspace_destroy(w0), tg_geodesic_workspace_destroy(w1);
     tg_geodesic_destroy(g0), tg_geodesic_destroy(g1);

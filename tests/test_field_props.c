@@ -81,11 +81,14 @@ static void check_mesh(ctx* c, const char* name, int sources, uint64_t seed, int
             if (!ok && bad++ < 5)
                 CHECK_MSG(0, "%s from %u: vertex %zu: euclid %.17g field %.17g graph %.17g", name, a, v, e, fa[v], dj[v]);
         }
-        /* sampled targets against the straightened path */
+        /* sampled targets against the straightened path (never shorter than the field) */
+        tg_path_options straighten;
+        memset(&straighten, 0, sizeof straighten);
+        straighten.method = TG_PATH_STRAIGHTEN;
         for (int k = 0; k < 12; ++k) {
             uint32_t b = (uint32_t)(tg_rng_next(&r) % n);
             tg_surface_point pa = tg_surface_vertex(a), pb = tg_surface_vertex(b);
-            CHECK_STATUS(tg_geodesic_path(c->geo, c->ws, &pa, &pb, NULL, c->path), TG_OK);
+            CHECK_STATUS(tg_geodesic_path(c->geo, c->ws, &pa, &pb, &straighten, c->path), TG_OK);
             tg_path_view v;
             tg_path_get_view(c->path, &v);
             path_checks++;
@@ -128,7 +131,7 @@ static void check_mesh(ctx* c, const char* name, int sources, uint64_t seed, int
         for (int k = 0; k < 6; ++k) {
             uint32_t t = (uint32_t)(tg_rng_next(&r) % n);
             tg_surface_point pt = tg_surface_vertex(t);
-            CHECK_STATUS(tg_geodesic_path(c->geo, c->ws, &fp, &pt, NULL, c->path), TG_OK);
+            CHECK_STATUS(tg_geodesic_path(c->geo, c->ws, &fp, &pt, &straighten, c->path), TG_OK);
             tg_path_view v;
             tg_path_get_view(c->path, &v);
             CHECK_MSG(fb[t] <= v.length * (1 + 1e-12) + 1e-15 && fb[t] >= dist3(p, x + 3 * (size_t)t) * (1 - 1e-12),

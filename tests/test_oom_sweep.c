@@ -839,6 +839,8 @@ static bool same_path(const tg_path* p, const path_copy* ref)
 }
 
 static path_copy short_path_reference; /* far_a to near_b, STRAIGHTEN, default allocator */
+/* the straightener, asked for by name: the default method is EXACT, swept with the others below */
+static const tg_path_options straighten = {TG_PATH_STRAIGHTEN, 0, 0.0, NULL, TG_PATH_CERTIFY_OFF};
 
 /* A solver for a mesh, checked by its size and one short path against the default allocator's. */
 typedef struct geodesic_ctx {
@@ -862,7 +864,7 @@ static tg_status try_geodesic_create(sweep* s, void* ctx)
         tg_path* p = NULL;
         CHECK_STATUS(tg_geodesic_workspace_create(g, &ws), TG_OK);
         CHECK_STATUS(tg_path_create(&s->a, &p), TG_OK);
-        CHECK_STATUS(tg_geodesic_path(g, ws, &far_a, &near_b, NULL, p), TG_OK);
+        CHECK_STATUS(tg_geodesic_path(g, ws, &far_a, &near_b, &straighten, p), TG_OK);
         CHECK_MSG(same_path(p, gc->reference), "%s: path differs from the default allocator's", s->name);
         tg_path_destroy(p);
         tg_geodesic_workspace_destroy(ws);
@@ -879,7 +881,7 @@ static void sweep_geodesic_create(const tg_mesh* m, const char* name, long dense
     CHECK_STATUS(tg_geodesic_create(m, NULL, &g), TG_OK);
     CHECK_STATUS(tg_geodesic_workspace_create(g, &ws), TG_OK);
     CHECK_STATUS(tg_path_create(NULL, &p), TG_OK);
-    CHECK_STATUS(tg_geodesic_path(g, ws, &far_a, &near_b, NULL, p), TG_OK);
+    CHECK_STATUS(tg_geodesic_path(g, ws, &far_a, &near_b, &straighten, p), TG_OK);
     path_copy ref = copy_path(p);
     geodesic_ctx gc = {m, tg_geodesic_memory_bytes(g), &ref};
     sweep_run(name, try_geodesic_create, &gc, dense, stride);
@@ -903,7 +905,7 @@ static tg_status try_geodesic_workspace(sweep* s, void* ctx)
     if (st == TG_OK) {
         tg_path* p = NULL;
         CHECK_STATUS(tg_path_create(NULL, &p), TG_OK);
-        CHECK_STATUS(tg_geodesic_path(g, ws, &far_a, &near_b, NULL, p), TG_OK);
+        CHECK_STATUS(tg_geodesic_path(g, ws, &far_a, &near_b, &straighten, p), TG_OK);
         CHECK_MSG(same_path(p, &short_path_reference), "%s: path differs from the default allocator's", s->name);
         tg_path_destroy(p);
     }
@@ -986,7 +988,8 @@ static long sweep_path(path_ctx* pc, const char* what, long dense, long stride)
     tg_path_destroy(p);
     tg_geodesic_workspace_destroy(ws);
     tg_geodesic_destroy(g);
-    static const char* method_names[] = {"straighten", "relax", "edge", "exact"};
+    static const char* method_names[] = {[TG_PATH_EXACT] = "exact", [TG_PATH_STRAIGHTEN] = "straighten",
+                                         [TG_PATH_RELAX] = "relax", [TG_PATH_EDGE] = "edge"};
     char name[160];
     snprintf(name, sizeof name, "tg_geodesic_path %s%s%s%s (%zu points, %u iterations, %s)",
              method_names[pc->options.method], pc->options.certify ? ", certified" : "",
@@ -1006,7 +1009,7 @@ static void sweep_geodesic(const tg_mesh* troubled, const tg_mesh* disk)
     tg_path* p = NULL;
     CHECK_STATUS(tg_geodesic_workspace_create(spot_g, &ws), TG_OK);
     CHECK_STATUS(tg_path_create(NULL, &p), TG_OK);
-    CHECK_STATUS(tg_geodesic_path(spot_g, ws, &far_a, &near_b, NULL, p), TG_OK);
+    CHECK_STATUS(tg_geodesic_path(spot_g, ws, &far_a, &near_b, &straighten, p), TG_OK);
     short_path_reference = copy_path(p);
     tg_path_destroy(p);
     tg_geodesic_workspace_destroy(ws);

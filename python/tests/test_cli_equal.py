@@ -37,7 +37,7 @@ def test_closest_equals_cli(name, tmp_path):
 
 
 @pytest.mark.parametrize("name", MESHES)
-@pytest.mark.parametrize("method", ["straighten", "exact"])
+@pytest.mark.parametrize("method", ["straighten", "exact", None])  # None: both sides' default (exact)
 def test_path_lengths_equal_cli(name, method, tmp_path):
     path = mesh_path(name)
     m = trigeo.load(path)
@@ -47,15 +47,18 @@ def test_path_lengths_equal_cli(name, method, tmp_path):
     pf = tmp_path / "pairs.txt"
     pf.write_text("".join(f"v {a} {b}\n" for a, b in pairs))
     out = tmp_path / "p.csv"
-    r = run_cli("path", path, "--pairs", str(pf), "--method", method, "-o", str(out))
+    r = run_cli("path", path, "--pairs", str(pf), *(["--method", method] if method else []), "-o", str(out))
     assert r.returncode == 0, r.stderr
     rows = [line.split(",") for line in out.read_text().splitlines()[1:]]
     cli = np.array([float(row[1]) for row in rows])
-    got = m.path_lengths(pairs, method=method, threads=2)
+    kw = {"method": method} if method else {}
+    got = m.path_lengths(pairs, threads=2, **kw)
     assert np.array_equal(got, cli)
     for i in (0, 5):
-        p = m.path(int(pairs[i, 0]), int(pairs[i, 1]), method=method)
+        p = m.path(int(pairs[i, 0]), int(pairs[i, 1]), **kw)
         assert p.length == cli[i] and p.global_ == rows[i][6] and p.status == rows[i][3]
+        if method is None and p.status == "converged":
+            assert p.global_ == "proven"
 
 
 @pytest.mark.parametrize("name", MESHES)

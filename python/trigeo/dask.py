@@ -131,10 +131,12 @@ def closest(client: Any, mesh: Union[str, os.PathLike, trigeo.Mesh], points: Any
 
 
 def path_lengths(client: Any, mesh: Union[str, os.PathLike, trigeo.Mesh], pairs: Any = None,
-                 method: str = "straighten", chunk: int = 256, certify: bool = False,
+                 method: str = "exact", chunk: int = 256, certify: bool = False,
                  threads: int = 1, *, froms: Any = None, tos: Any = None) -> np.ndarray:
     """Mesh.path_lengths over a cluster: pairs a (k, 2) integer array of vertices, or froms= and
-    tos= as Mesh.path_lengths takes them, in chunks of `chunk` pairs. Returns (k,) lengths."""
+    tos= as Mesh.path_lengths takes them, in chunks of `chunk` pairs; method and certify as
+    Mesh.path (default "exact": globally shortest, proven; "straighten" is the fast locally
+    shortest one). Returns (k,) lengths."""
     if (pairs is None) == (froms is None and tos is None) or (pairs is None and (froms is None or tos is None)):
         raise trigeo.InvalidArgumentError("give either pairs (a (k, 2) array of vertices) or both froms= and tos=")
     if pairs is None:

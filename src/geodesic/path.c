@@ -139,7 +139,7 @@ tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, cons
     tg__path_clear(path);
     if (tg_surface_point_validate(g->mesh, from, NULL) != TG_OK || tg_surface_point_validate(g->mesh, to, NULL) != TG_OK)
         return TG_ERR_INVALID_ARGUMENT;
-    tg_path_method method = options ? options->method : TG_PATH_STRAIGHTEN;
+    tg_path_method method = options ? options->method : TG_PATH_EXACT;
     if (method != TG_PATH_STRAIGHTEN && method != TG_PATH_RELAX && method != TG_PATH_EDGE && method != TG_PATH_EXACT)
         return TG_ERR_INVALID_ARGUMENT;
     tg_path_certify certify = options ? options->certify : TG_PATH_CERTIFY_OFF;

@@ -682,10 +682,13 @@ TG_API tg_status tg_fan_path_minimize(const double p0[3], const double p1[3], co
 
 /** A geodesic path and distance field solver over one mesh (seed 002 §5, the straightener
  *  beyond it, and the exact field engine). Built once per mesh by tg_geodesic_create: it keeps a
- *  pointer to the mesh (which must outlive it and is never modified) plus vertex adjacency and
- *  vertex-corner tables (about 50 bytes per vertex) and the field engine's per-mesh tables
- *  (halfedge frames and edge rings, its own consistently wound triangles and opposites: about
- *  100 bytes per face). Immutable after creation; any number of threads may query it at once, each with its
+ *  pointer to the mesh (which must outlive it and is never modified) plus its own copy of the
+ *  mesh with vertices and faces renumbered along a Morton curve, so that a query over a region
+ *  touches nearby memory whatever the file's order (positions, consistently wound triangles,
+ *  opposites; surface points, faces and vertex distances are given and returned in the mesh's
+ *  numbering), vertex adjacency and vertex-corner tables (about 60 bytes per vertex) and the
+ *  field engine's per-mesh tables (halfedge frames and edge rings: about 130 bytes per face in
+ *  all). Immutable after creation; any number of threads may query it at once, each with its
  *  own tg_geodesic_workspace. */
 typedef struct tg_geodesic tg_geodesic;
 
@@ -817,7 +820,7 @@ typedef struct tg_path tg_path;
 /** Read-only view of a path, valid until the next query into the same tg_path or its
  *  destruction. Consecutive points are joined by straight segments, segment i (between points i
  *  and i + 1) lying in face faces[i]; a segment along a mesh edge names one of the edge's faces
- *  (the lowest index among the choices the solver had). */
+ *  (the same one for the same query). */
 typedef struct tg_path_view {
     size_t point_count;              /**< >= 2 unless unreachable (then 0) */
     const tg_surface_point* points;  /**< from, every vertex passage and edge crossing, to */

@@ -87,6 +87,11 @@ tiny = os.path.join(tmp, "tiny.obj")
 open(tiny, "w").write("v 0 0 0\nv 1e-300 0 0\nv 0 1e-300 0\nv 1e-300 1e-300 0\nf 1 2 3\nf 2 4 3\n")
 r = run("path", tiny, "--from", "f:0:0.6,0.2,0.2", "--to", "f:1:0.2,0.6,0.2", "--method", "straighten")
 check(r.returncode == 0 and b"status             stalled" in r.stdout, "tiny mesh path: %d %r" % (r.returncode, r.stdout[:200]))
+# the default (exact) method there: its trace matches a distance of 0 while bending by pi, so it
+# must not call that path proven; it falls back to the straightened one, stalled and unproven
+r = run("path", tiny, "--from", "f:0:0.6,0.2,0.2", "--to", "f:1:0.2,0.6,0.2")
+check(r.returncode == 0 and b"status             stalled" in r.stdout and b"global             unproven" in r.stdout,
+      "tiny mesh default path: %d %r" % (r.returncode, r.stdout[:300]))
 r = run("closest", spot, "-", stdin=b"0 0 0\n1e300 0 0\n")
 check(r.returncode == 2 and b"-:2:" in r.stderr and b"1e150" in r.stderr and not r.stdout,
       "huge query: %d %r" % (r.returncode, r.stderr))

@@ -78,6 +78,7 @@ static void print_summary(FILE* f, tg_path_method method, const tg_path_view* v)
     fprintf(f, "status             %s\n", tg_path_status_name(v->status));
     fprintf(f, "global             %s\n",
             v->global == TG_PATH_PROVEN ? "proven shortest (exact check)"
+            : method == TG_PATH_EXACT   ? "unproven (the exact method found no straight path here: see status)"
                                         : "unproven (locally shortest only; --certify or --method exact proves)");
     fprintf(f, "length             %.17g\n", v->length);
     /* the exact method traces its path through the field: no edge path (the view repeats length) */

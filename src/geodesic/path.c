@@ -32,8 +32,9 @@ static tg_surface_point node_to_surface(const tg_geodesic* g, const tg__node* so
     return tg_surface_edge(n->id, n->t);
 }
 
-/* Fills the caller's path from a route. */
-static tg_status fill_path(const tg_geodesic* g, tg_geodesic_workspace* ws, tg__route* route, tg_path* path)
+/* Fills the caller's path from a route; its certificate is `defect` unless that is negative. */
+static tg_status fill_path(const tg_geodesic* g, tg_geodesic_workspace* ws, tg__route* route, double defect,
+                           tg_path* path)
 {
     size_t n = route->count;
     tg__node* nodes = route->nodes.p;
@@ -60,74 +61,76 @@ static tg_status fill_path(const tg_geodesic* g, tg_geodesic_workspace* ws, tg__
     }
     path->count = n;
     path->length = len;
-    path->max_angle_defect = tg__path_defect(g, nodes, faces, n);
+    path->max_angle_defect = defect >= 0.0 ? defect : tg__path_defect(g, nodes, faces, n);
     return TG_OK;
 }
 
-/* The exact check: the exact distance within the path's length (plus the margin). A path within
- * the margin of it is proven globally shortest; otherwise (or always, for the exact method) the
- * path traced back through the field replaces it, proven when its length matches the distance. */
+/* Whether the route traced back through the field is the exact path: its length is the exact
+ * distance d (within the margin) and the certificate sees it straight (on a mesh whose scale
+ * makes lengths underflow, a trace can match a distance of 0 while bending by pi). */
+static bool traced_exact(const tg_geodesic* g, const tg__route* r, double d, double* out_defect)
+{
+    size_t n = r->count;
+    const tg__node* nodes = r->nodes.p;
+    const uint32_t* faces = r->faces.p;
+    *out_defect = 0.0;
+    if (n <= 1) return n == 1 && d == 0.0;
+    double traced = 0.0;
+    for (size_t i = 0; i + 1 < n; ++i) traced += tg__node_dist(g, &nodes[i], &nodes[i + 1], faces[i]);
+    if (!(fabs(traced - d) <= PROVEN_REL * d)) return false;
+    *out_defect = tg__path_defect(g, nodes, faces, n);
+    return *out_defect <= STALLED_DEFECT;
+}
+
+/* The caller's path from a traced route of the exact length (certificate `defect`): proven. */
+static tg_status fill_exact(const tg_geodesic* g, tg_geodesic_workspace* ws, tg__route* r, double defect, tg_path* path)
+{
+    double initial = path->initial_length;
+    uint32_t vertices = path->edge_path_vertices;
+    tg_status st = fill_path(g, ws, r, defect, path);
+    if (st != TG_OK) return st;
+    path->initial_length = initial;
+    path->edge_path_vertices = vertices;
+    path->iterations = 0;
+    path->status = TG_PATH_CONVERGED;
+    path->global = TG_PATH_PROVEN;
+    return TG_OK;
+}
+
+/* The exact check: the exact distance within the path's length (plus the margin). A converged
+ * path within the margin of it is proven globally shortest; otherwise (or always, for the exact
+ * method) the path traced back through the field replaces it, when that is the exact path. */
 static tg_status prove(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* from,
                        const tg_surface_point* to, bool exact, tg_path* path)
 {
     double bound = path->length * (1.0 + PROVEN_REL);
-    tg__route* traced_route = &ws->route;
     double d = INFINITY;
-    tg_status st = tg__exact_path(ws, from, to, bound, traced_route, &d);
+    tg_status st = tg__exact_path(ws, from, to, bound, &ws->route, &d);
     if (st != TG_OK) return st;
-    size_t n = traced_route->count;
-    bool straight_ok = path->length <= d * (1.0 + PROVEN_REL);
-    /* the traced path, if any, and whether its length is the distance */
-    double traced = n == 1 ? 0.0 : INFINITY;
-    if (n >= 2) {
-        const tg__node* nodes = traced_route->nodes.p;
-        const uint32_t* faces = traced_route->faces.p;
-        traced = 0.0;
-        for (size_t i = 0; i + 1 < n; ++i) traced += tg__node_dist(g, &nodes[i], &nodes[i + 1], faces[i]);
-    }
-    bool traced_ok = n >= 1 && fabs(traced - d) <= PROVEN_REL * d;
-    if (traced_ok && (exact || !straight_ok)) {
-        double initial = path->initial_length;
-        uint32_t vertices = path->edge_path_vertices;
-        st = fill_path(g, ws, traced_route, path);
-        if (st != TG_OK) return st;
-        path->initial_length = initial;
-        path->edge_path_vertices = vertices;
-        path->iterations = 0;
-        path->status = TG_PATH_CONVERGED;
-        path->global = TG_PATH_PROVEN;
-        return TG_OK;
-    }
+    bool straight_ok = path->length <= d * (1.0 + PROVEN_REL) && path->status != TG_PATH_STALLED;
+    double defect;
+    if ((exact || !straight_ok) && traced_exact(g, &ws->route, d, &defect))
+        return fill_exact(g, ws, &ws->route, defect, path);
     /* the straightened path stays: proven when the exact distance shows it is shortest */
     path->global = straight_ok ? TG_PATH_PROVEN : TG_PATH_UNPROVEN;
     return TG_OK;
 }
 
 /* The exact method's own way: the exact propagation from `from`, ordered toward `to` and bounded
- * by the best distance to it found so far, then the path traced back. *done is false when there is
- * no traced path of the exact length (unreachable, or a trace that failed): the caller then
- * straightens and checks. */
+ * by the best distance to it found so far, then the path traced back. *done is false when that
+ * gives no exact path (a trace that failed, or underflowing lengths): the caller then straightens
+ * and checks. */
 static tg_status exact_direct(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* from,
                               const tg_surface_point* to, tg_path* path, bool* done)
 {
     *done = false;
-    tg__route* route = &ws->route;
-    double d = INFINITY;
-    tg_status st = tg__exact_path(ws, from, to, INFINITY, route, &d);
-    if (st != TG_OK || !(d < INFINITY) || route->count == 0) return st;
-    size_t n = route->count;
-    double traced = 0.0;
-    const tg__node* nodes = route->nodes.p;
-    const uint32_t* faces = route->faces.p;
-    for (size_t i = 0; i + 1 < n; ++i) traced += tg__node_dist(g, &nodes[i], &nodes[i + 1], faces[i]);
-    if (!(fabs(traced - d) <= PROVEN_REL * d)) return TG_OK;
-    st = fill_path(g, ws, route, path);
+    double d = INFINITY, defect;
+    tg_status st = tg__exact_path(ws, from, to, INFINITY, &ws->route, &d);
+    if (st != TG_OK || !(d < INFINITY) || !traced_exact(g, &ws->route, d, &defect)) return st;
+    path->initial_length = INFINITY, path->edge_path_vertices = 0;
+    st = fill_exact(g, ws, &ws->route, defect, path);
     if (st != TG_OK) return st;
     path->initial_length = path->length; /* no edge path is computed */
-    path->edge_path_vertices = 0;
-    path->iterations = 0;
-    path->status = TG_PATH_CONVERGED;
-    path->global = TG_PATH_PROVEN;
     *done = true;
     return TG_OK;
 }
@@ -184,7 +187,7 @@ tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, cons
         st = tg__straighten(ws, route, max_it, tol, &r);
     else if (method == TG_PATH_RELAX && n > 2)
         st = tg__relax(ws, route, max_it, tol, &kopt, &r);
-    if (st == TG_OK) st = fill_path(g, ws, route, path);
+    if (st == TG_OK) st = fill_path(g, ws, route, -1.0, path);
     if (st != TG_OK) {
         tg__path_clear(path);
         return st;

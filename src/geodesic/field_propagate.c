@@ -595,6 +595,7 @@ tg_status tg__field_propagate(tg__field_run* run)
         if (it.key > run->max_dist || !(it.key < INFINITY)) {
             /* past the limit, or the front is empty while vertices beyond the limit were never
              * queued: every window within the limit must still cross, whatever its vertices */
+            ws->heap.count = 0; /* the rest is past the limit too (vertices pushed from here on are not) */
             if (!run->all_ready && run->max_dist < INFINITY) {
                 run->all_ready = 1;
                 if (ws->touched_all) {

@@ -46,7 +46,7 @@ __version__ = _L.tg_version().decode()
 
 
 def version() -> str:
-    """The version of the loaded libtrigeo.so, e.g. "0.1.0"."""
+    """The version of the loaded libtrigeo.so, e.g. "0.2.0"."""
     return _L.tg_version().decode()
 
 

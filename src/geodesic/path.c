@@ -1,4 +1,6 @@
-/* path.c - tg_geodesic_path, the query: endpoints, initial edge path, shortening, the exact check.
+/* path.c - tg_geodesic_path, the query: endpoints; for the exact method (the default) the exact
+ * propagation toward the target and the path traced back; for the others the initial edge path,
+ * its shortening, and the exact check when asked.
  * Based on: seed 002 §5 (endpoints, initial edge path, shortening) and the project's DESIGN.md
  *   (tg_path: points with every crossing and vertex passage, faces, length, status, certificate). */
 #include "geodesic/geodesic_internal.h"

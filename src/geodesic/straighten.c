@@ -1,6 +1,6 @@
-/* straighten.c - the default shortening method: funnel straightening of triangle strips, with
- * vertex passages re-routed through the fan on their sharper side, until every passage is locally
- * shortest.
+/* straighten.c - the fast shortening method (TG_PATH_STRAIGHTEN): funnel straightening of
+ * triangle strips, with vertex passages re-routed through the fan on their sharper side, until
+ * every passage is locally shortest.
  * Based on: Xin & Wang, "Efficiently determining a locally exact shortest path on polyhedral
  *   surfaces", Computer-Aided Design 39 (2007), §3-4 (alternate: shortest path inside the current
  *   face sequence by a funnel; where it passes a vertex at an angle below pi, add that side's

@@ -658,10 +658,10 @@ class Mesh:
         point. method: "exact" (default: the globally shortest path, proven, global_ "proven":
         an exact window propagation from a ordered toward b and bounded by the best distance to
         b found so far, traced back; no edge path, so initial_length == length and iterations
-        == 0; ~1-2 ms for near pairs on a 1M-face mesh, ~100 ms for far ones, and ~130 MB of
+        == 0; ~1.2 ms for near pairs on a 1.4M-face mesh, ~60 ms for far ones, and ~130 MB of
         field workspace per thread at 1M faces, made on first use), "straighten" (fast: the
         shortest edge path straightened into a locally shortest path, certified straight but
-        "unproven", ~10x faster on far pairs), "relax" (the seed's relaxation) or "edge" (the
+        "unproven", ~5x faster on far pairs), "relax" (the seed's relaxation) or "edge" (the
         shortest edge path only). certify=True checks a straighten/relax/edge result against the
         exact distance and replaces it with the exact path if a shorter one exists, so the path
         comes out proven (redundant with "exact").

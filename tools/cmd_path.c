@@ -405,8 +405,10 @@ const cli_command cli_cmd_path = {
     "global: proven when an exact computation showed no path shorter by 1e-9 relative exists\n"
     "(--method exact, the default, or --certify), else unproven (locally shortest, possibly not\n"
     "globally).\n"
-    "Status is converged, iteration_cap or unreachable (endpoints in different components: no\n"
-    "points, length inf). The certificate (max angle defect, radians) is the largest deviation from\n"
-    "straightness over edge crossings and vertex passages. Indices are 0-based in file order.\n",
+    "Status is converged, iteration_cap, unreachable (endpoints in different components: no\n"
+    "points, length inf) or stalled (the certificate exceeds 1e-8 rad: a mesh whose scale makes\n"
+    "angles unmeasurable, e.g. coordinates near 1e-300; never proven). The certificate (max angle\n"
+    "defect, radians) is the largest deviation from straightness over edge crossings and vertex\n"
+    "passages. Indices are 0-based in file order.\n",
     run,
 };

@@ -837,7 +837,9 @@ typedef struct tg_path_view {
      *  non-manifold vertex, or through coincident vertices). Crossings closer together than
      *  1e-5 of the local edge length are measured as one, between the points beyond them (a
      *  crossing stored as edge + t is only resolved to about 1e-16 of its edge's length).
-     *  0 for a path with no interior point. */
+     *  0 for a path with no interior point. Angles inside zero-area faces mean nothing: a path
+     *  through them (e.g. across a pole of coincident vertices) can show a large defect, and a
+     *  path whose global is TG_PATH_PROVEN is the shortest by its length whatever its certificate. */
     double max_angle_defect;
     tg_path_status status;
     /** TG_PATH_PROVEN only when an exact computation showed that no path shorter by more than

@@ -26,3 +26,24 @@ def test_straighten_by_name_is_unproven_and_never_shorter(spot):
         assert s.global_ == "unproven" and s.initial_length >= s.length
         c = spot.path(int(a), int(b), method="straighten", certify=True)
         assert c.global_ == "proven" and abs(c.length - d) <= 1e-9 * d
+
+
+def test_points_of_zero_area_faces_and_degenerate_neighbourhoods():
+    """tm_capsule.obj has 200 zero-area faces at its poles. A point of such a face lies on an edge
+    of the faces around it: the field must reach it straight through them (before, it bent at a
+    corner and came out 1.2e-5 too long, so a shorter straightened path was "proven"), and the
+    default path to it is the exact one. A path traced next to those faces can have a large
+    certificate yet the exact length: it is the shortest, and proven."""
+    from conftest import corpus
+    m = trigeo.load(corpus("tm_capsule.obj"))
+    a = trigeo.SurfacePoint.face(5426, (0.22236331016142988, 0.3286156411819707, 0.4490210486565995))
+    b = trigeo.SurfacePoint.face(24, (0.304267763672446, 0.37310857120287727, 0.3226236651246766))
+    ab, ba = m.field_at([a], [b])[0], m.field_at([b], [a])[0]
+    assert abs(ab - ba) <= 1e-12 * ab
+    s = m.path(a, b, method="straighten")
+    assert ab <= s.length * (1 + 1e-12)  # no real path is shorter than the exact distance
+    p = m.path(a, b)
+    assert p.proven and abs(p.length - ab) <= 1e-9 * ab
+    q = m.path(a, 4907)
+    d = m.field_at([a], [4907])[0]
+    assert q.proven and abs(q.length - d) <= 1e-9 * d

@@ -29,6 +29,37 @@ static bool pair_add(tg_field_workspace* ws, uint32_t face, uint32_t id, const d
     return true;
 }
 
+/* A point of face f that lies inside one of its edges (a point of a zero-area face always does:
+ * lists do not cross such a face) lies in the other faces at that edge too: the windows that
+ * reach it straight cross those (as for sources, field_propagate.c's emit_face_point). */
+static bool add_on_edges(tg_field_workspace* ws, uint32_t f, uint32_t id, const double bary[3])
+{
+    const tg_geodesic* g = ws->g;
+    tg_vec3 p = tg_v3_scale(tg__gpos(g, g->tri[3 * (size_t)f]), bary[0]);
+    p = tg_v3_add(p, tg_v3_scale(tg__gpos(g, g->tri[3 * (size_t)f + 1]), bary[1]));
+    p = tg_v3_add(p, tg_v3_scale(tg__gpos(g, g->tri[3 * (size_t)f + 2]), bary[2]));
+    for (uint32_t k = 0; k < 3; ++k) {
+        uint32_t h = 3 * f + k;
+        double len = g->frame[h].len;
+        if (!(len > 0.0)) continue;
+        tg_vec3 o3 = tg__gpos(g, g->tri[h]);
+        tg_vec3 u = tg_v3_scale(tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_next(h)]), o3), 1.0 / len);
+        tg_vec3 r = tg_v3_sub(p, o3);
+        double x = tg_v3_dot(r, u), y = tg_v3_len(tg_v3_cross(u, r));
+        if (!(y <= TG__GRAZING_REL * (fabs(x) + len)) || !(x > 0.0 && x < len)) continue;
+        uint32_t va = g->tri[h], vb = g->tri[tg_halfedge_next(h)];
+        for (uint32_t o = g->ring[h]; o != h; o = g->ring[o]) {
+            uint32_t fo = o / 3;
+            int ca = tg__corner_of(g, fo, va), cb = tg__corner_of(g, fo, vb);
+            if (ca < 0 || cb < 0) continue;
+            double b[3] = {0.0, 0.0, 0.0};
+            b[ca] = 1.0 - x / len, b[cb] = x / len;
+            if (!pair_add(ws, fo, id, b)) return false;
+        }
+    }
+    return true;
+}
+
 static int cmp_pair(const query_pair* a, const query_pair* b)
 {
     if (a->face != b->face) return a->face < b->face ? -1 : 1;
@@ -64,6 +95,7 @@ tg_status tg__field_queries_setup(tg__field_run* run, const tg_surface_point* po
         tg_surface_point p = tg__surface_to_solver(g, tg_surface_point_canonical(g->mesh, &points[i]));
         if (p.kind == TG_SURFACE_FACE) {
             if (!pair_add(ws, p.index, (uint32_t)i, p.bary)) return TG_ERR_OUT_OF_MEMORY;
+            if (!add_on_edges(ws, p.index, (uint32_t)i, p.bary)) return TG_ERR_OUT_OF_MEMORY;
         } else if (p.kind == TG_SURFACE_EDGE) {
             /* every kept face at the edge holds the point */
             uint32_t h = p.index, va = g->tri[h], vb = g->tri[tg_halfedge_next(h)];

@@ -68,8 +68,9 @@ static tg_status fill_path(const tg_geodesic* g, tg_geodesic_workspace* ws, tg__
 }
 
 /* Whether the route traced back through the field is the exact path: its length is the exact
- * distance d (within the margin) and the certificate sees it straight (on a mesh whose scale
- * makes lengths underflow, a trace can match a distance of 0 while bending by pi). */
+ * distance d (within the margin), and d is not 0 between two distinct points (on a mesh whose
+ * scale makes squared lengths underflow, a trace can match a distance of 0 while bending by pi).
+ * Its certificate goes to *out_defect. */
 static bool traced_exact(const tg_geodesic* g, const tg__route* r, double d, double* out_defect)
 {
     size_t n = r->count;
@@ -80,8 +81,9 @@ static bool traced_exact(const tg_geodesic* g, const tg__route* r, double d, dou
     double traced = 0.0;
     for (size_t i = 0; i + 1 < n; ++i) traced += tg__node_dist(g, &nodes[i], &nodes[i + 1], faces[i]);
     if (!(fabs(traced - d) <= PROVEN_REL * d)) return false;
+    if (d == 0.0 && !tg__node_same(g, &nodes[0], &nodes[n - 1])) return false;
     *out_defect = tg__path_defect(g, nodes, faces, n);
-    return *out_defect <= STALLED_DEFECT;
+    return true;
 }
 
 /* The caller's path from a traced route of the exact length (certificate `defect`): proven. */

@@ -614,11 +614,16 @@ tg_status tg__field_propagate(tg__field_run* run)
         if (!(ws->inside[v] & VS_INSIDE)) run->settled++;
         ws->inside[v] |= VS_INSIDE;
         run->front = ws->dist[v];
-        if ((g->vflags[v] & TG__V_PSEUDO) || (ws->inside[v] & VS_SOURCE)) {
+        bool emits = (g->vflags[v] & TG__V_PSEUDO) || (ws->inside[v] & VS_SOURCE);
+        if (emits) {
             ws->inside[v] &= (uint8_t)~VS_SOURCE;
             if (!emit_vertex(run, v)) return TG_ERR_OUT_OF_MEMORY;
         }
-        if (!relax_neighbours(run, v) || !release_lists(run, v)) return TG_ERR_OUT_OF_MEMORY;
+        /* A*: paths go on along v's edges only from where they may bend (a source, a pseudo-source);
+         * through any other vertex (a closed fan of manifold faces, none degenerate, flat or
+         * convex) a shortest path goes straight, inside the windows that lit it */
+        if ((emits || !run->astar) && !relax_neighbours(run, v)) return TG_ERR_OUT_OF_MEMORY;
+        if (!release_lists(run, v)) return TG_ERR_OUT_OF_MEMORY;
         if (!keep_going(run)) return TG_ERR_CANCELLED;
     }
     return TG_OK;

@@ -741,9 +741,9 @@ typedef enum tg_path_method {
      *  the ray of the window that reached it, through the faces it crossed, to the pseudo-source
      *  vertex it came from, and on through the windows and pseudo-source vertices to `from`. No
      *  edge path is computed, so in its view initial_length equals length and edge_path_vertices
-     *  and iterations are 0; global is TG_PATH_PROVEN. Cost (BENCHMARKS.md, 1.4M faces): about 1.2 ms
-     *  median for pairs within 10% of the diagonal, 55-70 ms for random far pairs (1.7x and 5x
-     *  TG_PATH_STRAIGHTEN's). Memory:
+     *  and iterations are 0; global is TG_PATH_PROVEN. Cost (BENCHMARKS.md, 1.4M
+     *  faces): about 1.0-1.1 ms median for pairs within 10% of the diagonal, 52-63 ms for random
+     *  far pairs (1.5x and 5x TG_PATH_STRAIGHTEN's). Memory:
      *  the field workspace (about 130 MB at 1M faces, tg_field_workspace's tables) allocated from
      *  the solver's allocator on the workspace's first exact query and kept for the next.
      *  Should the trace back fail to reproduce the exact distance (not seen on the test corpus),
@@ -883,7 +883,7 @@ TG_API void tg_path_get_view(const tg_path* path, tg_path_view* out_view);
  *  Errors: TG_ERR_INVALID_ARGUMENT (NULL argument, workspace of another solver, invalid surface
  *  point, unknown method), TG_ERR_OUT_OF_MEMORY (a buffer could not grow; path is then empty).
  *  Complexity: EXACT is the field's (tg_geodesic_field) over the region its A* order and bound
- *  explore, about 1.2 ms for near pairs and 55-70 ms for far ones on a 1.4M-face mesh; A* is
+ *  explore, about 1.0-1.1 ms for near pairs and 52-63 ms for far ones on a 1.4M-face mesh; A* is
  *  O(n log n) in the n explored vertices; straightening is O(k) per sweep in the k faces of the
  *  path's strips, about 5x faster than EXACT on far pairs. Thread-safe for distinct workspaces
  *  and paths. */

@@ -393,7 +393,7 @@ const cli_command cli_cmd_path = {
     "  --method M               exact (default: the globally shortest path, proven: an exact window\n"
     "                           propagation from the source ordered toward the target (A*) and\n"
     "                           bounded by the best distance to it found so far, traced back from\n"
-    "                           the target through the windows and pseudo-source vertices; ~1.2 ms\n"
+    "                           the target through the windows and pseudo-source vertices; ~1.1 ms\n"
     "                           for near pairs on 1.4M faces, ~60 ms for far ones, ~130 MB of field\n"
     "                           workspace at 1M faces),\n"
     "                           straighten (fast, locally shortest, unproven: funnel over unfolded\n"

@@ -658,7 +658,7 @@ class Mesh:
         point. method: "exact" (default: the globally shortest path, proven, global_ "proven":
         an exact window propagation from a ordered toward b and bounded by the best distance to
         b found so far, traced back; no edge path, so initial_length == length and iterations
-        == 0; ~1.2 ms for near pairs on a 1.4M-face mesh, ~60 ms for far ones, and ~130 MB of
+        == 0; ~1.1 ms for near pairs on a 1.4M-face mesh, ~60 ms for far ones, and ~130 MB of
         field workspace per thread at 1M faces, made on first use), "straighten" (fast: the
         shortest edge path straightened into a locally shortest path, certified straight but
         "unproven", ~5x faster on far pairs), "relax" (the seed's relaxation) or "edge" (the

@@ -143,6 +143,29 @@ uint32_t tg__common_face(const tg_geodesic* g, const tg__node* a, const tg__node
     return TG_NONE;
 }
 
+/* A point of a duplicate face (skipped: not part of the surface for windows or paths) is the same
+ * point of the kept face with the same three vertices; p is in the solver's numbering. */
+static tg_surface_point to_kept_twin(const tg_geodesic* g, tg_surface_point p)
+{
+    uint32_t f = p.kind == TG_SURFACE_FACE ? p.index : p.index / 3;
+    const uint32_t* t = g->tri + 3 * (size_t)f;
+    if (!(g->fflags[f] & TG__F_SKIP) || t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return p;
+    for (uint32_t i = g->vc_start[t[0]]; i < g->vc_start[t[0] + 1]; ++i) {
+        uint32_t q = g->vc[i] / 3;
+        if (q == f || (g->fflags[q] & TG__F_SKIP)) continue;
+        int c[3] = {tg__corner_of(g, q, t[0]), tg__corner_of(g, q, t[1]), tg__corner_of(g, q, t[2])};
+        if (c[0] < 0 || c[1] < 0 || c[2] < 0) continue;
+        if (p.kind == TG_SURFACE_FACE) {
+            double b[3];
+            for (int k = 0; k < 3; ++k) b[c[k]] = p.bary[k];
+            return tg_surface_face(q, b[0], b[1], b[2]);
+        }
+        uint32_t k = p.index % 3, cu = (uint32_t)c[k], cw = (uint32_t)c[(k + 1) % 3];
+        return (cu + 1) % 3 == cw ? tg_surface_edge(3 * q + cu, p.t) : tg_surface_edge(3 * q + cw, 1.0 - p.t);
+    }
+    return p;
+}
+
 tg_surface_point tg__surface_to_solver(const tg_geodesic* g, tg_surface_point p)
 {
     if (p.kind == TG_SURFACE_VERTEX) {
@@ -160,7 +183,7 @@ tg_surface_point tg__surface_to_solver(const tg_geodesic* g, tg_surface_point p)
         else
             p.index = 3 * f + k;
     }
-    return p;
+    return p.kind == TG_SURFACE_VERTEX ? p : to_kept_twin(g, p);
 }
 
 void tg__node_to_mesh(const tg_geodesic* g, tg__node* n)

@@ -35,31 +35,48 @@ static bool same_source(const tg__window* wi, const tg__window* wj, double len)
            wj->b0 <= wi->b1 + tol;
 }
 
-/* Roots in (p, q) of D_i(x) = D_j(x), written to r (at most 2), sorted; returns the count. The
- * equation sqrt((x-a)^2+P) - sqrt((x-b)^2+Q) = alpha is squared twice (candidates that do not
- * satisfy it only add breakpoints, which is harmless: the sides are classified by sampling). */
+/* Roots in (p, q) of D_i(x) = D_j(x), written to r (at most 2), sorted; returns the count.
+ * With U, W the distances to the source images of i and j and alpha = sigma_j - sigma_i, the
+ * crossing is U - W = alpha; since U^2 - W^2 = m x + k is linear in x, it is equivalent (up to
+ * spurious roots with U + W = alpha, which only add breakpoints: harmless, the sides are
+ * classified by sampling) to psi(x) = m x + k + alpha^2 - 2 alpha U(x) = 0. Coordinates are
+ * centred between the two images so that k = (y_i - y_j)(y_i + y_j) carries no cancellation.
+ * When |2 alpha| <= |m| / 2 (nearly equal offsets: one bundle of rays reaching the edge by two
+ * routes, the common case on grids), psi is monotone with a slope of at least |m| / 2 and has
+ * exactly one root, found by Newton's method from the linear root: squaring psi = 0 once more
+ * into a quadratic would pair that root with the spurious one an O(alpha) away, and the
+ * rounding of the nearly zero discriminant would lose both. Otherwise the quadratic is solved. */
 static int crossing_roots(const tg__window* wi, const tg__window* wj, double p, double q, double r[2])
 {
-    double a = wi->sx, P = wi->sy * wi->sy, b = wj->sx, Q = wj->sy * wj->sy;
-    double alpha = wj->sigma - wi->sigma; /* U - W = alpha with U from i and W from j */
-    double m = 2.0 * (b - a), k = a * a - b * b + P - Q;
+    double c = 0.5 * (wi->sx + wj->sx), ha = 0.5 * (wi->sx - wj->sx); /* image i at +ha, j at -ha */
+    double P = wi->sy * wi->sy;
+    double alpha = wj->sigma - wi->sigma;
+    double m = -4.0 * ha, s = (wi->sy - wj->sy) * (wi->sy + wj->sy) + alpha * alpha;
     int n = 0;
     double cand[2];
-    if (alpha == 0.0) {
-        if (m != 0.0) cand[n++] = -k / m;
+    if (fabs(2.0 * alpha) <= 0.5 * fabs(m)) {
+        if (m == 0.0) return 0; /* alpha = 0 and one abscissa: the distances differ by a constant */
+        double y = -s / m;
+        for (int it = 0; it < 16; ++it) {
+            double dx = y - ha, u = sqrt(dx * dx + P);
+            double step = (m * y + s - 2.0 * alpha * u) / (m - 2.0 * alpha * dx / u);
+            y -= step;
+            if (!(fabs(step) > 4e-16 * (fabs(y) + fabs(ha) + fabs(wi->sy)))) break;
+        }
+        cand[n++] = y + c;
     } else {
-        double s = k + alpha * alpha, al2 = alpha * alpha;
-        double A = m * m - 4.0 * al2, B = 2.0 * m * s + 8.0 * al2 * a, C = s * s - 4.0 * al2 * (a * a + P);
+        double al2 = alpha * alpha;
+        double A = m * m - 4.0 * al2, B = 2.0 * m * s + 8.0 * al2 * ha, C = s * s - 4.0 * al2 * (ha * ha + P);
         double scale = fabs(A) + fabs(m * m) + 4.0 * al2;
         if (fabs(A) <= 1e-12 * scale) {
-            if (B != 0.0) cand[n++] = -C / B;
+            if (B != 0.0) cand[n++] = -C / B + c;
         } else {
             double disc = B * B - 4.0 * A * C;
             if (disc >= 0.0) {
                 double sq = sqrt(disc);
                 double t = -0.5 * (B + (B >= 0.0 ? sq : -sq)); /* no cancellation */
-                cand[n++] = t / A;
-                if (t != 0.0) cand[n++] = C / t;
+                cand[n++] = t / A + c;
+                if (t != 0.0) cand[n++] = C / t + c;
             }
         }
     }

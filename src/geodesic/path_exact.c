@@ -120,6 +120,48 @@ typedef struct branch {
     double s[2];  /* the image in e's frame (beyond the edge: s[1] < 0) */
 } branch;
 
+/* The backward ray within this share of the local scale of a vertex passes through it: the
+ * unfoldings of a walk are exact to ~1e-15 per face, and a path through the vertex is then
+ * longer than the ray by the square of that, relative. */
+#define THROUGH_REL 1e-11
+
+/* Does the backward ray from x (on the entry edge of face o / 3, in o's frame, corners c) to the
+ * image sp pass through a corner of the face, to rounding, which the field reaches as shortly
+ * as the ray does (sigma: the distance at the image)? Then the path goes through that vertex:
+ * its node is appended (or replaces the crossing the walk just made when the ray entered the
+ * face at that very corner), *out is the vertex, and the caller goes on from its predecessor.
+ * Rays through vertices are common on grids and CAD meshes (rows of collinear vertices), and
+ * there the side of the vertex a ray passes is rounding noise: at a saddle or a convex vertex
+ * the wrong side unfolds the rest of the walk by the vertex's angle defect, away from the
+ * origin, while the field's distance at the vertex continues the path exactly. */
+static bool through_corner(trace* t, uint32_t o, const double x[2], const double sp[2], const double c[3][2],
+                           double sigma, tg__node* out)
+{
+    const tg_geodesic* g = t->ws->geo;
+    const double* dist = t->ws->field->dist;
+    double dx = sp[0] - x[0], dy = sp[1] - x[1], len = sqrt(dx * dx + dy * dy);
+    if (!(len > 0.0)) return false;
+    double snap = THROUGH_REL * (g->frame[o].len + len);
+    uint32_t ids[3] = {g->tri[o], g->tri[tg_halfedge_next(o)], g->tri[tg_halfedge_prev(o)]};
+    for (int k = 0; k < 3; ++k) {
+        double cx = c[k][0] - x[0], cy = c[k][1] - x[1];
+        double along = (cx * dx + cy * dy) / len, off = fabs(dx * cy - dy * cx) / len;
+        if (!(off <= snap && along >= -snap && along < len)) continue;
+        double via = sigma + hypot(sp[0] - c[k][0], sp[1] - c[k][1]);
+        if (!(dist[ids[k]] <= via * (1.0 + 1e-12))) continue;
+        tg__node v = tg__node_vertex(ids[k]);
+        tg__node* last = t->n > 1 ? (tg__node*)t->route->nodes.p + t->n - 1 : NULL; /* never the target */
+        if (along <= snap && last && last->kind == TG__NODE_EDGE && tg__node_on_edge(g, &v, last->id)) {
+            *last = v; /* the ray entered at this corner */
+        } else if (!add_node(t, v, o / 3)) {
+            return true;
+        }
+        *out = v;
+        return true;
+    }
+    return false;
+}
+
 /* Walks from the crossing xe of halfedge e (image s beyond it, in e's frame) through the faces
  * beyond, appending each edge crossing, until the origin; then appends the origin's node. At an
  * edge with several faces beyond it (non-manifold) each is tried in turn, depth first. */
@@ -127,6 +169,7 @@ static bool walk(trace* t, uint32_t e, double xe, const double s_in[2], uint32_t
                  tg__node* out_origin)
 {
     const tg_geodesic* g = t->ws->geo;
+    double sigma = origin == TG__ORIGIN_SOURCE ? 0.0 : t->ws->field->dist[origin];
     branch stack[32];
     int depth = 0;
     size_t guard = 8 * (size_t)g->face_count + 64;
@@ -151,6 +194,7 @@ static bool walk(trace* t, uint32_t e, double xe, const double s_in[2], uint32_t
             }
             double c[3][2];
             corners_xy(&g->frame[o], c);
+            if (through_corner(t, o, x, sp, c, sigma, out_origin)) return !t->out_of_memory;
             /* out through B -> C (next) when C is left of the ray (it passes right of C), else
              * through C -> A (prev) */
             int side = tg__orient2d_sign(x, sp, c[2]);
@@ -230,7 +274,8 @@ static bool trace_back(trace* t, tg__node cur, tg__pred how, const tg__node* sou
             }
             /* s is beyond h already (s[1] < 0 in h's frame): walk on into the faces behind */
             if (!walk(t, h, xs, s, how.origin, source, &next)) return false;
-            if (how.origin == TG__ORIGIN_SOURCE) return true;
+            /* the source, or a vertex: the origin, or one the ray passes (through_corner) */
+            if (next.kind != TG__NODE_VERTEX || tg__node_same(g, &next, source)) return true;
         }
         cur = next;
         how = fws->pred[next.id];

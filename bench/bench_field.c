@@ -61,7 +61,7 @@ int main(int argc, char** argv)
         double rate[2];
         for (int t = 1; t <= 2; ++t) {
             double w0 = bench_wall();
-            if (tg_geodesic_field_batch(g, src, (size_t)batch, NULL, t, mat, NULL) != TG_OK) die("batch failed on", path);
+            if (tg_geodesic_distance_matrix(g, src, (size_t)batch, NULL, t, mat, NULL) != TG_OK) die("batch failed on", path);
             rate[t - 1] = batch / (bench_wall() - w0);
         }
         const char* nm = strrchr(path, '/');
@@ -85,7 +85,7 @@ int main(int argc, char** argv)
         tg_surface_point src = tg_surface_vertex(v);
         tg_field_stats st;
         double w0 = bench_wall(), c0 = bench_cpu_thread();
-        if (tg_geodesic_field(g, &src, 1, NULL, dist, &st) != TG_OK) die("field failed on", path);
+        if (tg_geodesic_field(g, NULL, &src, 1, NULL, dist, &st) != TG_OK) die("field failed on", path);
         cpu[q] = bench_cpu_thread() - c0;
         wall[q] = bench_wall() - w0;
         windows[q] = (double)st.windows_propagated;

@@ -111,7 +111,7 @@ static void run_set(ctx* c, const char* mesh, size_t faces, const char* set, con
     /* the reference: the exact distance from the field engine's point query (a full, unbounded
      * propagation, independent of the methods timed below) */
     for (size_t i = 0; i < ne; ++i)
-        if (tg_geodesic_field_at(c->geo, &pairs[i].a, 1, &pairs[i].b, 1, NULL, &exact_len[i], NULL, NULL) != TG_OK)
+        if (tg_geodesic_field_at(c->geo, NULL, &pairs[i].a, 1, &pairs[i].b, 1, NULL, &exact_len[i], NULL, NULL) != TG_OK)
             die("field_at failed", NULL);
     /* exact lengths first: the reference for the other methods' share of globally shortest paths */
     const tg_path_method methods[4] = {TG_PATH_EXACT, TG_PATH_STRAIGHTEN, CERTIFY_METHOD, TG_PATH_RELAX};

@@ -47,7 +47,7 @@ extern "C" {
 /* ============================================================================================== */
 
 #define TG_VERSION_MAJOR 0
-#define TG_VERSION_MINOR 2
+#define TG_VERSION_MINOR 3
 #define TG_VERSION_PATCH 0
 /** Single integer for comparisons: major * 10000 + minor * 100 + patch. */
 #define TG_VERSION (TG_VERSION_MAJOR * 10000 + TG_VERSION_MINOR * 100 + TG_VERSION_PATCH)
@@ -69,7 +69,8 @@ TG_API const char* tg_version(void);
     X(TG_ERR_INVALID_MESH, "invalid_mesh", "the data cannot describe a mesh (bad index, NaN or infinite coordinate)") \
     X(TG_ERR_UNSUPPORTED, "unsupported", "the format or feature is not supported")                \
     X(TG_ERR_CAPACITY, "capacity", "an output buffer is too small")                              \
-    X(TG_ERR_CANCELLED, "cancelled", "the caller's progress callback asked to stop")
+    X(TG_ERR_CANCELLED, "cancelled", "the caller's progress callback asked to stop")                  \
+    X(TG_ERR_INTERNAL, "internal", "a consistency check of the library failed (a bug: please report the input)")
 
 /** Status returned by every fallible function. TG_OK is 0. */
 typedef enum tg_status {
@@ -585,14 +586,16 @@ TG_API tg_status tg_bvh_locate(const tg_bvh* bvh, tg_bvh_workspace* workspace, c
 
 /** Search strategies of the fan minimizer after its initial descent step (seed 002 §3.4.2). */
 typedef enum tg_fan_strategy {
-    TG_FAN_COORDINATE = 0, /**< coordinate-direction search with Search/GetLRoot (seed §3.5, §4.3-4.5); default */
-    TG_FAN_POWELL = 1,     /**< Powell-style (seed §3.4.2 item 2): each coordinate sweep is followed by a
+    TG_FAN_DEFAULT = 0,    /**< the default: TG_FAN_CG (the same minima as the seed's coordinate search,
+                                which stalls into its iteration cap on strongly coupled spokes) */
+    TG_FAN_COORDINATE = 1, /**< coordinate-direction search with Search/GetLRoot (seed §3.5, §4.3-4.5) */
+    TG_FAN_POWELL = 2,     /**< Powell-style (seed §3.4.2 item 2): each coordinate sweep is followed by a
                                 line search along the sweep's net displacement, the "approximate
                                 conjugate direction"; no full direction set is kept */
-    TG_FAN_CG = 2,         /**< conjugate gradient (seed §3.4.2 item 3): each direction conjugate to the
+    TG_FAN_CG = 3,         /**< conjugate gradient (seed §3.4.2 item 3): each direction conjugate to the
                                 previous one with respect to the exact (tridiagonal) Hessian, eq. (57)-(58),
                                 restarted by Powell's test */
-    TG_FAN_NEWTON = 3      /**< projected Newton with that Hessian and exact line searches (not in the
+    TG_FAN_NEWTON = 4      /**< projected Newton with that Hessian and exact line searches (not in the
                                 seed): quadratic convergence, the fastest and most accurate; recommended
                                 together with TG_ROOT_NEWTON or TG_ROOT_UNFOLD (bench/bench_fan.c) */
 } tg_fan_strategy;
@@ -617,7 +620,7 @@ typedef struct tg_geodesic_kernel_options {
     int max_iterations; /**< cap on the fan search's outer iterations (one sweep over all coordinates,
                              or one CG / Newton step); 0: 100 + 50 (m + 1)^2 for COORDINATE and
                              POWELL (linear convergence), 100 + 20 (m + 1) for CG and NEWTON */
-    tg_fan_strategy strategy;   /**< 0: TG_FAN_COORDINATE (the seed's choice) */
+    tg_fan_strategy strategy;   /**< 0: TG_FAN_DEFAULT (conjugate gradient) */
     tg_root_method root_method; /**< 0: TG_ROOT_BISECTION (the seed's choice) */
 } tg_geodesic_kernel_options;
 /* Options out of range (digits < 0 or > 17, max_iterations < 0, an unknown strategy or root
@@ -682,14 +685,14 @@ TG_API tg_status tg_fan_path_minimize(const double p0[3], const double p1[3], co
 
 /** A geodesic path and distance field solver over one mesh (seed 002 §5, the straightener
  *  beyond it, and the exact field engine). Built once per mesh by tg_geodesic_create: it keeps a
- *  pointer to the mesh (which must outlive it and is never modified) plus its own copy of the
- *  mesh with vertices and faces renumbered along a Morton curve, so that a query over a region
- *  touches nearby memory whatever the file's order (positions, consistently wound triangles,
- *  opposites; surface points, faces and vertex distances are given and returned in the mesh's
- *  numbering), vertex adjacency and vertex-corner tables (about 60 bytes per vertex) and the
- *  field engine's per-mesh tables (halfedge frames and edge rings: about 130 bytes per face in
- *  all). Immutable after creation; any number of threads may query it at once, each with its
- *  own tg_geodesic_workspace. */
+ *  pointer to the mesh (which must outlive it and is never modified) plus its own view of the
+ *  mesh: vertices and faces renumbered along a Morton curve, so that a query over a region touches
+ *  nearby memory whatever the file's order (surface points, faces and vertex distances are given
+ *  and returned in the mesh's numbering), each component's faces wound consistently, halfedge
+ *  frames (every unfolding is made from them), edge rings, neighbour and corner tables, and the
+ *  vertices where geodesics may bend. Memory: about 65 bytes per vertex plus 133 per face
+ *  (tg_geodesic_memory_bytes). Immutable after creation; any number of threads may query it at
+ *  once, each with its own tg_geodesic_workspace. */
 typedef struct tg_geodesic tg_geodesic;
 
 typedef struct tg_geodesic_options {
@@ -711,24 +714,26 @@ TG_API void tg_geodesic_destroy(tg_geodesic* geodesic);
 /** Bytes owned by the solver (tables and header, not the mesh). O(1). NULL gives 0. */
 TG_API size_t tg_geodesic_memory_bytes(const tg_geodesic* geodesic);
 
-/** Per-thread scratch for path queries: arrays sized once for the mesh (about 16 bytes per
- *  vertex) and buffers that grow to the largest path seen, so repeated queries do not allocate
- *  (except TG_PATH_RELAX across a fan of over 64 edges: the fan kernel's scratch, from the
- *  solver's allocator like everything else). The first TG_PATH_EXACT query (the default) or
- *  certified query adds a field workspace (about 130 bytes per face), kept for the next ones.
- *  A query touches only the entries of the region it explores. Not thread-safe: one workspace
- *  per thread. */
+/** Per-thread scratch for every query on one solver: paths (tg_geodesic_path) and fields
+ *  (tg_geodesic_field, tg_geodesic_field_at). Its tables sized for the mesh are allocated when it
+ *  is created, from the solver's allocator: about 61 bytes per vertex plus 64 per face (the exact
+ *  engine's distances, predecessors, window lists and splits; A*'s records); its buffers (window
+ *  pool, front, path nodes, sleeves) grow to the largest query seen and are kept, so repeated
+ *  queries do not allocate (except TG_PATH_RELAX across a fan of over 64 edges: the fan kernel's
+ *  scratch). A query touches only the entries of the region it explores. Every call taking a
+ *  workspace also accepts NULL and then makes and frees a temporary one (that costs O(V + F)
+ *  per call). Not thread-safe: one workspace per thread. */
 typedef struct tg_geodesic_workspace tg_geodesic_workspace;
 
 /** Creates a workspace for queries on geodesic. Errors: TG_ERR_INVALID_ARGUMENT,
- *  TG_ERR_OUT_OF_MEMORY (then *out_workspace is NULL). O(V) time and memory. */
+ *  TG_ERR_OUT_OF_MEMORY (then *out_workspace is NULL). O(V + F) time and memory. */
 TG_API tg_status tg_geodesic_workspace_create(const tg_geodesic* geodesic,
                                        tg_geodesic_workspace** out_workspace);
 
 /** Frees a workspace. NULL is a no-op. */
 TG_API void tg_geodesic_workspace_destroy(tg_geodesic_workspace* workspace);
 
-/** Bytes currently owned by the workspace (fixed arrays plus grown buffers). NULL gives 0. */
+/** Bytes currently owned by the workspace (its tables plus grown buffers). NULL gives 0. */
 TG_API size_t tg_geodesic_workspace_memory_bytes(const tg_geodesic_workspace* workspace);
 
 /** How a path is found. TG_PATH_EXACT, the default, is the globally shortest path; the others
@@ -741,14 +746,10 @@ typedef enum tg_path_method {
      *  the ray of the window that reached it, through the faces it crossed, to the pseudo-source
      *  vertex it came from, and on through the windows and pseudo-source vertices to `from`. No
      *  edge path is computed, so in its view initial_length equals length and edge_path_vertices
-     *  and iterations are 0; global is TG_PATH_PROVEN. Cost (BENCHMARKS.md, 1.4M
-     *  faces): about 1.0-1.1 ms median for pairs within 10% of the diagonal, 52-63 ms for random
-     *  far pairs (1.5x and 5x TG_PATH_STRAIGHTEN's). Memory:
-     *  the field workspace (about 130 MB at 1M faces, tg_field_workspace's tables) allocated from
-     *  the solver's allocator on the workspace's first exact query and kept for the next.
-     *  Should the trace back fail to reproduce the exact distance (not seen on the test corpus),
-     *  the straightened path is checked as with certify instead: then it has an edge path and
-     *  is labelled proven only if within 1e-9 relative of the exact distance. */
+     *  and iterations are 0; global is TG_PATH_PROVEN. Cost: see BENCHMARKS.md (near pairs cost a
+     *  small region of the field's work, far pairs a few times TG_PATH_STRAIGHTEN's). The trace
+     *  back reproduces the exact distance on every pair of the project's sweep; should it ever
+     *  fail, the call returns TG_ERR_INTERNAL rather than an unproven path. */
     TG_PATH_EXACT = 0,
     /** The fast locally shortest path: unfolds every run of edge crossings of the edge path (a
      *  triangle strip) into the plane and straightens it in one pass with a funnel (Lee &
@@ -808,8 +809,9 @@ typedef struct tg_path_options {
      *  when a pass shortens the path by at most tolerance * length (default 1e-13). EXACT: not
      *  used. Negative, NaN or infinite: TG_ERR_INVALID_ARGUMENT (whatever the method). */
     double tolerance;
-    /** RELAX: options of the seed's kernels (tg_edge_path_minimize, tg_fan_path_minimize). NULL:
-     *  15 digits by bisection (§2.4) and the conjugate-gradient fan search (§3.4.2). */
+    /** RELAX: options of the seed's kernels (tg_edge_path_minimize, tg_fan_path_minimize). NULL
+     *  or zero: their defaults, 15 digits by bisection (§2.4) and the conjugate-gradient fan
+     *  search (§3.4.2). */
     const tg_geodesic_kernel_options* kernel; /**< out of range: TG_ERR_INVALID_ARGUMENT */
     tg_path_certify certify; /**< TG_PATH_CERTIFY_OFF by default */
 } tg_path_options;
@@ -871,21 +873,24 @@ TG_API void tg_path_get_view(const tg_path* path, tg_path_view* out_view);
  *  geodesic) in the homotopy class the edge path leads to; where several geodesics join the
  *  endpoints (around a cone point, a handle) it need not be the globally shortest one
  *  (TG_PATH_UNPROVEN unless certify).
- *  Paths cross every edge shared by exactly two faces (non-zero length) whatever the faces'
- *  winding: the solver winds each component's faces consistently once, at creation (a
- *  non-orientable component keeps one wall per conflict), and a duplicate face counts once;
- *  non-manifold edges (three or more faces), pinched vertices and coincident vertices are passed
- *  through vertices (the exact fields continue across non-manifold edges; paths do not yet).
+ *  Surface semantics: exact paths cross every edge the exact fields cross (any winding, every
+ *  other face at a non-manifold edge: the surface as a 2-complex); the other methods cross every
+ *  edge shared by exactly two faces (non-zero length) whatever the faces' winding (the solver
+ *  winds each component consistently once; a non-orientable component keeps one wall per
+ *  conflict) and pass non-manifold edges, pinched vertices and coincident vertices through
+ *  vertices. A duplicate face counts once.
  *  Endpoints in different components give status TG_PATH_UNREACHABLE, length +inf and TG_OK.
  *  Every returned path lies on the surface and its length never exceeds initial_length; exact
  *  and straightened converged paths have max_angle_defect <= 1e-10 in practice (reported, not
  *  assumed). The output endpoints are the canonical forms of from and to.
- *  Errors: TG_ERR_INVALID_ARGUMENT (NULL argument, workspace of another solver, invalid surface
- *  point, unknown method), TG_ERR_OUT_OF_MEMORY (a buffer could not grow; path is then empty).
+ *  workspace: one of this solver's, or NULL for a temporary one (see tg_geodesic_workspace).
+ *  options: NULL or zero for the defaults.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic, from, to or path, a workspace of another
+ *  solver, an invalid surface point, out-of-range options), TG_ERR_OUT_OF_MEMORY,
+ *  TG_ERR_INTERNAL (see TG_PATH_EXACT); on error the path is empty (unreachable).
  *  Complexity: EXACT is the field's (tg_geodesic_field) over the region its A* order and bound
- *  explore, about 1.0-1.1 ms for near pairs and 52-63 ms for far ones on a 1.4M-face mesh; A* is
- *  O(n log n) in the n explored vertices; straightening is O(k) per sweep in the k faces of the
- *  path's strips, about 5x faster than EXACT on far pairs. Thread-safe for distinct workspaces
+ *  explore; A* is O(n log n) in the n explored vertices; straightening is O(k) per sweep in the
+ *  k faces of the path's strips (figures in BENCHMARKS.md). Thread-safe for distinct workspaces
  *  and paths. */
 TG_API tg_status tg_geodesic_path(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                            const tg_surface_point* from, const tg_surface_point* to,
@@ -898,26 +903,8 @@ TG_API tg_status tg_path_write_obj(const tg_path* path, const char* filename, tg
 
 
 /* ============================================================================================== */
-/* Exact geodesic distance fields (src/geodesic/field.c)                                          */
+/* Exact geodesic distance fields (src/geodesic/field)                                             */
 /* ============================================================================================== */
-
-/** Per-thread scratch for exact fields: per-vertex and per-halfedge arrays sized once for the
- *  mesh (about 17 bytes per vertex and 60 bytes per face) plus the window pool, queues and
- *  lists, which grow to the largest run seen and are kept, so a second field on the same
- *  workspace allocates nothing. Not thread-safe: one workspace per thread; any number of threads
- *  may run fields on one tg_geodesic at once, each with its own workspace. */
-typedef struct tg_field_workspace tg_field_workspace;
-
-/** Creates a field workspace for g (which must outlive it), using g's allocator.
- *  Errors: TG_ERR_INVALID_ARGUMENT (NULL argument), TG_ERR_OUT_OF_MEMORY (then *out_workspace is
- *  NULL). O(V + F) time and memory. */
-TG_API tg_status tg_field_workspace_create(const tg_geodesic* g, tg_field_workspace** out_workspace);
-
-/** Frees a field workspace. NULL is a no-op. */
-TG_API void tg_field_workspace_destroy(tg_field_workspace* workspace);
-
-/** Bytes currently owned by the workspace (fixed arrays plus grown pools). NULL gives 0. */
-TG_API size_t tg_field_workspace_memory_bytes(const tg_field_workspace* workspace);
 
 /** What a progress callback is told. */
 typedef struct tg_field_progress {
@@ -940,18 +927,17 @@ typedef enum tg_field_limit {
     TG_FIELD_MAX_DISTANCE = 1 /**< stop at max_distance (0 is allowed and means distance 0) */
 } tg_field_limit;
 
-/** Options of tg_geodesic_field and tg_geodesic_field_batch. NULL or all-zero means defaults. */
+/** Options of the field calls (tg_geodesic_field, tg_geodesic_field_at,
+ *  tg_geodesic_distance_matrix). NULL or all-zero means defaults. */
 typedef struct tg_field_options {
-    /** scratch memory of a temporary workspace; NULL: the solver's allocator */
+    /** the memory of a temporary workspace (and of the distance matrix's per-thread scratch);
+     *  NULL: the solver's allocator */
     const tg_allocator* allocator;
     tg_field_limit limit; /**< TG_FIELD_UNLIMITED by default */
     /** With TG_FIELD_MAX_DISTANCE: the distance limit (same unit as the coordinates, >= 0).
      *  Vertices within it get their exact distance, every vertex beyond it +inf, and the work
      *  stays within it. Ignored with TG_FIELD_UNLIMITED. */
     double max_distance;
-    /** tg_geodesic_field: a workspace of the same solver to reuse (NULL: a temporary one is
-     *  made and freed). Ignored by tg_geodesic_field_batch, which makes one per thread. */
-    tg_field_workspace* workspace;
     tg_field_progress_fn progress; /**< NULL: none */
     void* progress_user;           /**< passed to progress */
 } tg_field_options;
@@ -993,6 +979,7 @@ typedef struct tg_field_stats {
  *  corner thinner than 1e-12 relative) are pseudo-sources; windows cross a zero-area face at most
  *  once in a row, otherwise the distance there is the one through its vertices (a real path).
  *
+ *  workspace: one of this solver's (tg_geodesic_workspace), or NULL for a temporary one.
  *  sources: source_count valid surface points (tg_surface_point_validate; vertex, edge point or
  *  face point; NULL allowed when source_count is 0). With several sources each vertex gets the
  *  distance to the nearest; with none, every vertex gets +inf.
@@ -1008,7 +995,8 @@ typedef struct tg_field_stats {
  *  Complexity: typically a small multiple of n^1.5 window crossings for n vertices (O(n^2 log n)
  *  worst case); memory: the workspace plus about 56 bytes per live window. Thread-safe: g is only
  *  read; concurrent calls need distinct workspaces and output arrays. */
-TG_API tg_status tg_geodesic_field(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+TG_API tg_status tg_geodesic_field(const tg_geodesic* g, tg_geodesic_workspace* workspace,
+                            const tg_surface_point* sources, size_t source_count,
                             const tg_field_options* options, double* out_vertex_distance, tg_field_stats* out_stats);
 
 /** The exact geodesic distance from the sources to arbitrary surface points (inside faces, on
@@ -1022,23 +1010,25 @@ TG_API tg_status tg_geodesic_field(const tg_geodesic* g, const tg_surface_point*
  *  TG_ERR_INVALID_ARGUMENT for an invalid point or NULL points / out_point_distance with a
  *  non-zero point_count; on error the outputs are untouched. Cost: the field's, plus the windows
  *  crossing the points' faces times the points in them. */
-TG_API tg_status tg_geodesic_field_at(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+TG_API tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* workspace,
+                               const tg_surface_point* sources, size_t source_count,
                                const tg_surface_point* points, size_t point_count, const tg_field_options* options,
                                double* out_point_distance, double* out_vertex_distance, tg_field_stats* out_stats);
 
-/** Many fields at once: row i of out_matrix (row-major, source_count x vertex_count doubles) is
- *  the field of sources[i] alone, exactly as tg_geodesic_field computes it (bit-identical). Rows
+/** The distance matrix: row i of out_matrix (row-major, source_count x vertex_count doubles) is
+ *  the field of sources[i] alone, exactly as tg_geodesic_field computes it (bit-identical). The
+ *  same operation is `trigeo field --sources` in the CLI and Mesh.distance_matrix in Python. Rows
  *  are computed in parallel with OpenMP on `threads` threads (0: the OpenMP default; 1: this
- *  thread only), one workspace per thread, made and freed by the call. options->workspace is
- *  ignored; the limit, allocator and progress apply to every row (progress is called from one
- *  thread at a time with rows_done / row_count). out_stats (may be NULL): counters summed over
- *  the rows, peak_bytes the largest of one workspace.
+ *  thread only), each with the exact engine's scratch of a workspace, made and freed by the call;
+ *  the limit, allocator and progress apply to every row (progress is called from one thread at a
+ *  time with rows_done / row_count). out_stats (may be NULL): counters summed over the rows,
+ *  peak_bytes the largest of one thread's scratch.
  *  Errors: as tg_geodesic_field (every source is validated before any work), and
  *  TG_ERR_INVALID_ARGUMENT for a negative thread count or a matrix size that overflows. Each row
  *  is written only once complete, so on error (or cancellation) out_matrix holds some complete
  *  rows and leaves the others untouched, never a partial row; out_stats is untouched.
  *  Thread-safe as tg_geodesic_field. */
-TG_API tg_status tg_geodesic_field_batch(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+TG_API tg_status tg_geodesic_distance_matrix(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
                                   const tg_field_options* options, int threads, double* out_matrix,
                                   tg_field_stats* out_stats);
 

@@ -27,7 +27,7 @@ int main(int argc, char** argv)
     if (tg_geodesic_create(m, NULL, &g) != TG_OK) return 3;
     static double dist[1 << 16];
     tg_surface_point s = tg_surface_vertex(0);
-    if (tg_mesh_vertex_count(m) > (1 << 16) || tg_geodesic_field(g, &s, 1, NULL, dist, NULL) != TG_OK) return 4;
+    if (tg_mesh_vertex_count(m) > (1 << 16) || tg_geodesic_field(g, NULL, &s, 1, NULL, dist, NULL) != TG_OK) return 4;
     printf("trigeo %s %.6f\n", tg_version(), dist[1]);
     tg_geodesic_destroy(g);
     tg_mesh_destroy(m);
@@ -49,7 +49,7 @@ mkdir -p "$tmp/cm"
 cat >"$tmp/cm/CMakeLists.txt" <<'CM'
 cmake_minimum_required(VERSION 3.16)
 project(consumer C)
-find_package(trigeo 0.2 REQUIRED)
+find_package(trigeo 0.3 REQUIRED)
 add_executable(consumer ../consumer.c)
 target_link_libraries(consumer PRIVATE trigeo::trigeo)
 CM

@@ -85,13 +85,19 @@ check(run("info", huge).returncode == 0, "info still reads a huge mesh")
 # not "converged"
 tiny = os.path.join(tmp, "tiny.obj")
 open(tiny, "w").write("v 0 0 0\nv 1e-300 0 0\nv 0 1e-300 0\nv 1e-300 1e-300 0\nf 1 2 3\nf 2 4 3\n")
-r = run("path", tiny, "--from", "f:0:0.6,0.2,0.2", "--to", "f:1:0.2,0.6,0.2", "--method", "straighten")
-check(r.returncode == 0 and b"status             stalled" in r.stdout, "tiny mesh path: %d %r" % (r.returncode, r.stdout[:200]))
-# the default (exact) method there: its trace matches a distance of 0 while bending by pi, so it
-# must not call that path proven; it falls back to the straightened one, stalled and unproven
-r = run("path", tiny, "--from", "f:0:0.6,0.2,0.2", "--to", "f:1:0.2,0.6,0.2")
-check(r.returncode == 0 and b"status             stalled" in r.stdout and b"global             unproven" in r.stdout,
-      "tiny mesh default path: %d %r" % (r.returncode, r.stdout[:300]))
+# the solver computes in a frame scaled to the data: at 1e-300 the paths are those of the unit
+# square, scaled (straightened and exact alike, the exact one proven)
+unit = os.path.join(tmp, "unit.obj")
+open(unit, "w").write("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n")
+def length_of(out):
+    return float([l for l in out.decode().splitlines() if l.startswith("length ")][0].split()[1])
+for method in ("straighten", "exact"):
+    r = run("path", tiny, "--from", "f:0:0.6,0.2,0.2", "--to", "f:1:0.2,0.6,0.2", "--method", method)
+    u = run("path", unit, "--from", "f:0:0.6,0.2,0.2", "--to", "f:1:0.2,0.6,0.2", "--method", method)
+    ok = r.returncode == 0 and u.returncode == 0 and b"status             converged" in r.stdout
+    ok = ok and (method != "exact" or b"global             proven" in r.stdout)
+    ok = ok and abs(length_of(r.stdout) - 1e-300 * length_of(u.stdout)) <= 1e-12 * 1e-300 * length_of(u.stdout)
+    check(ok, "tiny mesh path (%s): %d %r" % (method, r.returncode, r.stdout[:300]))
 r = run("closest", spot, "-", stdin=b"0 0 0\n1e300 0 0\n")
 check(r.returncode == 2 and b"-:2:" in r.stderr and b"1e150" in r.stderr and not r.stdout,
       "huge query: %d %r" % (r.returncode, r.stderr))

@@ -255,7 +255,7 @@ static void test_extreme(void)
     tg_geodesic_kernel_options bad[5];
     memset(bad, 0, sizeof bad);
     bad[0].digits = 18, bad[1].digits = -1, bad[2].max_iterations = -5;
-    bad[3].strategy = (tg_fan_strategy)4, bad[4].root_method = (tg_root_method)9;
+    bad[3].strategy = (tg_fan_strategy)5, bad[4].root_method = (tg_root_method)9;
     double w[3] = {1, 1, 0}, tf[1], lf;
     for (int k = 0; k < 5; ++k) {
         CHECK_STATUS(tg_edge_path_minimize(q0, z, b2, q1, &bad[k], &len, &t), TG_ERR_INVALID_ARGUMENT);

@@ -129,7 +129,7 @@ static void compare(const char* file, tg_geodesic* g, size_t nv, const char* spe
         return;
     }
     double* d = malloc(nv * sizeof *d);
-    CHECK_STATUS(tg_geodesic_field(g, &s, 1, NULL, d, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(g, NULL, &s, 1, NULL, d, NULL), TG_OK);
     double far = 0, worst = 0;
     for (size_t i = 0; i < n; ++i)
         if (isfinite(e[i].d) && e[i].d > far) far = e[i].d;

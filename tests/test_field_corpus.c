@@ -139,7 +139,7 @@ static void test_mesh(const char* dir, const char* file)
     tg_field_stats fs;
     clock_t t0 = clock();
     tg_surface_point s = tg_surface_vertex(src);
-    tg_status st = tg_geodesic_field(geo, &s, 1, &o, fd, &fs);
+    tg_status st = tg_geodesic_field(geo, NULL, &s, 1, &o, fd, &fs);
     double secs = (double)(clock() - t0) / CLOCKS_PER_SEC;
     CHECK_MSG(st == TG_OK, "%s: %s", file, tg_status_name(st));
     if (st != TG_OK) goto done;

@@ -67,7 +67,7 @@ static void field_of(const tg_mesh* m, const tg_surface_point* s, size_t count, 
 {
     tg_geodesic* g = NULL;
     CHECK_STATUS(tg_geodesic_create(m, NULL, &g), TG_OK);
-    CHECK_STATUS(tg_geodesic_field(g, s, count, NULL, out, st), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(g, NULL, s, count, NULL, out, st), TG_OK);
     tg_geodesic_destroy(g);
 }
 
@@ -219,33 +219,34 @@ static void test_workspace_and_progress(void)
     tg_geodesic_options go = {&a};
     tg_geodesic* g = NULL;
     CHECK_STATUS(tg_geodesic_create(m, &go, &g), TG_OK);
-    tg_field_workspace* ws = NULL;
-    CHECK_STATUS(tg_field_workspace_create(g, &ws), TG_OK);
+    tg_geodesic_workspace* ws = NULL;
+    tg_geodesic_workspace* use = NULL; /* the workspace the calls get */
+    CHECK_STATUS(tg_geodesic_workspace_create(g, &ws), TG_OK);
     double* d1 = malloc(n * sizeof *d1);
     double* d2 = malloc(n * sizeof *d2);
     tg_field_options o;
     memset(&o, 0, sizeof o);
-    o.workspace = ws;
+    use = ws;
     tg_surface_point s = tg_surface_vertex(1000);
-    CHECK_STATUS(tg_geodesic_field(g, &s, 1, &o, d1, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(g, use, &s, 1, &o, d1, NULL), TG_OK);
     long after_first = cnt.allocs;
-    size_t bytes = tg_field_workspace_memory_bytes(ws);
-    CHECK_STATUS(tg_geodesic_field(g, &s, 1, &o, d2, NULL), TG_OK);
+    size_t bytes = tg_geodesic_workspace_memory_bytes(ws);
+    CHECK_STATUS(tg_geodesic_field(g, use, &s, 1, &o, d2, NULL), TG_OK);
     CHECK_MSG(cnt.allocs == after_first, "the second field allocated %ld blocks", cnt.allocs - after_first);
-    CHECK(tg_field_workspace_memory_bytes(ws) == bytes && bytes > 0);
+    CHECK(tg_geodesic_workspace_memory_bytes(ws) == bytes && bytes > 0);
     CHECK(memcmp(d1, d2, n * sizeof *d1) == 0);
     /* the same with a temporary workspace */
-    o.workspace = NULL;
-    CHECK_STATUS(tg_geodesic_field(g, &s, 1, &o, d2, NULL), TG_OK);
+    use = NULL;
+    CHECK_STATUS(tg_geodesic_field(g, use, &s, 1, &o, d2, NULL), TG_OK);
     CHECK(memcmp(d1, d2, n * sizeof *d1) == 0);
     /* progress: called (the run takes far more than 5 ms under any build), fractions in [0, 1] and
      * never decreasing */
     progress_log log = {0, 0, 0, 1, 0};
-    o.workspace = ws;
+    use = ws;
     o.progress = on_progress;
     o.progress_user = &log;
     tg_surface_point far = tg_surface_face(100, 0.3, 0.3, 0.4);
-    CHECK_STATUS(tg_geodesic_field(g, &far, 1, &o, d2, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(g, use, &far, 1, &o, d2, NULL), TG_OK);
     CHECK_MSG(log.calls >= 1, "progress calls: %d", log.calls);
     CHECK(log.monotone && log.last_rows == 1);
     /* cancellation on the first call: TG_ERR_CANCELLED, output untouched; then the workspace
@@ -255,28 +256,28 @@ static void test_workspace_and_progress(void)
     o.progress_user = &stop;
     tg_field_stats st;
     st.windows_created = 4242;
-    CHECK_STATUS(tg_geodesic_field(g, &far, 1, &o, d2, &st), TG_ERR_CANCELLED);
+    CHECK_STATUS(tg_geodesic_field(g, use, &far, 1, &o, d2, &st), TG_ERR_CANCELLED);
     CHECK_EQ_INT(stop.calls, 1);
     int touched = 0;
     for (size_t v = 0; v < n; ++v) touched += d2[v] != -7;
     CHECK_EQ_INT(touched, 0);
     CHECK(st.windows_created == 4242);
     o.progress = NULL;
-    CHECK_STATUS(tg_geodesic_field(g, &s, 1, &o, d2, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(g, use, &s, 1, &o, d2, NULL), TG_OK);
     CHECK(memcmp(d1, d2, n * sizeof *d1) == 0);
     /* cancelled with a temporary workspace: nothing leaked */
-    o.workspace = NULL;
+    use = NULL;
     o.progress = on_progress;
     stop.calls = 0;
-    CHECK_STATUS(tg_geodesic_field(g, &far, 1, &o, d2, NULL), TG_ERR_CANCELLED);
+    CHECK_STATUS(tg_geodesic_field(g, use, &far, 1, &o, d2, NULL), TG_ERR_CANCELLED);
     /* a workspace of another solver is refused */
     tg_geodesic* g2 = NULL;
     CHECK_STATUS(tg_geodesic_create(m, NULL, &g2), TG_OK);
-    o.workspace = ws;
+    use = ws;
     o.progress = NULL;
-    CHECK_STATUS(tg_geodesic_field(g2, &s, 1, &o, d2, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_field(g2, use, &s, 1, &o, d2, NULL), TG_ERR_INVALID_ARGUMENT);
     tg_geodesic_destroy(g2);
-    tg_field_workspace_destroy(ws);
+    tg_geodesic_workspace_destroy(ws);
     tg_geodesic_destroy(g);
     CHECK_MSG(cnt.allocs == cnt.frees, "%ld allocations, %ld frees", cnt.allocs, cnt.frees);
     free(d1), free(d2);
@@ -300,12 +301,12 @@ static void test_batch_and_limit(void)
     tg_field_stats sum, st;
     memset(&sum, 0, sizeof sum);
     for (int k = 0; k < K; ++k) {
-        CHECK_STATUS(tg_geodesic_field(g, &s[k], 1, NULL, single + (size_t)k * n, &st), TG_OK);
+        CHECK_STATUS(tg_geodesic_field(g, NULL, &s[k], 1, NULL, single + (size_t)k * n, &st), TG_OK);
         sum.windows_propagated += st.windows_propagated;
     }
     for (int threads = 0; threads <= 2; ++threads) {
         memset(batch, 0, K * n * sizeof *batch);
-        CHECK_STATUS(tg_geodesic_field_batch(g, s, K, NULL, threads, batch, &st), TG_OK);
+        CHECK_STATUS(tg_geodesic_distance_matrix(g, s, K, NULL, threads, batch, &st), TG_OK);
         CHECK_MSG(memcmp(single, batch, K * n * sizeof *batch) == 0, "batch on %d threads differs from single fields",
                   threads);
         CHECK(st.windows_propagated == sum.windows_propagated);
@@ -316,36 +317,36 @@ static void test_batch_and_limit(void)
     memset(&o, 0, sizeof o);
     o.progress = on_progress;
     o.progress_user = &log;
-    CHECK_STATUS(tg_geodesic_field_batch(g, s, K, &o, 2, batch, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_distance_matrix(g, s, K, &o, 2, batch, NULL), TG_OK);
     CHECK(log.calls == 0 || log.last_rows == K);
     /* invalid sources and arguments: nothing written */
     for (size_t i = 0; i < K * n; ++i) batch[i] = -3;
     tg_surface_point bad[2] = {tg_surface_vertex(1), tg_surface_vertex((uint32_t)n)};
-    CHECK_STATUS(tg_geodesic_field_batch(g, bad, 2, NULL, 0, batch, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_field_batch(g, s, K, NULL, -1, batch, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_distance_matrix(g, bad, 2, NULL, 0, batch, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_distance_matrix(g, s, K, NULL, -1, batch, NULL), TG_ERR_INVALID_ARGUMENT);
     CHECK(batch[0] == -3 && batch[K * n - 1] == -3);
-    CHECK_STATUS(tg_geodesic_field_batch(g, s, 0, NULL, 0, batch, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_distance_matrix(g, s, 0, NULL, 0, batch, NULL), TG_OK);
     /* max_distance 0 is distance 0: the source vertex only */
     memset(&o, 0, sizeof o);
     o.limit = TG_FIELD_MAX_DISTANCE;
     o.max_distance = 0;
-    CHECK_STATUS(tg_geodesic_field(g, &s[0], 1, &o, batch, &st), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(g, NULL, &s[0], 1, &o, batch, &st), TG_OK);
     size_t finite = 0;
     for (size_t v = 0; v < n; ++v) finite += isfinite(batch[v]);
     CHECK_EQ_INT(finite, 1);
     CHECK(batch[7] == 0.0);
     /* a limit keeps exactly the vertices within it, with their exact distances */
     o.max_distance = 0.4;
-    CHECK_STATUS(tg_geodesic_field(g, &s[1], 1, &o, batch, &st), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(g, NULL, &s[1], 1, &o, batch, &st), TG_OK);
     for (size_t v = 0; v < n; ++v) {
         double want = single[n + v] <= 0.4 ? single[n + v] : INFINITY;
         CHECK_MSG(batch[v] == want, "limit 0.4: vertex %zu: %.17g vs %.17g", v, batch[v], want);
     }
     o.limit = (tg_field_limit)7;
-    CHECK_STATUS(tg_geodesic_field(g, &s[1], 1, &o, batch, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_field(g, NULL, &s[1], 1, &o, batch, NULL), TG_ERR_INVALID_ARGUMENT);
     o.limit = TG_FIELD_MAX_DISTANCE;
     o.max_distance = -1;
-    CHECK_STATUS(tg_geodesic_field(g, &s[1], 1, &o, batch, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_field(g, NULL, &s[1], 1, &o, batch, NULL), TG_ERR_INVALID_ARGUMENT);
     free(single), free(batch);
     tg_geodesic_destroy(g);
     tg_mesh_destroy(m);
@@ -373,11 +374,11 @@ static void test_points_symmetry(const char* file, int pairs)
         uint32_t s = tg_mesh_triangles(m)[tg_rng_next(&rng) % (3 * tg_mesh_face_count(m))];
         tg_surface_point src = tg_surface_vertex(s);
         double at[PTS];
-        CHECK_STATUS(tg_geodesic_field_at(g, &src, 1, pts, PTS, NULL, at, vd, NULL), TG_OK);
-        CHECK_STATUS(tg_geodesic_field(g, &src, 1, NULL, field, NULL), TG_OK);
+        CHECK_STATUS(tg_geodesic_field_at(g, NULL, &src, 1, pts, PTS, NULL, at, vd, NULL), TG_OK);
+        CHECK_STATUS(tg_geodesic_field(g, NULL, &src, 1, NULL, field, NULL), TG_OK);
         CHECK(memcmp(field, vd, n * sizeof *vd) == 0); /* the vertex field is the same with points */
         for (int i = 0; i < PTS; ++i) {
-            CHECK_STATUS(tg_geodesic_field(g, &pts[i], 1, NULL, field, NULL), TG_OK);
+            CHECK_STATUS(tg_geodesic_field(g, NULL, &pts[i], 1, NULL, field, NULL), TG_OK);
             double e = fabs(at[i] - field[s]);
             double tol = 1e-12 * (1 + field[s]);
             if (e > worst) worst = e;
@@ -400,14 +401,14 @@ static void test_points_api(void)
     CHECK_STATUS(tg_geodesic_create(m, NULL, &g), TG_OK);
     double* vd = malloc(n * sizeof *vd);
     tg_surface_point src = tg_surface_face(10, 0.3, 0.3, 0.4);
-    CHECK_STATUS(tg_geodesic_field(g, &src, 1, NULL, vd, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(g, NULL, &src, 1, NULL, vd, NULL), TG_OK);
     /* a vertex query is the vertex's distance; the source itself is at 0; a point in the source's
      * face is at its straight distance */
     const uint32_t* t = tg_mesh_triangles(m);
     tg_surface_point pts[4] = {tg_surface_vertex(t[3 * 2000]), src, tg_surface_face(10, 0.5, 0.25, 0.25),
                                tg_surface_edge(31, 0.5)};
     double at[4], a[3], b[3];
-    CHECK_STATUS(tg_geodesic_field_at(g, &src, 1, pts, 4, NULL, at, NULL, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field_at(g, NULL, &src, 1, pts, 4, NULL, at, NULL, NULL), TG_OK);
     CHECK(at[0] == vd[t[3 * 2000]]);
     CHECK(at[1] == 0.0);
     tg_surface_point_position(m, &src, a);
@@ -421,14 +422,14 @@ static void test_points_api(void)
     CHECK(at[2] < at[3]);
     o.max_distance = 0.5 * (at[2] + at[3]);
     double lim[4];
-    CHECK_STATUS(tg_geodesic_field_at(g, &src, 1, pts, 4, &o, lim, NULL, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field_at(g, NULL, &src, 1, pts, 4, &o, lim, NULL, NULL), TG_OK);
     CHECK_MSG(lim[1] == 0.0 && lim[2] == at[2] && isinf(lim[3]), "limit %.17g: %.17g %.17g %.17g (unlimited %.17g %.17g %.17g)", o.max_distance, lim[1], lim[2], lim[3], at[1], at[2], at[3]);
     /* bad arguments leave the outputs untouched */
     tg_surface_point bad = tg_surface_face(10, 0.5, 0.6, 0.5);
     lim[0] = 9;
-    CHECK_STATUS(tg_geodesic_field_at(g, &src, 1, &bad, 1, NULL, lim, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_field_at(g, &src, 1, pts, 4, NULL, NULL, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_field_at(g, &src, 1, NULL, 2, NULL, lim, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_field_at(g, NULL, &src, 1, &bad, 1, NULL, lim, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_field_at(g, NULL, &src, 1, pts, 4, NULL, NULL, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_field_at(g, NULL, &src, 1, NULL, 2, NULL, lim, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
     CHECK(lim[0] == 9);
     free(vd);
     tg_geodesic_destroy(g);
@@ -448,7 +449,7 @@ static void test_allocation_failures(void)
     double* out = malloc(2 * n * sizeof *out);
     tg_geodesic* g0 = NULL;
     CHECK_STATUS(tg_geodesic_create(m, NULL, &g0), TG_OK);
-    CHECK_STATUS(tg_geodesic_field_batch(g0, s, 2, NULL, 1, ref, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_distance_matrix(g0, s, 2, NULL, 1, ref, NULL), TG_OK);
     tg_geodesic_destroy(g0);
     long total = -1;
     int failures = 0;
@@ -457,21 +458,22 @@ static void test_allocation_failures(void)
         tg_allocator a = tg_test_failing_allocator(&c);
         tg_geodesic_options go = {&a};
         tg_geodesic* g = NULL;
-        tg_field_workspace* ws = NULL;
+        tg_geodesic_workspace* ws = NULL;
+    tg_geodesic_workspace* use = NULL; /* the workspace the calls get */
         for (size_t i = 0; i < 2 * n; ++i) out[i] = -5;
         tg_status st = tg_geodesic_create(m, &go, &g);
-        if (st == TG_OK) st = tg_field_workspace_create(g, &ws);
+        if (st == TG_OK) st = tg_geodesic_workspace_create(g, &ws);
         tg_field_options o;
         memset(&o, 0, sizeof o);
-        o.workspace = ws;
-        if (st == TG_OK) st = tg_geodesic_field(g, &s[0], 1, &o, out, NULL);
-        if (st == TG_OK) st = tg_geodesic_field(g, &s[1], 1, &o, out + n, NULL);
-        if (st == TG_OK) st = tg_geodesic_field_batch(g, s, 2, NULL, 2, out, NULL);
+        use = ws;
+        if (st == TG_OK) st = tg_geodesic_field(g, use, &s[0], 1, &o, out, NULL);
+        if (st == TG_OK) st = tg_geodesic_field(g, use, &s[1], 1, &o, out + n, NULL);
+        if (st == TG_OK) st = tg_geodesic_distance_matrix(g, s, 2, NULL, 2, out, NULL);
         double at[2] = {-5, -5};
-        if (st == TG_OK) st = tg_geodesic_field_at(g, &s[1], 1, s, 2, &o, at, NULL, NULL);
+        if (st == TG_OK) st = tg_geodesic_field_at(g, use, &s[1], 1, s, 2, &o, at, NULL, NULL);
         /* at the source itself 0; at the face point, by symmetry, row 0's distance at vertex 99 */
         if (st == TG_OK) CHECK(at[1] == 0.0 && fabs(at[0] - ref[99]) <= 1e-12 * (1 + ref[99]));
-        tg_field_workspace_destroy(ws);
+        tg_geodesic_workspace_destroy(ws);
         tg_geodesic_destroy(g);
         CHECK_MSG(c.allocs == c.frees, "fail at %ld: %ld allocations, %ld frees", k, c.allocs, c.frees);
         if (st == TG_OK) {

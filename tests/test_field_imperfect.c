@@ -14,7 +14,7 @@ static double fd[MAXV];
 
 static void field_from(const ctx* c, const tg_surface_point* s, size_t count)
 {
-    CHECK_STATUS(tg_geodesic_field(c->geo, s, count, NULL, fd, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(c->geo, NULL, s, count, NULL, fd, NULL), TG_OK);
     for (size_t v = 0; v < nv; ++v) CHECK_MSG(!isnan(fd[v]), "vertex %zu: NaN", v);
 }
 
@@ -230,7 +230,7 @@ static void test_duplicate_and_unreferenced(void)
         }
     }
     tg_surface_point bad = tg_surface_vertex(lone);
-    CHECK_STATUS(tg_geodesic_field(c.geo, &bad, 1, NULL, fd, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_field(c.geo, NULL, &bad, 1, NULL, fd, NULL), TG_ERR_INVALID_ARGUMENT);
     close_sheet(&c);
 }
 
@@ -242,13 +242,13 @@ static void test_allocator(void)
     ctx c = open_ctx_for(flat_square(30, 5));
     static double ref[MAXV];
     tg_surface_point s = tg_surface_vertex(17);
-    CHECK_STATUS(tg_geodesic_field(c.geo, &s, 1, NULL, ref, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(c.geo, NULL, &s, 1, NULL, ref, NULL), TG_OK);
     tg_test_counting cnt = {0, 0, -1, 0};
     tg_allocator a = tg_test_failing_allocator(&cnt);
     tg_field_options o;
     memset(&o, 0, sizeof o);
     o.allocator = &a;
-    CHECK_STATUS(tg_geodesic_field(c.geo, &s, 1, &o, fd, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(c.geo, NULL, &s, 1, &o, fd, NULL), TG_OK);
     CHECK(memcmp(fd, ref, nv * sizeof(double)) == 0);
     long used = cnt.allocs;
     CHECK_EQ_INT(cnt.allocs, cnt.frees);
@@ -260,7 +260,7 @@ static void test_allocator(void)
         for (size_t v = 0; v < nv; ++v) fd[v] = -1;
         tg_field_stats st;
         st.windows_created = 12345;
-        tg_status status = tg_geodesic_field(c.geo, &s, 1, &o, fd, &st);
+        tg_status status = tg_geodesic_field(c.geo, NULL, &s, 1, &o, fd, &st);
         CHECK_MSG(status == TG_ERR_OUT_OF_MEMORY, "fail after %ld: %s", k, tg_status_name(status));
         CHECK_MSG(f.allocs == f.frees, "fail after %ld: %ld allocs, %ld frees", k, f.allocs, f.frees);
         int touched = 0;

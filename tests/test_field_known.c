@@ -13,7 +13,7 @@
 static void field_from(const ctx* c, const tg_surface_point* src, size_t count, double* out)
 {
     tg_field_stats st;
-    CHECK_STATUS(tg_geodesic_field(c->geo, src, count, NULL, out, &st), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(c->geo, NULL, src, count, NULL, out, &st), TG_OK);
     size_t n = tg_mesh_vertex_count(c->mesh);
     for (size_t v = 0; v < n; ++v) CHECK_MSG(!isnan(out[v]), "vertex %zu: NaN", v);
     CHECK(st.windows_propagated > 0 || n <= 3);
@@ -205,8 +205,8 @@ static void test_limit_and_api(void)
     o.max_distance = 0.5;
     tg_field_stats st_lim, st_full;
     static double full[MAXV];
-    CHECK_STATUS(tg_geodesic_field(c.geo, &s, 1, NULL, full, &st_full), TG_OK);
-    CHECK_STATUS(tg_geodesic_field(c.geo, &s, 1, &o, field_buf, &st_lim), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(c.geo, NULL, &s, 1, NULL, full, &st_full), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(c.geo, NULL, &s, 1, &o, field_buf, &st_lim), TG_OK);
     int inside = 0;
     for (size_t v = 0; v < nv; ++v) {
         if (full[v] <= 0.5) {
@@ -220,22 +220,22 @@ static void test_limit_and_api(void)
     CHECK(st_lim.windows_propagated < st_full.windows_propagated);
     CHECK(st_full.peak_bytes > 0 && st_full.windows_created >= st_full.windows_propagated);
     /* no sources: every vertex unreachable */
-    CHECK_STATUS(tg_geodesic_field(c.geo, NULL, 0, NULL, field_buf, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(c.geo, NULL, NULL, 0, NULL, field_buf, NULL), TG_OK);
     for (size_t v = 0; v < nv; ++v) CHECK(isinf(field_buf[v]) && field_buf[v] > 0);
     /* invalid arguments leave the output untouched */
     field_buf[0] = 42;
     tg_surface_point bad[3] = {tg_surface_vertex((uint32_t)nv), tg_surface_face(0, 0.5, 0.6, 0.5), tg_surface_edge(0, 1.5)};
-    for (int i = 0; i < 3; ++i) CHECK_STATUS(tg_geodesic_field(c.geo, &bad[i], 1, NULL, field_buf, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_field(NULL, &s, 1, NULL, field_buf, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_field(c.geo, &s, 1, NULL, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_field(c.geo, NULL, 1, NULL, field_buf, NULL), TG_ERR_INVALID_ARGUMENT);
+    for (int i = 0; i < 3; ++i) CHECK_STATUS(tg_geodesic_field(c.geo, NULL, &bad[i], 1, NULL, field_buf, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_field(NULL, NULL, &s, 1, NULL, field_buf, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_field(c.geo, NULL, &s, 1, NULL, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_field(c.geo, NULL, NULL, 1, NULL, field_buf, NULL), TG_ERR_INVALID_ARGUMENT);
     o.max_distance = -1;
-    CHECK_STATUS(tg_geodesic_field(c.geo, &s, 1, &o, field_buf, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_field(c.geo, NULL, &s, 1, &o, field_buf, NULL), TG_ERR_INVALID_ARGUMENT);
     o.max_distance = NAN;
-    CHECK_STATUS(tg_geodesic_field(c.geo, &s, 1, &o, field_buf, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_field(c.geo, NULL, &s, 1, &o, field_buf, NULL), TG_ERR_INVALID_ARGUMENT);
     CHECK(field_buf[0] == 42);
     /* deterministic: the same call gives the same bits */
-    CHECK_STATUS(tg_geodesic_field(c.geo, &s, 1, NULL, field_buf, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(c.geo, NULL, &s, 1, NULL, field_buf, NULL), TG_OK);
     CHECK(memcmp(field_buf, full, nv * sizeof(double)) == 0);
     close_ctx(&c);
 }

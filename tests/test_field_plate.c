@@ -12,7 +12,7 @@
 #include <string.h>
 #include <trigeo.h>
 
-#include "geodesic/field_internal.h"
+#include "geodesic/field/field.h"
 #include "tg_test.h"
 
 typedef struct plate {
@@ -99,7 +99,7 @@ static void test_known(void)
     tg_surface_point src = tg_surface_vertex(751);
     tg_surface_point q = tg_surface_face(2052, 0.52687977433521815, 0.063869958479977243, 0.40925026718480462);
     double d = NAN;
-    CHECK_STATUS(tg_geodesic_field_at(g, &src, 1, &q, 1, NULL, &d, NULL, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field_at(g, NULL, &src, 1, &q, 1, NULL, &d, NULL, NULL), TG_OK);
     CHECK_NEAR(d, 43.8287491238615, 1e-9 * 43.83);
     tg_geodesic_workspace* ws = NULL;
     tg_path* path = NULL;
@@ -116,7 +116,7 @@ static void test_known(void)
     CHECK_STATUS(tg_geodesic_path(g, ws, &a, &b, NULL, path), TG_OK);
     tg_path_get_view(path, &v);
     CHECK_EQ_INT(v.global, TG_PATH_PROVEN);
-    CHECK_STATUS(tg_geodesic_field_at(g, &a, 1, &b, 1, NULL, &d, NULL, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field_at(g, NULL, &a, 1, &b, 1, NULL, &d, NULL, NULL), TG_OK);
     CHECK_NEAR(v.length, d, 1e-9 * d);
     CHECK_NEAR(d, 233.75156277370036, 1e-9 * d);
     tg_path_destroy(path);
@@ -182,8 +182,8 @@ static void test_random_pairs(int pairs)
             double dab = NAN, dba = NAN;
             tg_status st = tg_geodesic_path(g, ws, &a, &b, NULL, path);
             tg_path_get_view(path, &v);
-            tg_status s1 = tg_geodesic_field_at(g, &a, 1, &b, 1, NULL, &dab, NULL, NULL);
-            tg_status s2 = tg_geodesic_field_at(g, &b, 1, &a, 1, NULL, &dba, NULL, NULL);
+            tg_status s1 = tg_geodesic_field_at(g, NULL, &a, 1, &b, 1, NULL, &dab, NULL, NULL);
+            tg_status s2 = tg_geodesic_field_at(g, NULL, &b, 1, &a, 1, NULL, &dba, NULL, NULL);
             double tol = 1e-9 * dab;
             if (st != TG_OK || s1 != TG_OK || s2 != TG_OK || v.global != TG_PATH_PROVEN ||
                 !(fabs(v.length - dab) <= tol) || !(fabs(dab - dba) <= tol)) {

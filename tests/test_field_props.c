@@ -58,7 +58,7 @@ static double dist3(const double* a, const double* b)
 
 static void field_of(const ctx* c, tg_surface_point s, double* out)
 {
-    CHECK_STATUS(tg_geodesic_field(c->geo, &s, 1, NULL, out, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(c->geo, NULL, &s, 1, NULL, out, NULL), TG_OK);
 }
 
 /* Euclidean <= field <= edge graph for vertex sources; field <= path for sampled targets

@@ -1074,12 +1074,11 @@ typedef struct field_ctx {
     tg_field_stats ref_stats;
 } field_ctx;
 
-static tg_field_options field_options(const field_ctx* fc, const tg_allocator* a, tg_field_workspace* ws)
+static tg_field_options field_options(const field_ctx* fc, const tg_allocator* a)
 {
     tg_field_options o;
     memset(&o, 0, sizeof o);
     o.allocator = a;
-    o.workspace = ws;
     if (fc->limited) {
         o.limit = TG_FIELD_MAX_DISTANCE;
         o.max_distance = field_limit;
@@ -1087,15 +1086,15 @@ static tg_field_options field_options(const field_ctx* fc, const tg_allocator* a
     return o;
 }
 
-static tg_status run_field(const field_ctx* fc, const tg_geodesic* g, const tg_field_options* o, double* vertex,
-                           double* points, tg_field_stats* stats)
+static tg_status run_field(const field_ctx* fc, const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_field_options* o,
+                           double* vertex, double* points, tg_field_stats* stats)
 {
     switch (fc->call) {
-    case FIELD: return tg_geodesic_field(g, field_sources, 2, o, vertex, stats);
-    case FIELD_AT: return tg_geodesic_field_at(g, field_sources, 2, field_points, FIELD_POINTS, o, points, vertex, stats);
+    case FIELD: return tg_geodesic_field(g, ws, field_sources, 2, o, vertex, stats);
+    case FIELD_AT: return tg_geodesic_field_at(g, ws, field_sources, 2, field_points, FIELD_POINTS, o, points, vertex, stats);
     case FIELD_AT_POINTS_ONLY:
-        return tg_geodesic_field_at(g, field_sources, 2, field_points, FIELD_POINTS, o, points, NULL, stats);
-    case FIELD_BATCH: return tg_geodesic_field_batch(g, field_sources, FIELD_SOURCES, o, fc->threads, vertex, stats);
+        return tg_geodesic_field_at(g, ws, field_sources, 2, field_points, FIELD_POINTS, o, points, NULL, stats);
+    case FIELD_BATCH: return tg_geodesic_distance_matrix(g, field_sources, FIELD_SOURCES, o, fc->threads, vertex, stats);
     }
     return TG_ERR_INVALID_ARGUMENT;
 }
@@ -1122,22 +1121,22 @@ static tg_status try_field(sweep* s, void* ctx)
     size_t nv = fc->nv, rows = fc->call == FIELD_BATCH ? FIELD_SOURCES : 1;
     const tg_geodesic* g = spot_g;
     tg_geodesic* own_g = NULL;
-    tg_field_workspace* ws = NULL;
+    tg_geodesic_workspace* ws = NULL;
     if (fc->workspace) {
         tg_geodesic_options go = {&s->a};
         CHECK_STATUS(tg_geodesic_create(spot, &go, &own_g), TG_OK);
         g = own_g;
-        CHECK_STATUS(tg_field_workspace_create(g, &ws), TG_OK);
+        CHECK_STATUS(tg_geodesic_workspace_create(g, &ws), TG_OK);
         if (fc->workspace == 2) {
-            tg_field_options small = field_options(fc, NULL, ws);
+            tg_field_options small = field_options(fc, NULL);
             small.limit = TG_FIELD_MAX_DISTANCE;
             small.max_distance = field_limit * 0.25;
             double* tmp = malloc(nv * sizeof *tmp);
-            CHECK_STATUS(tg_geodesic_field(g, field_sources, 1, &small, tmp, NULL), TG_OK);
+            CHECK_STATUS(tg_geodesic_field(g, ws, field_sources, 1, &small, tmp, NULL), TG_OK);
             free(tmp);
         }
     }
-    tg_field_options o = field_options(fc, &s->a, ws);
+    tg_field_options o = field_options(fc, &s->a);
     double* vertex = malloc(rows * nv * sizeof *vertex);
     double* points = malloc(FIELD_POINTS * sizeof *points);
     memset(vertex, 0xA5, rows * nv * sizeof *vertex);
@@ -1145,7 +1144,7 @@ static tg_status try_field(sweep* s, void* ctx)
     tg_field_stats stats;
     memset(&stats, 0xA5, sizeof stats);
     arm(s);
-    tg_status st = run_field(fc, g, &o, vertex, points, &stats);
+    tg_status st = run_field(fc, g, ws, &o, vertex, points, &stats);
     disarm(s);
     bool has_vertex = fc->call != FIELD_AT_POINTS_ONLY, has_points = fc->call == FIELD_AT || fc->call == FIELD_AT_POINTS_ONLY;
     if (st == TG_OK) {
@@ -1180,14 +1179,14 @@ static tg_status try_field(sweep* s, void* ctx)
     }
     /* a workspace that saw a failure still gives the right field */
     if (st != TG_OK && ws) {
-        CHECK_STATUS(run_field(fc, g, &o, vertex, points, &stats), TG_OK);
+        CHECK_STATUS(run_field(fc, g, ws, &o, vertex, points, &stats), TG_OK);
         CHECK_MSG((!has_vertex || same_bytes(vertex, fc->ref_vertex, rows * nv * sizeof *vertex)) &&
                       (!has_points || same_bytes(points, fc->ref_points, FIELD_POINTS * sizeof *points)),
                   "%s, allocation %ld failing: the next field on the workspace differs", s->name, s->k);
     }
     free(vertex);
     free(points);
-    tg_field_workspace_destroy(ws);
+    tg_geodesic_workspace_destroy(ws);
     tg_geodesic_destroy(own_g);
     return st;
 }
@@ -1198,20 +1197,20 @@ static tg_status try_field_workspace(sweep* s, void* ctx)
     tg_geodesic_options go = {&s->a};
     tg_geodesic* g = NULL;
     CHECK_STATUS(tg_geodesic_create(spot, &go, &g), TG_OK);
-    tg_field_workspace* ws = NOT_NULL;
+    tg_geodesic_workspace* ws = NOT_NULL;
     arm(s);
-    tg_status st = tg_field_workspace_create(g, &ws);
+    tg_status st = tg_geodesic_workspace_create(g, &ws);
     disarm(s);
     CHECK_NULL_ON_FAILURE(s, st, ws);
     if (st == TG_OK) {
-        tg_field_options o = field_options(fc, NULL, ws);
+        tg_field_options o = field_options(fc, NULL);
         double* d = malloc(fc->nv * sizeof *d);
-        CHECK_STATUS(tg_geodesic_field(g, field_sources, 2, &o, d, NULL), TG_OK);
+        CHECK_STATUS(tg_geodesic_field(g, ws, field_sources, 2, &o, d, NULL), TG_OK);
         CHECK_MSG(same_bytes(d, fc->ref_vertex, fc->nv * sizeof *d), "%s: field differs from the default allocator's",
                   s->name);
         free(d);
     }
-    if (st == TG_OK || ws == NULL) tg_field_workspace_destroy(ws);
+    if (st == TG_OK || ws == NULL) tg_geodesic_workspace_destroy(ws);
     tg_geodesic_destroy(g);
     return st;
 }
@@ -1225,7 +1224,7 @@ static void sweep_fields(void)
     field_sources[2] = far_b;
     for (int i = 0; i < FIELD_POINTS; ++i) field_points[i] = tg_test_random_surface_point(&rng, spot, NULL);
     double* d = malloc(nv * sizeof *d);
-    CHECK_STATUS(tg_geodesic_field(spot_g, field_sources, 2, NULL, d, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(spot_g, NULL, field_sources, 2, NULL, d, NULL), TG_OK);
     double max = 0;
     for (size_t i = 0; i < nv; ++i)
         if (isfinite(d[i]) && d[i] > max) max = d[i];
@@ -1252,8 +1251,8 @@ static void sweep_fields(void)
                     size_t rows = call == FIELD_BATCH ? FIELD_SOURCES : 1;
                     fc.ref_vertex = malloc(rows * nv * sizeof *fc.ref_vertex);
                     fc.ref_points = malloc(FIELD_POINTS * sizeof *fc.ref_points);
-                    tg_field_options o = field_options(&fc, NULL, NULL);
-                    CHECK_STATUS(run_field(&fc, spot_g, &o, fc.ref_vertex, fc.ref_points, &fc.ref_stats), TG_OK);
+                    tg_field_options o = field_options(&fc, NULL);
+                    CHECK_STATUS(run_field(&fc, spot_g, NULL, &o, fc.ref_vertex, fc.ref_points, &fc.ref_stats), TG_OK);
                     char name[160];
                     if (call == FIELD_BATCH)
                         snprintf(name, sizeof name, "%s%s (%d thread%s)", call_names[call], limited ? " limited" : "",
@@ -1263,7 +1262,7 @@ static void sweep_fields(void)
                                  ws_names[workspace]);
                     sweep_run(name, try_field, &fc, dense, stride);
                     if (call == FIELD && workspace == 0)
-                        sweep_run(limited ? "tg_field_workspace_create (then a limited field)" : "tg_field_workspace_create",
+                        sweep_run(limited ? "tg_geodesic_workspace_create (then a limited field)" : "tg_geodesic_workspace_create",
                                   try_field_workspace, &fc, dense, stride);
                     free(fc.ref_vertex);
                     free(fc.ref_points);
@@ -1297,7 +1296,7 @@ static void sweep_render(void)
 {
     size_t nv = tg_mesh_vertex_count(spot);
     double* field = malloc(nv * sizeof *field);
-    CHECK_STATUS(tg_geodesic_field(spot_g, &far_a, 1, NULL, field, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(spot_g, NULL, &far_a, 1, NULL, field, NULL), TG_OK);
     tg_geodesic_workspace* ws = NULL;
     tg_path* p = NULL;
     CHECK_STATUS(tg_geodesic_workspace_create(spot_g, &ws), TG_OK);

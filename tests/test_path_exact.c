@@ -77,7 +77,7 @@ static void check_meshes_pairs(const char* file, int pairs)
         tg_surface_point a = tg_test_random_surface_point(&rng, c.mesh, NULL);
         tg_surface_point b = tg_test_random_surface_point(&rng, c.mesh, NULL);
         double d;
-        CHECK_STATUS(tg_geodesic_field_at(c.geo, &a, 1, &b, 1, NULL, &d, NULL, NULL), TG_OK);
+        CHECK_STATUS(tg_geodesic_field_at(c.geo, NULL, &a, 1, &b, 1, NULL, &d, NULL, NULL), TG_OK);
         /* straightening alone: never proven */
         tg_path_options o;
         memset(&o, 0, sizeof o);

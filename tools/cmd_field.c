@@ -254,9 +254,9 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     memset(&stats, 0, sizeof stats);
     double t0 = now_s();
     if (st == TG_OK && fa->matrix)
-        st = tg_geodesic_field_batch(geo, pts, count, &o, fa->threads, dist, &stats);
+        st = tg_geodesic_distance_matrix(geo, pts, count, &o, fa->threads, dist, &stats);
     else if (st == TG_OK)
-        st = tg_geodesic_field_at(geo, pts, count, at_pts, fa->at_count, &o, at_d, dist, &stats);
+        st = tg_geodesic_field_at(geo, NULL, pts, count, at_pts, fa->at_count, &o, at_d, dist, &stats);
     double secs = now_s() - t0;
     cli_progress_end(&prog);
     if (st == TG_ERR_CANCELLED) {

@@ -196,7 +196,7 @@ int main(int argc, char** argv)
         tg_surface_point src = tg_surface_vertex(v);
         tg_field_stats st;
         double t0 = thread_cpu();
-        if (tg_geodesic_field(g, &src, 1, nullptr, ours.data(), &st) != TG_OK) peer::die("field failed", argv[1]);
+        if (tg_geodesic_field(g, NULL, &src, 1, nullptr, ours.data(), &st) != TG_OK) peer::die("field failed", argv[1]);
         double t_ours = thread_cpu() - t0;
         if (!cgal) {
             std::printf("| %s | %zu | v:%u | %.3f | %.2fM | %.1f | - | - | - |\n", name.c_str(), nf, v, t_ours,

@@ -46,7 +46,7 @@ __version__ = _L.tg_version().decode()
 
 
 def version() -> str:
-    """The version of the loaded libtrigeo.so, e.g. "0.2.0"."""
+    """The version of the loaded libtrigeo.so, e.g. "0.3.0"."""
     return _L.tg_version().decode()
 
 
@@ -434,8 +434,6 @@ class Mesh:
                              _L.tg_bvh_workspace_destroy)
         self._geo_ws = _Pool(lambda: _new(_L.tg_geodesic_workspace_create, self._geo),
                              _L.tg_geodesic_workspace_destroy)
-        self._field_ws = _Pool(lambda: _new(_L.tg_field_workspace_create, self._geo),
-                               _L.tg_field_workspace_destroy)
         self._paths = _Pool(lambda: _new(_L.tg_path_create, None), _L.tg_path_destroy)
 
     # -- lifetime ---------------------------------------------------------------------------
@@ -446,7 +444,7 @@ class Mesh:
         h = getattr(self, "_h", None)
         if not h:
             return
-        for pool in (self._bvh_ws, self._geo_ws, self._field_ws, self._paths):
+        for pool in (self._bvh_ws, self._geo_ws, self._paths):
             pool.close()
         if self._geo:
             _L.tg_geodesic_destroy(self._geo)
@@ -658,10 +656,8 @@ class Mesh:
         point. method: "exact" (default: the globally shortest path, proven, global_ "proven":
         an exact window propagation from a ordered toward b and bounded by the best distance to
         b found so far, traced back; no edge path, so initial_length == length and iterations
-        == 0; ~1.1 ms for near pairs on a 1.4M-face mesh, ~60 ms for far ones, and ~130 MB of
-        field workspace per thread at 1M faces, made on first use), "straighten" (fast: the
-        shortest edge path straightened into a locally shortest path, certified straight but
-        "unproven", ~5x faster on far pairs), "relax" (the seed's relaxation) or "edge" (the
+        == 0; timings in BENCHMARKS.md), "straighten" (faster on far pairs: the shortest edge
+        path straightened into a locally shortest path, certified straight but "unproven"), "relax" (the seed's relaxation) or "edge" (the
         shortest edge path only). certify=True checks a straighten/relax/edge result against the
         exact distance and replaces it with the exact path if a shorter one exists, so the path
         comes out proven (redundant with "exact").
@@ -703,8 +699,7 @@ class Mesh:
         long sequences of endpoints as path() takes them (SurfacePoints, vertex indices, (x, y, z)
         positions). Every endpoint is checked before any path is computed. method, certify: as
         path() (default "exact": globally shortest). threads: 0 all cores; the pairs are shared
-        out among that many threads, each with its own workspace (for "exact", each with its own
-        field workspace too). Returns (k,) float64, the same numbers as k calls of path()."""
+        out among that many threads, each with its own workspace. Returns (k,) float64, the same numbers as k calls of path()."""
         if method not in _METHODS:
             raise _bad(f"method must be one of {sorted(_METHODS)}, not {method!r}")
         threads = _threads(threads)
@@ -763,9 +758,8 @@ class Mesh:
         o = self._field_options(max_distance, pr)
         out = np.empty(self.vertex_count)
         geo = self._get_geo()
-        with self._field_ws.take() as ws:
-            o.workspace = ws
-            st = pr.run(lambda: _L.tg_geodesic_field(geo, src, len(src), ctypes.byref(o), _ptr(out), None))
+        with self._geo_ws.take() as ws:
+            st = pr.run(lambda: _L.tg_geodesic_field(geo, ws, src, len(src), ctypes.byref(o), _ptr(out), None))
         pr.finish(st, "field")
         return out
 
@@ -779,9 +773,8 @@ class Mesh:
         o = self._field_options(max_distance, pr)
         out = np.empty(len(pts))
         geo = self._get_geo()
-        with self._field_ws.take() as ws:
-            o.workspace = ws
-            st = pr.run(lambda: _L.tg_geodesic_field_at(geo, src, len(src), pts, len(pts), ctypes.byref(o),
+        with self._geo_ws.take() as ws:
+            st = pr.run(lambda: _L.tg_geodesic_field_at(geo, ws, src, len(src), pts, len(pts), ctypes.byref(o),
                                                         _ptr(out), None, None))
         pr.finish(st, "field_at")
         return out
@@ -797,7 +790,7 @@ class Mesh:
         n = self.vertex_count
         out = np.empty((len(src), n))
         geo = self._get_geo()
-        st = pr.run(lambda: _L.tg_geodesic_field_batch(geo, src, len(src), ctypes.byref(o), threads, _ptr(out), None))
+        st = pr.run(lambda: _L.tg_geodesic_distance_matrix(geo, src, len(src), ctypes.byref(o), threads, _ptr(out), None))
         pr.finish(st, "distance_matrix")
         return out
 

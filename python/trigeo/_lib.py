@@ -14,7 +14,7 @@ from ctypes import POINTER, c_char, c_char_p, c_double, c_int, c_int64, c_size_t
 __all__ = ["lib", "lib_path"]
 
 _HERE = os.path.dirname(os.path.abspath(__file__))
-SONAME = "libtrigeo.so.0.2"  # CMakeLists.txt: SOVERSION major.minor while the version is 0.x
+SONAME = "libtrigeo.so.0.3"  # CMakeLists.txt: SOVERSION major.minor while the version is 0.x
 
 
 def _candidates() -> list[tuple[str, str]]:
@@ -120,7 +120,7 @@ PROGRESS_FN = ctypes.CFUNCTYPE(c_int, c_void_p, POINTER(FieldProgress))
 
 
 class FieldOptions(ctypes.Structure):
-    _fields_ = [("allocator", c_void_p), ("limit", c_int), ("max_distance", c_double), ("workspace", c_void_p),
+    _fields_ = [("allocator", c_void_p), ("limit", c_int), ("max_distance", c_double),
                 ("progress", PROGRESS_FN), ("progress_user", c_void_p)]
 
 
@@ -178,11 +178,9 @@ _SIGNATURES = {
     "tg_path_global_name": (c_char_p, [c_int]),
     "tg_geodesic_path": (c_int, [_vp, _vp, _psp, _psp, POINTER(PathOptions), _vp]),
     "tg_path_write_obj": (c_int, [_vp, c_char_p, _pdiag]),
-    "tg_field_workspace_create": (c_int, [_vp, _pvp]),
-    "tg_field_workspace_destroy": (None, [_vp]),
-    "tg_geodesic_field": (c_int, [_vp, _psp, c_size_t, POINTER(FieldOptions), _pd, _vp]),
-    "tg_geodesic_field_at": (c_int, [_vp, _psp, c_size_t, _psp, c_size_t, POINTER(FieldOptions), _pd, _pd, _vp]),
-    "tg_geodesic_field_batch": (c_int, [_vp, _psp, c_size_t, POINTER(FieldOptions), c_int, _pd, _vp]),
+    "tg_geodesic_field": (c_int, [_vp, _vp, _psp, c_size_t, POINTER(FieldOptions), _pd, _vp]),
+    "tg_geodesic_field_at": (c_int, [_vp, _vp, _psp, c_size_t, _psp, c_size_t, POINTER(FieldOptions), _pd, _pd, _vp]),
+    "tg_geodesic_distance_matrix": (c_int, [_vp, _psp, c_size_t, POINTER(FieldOptions), c_int, _pd, _vp]),
     "tg_render_png": (c_int, [_vp, POINTER(RenderOptions), c_char_p, _pdiag]),
 }
 

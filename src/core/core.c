@@ -146,6 +146,18 @@ bool tg__vec_reserve(const tg_allocator* a, tg__vec* v, size_t extra)
     return true;
 }
 
+bool tg__vec_fit(const tg_allocator* a, tg__vec* v, size_t n)
+{
+    if (n <= v->capacity) return true;
+    size_t cap = tg__grow_capacity(v->capacity, n, 64), bytes;
+    if (tg__mul_overflows(cap, v->elem, &bytes)) return false;
+    void* p = tg__realloc(a, v->data, bytes);
+    if (!p) return false;
+    v->data = p;
+    v->capacity = cap;
+    return true;
+}
+
 void tg__vec_free(const tg_allocator* a, tg__vec* v)
 {
     tg__free(a, v->data);

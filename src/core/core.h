@@ -59,7 +59,8 @@ double tg__strtod_c(const char* s, char** end);
  * overflow. Returns cap when it already holds need. */
 size_t tg__grow_capacity(size_t cap, size_t need, size_t first);
 
-/* A growable byte/element buffer for readers (amortised doubling, checked sizes). */
+/* The library's one growable buffer (amortised doubling, checked sizes): readers' data, BVH
+ * tasks, and every scratch buffer of the geodesic workspace. */
 typedef struct tg__vec {
     void* data;
     size_t count;    /* elements in use */
@@ -68,6 +69,9 @@ typedef struct tg__vec {
 } tg__vec;
 /* Makes room for `extra` more elements; false on overflow or allocation failure. */
 bool tg__vec_reserve(const tg_allocator* a, tg__vec* v, size_t extra);
+/* Makes room for n elements in all (for a buffer used as an array of that size), keeping the
+ * content and the count; false on overflow or allocation failure. */
+bool tg__vec_fit(const tg_allocator* a, tg__vec* v, size_t n);
 void tg__vec_free(const tg_allocator* a, tg__vec* v);
 
 #endif

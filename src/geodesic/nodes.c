@@ -1,8 +1,9 @@
-/* nodes.c - path nodes (vertex, edge point, face point): barycentrics, precise offsets, faces.
+/* nodes.c - path nodes (vertex, edge point, face point): barycentrics, precise offsets, faces;
+ * routes (a node path with the face of each segment).
  * Based on: barycentric coordinates on triangles; differences formed relative to a corner so
  *   that points near a vertex keep their relative precision (Higham, "Accuracy and Stability of
  *   Numerical Algorithms", 2nd ed., §2: avoid subtracting nearly equal rounded quantities). */
-#include "geodesic/field_internal.h"
+#include "geodesic/solver.h"
 
 bool tg__node_bary(const tg_geodesic* g, const tg__node* p, uint32_t f, double b[3])
 {
@@ -136,72 +137,14 @@ uint32_t tg__common_face(const tg_geodesic* g, const tg__node* a, const tg__node
     if (a->kind == TG__NODE_FACE) return face_holds(g, a->id, b) ? a->id : TG_NONE;
     if (b->kind == TG__NODE_FACE) return face_holds(g, b->id, a) ? b->id : TG_NONE;
     uint32_t v = anchor_vertex(g, a);
-    for (uint32_t i = g->vc_start[v]; i < g->vc_start[v + 1]; ++i) {
-        uint32_t f = g->vc[i] / 3;
+    for (uint32_t i = g->corner_start[v]; i < g->corner_start[v + 1]; ++i) {
+        uint32_t f = g->corners[i] / 3;
         if (face_holds(g, f, a) && face_holds(g, f, b)) return f;
     }
     return TG_NONE;
 }
 
-/* A point of a duplicate face (skipped: not part of the surface for windows or paths) is the same
- * point of the kept face with the same three vertices; p is in the solver's numbering. */
-static tg_surface_point to_kept_twin(const tg_geodesic* g, tg_surface_point p)
+bool tg__route_fit(const tg_allocator* a, tg__route* r, size_t n)
 {
-    uint32_t f = p.kind == TG_SURFACE_FACE ? p.index : p.index / 3;
-    const uint32_t* t = g->tri + 3 * (size_t)f;
-    if (!(g->fflags[f] & TG__F_SKIP) || t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return p;
-    for (uint32_t i = g->vc_start[t[0]]; i < g->vc_start[t[0] + 1]; ++i) {
-        uint32_t q = g->vc[i] / 3;
-        if (q == f || (g->fflags[q] & TG__F_SKIP)) continue;
-        int c[3] = {tg__corner_of(g, q, t[0]), tg__corner_of(g, q, t[1]), tg__corner_of(g, q, t[2])};
-        if (c[0] < 0 || c[1] < 0 || c[2] < 0) continue;
-        if (p.kind == TG_SURFACE_FACE) {
-            double b[3];
-            for (int k = 0; k < 3; ++k) b[c[k]] = p.bary[k];
-            return tg_surface_face(q, b[0], b[1], b[2]);
-        }
-        uint32_t k = p.index % 3, cu = (uint32_t)c[k], cw = (uint32_t)c[(k + 1) % 3];
-        return (cu + 1) % 3 == cw ? tg_surface_edge(3 * q + cu, p.t) : tg_surface_edge(3 * q + cw, 1.0 - p.t);
-    }
-    return p;
-}
-
-tg_surface_point tg__surface_to_solver(const tg_geodesic* g, tg_surface_point p)
-{
-    if (p.kind == TG_SURFACE_VERTEX) {
-        p.index = g->vinv[p.index];
-    } else if (p.kind == TG_SURFACE_FACE) {
-        p.index = g->finv[p.index];
-        if (g->fflags[p.index] & TG__F_FLIPPED) {
-            double b = p.bary[1];
-            p.bary[1] = p.bary[2], p.bary[2] = b;
-        }
-    } else if (p.kind == TG_SURFACE_EDGE) {
-        uint32_t f = g->finv[p.index / 3], k = p.index % 3;
-        if (g->fflags[f] & TG__F_FLIPPED)
-            p = tg_surface_edge(3 * f + (2 - k), 1.0 - p.t);
-        else
-            p.index = 3 * f + k;
-    }
-    return p.kind == TG_SURFACE_VERTEX ? p : to_kept_twin(g, p);
-}
-
-void tg__node_to_mesh(const tg_geodesic* g, tg__node* n)
-{
-    if (n->kind == TG__NODE_VERTEX) {
-        n->id = g->vperm[n->id];
-    } else if (n->kind == TG__NODE_FACE) {
-        if (g->fflags[n->id] & TG__F_FLIPPED) {
-            double b = n->bary[1];
-            n->bary[1] = n->bary[2], n->bary[2] = b;
-        }
-        n->id = g->fperm[n->id];
-    } else if (n->kind == TG__NODE_EDGE) {
-        uint32_t f = n->id / 3, k = n->id % 3;
-        if (g->fflags[f] & TG__F_FLIPPED) {
-            double t = n->t;
-            k = 2 - k, n->t = n->s, n->s = t;
-        }
-        n->id = 3 * g->fperm[f] + k;
-    }
+    return tg__vec_fit(a, &r->nodes, n) && tg__vec_fit(a, &r->faces, n);
 }

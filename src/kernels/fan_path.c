@@ -827,7 +827,7 @@ tg_status tg__fan_path_minimize_with(const tg_allocator* a, const double p0[3], 
         }
         size_t mr = fan_merge_collinear(&F, v, w, dfull, lfull, m, scale, t_init, group);
         F.ro = tg__root_opts_make(opts);
-        F.strategy = opts ? opts->strategy : TG_FAN_COORDINATE;
+        F.strategy = opts && opts->strategy != TG_FAN_DEFAULT ? (int)opts->strategy : TG_FAN_CG;
         /* Default caps: coordinate sweeps converge linearly, at a rate that degrades like 1 - c / m^2
          * on long fans (the Hessian is tridiagonal, like a 1D Laplacian), so they get O(m^2) sweeps;
          * Newton and conjugate gradient need O(m) steps. */

@@ -17,7 +17,7 @@ struct tg_mesh {
     tg_mesh_report report;
 };
 
-/* The coordinate range in which squared distances stay finite in double (issue 12 item 2):
+/* The coordinate range in which squared distances stay finite in double:
  * |x| <= 1e150 keeps sums of three squares below 1e301. Meshes beyond it load, write and report
  * (any finite coordinate round-trips), but distance structures refuse them rather than answer
  * wrongly. */

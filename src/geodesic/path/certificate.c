@@ -4,7 +4,7 @@
  *   polyline is a shortest geodesic across an edge iff it is straight in the unfolding of the two
  *   faces; at a vertex iff both angles are at least pi); Mitchell, Mount & Papadimitriou (1987),
  *   Lemma 3.4; seed 002 §2 (the two-triangle configuration of an edge point). */
-#include "geodesic/geodesic_internal.h"
+#include "geodesic/path/path.h"
 
 /* A neighbour closer to the crossing than this is merged with it and the angle is taken between
  * the nearest points beyond, through the unfolding of the faces in between. A crossing is stored
@@ -40,18 +40,11 @@ static uint32_t halfedge_in(const tg_geodesic* g, uint32_t h, uint32_t f)
 static bool unfold_across(const tg_geodesic* g, placed_face* pf, uint32_t h, uint32_t to)
 {
     uint32_t q = halfedge_in(g, h, to);
-    if (q == TG_NONE || q == h || h / 3 != pf->f) return false;
-    bool same = g->tri[q] == g->tri[h]; /* wound the same way: mirrored in the plane */
+    if (q == TG_NONE || q == h || h / 3 != pf->f || !(g->frame[h].len > 0.0)) return false;
     double r[2] = {pf->xy[h % 3][0], pf->xy[h % 3][1]};
     double l[2] = {pf->xy[(h % 3 + 1) % 3][0], pf->xy[(h % 3 + 1) % 3][1]};
-    uint32_t qk = q % 3;
-    if (!(tg_v3_dist(tg__gpos(g, g->tri[h]), tg__gpos(g, g->tri[tg_halfedge_next(h)])) > 0.0)) return false;
     pf->f = q / 3;
-    tg__unfold_apex(g, h, g->tri[q - qk + (qk + 2) % 3], r, l, pf->xy[(qk + 2) % 3]);
-    const double* q0 = same ? r : l;
-    const double* q1 = same ? l : r;
-    pf->xy[qk][0] = q0[0], pf->xy[qk][1] = q0[1];
-    pf->xy[(qk + 1) % 3][0] = q1[0], pf->xy[(qk + 1) % 3][1] = q1[1];
+    tg__unfold_across(g, h, q, r, l, pf->xy);
     return true;
 }
 
@@ -137,8 +130,11 @@ static double crossing_defect(const tg_geodesic* g, const tg__node* nodes, const
     return TG__PI - a;
 }
 
-double tg__path_defect(const tg_geodesic* g, const tg__node* nodes, const uint32_t* faces, size_t count)
+double tg__route_defect(const tg_geodesic* g, const tg__route* r)
 {
+    const tg__node* nodes = tg__route_nodes(r);
+    const uint32_t* faces = tg__route_faces(r);
+    size_t count = r->nodes.count;
     double worst = 0.0;
     for (size_t i = 1; i + 1 < count; ++i) {
         double d = 0.0;
@@ -147,8 +143,8 @@ double tg__path_defect(const tg_geodesic* g, const tg__node* nodes, const uint32
         } else if (nodes[i].kind == TG__NODE_VERTEX) {
             uint32_t fi, fo;
             int side;
-            double a = tg__vertex_best_side(g, nodes[i].id, &nodes[i - 1], faces[i - 1], &nodes[i + 1], faces[i],
-                                            &fi, &fo, &side);
+            double a = tg__vertex_best_side(g, nodes[i].id, &nodes[i - 1], faces[i - 1], -1.0, &nodes[i + 1],
+                                            faces[i], -1.0, &fi, &fo, &side);
             if (a >= 0.0) d = TG__PI - a;
         }
         if (d > worst) worst = d;

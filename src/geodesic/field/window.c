@@ -12,7 +12,7 @@
  * Why trimming is exact: if window i reaches the edge point X more shortly than window j, every
  * point q that j's ray through X reaches is reached at least as shortly by i's path to X followed
  * by the same straight segment X -> q (a real path on the surface), so j may drop X. */
-#include "geodesic/field_internal.h"
+#include "geodesic/field/field.h"
 
 
 /* Two windows tie where they differ by less than this relative margin (rounding of distances

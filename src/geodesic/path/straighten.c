@@ -7,15 +7,19 @@
  *   faces to the sequence; the length decreases strictly, so the loop ends at a locally exact
  *   geodesic); seed 002 §5 and Figure 5.1 (the two fans at a path vertex); Mitchell, Mount &
  *   Papadimitriou (1987), Lemma 3.4 (the vertex condition: both angles >= pi). */
-#include "geodesic/geodesic_internal.h"
+#include "geodesic/path/path.h"
 
 #include <string.h>
 
-typedef struct decision {
-    int side;        /* -1: keep the passage; 0 / 1: re-route through that side's fan */
-    uint32_t f_in;   /* the faces the fan runs between (may differ from the sleeves' only when a */
-    uint32_t f_out;  /* portal-less sleeve runs along a wall edge and another face holds it) */
-} decision;
+typedef tg__straighten_decision decision;
+
+/* One straightening: the solver, the allocator and the scratch of the stage and of the funnel. */
+typedef struct straightener {
+    const tg_geodesic* g;
+    const tg_allocator* a;
+    tg__straighten_scratch* st;
+    tg__sleeve_scratch* ss;
+} straightener;
 
 static uint32_t sleeve_last_face(const tg_geodesic* g, const tg__sleeve* s, const uint32_t* portals)
 {
@@ -24,12 +28,12 @@ static uint32_t sleeve_last_face(const tg_geodesic* g, const tg__sleeve* s, cons
 }
 
 /* Decides, for every interior vertex passage, whether and how to re-route it. Returns the count. */
-static size_t decide_all(tg_geodesic_workspace* ws, int cur, size_t np, double limit, bool single, decision* dec)
+static size_t decide_all(const straightener* sr, size_t np, double limit, bool single, decision* dec)
 {
-    const tg_geodesic* g = ws->geo;
-    const tg__node* piv = ws->piv[cur].p;
-    const tg__sleeve* slv = ws->slv[cur].p;
-    const uint32_t* portals = ws->portals[cur].p;
+    const tg_geodesic* g = sr->g;
+    const tg__node* piv = sr->st->now.pivots.data;
+    const tg__sleeve* slv = sr->st->now.sleeves.data;
+    const uint32_t* portals = sr->st->now.portals.data;
     size_t count = 0;
     for (size_t i = 0; i < np; ++i) dec[i].side = -1;
     for (size_t i = 1; i + 1 < np; ++i) {
@@ -41,7 +45,7 @@ static size_t decide_all(tg_geodesic_workspace* ws, int cur, size_t np, double l
         uint32_t f_in = sleeve_last_face(g, in, portals), f_out = out->face0;
         uint32_t fi, fo;
         int side;
-        double a = tg__vertex_best_side_hint(g, piv[i].id, &in->near_b, f_in, in->ang_b, &out->near_a, f_out,
+        double a = tg__vertex_best_side(g, piv[i].id, &in->near_b, f_in, in->ang_b, &out->near_a, f_out,
                                              out->ang_a, &fi, &fo, &side);
         if (a < 0.0 || !(a < limit)) continue;
         if ((fi != f_in && in->portal_end != in->portal_begin) || (fo != f_out && out->portal_end != out->portal_begin))
@@ -79,15 +83,15 @@ static void push_portal(const tg_geodesic* g, uint32_t* mp, size_t* m, uint32_t 
         mp[(*m)++] = p;
 }
 
-/* Appends to ws->merged: sleeves i..j-1 of the current state joined by the fans of the re-routed
+/* Writes to the merged portals: sleeves i..j-1 of the current state joined by the fans of the re-routed
  * pivots i+1..j-1. Returns false when a fan walk fails (the run is then left unchanged). */
-static bool build_run(tg_geodesic_workspace* ws, int cur, size_t i, size_t j, const decision* dec,
-                      uint32_t* out_face0, size_t* out_m, tg_status* st)
+static bool build_run(const straightener* sr, size_t i, size_t j, const decision* dec, uint32_t* out_face0,
+                      size_t* out_m, tg_status* st)
 {
-    const tg_geodesic* g = ws->geo;
-    const tg__node* piv = ws->piv[cur].p;
-    const tg__sleeve* slv = ws->slv[cur].p;
-    const uint32_t* portals = ws->portals[cur].p;
+    const tg_geodesic* g = sr->g;
+    const tg__node* piv = sr->st->now.pivots.data;
+    const tg__sleeve* slv = sr->st->now.sleeves.data;
+    const uint32_t* portals = sr->st->now.portals.data;
     size_t m = 0;
     *st = TG_OK;
     *out_face0 = slv[i].face0;
@@ -99,13 +103,13 @@ static bool build_run(tg_geodesic_workspace* ws, int cur, size_t i, size_t j, co
         size_t fan_cap = 0;
         if (r + 1 < j) {
             uint32_t v = piv[r + 1].id;
-            fan_cap = (size_t)(g->vc_start[v + 1] - g->vc_start[v]) + 2;
+            fan_cap = (size_t)(g->corner_start[v + 1] - g->corner_start[v]) + 2;
         }
-        if (!tg__buf_reserve(ws, &ws->merged, m + k + fan_cap, sizeof(uint32_t))) {
+        if (!tg__vec_fit(sr->a, &sr->st->merged, m + k + fan_cap)) {
             *st = TG_ERR_OUT_OF_MEMORY;
             return false;
         }
-        uint32_t* mp = ws->merged.p;
+        uint32_t* mp = sr->st->merged.data;
         if (r > i && k > 0 && s->face0 != dec[r].f_out) return false;
         for (size_t q = 0; q < k; ++q) push_portal(g, mp, &m, portals[s->portal_begin + q]);
         if (r + 1 == j) break;
@@ -115,7 +119,7 @@ static bool build_run(tg_geodesic_workspace* ws, int cur, size_t i, size_t j, co
         /* the fan is written past the end, then pushed one portal at a time */
         double a_in = d->f_in == sleeve_last_face(g, s, portals) ? s->ang_b : -1.0;
         double a_out = d->f_out == slv[r + 1].face0 ? slv[r + 1].ang_a : -1.0;
-        size_t n = tg__fan_portals_hint(g, piv[r + 1].id, d->f_in, &s->near_b, a_in, d->f_out, &slv[r + 1].near_a,
+        size_t n = tg__fan_portals(g, piv[r + 1].id, d->f_in, &s->near_b, a_in, d->f_out, &slv[r + 1].near_a,
                                         a_out, d->side, mp + m, fan_cap);
         if (n == SIZE_MAX) return false;
         size_t at = m;
@@ -125,65 +129,65 @@ static bool build_run(tg_geodesic_workspace* ws, int cur, size_t i, size_t j, co
     return true;
 }
 
-/* Copies pivot i+1 and sleeve i of the current state to the next one. */
-static bool copy_step(tg_geodesic_workspace* ws, int cur, size_t i, size_t* np, size_t* nq)
+/* Appends pivot i+1 and sleeve i of the current state to the next one. */
+static bool copy_step(const straightener* sr, size_t i)
 {
-    int nxt = 1 - cur;
-    const tg__sleeve* s = (const tg__sleeve*)ws->slv[cur].p + i;
-    size_t k = s->portal_end - s->portal_begin;
-    if (!tg__buf_reserve(ws, &ws->piv[nxt], *np + 1, sizeof(tg__node)) ||
-        !tg__buf_reserve(ws, &ws->slv[nxt], *np + 1, sizeof(tg__sleeve)) ||
-        !tg__buf_reserve(ws, &ws->portals[nxt], *nq + k, sizeof(uint32_t)))
+    tg__pivot_path *now = &sr->st->now, *next = &sr->st->next;
+    const tg__sleeve* s = (const tg__sleeve*)now->sleeves.data + i;
+    size_t k = s->portal_end - s->portal_begin, np = next->pivots.count, nq = next->portals.count;
+    if (!tg__vec_fit(sr->a, &next->pivots, np + 1) || !tg__vec_fit(sr->a, &next->sleeves, np + 1) ||
+        !tg__vec_fit(sr->a, &next->portals, nq + k))
         return false;
-    tg__sleeve* d = (tg__sleeve*)ws->slv[nxt].p + (*np - 1);
+    tg__sleeve* d = (tg__sleeve*)next->sleeves.data + (np - 1);
     *d = *s;
     d->fresh = 0;
-    memcpy((uint32_t*)ws->portals[nxt].p + *nq, (const uint32_t*)ws->portals[cur].p + s->portal_begin,
+    memcpy((uint32_t*)next->portals.data + nq, (const uint32_t*)now->portals.data + s->portal_begin,
            k * sizeof(uint32_t));
-    d->portal_begin = (uint32_t)*nq;
-    d->portal_end = (uint32_t)(*nq + k);
-    *nq += k;
-    ((tg__node*)ws->piv[nxt].p)[(*np)++] = ((const tg__node*)ws->piv[cur].p)[i + 1];
+    d->portal_begin = (uint32_t)nq;
+    d->portal_end = (uint32_t)(nq + k);
+    next->portals.count = nq + k;
+    ((tg__node*)next->pivots.data)[np] = ((const tg__node*)now->pivots.data)[i + 1];
+    next->pivots.count = np + 1;
+    next->sleeves.count = np;
     return true;
 }
 
-/* One sweep: re-routes the decided passages run by run. Returns the new pivot count in *out_np
- * and the total length before/after in *io_len. */
-static tg_status sweep(tg_geodesic_workspace* ws, int cur, size_t np, const decision* dec, size_t* out_np,
-                       size_t* accepted, bool* out_retry)
+/* One sweep from `now` into `next`: re-routes the decided passages run by run. *accepted counts
+ * the passages re-routed; *out_retry asks for a sweep of single passages after a rejected run. */
+static tg_status sweep(const straightener* sr, const decision* dec, size_t* accepted, bool* out_retry)
 {
+    tg__pivot_path *now = &sr->st->now, *next = &sr->st->next;
+    size_t np = now->pivots.count;
     *out_retry = false;
-    int nxt = 1 - cur;
-    size_t onp = 1, onq = 0;
-    if (!tg__buf_reserve(ws, &ws->piv[nxt], 1, sizeof(tg__node)) ||
-        !tg__buf_reserve(ws, &ws->slv[nxt], 1, sizeof(tg__sleeve)))
-        return TG_ERR_OUT_OF_MEMORY;
-    ((tg__node*)ws->piv[nxt].p)[0] = ((const tg__node*)ws->piv[cur].p)[0];
+    next->pivots.count = next->sleeves.count = next->portals.count = 0;
+    if (!tg__vec_fit(sr->a, &next->pivots, 1) || !tg__vec_fit(sr->a, &next->sleeves, 1)) return TG_ERR_OUT_OF_MEMORY;
+    ((tg__node*)next->pivots.data)[0] = ((const tg__node*)now->pivots.data)[0];
+    next->pivots.count = 1;
     *accepted = 0;
     size_t i = 0;
     while (i + 1 < np) {
         size_t j = i + 1;
         while (j + 1 < np && dec[j].side >= 0) j++;
         if (j == i + 1) {
-            if (!copy_step(ws, cur, i, &onp, &onq)) return TG_ERR_OUT_OF_MEMORY;
+            if (!copy_step(sr, i)) return TG_ERR_OUT_OF_MEMORY;
             i = j;
             continue;
         }
         uint32_t face0;
         size_t m = 0;
         tg_status st;
-        bool ok = build_run(ws, cur, i, j, dec, &face0, &m, &st);
+        bool ok = build_run(sr, i, j, dec, &face0, &m, &st);
         if (st != TG_OK) return st;
-        size_t save_np = onp, save_nq = onq;
+        size_t save_np = next->pivots.count, save_nq = next->portals.count;
         if (ok) {
-            const tg__node* piv = ws->piv[cur].p;
-            const tg__sleeve* slv = ws->slv[cur].p;
+            const tg__node* piv = now->pivots.data;
+            const tg__sleeve* slv = now->sleeves.data;
             double old_len = 0.0, new_len = 0.0;
             for (size_t r = i; r < j; ++r) old_len += slv[r].len;
-            st = tg__funnel(ws, &piv[i], &piv[j], face0, ws->merged.p, m, nxt, &onp, &onq);
+            st = tg__funnel(sr->g, sr->a, sr->ss, &piv[i], &piv[j], face0, sr->st->merged.data, m, next);
             if (st == TG_ERR_OUT_OF_MEMORY) return st;
-            const tg__sleeve* ns = ws->slv[nxt].p;
-            for (size_t r = save_np - 1; st == TG_OK && r + 1 < onp; ++r) new_len += ns[r].len;
+            const tg__sleeve* ns = next->sleeves.data;
+            for (size_t r = save_np - 1; st == TG_OK && r + 1 < next->pivots.count; ++r) new_len += ns[r].len;
             /* the old path lies in the merged sleeve, so the funnel's path cannot be longer; a
              * longer one would be a numerical accident in a degenerate strip: keep the old run.
              * 1e-12 relative is far above the rounding of two unfoldings of the same strip. */
@@ -194,41 +198,41 @@ static tg_status sweep(tg_geodesic_workspace* ws, int cur, size_t np, const deci
         } else {
             /* keep the old run; when it joined several passages, retry them one at a time in
              * the next sweep (their sleeves stay fresh so that they are decided again) */
-            onp = save_np, onq = save_nq;
+            next->pivots.count = save_np, next->sleeves.count = save_np - 1, next->portals.count = save_nq;
             for (size_t r = i; r < j; ++r) {
-                if (!copy_step(ws, cur, r, &onp, &onq)) return TG_ERR_OUT_OF_MEMORY;
-                if (j - i > 2) ((tg__sleeve*)ws->slv[nxt].p)[onp - 2].fresh = 1;
+                if (!copy_step(sr, r)) return TG_ERR_OUT_OF_MEMORY;
+                if (j - i > 2) ((tg__sleeve*)next->sleeves.data)[next->pivots.count - 2].fresh = 1;
             }
             if (j - i > 2) *out_retry = true; /* a single passage that cannot be re-routed stays (the
                                                   caller's certificate then tells it is not straight) */
         }
         i = j;
     }
-    *out_np = onp;
     return TG_OK;
 }
 
-/* Expands pivots and sleeves into the route's nodes, with every edge crossing. */
-static tg_status expand(tg_geodesic_workspace* ws, int cur, size_t np, tg__route* route)
+/* Expands the pivot path `now` into the route's nodes, with every edge crossing. */
+static tg_status expand(const straightener* sr, tg__route* route)
 {
-    const tg__sleeve* slv = ws->slv[cur].p;
+    const tg__pivot_path* now = &sr->st->now;
+    size_t np = now->pivots.count;
+    const tg__sleeve* slv = now->sleeves.data;
     size_t total = 1;
     for (size_t i = 0; i + 1 < np; ++i) total += slv[i].portal_end - slv[i].portal_begin + 1;
-    if (!tg__buf_reserve(ws, &route->nodes, total, sizeof(tg__node)) ||
-        !tg__buf_reserve(ws, &route->faces, total, sizeof(uint32_t)))
-        return TG_ERR_OUT_OF_MEMORY;
-    const tg__node* piv = ws->piv[cur].p;
-    const uint32_t* portals = ws->portals[cur].p;
-    tg__node* nodes = route->nodes.p;
-    uint32_t* faces = route->faces.p;
+    if (!tg__route_fit(sr->a, route, total)) return TG_ERR_OUT_OF_MEMORY;
+    const tg__node* piv = now->pivots.data;
+    const uint32_t* portals = now->portals.data;
+    tg__node* nodes = tg__route_nodes(route);
+    uint32_t* faces = tg__route_faces(route);
     size_t n = 0;
     nodes[n++] = piv[0];
     for (size_t i = 0; i + 1 < np; ++i) {
         const tg__sleeve* s = &slv[i];
-        n += tg__sleeve_crossings(ws, &piv[i], &piv[i + 1], s->face0, portals + s->portal_begin,
+        n += tg__sleeve_crossings(sr->g, sr->a, sr->ss, &piv[i], &piv[i + 1], s->face0, portals + s->portal_begin,
                                   s->portal_end - s->portal_begin, nodes + n, faces + n - 1);
     }
-    route->count = n;
+    route->nodes.count = n;
+    route->faces.count = n - 1;
     return TG_OK;
 }
 
@@ -287,20 +291,20 @@ static void polish(const tg_geodesic* g, tg__node* nodes, const uint32_t* faces,
     }
 }
 
-tg_status tg__straighten(tg_geodesic_workspace* ws, tg__route* route, uint32_t max_sweeps, double angle_tol,
+tg_status tg__straighten(const tg_geodesic* g, const tg_allocator* a, tg__straighten_scratch* st,
+                         tg__sleeve_scratch* ss, tg__route* route, uint32_t max_sweeps, double angle_tol,
                          tg__shorten_result* out)
 {
-    const tg_geodesic* g = ws->geo;
-    size_t count = route->count;
+    straightener sr = {g, a, st, ss};
+    size_t count = route->nodes.count;
     memset(out, 0, sizeof *out);
-    if (!tg__buf_reserve(ws, &ws->piv[0], count, sizeof(tg__node)) ||
-        !tg__buf_reserve(ws, &ws->slv[0], count, sizeof(tg__sleeve)) ||
-        !tg__buf_reserve(ws, &ws->portals[0], 1, sizeof(uint32_t)))
+    tg__pivot_path* now = &st->now;
+    if (!tg__vec_fit(a, &now->pivots, count) || !tg__vec_fit(a, &now->sleeves, count) || !tg__vec_fit(a, &now->portals, 1))
         return TG_ERR_OUT_OF_MEMORY;
-    const tg__node* nodes = route->nodes.p;
-    const uint32_t* faces = route->faces.p;
-    tg__node* piv = ws->piv[0].p;
-    tg__sleeve* slv = ws->slv[0].p;
+    const tg__node* nodes = tg__route_nodes(route);
+    const uint32_t* faces = tg__route_faces(route);
+    tg__node* piv = now->pivots.data;
+    tg__sleeve* slv = now->sleeves.data;
     for (size_t i = 0; i < count; ++i) {
         piv[i] = nodes[i];
         if (i + 1 == count) break;
@@ -312,32 +316,32 @@ tg_status tg__straighten(tg_geodesic_workspace* ws, tg__route* route, uint32_t m
         slv[i].ang_a = slv[i].ang_b = -1.0;
         slv[i].fresh = 1;
     }
-    int cur = 0;
-    size_t np = count;
+    now->pivots.count = count, now->sleeves.count = count - 1, now->portals.count = 0;
     double limit = TG__PI - angle_tol;
     bool single = false;
     for (;;) {
-        if (!tg__buf_reserve(ws, &ws->decide, np, sizeof(decision))) return TG_ERR_OUT_OF_MEMORY;
-        decision* dec = ws->decide.p;
-        if (decide_all(ws, cur, np, limit, single, dec) == 0) break;
+        size_t np = now->pivots.count;
+        if (!tg__vec_fit(a, &st->decisions, np)) return TG_ERR_OUT_OF_MEMORY;
+        decision* dec = st->decisions.data;
+        if (decide_all(&sr, np, limit, single, dec) == 0) break;
         if (out->iterations >= max_sweeps) {
-            out->capped = 1;
+            out->capped = true;
             break;
         }
-        size_t accepted = 0, next_np = 0;
+        size_t accepted = 0;
         bool retry = false;
-        tg_status st = sweep(ws, cur, np, dec, &next_np, &accepted, &retry);
-        if (st != TG_OK) return st;
+        tg_status s = sweep(&sr, dec, &accepted, &retry);
+        if (s != TG_OK) return s;
         out->iterations++;
-        cur = 1 - cur;
-        np = next_np;
+        tg__pivot_path t = st->now;
+        st->now = st->next, st->next = t;
         if (retry) single = true;
         if (accepted == 0 && !retry) {
-            out->capped = 1; /* every re-routing was rejected: stop rather than repeat it */
+            out->capped = true; /* every re-routing was rejected: stop rather than repeat it */
             break;
         }
     }
-    tg_status st = expand(ws, cur, np, route);
-    if (st == TG_OK) polish(g, route->nodes.p, route->faces.p, route->count);
-    return st;
+    tg_status s = expand(&sr, route);
+    if (s == TG_OK) polish(g, tg__route_nodes(route), tg__route_faces(route), route->nodes.count);
+    return s;
 }

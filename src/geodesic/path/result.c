@@ -1,8 +1,8 @@
-/* path_object.c - tg_path, the caller-owned result of tg_geodesic_path: creation, growth, the
+/* result.c - tg_path, the caller-owned result of tg_geodesic_path: creation, growth, the
  * read-only view, names of its status and global flag, and the OBJ polyline writer.
  * Based on: the project's DESIGN.md (tg_path: points with every crossing and vertex passage, faces,
  *   length, status, certificate). */
-#include "geodesic/geodesic_internal.h"
+#include "geodesic/path/path.h"
 
 #include <errno.h>
 #include <stdio.h>

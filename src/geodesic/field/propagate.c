@@ -16,29 +16,29 @@
  * when no list holds a window and the front is empty. */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include "core/predicates.h"
-#include "geodesic/field_internal.h"
+#include "geodesic/field/field.h"
 
 #include <string.h>
 #include <time.h>
 
-enum { VS_INSIDE = 1, VS_SOURCE = 2, VS_TOUCHED = 4 }; /* ws->inside */
-enum { Q_QUEUED = 1, Q_TOUCHED = 2 };                  /* ws->queued */
+enum { VS_INSIDE = 1, VS_SOURCE = 2, VS_TOUCHED = 4 }; /* fs->inside */
+enum { Q_QUEUED = 1, Q_TOUCHED = 2 };                  /* fs->queued */
 
 /* Notes that a run wrote the entries of vertex or halfedge `id` (flag `bit` in `flags[id]`, the
  * id appended to `list`), so that tg__field_reset undoes only those. false when the list could not
  * grow (out of memory). */
-static bool touch(tg_field_workspace* ws, uint8_t* flags, uint8_t bit, tg__vec* list, uint32_t id)
+static bool touch(tg__field_scratch* fs, uint8_t* flags, uint8_t bit, tg__vec* list, uint32_t id)
 {
     if (flags[id] & bit) return true;
-    if (!ws->touched_all) {
-        if (!tg__vec_reserve(&ws->allocator, list, 1)) return false;
+    if (!fs->touched_all) {
+        if (!tg__field_grow(fs, list, 1)) return false;
         ((uint32_t*)list->data)[list->count++] = id;
     }
     flags[id] |= bit;
     return true;
 }
-#define touch_vertex(ws, v) touch((ws), (ws)->inside, VS_TOUCHED, &(ws)->touched_v, (v))
-#define touch_halfedge(ws, h) touch((ws), (ws)->queued, Q_TOUCHED, &(ws)->touched_h, (h))
+#define touch_vertex(fs, v) touch((fs), (fs)->inside, VS_TOUCHED, &(fs)->touched_v, (v))
+#define touch_halfedge(fs, h) touch((fs), (fs)->queued, Q_TOUCHED, &(fs)->touched_h, (h))
 
 /* How many list propagations pass between two looks at the clock for progress. */
 #define CHECK_EVERY 256
@@ -55,65 +55,55 @@ static double now_s(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-static void note_peak(tg_field_workspace* ws)
-{
-    size_t b = ws->fixed_bytes + ws->win.capacity * sizeof(tg__window) + ws->free_ids.capacity * sizeof(uint32_t) +
-               ws->heap.capacity * sizeof(tg__heap_item) + ws->fifo.capacity * sizeof(uint32_t) +
-               ws->scratch.capacity * sizeof(uint32_t) + ws->keys.capacity * sizeof(tg__win_key) +
-               ws->hits.capacity * ws->hits.elem;
-    if (b > ws->peak_bytes) ws->peak_bytes = b;
-}
-
 /* ---- window pool ---- */
 
-static uint32_t win_alloc(tg_field_workspace* ws)
+static uint32_t win_alloc(tg__field_scratch* fs)
 {
-    if (ws->free_ids.count) return ((uint32_t*)ws->free_ids.data)[--ws->free_ids.count];
-    if (ws->win.count >= (size_t)UINT32_MAX - 1) return TG_NONE;
-    if (!tg__vec_reserve(&ws->allocator, &ws->win, 1)) return TG_NONE;
+    if (fs->free_ids.count) return ((uint32_t*)fs->free_ids.data)[--fs->free_ids.count];
+    if (fs->windows.count >= (size_t)UINT32_MAX - 1) return TG_NONE;
+    if (!tg__field_grow(fs, &fs->windows, 1)) return TG_NONE;
     /* the free list can hold every slot, so releasing never allocates */
-    if (ws->free_ids.capacity < ws->win.capacity &&
-        !tg__vec_reserve(&ws->allocator, &ws->free_ids, ws->win.capacity - ws->free_ids.count))
+    if (fs->free_ids.capacity < fs->windows.capacity &&
+        !tg__field_grow(fs, &fs->free_ids, fs->windows.capacity - fs->free_ids.count))
         return TG_NONE;
-    note_peak(ws);
-    return (uint32_t)ws->win.count++;
+    return (uint32_t)fs->windows.count++;
 }
 
-static void win_release(tg_field_workspace* ws, uint32_t id)
+static void win_release(tg__field_scratch* fs, uint32_t id)
 {
-    ((uint32_t*)ws->free_ids.data)[ws->free_ids.count++] = id;
+    ((uint32_t*)fs->free_ids.data)[fs->free_ids.count++] = id;
 }
 
 /* ---- the vertex front: the layer's heap on (distance, vertex), lazy (stale entries skipped) ---- */
 
 static bool front_push(tg__field_run* run, double key, uint32_t v)
 {
-    tg_field_workspace* ws = run->ws;
-    if (!tg__vec_reserve(&ws->allocator, &ws->heap, 1)) return false;
+    tg__field_scratch* fs = run->fs;
+    if (!tg__field_grow(fs, &fs->front, 1)) return false;
     tg__heap_item it = {key, v};
-    tg__heap_insert(ws->heap.data, &ws->heap.count, it);
-    if (ws->heap.count > run->stats.max_queue) run->stats.max_queue = ws->heap.count;
+    tg__heap_insert(fs->front.data, &fs->front.count, it);
+    if (fs->front.count > run->stats.max_queue) run->stats.max_queue = fs->front.count;
     return true;
 }
 
-/* Records distance d for vertex v if shorter (reached as `how` says), and puts it on the front. */
 /* The front's key of vertex v at distance d: d, plus (A*) the Euclidean distance to the target,
  * an admissible bound of the rest of any path through v. */
 static double front_key(const tg__field_run* run, uint32_t v, double d)
 {
     if (!run->astar) return d;
-    return d + tg_v3_dist(tg__gpos(run->ws->g, v), run->target);
+    return d + tg_v3_dist(tg__gpos(run->g, v), run->target);
 }
 
+/* Records distance d for vertex v if shorter (reached as `how` says), and puts it on the front. */
 static bool relax_vertex(tg__field_run* run, uint32_t v, double d, tg__pred how)
 {
-    tg_field_workspace* ws = run->ws;
-    if (!(d < ws->dist[v])) return true;
-    if (!touch_vertex(ws, v)) return false;
-    ws->dist[v] = d;
-    if (run->track) ws->pred[v] = how;
+    tg__field_scratch* fs = run->fs;
+    if (!(d < fs->dist[v])) return true;
+    if (!touch_vertex(fs, v)) return false;
+    fs->dist[v] = d;
+    if (run->q->trace) fs->pred[v] = how;
     for (int i = 0; i < run->tcorners; ++i)
-        if (run->tcorner[i] == v) tg__field_tighten(run, d + tg_v3_dist(tg__gpos(ws->g, v), run->target));
+        if (run->tcorner[i] == v) tg__field_tighten(run, d + tg_v3_dist(tg__gpos(fs->g, v), run->target));
     double key = front_key(run, v, d);
     if (key > run->max_dist) return true;
     return front_push(run, key, v);
@@ -123,13 +113,11 @@ static bool relax_vertex(tg__field_run* run, uint32_t v, double d, tg__pred how)
  * of the rest of any path through a window there. */
 static double target_gap(const tg__field_run* run, uint32_t h, double c0, double c1)
 {
-    const tg_geodesic* g = run->ws->g;
-    tg_vec3 a = tg__gpos(g, g->tri[h]);
-    tg_vec3 u = tg_v3_scale(tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_next(h)]), a), 1.0 / g->frame[h].len);
-    double x = tg_v3_dot(tg_v3_sub(run->target, a), u);
-    if (x < c0) x = c0;
-    if (x > c1) x = c1;
-    return tg_v3_dist(tg_v3_add(a, tg_v3_scale(u, x)), run->target);
+    double xy[2];
+    tg__frame_point(run->g, h, run->target, xy);
+    double x = xy[0] < c0 ? c0 : xy[0] > c1 ? c1 : xy[0];
+    double dx = xy[0] - x;
+    return sqrt(dx * dx + xy[1] * xy[1]);
 }
 
 /* The children of a list's windows go into the faces beyond its face's other two edges: their
@@ -142,36 +130,35 @@ static double target_gap(const tg__field_run* run, uint32_t h, double c0, double
 #define TG__PREFETCH_FACE(run, o)                                                                  \
     do {                                                                                          \
         uint32_t o_ = (o);                                                                        \
-        TG__PREFETCH(&(run)->ws->g->frame[o_]);                                                   \
-        TG__PREFETCH(&(run)->ws->g->tri[o_]);                                                     \
-        TG__PREFETCH(&(run)->ws->head[o_]);                                                       \
-        TG__PREFETCH(&(run)->ws->queued[o_]);                                                     \
-        TG__PREFETCH(&(run)->ws->split_d[o_]);                                                    \
+        TG__PREFETCH(&(run)->fs->g->frame[o_]);                                                   \
+        TG__PREFETCH(&(run)->fs->g->tri[o_]);                                                     \
+        TG__PREFETCH(&(run)->fs->head[o_]);                                                       \
+        TG__PREFETCH(&(run)->fs->queued[o_]);                                                     \
+        TG__PREFETCH(&(run)->fs->split_d[o_]);                                                    \
     } while (0)
 
 /* ---- lists and the FIFO ---- */
 
 static bool list_ready(const tg__field_run* run, uint32_t h)
 {
-    const tg_geodesic* g = run->ws->g;
-    return run->all_ready || run->ws->inside[g->tri[h]] & VS_INSIDE ||
-           run->ws->inside[g->tri[tg_halfedge_next(h)]] & VS_INSIDE;
+    const tg_geodesic* g = run->g;
+    return run->all_ready || run->fs->inside[g->tri[h]] & VS_INSIDE ||
+           run->fs->inside[g->tri[tg_halfedge_next(h)]] & VS_INSIDE;
 }
 
 static bool enqueue(tg__field_run* run, uint32_t h)
 {
-    tg_field_workspace* ws = run->ws;
-    if ((ws->queued[h] & Q_QUEUED) || ws->head[h] == TG_NONE) return true;
-    if (ws->fifo_head > 4096 && ws->fifo_head * 2 > ws->fifo.count) { /* compact the consumed front */
-        uint32_t* q = ws->fifo.data;
-        memmove(q, q + ws->fifo_head, (ws->fifo.count - ws->fifo_head) * sizeof *q);
-        ws->fifo.count -= ws->fifo_head;
-        ws->fifo_head = 0;
+    tg__field_scratch* fs = run->fs;
+    if ((fs->queued[h] & Q_QUEUED) || fs->head[h] == TG_NONE) return true;
+    if (fs->fifo_head > 4096 && fs->fifo_head * 2 > fs->fifo.count) { /* compact the consumed front */
+        uint32_t* q = fs->fifo.data;
+        memmove(q, q + fs->fifo_head, (fs->fifo.count - fs->fifo_head) * sizeof *q);
+        fs->fifo.count -= fs->fifo_head;
+        fs->fifo_head = 0;
     }
-    if (!tg__vec_reserve(&ws->allocator, &ws->fifo, 1)) return false;
-    ((uint32_t*)ws->fifo.data)[ws->fifo.count++] = h;
-    ws->queued[h] |= Q_QUEUED;
-    note_peak(ws);
+    if (!tg__field_grow(fs, &fs->fifo, 1)) return false;
+    ((uint32_t*)fs->fifo.data)[fs->fifo.count++] = h;
+    fs->queued[h] |= Q_QUEUED;
     return true;
 }
 
@@ -180,8 +167,8 @@ static bool enqueue(tg__field_run* run, uint32_t h)
  * slope 1 and d(W) + (L - x) slope -1, so the far end of the interval decides for all of it. */
 static bool dominated(const tg__field_run* run, uint32_t h, double c0, double c1, double d0, double d1)
 {
-    const tg_geodesic* g = run->ws->g;
-    double du = run->ws->dist[g->tri[h]], dw = run->ws->dist[g->tri[tg_halfedge_next(h)]];
+    const tg_geodesic* g = run->g;
+    double du = run->fs->dist[g->tri[h]], dw = run->fs->dist[g->tri[tg_halfedge_next(h)]];
     double len = g->frame[h].len;
     return du + c1 < d1 * (1.0 - TG__DOMINATED_REL) || dw + (len - c0) < d0 * (1.0 - TG__DOMINATED_REL);
 }
@@ -191,8 +178,8 @@ static bool dominated(const tg__field_run* run, uint32_t h, double c0, double c1
 static bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, double x, double y, double sigma,
                         uint32_t tag)
 {
-    tg_field_workspace* ws = run->ws;
-    const tg_geodesic* g = ws->g;
+    tg__field_scratch* fs = run->fs;
+    const tg_geodesic* g = fs->g;
     double len = g->frame[h].len;
     if (!(c0 < c1) || !(-y > TG__GRAZING_REL * (fabs(x) + len)) || !(sigma < INFINITY)) {
         run->stats.windows_filtered++;
@@ -207,15 +194,15 @@ static bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, do
     double key = (x > c0 && x < c1) ? sigma - y : (d0 < d1 ? d0 : d1);
     if (run->astar) key += target_gap(run, h, c0, c1);
     if (key > run->max_dist) return true;
-    uint32_t id = win_alloc(ws);
+    uint32_t id = win_alloc(fs);
     if (id == TG_NONE) return false;
-    tg__window* w = &((tg__window*)ws->win.data)[id];
+    tg__window* w = &((tg__window*)fs->windows.data)[id];
     w->b0 = c0, w->b1 = c1, w->sx = x, w->sy = y, w->sigma = sigma, w->tag = tag;
-    if (!touch_halfedge(ws, h)) return false;
-    w->next = ws->head[h];
-    ws->head[h] = id;
+    if (!touch_halfedge(fs, h)) return false;
+    w->next = fs->head[h];
+    fs->head[h] = id;
     run->stats.windows_created++;
-    size_t live = ws->win.count - ws->free_ids.count;
+    size_t live = fs->windows.count - fs->free_ids.count;
     if (live > run->stats.peak_windows) run->stats.peak_windows = live;
     return list_ready(run, h) ? enqueue(run, h) : true;
 }
@@ -226,7 +213,7 @@ static bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, do
 static bool push_through(tg__field_run* run, uint32_t e, double t0, double t1, double x, double y, double sigma,
                          uint32_t tag)
 {
-    const tg_geodesic* g = run->ws->g;
+    const tg_geodesic* g = run->g;
     for (uint32_t o = g->ring[e]; o != e; o = g->ring[o]) {
         double ox, oy, c0, c1;
         tg__ring_point(g, e, o, x, y, &ox, &oy);
@@ -246,12 +233,12 @@ static bool emit_face_point(tg__field_run* run, const double p[3], double sigma,
  * edges. */
 static bool emit_vertex(tg__field_run* run, uint32_t v)
 {
-    tg_field_workspace* ws = run->ws;
-    const tg_geodesic* g = ws->g;
-    double sigma = ws->dist[v];
+    tg__field_scratch* fs = run->fs;
+    const tg_geodesic* g = fs->g;
+    double sigma = fs->dist[v];
     run->stats.pseudo_source_events++;
-    for (uint32_t i = g->vc_start[v]; i < g->vc_start[v + 1]; ++i) {
-        uint32_t c = g->vc[i], f = c / 3, k = c % 3;
+    for (uint32_t i = g->corner_start[v]; i < g->corner_start[v + 1]; ++i) {
+        uint32_t c = g->corners[i], f = c / 3, k = c % 3;
         if (g->fflags[f] & TG__F_SKIP) continue;
         uint32_t e = 3 * f + (k + 1) % 3;
         const tg__frame* fr = &g->frame[e];
@@ -268,11 +255,11 @@ static bool emit_vertex(tg__field_run* run, uint32_t v)
  * reachable vertex on the front even where no window lights it). */
 static bool relax_neighbours(tg__field_run* run, uint32_t v)
 {
-    tg_field_workspace* ws = run->ws;
-    const tg_geodesic* g = ws->g;
-    double d = ws->dist[v];
-    for (uint32_t i = g->vc_start[v]; i < g->vc_start[v + 1]; ++i) {
-        uint32_t c = g->vc[i], f = c / 3, k = c % 3;
+    tg__field_scratch* fs = run->fs;
+    const tg_geodesic* g = fs->g;
+    double d = fs->dist[v];
+    for (uint32_t i = g->corner_start[v]; i < g->corner_start[v + 1]; ++i) {
+        uint32_t c = g->corners[i], f = c / 3, k = c % 3;
         if (g->fflags[f] & TG__F_SKIP) continue;
         uint32_t hn = 3 * f + (k + 1) % 3, hp = 3 * f + (k + 2) % 3;
         tg__pred along = {TG_NONE, v, 0.0, 0.0};
@@ -289,7 +276,7 @@ static bool relax_neighbours(tg__field_run* run, uint32_t v)
 static bool emit_face_point(tg__field_run* run, const double p[3], double sigma, uint32_t f, uint32_t from,
                             uint32_t origin)
 {
-    const tg_geodesic* g = run->ws->g;
+    const tg_geodesic* g = run->g;
     tg__field_queries_source(run, p, sigma, f, origin);
     tg__pred inside = {TG__PRED_FACE | f, origin, 0.0, 0.0};
     for (int k = 0; k < 3; ++k) {
@@ -301,10 +288,9 @@ static bool emit_face_point(tg__field_run* run, const double p[3], double sigma,
         uint32_t h = 3 * f + k;
         double len = g->frame[h].len;
         if (!(len > 0.0) || h == from) continue;
-        tg_vec3 o3 = tg__gpos(g, g->tri[h]);
-        tg_vec3 u = tg_v3_scale(tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_next(h)]), o3), 1.0 / len);
-        tg_vec3 r = tg_v3_sub(tg_v3_load(p), o3);
-        double x = tg_v3_dot(r, u), y = tg_v3_len(tg_v3_cross(u, r));
+        double xy[2];
+        tg__frame_point(g, h, tg_v3_load(p), xy);
+        double x = xy[0], y = xy[1];
         if (y <= TG__GRAZING_REL * (fabs(x) + len)) {
             if (from == TG_NONE && x > 0.0 && x < len)
                 for (uint32_t o = g->ring[h]; o != h; o = g->ring[o])
@@ -318,17 +304,17 @@ static bool emit_face_point(tg__field_run* run, const double p[3], double sigma,
 
 tg_status tg__field_seed(tg__field_run* run, const tg_surface_point* sp)
 {
-    tg_field_workspace* ws = run->ws;
-    const tg_geodesic* g = ws->g;
-    tg_surface_point cp = tg__surface_to_solver(g, tg_surface_point_canonical(g->mesh, sp));
+    tg__field_scratch* fs = run->fs;
+    const tg_geodesic* g = fs->g;
+    tg_surface_point cp = tg__surface_in(g, sp);
     tg__node node = tg__node_from_surface(&cp);
     double p[3];
     tg_v3_store(tg__node_pos(g, &node), p);
     bool ok = true;
     if (node.kind == TG__NODE_VERTEX) {
         /* emitted when it leaves the front, like a pseudo-source, whatever its kind */
-        if (!touch_vertex(ws, node.id)) return TG_ERR_OUT_OF_MEMORY;
-        ws->inside[node.id] |= VS_SOURCE;
+        if (!touch_vertex(fs, node.id)) return TG_ERR_OUT_OF_MEMORY;
+        fs->inside[node.id] |= VS_SOURCE;
         tg__pred none = {TG_NONE, TG__ORIGIN_SOURCE, 0.0, 0.0};
         ok = relax_vertex(run, node.id, 0.0, none);
     } else if (node.kind == TG__NODE_FACE) {
@@ -336,8 +322,8 @@ tg_status tg__field_seed(tg__field_run* run, const tg_surface_point* sp)
     } else {
         /* an edge point lies in every face holding both ends of its edge */
         uint32_t va = g->tri[node.id], vb = g->tri[tg_halfedge_next(node.id)];
-        for (uint32_t i = g->vc_start[va]; ok && i < g->vc_start[va + 1]; ++i) {
-            uint32_t f = g->vc[i] / 3;
+        for (uint32_t i = g->corner_start[va]; ok && i < g->corner_start[va + 1]; ++i) {
+            uint32_t f = g->corners[i] / 3;
             if (!(g->fflags[f] & TG__F_SKIP) && tg__corner_of(g, f, vb) >= 0)
                 ok = emit_face_point(run, p, 0.0, f, TG_NONE, TG__ORIGIN_SOURCE);
         }
@@ -363,13 +349,11 @@ static double ray_param(const double src[2], double b, const double o[2], const 
 static bool push_child(tg__field_run* run, const tg__window* w, uint32_t e, const double o[2], const double d[2],
                        double t_lo, double t_hi, uint32_t via_flat)
 {
-    const tg_geodesic* g = run->ws->g;
-    double len = g->frame[e].len;
-    double ux = (d[0] - o[0]) / len, uy = (d[1] - o[1]) / len;
-    double rx = w->sx - o[0], ry = w->sy - o[1];
-    double x = rx * ux + ry * uy, y = ux * ry - uy * rx;
+    const tg_geodesic* g = run->g;
+    double len = g->frame[e].len, src[2] = {w->sx, w->sy}, xy[2];
+    tg__to_edge_frame(o, d, len, src, xy);
     uint32_t tag = (w->tag & ~TG__VIA_FLAT) | (via_flat ? TG__VIA_FLAT : 0u);
-    return push_through(run, e, t_lo * len, t_hi * len, x, y, w->sigma, tag);
+    return push_through(run, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag);
 }
 
 
@@ -412,8 +396,8 @@ static tg__corner_hit hit_corner(const tg__window* w, const tg__frame* fr)
  * their rays cross the best one's ray to C inside the face (one angle, one split). */
 static bool cross_face(tg__field_run* run, uint32_t h, const tg__window* w, tg__corner_hit hc, int flat)
 {
-    tg_field_workspace* ws = run->ws;
-    const tg_geodesic* g = ws->g;
+    tg__field_scratch* fs = run->fs;
+    const tg_geodesic* g = fs->g;
     uint32_t hn = tg_halfedge_next(h), hp = tg_halfedge_prev(h);
     const tg__frame* fr = &g->frame[h];
     double len = fr->len;
@@ -430,8 +414,8 @@ static bool cross_face(tg__field_run* run, uint32_t h, const tg__window* w, tg__
     }
     bool l_at_c = hc.covers && has_l, r_at_c = hc.covers && has_r;
     if (hc.covers && !flat) {
-        double xs = ws->split_x[h];
-        if (hc.dc > ws->split_d[h]) {
+        double xs = fs->split_x[h];
+        if (hc.dc > fs->split_d[h]) {
             if (has_l && xs < hi_l) hi_l = xs, l_at_c = false, has_l = xs > lo_l;
             if (has_r && xs > lo_r) lo_r = xs, r_at_c = false, has_r = xs < hi_r;
         }
@@ -454,59 +438,59 @@ static bool cross_face(tg__field_run* run, uint32_t h, const tg__window* w, tg__
  * corner most shortly set the corner's distance and the split, then crosses each survivor. */
 static bool propagate_list(tg__field_run* run, uint32_t h)
 {
-    tg_field_workspace* ws = run->ws;
-    const tg_geodesic* g = ws->g;
-    tg__window* pool = ws->win.data;
-    uint32_t id = ws->head[h];
-    ws->head[h] = TG_NONE;
+    tg__field_scratch* fs = run->fs;
+    const tg_geodesic* g = fs->g;
+    tg__window* pool = fs->windows.data;
+    uint32_t id = fs->head[h];
+    fs->head[h] = TG_NONE;
     const tg__frame* fr = &g->frame[h];
     uint32_t hn = tg_halfedge_next(h), hp = tg_halfedge_prev(h);
     bool crossable = fr->len > 0.0 && g->frame[hn].len > 0.0 && g->frame[hp].len > 0.0;
     int flat = !(fr->cy > 0.0);
     TG__PREFETCH_FACE(run, g->ring[hn]);
     TG__PREFETCH_FACE(run, g->ring[hp]);
-    ws->scratch.count = 0;
+    fs->list.count = 0;
     for (; id != TG_NONE;) {
         tg__window* w = &pool[id];
         uint32_t next = w->next;
         bool keep = crossable && !(flat && (w->tag & TG__VIA_FLAT));
         if (keep && dominated(run, h, w->b0, w->b1, tg__win_dist(w, w->b0), tg__win_dist(w, w->b1))) keep = false;
-        if (keep && !tg__vec_reserve(&ws->allocator, &ws->scratch, 1)) return false;
+        if (keep && !tg__field_grow(fs, &fs->list, 1)) return false;
         if (keep) {
-            ((uint32_t*)ws->scratch.data)[ws->scratch.count++] = id;
+            ((uint32_t*)fs->list.data)[fs->list.count++] = id;
         } else {
             run->stats.windows_filtered++;
-            win_release(ws, id);
+            win_release(fs, id);
         }
         id = next;
     }
-    uint32_t* ids = ws->scratch.data;
-    size_t n = ws->scratch.count;
+    uint32_t* ids = fs->list.data;
+    size_t n = fs->list.count;
     if (n > 1) {
-        if (!tg__vec_reserve(&ws->allocator, &ws->keys, n)) return false;
-        tg__windows_trim(pool, ids, ws->keys.data, n, fr->len);
+        if (!tg__field_grow(fs, &fs->keys, n)) return false;
+        tg__windows_trim(pool, ids, fs->keys.data, n, fr->len);
     }
     tg__field_queries_cross(run, h, pool, ids, n);
     /* rule 1: the shortest covering window to C over the list sets C and the edge side's split */
     uint32_t vc = g->tri[hp];
-    if (!tg__vec_reserve(&ws->allocator, &ws->hits, n)) return false;
-    tg__corner_hit* hits = ws->hits.data;
+    if (!tg__field_grow(fs, &fs->hits, n)) return false;
+    tg__corner_hit* hits = fs->hits.data;
     for (size_t i = 0; i < n; ++i) {
         const tg__window* w = &pool[ids[i]];
         if (!(w->b0 < w->b1)) continue;
         tg__corner_hit hc = hits[i] = hit_corner(w, fr);
-        if (hc.covers && hc.dc < ws->split_d[h]) {
+        if (hc.covers && hc.dc < fs->split_d[h]) {
             if (!flat) {
-                if (!touch_halfedge(ws, h)) return false;
-                ws->split_d[h] = hc.dc, ws->split_x[h] = hc.xc;
+                if (!touch_halfedge(fs, h)) return false;
+                fs->split_d[h] = hc.dc, fs->split_x[h] = hc.xc;
             }
             tg__pred ray = {h, w->tag & ~TG__VIA_FLAT, w->sx, w->sy};
             if (!relax_vertex(run, vc, hc.dc, ray)) return false;
         }
     }
     for (size_t i = 0; i < n; ++i) {
-        tg__window w = ((tg__window*)ws->win.data)[ids[i]]; /* children may move the pool */
-        win_release(ws, ids[i]);
+        tg__window w = ((tg__window*)fs->windows.data)[ids[i]]; /* children may move the pool */
+        win_release(fs, ids[i]);
         if (!(w.b0 < w.b1)) {
             run->stats.windows_filtered++;
             continue;
@@ -520,29 +504,29 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
 
 /* ---- the front ---- */
 
-void tg__field_reset(tg_field_workspace* ws)
+void tg__field_reset(tg__field_scratch* fs)
 {
-    const tg_geodesic* g = ws->g;
-    if (ws->touched_all) {
+    const tg_geodesic* g = fs->g;
+    if (fs->touched_all) {
         size_t nv = g->vertex_count, nh = 3 * (size_t)g->face_count;
-        for (size_t v = 0; v < nv; ++v) ws->dist[v] = INFINITY;
-        memset(ws->inside, 0, nv);
-        memset(ws->queued, 0, nh);
-        for (size_t h = 0; h < nh; ++h) ws->head[h] = TG_NONE, ws->split_d[h] = INFINITY;
+        for (size_t v = 0; v < nv; ++v) fs->dist[v] = INFINITY;
+        memset(fs->inside, 0, nv);
+        memset(fs->queued, 0, nh);
+        for (size_t h = 0; h < nh; ++h) fs->head[h] = TG_NONE, fs->split_d[h] = INFINITY;
     } else {
-        const uint32_t* tv = ws->touched_v.data;
-        const uint32_t* th = ws->touched_h.data;
-        for (size_t i = 0; i < ws->touched_v.count; ++i) ws->dist[tv[i]] = INFINITY, ws->inside[tv[i]] = 0;
-        for (size_t i = 0; i < ws->touched_h.count; ++i)
-            ws->head[th[i]] = TG_NONE, ws->split_d[th[i]] = INFINITY, ws->queued[th[i]] = 0;
+        const uint32_t* tv = fs->touched_v.data;
+        const uint32_t* th = fs->touched_h.data;
+        for (size_t i = 0; i < fs->touched_v.count; ++i) fs->dist[tv[i]] = INFINITY, fs->inside[tv[i]] = 0;
+        for (size_t i = 0; i < fs->touched_h.count; ++i)
+            fs->head[th[i]] = TG_NONE, fs->split_d[th[i]] = INFINITY, fs->queued[th[i]] = 0;
     }
-    ws->touched_all = 0;
-    ws->touched_v.count = ws->touched_h.count = 0;
-    ws->win.count = 0;
-    ws->free_ids.count = 0;
-    ws->heap.count = 0;
-    ws->fifo.count = 0;
-    ws->fifo_head = 0;
+    fs->touched_all = 0;
+    fs->touched_v.count = fs->touched_h.count = 0;
+    fs->windows.count = 0;
+    fs->free_ids.count = 0;
+    fs->front.count = 0;
+    fs->fifo.count = 0;
+    fs->fifo_head = 0;
 }
 
 /* When v leaves the front: the lists on the edges at v may cross their faces now, and so may the
@@ -550,15 +534,15 @@ void tg__field_reset(tg_field_workspace* ws)
  * those whose far corner is already reached. */
 static bool release_lists(tg__field_run* run, uint32_t v)
 {
-    tg_field_workspace* ws = run->ws;
-    const tg_geodesic* g = ws->g;
-    for (uint32_t i = g->vc_start[v]; i < g->vc_start[v + 1]; ++i) {
-        uint32_t c = g->vc[i], f = c / 3, k = c % 3;
+    tg__field_scratch* fs = run->fs;
+    const tg_geodesic* g = fs->g;
+    for (uint32_t i = g->corner_start[v]; i < g->corner_start[v + 1]; ++i) {
+        uint32_t c = g->corners[i], f = c / 3, k = c % 3;
         if (g->fflags[f] & TG__F_SKIP) continue;
         uint32_t e = 3 * f + (k + 1) % 3;
         if (!enqueue(run, c) || !enqueue(run, 3 * f + (k + 2) % 3) || !enqueue(run, e)) return false;
         for (uint32_t o = g->ring[e]; o != e; o = g->ring[o])
-            if (ws->dist[g->tri[tg_halfedge_prev(o)]] < INFINITY && !enqueue(run, o)) return false;
+            if (fs->dist[g->tri[tg_halfedge_prev(o)]] < INFINITY && !enqueue(run, o)) return false;
     }
     return true;
 }
@@ -568,55 +552,55 @@ static bool keep_going(tg__field_run* run)
 {
     if (++run->work_since_check < CHECK_EVERY) return true;
     run->work_since_check = 0;
-    if (run->cancel_flag && *run->cancel_flag) return false;
-    if (!run->progress) return true;
+    if (run->q->cancel && *run->q->cancel) return false;
+    if (!run->q->progress) return true;
     double t = now_s();
     if (t < run->next_check_s) return true;
     run->next_check_s = t + PROGRESS_PERIOD_S;
-    return run->progress(run->progress_user, run) == 0;
+    return run->q->progress(run->q->progress_user, run) == 0;
 }
 
 tg_status tg__field_propagate(tg__field_run* run)
 {
-    tg_field_workspace* ws = run->ws;
-    const tg_geodesic* g = ws->g;
+    tg__field_scratch* fs = run->fs;
+    const tg_geodesic* g = fs->g;
     run->next_check_s = now_s() + PROGRESS_PERIOD_S;
     for (;;) {
-        while (ws->fifo_head < ws->fifo.count) {
-            uint32_t h = ((uint32_t*)ws->fifo.data)[ws->fifo_head++];
-            ws->queued[h] &= (uint8_t)~Q_QUEUED;
+        while (fs->fifo_head < fs->fifo.count) {
+            uint32_t h = ((uint32_t*)fs->fifo.data)[fs->fifo_head++];
+            fs->queued[h] &= (uint8_t)~Q_QUEUED;
             if (!propagate_list(run, h)) return TG_ERR_OUT_OF_MEMORY;
             if (!keep_going(run)) return TG_ERR_CANCELLED;
         }
-        ws->fifo.count = ws->fifo_head = 0;
+        fs->fifo.count = fs->fifo_head = 0;
         tg__heap_item it = {INFINITY, 0};
-        if (ws->heap.count) it = tg__heap_take(ws->heap.data, &ws->heap.count);
+        if (fs->front.count) it = tg__heap_take(fs->front.data, &fs->front.count);
         uint32_t v = it.node;
         if (it.key > run->max_dist || !(it.key < INFINITY)) {
             /* past the limit, or the front is empty while vertices beyond the limit were never
              * queued: every window within the limit must still cross, whatever its vertices */
-            ws->heap.count = 0; /* the rest is past the limit too (vertices pushed from here on are not) */
+            fs->front.count = 0; /* the rest is past the limit too (vertices pushed from here on are not) */
             if (!run->all_ready && run->max_dist < INFINITY) {
                 run->all_ready = 1;
-                if (ws->touched_all) {
+                if (fs->touched_all) {
                     for (uint32_t h = 0; h < 3 * g->face_count; ++h)
                         if (!enqueue(run, h)) return TG_ERR_OUT_OF_MEMORY;
                 } else { /* only halfedges that ever held a list can hold one */
-                    for (size_t i = 0; i < ws->touched_h.count; ++i)
-                        if (!enqueue(run, ((const uint32_t*)ws->touched_h.data)[i])) return TG_ERR_OUT_OF_MEMORY;
+                    for (size_t i = 0; i < fs->touched_h.count; ++i)
+                        if (!enqueue(run, ((const uint32_t*)fs->touched_h.data)[i])) return TG_ERR_OUT_OF_MEMORY;
                 }
                 continue;
             }
-            if (!ws->heap.count && !(it.key < INFINITY)) break;
+            if (!fs->front.count && !(it.key < INFINITY)) break;
             continue;
         }
-        if (it.key != front_key(run, v, ws->dist[v])) continue; /* a shorter distance was queued since */
-        if (!(ws->inside[v] & VS_INSIDE)) run->settled++;
-        ws->inside[v] |= VS_INSIDE;
-        run->front = ws->dist[v];
-        bool emits = (g->vflags[v] & TG__V_PSEUDO) || (ws->inside[v] & VS_SOURCE);
+        if (it.key != front_key(run, v, fs->dist[v])) continue; /* a shorter distance was queued since */
+        if (!(fs->inside[v] & VS_INSIDE)) run->settled++;
+        fs->inside[v] |= VS_INSIDE;
+        run->front = fs->dist[v];
+        bool emits = (g->vflags[v] & TG__V_PSEUDO) || (fs->inside[v] & VS_SOURCE);
         if (emits) {
-            ws->inside[v] &= (uint8_t)~VS_SOURCE;
+            fs->inside[v] &= (uint8_t)~VS_SOURCE;
             if (!emit_vertex(run, v)) return TG_ERR_OUT_OF_MEMORY;
         }
         /* A*: paths go on along v's edges only from where they may bend (a source, a pseudo-source);

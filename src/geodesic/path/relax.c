@@ -6,10 +6,17 @@
  *   tg_fan_path_minimize (§3-4).
  * One addition to §5, documented at relax_run: a run of edge points converging onto one vertex is
  * re-solved as that vertex's fan, since coordinate-wise moves cannot carry it past the vertex. */
-#include "geodesic/geodesic_internal.h"
+#include "geodesic/path/path.h"
 #include "kernels/fan_path.h"
 
 #include <string.h>
+
+/* One relaxation: the solver, the allocator and the stage's scratch. */
+typedef struct relaxer {
+    const tg_geodesic* g;
+    const tg_allocator* a;
+    tg__relax_scratch* rs;
+} relaxer;
 
 typedef struct relax_out {
     tg__node* nodes;
@@ -58,20 +65,19 @@ static void relax_edge(const tg_geodesic* g, relax_out* o, const tg__node* x, co
  * dropped first: crossing the edge an end point lies on is never needed, and the kernel treats an
  * end point on its first or last spoke as degenerate. On success pushes the spoke points and sets
  * *f_next to the face of the segment towards next. */
-static tg_status relax_fan(tg_geodesic_workspace* ws, relax_out* o, uint32_t v, const tg__node* next, uint32_t f_in,
+static tg_status relax_fan(const relaxer* rx, relax_out* o, uint32_t v, const tg__node* next, uint32_t f_in,
                           uint32_t f_out, double current, const tg_geodesic_kernel_options* kopt, bool* done,
                           uint32_t* f_next)
 {
-    const tg_geodesic* g = ws->geo;
+    const tg_geodesic* g = rx->g;
     *done = false;
-    size_t cap = (size_t)(g->vc_start[v + 1] - g->vc_start[v]) + 2;
-    if (!tg__buf_reserve(ws, &ws->fan, 2 * cap, sizeof(uint32_t)) ||
-        !tg__buf_reserve(ws, &ws->spokes, 3 * cap, sizeof(double)) ||
-        !tg__buf_reserve(ws, &ws->tvals, 2 * cap, sizeof(double)))
+    size_t cap = (size_t)(g->corner_start[v + 1] - g->corner_start[v]) + 2;
+    if (!tg__vec_fit(rx->a, &rx->rs->fan_portals, 2 * cap) || !tg__vec_fit(rx->a, &rx->rs->spokes, 3 * cap) ||
+        !tg__vec_fit(rx->a, &rx->rs->t_values, 2 * cap))
         return TG_ERR_OUT_OF_MEMORY;
-    uint32_t* portals = ws->fan.p;
-    double* w = ws->spokes.p;
-    double* tv = ws->tvals.p;
+    uint32_t* portals = rx->rs->fan_portals.data;
+    double* w = rx->rs->spokes.data;
+    double* tv = rx->rs->t_values.data;
     const tg__node* prev = &o->nodes[o->n - 1];
     double p0[3], p1[3], vx[3];
     tg_v3_store(tg__node_pos(g, prev), p0);
@@ -85,7 +91,7 @@ static tg_status relax_fan(tg_geodesic_workspace* ws, relax_out* o, uint32_t v, 
      * Papadimitriou 1987, Lemma 3.4): the kernel would find no decrease there, so it is not
      * asked. This is the seed's own test (ComputeLargestInitialDecrease < 0) done by angles. */
     double ang[2];
-    tg__fan_sides(g, v, f_in, prev, f_out, next, ang);
+    tg__fan_sides(g, v, f_in, prev, -1.0, f_out, next, -1.0, ang);
     /* the path through V itself: a run that converged onto V (both sides at least pi, so no side
      * is solved) is replaced by V once that is shorter */
     tg__node vn = tg__node_vertex(v);
@@ -95,7 +101,7 @@ static tg_status relax_fan(tg_geodesic_workspace* ws, relax_out* o, uint32_t v, 
     for (int side = 0; side < 2; ++side) {
         if (!(ang[side] >= 0.0 && ang[side] < TG__PI)) continue;
         uint32_t* ps = portals + (size_t)side * cap;
-        size_t m = tg__fan_portals(g, v, f_in, prev, f_out, next, side, ps, cap);
+        size_t m = tg__fan_portals(g, v, f_in, prev, -1.0, f_out, next, -1.0, side, ps, cap);
         if (m == SIZE_MAX) continue;
         size_t lo = 0;
         while (lo < m && tg__node_on_edge(g, prev, ps[lo])) lo++;
@@ -109,7 +115,7 @@ static tg_status relax_fan(tg_geodesic_workspace* ws, relax_out* o, uint32_t v, 
         }
         double len;
         int decreased = 0;
-        tg_status st = tg__fan_path_minimize_with(&ws->allocator, p0, p1, vx, w, m - lo, NULL, kopt,
+        tg_status st = tg__fan_path_minimize_with(rx->a, p0, p1, vx, w, m - lo, NULL, kopt,
                                                   tv + (size_t)side * cap, &len, &decreased);
         if (st == TG_ERR_OUT_OF_MEMORY) return st;
         if (st != TG_OK || !(len < best)) continue;
@@ -158,15 +164,15 @@ static uint32_t near_vertex(const tg_geodesic* g, const tg__node* e)
  * on one side, so it is re-solved the way §5 re-solves a vertex: the fan minimization on each
  * side (on its own side this is also a block step that converges much faster than point-wise
  * moves). Returns with *done false when neither side beats the run. */
-static tg_status relax_run(tg_geodesic_workspace* ws, relax_out* o, const tg__node* run, size_t count, uint32_t v,
+static tg_status relax_run(const relaxer* rx, relax_out* o, const tg__node* run, size_t count, uint32_t v,
                            const tg__node* next, uint32_t f_in, uint32_t f_out, const tg_geodesic_kernel_options* kopt,
                            bool* done, uint32_t* f_next)
 {
-    const tg_geodesic* g = ws->geo;
+    const tg_geodesic* g = rx->g;
     const tg__node* prev = &o->nodes[o->n - 1];
     double cur = tg__node_dist(g, prev, &run[0], f_in) + tg__node_dist(g, &run[count - 1], next, f_out);
     for (size_t k = 0; k + 1 < count; ++k) cur += tg_v3_dist(tg__node_pos(g, &run[k]), tg__node_pos(g, &run[k + 1]));
-    return relax_fan(ws, o, v, next, f_in, f_out, cur, kopt, done, f_next);
+    return relax_fan(rx, o, v, next, f_in, f_out, cur, kopt, done, f_next);
 }
 
 static double path_length(const tg_geodesic* g, const tg__node* nodes, const uint32_t* faces, size_t n)
@@ -185,28 +191,27 @@ static size_t pass_bound(const tg_geodesic* g, const tg__node* nodes, size_t n)
         bound++;
         if (nodes[i].kind == TG__NODE_FACE) continue;
         uint32_t a = nodes[i].kind == TG__NODE_VERTEX ? nodes[i].id : g->tri[nodes[i].id];
-        bound += g->vc_start[a + 1] - g->vc_start[a];
+        bound += g->corner_start[a + 1] - g->corner_start[a];
         if (nodes[i].kind == TG__NODE_EDGE) {
             uint32_t b = g->tri[tg_halfedge_next(nodes[i].id)];
-            bound += g->vc_start[b + 1] - g->vc_start[b];
+            bound += g->corner_start[b + 1] - g->corner_start[b];
         }
     }
     return bound;
 }
 
-/* One pass over the interior points (Gauss-Seidel: each step sees the updated previous point). */
-static tg_status relax_pass(tg_geodesic_workspace* ws, tg__route* route, const tg_geodesic_kernel_options* kopt)
+/* One pass over the interior points (Gauss-Seidel: each step sees the updated previous point).
+ * The pass writes the scratch's route, then swaps it with `route` (both the workspace's). */
+static tg_status relax_pass(const relaxer* rx, tg__route* route, const tg_geodesic_kernel_options* kopt)
 {
-    const tg_geodesic* g = ws->geo;
-    size_t n = route->count;
-    size_t bound = pass_bound(g, route->nodes.p, n);
-    tg__route* next = &ws->spare; /* the pass writes here; the two swap at the end */
-    if (!tg__buf_reserve(ws, &next->nodes, bound, sizeof(tg__node)) ||
-        !tg__buf_reserve(ws, &next->faces, bound, sizeof(uint32_t)))
-        return TG_ERR_OUT_OF_MEMORY;
-    const tg__node* nodes = route->nodes.p;
-    const uint32_t* faces = route->faces.p;
-    relax_out o = {next->nodes.p, next->faces.p, 0};
+    const tg_geodesic* g = rx->g;
+    size_t n = route->nodes.count;
+    size_t bound = pass_bound(g, tg__route_nodes(route), n);
+    tg__route* next = &rx->rs->pass;
+    if (!tg__route_fit(rx->a, next, bound)) return TG_ERR_OUT_OF_MEMORY;
+    const tg__node* nodes = tg__route_nodes(route);
+    const uint32_t* faces = tg__route_faces(route);
+    relax_out o = {tg__route_nodes(next), tg__route_faces(next), 0};
     o.nodes[o.n++] = nodes[0];
     uint32_t f_in = faces[0]; /* the face of the segment from the last output point to nodes[i] */
     for (size_t i = 1; i + 1 < n; ++i) {
@@ -224,7 +229,7 @@ static tg_status relax_pass(tg_geodesic_workspace* ws, tg__route* route, const t
             size_t j = i + 1;
             while (j + 1 < n && nodes[j].kind == TG__NODE_EDGE && near_vertex(g, &nodes[j]) == v) j++;
             if (j - i >= 2) {
-                st = relax_run(ws, &o, x, j - i, v, &nodes[j], f_in, faces[j - 1], kopt, &done, &f_next);
+                st = relax_run(rx, &o, x, j - i, v, &nodes[j], f_in, faces[j - 1], kopt, &done, &f_next);
                 if (done) i = j - 1;
             }
             if (!done) {
@@ -234,7 +239,7 @@ static tg_status relax_pass(tg_geodesic_workspace* ws, tg__route* route, const t
         } else if (x->kind == TG__NODE_VERTEX) {
             const tg__node* prev = &o.nodes[o.n - 1];
             double through = tg__node_dist(g, prev, x, f_in) + tg__node_dist(g, x, &nodes[i + 1], f_out);
-            st = relax_fan(ws, &o, x->id, &nodes[i + 1], f_in, f_out, through, kopt, &done, &f_next);
+            st = relax_fan(rx, &o, x->id, &nodes[i + 1], f_in, f_out, through, kopt, &done, &f_next);
             if (!done) push(g, &o, x, f_in);
         } else {
             push(g, &o, x, f_in);
@@ -247,28 +252,30 @@ static tg_status relax_pass(tg_geodesic_workspace* ws, tg__route* route, const t
         o.faces[0] = f_in;
         o.nodes[o.n++] = nodes[n - 1];
     }
-    next->count = o.n;
+    next->nodes.count = o.n;
+    next->faces.count = o.n - 1;
     tg__route swapped = *route;
     *route = *next, *next = swapped;
     return TG_OK;
 }
 
-tg_status tg__relax(tg_geodesic_workspace* ws, tg__route* route, uint32_t max_passes, double rel_tol,
-                    const tg_geodesic_kernel_options* kernel, tg__shorten_result* out)
+tg_status tg__relax(const tg_geodesic* g, const tg_allocator* a, tg__relax_scratch* rs, tg__route* route,
+                    uint32_t max_passes, double rel_tol, const tg_geodesic_kernel_options* kernel,
+                    tg__shorten_result* out)
 {
-    const tg_geodesic* g = ws->geo;
+    relaxer rx = {g, a, rs};
     memset(out, 0, sizeof *out);
     tg_geodesic_kernel_options kopt = *kernel;
-    double len = path_length(g, route->nodes.p, route->faces.p, route->count);
+    double len = path_length(g, tg__route_nodes(route), tg__route_faces(route), route->nodes.count);
     for (;;) {
         if (out->iterations >= max_passes) {
-            out->capped = 1;
+            out->capped = true;
             break;
         }
-        tg_status st = relax_pass(ws, route, &kopt);
+        tg_status st = relax_pass(&rx, route, &kopt);
         if (st != TG_OK) return st;
         out->iterations++;
-        double new_len = path_length(g, route->nodes.p, route->faces.p, route->count);
+        double new_len = path_length(g, tg__route_nodes(route), tg__route_faces(route), route->nodes.count);
         bool stalled = !(len - new_len > rel_tol * new_len);
         len = new_len;
         if (stalled) break;

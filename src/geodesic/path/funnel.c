@@ -7,8 +7,8 @@
  *   CGTA 4 (1994), §2 (the same funnel over a triangulated sleeve, linear time with a deque);
  *   Mitchell, Mount & Papadimitriou (1987), §3 (unfolding a face sequence into the plane keeps
  *   lengths; a straight line in the unfolding is a geodesic inside the sleeve). */
-#include "geodesic/geodesic_internal.h"
 #include "core/predicates.h"
+#include "geodesic/path/path.h"
 
 #include <string.h>
 
@@ -27,25 +27,21 @@ typedef struct sleeve2d {
     size_t u_count;    /* mesh U points (A and B are appended after them) */
 } sleeve2d;
 
-static bool sleeve_reserve(tg_geodesic_workspace* ws, size_t m, sleeve2d* s)
+static bool sleeve_reserve(const tg_allocator* a, tg__sleeve_scratch* sc, size_t m, sleeve2d* s)
 {
     size_t nu = m + 5;
-    if (!tg__buf_reserve(ws, &ws->uxy, 2 * nu, sizeof(double)) ||
-        !tg__buf_reserve(ws, &ws->uvert, nu, sizeof(uint32_t)) ||
-        !tg__buf_reserve(ws, &ws->urange, 2 * nu, sizeof(uint32_t)) ||
-        !tg__buf_reserve(ws, &ws->pleft, m + 1, sizeof(uint32_t)) ||
-        !tg__buf_reserve(ws, &ws->pright, m + 1, sizeof(uint32_t)) ||
-        !tg__buf_reserve(ws, &ws->faces, m + 1, sizeof(uint32_t)) ||
-        !tg__buf_reserve(ws, &ws->ucorner, 3 * (m + 1), sizeof(uint32_t)) ||
-        !tg__buf_reserve(ws, &ws->dval, nu, sizeof(double)))
+    if (!tg__vec_fit(a, &sc->point_xy, 2 * nu) || !tg__vec_fit(a, &sc->point_vertex, nu) ||
+        !tg__vec_fit(a, &sc->point_faces, 2 * nu) || !tg__vec_fit(a, &sc->portal_left, m + 1) ||
+        !tg__vec_fit(a, &sc->portal_right, m + 1) || !tg__vec_fit(a, &sc->faces, m + 1) ||
+        !tg__vec_fit(a, &sc->face_corners, 3 * (m + 1)) || !tg__vec_fit(a, &sc->determinants, nu))
         return false;
-    s->xy = ws->uxy.p;
-    s->vert = ws->uvert.p;
-    s->range = ws->urange.p;
-    s->left = ws->pleft.p;
-    s->right = ws->pright.p;
-    s->faces = ws->faces.p;
-    s->corner = ws->ucorner.p;
+    s->xy = sc->point_xy.data;
+    s->vert = sc->point_vertex.data;
+    s->range = sc->point_faces.data;
+    s->left = sc->portal_left.data;
+    s->right = sc->portal_right.data;
+    s->faces = sc->faces.data;
+    s->corner = sc->face_corners.data;
     return true;
 }
 
@@ -74,7 +70,9 @@ static bool unfold(const tg_geodesic* g, uint32_t face0, const uint32_t* portals
         uint32_t qf = q - q % 3, qk = q % 3;
         uint32_t c = g->tri[qf + (qk + 2) % 3];
         size_t u = j + 2;
-        tg__unfold_apex(g, p, c, s->xy + 2 * ru, s->xy + 2 * lu, s->xy + 2 * u);
+        double placed[3][2];
+        tg__unfold_across(g, p, q, s->xy + 2 * ru, s->xy + 2 * lu, placed);
+        s->xy[2 * u] = placed[(qk + 2) % 3][0], s->xy[2 * u + 1] = placed[(qk + 2) % 3][1];
         s->vert[u] = c;
         s->range[2 * u] = (uint32_t)j, s->range[2 * u + 1] = (uint32_t)j;
         s->left[j] = lu, s->right[j] = ru;
@@ -278,16 +276,14 @@ static uint32_t segment_face0(const tg_geodesic* g, const sleeve2d* s, uint32_t 
     return tg__common_face(g, nx, ny, TG_NONE);
 }
 
-tg_status tg__funnel(tg_geodesic_workspace* ws, const tg__node* a, const tg__node* b, uint32_t face0,
-                     const uint32_t* portals, size_t m, int dst, size_t* io_piv, size_t* io_portals)
+tg_status tg__funnel(const tg_geodesic* g, const tg_allocator* al, tg__sleeve_scratch* sc, const tg__node* a,
+                     const tg__node* b, uint32_t face0, const uint32_t* portals, size_t m, tg__pivot_path* out)
 {
-    const tg_geodesic* g = ws->geo;
     trim_sleeve(g, a, b, &face0, &portals, &m);
     sleeve2d s;
-    if (!sleeve_reserve(ws, m, &s) || !tg__buf_reserve(ws, &ws->deque, 2 * m + 8, sizeof(uint32_t)) ||
-        !tg__buf_reserve(ws, &ws->apex, m + 6, sizeof(uint32_t)))
+    if (!sleeve_reserve(al, sc, m, &s) || !tg__vec_fit(al, &sc->deque, 2 * m + 8) || !tg__vec_fit(al, &sc->apices, m + 6))
         return TG_ERR_OUT_OF_MEMORY;
-    /* portals must not live in ws->portals[dst], which grows below */
+    /* portals must not live in out->portals, which grows below */
     double b0[3];
     tg__node_bary(g, a, face0, b0);
     int ko = b0[1] > b0[0] ? 1 : 0;
@@ -300,18 +296,17 @@ tg_status tg__funnel(tg_geodesic_workspace* ws, const tg__node* a, const tg__nod
     s.vert[ua] = s.vert[ub] = TG_NONE;
     s.range[2 * ua] = s.range[2 * ua + 1] = 0;
     s.range[2 * ub] = s.range[2 * ub + 1] = (uint32_t)m;
-    funnel fn = {&s, ws->deque.p, 0, 0, 0, ws->apex.p, 0};
+    funnel fn = {&s, sc->deque.data, 0, 0, 0, sc->apices.data, 0};
     run_funnel(&fn, m, ua, ub);
 
     /* emit pivots (after a) and the sub-sleeves between consecutive ones */
-    size_t np = *io_piv, nq = *io_portals;
-    if (!tg__buf_reserve(ws, &ws->piv[dst], np + fn.path_n, sizeof(tg__node)) ||
-        !tg__buf_reserve(ws, &ws->slv[dst], np + fn.path_n, sizeof(tg__sleeve)) ||
-        !tg__buf_reserve(ws, &ws->portals[dst], nq + m, sizeof(uint32_t)))
+    size_t np = out->pivots.count, nq = out->portals.count;
+    if (!tg__vec_fit(al, &out->pivots, np + fn.path_n) || !tg__vec_fit(al, &out->sleeves, np + fn.path_n) ||
+        !tg__vec_fit(al, &out->portals, nq + m))
         return TG_ERR_OUT_OF_MEMORY;
-    tg__node* piv = ws->piv[dst].p;
-    tg__sleeve* slv = ws->slv[dst].p;
-    uint32_t* out_portals = ws->portals[dst].p;
+    tg__node* piv = out->pivots.data;
+    tg__sleeve* slv = out->sleeves.data;
+    uint32_t* out_portals = out->portals.data;
     tg__node prev = *a;
     for (size_t i = 1; i < fn.path_n; ++i) {
         uint32_t x = fn.path[i - 1], y = fn.path[i];
@@ -339,20 +334,21 @@ tg_status tg__funnel(tg_geodesic_workspace* ws, const tg__node* a, const tg__nod
         piv[np++] = ny;
         prev = ny;
     }
-    *io_piv = np;
-    *io_portals = nq;
+    out->pivots.count = np;
+    out->sleeves.count = np - 1;
+    out->portals.count = nq;
     return TG_OK;
 }
 
-size_t tg__sleeve_crossings(tg_geodesic_workspace* ws, const tg__node* a, const tg__node* b, uint32_t face0,
-                            const uint32_t* portals, size_t m, tg__node* out_nodes, uint32_t* out_faces)
+size_t tg__sleeve_crossings(const tg_geodesic* g, const tg_allocator* al, tg__sleeve_scratch* sc, const tg__node* a,
+                            const tg__node* b, uint32_t face0, const uint32_t* portals, size_t m,
+                            tg__node* out_nodes, uint32_t* out_faces)
 {
-    const tg_geodesic* g = ws->geo;
     sleeve2d s;
     size_t n = 0;
     double b0[3];
     int ko = 0;
-    if (sleeve_reserve(ws, m, &s) && tg__node_bary(g, a, face0, b0)) {
+    if (sleeve_reserve(al, sc, m, &s) && tg__node_bary(g, a, face0, b0)) {
         ko = b0[1] > b0[0] ? 1 : 0;
         if (b0[2] > b0[ko]) ko = 2;
     } else {
@@ -362,7 +358,7 @@ size_t tg__sleeve_crossings(tg_geodesic_workspace* ws, const tg__node* a, const 
         uint32_t ua = (uint32_t)s.u_count, ub = ua + 1;
         if (node_2d(g, &s, a, face0, s.cu_first, s.xy + 2 * ua) &&
             node_2d(g, &s, b, s.faces[m], s.cu_last, s.xy + 2 * ub)) {
-            double* dv = ws->dval.p;
+            double* dv = sc->determinants.data;
             for (size_t u = 0; u < s.u_count; ++u) dv[u] = NAN;
             for (size_t j = 1; j <= m; ++j) {
                 tg__node x = portal_crossing(&s, portals, j, ua, ub, dv);

@@ -1,21 +1,12 @@
-/* vertex_passage.c - a path passing a vertex, through the fan of faces around it: corner angles, the two side angles of a vertex passage,
- * and the portals crossed when a passage is re-routed through one side.
+/* fan.c - a path passing a vertex, through the fan of faces around it: the two side angles of a
+ * vertex passage, and the portals crossed when a passage is re-routed through one side.
  * Based on: seed 002 §5 and Figure 5.1 (a path through a mesh vertex can be relaxed into the fan
  *   on either side; on a boundary vertex only the interior side exists); Mitchell, Mount &
  *   Papadimitriou, "The Discrete Geodesic Problem" (1987), Lemma 3.4: a locally shortest path
  *   passes through a vertex only if both angles it makes there are at least pi; Polthier &
  *   Schmies, "Straightest Geodesics on Polyhedral Surfaces" (1998), §3: angles at a vertex are
  *   sums of the incident corner angles. */
-#include "geodesic/geodesic_internal.h"
-
-double tg__corner_angle(const tg_geodesic* g, uint32_t f, int k)
-{
-    const uint32_t* t = g->tri + 3 * (size_t)f;
-    tg_vec3 o = tg__gpos(g, t[k]);
-    tg_vec3 e1 = tg_v3_sub(tg__gpos(g, t[(k + 1) % 3]), o), e2 = tg_v3_sub(tg__gpos(g, t[(k + 2) % 3]), o);
-    /* atan2(|a x b|, a . b) is accurate at every angle, unlike acos of a normalised dot */
-    return atan2(tg_v3_len(tg_v3_cross(e1, e2)), tg_v3_dot(e1, e2));
-}
+#include "geodesic/path/path.h"
 
 /* Angle of node p seen from corner k of face f, measured from side k -> k+1 towards k -> k+2,
  * and the corner's angle; false when p is not in f or coincides with the corner (a zero-length
@@ -33,21 +24,6 @@ static bool node_angle(const tg_geodesic* g, uint32_t f, int k, const tg__node* 
     *out_a = a > c ? c : a;
     *out_c = c;
     return true;
-}
-
-/* One step around v: from face *f (corner *k of v) across the side in the + sense (the edge
- * prev(corner), towards k + 2) or the - sense (the edge of the corner itself). Returns the portal
- * halfedge (in the face left) or TG_NONE at an edge that cannot be crossed. */
-static uint32_t fan_step(const tg_geodesic* g, uint32_t v, uint32_t* f, int* k, int side)
-{
-    uint32_t h = side == 0 ? 3 * *f + (uint32_t)(*k + 2) % 3 : 3 * *f + (uint32_t)*k;
-    uint32_t o = tg__cross_opp(g, h);
-    if (o == TG_NONE) return TG_NONE;
-    uint32_t nk = side == 0 ? o % 3 : (o % 3 + 1) % 3;
-    if (g->tri[o - o % 3 + nk] != v) return TG_NONE; /* inconsistent topology: treat as a wall */
-    *f = o / 3;
-    *k = (int)nk;
-    return h;
 }
 
 /* The directions of a vertex passage: the in- and out-points' angles in their faces' corners at
@@ -93,9 +69,9 @@ static double walk_side(const tg_geodesic* g, const passage* ps, int side, uint3
     uint32_t f = ps->f_in, v = ps->v;
     int k = ps->k_in;
     /* a fan has at most as many faces as v has corners: the bound stops walks on broken input */
-    uint32_t limit = g->vc_start[v + 1] - g->vc_start[v] + 1;
+    uint32_t limit = g->corner_start[v + 1] - g->corner_start[v] + 1;
     for (uint32_t step = 0; step < limit; ++step) {
-        uint32_t h = fan_step(g, v, &f, &k, side);
+        uint32_t h = tg__fan_step(g, v, &f, &k, side);
         if (h == TG_NONE) return -1.0;
         if (out) {
             if (*io_count >= cap) return -1.0;
@@ -107,8 +83,8 @@ static double walk_side(const tg_geodesic* g, const passage* ps, int side, uint3
     return -1.0;
 }
 
-static bool fan_sides(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, double a_in,
-                      uint32_t f_out, const tg__node* p_out, double a_out, double out_angle[2])
+bool tg__fan_sides(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, double a_in, uint32_t f_out,
+                   const tg__node* p_out, double a_out, double out_angle[2])
 {
     passage ps;
     out_angle[0] = out_angle[1] = -1.0;
@@ -117,26 +93,14 @@ static bool fan_sides(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg_
     return out_angle[0] >= 0.0 || out_angle[1] >= 0.0;
 }
 
-bool tg__fan_sides(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, uint32_t f_out,
-                   const tg__node* p_out, double out_angle[2])
-{
-    return fan_sides(g, v, f_in, p_in, -1.0, f_out, p_out, -1.0, out_angle);
-}
-
-size_t tg__fan_portals_hint(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, double a_in,
-                            uint32_t f_out, const tg__node* p_out, double a_out, int side, uint32_t* out, size_t cap)
+size_t tg__fan_portals(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, double a_in,
+                       uint32_t f_out, const tg__node* p_out, double a_out, int side, uint32_t* out, size_t cap)
 {
     passage ps;
     if (!passage_make(g, v, f_in, p_in, a_in, f_out, p_out, a_out, &ps)) return SIZE_MAX;
     size_t count = 0;
     if (walk_side(g, &ps, side, out, cap, &count) < 0.0) return SIZE_MAX;
     return count;
-}
-
-size_t tg__fan_portals(const tg_geodesic* g, uint32_t v, uint32_t f_in, const tg__node* p_in, uint32_t f_out,
-                       const tg__node* p_out, int side, uint32_t* out, size_t cap)
-{
-    return tg__fan_portals_hint(g, v, f_in, p_in, -1.0, f_out, p_out, -1.0, side, out, cap);
 }
 
 /* When the segment between v and p runs along an edge (v, w) of face f that cannot be crossed
@@ -162,14 +126,14 @@ static bool along_wall(const tg_geodesic* g, uint32_t v, const tg__node* p, uint
     return tg__cross_opp(g, h) == TG_NONE;
 }
 
-double tg__vertex_best_side_hint(const tg_geodesic* g, uint32_t v, const tg__node* p_in, uint32_t f_in, double a_in,
+double tg__vertex_best_side(const tg_geodesic* g, uint32_t v, const tg__node* p_in, uint32_t f_in, double a_in,
                                  const tg__node* p_out, uint32_t f_out, double a_out, uint32_t* out_f_in,
                                  uint32_t* out_f_out, int* out_side)
 {
     double best = -1.0;
     *out_f_in = f_in, *out_f_out = f_out, *out_side = 0;
     double ang[2];
-    if (fan_sides(g, v, f_in, p_in, a_in, f_out, p_out, a_out, ang)) {
+    if (tg__fan_sides(g, v, f_in, p_in, a_in, f_out, p_out, a_out, ang)) {
         for (int s = 0; s < 2; ++s)
             if (ang[s] >= 0.0 && (best < 0.0 || ang[s] < best)) best = ang[s], *out_side = s;
     }
@@ -177,14 +141,14 @@ double tg__vertex_best_side_hint(const tg_geodesic* g, uint32_t v, const tg__nod
     if (!alt_in && !alt_out) return best;
     /* other faces holding the segments: pairs in ascending face order, strictly better only */
     double b[3];
-    for (uint32_t i = g->vc_start[v]; i < g->vc_start[v + 1]; ++i) {
-        uint32_t fi = g->vc[i] / 3;
+    for (uint32_t i = g->corner_start[v]; i < g->corner_start[v + 1]; ++i) {
+        uint32_t fi = g->corners[i] / 3;
         if (fi != f_in && (!alt_in || !tg__node_bary(g, p_in, fi, b))) continue;
-        for (uint32_t j = g->vc_start[v]; j < g->vc_start[v + 1]; ++j) {
-            uint32_t fo = g->vc[j] / 3;
+        for (uint32_t j = g->corner_start[v]; j < g->corner_start[v + 1]; ++j) {
+            uint32_t fo = g->corners[j] / 3;
             if (fo != f_out && (!alt_out || !tg__node_bary(g, p_out, fo, b))) continue;
             if (fi == f_in && fo == f_out) continue;
-            if (!tg__fan_sides(g, v, fi, p_in, fo, p_out, ang)) continue;
+            if (!tg__fan_sides(g, v, fi, p_in, -1.0, fo, p_out, -1.0, ang)) continue;
             for (int s = 0; s < 2; ++s) {
                 if (ang[s] >= 0.0 && (best < 0.0 || ang[s] < best)) {
                     best = ang[s];
@@ -194,11 +158,4 @@ double tg__vertex_best_side_hint(const tg_geodesic* g, uint32_t v, const tg__nod
         }
     }
     return best;
-}
-
-double tg__vertex_best_side(const tg_geodesic* g, uint32_t v, const tg__node* p_in, uint32_t f_in,
-                            const tg__node* p_out, uint32_t f_out, uint32_t* out_f_in, uint32_t* out_f_out,
-                            int* out_side)
-{
-    return tg__vertex_best_side_hint(g, v, p_in, f_in, -1.0, p_out, f_out, -1.0, out_f_in, out_f_out, out_side);
 }

@@ -1,5 +1,5 @@
-/* path_exact.c - exact shortest paths: the exact field from the source, bounded by the length of
- * a known path, gives the distance to the target; the path is then traced back from the target
+/* trace.c - the exact shortest path traced back through a field run that recorded how each vertex
+ * and the target got its distance (field.h, tg__pred): from the target
  * along the ray of the window that reached it, through the faces it crossed, to the
  * pseudo-source vertex that window came from, and so on to the source.
  * Based on: J. S. B. Mitchell, D. M. Mount and C. H. Papadimitriou, "The discrete geodesic
@@ -14,7 +14,7 @@
  * from the target towards the source image, face by face, crosses exactly those faces and ends
  * on the origin. */
 #include "core/predicates.h"
-#include "geodesic/field_internal.h"
+#include "geodesic/path/path.h"
 
 #include <string.h>
 
@@ -23,42 +23,24 @@
 #define LAND_REL 1e-9
 
 typedef struct trace {
-    tg_geodesic_workspace* ws;
-    tg__route* route; /* the nodes so far (target first); segment i lies in face faces[i] */
+    const tg_geodesic* g;
+    const tg_allocator* a;
+    const tg__field_run* field; /* its vertex distances and predecessors */
+    tg__route* route;           /* the nodes so far (target first); segment i lies in face faces[i] */
     size_t n;
-    bool out_of_memory; /* a buffer could not grow: the walk stopped for that, not a dead end */
+    bool out_of_memory;         /* a buffer could not grow: the walk stopped for that, not a dead end */
 } trace;
 
 static bool add_node(trace* t, tg__node node, uint32_t face_before)
 {
-    tg_geodesic_workspace* ws = t->ws;
-    if (!tg__buf_reserve(ws, &t->route->nodes, t->n + 1, sizeof(tg__node)) ||
-        !tg__buf_reserve(ws, &t->route->faces, t->n + 1, sizeof(uint32_t))) {
+    if (!tg__route_fit(t->a, t->route, t->n + 1)) {
         t->out_of_memory = true;
         return false;
     }
-    ((tg__node*)t->route->nodes.p)[t->n] = node;
-    if (t->n > 0) ((uint32_t*)t->route->faces.p)[t->n - 1] = face_before;
+    tg__route_nodes(t->route)[t->n] = node;
+    if (t->n > 0) tg__route_faces(t->route)[t->n - 1] = face_before;
     t->n++;
     return true;
-}
-
-/* Coordinates of the 3D point p in the frame of halfedge h. */
-static void frame_xy(const tg_geodesic* g, uint32_t h, tg_vec3 p, double out[2])
-{
-    tg_vec3 a = tg__gpos(g, g->tri[h]);
-    tg_vec3 u = tg_v3_scale(tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_next(h)]), a), 1.0 / g->frame[h].len);
-    tg_vec3 r = tg_v3_sub(p, a);
-    out[0] = tg_v3_dot(r, u);
-    out[1] = tg_v3_len(tg_v3_cross(u, r));
-}
-
-/* Corner positions of face o / 3 in o's frame: tri[o], tri[next o], tri[prev o]. */
-static void corners_xy(const tg__frame* fr, double out[3][2])
-{
-    out[0][0] = 0.0, out[0][1] = 0.0;
-    out[1][0] = fr->len, out[1][1] = 0.0;
-    out[2][0] = fr->cx, out[2][1] = fr->cy;
 }
 
 /* Does the origin land in face o / 3 at the image s (in o's frame)? Then its node. */
@@ -70,7 +52,7 @@ static bool lands(const tg_geodesic* g, uint32_t o, const double s[2], uint32_t 
     if (origin != TG__ORIGIN_SOURCE || source->kind == TG__NODE_VERTEX) {
         uint32_t v = origin != TG__ORIGIN_SOURCE ? origin : source->id;
         double c[3][2];
-        corners_xy(fr, c);
+        tg__frame_corners(fr, c);
         uint32_t ids[3] = {g->tri[o], g->tri[tg_halfedge_next(o)], g->tri[tg_halfedge_prev(o)]};
         for (int k = 0; k < 3; ++k)
             if (ids[k] == v && hypot(s[0] - c[k][0], s[1] - c[k][1]) <= LAND_REL * scale) {
@@ -137,8 +119,8 @@ typedef struct branch {
 static bool through_corner(trace* t, uint32_t o, const double x[2], const double sp[2], const double c[3][2],
                            double sigma, tg__node* out)
 {
-    const tg_geodesic* g = t->ws->geo;
-    const double* dist = t->ws->field->dist;
+    const tg_geodesic* g = t->g;
+    const double* dist = t->field->vertex_dist;
     double dx = sp[0] - x[0], dy = sp[1] - x[1], len = sqrt(dx * dx + dy * dy);
     if (!(len > 0.0)) return false;
     double snap = THROUGH_REL * (g->frame[o].len + len);
@@ -150,7 +132,7 @@ static bool through_corner(trace* t, uint32_t o, const double x[2], const double
         double via = sigma + hypot(sp[0] - c[k][0], sp[1] - c[k][1]);
         if (!(dist[ids[k]] <= via * (1.0 + 1e-12))) continue;
         tg__node v = tg__node_vertex(ids[k]);
-        tg__node* last = t->n > 1 ? (tg__node*)t->route->nodes.p + t->n - 1 : NULL; /* never the target */
+        tg__node* last = t->n > 1 ? tg__route_nodes(t->route) + t->n - 1 : NULL; /* never the target */
         if (along <= snap && last && last->kind == TG__NODE_EDGE && tg__node_on_edge(g, &v, last->id)) {
             *last = v; /* the ray entered at this corner */
         } else if (!add_node(t, v, o / 3)) {
@@ -168,8 +150,8 @@ static bool through_corner(trace* t, uint32_t o, const double x[2], const double
 static bool walk(trace* t, uint32_t e, double xe, const double s_in[2], uint32_t origin, const tg__node* source,
                  tg__node* out_origin)
 {
-    const tg_geodesic* g = t->ws->geo;
-    double sigma = origin == TG__ORIGIN_SOURCE ? 0.0 : t->ws->field->dist[origin];
+    const tg_geodesic* g = t->g;
+    double sigma = origin == TG__ORIGIN_SOURCE ? 0.0 : t->field->vertex_dist[origin];
     branch stack[32];
     int depth = 0;
     size_t guard = 8 * (size_t)g->face_count + 64;
@@ -193,7 +175,7 @@ static bool walk(trace* t, uint32_t e, double xe, const double s_in[2], uint32_t
                 return add_node(t, landed, f);
             }
             double c[3][2];
-            corners_xy(&g->frame[o], c);
+            tg__frame_corners(&g->frame[o], c);
             if (through_corner(t, o, x, sp, c, sigma, out_origin)) return !t->out_of_memory;
             /* out through B -> C (next) when C is left of the ray (it passes right of C), else
              * through C -> A (prev) */
@@ -211,13 +193,13 @@ static bool walk(trace* t, uint32_t e, double xe, const double s_in[2], uint32_t
                 dead = true;
             } else {
                 /* the image in the exit edge's frame: face f on its +y side, the image beyond */
-                double ux = ex / len, uy = ey / len, rx = sp[0] - p0[0], ry = sp[1] - p0[1];
-                double ns0 = rx * ux + ry * uy, ns1 = ux * ry - uy * rx;
-                if (!(ns1 < 0.0)) {
+                double ns[2];
+                tg__to_edge_frame(p0, p1, len, sp, ns);
+                if (!(ns[1] < 0.0)) {
                     dead = true; /* the image is in this face, yet the origin is not here */
                 } else {
                     if (!add_node(t, tg__node_edge(xh, tt, 1.0 - tt), f)) return false;
-                    s[0] = ns0, s[1] = ns1, xe = tt * len, e = xh;
+                    s[0] = ns[0], s[1] = ns[1], xe = tt * len, e = xh;
                     o = g->ring[e];
                     continue;
                 }
@@ -245,9 +227,8 @@ static bool walk(trace* t, uint32_t e, double xe, const double s_in[2], uint32_t
 /* Follows the predecessors from node `cur` (reached as `how`) back to the source. */
 static bool trace_back(trace* t, tg__node cur, tg__pred how, const tg__node* source)
 {
-    tg_geodesic_workspace* ws = t->ws;
-    const tg_geodesic* g = ws->geo;
-    const tg_field_workspace* fws = ws->field;
+    const tg_geodesic* g = t->g;
+    const tg__pred* pred = t->field->vertex_pred;
     for (size_t hops = 0; hops <= (size_t)g->vertex_count + 2; ++hops) {
         tg__node next;
         if (how.h == TG_NONE) { /* along an edge from vertex origin, or the vertex source itself */
@@ -263,7 +244,7 @@ static bool trace_back(trace* t, tg__node cur, tg__pred how, const tg__node* sou
         } else { /* back along the window's ray through edge h towards its source image */
             uint32_t h = how.h;
             double p[2], s[2] = {how.sx, how.sy};
-            frame_xy(g, h, tg__node_pos(g, &cur), p);
+            tg__frame_point(g, h, tg__node_pos(g, &cur), p);
             double xs = s[0] + (p[0] - s[0]) * (-s[1]) / (p[1] - s[1]);
             double len = g->frame[h].len;
             if (!(xs >= 0.0)) xs = 0.0;
@@ -278,53 +259,26 @@ static bool trace_back(trace* t, tg__node cur, tg__pred how, const tg__node* sou
             if (next.kind != TG__NODE_VERTEX || tg__node_same(g, &next, source)) return true;
         }
         cur = next;
-        how = fws->pred[next.id];
+        how = pred[next.id];
     }
     return false;
 }
 
-tg_status tg__exact_path(tg_geodesic_workspace* ws, const tg_surface_point* from, const tg_surface_point* to,
-                         double limit, tg__route* out, double* out_distance)
+bool tg__trace(const tg_geodesic* g, const tg_allocator* a, const tg__field_run* field, const tg__node* source,
+               const tg__node* target, tg__route* out, bool* out_of_memory)
 {
-    const tg_geodesic* g = ws->geo;
-    out->count = 0;
-    *out_distance = INFINITY;
-    if (!ws->field) {
-        tg_status st = tg__field_workspace_make(g, &ws->allocator, &ws->field);
-        if (st != TG_OK) return st;
-    }
-    tg_field_options o;
-    memset(&o, 0, sizeof o);
-    o.limit = TG_FIELD_MAX_DISTANCE;
-    o.max_distance = limit;
-    tg__field_run run;
-    double tp[3];
-    tg_surface_point_position(g->mesh, to, tp);
-    tg_status st = tg__field_execute(ws->field, from, 1, to, 1, &o, NULL, NULL, NULL, 1, tp, &run);
-    if (st != TG_OK) return st;
-    double d = run.qdist[0];
-    *out_distance = d;
-    if (!(d < INFINITY)) return TG_OK;
-    tg_surface_point ts = tg__surface_to_solver(g, tg_surface_point_canonical(g->mesh, to));
-    tg_surface_point ss = tg__surface_to_solver(g, tg_surface_point_canonical(g->mesh, from));
-    tg__node target = tg__node_from_surface(&ts), source = tg__node_from_surface(&ss);
-    trace t = {ws, out, 0, false};
-    tg__pred how = ((const tg__pred*)ws->field->qpred.data)[0];
-    if (target.kind == TG__NODE_VERTEX) how = ws->field->pred[target.id];
-    if (!add_node(&t, target, TG_NONE)) return TG_ERR_OUT_OF_MEMORY;
-    if (tg__node_same(g, &target, &source)) {
-        out->count = 1;
-        return TG_OK;
-    }
-    if (!trace_back(&t, target, how, &source)) {
-        /* traced nothing usable: the caller keeps its own path; but a trace cut short by memory
-         * is an error, not a path that cannot be traced (it would pass for an unproven one) */
-        out->count = 0;
-        return t.out_of_memory ? TG_ERR_OUT_OF_MEMORY : TG_OK;
-    }
+    trace t = {g, a, field, out, 0, false};
+    out->nodes.count = out->faces.count = 0;
+    *out_of_memory = false;
+    tg__pred how = field->qpred[0];
+    if (target->kind == TG__NODE_VERTEX) how = field->vertex_pred[target->id];
+    bool ok = add_node(&t, *target, TG_NONE) &&
+              (tg__node_same(g, target, source) || trace_back(&t, *target, how, source));
+    *out_of_memory = t.out_of_memory;
+    if (!ok) return false;
     /* target-first -> source-first */
-    tg__node* nodes = out->nodes.p;
-    uint32_t* faces = out->faces.p;
+    tg__node* nodes = tg__route_nodes(out);
+    uint32_t* faces = tg__route_faces(out);
     for (size_t i = 0, j = t.n - 1; i < j; ++i, --j) {
         tg__node x = nodes[i];
         nodes[i] = nodes[j], nodes[j] = x;
@@ -333,6 +287,7 @@ tg_status tg__exact_path(tg_geodesic_workspace* ws, const tg_surface_point* from
         uint32_t x = faces[i];
         faces[i] = faces[j], faces[j] = x;
     }
-    out->count = t.n;
-    return TG_OK;
+    out->nodes.count = t.n;
+    out->faces.count = t.n - 1;
+    return true;
 }

@@ -1,0 +1,222 @@
+/* field.h - internal types of the exact distance field engine: windows and their lists, the
+ * engine's scratch (part of tg_geodesic_workspace), one run's query and results.
+ * Based on: J. Chen and Y. Han, "Shortest paths on a polyhedron", SoCG 1990 (windows);
+ *   Y. Qin, X. Han, H. Yu, Y. Yu and J. Zhang, "Fast and exact discrete geodesic computation based
+ *   on triangle-oriented wavefront propagation", ACM TOG 35(4), 2016 (window lists per edge side,
+ *   moved across one face at a time in FIFO order behind a front of vertices ordered by distance).
+ *
+ * Layout of the engine (src/geodesic/field/):
+ *   window.c     window geometry: trimming the windows of one list against each other
+ *   propagate.c  the wavefront: seeding, list propagation, the vertex front, progress
+ *   query.c      distances at arbitrary surface points, evaluated while lists cross their faces
+ *   run.c        one run: the scratch's reset, the query, the results
+ *   field.c      the public entry points (one field, points, the distance matrix)
+ * The per-mesh tables the engine reads (frames, rings, flags) are the solver's (solver.h). */
+#ifndef TG_GEODESIC_FIELD_H
+#define TG_GEODESIC_FIELD_H
+
+#include "core/heap.h"
+#include "geodesic/frame.h"
+
+/* A window: the interval [b0, b1] (distances from tri[h]) of the edge of halfedge h, lit from
+ * outside face h / 3 by the source image (sx, sy) of h's frame (so sy < 0). The distance at (x, 0)
+ * is sigma + |(x, 0) - (sx, sy)|. Windows wait in the list of their halfedge and are propagated
+ * into face h / 3. */
+typedef struct tg__window {
+    double b0, b1;
+    double sx, sy;
+    double sigma;
+    uint32_t next; /* next window in the same list, TG_NONE at the end */
+    uint32_t tag;  /* origin (low 31 bits): the pseudo-source vertex whose image is (sx, sy), or
+                      TG__ORIGIN_SOURCE; bit 31 (TG__VIA_FLAT): unfolded through a zero-area face,
+                      so it may not cross another at once */
+} tg__window;
+
+#define TG__ORIGIN_SOURCE 0x7FFFFFFFu
+#define TG__VIA_FLAT 0x80000000u
+
+/* How a vertex (or a query point) got its distance, for tracing the path back (recorded only
+ * when a run asks for it): along the ray of a window that crossed halfedge h (its source image
+ * (sx, sy) in h's frame, its origin: a pseudo-source vertex or TG__ORIGIN_SOURCE), along an edge
+ * from the vertex `origin` (h == TG_NONE), or straight inside face f from a point source or a
+ * vertex `origin` (h == TG__PRED_FACE | f). */
+typedef struct tg__pred {
+    uint32_t h, origin;
+    double sx, sy;
+} tg__pred;
+#define TG__PRED_FACE 0x80000000u
+
+/* Window filters drop a window (part) only when another real path is shorter by more than this
+ * relative margin: well above the rounding of a distance accumulated over thousands of unfoldings
+ * (~1e-16 each), and harmless when too large (a kept window only costs time). */
+#define TG__DOMINATED_REL 1e-12
+/* A*: the bound kept above the best distance to the target found so far, so that rounding of the
+ * lower bounds never drops the window of the shortest path. */
+#define TG__TIGHT_REL 1e-9
+
+/* Trimming (window.c): the key of a window while one list is sorted by start. */
+typedef struct tg__win_key {
+    double key;
+    uint32_t id;
+} tg__win_key;
+
+/* Where window w meets the face's opposite corner C: orientation of C against its two boundary
+ * rays, and the distance and edge point of its ray to C when it covers C. */
+typedef struct tg__corner_hit {
+    int o0, o1;
+    int covers;
+    double dc, xc;
+} tg__corner_hit;
+
+/* The growable buffers of the field scratch, written once: (member, element type). */
+#define TG__FIELD_BUFFERS(X)                                                                       \
+    X(windows, tg__window)     /* the window pool */                                              \
+    X(free_ids, uint32_t)      /* released pool slots */                                          \
+    X(front, tg__heap_item)    /* the vertex front (lazy: stale entries skipped) */               \
+    X(fifo, uint32_t)          /* ring buffer of halfedges whose lists may cross */               \
+    X(list, uint32_t)          /* one list's windows while it is propagated */                    \
+    X(keys, tg__win_key)       /* their starts before trimming */                                 \
+    X(hits, tg__corner_hit)    /* how each meets the face's opposite corner */                    \
+    X(qpairs, tg__query_pair)  /* (face, point, barycentrics) of the query points, by face */      \
+    X(qdist, double)           /* the distance of each query point */                             \
+    X(qpred, tg__pred)         /* how each query point got it (runs that trace) */                \
+    X(touched_v, uint32_t)     /* vertices a run wrote (reset only those) */                      \
+    X(touched_h, uint32_t)     /* halfedges a run wrote */
+
+/* A query pair: query point `id` lies in face `face` with barycentrics `b` (solver numbering). */
+typedef struct tg__query_pair {
+    uint32_t face, id;
+    double b[3];
+} tg__query_pair;
+
+/* The engine's scratch: tables sized for the mesh once, buffers that grow to the largest run
+ * and are kept. A run writes only what it reaches and notes it (touched_v, touched_h), so the
+ * next run resets only that and a run bounded to a small region costs nothing per vertex. */
+typedef struct tg__field_scratch {
+    const tg_geodesic* g;
+    tg_allocator allocator;
+    /* per vertex */
+    double* dist;    /* best distance found so far */
+    uint8_t* inside; /* VS_* flags of propagate.c: taken from the front, a source, touched */
+    tg__pred* pred;  /* how each got its distance (runs that trace paths) */
+    /* per halfedge */
+    uint32_t* head;  /* first window of the list waiting to enter face h / 3, TG_NONE if empty */
+    uint8_t* queued; /* Q_* flags of propagate.c: in the FIFO, touched */
+    double* split_d; /* shortest distance to the face's opposite corner among windows through h */
+    double* split_x; /* where that window's ray to the corner crosses h */
+    /* per face */
+    uint8_t* qface;  /* 1 for a face holding query points during a run */
+#define TG__FIELD_VEC_(name, type) tg__vec name;
+    TG__FIELD_BUFFERS(TG__FIELD_VEC_)
+#undef TG__FIELD_VEC_
+    size_t fifo_head;
+    int touched_all; /* reset everything before the next run (first run, or a list could not grow) */
+    size_t peak_bytes;
+} tg__field_scratch;
+
+/* Makes the scratch for g (its tables allocated now); false when out of memory (then
+ * tg__field_scratch_free cleans up). */
+bool tg__field_scratch_init(tg__field_scratch* fs, const tg_geodesic* g, const tg_allocator* a);
+void tg__field_scratch_free(tg__field_scratch* fs);
+/* Makes room for `extra` more elements of v, one of the scratch's buffers (noting the peak of
+ * the scratch's memory); false on overflow or allocation failure. */
+bool tg__field_grow(tg__field_scratch* fs, tg__vec* v, size_t extra);
+/* The bytes its fixed tables take, and all it holds now. */
+size_t tg__field_scratch_fixed_bytes(const tg_geodesic* g);
+size_t tg__field_scratch_bytes(const tg__field_scratch* fs);
+
+struct tg__field_run;
+
+/* One run's question: everything a run is told, validated by the caller. */
+typedef struct tg__field_query {
+    const tg_surface_point* sources; /* valid points, the caller's numbering */
+    size_t source_count;
+    const tg_surface_point* points; /* the distance is wanted at these too (none: point_count 0) */
+    size_t point_count;
+    double max_distance;             /* +inf: no limit; beyond it, +inf */
+    /* progress: called now and then; nonzero stops the run (TG_ERR_CANCELLED) */
+    int (*progress)(void* user, const struct tg__field_run* run);
+    void* progress_user;
+    volatile int* cancel;            /* a batch's shared flag (nonzero: stop), may be NULL */
+    bool trace;                      /* record how every vertex and point got its distance */
+    const double* toward;            /* NULL, or the position of the one query point: order the
+                                        front by distance plus the Euclidean distance to it, bound
+                                        the work by the best distance to it found so far (A*) */
+} tg__field_query;
+
+/* One run: its state while it propagates, then its results. */
+typedef struct tg__field_run {
+    tg__field_scratch* fs;
+    const tg_geodesic* g;
+    const tg__field_query* q;
+    double max_dist;      /* the limit; with `toward`, the best distance to the point so far (times
+                             1 + TG__TIGHT_REL) */
+    int all_ready;        /* past max_dist: every list propagates whatever its vertices */
+    int astar;            /* q->toward is set */
+    tg_vec3 target;       /* its position */
+    /* the vertices joined to the target by a segment in a face (A*): their distance bounds it */
+    uint32_t tcorner[4];
+    int tcorners;
+    /* progress */
+    double front;         /* distance of the last vertex taken from the front */
+    size_t settled, referenced;
+    uint64_t work_since_check;
+    double next_check_s;
+    /* results: vertex distances and predecessors are the scratch's (solver numbering) */
+    const double* vertex_dist;
+    const tg__pred* vertex_pred; /* NULL unless q->trace */
+    double* qdist;        /* q->point_count distances */
+    const tg__pred* qpred; /* how each point got its distance, NULL unless q->trace */
+    tg_field_stats stats;
+} tg__field_run;
+
+static inline void tg__field_tighten(tg__field_run* run, double d)
+{
+    double b = d * (1.0 + TG__TIGHT_REL);
+    if (run->astar && b < run->max_dist) run->max_dist = b;
+}
+
+/* ---- one run (run.c) ---- */
+
+/* Runs the query on the scratch; the results stay in *run (and the scratch) until its next run.
+ * Errors: TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED. */
+tg_status tg__field_execute(tg__field_scratch* fs, const tg__field_query* q, tg__field_run* run);
+
+/* ---- window geometry (window.c) ---- */
+
+static inline double tg__win_dist(const tg__window* w, double x)
+{
+    double dx = x - w->sx;
+    return w->sigma + sqrt(dx * dx + w->sy * w->sy);
+}
+
+/* Trims the windows of one list against each other (ids[0..n), sorted here by b0; keys: scratch
+ * for n entries; len: the edge's length): touching windows of one source image are merged; where
+ * one window is shorter than another by the relative margin over a part of their common interval
+ * that touches an end of the other, that part is cut from the other; windows left empty get
+ * b1 <= b0. Returns the number of pairs compared. */
+uint64_t tg__windows_trim(tg__window* pool, uint32_t* ids, tg__win_key* keys, size_t n, double len);
+
+/* ---- queries on the field (query.c) ---- */
+
+/* Registers the run's query points: their distances start at +inf in run->qdist. */
+tg_status tg__field_queries_setup(tg__field_run* run);
+/* The windows ids[0..n) of the list of h, trimmed, about to cross face h / 3: evaluated at the
+ * query points in that face that their rays reach. */
+void tg__field_queries_cross(tg__field_run* run, uint32_t h, const tg__window* pool, const uint32_t* ids, size_t n);
+/* A point source (or a point a zero-area face carries) at distance sigma inside face f. */
+void tg__field_queries_source(tg__field_run* run, const double src[3], double sigma, uint32_t f, uint32_t origin);
+/* After the propagation (ok) the corners' paths, vertex queries and the distance limit; in any
+ * case the face marks are cleared for the next run. */
+void tg__field_queries_finish(tg__field_run* run, bool ok);
+
+/* ---- propagation (propagate.c) ---- */
+
+/* Resets the scratch for a new run (only what the last run wrote). */
+void tg__field_reset(tg__field_scratch* fs);
+/* Seeds one source (distance 0), a valid point in the caller's numbering. */
+tg_status tg__field_seed(tg__field_run* run, const tg_surface_point* src);
+/* Runs the wavefront to the end (or past max_dist). TG_ERR_CANCELLED when progress says stop. */
+tg_status tg__field_propagate(tg__field_run* run);
+
+#endif

@@ -1,0 +1,134 @@
+/* run.c - the exact field engine's scratch (its tables and buffers) and one run: a query in, the
+ * distances (and, when asked, how each was reached) out.
+ * Based on: Y. Qin et al., "Fast and exact discrete geodesic computation based on
+ *   triangle-oriented wavefront propagation", ACM TOG 35(4), 2016; P. E. Hart, N. J. Nilsson and
+ *   B. Raphael, "A formal basis for the heuristic determination of minimum cost paths", 1968 (the
+ *   front ordered by distance plus an admissible bound of the rest, toward one point). */
+#include "geodesic/field/field.h"
+
+#include <string.h>
+
+/* ---- the scratch ---- */
+
+size_t tg__field_scratch_fixed_bytes(const tg_geodesic* g)
+{
+    size_t nv = g->vertex_count, nh = 3 * (size_t)g->face_count;
+    return nv * (sizeof(double) + 1 + sizeof(tg__pred)) + nh * (sizeof(uint32_t) + 1 + 2 * sizeof(double)) +
+           g->face_count;
+}
+
+size_t tg__field_scratch_bytes(const tg__field_scratch* fs)
+{
+    size_t bytes = tg__field_scratch_fixed_bytes(fs->g);
+#define TG__FIELD_BYTES_(name, type) bytes += fs->name.capacity * sizeof(type);
+    TG__FIELD_BUFFERS(TG__FIELD_BYTES_)
+#undef TG__FIELD_BYTES_
+    return bytes;
+}
+
+bool tg__field_grow(tg__field_scratch* fs, tg__vec* v, size_t extra)
+{
+    size_t cap = v->capacity;
+    if (!tg__vec_reserve(&fs->allocator, v, extra)) return false;
+    if (v->capacity != cap) {
+        size_t b = tg__field_scratch_bytes(fs);
+        if (b > fs->peak_bytes) fs->peak_bytes = b;
+    }
+    return true;
+}
+
+void tg__field_scratch_free(tg__field_scratch* fs)
+{
+    const tg_allocator* a = &fs->allocator;
+    void* tables[] = {fs->dist, fs->inside, fs->pred, fs->head, fs->queued, fs->split_d, fs->split_x, fs->qface};
+    for (size_t i = 0; i < sizeof tables / sizeof tables[0]; ++i) tg__free(a, tables[i]);
+#define TG__FIELD_FREE_(name, type) tg__vec_free(a, &fs->name);
+    TG__FIELD_BUFFERS(TG__FIELD_FREE_)
+#undef TG__FIELD_FREE_
+    memset(fs, 0, sizeof *fs);
+}
+
+bool tg__field_scratch_init(tg__field_scratch* fs, const tg_geodesic* g, const tg_allocator* a)
+{
+    memset(fs, 0, sizeof *fs);
+    fs->g = g;
+    fs->allocator = *a;
+#define TG__FIELD_ELEM_(name, type) fs->name.elem = sizeof(type);
+    TG__FIELD_BUFFERS(TG__FIELD_ELEM_)
+#undef TG__FIELD_ELEM_
+    fs->touched_all = 1;
+    size_t nv = g->vertex_count ? g->vertex_count : 1, nf = g->face_count ? g->face_count : 1, nh = 3 * nf;
+    fs->dist = tg__alloc_array(a, nv, sizeof(double));
+    fs->inside = tg__alloc_array(a, nv, 1);
+    fs->pred = tg__alloc_array(a, nv, sizeof(tg__pred));
+    fs->head = tg__alloc_array(a, nh, sizeof(uint32_t));
+    fs->queued = tg__alloc_array(a, nh, 1);
+    fs->split_d = tg__alloc_array(a, nh, sizeof(double));
+    fs->split_x = tg__alloc_array(a, nh, sizeof(double));
+    fs->qface = tg__calloc_array(a, nf, 1);
+    if (!fs->dist || !fs->inside || !fs->pred || !fs->head || !fs->queued || !fs->split_d || !fs->split_x || !fs->qface)
+        return false;
+    fs->peak_bytes = tg__field_scratch_bytes(fs);
+    return true;
+}
+
+/* ---- one run ---- */
+
+/* Referenced vertices in the components of the sources (the progress denominator): O(sources). */
+static size_t reachable_vertices(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count)
+{
+    if (source_count > 8) return (size_t)g->referenced;
+    uint32_t comps[8];
+    size_t nc = 0, n = 0;
+    for (size_t i = 0; i < source_count; ++i) {
+        tg_surface_point p = tg__surface_in(g, &sources[i]);
+        uint32_t f = tg__surface_face(g, &p);
+        if (f == TG_NONE) continue;
+        bool seen = false;
+        for (size_t k = 0; k < nc; ++k) seen |= comps[k] == g->comp[f];
+        if (!seen) comps[nc++] = g->comp[f], n += g->comp_vertices[g->comp[f]];
+    }
+    return n;
+}
+
+/* A*: the vertices joined to the one query point by a segment in a face (their distance plus
+ * that segment bounds the point's). */
+static void target_corners(tg__field_run* run)
+{
+    const tg_geodesic* g = run->g;
+    tg_surface_point p = tg__surface_in(g, run->q->points);
+    const uint32_t* t = g->tri;
+    if (p.kind == TG_SURFACE_VERTEX) {
+        run->tcorner[run->tcorners++] = p.index;
+    } else if (p.kind == TG_SURFACE_EDGE) {
+        run->tcorner[run->tcorners++] = t[p.index];
+        run->tcorner[run->tcorners++] = t[tg_halfedge_next(p.index)];
+    } else {
+        for (int k = 0; k < 3; ++k) run->tcorner[run->tcorners++] = t[3 * (size_t)p.index + (size_t)k];
+    }
+}
+
+tg_status tg__field_execute(tg__field_scratch* fs, const tg__field_query* q, tg__field_run* run)
+{
+    memset(run, 0, sizeof *run);
+    run->fs = fs;
+    run->g = fs->g;
+    run->q = q;
+    run->max_dist = q->max_distance;
+    if (q->toward) {
+        run->astar = 1, run->target = tg_v3_load(q->toward);
+        if (q->point_count == 1) target_corners(run);
+    }
+    run->referenced = reachable_vertices(fs->g, q->sources, q->source_count);
+    tg__field_reset(fs);
+    fs->peak_bytes = tg__field_scratch_bytes(fs); /* this run's peak, from what the scratch holds now */
+    tg_status st = tg__field_queries_setup(run);
+    for (size_t i = 0; st == TG_OK && i < q->source_count; ++i) st = tg__field_seed(run, &q->sources[i]);
+    if (st == TG_OK) st = tg__field_propagate(run);
+    tg__field_queries_finish(run, st == TG_OK); /* also clears the face marks */
+    run->vertex_dist = fs->dist;
+    run->vertex_pred = q->trace ? fs->pred : NULL;
+    run->stats.pseudo_source_vertices = fs->g->pseudo_total;
+    run->stats.peak_bytes = fs->peak_bytes;
+    return st;
+}

@@ -1,0 +1,82 @@
+/* frame.h - the plane of a face in the frame of one of its halfedges, and unfolding across edges:
+ * the one projection and the one unfolding of the geodesic layer (windows, traces, sleeves and
+ * certificates all place points this way).
+ * Based on: the unfolding of a triangle strip into the plane (J. S. B. Mitchell, D. M. Mount and
+ *   C. H. Papadimitriou, "The discrete geodesic problem", 1987, §3): a face keeps its edge
+ *   lengths, so the face beyond an edge is placed by its opposite corner's coordinates along and
+ *   across that edge, which its halfedge frame holds (solver.h, tg__frame). */
+#ifndef TG_GEODESIC_FRAME_H
+#define TG_GEODESIC_FRAME_H
+
+#include "geodesic/solver.h"
+
+/* The corners of face h / 3 in h's frame: tri[h], tri[next h], tri[prev h]. */
+static inline void tg__frame_corners(const tg__frame* fr, double out[3][2])
+{
+    out[0][0] = 0.0, out[0][1] = 0.0;
+    out[1][0] = fr->len, out[1][1] = 0.0;
+    out[2][0] = fr->cx, out[2][1] = fr->cy;
+}
+
+/* The 3D point p, which lies in the plane of face h / 3 (or near it), in h's frame: its abscissa
+ * along the edge and its distance from the edge's line (>= 0: the side of the face). The edge
+ * must have a positive length. */
+static inline void tg__frame_point(const tg_geodesic* g, uint32_t h, tg_vec3 p, double out[2])
+{
+    tg_vec3 a = tg__gpos(g, g->tri[h]);
+    tg_vec3 u = tg_v3_scale(tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_next(h)]), a), 1.0 / g->frame[h].len);
+    tg_vec3 r = tg_v3_sub(p, a);
+    out[0] = tg_v3_dot(r, u);
+    out[1] = tg_v3_len(tg_v3_cross(u, r));
+}
+
+/* The point with barycentrics b (corners 0, 1, 2 of face h / 3) in the frame of h = 3f + k. */
+static inline void tg__frame_bary(const tg__frame* fr, uint32_t k, const double b[3], double out[2])
+{
+    double bb = b[(k + 1) % 3], bc = b[(k + 2) % 3];
+    out[0] = bb * fr->len + bc * fr->cx;
+    out[1] = bc * fr->cy;
+}
+
+/* The point (px, py), given in the frame of halfedge e (face e / 3 on the +y side), in the frame
+ * of halfedge o, another halfedge of the same edge whose face is unfolded across it (to the -y
+ * side of e): a reflection when o runs the same way as e (inconsistent winding), a rotation by pi
+ * when it runs the other way. Intervals of the edge map the same way (tg__ring_interval). */
+static inline void tg__ring_point(const tg_geodesic* g, uint32_t e, uint32_t o, double px, double py,
+                                  double* out_x, double* out_y)
+{
+    *out_x = g->tri[o] == g->tri[e] ? px : g->frame[o].len - px;
+    *out_y = -py;
+}
+static inline void tg__ring_interval(const tg_geodesic* g, uint32_t e, uint32_t o, double t0, double t1,
+                                     double* out_c0, double* out_c1)
+{
+    if (g->tri[o] == g->tri[e]) {
+        *out_c0 = t0, *out_c1 = t1;
+    } else {
+        double len = g->frame[o].len;
+        *out_c0 = len - t1, *out_c1 = len - t0;
+    }
+}
+
+/* The point p (2D, in some frame) in the frame of the edge from o to d (2D points of that frame,
+ * |d - o| = len > 0): its abscissa from o and its signed distance to the left of o -> d. */
+static inline void tg__to_edge_frame(const double o[2], const double d[2], double len, const double p[2],
+                                     double out[2])
+{
+    double ux = (d[0] - o[0]) / len, uy = (d[1] - o[1]) / len, rx = p[0] - o[0], ry = p[1] - o[1];
+    out[0] = rx * ux + ry * uy;
+    out[1] = ux * ry - uy * rx;
+}
+
+/* Unfolding of a strip: the corners of face f laid counterclockwise with corner k at the origin
+ * and its side k -> k + 1 along +x (xy[i]: corner i). */
+void tg__unfold_first(const tg_geodesic* g, uint32_t f, int k, double xy[3][2]);
+/* The 2D corners of the face of halfedge q (any winding), unfolded across its edge from a placed
+ * face whose corners on that edge are r (the vertex tri[h] of the placed face's halfedge h on
+ * the edge) and l (tri[next h]), the placed face lying on the left of r -> l: out[i] is corner i
+ * of q's face. A zero-length edge puts the apex at r. */
+void tg__unfold_across(const tg_geodesic* g, uint32_t h, uint32_t q, const double r[2], const double l[2],
+                       double out[3][2]);
+
+#endif

@@ -1,0 +1,206 @@
+/* solver.h - the solver's view of the mesh (tg_geodesic), built once by tg_geodesic_create and
+ * only read afterwards: its own numbering, consistent winding, edge rings, halfedge frames,
+ * vertex and face flags, corner and neighbour tables; path nodes; and the conversions of surface
+ * points between the mesh's numbering and the solver's, which every public entry point makes
+ * where points enter and leave.
+ * Based on: halfedge meshes with implicit next (the project's DESIGN.md); J. S. B. Mitchell,
+ *   D. M. Mount and C. H. Papadimitriou, "The discrete geodesic problem", SIAM J. Comput. 16(4),
+ *   1987 (geodesics bend only at saddle and boundary vertices; the unfolding of a face across an
+ *   edge needs only the edge and the two opposite corners, whatever the winding); vertices and
+ *   faces renumbered along a Morton (Z-order) curve (Morton 1966) so that searches over a region
+ *   touch nearby memory (Isenburg & Lindstrom, "Streaming Meshes", 2005, §2). */
+#ifndef TG_GEODESIC_SOLVER_H
+#define TG_GEODESIC_SOLVER_H
+
+#include "core/core.h"
+#include "core/vec3.h"
+#include "mesh/mesh_internal.h"
+
+#include <math.h>
+
+/* Pi to double precision (not every libm exports M_PI in strict C11). */
+#define TG__PI 3.14159265358979323846
+
+/* The frame of halfedge h: its length, and the opposite corner of its face at (cx, cy), cy >= 0,
+ * with tri[h] at the origin and tri[next(h)] at (len, 0). Every unfolding and every projection
+ * of the geodesic layer is made in these frames (frame.h). */
+typedef struct tg__frame {
+    double len, cx, cy;
+} tg__frame;
+
+/* Vertex flags. */
+enum {
+    TG__V_PSEUDO = 1, /* geodesics may bend here: saddle, boundary, non-manifold, pinched,
+                         touching a degenerate face */
+};
+/* Face flags. */
+enum {
+    TG__F_SKIP = 1,    /* a duplicate of a lower-indexed face with the same three vertices (counted
+                          once), or a face with a repeated vertex index: not part of the surface */
+    TG__F_FLAT = 2,    /* zero area (corners collinear to rounding): rays are carried across it once */
+    TG__F_FLIPPED = 4, /* wound the other way in the solver than in the file (corners 0, 2, 1) */
+};
+
+/* A window's source image within this relative angle of its edge's line lights only a sliver
+ * along the edge, whose points the edge's end vertices reach as shortly to second order; faces
+ * with a corner this thin count as degenerate (TG__F_FLAT). */
+#define TG__GRAZING_REL 1e-12
+/* A vertex whose total angle exceeds 2 pi by less than this relative margin is flat: straight rays
+ * pass it on both sides and it emits no windows of its own (the shadow behind a saddle of excess
+ * angle e is e wide, and paths through it are longer than the rays beside it only to order e^2). */
+#define TG__FLAT_ANGLE_REL 1e-9
+
+struct tg_geodesic {
+    tg_allocator allocator;
+    const tg_mesh* mesh;
+    uint32_t vertex_count;
+    uint32_t face_count;
+    /* The numbering: vertices sorted along a Morton curve of their positions, faces along the
+     * curve of their centroids. Solver vertex u is mesh vertex mesh_vertex[u], mesh vertex v is
+     * solver vertex solver_vertex[v]; faces likewise, each keeping its corners' order unless
+     * re-wound (TG__F_FLIPPED). Every table below is in the solver's numbering. */
+    uint32_t *mesh_vertex, *solver_vertex, *mesh_face, *solver_face;
+    /* The frame: the solver's coordinates are the mesh's minus `center`, times `scale` (a power
+     * of two bringing the bounding box's largest half-extent into [0.5, 1)), so that every length
+     * and every tolerance inside the solver is the same at any scale and position of the input:
+     * no square underflows or overflows, and a mesh scaled by a power of two gives bit-identical
+     * results. Distances enter multiplied by `scale` and leave multiplied by `unscale` (exact). */
+    double center[3], scale, unscale;
+    double* xyz;   /* 3 per vertex, in the frame */
+    uint32_t* tri; /* 3 per face: the triangles, wound consistently per component */
+    uint32_t* opp; /* 3F: the opposite halfedge across an edge of exactly two kept faces wound
+                      the other way (TG_NONE: boundary, non-manifold or a non-orientable seam) */
+    uint32_t* ring; /* 3F: the next halfedge of the same edge, any orientation (itself: no other) */
+    uint32_t* comp; /* F: the mesh's component of each face */
+    tg__frame* frame; /* 3F: halfedge frames */
+    uint8_t* vflags;  /* V: TG__V_* */
+    uint8_t* fflags;  /* F: TG__F_* */
+    uint32_t* corner_start; /* V + 1: the corners of v are corners[corner_start[v] .. corner_start[v + 1]) */
+    uint32_t* corners;      /* corners 3f + k with tri[3f + k] == v, ascending (so by face) */
+    uint32_t* adj_start;    /* V + 1: the neighbours of u are adj[adj_start[u] .. adj_start[u + 1]) */
+    uint32_t* adj;          /* unique neighbours (every edge of every face), ascending */
+    uint32_t* comp_vertices; /* per component: its referenced vertices */
+    uint32_t comp_count;
+    uint64_t referenced;    /* vertices used by some face */
+    uint64_t pseudo_total;  /* vertices flagged TG__V_PSEUDO */
+};
+
+/* ---- small geometric helpers ---- */
+
+static inline tg_vec3 tg__gpos(const tg_geodesic* g, uint32_t v)
+{
+    return tg_v3_load(g->xyz + 3 * (size_t)v);
+}
+
+/* Corner (0, 1, 2) of vertex v in face f, or -1. */
+static inline int tg__corner_of(const tg_geodesic* g, uint32_t f, uint32_t v)
+{
+    const uint32_t* t = g->tri + 3 * (size_t)f;
+    return t[0] == v ? 0 : t[1] == v ? 1 : t[2] == v ? 2 : -1;
+}
+
+/* The interior angle of face f at corner k, in [0, pi], from its halfedge frame (0 for a
+ * zero-length side): atan2 is accurate at every angle, unlike acos of a normalised dot. */
+static inline double tg__corner_angle(const tg_geodesic* g, uint32_t f, int k)
+{
+    const tg__frame* fr = &g->frame[3 * (size_t)f + (size_t)k];
+    return fr->len > 0.0 ? atan2(fr->cy, fr->cx) : 0.0;
+}
+
+/* The crossable opposite of halfedge h: the opposite, unless the edge has zero length (a crossing
+ * there is a passage through its coincident endpoints). TG_NONE if not crossable. */
+static inline uint32_t tg__cross_opp(const tg_geodesic* g, uint32_t h)
+{
+    uint32_t o = g->opp[h];
+    return o != TG_NONE && g->frame[h].len > 0.0 ? o : TG_NONE;
+}
+
+/* One step around vertex v: from face *f (corner *k of v) across its side in the + sense (the
+ * edge prev(corner), towards corner k + 2) or the - sense (side 1: the edge of the corner
+ * itself), into the face beyond. Returns the halfedge crossed (in the face left) and updates
+ * *f, *k, or TG_NONE at an edge that cannot be crossed (tg__cross_opp). */
+uint32_t tg__fan_step(const tg_geodesic* g, uint32_t v, uint32_t* f, int* k, int side);
+
+/* ---- path nodes and routes (nodes.c) ---- */
+
+/* A point of a path: a mesh vertex, a point on an edge, or a point inside a face (endpoints only).
+ * Edge points keep both t (from tri[id]) and s = 1 - t: the smaller of the two is exact, which
+ * keeps crossings near a vertex precise relative to their distance from it. */
+enum { TG__NODE_VERTEX = 0, TG__NODE_EDGE = 1, TG__NODE_FACE = 2 };
+typedef struct tg__node {
+    uint32_t kind;
+    uint32_t id;    /* vertex, halfedge or face */
+    double t, s;    /* edge: position = (s) from(id) + (t) to(id) */
+    double bary[3]; /* face */
+} tg__node;
+
+static inline tg__node tg__node_vertex(uint32_t v)
+{
+    tg__node n = {TG__NODE_VERTEX, v, 0.0, 0.0, {0.0, 0.0, 0.0}};
+    return n;
+}
+/* Edge node on halfedge h at t from its start; s is its exact complement. */
+static inline tg__node tg__node_edge(uint32_t h, double t, double s)
+{
+    tg__node n = {TG__NODE_EDGE, h, t, s, {0.0, 0.0, 0.0}};
+    return n;
+}
+/* The node for a canonical surface point (in the solver's numbering). */
+tg__node tg__node_from_surface(const tg_surface_point* p);
+/* Barycentric coordinates of node p in face f; false if p does not lie in f. */
+bool tg__node_bary(const tg_geodesic* g, const tg__node* p, uint32_t f, double out_b[3]);
+/* The vector from corner k of face f to node p (which lies in f), formed from the barycentric
+ * coordinates relative to that corner so that it is precise when p is near it. */
+bool tg__node_offset(const tg_geodesic* g, const tg__node* p, uint32_t f, int k, tg_vec3* out);
+/* The 3D position of a node. */
+tg_vec3 tg__node_pos(const tg_geodesic* g, const tg__node* p);
+/* Distance between two nodes lying in a common face f (precise for nearby nodes). */
+double tg__node_dist(const tg_geodesic* g, const tg__node* a, const tg__node* b, uint32_t f);
+/* True when both nodes denote the same point of the surface (same vertex, same edge point). */
+bool tg__node_same(const tg_geodesic* g, const tg__node* a, const tg__node* b);
+/* Does node p lie on the closed mesh edge of halfedge h (an end vertex, or a point of it)? */
+bool tg__node_on_edge(const tg_geodesic* g, const tg__node* p, uint32_t h);
+/* A face (lowest index) containing both nodes, preferring `hint` when it qualifies; TG_NONE if
+ * none. Uses the corner table, so non-manifold configurations are covered. */
+uint32_t tg__common_face(const tg_geodesic* g, const tg__node* a, const tg__node* b, uint32_t hint);
+
+/* A route: nodes[0..count) and the face of each of the count - 1 segments (faces[i] holds nodes i
+ * and i + 1). The currency of the stages: edge path -> shortened path -> the caller's tg_path. */
+typedef struct tg__route {
+    tg__vec nodes; /* tg__node; count = the route's length */
+    tg__vec faces; /* uint32_t */
+} tg__route;
+
+/* Room for n nodes and faces (keeping the content); false when out of memory. */
+bool tg__route_fit(const tg_allocator* a, tg__route* r, size_t n);
+static inline tg__node* tg__route_nodes(const tg__route* r)
+{
+    return (tg__node*)r->nodes.data;
+}
+static inline uint32_t* tg__route_faces(const tg__route* r)
+{
+    return (uint32_t*)r->faces.data;
+}
+
+/* ---- the API boundary (solver.c) ---- */
+
+/* A canonical surface point of the mesh in the solver's numbering: vertex and face ids mapped, a
+ * re-wound face's barycentrics and edge points mirrored (TG__F_FLIPPED: corners 0, 2, 1, so its
+ * halfedge 3f + k becomes 3f + (2 - k), running the other way), and a point of a duplicate face
+ * moved to the kept face with the same three vertices. */
+tg_surface_point tg__surface_to_solver(const tg_geodesic* g, tg_surface_point p);
+/* tg__surface_to_solver of a valid (not necessarily canonical) point of the caller. */
+tg_surface_point tg__surface_in(const tg_geodesic* g, const tg_surface_point* p);
+/* The caller's form of a solver node: the mesh's numbering, and edge points named from their
+ * nearer end (t <= 1/2) when the edge has an opposite, so that t is the exact one of the pair. */
+tg_surface_point tg__surface_out(const tg_geodesic* g, const tg__node* solver_node);
+/* A solver face in the mesh's numbering. */
+static inline uint32_t tg__face_out(const tg_geodesic* g, uint32_t f)
+{
+    return f == TG_NONE ? f : g->mesh_face[f];
+}
+/* A face of the solver holding surface point p (solver numbering), TG_NONE for an unused vertex;
+ * its component is comp[] of that face. */
+uint32_t tg__surface_face(const tg_geodesic* g, const tg_surface_point* p);
+
+#endif

@@ -132,7 +132,7 @@ size_t tg__grow_capacity(size_t cap, size_t need, size_t first)
     return c;
 }
 
-bool tg__vec_reserve(const tg_allocator* a, tg__vec* v, size_t extra)
+bool tg__vec_grow(const tg_allocator* a, tg__vec* v, size_t extra)
 {
     if (extra <= v->capacity - v->count) return true;
     if (extra > SIZE_MAX - v->count) return false;

@@ -67,8 +67,13 @@ typedef struct tg__vec {
     size_t capacity; /* elements allocated */
     size_t elem;     /* element size in bytes */
 } tg__vec;
-/* Makes room for `extra` more elements; false on overflow or allocation failure. */
-bool tg__vec_reserve(const tg_allocator* a, tg__vec* v, size_t extra);
+/* Makes room for `extra` more elements; false on overflow or allocation failure. The common case
+ * (room already) is inline: buffers of hot loops (the exact field's front and pools) ask often. */
+bool tg__vec_grow(const tg_allocator* a, tg__vec* v, size_t extra);
+static inline bool tg__vec_reserve(const tg_allocator* a, tg__vec* v, size_t extra)
+{
+    return extra <= v->capacity - v->count || tg__vec_grow(a, v, extra);
+}
 /* Makes room for n elements in all (for a buffer used as an array of that size), keeping the
  * content and the count; false on overflow or allocation failure. */
 bool tg__vec_fit(const tg_allocator* a, tg__vec* v, size_t n);

@@ -120,7 +120,11 @@ bool tg__field_scratch_init(tg__field_scratch* fs, const tg_geodesic* g, const t
 void tg__field_scratch_free(tg__field_scratch* fs);
 /* Makes room for `extra` more elements of v, one of the scratch's buffers (noting the peak of
  * the scratch's memory); false on overflow or allocation failure. */
-bool tg__field_grow(tg__field_scratch* fs, tg__vec* v, size_t extra);
+bool tg__field_grow_slow(tg__field_scratch* fs, tg__vec* v, size_t extra);
+static inline bool tg__field_grow(tg__field_scratch* fs, tg__vec* v, size_t extra)
+{
+    return extra <= v->capacity - v->count || tg__field_grow_slow(fs, v, extra);
+}
 /* The bytes its fixed tables take, and all it holds now. */
 size_t tg__field_scratch_fixed_bytes(const tg_geodesic* g);
 size_t tg__field_scratch_bytes(const tg__field_scratch* fs);

@@ -26,7 +26,7 @@ size_t tg__field_scratch_bytes(const tg__field_scratch* fs)
     return bytes;
 }
 
-bool tg__field_grow(tg__field_scratch* fs, tg__vec* v, size_t extra)
+bool tg__field_grow_slow(tg__field_scratch* fs, tg__vec* v, size_t extra)
 {
     size_t cap = v->capacity;
     if (!tg__vec_reserve(&fs->allocator, v, extra)) return false;

@@ -54,10 +54,15 @@ static int crossing_roots(const tg__window* wi, const tg__window* wj, double p, 
     double m = -4.0 * ha, s = (wi->sy - wj->sy) * (wi->sy + wj->sy) + alpha * alpha;
     int n = 0;
     double cand[2];
-    if (fabs(2.0 * alpha) <= 0.5 * fabs(m)) {
-        if (m == 0.0) return 0; /* alpha = 0 and one abscissa: the distances differ by a constant */
+    if (alpha == 0.0) { /* psi is linear */
+        if (m == 0.0) return 0; /* one abscissa: the distances differ by a constant */
+        cand[n++] = -s / m + c;
+    } else if (fabs(2.0 * alpha) <= 0.5 * fabs(m)) {
         double y = -s / m;
-        for (int it = 0; it < 16; ++it) {
+        /* Newton converges quadratically from the linear root, which is off by O(alpha / m): for
+         * |alpha / m| <= 1e-8 one step is exact to rounding */
+        int steps = fabs(alpha) <= 1e-8 * fabs(m) ? 1 : 16;
+        for (int it = 0; it < steps; ++it) {
             double dx = y - ha, u = sqrt(dx * dx + P);
             double step = (m * y + s - 2.0 * alpha * u) / (m - 2.0 * alpha * dx / u);
             y -= step;

@@ -6,6 +6,7 @@
  * (full fields on the largest corpus meshes take up to minutes: see bench/bench_field.c);
  * vertices beyond the limit must then be +inf and have an edge-graph distance beyond it. */
 #include "tg_test.h"
+#include "tg_test_path.h"
 
 #include <time.h>
 #include <trigeo.h>
@@ -18,85 +19,7 @@
 #define LIMIT_VERTICES 4000
 #endif
 
-/* ---- Dijkstra over the edges of all faces, binary heap with lazy deletion ---- */
-
-typedef struct hitem {
-    double d;
-    uint32_t v;
-} hitem;
-
-static void hpush(hitem* h, size_t* n, hitem it)
-{
-    size_t i = (*n)++;
-    while (i > 0 && h[(i - 1) / 2].d > it.d) {
-        h[i] = h[(i - 1) / 2];
-        i = (i - 1) / 2;
-    }
-    h[i] = it;
-}
-
-static hitem hpop(hitem* h, size_t* n)
-{
-    hitem top = h[0], last = h[--*n];
-    size_t i = 0;
-    for (;;) {
-        size_t c = 2 * i + 1;
-        if (c >= *n) break;
-        if (c + 1 < *n && h[c + 1].d < h[c].d) c++;
-        if (h[c].d >= last.d) break;
-        h[i] = h[c];
-        i = c;
-    }
-    if (*n) h[i] = last;
-    return top;
-}
-
-static double dist3(const double* a, const double* b)
-{
-    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-}
-
-static void dijkstra(const tg_mesh* m, uint32_t src, double* d)
-{
-    size_t n = tg_mesh_vertex_count(m), F = tg_mesh_face_count(m);
-    const uint32_t* t = tg_mesh_triangles(m);
-    const double* x = tg_mesh_positions(m);
-    uint32_t* start = calloc(n + 1, sizeof *start);
-    uint32_t* adj = malloc(6 * F * sizeof *adj + 1);
-    uint32_t* fill = malloc((n + 1) * sizeof *fill);
-    hitem* h = malloc((6 * F + 1) * sizeof *h);
-    if (!start || !adj || !fill || !h) {
-        CHECK_MSG(0, "dijkstra: out of memory");
-        free(start), free(adj), free(fill), free(h);
-        return;
-    }
-    for (size_t c = 0; c < 3 * F; ++c) start[t[c] + 1] += 2;
-    for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-    memcpy(fill, start, (n + 1) * sizeof *fill);
-    for (size_t f = 0; f < F; ++f)
-        for (size_t k = 0; k < 3; ++k) {
-            uint32_t a = t[3 * f + k];
-            adj[fill[a]++] = t[3 * f + (k + 1) % 3];
-            adj[fill[a]++] = t[3 * f + (k + 2) % 3];
-        }
-    for (size_t v = 0; v < n; ++v) d[v] = INFINITY;
-    size_t hn = 0;
-    d[src] = 0;
-    hpush(h, &hn, (hitem){0, src});
-    while (hn) {
-        hitem it = hpop(h, &hn);
-        if (it.d > d[it.v]) continue;
-        for (uint32_t i = start[it.v]; i < start[it.v + 1]; ++i) {
-            uint32_t w = adj[i];
-            double nd = it.d + dist3(x + 3 * (size_t)it.v, x + 3 * (size_t)w);
-            if (nd < d[w]) {
-                d[w] = nd;
-                hpush(h, &hn, (hitem){nd, w});
-            }
-        }
-    }
-    free(start), free(adj), free(fill), free(h);
-}
+#define dist3 tg_test_dist3
 
 static int cmp_double(const void* a, const void* b)
 {
@@ -126,7 +49,7 @@ static void test_mesh(const char* dir, const char* file)
     uint32_t src = t[3 * (F / 2)];
     tg_field_options o;
     memset(&o, 0, sizeof o);
-    dijkstra(m, src, dj);
+    if (!tg_test_dijkstra(m, src, dj)) goto done;
     if (F > FULL_FACES) {
         /* the graph distance of the LIMIT_VERTICES-th nearest vertex (field <= graph distance) */
         size_t k = 0;

@@ -2,59 +2,20 @@
  * on random meshes (a jittered height field with saddles and a boundary, bumpy closed spheres)
  * and a convex polyhedron (a UV sphere):
  *   Euclidean distance <= field <= Dijkstra distance in the edge graph;
- *   field <= length of the straightened geodesic path (tg_geodesic_path), and equal within 1e-9
- *   on the convex polyhedron, for near pairs, to the shorter of the straightened and the relaxed
- *   path (there the shortest geodesic);
+ *   field <= the length of the path of every method (tg_geodesic_path: each a valid surface path,
+ *   tg_test_path.h's contract), equal within 1e-9 to the default (exact) one's; on the convex
+ *   polyhedron, for near pairs, equal to the shorter of the straightened and the relaxed path
+ *   (there the shortest geodesic);
  *   symmetry d(a -> b) == d(b -> a) for vertex pairs; face-point sources likewise. */
 #include "tg_test.h"
 #include "tg_test_geodesic.h"
+#include "tg_test_path.h"
 
 #include <trigeo.h>
 
 static double fa[MAXV], fb[MAXV], dj[MAXV];
 
-/* ---- Dijkstra over the edges of all faces (O(V^2) selection: meshes here are small) ---- */
-
-static void dijkstra(const tg_mesh* m, uint32_t src, double* d)
-{
-    size_t n = tg_mesh_vertex_count(m), F = tg_mesh_face_count(m);
-    const uint32_t* t = tg_mesh_triangles(m);
-    const double* x = tg_mesh_positions(m);
-    static unsigned char done[MAXV];
-    /* adjacency as a list of (face corner) edges, scanned per settled vertex */
-    static uint32_t start[MAXV + 1], adj[6 * MAXF];
-    memset(start, 0, sizeof start);
-    for (size_t c = 0; c < 3 * F; ++c) start[t[c] + 1] += 2;
-    for (size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-    static uint32_t fill[MAXV];
-    memcpy(fill, start, n * sizeof(uint32_t));
-    for (size_t f = 0; f < F; ++f)
-        for (int k = 0; k < 3; ++k) {
-            uint32_t a = t[3 * f + (size_t)k];
-            adj[fill[a]++] = t[3 * f + (size_t)(k + 1) % 3];
-            adj[fill[a]++] = t[3 * f + (size_t)(k + 2) % 3];
-        }
-    for (size_t v = 0; v < n; ++v) d[v] = INFINITY, done[v] = 0;
-    d[src] = 0;
-    for (;;) {
-        size_t u = n;
-        for (size_t v = 0; v < n; ++v)
-            if (!done[v] && isfinite(d[v]) && (u == n || d[v] < d[u])) u = v;
-        if (u == n) break;
-        done[u] = 1;
-        for (uint32_t i = start[u]; i < start[u + 1]; ++i) {
-            uint32_t w = adj[i];
-            const double *p = x + 3 * u, *q = x + 3 * (size_t)w;
-            double e = sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
-            if (d[u] + e < d[w]) d[w] = d[u] + e;
-        }
-    }
-}
-
-static double dist3(const double* a, const double* b)
-{
-    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-}
+#define dist3 tg_test_dist3
 
 static void field_of(const ctx* c, tg_surface_point s, double* out)
 {
@@ -73,7 +34,7 @@ static void check_mesh(ctx* c, const char* name, int sources, uint64_t seed, int
     for (int q = 0; q < sources; ++q) {
         uint32_t a = (uint32_t)(tg_rng_next(&r) % n);
         field_of(c, tg_surface_vertex(a), fa);
-        dijkstra(c->mesh, a, dj);
+        tg_test_dijkstra(c->mesh, a, dj);
         CHECK(fa[a] == 0);
         for (size_t v = 0; v < n; ++v) {
             double e = dist3(x + 3 * (size_t)a, x + 3 * v);
@@ -81,18 +42,31 @@ static void check_mesh(ctx* c, const char* name, int sources, uint64_t seed, int
             if (!ok && bad++ < 5)
                 CHECK_MSG(0, "%s from %u: vertex %zu: euclid %.17g field %.17g graph %.17g", name, a, v, e, fa[v], dj[v]);
         }
-        /* sampled targets against the straightened path (never shorter than the field) */
+        /* sampled targets against the path of every method, the default (exact) first: each is a
+         * valid surface path, so never shorter than the field; the exact one has its length */
         tg_path_options straighten;
         memset(&straighten, 0, sizeof straighten);
         straighten.method = TG_PATH_STRAIGHTEN;
         for (int k = 0; k < 12; ++k) {
             uint32_t b = (uint32_t)(tg_rng_next(&r) % n);
             tg_surface_point pa = tg_surface_vertex(a), pb = tg_surface_vertex(b);
-            CHECK_STATUS(tg_geodesic_path(c->geo, c->ws, &pa, &pb, &straighten, c->path), TG_OK);
-            tg_path_view v;
-            tg_path_get_view(c->path, &v);
-            path_checks++;
-            CHECK_MSG(fa[b] <= v.length * (1 + 1e-12) + 1e-15, "%s %u -> %u: field %.17g > path %.17g", name, a, b, fa[b], v.length);
+            for (int mi = 0; mi < 4; ++mi) {
+                tg_path_options po;
+                memset(&po, 0, sizeof po);
+                po.method = tg_test_path_methods[mi];
+                if (po.method == TG_PATH_RELAX && k >= 2) continue; /* the seed's relaxation is slow */
+                CHECK_STATUS(tg_geodesic_path(c->geo, c->ws, &pa, &pb, &po, c->path), TG_OK);
+                tg_path_view v;
+                tg_path_get_view(c->path, &v);
+                tg_test_check_path(tg_test_method_name(po.method), c->mesh, &v, &pa, &pb,
+                                   po.method == TG_PATH_EXACT ? TG_TEST_PATH_CONVERGED | TG_TEST_PATH_PROVEN : 0);
+                path_checks++;
+                CHECK_MSG(fa[b] <= v.length * (1 + 1e-12) + 1e-15, "%s %u -> %u: field %.17g > %s path %.17g", name, a, b,
+                          fa[b], tg_test_method_name(po.method), v.length);
+                if (po.method == TG_PATH_EXACT)
+                    CHECK_MSG(fabs(fa[b] - v.length) <= 1e-9 * v.length, "%s %u -> %u: field %.17g, exact path %.17g",
+                              name, a, b, fa[b], v.length);
+            }
         }
         /* on the convex polyhedron, near targets (chord < 0.8 of the unit sphere): the shortest of
          * the geodesics the two path methods find (the straightener can settle on a longer local

@@ -1,60 +1,66 @@
 /* test_geodesic_corpus.c - on every mesh of the shared corpus (MANIFEST.tsv), 20 random pairs of
- * surface points (vertices, edge points, face points) give valid, certified paths: unreachable
- * exactly when the endpoints lie in different components, otherwise converged with a certificate
- * <= 1e-10 rad, every segment inside its face, Euclidean <= length <= edge-path length, no NaN.
- * The seed's relaxation runs on a few pairs of the small meshes (no hang, valid, not longer). */
+ * surface points (vertices, edge points, face points) by every path method, the default (exact)
+ * first: every path meets the contract of tg_test_path.h (unreachable exactly when the endpoints
+ * lie in different components; otherwise valid points, every segment inside its face by indices
+ * and by distance, the requested endpoints, length the sum of its segments, Euclidean <= length
+ * <= edge-path length, no NaN). The exact path is converged and proven, and never longer than the
+ * path of any other method (each a valid surface path, so an upper bound of the distance: an
+ * oracle-free check of "globally shortest"); the straightened one is converged with a certificate
+ * <= 1e-10 rad. The seed's relaxation runs on a few pairs of the small meshes (no hang, valid). */
 #include "tg_test.h"
+#include "tg_test_path.h"
 
 #include <trigeo.h>
 
 #define PAIRS 20
 #define RELAX_PAIRS 2
 #define RELAX_MAX_FACES 3000
+/* the label "proven" promises no path shorter by 1e-9 relative */
+#define PROVEN_REL 1e-9
 
-static int point_in_face(const tg_mesh* m, const tg_surface_point* p, uint32_t f)
-{
-    const uint32_t* t = tg_mesh_triangles(m) + 3 * (size_t)f;
-    if (p->kind == TG_SURFACE_VERTEX) return t[0] == p->index || t[1] == p->index || t[2] == p->index;
-    if (p->kind == TG_SURFACE_FACE) return p->index == f;
-    uint32_t a = tg_mesh_halfedge_from(m, p->index), b = tg_mesh_halfedge_to(m, p->index);
-    return (t[0] == a || t[1] == a || t[2] == a) && (t[0] == b || t[1] == b || t[2] == b);
-}
-
-/* Returns the number of problems found in one path. */
-static int check_path(const char* file, int q, const tg_mesh* m, const tg_path_view* v, int reachable,
-                      const double* pa, const double* pb, int certified)
+/* Returns the number of problems found in one pair. */
+static int check_pair(const char* file, int q, tg_geodesic* geo, tg_geodesic_workspace* ws, tg_path* p,
+                      const tg_mesh* m, const tg_surface_point* a, const tg_surface_point* b, int reachable)
 {
     int bad = 0;
-    if (!reachable) {
-        if (v->status != TG_PATH_UNREACHABLE || v->point_count != 0 || !isinf(v->length)) {
-            fprintf(stderr, "%s pair %d: expected unreachable, got %s\n", file, q, tg_path_status_name(v->status));
+    double exact = NAN;
+    for (int k = 0; k < 4; ++k) {
+        tg_path_method method = tg_test_path_methods[k];
+        if (method == TG_PATH_RELAX && (q >= RELAX_PAIRS || tg_mesh_face_count(m) > RELAX_MAX_FACES)) continue;
+        tg_path_options o;
+        memset(&o, 0, sizeof o);
+        o.method = method;
+        tg_status st = tg_geodesic_path(geo, ws, a, b, &o, p);
+        CHECK_MSG(st == TG_OK, "%s pair %d %s: %s", file, q, tg_test_method_name(method), tg_status_name(st));
+        if (st != TG_OK) {
+            bad++;
+            continue;
+        }
+        tg_path_view v;
+        tg_path_get_view(p, &v);
+        unsigned flags = !reachable ? TG_TEST_PATH_UNREACHABLE
+                         : method == TG_PATH_EXACT ? TG_TEST_PATH_CONVERGED | TG_TEST_PATH_PROVEN
+                         : method == TG_PATH_STRAIGHTEN ? TG_TEST_PATH_CONVERGED
+                                                        : 0;
+        char why[256];
+        int n = tg_test_path_problems(m, &v, a, b, flags, why, sizeof why);
+        char sa[96], sb[96];
+        if (n)
+            fprintf(stderr, "%s pair %d (--from %s --to %s) %s: %s\n", file, q, tg_test_spec(a, sa, sizeof sa),
+                    tg_test_spec(b, sb, sizeof sb), tg_test_method_name(method), why);
+        bad += n;
+        if (!reachable || n) continue;
+        if (method == TG_PATH_STRAIGHTEN && !(v.max_angle_defect <= 1e-10)) {
+            fprintf(stderr, "%s pair %d: straightened path's certificate %.3g\n", file, q, v.max_angle_defect);
             bad++;
         }
-        return bad;
-    }
-    if (v->status == TG_PATH_UNREACHABLE || v->point_count < 2) {
-        fprintf(stderr, "%s pair %d: unreachable within one component\n", file, q);
-        return 1;
-    }
-    if (certified && (v->status != TG_PATH_CONVERGED || !(v->max_angle_defect <= 1e-10))) {
-        fprintf(stderr, "%s pair %d: status %s, certificate %.3g\n", file, q, tg_path_status_name(v->status),
-                v->max_angle_defect);
-        bad++;
-    }
-    if (!isfinite(v->max_angle_defect) || !isfinite(v->length)) bad++;
-    for (size_t i = 0; i < v->point_count; ++i) {
-        for (int k = 0; k < 3; ++k) bad += !isfinite(v->xyz[3 * i + k]);
-        if (i + 1 < v->point_count &&
-            (!point_in_face(m, &v->points[i], v->faces[i]) || !point_in_face(m, &v->points[i + 1], v->faces[i]))) {
-            fprintf(stderr, "%s pair %d: segment %zu leaves face %u\n", file, q, i, v->faces[i]);
+        if (method == TG_PATH_EXACT) exact = v.length;
+        else if (!(exact <= v.length * (1 + PROVEN_REL))) {
+            fprintf(stderr, "%s pair %d (--from %s --to %s): the exact path (%.17g) is longer than the %s path (%.17g)\n",
+                    file, q, tg_test_spec(a, sa, sizeof sa), tg_test_spec(b, sb, sizeof sb), exact,
+                    tg_test_method_name(method), v.length);
             bad++;
         }
-    }
-    double euclid = sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) + (pa[2] - pb[2]) * (pa[2] - pb[2]));
-    if (!(euclid <= v->length * (1 + 1e-12) + 1e-300) || !(v->length <= v->initial_length * (1 + 1e-12))) {
-        fprintf(stderr, "%s pair %d: euclidean %.17g, length %.17g, edge path %.17g\n", file, q, euclid, v->length,
-                v->initial_length);
-        bad++;
     }
     return bad;
 }
@@ -77,21 +83,8 @@ static void test_mesh(const char* dir, const char* file, uint64_t seed)
         tg_surface_point a = tg_test_random_surface_point(&r, m, &fa), b = tg_test_random_surface_point(&r, m, &fb);
         /* a vertex's component is that of any face using it; the sampled face is one */
         int reachable = comp[fa] == comp[fb];
-        double pa[3], pb[3];
-        tg_surface_point_position(m, &a, pa);
-        tg_surface_point_position(m, &b, pb);
-        for (int method = 0; method < 2; ++method) {
-            if (method == 1 && (q >= RELAX_PAIRS || tg_mesh_face_count(m) > RELAX_MAX_FACES)) break;
-            tg_path_options o;
-            memset(&o, 0, sizeof o);
-            o.method = method ? TG_PATH_RELAX : TG_PATH_STRAIGHTEN;
-            tg_status st = tg_geodesic_path(geo, ws, &a, &b, &o, p);
-            CHECK_MSG(st == TG_OK, "%s pair %d: %s", file, q, tg_status_name(st));
-            tg_path_view v;
-            tg_path_get_view(p, &v);
-            bad += check_path(file, q, m, &v, reachable, pa, pb, method == 0);
-            reached += method == 0 && v.status != TG_PATH_UNREACHABLE;
-        }
+        bad += check_pair(file, q, geo, ws, p, m, &a, &b, reachable);
+        reached += reachable;
     }
     CHECK_MSG(bad == 0, "%s: %d problems in %d pairs", file, bad, PAIRS);
     printf("%-36s %8zu faces: %2d/%d pairs reachable, %s\n", file, tg_mesh_face_count(m), reached, PAIRS,

@@ -1,14 +1,20 @@
 /* test_geodesic_imperfect.c - documented behaviour of geodesic paths on imperfect meshes, each on
  * a mesh built here: a boundary with a reflex corner (the path bends there, certified by its
  * interior angle), two components (unreachable, length +inf), a zero-area face inside a flat
- * sheet (straight through it), a non-manifold "book" edge and a pinched vertex (crossed only
- * through vertices), a duplicate face, an unreferenced vertex (rejected as an endpoint). */
+ * sheet (straight through it), a non-manifold "book" edge (the exact path crosses it, the surface
+ * being a 2-complex; the local methods pass through its end vertices) and a pinched vertex
+ * (crossed through the vertex), a duplicate face, an unreferenced vertex (rejected as an
+ * endpoint). Every method runs, the default (exact) first, and every path meets the contract of
+ * tg_test_path.h. */
 #include "tg_test.h"
 #include "tg_test_geodesic.h"
+#include "tg_test_path.h"
 
 #include <trigeo.h>
 
 
+/* One query by method m, checked against the contract of tg_test_path.h (the exact method's path
+ * proven and converged). */
 static tg_path_view run(ctx* c, tg_surface_point a, tg_surface_point b, tg_path_method m)
 {
     tg_path_options o;
@@ -17,8 +23,15 @@ static tg_path_view run(ctx* c, tg_surface_point a, tg_surface_point b, tg_path_
     CHECK_STATUS(tg_geodesic_path(c->geo, c->ws, &a, &b, &o, c->path), TG_OK);
     tg_path_view v;
     tg_path_get_view(c->path, &v);
+    unsigned flags = v.status == TG_PATH_UNREACHABLE ? TG_TEST_PATH_UNREACHABLE
+                     : m == TG_PATH_EXACT         ? TG_TEST_PATH_CONVERGED | TG_TEST_PATH_PROVEN
+                                                  : 0;
+    tg_test_check_path(tg_test_method_name(m), c->mesh, &v, &a, &b, flags);
     return v;
 }
+
+/* The three local methods after the exact one, in the order of tg_test_path_methods. */
+#define LOCAL_METHODS 3
 
 /* Interior points of a path that lie on an edge with more or fewer than two faces, or on a
  * zero-length one (a path crosses only manifold edges). */
@@ -41,6 +54,8 @@ static void test_reflex_corner(void)
     ctx c = open_ctx();
     uint32_t fa = find_face(0.9, 0.3), fb = find_face(0.3, 0.9);
     double expect = 2 * sqrt(0.2); /* (0.9,0.3) -> (0.5,0.5) -> (0.3,0.9) */
+    tg_path_view vx = run(&c, at(fa, 0.9, 0.3), at(fb, 0.3, 0.9), TG_PATH_EXACT);
+    CHECK_NEAR(vx.length, expect, 1e-12);
     for (int m = 0; m < 2; ++m) {
         tg_path_view v = run(&c, at(fa, 0.9, 0.3), at(fb, 0.3, 0.9), m ? TG_PATH_RELAX : TG_PATH_STRAIGHTEN);
         CHECK_NEAR(v.length, expect, m ? 1e-6 : 1e-12);
@@ -63,13 +78,15 @@ static void test_components(void)
     uint32_t a0 = grid(3, 0, 0, 1, 0, NULL);
     uint32_t b0 = grid(3, 5, 0, 1, 0, NULL);
     ctx c = open_ctx();
-    for (int m = 0; m < 3; ++m) {
-        tg_path_view v = run(&c, tg_surface_vertex(a0), tg_surface_vertex(b0 + 5), (tg_path_method)m);
+    for (int m = 0; m < 4; ++m) {
+        tg_path_view v = run(&c, tg_surface_vertex(a0), tg_surface_vertex(b0 + 5), tg_test_path_methods[m]);
         CHECK(v.status == TG_PATH_UNREACHABLE && v.point_count == 0);
         CHECK(isinf(v.length) && v.length > 0 && isinf(v.initial_length));
         CHECK(v.max_angle_defect == 0);
     }
-    tg_path_view v = run(&c, tg_surface_vertex(b0), tg_surface_vertex(b0 + 15), TG_PATH_STRAIGHTEN);
+    tg_path_view v = run(&c, tg_surface_vertex(b0), tg_surface_vertex(b0 + 15), TG_PATH_EXACT);
+    CHECK_NEAR(v.length, sqrt(2.0), 1e-12);
+    v = run(&c, tg_surface_vertex(b0), tg_surface_vertex(b0 + 15), TG_PATH_STRAIGHTEN);
     CHECK(v.status == TG_PATH_CONVERGED);
     CHECK_NEAR(v.length, sqrt(2.0), 1e-12);
     /* the result object is reused: an unreachable query after a path clears it */
@@ -114,6 +131,9 @@ static void test_zero_area_face(void)
          * the zero-area face keeps its direction: exact. The seed's relaxation needs a direction at
          * each vertex from the neighbouring path point, which a crossing through the zero-area
          * face puts on top of the vertex: it may stop early there (valid, not longer, not exact). */
+        tg_path_view vx = run(&c, at(fa, x1, y1), at(fb, x2, y2), TG_PATH_EXACT);
+        CHECK_NEAR(vx.length, hypot(x2 - x1, y2 - y1), 1e-12);
+        CHECK(crossings_on_walls(&c, &vx) == 0);
         for (int meth = 0; meth < 2; ++meth) {
             tg_path_view v = run(&c, at(fa, x1, y1), at(fb, x2, y2), meth ? TG_PATH_RELAX : TG_PATH_STRAIGHTEN);
             double euclid = hypot(x2 - x1, y2 - y1);
@@ -150,17 +170,35 @@ static void test_book_and_pinch(void)
     /* page 0 point (0.5, 0, 0.5) to page 1 point at distance 0.5 from the spine, height 0.5: the
      * shortest way is through the spine, at one of its end vertices (the interior is not crossed):
      * 2 * sqrt(0.5^2 + 0.5^2) */
-    for (int m = 0; m < 2; ++m) {
+    for (int m = -1; m < 2; ++m) {
         tg_surface_point a = tg_surface_face(0, 0.5, 0.5, 0.0), b = tg_surface_face(2, 0.5, 0.5, 0.0);
         double pa[3], pb[3];
         tg_surface_point_position(c.mesh, &a, pa);
         tg_surface_point_position(c.mesh, &b, pb);
+        if (m < 0) { /* the exact path: the same length (the unfolding across the spine also runs through s0) */
+            tg_path_view v = run(&c, a, b, TG_PATH_EXACT);
+            CHECK_NEAR(v.length, 1.0, 1e-12);
+            continue;
+        }
         tg_path_view v = run(&c, a, b, m ? TG_PATH_RELAX : TG_PATH_STRAIGHTEN);
         CHECK(v.status == TG_PATH_CONVERGED);
         CHECK(crossings_on_walls(&c, &v) == 0);
         double via0 = sqrt(pa[0] * pa[0] + pa[1] * pa[1] + pa[2] * pa[2]) + sqrt(pb[0] * pb[0] + pb[1] * pb[1] + pb[2] * pb[2]);
         CHECK_NEAR(v.length, via0, m ? 1e-6 : 1e-12);
         if (m == 0) CHECK(v.max_angle_defect <= 1e-10);
+    }
+    /* page 0 point (0.5, 0, 0.5) to the page 1 point at the same distance from the spine and the
+     * same height: the surface is a 2-complex, so the shortest path crosses the spine's interior
+     * (the two pages unfold into one plane: length 1), which the exact path does; the local methods
+     * pass through an end vertex of the spine (2 sqrt(0.5), never shorter than the exact path) */
+    {
+        tg_surface_point a = tg_surface_face(0, 0.5, 0.0, 0.5), b = tg_surface_face(2, 0.5, 0.0, 0.5);
+        tg_path_view v = run(&c, a, b, TG_PATH_EXACT);
+        CHECK_NEAR(v.length, 1.0, 1e-12);
+        for (int m = 1; m <= LOCAL_METHODS; ++m) {
+            v = run(&c, a, b, tg_test_path_methods[m]);
+            CHECK_MSG(v.length >= 1.0 - 1e-12, "book across the spine: %s %.17g below the exact 1", tg_test_method_name(tg_test_path_methods[m]), v.length);
+        }
     }
     close_sheet(&c);
 
@@ -176,13 +214,13 @@ static void test_book_and_pinch(void)
     double pa[3], pb[3];
     tg_surface_point_position(c.mesh, &a, pa);
     tg_surface_point_position(c.mesh, &b, pb);
-    for (int m = 0; m < 2; ++m) {
-        tg_path_view v = run(&c, a, b, m ? TG_PATH_RELAX : TG_PATH_STRAIGHTEN);
+    for (int m = -1; m < 2; ++m) {
+        tg_path_view v = run(&c, a, b, m < 0 ? TG_PATH_EXACT : m ? TG_PATH_RELAX : TG_PATH_STRAIGHTEN);
         CHECK(v.status == TG_PATH_CONVERGED && v.point_count == 3);
         if (v.point_count == 3) CHECK(v.points[1].kind == TG_SURFACE_VERTEX && v.points[1].index == p);
         CHECK_NEAR(v.length, sqrt(pa[0] * pa[0] + pa[1] * pa[1] + pa[2] * pa[2]) + sqrt(pb[0] * pb[0] + pb[1] * pb[1] + pb[2] * pb[2]), 1e-12);
         /* a pinched vertex may be passed at any angle between its two fans */
-        CHECK(v.max_angle_defect == 0);
+        if (m >= 0) CHECK(v.max_angle_defect == 0);
     }
     close_sheet(&c);
 }
@@ -200,7 +238,10 @@ static void test_duplicate_and_unreferenced(void)
     for (int q = 0; q < 30; ++q) {
         double x1 = tg_rng_unit(&rng), y1 = tg_rng_unit(&rng), x2 = tg_rng_unit(&rng), y2 = tg_rng_unit(&rng);
         uint32_t fa = find_face(x1, y1), fb = find_face(x2, y2);
-        tg_path_view v = run(&c, at(fa, x1, y1), at(fb, x2, y2), TG_PATH_STRAIGHTEN);
+        tg_path_view v = run(&c, at(fa, x1, y1), at(fb, x2, y2), TG_PATH_EXACT);
+        CHECK_MSG(fabs(v.length - hypot(x2 - x1, y2 - y1)) <= 1e-12, "duplicate face, exact: length %.17g vs %.17g",
+                  v.length, hypot(x2 - x1, y2 - y1));
+        v = run(&c, at(fa, x1, y1), at(fb, x2, y2), TG_PATH_STRAIGHTEN);
         CHECK(v.status == TG_PATH_CONVERGED && v.max_angle_defect <= 1e-10);
         /* the duplicate counts once: its edges are crossed like any other, so on the flat sheet
          * every path is the straight segment */

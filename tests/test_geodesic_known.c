@@ -1,16 +1,21 @@
 /* test_geodesic_known.c - geodesic paths on surfaces built here whose geodesics are known in
  * closed form: a flat square with irregular triangles (Euclidean distance), a cube (unfolding
  * across an edge), a triangulated prism "cylinder" (unrolled into a strip), a pyramid "cone"
- * (unrolled into a sector; through the apex when the unrolled angle is at least pi). Both
- * methods, every endpoint kind. */
+ * (unrolled into a sector; through the apex when the unrolled angle is at least pi). Every
+ * method, the default (exact: the known answer, proven, on every pair) first, then the
+ * straightener and the relaxation (the known answer where the local geodesic is the global one)
+ * and the edge path (never shorter); every endpoint kind; every path meets the contract of
+ * tg_test_path.h. */
 #include "tg_test.h"
 #include "tg_test_geodesic.h"
+#include "tg_test_path.h"
 
 #include <trigeo.h>
 
 
 
-/* Runs one query and checks the generic contract; returns the length (NAN on failure). */
+/* Runs one query and checks the contract of tg_test_path.h (converged; proven for the exact
+ * method); returns the length (NAN on failure). */
 static double query(ctx* c, tg_surface_point a, tg_surface_point b, tg_path_method method, tg_path_view* v)
 {
     tg_path_options o;
@@ -19,10 +24,13 @@ static double query(ctx* c, tg_surface_point a, tg_surface_point b, tg_path_meth
     tg_status st = tg_geodesic_path(c->geo, c->ws, &a, &b, &o, c->path);
     CHECK_STATUS(st, TG_OK);
     tg_path_get_view(c->path, v);
-    CHECK_MSG(v->status == TG_PATH_CONVERGED, "status %s", tg_path_status_name(v->status));
-    CHECK(v->point_count >= 2);
-    CHECK(v->length <= v->initial_length * (1 + 1e-12));
-    return st == TG_OK ? v->length : NAN;
+    unsigned flags = method == TG_PATH_EXACT ? TG_TEST_PATH_CONVERGED | TG_TEST_PATH_PROVEN
+                     : method == TG_PATH_EDGE ? 0
+                                              : TG_TEST_PATH_CONVERGED;
+    char what[64];
+    snprintf(what, sizeof what, "%s path", tg_test_method_name(method));
+    int bad = tg_test_check_path(what, c->mesh, v, &a, &b, flags);
+    return st == TG_OK && !bad ? v->length : NAN;
 }
 
 static void pos(const tg_mesh* m, tg_surface_point p, double x[3]) { tg_surface_point_position(m, &p, x); }
@@ -31,7 +39,7 @@ static void test_flat(void)
 {
     ctx c = open_ctx_for(flat_square(12, 7));
     tg_rng r = {99};
-    double worst[2] = {0, 0};
+    double worst[3] = {0, 0, 0};
     for (int q = 0; q < 200; ++q) {
         tg_surface_point a, b;
         int kind = q % 4;
@@ -48,8 +56,13 @@ static void test_flat(void)
         double pa[3], pb[3];
         pos(c.mesh, a, pa), pos(c.mesh, b, pb);
         double euclid = sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]));
+        tg_path_view v;
+        double lx = query(&c, a, b, TG_PATH_EXACT, &v);
+        worst[2] = fmax(worst[2], fabs(lx - euclid));
+        CHECK_MSG(fabs(lx - euclid) <= 1e-12, "flat query %d exact: %.17g vs euclidean %.17g", q, lx, euclid);
+        double le = query(&c, a, b, TG_PATH_EDGE, &v);
+        CHECK_MSG(le >= euclid * (1 - 1e-12), "flat query %d edge path %.17g below euclidean %.17g", q, le, euclid);
         for (int m = 0; m < 2; ++m) {
-            tg_path_view v;
             double len = query(&c, a, b, m == 0 ? TG_PATH_STRAIGHTEN : TG_PATH_RELAX, &v);
             double err = fabs(len - euclid);
             if (err > worst[m]) worst[m] = err;
@@ -62,7 +75,8 @@ static void test_flat(void)
             }
         }
     }
-    printf("flat square: max |length - euclidean| straighten %.3g, relax %.3g\n", worst[0], worst[1]);
+    printf("flat square: max |length - euclidean| exact %.3g, straighten %.3g, relax %.3g\n", worst[2], worst[0],
+           worst[1]);
     close_ctx(&c);
 }
 
@@ -77,8 +91,21 @@ static void dump_path(const tg_path_view* v)
                 i + 1 < v->point_count ? v->faces[i] : 0u);
 }
 
-static void check_both(ctx* c, tg_surface_point a, tg_surface_point b, double expect, const char* what)
+/* The exact path must be the known answer on every pair; the edge path never shorter. */
+static void check_exact(ctx* c, tg_surface_point a, tg_surface_point b, double expect, const char* what)
 {
+    tg_path_view v;
+    double lx = query(c, a, b, TG_PATH_EXACT, &v);
+    CHECK_MSG(fabs(lx - expect) <= 1e-12 * (1 + expect), "%s exact: %.17g, expected %.17g", what, lx, expect);
+    if (!(fabs(lx - expect) <= 1e-12 * (1 + expect))) dump_path(&v);
+    double le = query(c, a, b, TG_PATH_EDGE, &v);
+    CHECK_MSG(le >= expect * (1 - 1e-12), "%s edge path: %.17g below %.17g", what, le, expect);
+}
+
+/* Every method where the local geodesic the straightener and the relaxation find is the answer. */
+static void check_all(ctx* c, tg_surface_point a, tg_surface_point b, double expect, const char* what)
+{
+    check_exact(c, a, b, expect, what);
     tg_path_view v;
     double ls = query(c, a, b, TG_PATH_STRAIGHTEN, &v);
     CHECK_MSG(fabs(ls - expect) <= 1e-12 * (1 + expect), "%s straighten: %.17g, expected %.17g", what, ls, expect);
@@ -94,19 +121,19 @@ static void test_cube(void)
 {
     ctx c = open_ctx_for(cube(6));
     /* across one edge: unfold the second side into the first one's plane */
-    check_both(&c, locate(c.mesh, 0.5, 0.5, 1), locate(c.mesh, 0.5, 0, 0.5), 1.0, "cube top-front centres");
-    check_both(&c, locate(c.mesh, 0.2, 0.5, 1), locate(c.mesh, 1, 0.5, 0.3), 1.5, "cube top-right");
-    check_both(&c, locate(c.mesh, 0.3, 0.6, 1), locate(c.mesh, 0.7, 0, 0.4), sqrt(0.4 * 0.4 + 1.2 * 1.2), "cube top-front");
+    check_all(&c, locate(c.mesh, 0.5, 0.5, 1), locate(c.mesh, 0.5, 0, 0.5), 1.0, "cube top-front centres");
+    check_all(&c, locate(c.mesh, 0.2, 0.5, 1), locate(c.mesh, 1, 0.5, 0.3), 1.5, "cube top-right");
+    check_all(&c, locate(c.mesh, 0.3, 0.6, 1), locate(c.mesh, 0.7, 0, 0.4), sqrt(0.4 * 0.4 + 1.2 * 1.2), "cube top-front");
     /* opposite sides: over one side in between (0.5 + 1 + 0.5) */
-    check_both(&c, locate(c.mesh, 0.5, 0.5, 1), locate(c.mesh, 0.5, 0.5, 0), 2.0, "cube top-bottom centres");
+    check_all(&c, locate(c.mesh, 0.5, 0.5, 1), locate(c.mesh, 0.5, 0.5, 0), 2.0, "cube top-bottom centres");
     /* opposite corners: the diagonal of a 2 x 1 rectangle of two sides */
     uint32_t c0 = cube_index[0][0][0], c1 = cube_index[6][6][6];
-    check_both(&c, tg_surface_vertex(c0), tg_surface_vertex(c1), sqrt(5.0), "cube opposite corners");
+    check_all(&c, tg_surface_vertex(c0), tg_surface_vertex(c1), sqrt(5.0), "cube opposite corners");
     /* two points of one side: the straight segment */
     tg_rng r = {5};
     for (int q = 0; q < 20; ++q) {
         double x1 = tg_rng_unit(&r), y1 = tg_rng_unit(&r), x2 = tg_rng_unit(&r), y2 = tg_rng_unit(&r);
-        check_both(&c, locate(c.mesh, x1, y1, 1), locate(c.mesh, x2, y2, 1), hypot(x1 - x2, y1 - y2), "cube same side");
+        check_all(&c, locate(c.mesh, x1, y1, 1), locate(c.mesh, x2, y2, 1), hypot(x1 - x2, y1 - y2), "cube same side");
     }
     close_ctx(&c);
 }
@@ -137,7 +164,7 @@ static void test_cylinder(void)
         }
         double ds = fabs(s[0] - s[1]);
         if (ds > width / 2) ds = width - ds;
-        check_both(&c, p[0], p[1], hypot(ds, z[0] - z[1]), "cylinder");
+        check_all(&c, p[0], p[1], hypot(ds, z[0] - z[1]), "cylinder");
     }
     close_ctx(&c);
 }
@@ -188,8 +215,9 @@ static void test_cone(void)
         /* a cone point makes two local geodesics, one around each side of the apex; the method
          * is local (it keeps the side of the initial edge path), so only pairs whose other
          * geodesic is clearly longer than the edge path's error have a known answer */
+        check_exact(&c, p[0], p[1], fmin(expect, other), "cone (exact, every pair)");
         if (other < 1.3 * expect) continue;
-        check_both(&c, p[0], p[1], expect, "cone");
+        check_all(&c, p[0], p[1], expect, "cone");
         tested++;
     }
 #undef RING

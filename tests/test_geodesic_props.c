@@ -1,11 +1,13 @@
-/* test_geodesic_props.c - invariants of geodesic paths against brute force, with fixed seeds:
- * the A* edge path equals Bellman-Ford on the edge graph plus the virtual endpoint edges;
- * Euclidean <= geodesic <= edge-graph distance; symmetry; relaxation and straightening never
- * lengthen a path (pass by pass); every segment lies in its face; the two methods agree; paths
- * on imperfect meshes (boundaries, components, non-manifold edges, pinched vertices, zero-area
- * and duplicate faces) are valid and never NaN. */
+/* test_geodesic_props.c - invariants of geodesic paths against brute force, with fixed seeds,
+ * every method (the default, exact, first): the A* edge path equals Bellman-Ford on the edge
+ * graph plus the virtual endpoint edges, and the exact path is never longer; Euclidean <= exact
+ * <= straightened and relaxed <= edge-graph distance; symmetry (exact and straightened);
+ * relaxation and straightening never lengthen a path (pass by pass); every path meets the
+ * contract of tg_test_path.h (every segment in its face, endpoints, length); on the height field
+ * (unique geodesics) the methods agree. */
 #include "tg_test.h"
 #include "tg_test_geodesic.h"
+#include "tg_test_path.h"
 
 #include <trigeo.h>
 
@@ -30,44 +32,10 @@ static tg_path_view run(ctx* c, tg_surface_point a, tg_surface_point b, tg_path_
     return v;
 }
 
-/* Does surface point p lie in face f (a corner, a point of one of its edges, or inside it)? */
-static int point_in_face(const tg_mesh* m, const tg_surface_point* p, uint32_t f)
+/* The generic contract of a returned path (tg_test_path.h), from a to b. */
+static void check_valid(const ctx* c, const tg_path_view* v, tg_surface_point a, tg_surface_point b, const char* what)
 {
-    const uint32_t* t = tg_mesh_triangles(m) + 3 * (size_t)f;
-    if (p->kind == TG_SURFACE_VERTEX) return t[0] == p->index || t[1] == p->index || t[2] == p->index;
-    if (p->kind == TG_SURFACE_FACE) return p->index == f;
-    uint32_t a = tg_mesh_halfedge_from(m, p->index), b = tg_mesh_halfedge_to(m, p->index);
-    int ha = t[0] == a || t[1] == a || t[2] == a, hb = t[0] == b || t[1] == b || t[2] == b;
-    return ha && hb;
-}
-
-/* The generic contract of a returned path: finite, inside faces, consistent length. */
-static void check_valid(const ctx* c, const tg_path_view* v, const char* what)
-{
-    if (v->status == TG_PATH_UNREACHABLE) {
-        CHECK(v->point_count == 0 && isinf(v->length));
-        return;
-    }
-    CHECK_MSG(v->point_count >= 2, "%s: %zu points", what, v->point_count);
-    double len = 0;
-    int bad_face = 0, bad_num = 0;
-    for (size_t i = 0; i < v->point_count; ++i) {
-        for (int k = 0; k < 3; ++k) bad_num += !isfinite(v->xyz[3 * i + k]);
-        CHECK_STATUS(tg_surface_point_validate(c->mesh, &v->points[i], NULL), TG_OK);
-        if (i + 1 < v->point_count) {
-            bad_face += !point_in_face(c->mesh, &v->points[i], v->faces[i]) ||
-                        !point_in_face(c->mesh, &v->points[i + 1], v->faces[i]);
-            const double *p = v->xyz + 3 * i, *q = p + 3;
-            len += sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
-        }
-    }
-    CHECK_MSG(bad_face == 0, "%s: %d segments not inside their face", what, bad_face);
-    CHECK_MSG(bad_num == 0, "%s: non-finite coordinates", what);
-    CHECK_MSG(isfinite(v->length) && fabs(len - v->length) <= 1e-12 * (1 + len), "%s: length %.17g vs sum %.17g", what,
-              v->length, len);
-    CHECK_MSG(isfinite(v->max_angle_defect) && v->max_angle_defect >= 0, "%s: certificate %g", what, v->max_angle_defect);
-    CHECK_MSG(v->length <= v->initial_length * (1 + 1e-12), "%s: length %.17g > edge path %.17g", what, v->length,
-              v->initial_length);
+    tg_test_check_path(what, c->mesh, v, &a, &b, v->status == TG_PATH_UNREACHABLE ? TG_TEST_PATH_UNREACHABLE : 0);
 }
 
 /* ---- Bellman-Ford on the edge graph plus the virtual endpoint edges (brute force) ---- */
@@ -89,10 +57,7 @@ static void add_edge(edge_list* l, uint32_t a, uint32_t b, double w)
     l->n++;
 }
 
-static double dist3(const double* a, const double* b)
-{
-    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-}
+#define dist3 tg_test_dist3
 
 /* Faces holding a surface point (all faces on an edge, the one face of a face point). */
 static int holds(const tg_mesh* m, const tg_surface_point* p, uint32_t f)
@@ -102,7 +67,7 @@ static int holds(const tg_mesh* m, const tg_surface_point* p, uint32_t f)
         uint32_t a = tg_mesh_halfedge_from(m, p->index), b = tg_mesh_halfedge_to(m, p->index);
         return (t[0] == a || t[1] == a || t[2] == a) && (t[0] == b || t[1] == b || t[2] == b) && a != b;
     }
-    return point_in_face(m, p, f);
+    return tg_test_point_in_face(m, p, f);
 }
 
 static double bellman_ford(const tg_mesh* m, tg_surface_point a, tg_surface_point b)
@@ -161,8 +126,14 @@ static void test_bellman_ford(ctx* c, const char* name, int pairs, uint64_t seed
     tg_rng r = {seed};
     for (int q = 0; q < pairs; ++q) {
         tg_surface_point a = tg_test_random_surface_point(&r, c->mesh, NULL), b = tg_test_random_surface_point(&r, c->mesh, NULL);
-        tg_path_view v = run(c, a, b, TG_PATH_EDGE, 0);
         double bf = bellman_ford(c->mesh, a, b);
+        /* the default (exact) path first: never longer than the edge graph's shortest path */
+        tg_path_view ve = run(c, a, b, TG_PATH_EXACT, 0);
+        check_valid(c, &ve, a, b, name);
+        if (!isinf(bf))
+            CHECK_MSG(ve.global == TG_PATH_PROVEN && ve.length <= bf * (1 + 1e-12), "%s pair %d: exact %.17g (%s) > Bellman-Ford %.17g",
+                      name, q, ve.length, tg_path_global_name(ve.global), bf);
+        tg_path_view v = run(c, a, b, TG_PATH_EDGE, 0);
         if (isinf(bf)) {
             CHECK_MSG(v.status == TG_PATH_UNREACHABLE, "%s pair %d: Bellman-Ford unreachable, A* %s", name, q,
                       tg_path_status_name(v.status));
@@ -172,7 +143,7 @@ static void test_bellman_ford(ctx* c, const char* name, int pairs, uint64_t seed
                   v.initial_length, bf);
         CHECK_MSG(fabs(v.length - v.initial_length) <= 1e-12 * bf, "%s pair %d: edge path length %.17g vs %.17g", name,
                   q, v.length, v.initial_length);
-        check_valid(c, &v, name);
+        check_valid(c, &v, a, b, name);
     }
 }
 
@@ -186,9 +157,20 @@ static void test_bounds(ctx* c, const char* name, int pairs, uint64_t seed, int 
         tg_surface_point_position(c->mesh, &a, pa);
         tg_surface_point_position(c->mesh, &b, pb);
         double euclid = dist3(pa, pb);
+        /* the default (exact) path: proven, between the straight line and every other method's */
+        tg_path_view vx = run(c, a, b, TG_PATH_EXACT, 0);
+        check_valid(c, &vx, a, b, name);
+        double lx = vx.length;
+        CHECK_MSG(vx.global == TG_PATH_PROVEN && vx.status == TG_PATH_CONVERGED && euclid <= lx * (1 + 1e-12) + 1e-300,
+                  "%s pair %d: exact %.17g (%s, %s), euclidean %.17g", name, q, lx, tg_path_global_name(vx.global),
+                  tg_path_status_name(vx.status), euclid);
         tg_path_view vs = run(c, a, b, TG_PATH_STRAIGHTEN, 0);
-        check_valid(c, &vs, name);
+        check_valid(c, &vs, a, b, name);
         if (vs.status == TG_PATH_UNREACHABLE) continue;
+        CHECK_MSG(lx <= vs.length * (1 + 1e-9), "%s pair %d: exact %.17g > straightened %.17g", name, q, lx, vs.length);
+        if (agree)
+            CHECK_MSG(fabs(lx - vs.length) <= 1e-9 * lx, "%s pair %d: exact %.17g vs straightened %.17g (unique geodesic)",
+                      name, q, lx, vs.length);
         double ls = vs.length, init = vs.initial_length, defect = vs.max_angle_defect;
         CHECK_MSG(euclid <= ls * (1 + 1e-12) + 1e-300, "%s pair %d: euclidean %.17g > geodesic %.17g", name, q, euclid, ls);
         CHECK_MSG(ls <= init * (1 + 1e-12), "%s pair %d: geodesic %.17g > edge graph %.17g", name, q, ls, init);
@@ -199,28 +181,35 @@ static void test_bounds(ctx* c, const char* name, int pairs, uint64_t seed, int 
             double prev = init;
             for (uint32_t k = 1; k <= 4; ++k) {
                 tg_path_view vk = run(c, a, b, m ? TG_PATH_RELAX : TG_PATH_STRAIGHTEN, k);
-                check_valid(c, &vk, name);
+                check_valid(c, &vk, a, b, name);
                 CHECK_MSG(vk.length <= prev * (1 + 1e-12), "%s pair %d method %d: %u iterations %.17g > %.17g", name, q,
                           m, k, vk.length, prev);
                 prev = vk.length;
             }
         }
         tg_path_view vr = run(c, a, b, TG_PATH_RELAX, 0);
-        check_valid(c, &vr, name);
+        check_valid(c, &vr, a, b, name);
         CHECK(vr.length <= init * (1 + 1e-12));
+        CHECK_MSG(lx <= vr.length * (1 + 1e-9), "%s pair %d: exact %.17g > relaxed %.17g", name, q, lx, vr.length);
         if (agree && vr.status == TG_PATH_CONVERGED)
             CHECK_MSG(fabs(vr.length - ls) <= 1e-6 * ls, "%s pair %d: relax %.17g vs straighten %.17g", name, q,
                       vr.length, ls);
     }
 }
 
-static void test_symmetry(ctx* c, const char* name, int pairs, uint64_t seed)
+/* d(a, b) == d(b, a): the exact distance always, the straightened one where the geodesic is
+ * unique (`unique`), the edge path's always. */
+static void test_symmetry(ctx* c, const char* name, int pairs, uint64_t seed, int unique)
 {
     tg_rng r = {seed};
     for (int q = 0; q < pairs; ++q) {
         tg_surface_point a = tg_test_random_surface_point(&r, c->mesh, NULL), b = tg_test_random_surface_point(&r, c->mesh, NULL);
-        double ab = run(c, a, b, TG_PATH_STRAIGHTEN, 0).length, ba = run(c, b, a, TG_PATH_STRAIGHTEN, 0).length;
-        CHECK_MSG(fabs(ab - ba) <= 1e-10 * (1 + ab), "%s pair %d: d(a,b) %.17g vs d(b,a) %.17g", name, q, ab, ba);
+        double xab = run(c, a, b, TG_PATH_EXACT, 0).length, xba = run(c, b, a, TG_PATH_EXACT, 0).length;
+        CHECK_MSG(fabs(xab - xba) <= 1e-9 * (1 + xab), "%s pair %d: exact d(a,b) %.17g vs d(b,a) %.17g", name, q, xab, xba);
+        if (unique) {
+            double ab = run(c, a, b, TG_PATH_STRAIGHTEN, 0).length, ba = run(c, b, a, TG_PATH_STRAIGHTEN, 0).length;
+            CHECK_MSG(fabs(ab - ba) <= 1e-10 * (1 + ab), "%s pair %d: d(a,b) %.17g vs d(b,a) %.17g", name, q, ab, ba);
+        }
         double eab = run(c, a, b, TG_PATH_EDGE, 0).length, eba = run(c, b, a, TG_PATH_EDGE, 0).length;
         CHECK_MSG(fabs(eab - eba) <= 1e-12 * (1 + eab), "%s pair %d: edge d(a,b) %.17g vs d(b,a) %.17g", name, q, eab, eba);
     }
@@ -234,7 +223,7 @@ int main(void)
     ctx hf = open_ctx_for(make_mesh());
     test_bellman_ford(&hf, "height field", 30, 1);
     test_bounds(&hf, "height field", 30, 2, 1);
-    test_symmetry(&hf, "height field", 30, 3);
+    test_symmetry(&hf, "height field", 30, 3, 1);
     close_ctx(&hf);
 
     /* bumpy sphere: many local geodesics; bounds and validity only */
@@ -243,6 +232,7 @@ int main(void)
     ctx bs = open_ctx_for(make_mesh());
     test_bellman_ford(&bs, "bumpy sphere", 30, 4);
     test_bounds(&bs, "bumpy sphere", 30, 5, 0);
+    test_symmetry(&bs, "bumpy sphere", 30, 6, 0);
     close_ctx(&bs);
     return tg_test_finish();
 }

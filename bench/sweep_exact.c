@@ -879,8 +879,7 @@ typedef struct pair_result {
 /* The scratch of one thread. */
 typedef struct worker {
     near_scratch near;
-    tg_geodesic_workspace* ws;
-    tg_field_workspace* fws;
+    tg_geodesic_workspace* ws; /* paths and fields */
     tg_path* path;
 } worker;
 
@@ -932,10 +931,9 @@ static double checked_field(const tg_geodesic* g, worker* w, const tg_surface_po
 {
     tg_field_options o;
     memset(&o, 0, sizeof o);
-    o.workspace = w->fws;
     if (isfinite(limit)) o.limit = TG_FIELD_MAX_DISTANCE, o.max_distance = limit;
     double d = NAN;
-    tg_status st = tg_geodesic_field_at(g, s, 1, t, 1, &o, &d, NULL, NULL);
+    tg_status st = tg_geodesic_field_at(g, w->ws, s, 1, t, 1, &o, &d, NULL, NULL);
     if (st != TG_OK) {
         note_add(pr, "%s: %s; ", label, tg_status_name(st));
         pr->fails |= FAIL_INVALID;
@@ -1080,8 +1078,7 @@ static void sweep_mesh(const char* path, size_t index, size_t mesh_count, const 
     for (int k = 0; ok && k < threads; ++k)
         ok = (workers[k].near.mark = calloc(m.nf, sizeof(uint32_t))) != NULL &&
              (workers[k].near.queue = malloc(m.nf * sizeof(uint32_t))) != NULL &&
-             tg_geodesic_workspace_create(g, &workers[k].ws) == TG_OK &&
-             tg_field_workspace_create(g, &workers[k].fws) == TG_OK && tg_path_create(NULL, &workers[k].path) == TG_OK;
+             tg_geodesic_workspace_create(g, &workers[k].ws) == TG_OK && tg_path_create(NULL, &workers[k].path) == TG_OK;
     if (!ok) {
         fprintf(stderr, "sweep_exact: %s: out of memory\n", path);
         exit(2);
@@ -1143,7 +1140,6 @@ static void sweep_mesh(const char* path, size_t index, size_t mesh_count, const 
     if (worst > tot->worst_rel) tot->worst_rel = worst;
     for (int k = 0; k < threads; ++k) {
         tg_path_destroy(workers[k].path);
-        tg_field_workspace_destroy(workers[k].fws);
         tg_geodesic_workspace_destroy(workers[k].ws);
         free(workers[k].near.mark), free(workers[k].near.queue);
     }

@@ -400,8 +400,10 @@ TG_API tg_status tg_surface_point_validate(const tg_mesh* mesh, const tg_surface
 TG_API void tg_surface_point_position(const tg_mesh* mesh, const tg_surface_point* point, double out_xyz[3]);
 
 /** The same location expressed canonically: a face point with a barycentric coordinate that is
- *  exactly 0 becomes an edge point, an edge point with t exactly 0 or 1 becomes a vertex. Never
- *  changes the position. O(1). */
+ *  exactly 0 becomes an edge point, an edge point with t exactly 0 or 1 becomes a vertex; in a
+ *  face with a repeated vertex index (a segment or a point) the repeated corner's weight goes to
+ *  its first corner first, and an edge from a vertex to itself is that vertex. Never changes the
+ *  position. O(1). */
 TG_API tg_surface_point tg_surface_point_canonical(const tg_mesh* mesh, const tg_surface_point* point);
 
 

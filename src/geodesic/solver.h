@@ -115,6 +115,19 @@ static inline uint32_t tg__cross_opp(const tg_geodesic* g, uint32_t h)
     return o != TG_NONE && g->frame[h].len > 0.0 ? o : TG_NONE;
 }
 
+/* A slit: a zero-area face two of whose corners coincide (a zero-length edge, as where a mesh
+ * duplicates vertices along a seam). Its two other edges are one segment, so a ray entering
+ * through the edge of h leaves through the other one, straight on (in that edge's frame, the
+ * segment run the other way, a point (x, y) of h's frame is (len - x, -y)). Returns that
+ * halfedge, or TG_NONE when the face of h is no slit. */
+static inline uint32_t tg__slit_exit(const tg_geodesic* g, uint32_t h)
+{
+    uint32_t hn = tg_halfedge_next(h), hp = tg_halfedge_prev(h);
+    bool zn = !(g->frame[hn].len > 0.0), zp = !(g->frame[hp].len > 0.0);
+    if (!(g->frame[h].len > 0.0) || zn == zp) return TG_NONE;
+    return zn ? hp : hn;
+}
+
 /* One step around vertex v: from face *f (corner *k of v) across its side in the + sense (the
  * edge prev(corner), towards corner k + 2) or the - sense (side 1: the edge of the corner
  * itself), into the face beyond. Returns the halfedge crossed (in the face left) and updates

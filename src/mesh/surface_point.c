@@ -80,6 +80,12 @@ tg_surface_point tg_surface_point_canonical(const tg_mesh* m, const tg_surface_p
 {
     tg_surface_point q = *p;
     if (q.kind == TG_SURFACE_FACE) {
+        /* a face with a repeated vertex index is a segment or a point: the weights of a repeated
+         * vertex go to its first corner, so the point becomes that segment's edge point or vertex */
+        const uint32_t* corner = m->tri + 3 * (size_t)q.index;
+        for (int k = 1; k < 3; ++k)
+            for (int j = 0; j < k; ++j)
+                if (corner[k] == corner[j] && q.bary[k] != 0.0) q.bary[j] += q.bary[k], q.bary[k] = 0.0;
         int zeros = (q.bary[0] == 0.0) + (q.bary[1] == 0.0) + (q.bary[2] == 0.0);
         if (zeros == 2) {
             int k = q.bary[0] != 0.0 ? 0 : q.bary[1] != 0.0 ? 1 : 2;
@@ -94,7 +100,8 @@ tg_surface_point tg_surface_point_canonical(const tg_mesh* m, const tg_surface_p
         }
     }
     if (q.kind == TG_SURFACE_EDGE) {
-        if (q.t == 0.0) return tg_surface_vertex(m->tri[q.index]);
+        /* an edge from a vertex to itself (a face with a repeated index) is that vertex */
+        if (q.t == 0.0 || m->tri[q.index] == m->tri[tg_halfedge_next(q.index)]) return tg_surface_vertex(m->tri[q.index]);
         if (q.t == 1.0) return tg_surface_vertex(m->tri[tg_halfedge_next(q.index)]);
     }
     return q;

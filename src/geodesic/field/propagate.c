@@ -436,6 +436,28 @@ static bool cross_face(tg__field_run* run, uint32_t h, const tg__window* w, tg__
     return true;
 }
 
+/* Moves the list of h (ids[0..n), trimmed) through the slit into the faces beyond its exit edge:
+ * in the exit edge's frame (the same segment run the other way) a window's image and interval
+ * are turned by pi about the segment's middle. */
+static bool cross_slit(tg__field_run* run, uint32_t h, uint32_t exit, const uint32_t* ids, size_t n)
+{
+    tg__field_scratch* fs = run->fs;
+    double len = run->g->frame[exit].len;
+    for (size_t i = 0; i < n; ++i) {
+        tg__window w = ((tg__window*)fs->windows.data)[ids[i]]; /* children may move the pool */
+        win_release(fs, ids[i]);
+        if (!(w.b0 < w.b1)) {
+            run->stats.windows_filtered++;
+            continue;
+        }
+        run->stats.windows_propagated++;
+        if (!push_through(run, exit, len - w.b1, len - w.b0, len - w.sx, -w.sy, w.sigma, w.tag | TG__VIA_FLAT))
+            return false;
+    }
+    (void)h;
+    return true;
+}
+
 /* Takes the list of h and moves it across face h / 3: filters (end-vertex distances, flat faces
  * crossed twice), trims the windows against each other, lets the one that reaches the opposite
  * corner most shortly set the corner's distance and the split, then crosses each survivor. */
@@ -449,6 +471,8 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
     const tg__frame* fr = &g->frame[h];
     uint32_t hn = tg_halfedge_next(h), hp = tg_halfedge_prev(h);
     bool crossable = fr->len > 0.0 && g->frame[hn].len > 0.0 && g->frame[hp].len > 0.0;
+    uint32_t slit = crossable ? TG_NONE : tg__slit_exit(g, h);
+    crossable = crossable || slit != TG_NONE;
     int flat = !(fr->cy > 0.0);
     TG__PREFETCH_FACE(run, g->ring[hn]);
     TG__PREFETCH_FACE(run, g->ring[hp]);
@@ -474,6 +498,7 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
         tg__windows_trim(pool, ids, fs->keys.data, n, fr->len);
     }
     tg__field_queries_cross(run, h, pool, ids, n);
+    if (slit != TG_NONE) return cross_slit(run, h, slit, ids, n);
     /* rule 1: the shortest covering window to C over the list sets C and the edge side's split */
     uint32_t vc = g->tri[hp];
     if (!tg__field_grow(fs, &fs->hits, n)) return false;

@@ -43,6 +43,38 @@ static bool add_node(trace* t, tg__node node, uint32_t face_before)
     return true;
 }
 
+/* Face point p (of face p->id) as a point of the edge that face shares with face f, on which it
+ * lies to rounding (the corner it is farthest from): false when they share no edge there. */
+static bool edge_twin(const tg_geodesic* g, const tg__node* p, uint32_t f, tg__node* out)
+{
+    const double* b = p->bary;
+    int far = b[1] < b[0] ? 1 : 0;
+    if (b[2] < b[far]) far = 2;
+    uint32_t h = 3 * p->id + (uint32_t)(far + 1) % 3; /* the edge opposite that corner */
+    for (uint32_t o = g->ring[h]; o != h; o = g->ring[o]) {
+        if (o / 3 != f) continue;
+        double u = b[(far + 1) % 3], v = b[(far + 2) % 3];
+        *out = tg__node_edge(h, v / (u + v), u / (u + v));
+        return true;
+    }
+    return false;
+}
+
+/* Appends `node`, joined to the last node by a segment in face f. A face point (the target or the
+ * source) of another face that lies on an edge it shares with f (a point of an edge given as a
+ * face point: windows reach it through the faces at that edge) is joined through its twin on that
+ * edge, by a segment of length 0 in its own face. */
+static bool add_node_in(trace* t, tg__node node, uint32_t f)
+{
+    const tg_geodesic* g = t->g;
+    tg__node last = tg__route_nodes(t->route)[t->n - 1], twin;
+    if (last.kind == TG__NODE_FACE && last.id != f && edge_twin(g, &last, f, &twin) && !add_node(t, twin, last.id))
+        return false;
+    if (node.kind == TG__NODE_FACE && node.id != f && edge_twin(g, &node, f, &twin))
+        return add_node(t, twin, f) && add_node(t, node, node.id);
+    return add_node(t, node, f);
+}
+
 /* Does the origin land in face o / 3 at the image s (in o's frame)? Then its node. */
 static bool lands(const tg_geodesic* g, uint32_t o, const double s[2], uint32_t origin, const tg__node* source,
                   tg__node* out)
@@ -115,7 +147,9 @@ typedef struct branch {
  * Rays through vertices are common on grids and CAD meshes (rows of collinear vertices), and
  * there the side of the vertex a ray passes is rounding noise: at a saddle or a convex vertex
  * the wrong side unfolds the rest of the walk by the vertex's angle defect, away from the
- * origin, while the field's distance at the vertex continues the path exactly. */
+ * origin, while the field's distance at the vertex continues the path exactly. The corner may
+ * also lie at the image itself: a copy of the origin at the same position (a pole or seam of
+ * coincident vertices), where the path goes on from the copy. */
 static bool through_corner(trace* t, uint32_t o, const double x[2], const double sp[2], const double c[3][2],
                            double sigma, tg__node* out)
 {
@@ -128,17 +162,41 @@ static bool through_corner(trace* t, uint32_t o, const double x[2], const double
     for (int k = 0; k < 3; ++k) {
         double cx = c[k][0] - x[0], cy = c[k][1] - x[1];
         double along = (cx * dx + cy * dy) / len, off = fabs(dx * cy - dy * cx) / len;
-        if (!(off <= snap && along >= -snap && along < len)) continue;
+        if (!(off <= snap && along >= -snap && along <= len + snap)) continue;
         double via = sigma + hypot(sp[0] - c[k][0], sp[1] - c[k][1]);
         if (!(dist[ids[k]] <= via * (1.0 + 1e-12))) continue;
         tg__node v = tg__node_vertex(ids[k]);
         tg__node* last = t->n > 1 ? tg__route_nodes(t->route) + t->n - 1 : NULL; /* never the target */
         if (along <= snap && last && last->kind == TG__NODE_EDGE && tg__node_on_edge(g, &v, last->id)) {
             *last = v; /* the ray entered at this corner */
-        } else if (!add_node(t, v, o / 3)) {
+        } else if (!add_node_in(t, v, o / 3)) {
             return true;
         }
         *out = v;
+        return true;
+    }
+    return false;
+}
+
+/* Does the origin (a vertex) lie on the exit edge xh of the walk's face, at ns (its image in
+ * xh's frame, on the edge's line to rounding), as the apex of a zero-area face beyond that edge?
+ * Such a vertex is a corner of no face the ray enters (polygons split with collinear corners: a
+ * CAD quad whose one triangle is a sliver), so the walk ends on the edge there: the crossing,
+ * then the vertex through the zero-area face (a segment of length 0). */
+static bool on_flat_apex(trace* t, uint32_t xh, const double ns[2], double len, uint32_t origin, const tg__node* source,
+                         tg__node* out)
+{
+    const tg_geodesic* g = t->g;
+    uint32_t v = origin != TG__ORIGIN_SOURCE ? origin : source->kind == TG__NODE_VERTEX ? source->id : TG_NONE;
+    double tol = LAND_REL * (len + fabs(ns[0]));
+    if (v == TG_NONE || !(fabs(ns[1]) <= tol && ns[0] > 0.0 && ns[0] < len)) return false;
+    for (uint32_t o = g->ring[xh]; o != xh; o = g->ring[o]) {
+        uint32_t f = o / 3;
+        if (!(g->fflags[f] & TG__F_FLAT) || g->tri[tg_halfedge_prev(o)] != v) continue;
+        double tt = ns[0] / len;
+        tg__node at = tg__node_edge(xh, tt, 1.0 - tt), vn = tg__node_vertex(v);
+        if (add_node(t, at, xh / 3)) add_node(t, vn, f);
+        *out = vn;
         return true;
     }
     return false;
@@ -174,6 +232,15 @@ static bool walk(trace* t, uint32_t e, double xe, const double s_in[2], uint32_t
                 *out_origin = landed;
                 return add_node(t, landed, f);
             }
+            uint32_t slit = tg__slit_exit(g, o);
+            if (slit != TG_NONE) { /* straight through the zero-area face, out of its other edge */
+                double len = g->frame[slit].len;
+                xe = len - x[0];
+                if (!add_node(t, tg__node_edge(slit, xe / len, 1.0 - xe / len), f)) return false;
+                s[0] = len - sp[0], s[1] = -sp[1], e = slit;
+                o = g->ring[e];
+                continue;
+            }
             double c[3][2];
             tg__frame_corners(&g->frame[o], c);
             if (through_corner(t, o, x, sp, c, sigma, out_origin)) return !t->out_of_memory;
@@ -195,6 +262,7 @@ static bool walk(trace* t, uint32_t e, double xe, const double s_in[2], uint32_t
                 /* the image in the exit edge's frame: face f on its +y side, the image beyond */
                 double ns[2];
                 tg__to_edge_frame(p0, p1, len, sp, ns);
+                if (on_flat_apex(t, xh, ns, len, origin, source, out_origin)) return !t->out_of_memory;
                 if (!(ns[1] < 0.0)) {
                     dead = true; /* the image is in this face, yet the origin is not here */
                 } else {
@@ -239,7 +307,7 @@ static bool trace_back(trace* t, tg__node cur, tg__pred how, const tg__node* sou
         } else if (how.h & TG__PRED_FACE) { /* straight inside face f from a vertex or the source */
             uint32_t f = how.h & ~TG__PRED_FACE;
             next = how.origin == TG__ORIGIN_SOURCE ? *source : tg__node_vertex(how.origin);
-            if (!add_node(t, next, f)) return false;
+            if (!add_node_in(t, next, f)) return false;
             if (how.origin == TG__ORIGIN_SOURCE) return true;
         } else { /* back along the window's ray through edge h towards its source image */
             uint32_t h = how.h;
@@ -251,7 +319,7 @@ static bool trace_back(trace* t, tg__node cur, tg__pred how, const tg__node* sou
             if (!(xs <= len)) xs = len;
             if (!tg__node_on_edge(g, &cur, h)) {
                 double tt = xs / len;
-                if (!add_node(t, tg__node_edge(h, tt, 1.0 - tt), h / 3)) return false;
+                if (!add_node_in(t, tg__node_edge(h, tt, 1.0 - tt), h / 3)) return false;
             }
             /* s is beyond h already (s[1] < 0 in h's frame): walk on into the faces behind */
             if (!walk(t, h, xs, s, how.origin, source, &next)) return false;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# run_path.sh BUILD LARGE MESHES: geodesic paths (issue 4). For fcpw_kitten.obj, igl_armadillo.obj
+# run_path.sh BUILD LARGE MESHES: geodesic paths. For fcpw_kitten.obj, igl_armadillo.obj
 # and armadillo_1m.ply: 1000 random vertex pairs and 1000 random face-point pairs (and, on
 # armadillo_1m.ply, 1000 face-point pairs at most 10% of the bounding-box diagonal apart), timed
 # per path (thread CPU time, median of TG_BENCH_REPS runs per pair, default 3) with the

@@ -1,4 +1,4 @@
-/* sweep_exact.c - the default (exact) path method checked without trusting it (issue 19 item 1):
+/* sweep_exact.c - the default (exact) path method checked without trusting it:
  * random pairs of surface points on each mesh; the default path and the straightened path are
  * validated from the mesh's positions alone (every segment in the face it names, endpoints, chain,
  * length), the default path must be converged and proven, and tg_geodesic_field_at from each end
@@ -6,7 +6,7 @@
  * written as `trigeo path` / `trigeo field` commands. Also writes adversarial meshes (holed plates,
  * flat grids, flipped / duplicated / zero-area faces, a non-manifold book, several components).
  * Uses only the public header.
- * Based on: issue 19 (the proof tool); a valid surface path bounds the geodesic distance from
+ * Based on: a valid surface path bounds the geodesic distance from
  * above whatever computed it. */
 #define _POSIX_C_SOURCE 200809L
 #include <trigeo.h>

@@ -2,7 +2,7 @@
 # cli_exports.sh: libtrigeo.so (beside the trigeo binary) exports exactly the functions
 # include/trigeo.h declares with TG_API, every one of them, and nothing else (no tg__ internals,
 # no OpenMP critical-section names); its soname carries the version's major.minor, which
-# `trigeo --version` and tg_version() report (issue 12 items 9, 12).
+# `trigeo --version` and tg_version() report.
 set -u
 trigeo=${TG_TRIGEO:?}
 src=${TG_SOURCE_DIR:?}

@@ -3,7 +3,7 @@
 # user would: a tiny program built with `pkg-config --cflags --libs trigeo`, and the same program
 # built by a CMake project with find_package(trigeo) and the target trigeo::trigeo; both run
 # against the installed libtrigeo.so and compute a field on the installed header's API
-# (issue 12 item 11). Needs pkg-config and cmake (installed by the Makefile's deps).
+# Needs pkg-config and cmake (installed by the Makefile's deps).
 set -u
 trigeo=${TG_TRIGEO:?}
 meshes=${TG_MESHES_DIR:?}

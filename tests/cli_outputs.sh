@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# cli_outputs.sh: what the CLI writes and reads at the edges (issue 12 items 1, 4, 5, 6):
+# cli_outputs.sh: what the CLI writes and reads at the edges:
 # text inputs that start with a UTF-8 byte-order mark (mesh, queries, pairs, sources) read like
 # the same text without it; a directory given as a mesh is named as one; output that cannot be
 # written (/dev/full) is exit 2, not a silent success; a bad pairs or queries line leaves no output
@@ -43,7 +43,7 @@ r = run("field", spot, "--sources", src, "-o", os.path.join(tmp, "m.csv"))
 check(r.returncode == 0, "BOM sources: %r" % r.stderr)
 
 # a gzip bomb (256 MiB of zeros in a .stl.gz of 250 KB): refused as it is read, long before the
-# 8 GiB input limit (issue 12 item 3)
+# 8 GiB input limit
 import gzip
 bomb = os.path.join(tmp, "bomb.stl.gz")
 with gzip.open(bomb, "wb", compresslevel=1) as g:
@@ -53,7 +53,7 @@ with gzip.open(bomb, "wb", compresslevel=1) as g:
 r = run("info", bomb)
 check(r.returncode == 2 and b"gzip bomb" in r.stderr, "gzip bomb: %d %r" % (r.returncode, r.stderr))
 
-# threads (issue 12 item 7): under a tight address-space limit one thread still works (--threads
+# threads: under a tight address-space limit one thread still works (--threads
 # reaches the BVH build too), and more threads than can be started is a clean error, exit 2,
 # not libgomp ending the process (not under AddressSanitizer, which reserves terabytes)
 import resource
@@ -73,7 +73,7 @@ if not asan:
             break
     check(done, "no address-space limit where one thread works and 64 do not")
 
-# coordinates beyond the range where squared distances stay finite (issue 12 item 2): refused with
+# coordinates beyond the range where squared distances stay finite: refused with
 # the limit named, for meshes and for query points, never a wrong answer (sqdist 0 or inf)
 huge = os.path.join(tmp, "huge.obj")
 open(huge, "w").write("v 0 0 0\nv 1e300 0 0\nv 0 1 0\nf 1 2 3\n")
@@ -131,7 +131,7 @@ r2 = run("closest", spot, "-", "-o", out2, stdin=q)
 check(r.returncode == 0 and r2.returncode == 0 and os.path.exists(out) and os.path.exists(out2), "good runs write")
 check(not [f for f in os.listdir(tmp) if ".tmp-" in f], "no temporary files left: %s" % os.listdir(tmp))
 
-# issue 12 item 14: one CLI language
+# one CLI language
 r = run("help", "help")
 check(r.returncode == 0 and b"usage: trigeo help" in r.stdout, "trigeo help help: %r" % r.stdout[:80])
 r = run("help", "nonsense")

@@ -1,6 +1,6 @@
-/* test_bvh_independent.c - closest points checked without the point-triangle kernel (issue 12
- * item 19: test_bvh compares the BVH with a linear scan of the same kernel, so a kernel bug
- * cancels out). Here, for random queries around corpus meshes:
+/* test_bvh_independent.c - closest points checked without the point-triangle kernel (test_bvh
+ * compares the BVH with a linear scan of the same kernel, so a kernel bug cancels out there).
+ * Here, for random queries around corpus meshes:
  *  - the answer is a point of its face: its barycentrics are in [0, 1], sum to 1, and give the
  *    returned point; its squared distance to the query is the returned one;
  *  - no point of any face is closer: the distance is at most that of a dense sample of every

@@ -250,7 +250,7 @@ static void test_extreme(void)
     CHECK(len > 0);
     CHECK_STATUS(tg_edge_path_minimize(big, z, x, z, NULL, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
     CHECK_STATUS(tg_edge_path_minimize(NULL, z, x, z, NULL, &len, &t), TG_ERR_INVALID_ARGUMENT);
-    /* options out of range are refused, not clamped (issue 12 item 13) */
+    /* options out of range are refused, not clamped */
     const double q0[3] = {1, -1, 0}, q1[3] = {0, 1, 0}, b2[3] = {2, 2, 0};
     tg_geodesic_kernel_options bad[5];
     memset(bad, 0, sizeof bad);

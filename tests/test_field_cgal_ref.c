@@ -8,8 +8,8 @@
  * largest distance, inf where CGAL finds no path. The exact paths from each source to 20 of the
  * reference vertices must have CGAL's length within 1e-9 relative, be proven and certified.
  * The default method (options all zero, and NULL options) on the same fixed pairs: the share of
- * globally shortest paths (CGAL's length within 1e-9 relative) must be at least 98% (issue 10
- * item 5), and every path it labels proven must be globally shortest. The other methods on the
+ * globally shortest paths (CGAL's length within 1e-9 relative) must be at least 98%, and every
+ * path it labels proven must be globally shortest. The other methods on the
  * first pairs: valid paths (tg_test_path.h), never shorter than CGAL's distance. */
 #include <math.h>
 #include <stdio.h>
@@ -28,7 +28,7 @@ typedef struct default_tally {
 } default_tally;
 static default_tally default_tallies[2];
 
-/* Issue 10: the default method is globally shortest on at least this share of random pairs. */
+/* The default method is globally shortest on at least this share of random pairs. */
 #define DEFAULT_SHORTEST_SHARE 0.98
 
 /* One pair through the default method, both ways of asking for it: tallied, and a path labelled
@@ -56,7 +56,7 @@ static void tally_default(const char* file, const char* spec, tg_geodesic* g, tg
 
 /* Exact paths (TG_PATH_EXACT) from the source to the first reference vertices: the length is
  * CGAL's distance within 1e-9 relative (never shorter beyond rounding), the path is proven and
- * certified straight (issue 10 item 5: an independent exact reference for paths). */
+ * certified straight: an independent exact reference for paths. */
 static void compare_paths(const char* file, const tg_mesh* m, tg_geodesic* g, const char* spec,
                           const tg_surface_point* s, const entry* e, size_t n, double far)
 {

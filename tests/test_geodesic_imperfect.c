@@ -256,7 +256,7 @@ static void test_duplicate_and_unreferenced(void)
     memset(&o, 0, sizeof o);
     o.method = (tg_path_method)7;
     CHECK_STATUS(tg_geodesic_path(c.geo, c.ws, &a, &a, &o, c.path), TG_ERR_INVALID_ARGUMENT);
-    /* options out of range are refused, not silently replaced by defaults (issue 12 item 13) */
+    /* options out of range are refused, not silently replaced by defaults */
     tg_geodesic_kernel_options k;
     memset(&k, 0, sizeof k);
     const double tols[3] = {-1e-9, NAN, INFINITY};

@@ -227,7 +227,7 @@ static void test_cone(void)
 
 /* The certificate must see a bend: the edge path (TG_PATH_EDGE) bends at its vertices, and a
  * straightening stopped after one sweep is not straight yet; then the status must not claim
- * convergence (issue 12 item 17: a certificate that always reports 0 passed every test). */
+ * convergence (a certificate that always reported 0 once passed every test). */
 static void test_certificate_sees_bends(void)
 {
     tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), "nvd_spot.obj");

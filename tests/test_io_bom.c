@@ -89,7 +89,7 @@ int main(void)
         CHECK(tg_mesh_positions(m)[3] == 1.0);
         tg_mesh_destroy(m);
     }
-    /* coordinates beyond +-1e150: no distances computed there, never wrong ones (issue 12 item 2);
+    /* coordinates beyond +-1e150: no distances computed there, never wrong ones;
      * the query point bound likewise */
     {
         double big[9] = {0, 0, 0, 1e300, 0, 0, 0, 1, 0}, small[9] = {0, 0, 0, 1e-300, 0, 0, 0, 1e-300, 0};

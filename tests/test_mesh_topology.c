@@ -344,7 +344,7 @@ static void test_surface_points(void)
 }
 
 /* Halfedge helpers against the definition (3f + k; next k + 1, prev k + 2 mod 3; face h / 3), and
- * the memory figure against the arrays a mesh must hold (issue 12 item 21). */
+ * the memory figure against the arrays a mesh must hold. */
 static void test_halfedge_helpers_and_memory(void)
 {
     for (uint32_t f = 0; f < 1000; f += 37)

@@ -407,7 +407,7 @@ static uint32_t find_top_face(double x, double y, double thick)
     return TG_NONE;
 }
 
-/* A closed plate with square holes (the flat-CAD case of issue 19, ../shared/tools/plate.py): two
+/* A closed plate with square holes (the flat-CAD case, ../shared/tools/plate.py): two
  * points of its top side. Any path's projection onto the plate's plane avoids the holes and is no
  * longer than the path, and the top side is that plane region itself, so the distance is the
  * shortest path around the holes in the plane (the visibility graph). */

@@ -1,5 +1,5 @@
 /* test_sign_pit.c - the inside/outside sign at a concave vertex whose faces are unevenly
- * triangulated (issue 12 item 16). A unit cube whose top is a square pit with 60-degree walls down
+ * triangulated. A unit cube whose top is a square pit with 60-degree walls down
  * to the vertex c; one wall (on the side y = 0) is split into 50 thin triangles fanned from c. The
  * angle-weighted pseudonormal at c is vertical whatever the split, while a plain mean of face
  * normals leans toward the split wall. A point just below c and toward +y (c is its closest point:

@@ -146,27 +146,12 @@ static void test_trim_near_tie(void)
     CHECK_NEAR(w[1].b1, 15.713484026367716, 0.0);
 }
 
-/* A random point of the surface: a vertex, an edge point or a face point. */
-static tg_surface_point random_point(const tg_mesh* m, unsigned* seed)
-{
-    size_t nf = tg_mesh_face_count(m);
-    const uint32_t* t = tg_mesh_triangles(m);
-    uint32_t f = (uint32_t)(rand_r(seed) % nf);
-    int kind = rand_r(seed) % 3;
-    if (kind == 0) return tg_surface_vertex(t[3 * (size_t)f + (size_t)(rand_r(seed) % 3)]);
-    double r[3];
-    for (int k = 0; k < 3; ++k) r[k] = (rand_r(seed) + 1.0) / (RAND_MAX + 2.0);
-    if (kind == 1) return tg_surface_edge(3 * f + (uint32_t)(rand_r(seed) % 3), r[0]);
-    double sum = r[0] + r[1] + r[2];
-    return tg_surface_face(f, r[0] / sum, r[1] / sum, 1.0 - r[0] / sum - r[1] / sum);
-}
-
 /* Random pairs on plates of several sizes and thicknesses: the default path is proven and its
  * length is the field's distance, both ways. */
 static void test_random_pairs(int pairs)
 {
     static const struct { int n, every; double thick; } cfg[] = {{36, 3, 1.0}, {40, 5, 0.1}, {24, 2, 0.5}};
-    unsigned seed = 12345;
+    tg_rng rng = {12345};
     for (size_t c = 0; c < sizeof cfg / sizeof cfg[0]; ++c) {
         tg_mesh* m = make_plate(cfg[c].n, cfg[c].every, cfg[c].thick);
         tg_geodesic* g = NULL;
@@ -177,7 +162,7 @@ static void test_random_pairs(int pairs)
         CHECK_STATUS(tg_path_create(NULL, &path), TG_OK);
         int bad = 0;
         for (int i = 0; i < pairs; ++i) {
-            tg_surface_point a = random_point(m, &seed), b = random_point(m, &seed);
+            tg_surface_point a = tg_test_random_surface_point(&rng, m, NULL), b = tg_test_random_surface_point(&rng, m, NULL);
             tg_path_view v;
             double dab = NAN, dba = NAN;
             tg_status st = tg_geodesic_path(g, ws, &a, &b, NULL, path);

@@ -77,8 +77,8 @@ def test_ctrl_c_stops_long_fields():
         m = trigeo.Mesh(*grid(700, 0.3))
         print("ready", flush=True)
         try:
-            m.distance_matrix(list(range(0, 4000, 100)), threads=1)  # 40 fields: many seconds
-            print("finished")
+            m.distance_matrix(list(range(0, 40000, 100)), threads=1)  # 400 fields: minutes
+            print("finished", flush=True)
         except KeyboardInterrupt:
             print("interrupted")
     """)
@@ -87,7 +87,8 @@ def test_ctrl_c_stops_long_fields():
     time.sleep(0.3)
     t0 = time.perf_counter()
     p.send_signal(signal.SIGINT)
-    line = p.stdout.readline().strip()
+    out, _ = p.communicate(timeout=600)
     waited = time.perf_counter() - t0
-    p.communicate(timeout=60)
-    assert line == "interrupted" and waited < 1.0  # uninterrupted, the field takes seconds
+    # uninterrupted, the 400 fields take minutes; honoured, the interrupt ends the call within
+    # about a second (the bound is wide for a loaded machine, far below the whole call's time)
+    assert out.strip() == "interrupted" and waited < 15.0, (out, waited)

@@ -30,6 +30,18 @@ static inline void tg__frame_point(const tg_geodesic* g, uint32_t h, tg_vec3 p, 
     out[1] = tg_v3_len(tg_v3_cross(u, r));
 }
 
+/* Does the 3D point p lie inside edge h (strictly between its ends, on its line to rounding:
+ * within TG__GRAZING_REL of the local scale)? Then *out_x is its abscissa along h. Points of a
+ * face that lie on an edge belong to the other faces at that edge too (field queries, traces). */
+static inline bool tg__point_on_edge(const tg_geodesic* g, uint32_t h, tg_vec3 p, double* out_x)
+{
+    double len = g->frame[h].len, xy[2];
+    if (!(len > 0.0)) return false;
+    tg__frame_point(g, h, p, xy);
+    *out_x = xy[0];
+    return xy[1] <= TG__GRAZING_REL * (fabs(xy[0]) + len) && xy[0] > 0.0 && xy[0] < len;
+}
+
 /* The point with barycentrics b (corners 0, 1, 2 of face h / 3) in the frame of h = 3f + k. */
 static inline void tg__frame_bary(const tg__frame* fr, uint32_t k, const double b[3], double out[2])
 {

@@ -42,11 +42,8 @@ static bool add_on_edges(tg__field_scratch* fs, uint32_t f, uint32_t id, const d
     tg_vec3 p = pair_pos(g, &at);
     for (uint32_t k = 0; k < 3; ++k) {
         uint32_t h = 3 * f + k;
-        double len = g->frame[h].len, xy[2];
-        if (!(len > 0.0)) continue;
-        tg__frame_point(g, h, p, xy);
-        double x = xy[0];
-        if (!(xy[1] <= TG__GRAZING_REL * (fabs(x) + len)) || !(x > 0.0 && x < len)) continue;
+        double len = g->frame[h].len, x;
+        if (!tg__point_on_edge(g, h, p, &x)) continue;
         uint32_t va = g->tri[h], vb = g->tri[tg_halfedge_next(h)];
         for (uint32_t o = g->ring[h]; o != h; o = g->ring[o]) {
             uint32_t fo = o / 3;

@@ -44,18 +44,20 @@ static bool add_node(trace* t, tg__node node, uint32_t face_before)
 }
 
 /* Face point p (of face p->id) as a point of the edge that face shares with face f, on which it
- * lies to rounding (the corner it is farthest from): false when they share no edge there. */
+ * lies (tg__point_on_edge: as the field query placed it in f): false when it lies on no such edge. */
 static bool edge_twin(const tg_geodesic* g, const tg__node* p, uint32_t f, tg__node* out)
 {
-    const double* b = p->bary;
-    int far = b[1] < b[0] ? 1 : 0;
-    if (b[2] < b[far]) far = 2;
-    uint32_t h = 3 * p->id + (uint32_t)(far + 1) % 3; /* the edge opposite that corner */
-    for (uint32_t o = g->ring[h]; o != h; o = g->ring[o]) {
-        if (o / 3 != f) continue;
-        double u = b[(far + 1) % 3], v = b[(far + 2) % 3];
-        *out = tg__node_edge(h, v / (u + v), u / (u + v));
-        return true;
+    tg_vec3 pos = tg__node_pos(g, p);
+    for (uint32_t k = 0; k < 3; ++k) {
+        uint32_t h = 3 * p->id + k;
+        double x;
+        if (!tg__point_on_edge(g, h, pos, &x)) continue;
+        for (uint32_t o = g->ring[h]; o != h; o = g->ring[o]) {
+            if (o / 3 != f) continue;
+            double tt = x / g->frame[h].len;
+            *out = tg__node_edge(h, tt, 1.0 - tt);
+            return true;
+        }
     }
     return false;
 }

@@ -38,6 +38,10 @@ int cli_usage(const char* cmd, const char* fmt, ...)
 /* Parses a non-negative integer / a double option value; false on junk. */
 bool cli_parse_uint(const char* s, unsigned long long* out);
 bool cli_parse_double(const char* s, double* out);
+/* Parses a comma-separated list of exactly n finite doubles ("X,Y,Z"); false on junk. */
+bool cli_parse_doubles(const char* s, int n, double* out);
+/* Seconds on the monotonic clock (for durations). */
+double cli_seconds(void);
 
 /* A surface point as written on the command line (cli_spec.c). */
 typedef struct cli_spec {

@@ -44,7 +44,7 @@ bool cli_interrupted(void)
 
 /* ---- progress line ---- */
 
-static double mono_s(void)
+double cli_seconds(void)
 {
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
@@ -56,14 +56,14 @@ void cli_progress_start(cli_progress* p, const char* what, bool quiet)
     memset(p, 0, sizeof *p);
     p->what = what;
     p->enabled = !quiet && isatty(STDERR_FILENO);
-    p->t0 = mono_s();
+    p->t0 = cli_seconds();
     p->next = p->t0 + 1.0; /* only work that passes about a second draws a line */
 }
 
 void cli_progress_update(cli_progress* p, double fraction, const char* detail)
 {
     if (!p->enabled) return;
-    double t = mono_s();
+    double t = cli_seconds();
     if (t < p->next) return;
     p->next = t + 0.1;
     p->drawn = true;

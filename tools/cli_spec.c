@@ -8,8 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Parses a comma-separated list of exactly n finite doubles. */
-static bool parse_doubles(const char* s, int n, double* out)
+bool cli_parse_doubles(const char* s, int n, double* out)
 {
     for (int k = 0; k < n; ++k) {
         char* end;
@@ -53,7 +52,7 @@ bool cli_parse_spec(const char* s, cli_spec* out)
     out->kind = s[0];
     const char* rest = s + 2;
     if (out->kind == 'v') return cli_parse_uint(rest, &out->index);
-    if (out->kind == 'p') return parse_doubles(rest, 3, out->v);
+    if (out->kind == 'p') return cli_parse_doubles(rest, 3, out->v);
     if (out->kind != 'f' && out->kind != 'e') return false;
     const char* colon = strchr(rest, ':');
     if (!colon || colon == rest || colon - rest > 20) return false;
@@ -61,7 +60,7 @@ bool cli_parse_spec(const char* s, cli_spec* out)
     memcpy(num, rest, (size_t)(colon - rest));
     num[colon - rest] = '\0';
     if (!cli_parse_uint(num, &out->index)) return false;
-    return parse_doubles(colon + 1, out->kind == 'f' ? 3 : 1, out->v);
+    return cli_parse_doubles(colon + 1, out->kind == 'f' ? 3 : 1, out->v);
 }
 
 /* Resolves a spec on the mesh (p: through the BVH, built on first use). Prints the error and

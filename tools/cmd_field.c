@@ -14,13 +14,6 @@
 
 #define MAX_SOURCES 4096
 
-static double now_s(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
 /* Splits the ';'-separated list in place; returns the count, or 0 for an empty item or too many. */
 static size_t split_specs(char* list, char** items, size_t cap)
 {
@@ -252,12 +245,12 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     cli_interrupt_install();
     tg_field_stats stats;
     memset(&stats, 0, sizeof stats);
-    double t0 = now_s();
+    double t0 = cli_seconds();
     if (st == TG_OK && fa->matrix)
         st = tg_geodesic_distance_matrix(geo, pts, count, &o, fa->threads, dist, &stats);
     else if (st == TG_OK)
         st = tg_geodesic_field_at(geo, NULL, pts, count, at_pts, fa->at_count, &o, at_d, dist, &stats);
-    double secs = now_s() - t0;
+    double secs = cli_seconds() - t0;
     cli_progress_end(&prog);
     if (st == TG_ERR_CANCELLED) {
         cli_error(fa->mesh_path, 0, "interrupted: nothing written");

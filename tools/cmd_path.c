@@ -93,13 +93,6 @@ static void print_summary(FILE* f, tg_path_method method, const tg_path_view* v)
 
 /* ---- batch ---- */
 
-static double now_us(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e6 + (double)t.tv_nsec * 1e-3;
-}
-
 /* Parses one PAIRS line into two surface points: "v SRC TGT" (vertices), "f F0 b0 b1 b2 F1 c0 c1
  * c2" (face points; the older "p" with these nine fields is read the same), "p x0 y0 z0 x1 y1 z1"
  * (positions, located on the surface); false after printing "PAIRS:LINE: message". */
@@ -232,9 +225,9 @@ static int run_pairs(const char* mesh_path, const char* pairs_path, const char* 
             rc = 130;
             goto done;
         }
-        double t0 = now_us();
+        double t0 = cli_seconds();
         st = tg_geodesic_path(geo, ws, &pairs[i].a, &pairs[i].b, o, path);
-        double us = now_us() - t0;
+        double us = 1e6 * (cli_seconds() - t0);
         if (st != TG_OK) {
             cli_error(pairs_path, pairs[i].line, "%s", tg_status_string(st));
             goto done;

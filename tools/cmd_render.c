@@ -76,21 +76,6 @@ static double* read_polyline(const char* path, size_t* out_count)
     return pts;
 }
 
-static bool parse_vec3(const char* s, double out[3])
-{
-    char* e;
-    for (int k = 0; k < 3; ++k) {
-        out[k] = strtod(s, &e);
-        if (e == s || !isfinite(out[k])) return false;
-        s = e;
-        if (k < 2) {
-            if (*s != ',') return false;
-            s++;
-        }
-    }
-    return *s == '\0';
-}
-
 static int run(int argc, char** argv)
 {
     const char *mesh_path = NULL, *path_obj = NULL, *field = NULL, *scalar = "distance", *out = NULL;
@@ -104,9 +89,9 @@ static int run(int argc, char** argv)
         else if (!strcmp(a, "--field") && has_value) field = argv[++i];
         else if (!strcmp(a, "--scalar") && has_value) scalar = argv[++i];
         else if (!strcmp(a, "--view") && has_value) {
-            if (!parse_vec3(argv[++i], o.view_dir)) return cli_usage("render", "--view needs X,Y,Z");
+            if (!cli_parse_doubles(argv[++i], 3, o.view_dir)) return cli_usage("render", "--view needs X,Y,Z");
         } else if (!strcmp(a, "--up") && has_value) {
-            if (!parse_vec3(argv[++i], o.up)) return cli_usage("render", "--up needs X,Y,Z");
+            if (!cli_parse_doubles(argv[++i], 3, o.up)) return cli_usage("render", "--up needs X,Y,Z");
         } else if (!strcmp(a, "--size") && has_value) {
             if (sscanf(argv[++i], "%dx%d", &o.width, &o.height) != 2 || o.width < 16 || o.height < 16 ||
                 o.width > 8192 || o.height > 8192)

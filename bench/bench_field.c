@@ -2,7 +2,7 @@
  * from random vertex sources, windows propagated, scratch memory and peak RSS.
  *
  * usage: bench_field MESH [--sources N] [--seed S] [--batch K]
- *   --batch K: instead, K fields from K random vertices through tg_geodesic_field_batch on 1 and
+ *   --batch K: instead, K fields from K random vertices through tg_geodesic_distance_matrix on 1 and
  *   on 2 threads; prints | mesh | faces | fields/s on 1 thread | fields/s on 2 threads | (wall).
  *   N (default 5) fields, each from one random vertex (fixed seed: every run times the same
  *   sources). Times are the thread's CPU time (CLOCK_THREAD_CPUTIME_ID; the machine is shared),

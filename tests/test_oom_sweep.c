@@ -1233,7 +1233,7 @@ static void sweep_fields(void)
 
     const long dense = TG_TEST_WORK(300, 60), stride = TG_TEST_WORK(2, 7);
     static const char* call_names[] = {"tg_geodesic_field", "tg_geodesic_field_at", "tg_geodesic_field_at (points only)",
-                                       "tg_geodesic_field_batch"};
+                                       "tg_geodesic_distance_matrix"};
     static const char* ws_names[] = {"temporary workspace", "fresh workspace", "grown workspace"};
     for (int call = 0; call <= FIELD_BATCH; ++call)
         for (int limited = 0; limited < 2; ++limited)

@@ -1,6 +1,6 @@
 /* cmd_field.c - `trigeo field MESH --from SPEC[;SPEC...] | --sources FILE [-o OUT.ply|.csv|.npy]
  * [--max-distance D]`: the exact geodesic distance from surface points to every vertex
- * (tg_geodesic_field), or one field per source as a matrix (tg_geodesic_field_batch), written
+ * (tg_geodesic_field), or one field per source as a matrix (tg_geodesic_distance_matrix), written
  * as a PLY vertex property `distance` (which `trigeo render --field` draws), CSV or NumPy .npy.
  * Based on: the CLI contract of the project's DESIGN.md. */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
@@ -416,7 +416,7 @@ const cli_command cli_cmd_field = {
     "                                   p:x,y,z          the surface point closest to x,y,z\n"
     "  --sources FILE         one field per source: FILE has one SPEC a line ('#' comments and\n"
     "                         blank lines skipped; '-' reads stdin); the fields are computed in\n"
-    "                         parallel and written as a matrix, one row per source\n"
+    "                         parallel and written as the distance matrix, one row per source\n"
     "  -o OUT                 the format follows the extension:\n"
     "                           .ply  (--from) the mesh as binary PLY with a per-vertex double\n"
     "                                 property 'distance' (trigeo render MESH --field OUT.ply)\n"

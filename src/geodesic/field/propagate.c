@@ -74,6 +74,21 @@ static void win_release(tg__field_scratch* fs, uint32_t id)
     ((uint32_t*)fs->free_ids.data)[fs->free_ids.count++] = id;
 }
 
+/* Takes window `id` off its list to cross the face beyond: a copy into *w (crossing may move the
+ * pool) and its slot released; false for an empty window (filtered, counted). */
+static bool take_window(tg__field_run* run, uint32_t id, tg__window* w)
+{
+    tg__field_scratch* fs = run->fs;
+    *w = ((tg__window*)fs->windows.data)[id];
+    win_release(fs, id);
+    if (!(w->b0 < w->b1)) {
+        run->stats.windows_filtered++;
+        return false;
+    }
+    run->stats.windows_propagated++;
+    return true;
+}
+
 /* ---- the vertex front: the layer's heap on (distance, vertex), lazy (stale entries skipped) ---- */
 
 static bool front_push(tg__field_run* run, double key, uint32_t v)
@@ -441,16 +456,10 @@ static bool cross_face(tg__field_run* run, uint32_t h, const tg__window* w, tg__
  * are turned by pi about the segment's middle. */
 static bool cross_slit(tg__field_run* run, uint32_t h, uint32_t exit, const uint32_t* ids, size_t n)
 {
-    tg__field_scratch* fs = run->fs;
     double len = run->g->frame[exit].len;
     for (size_t i = 0; i < n; ++i) {
-        tg__window w = ((tg__window*)fs->windows.data)[ids[i]]; /* children may move the pool */
-        win_release(fs, ids[i]);
-        if (!(w.b0 < w.b1)) {
-            run->stats.windows_filtered++;
-            continue;
-        }
-        run->stats.windows_propagated++;
+        tg__window w;
+        if (!take_window(run, ids[i], &w)) continue;
         if (!push_through(run, exit, len - w.b1, len - w.b0, len - w.sx, -w.sy, w.sigma, w.tag | TG__VIA_FLAT))
             return false;
     }
@@ -517,14 +526,8 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
         }
     }
     for (size_t i = 0; i < n; ++i) {
-        tg__window w = ((tg__window*)fs->windows.data)[ids[i]]; /* children may move the pool */
-        win_release(fs, ids[i]);
-        if (!(w.b0 < w.b1)) {
-            run->stats.windows_filtered++;
-            continue;
-        }
-        run->stats.windows_propagated++;
-
+        tg__window w;
+        if (!take_window(run, ids[i], &w)) continue;
         if (!cross_face(run, h, &w, hits[i], flat)) return false;
     }
     return true;

@@ -76,19 +76,20 @@ def test_ctrl_c_stops_long_fields():
         from conftest import grid
         m = trigeo.Mesh(*grid(700, 0.3))
         print("ready", flush=True)
+        cpu = time.process_time()
         try:
             m.distance_matrix(list(range(0, 40000, 100)), threads=1)  # 400 fields: minutes
             print("finished", flush=True)
         except KeyboardInterrupt:
-            print("interrupted")
+            print("interrupted", time.process_time() - cpu)
     """)
     p = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True, env=os.environ.copy())
     assert p.stdout.readline().strip() == "ready"
     time.sleep(0.3)
-    t0 = time.perf_counter()
     p.send_signal(signal.SIGINT)
-    out, _ = p.communicate(timeout=600)
-    waited = time.perf_counter() - t0
-    # uninterrupted, the 400 fields take minutes; honoured, the interrupt ends the call within
-    # about a second (the bound is wide for a loaded machine, far below the whole call's time)
-    assert out.strip() == "interrupted" and waited < 15.0, (out, waited)
+    out, _ = p.communicate(timeout=900)
+    # uninterrupted, the 400 fields take minutes of CPU; honoured, the interrupt ends the call
+    # within about a second of the child's CPU time (CPU time, not wall time: a loaded machine
+    # stretches the latter; the bound is far below the whole call's)
+    words = out.split()
+    assert words[0] == "interrupted" and float(words[1]) < 10.0, out

@@ -1,0 +1,68 @@
+/* scratch.c - the exact field engine's scratch: its tables and buffers (listed once in
+ * TG__FIELD_BUFFERS), their growth and their memory. Apart from the run (run.c), which calls the
+ * propagation and the queries that grow these buffers. */
+#include "geodesic/field/field.h"
+
+#include <string.h>
+
+size_t tg__field_scratch_fixed_bytes(const tg_geodesic* g)
+{
+    size_t nv = g->vertex_count, nh = 3 * (size_t)g->face_count;
+    return nv * (sizeof(double) + 1 + sizeof(tg__pred)) + nh * (sizeof(uint32_t) + 1 + 2 * sizeof(double)) +
+           g->face_count;
+}
+
+size_t tg__field_scratch_bytes(const tg__field_scratch* fs)
+{
+    size_t bytes = tg__field_scratch_fixed_bytes(fs->g);
+#define TG__FIELD_BYTES_(name, type) bytes += fs->name.capacity * sizeof(type);
+    TG__FIELD_BUFFERS(TG__FIELD_BYTES_)
+#undef TG__FIELD_BYTES_
+    return bytes;
+}
+
+bool tg__field_grow_slow(tg__field_scratch* fs, tg__vec* v, size_t extra)
+{
+    size_t cap = v->capacity;
+    if (!tg__vec_reserve(&fs->allocator, v, extra)) return false;
+    if (v->capacity != cap) {
+        size_t b = tg__field_scratch_bytes(fs);
+        if (b > fs->peak_bytes) fs->peak_bytes = b;
+    }
+    return true;
+}
+
+void tg__field_scratch_free(tg__field_scratch* fs)
+{
+    const tg_allocator* a = &fs->allocator;
+    void* tables[] = {fs->dist, fs->inside, fs->pred, fs->head, fs->queued, fs->split_d, fs->split_x, fs->qface};
+    for (size_t i = 0; i < sizeof tables / sizeof tables[0]; ++i) tg__free(a, tables[i]);
+#define TG__FIELD_FREE_(name, type) tg__vec_free(a, &fs->name);
+    TG__FIELD_BUFFERS(TG__FIELD_FREE_)
+#undef TG__FIELD_FREE_
+    memset(fs, 0, sizeof *fs);
+}
+
+bool tg__field_scratch_init(tg__field_scratch* fs, const tg_geodesic* g, const tg_allocator* a)
+{
+    memset(fs, 0, sizeof *fs);
+    fs->g = g;
+    fs->allocator = *a;
+#define TG__FIELD_ELEM_(name, type) fs->name.elem = sizeof(type);
+    TG__FIELD_BUFFERS(TG__FIELD_ELEM_)
+#undef TG__FIELD_ELEM_
+    fs->touched_all = 1;
+    size_t nv = g->vertex_count ? g->vertex_count : 1, nf = g->face_count ? g->face_count : 1, nh = 3 * nf;
+    fs->dist = tg__alloc_array(a, nv, sizeof(double));
+    fs->inside = tg__alloc_array(a, nv, 1);
+    fs->pred = tg__alloc_array(a, nv, sizeof(tg__pred));
+    fs->head = tg__alloc_array(a, nh, sizeof(uint32_t));
+    fs->queued = tg__alloc_array(a, nh, 1);
+    fs->split_d = tg__alloc_array(a, nh, sizeof(double));
+    fs->split_x = tg__alloc_array(a, nh, sizeof(double));
+    fs->qface = tg__calloc_array(a, nf, 1);
+    if (!fs->dist || !fs->inside || !fs->pred || !fs->head || !fs->queued || !fs->split_d || !fs->split_x || !fs->qface)
+        return false;
+    fs->peak_bytes = tg__field_scratch_bytes(fs);
+    return true;
+}

@@ -32,29 +32,8 @@ static int trace_problems(const tg_mesh* m, const tg_trace_view* v, const tg_sur
     double centre[3], diag = tg_test_mesh_box(m, centre), mag = 0.0;
     const tg_mesh_report* rep = tg_mesh_get_report(m);
     for (int k = 0; k < 3; ++k) mag = fmax(mag, fmax(fabs(rep->bbox_min[k]), fabs(rep->bbox_max[k])));
-    double pos_tol = 16.0 * DBL_EPSILON * mag + 1e-13 * diag, sum = 0.0;
-    for (size_t i = 0; i < n; ++i) {
-        const double* p = v->xyz + 3 * i;
-        if (tg_surface_point_validate(m, &v->points[i], NULL) != TG_OK) {
-            BAD_("point %zu invalid", i);
-            continue;
-        }
-        double own[3];
-        tg_test_point_position(m, &v->points[i], own);
-        if (tg_test_dist3(own, p) > pos_tol) BAD_("point %zu is %.3g from its surface point", i, tg_test_dist3(own, p));
-        if (i + 1 == n) continue;
-        uint32_t f = v->faces[i];
-        if (f >= tg_mesh_face_count(m)) {
-            BAD_("segment %zu: face %u", i, f);
-            continue;
-        }
-        if (!tg_test_point_in_face(m, &v->points[i], f) || !tg_test_point_in_face(m, &v->points[i + 1], f))
-            BAD_("segment %zu: its ends are not points of face %u", i, f);
-        double tol = tg_test_face_tolerance(m, f);
-        if (!(tg_test_point_face_distance(m, p, f) <= tol && tg_test_point_face_distance(m, p + 3, f) <= tol))
-            BAD_("segment %zu outside face %u", i, f);
-        sum += tg_test_dist3(p, p + 3);
-    }
+    double pos_tol = 16.0 * DBL_EPSILON * mag + 1e-13 * diag;
+    double sum = tg_test_polyline_problems(m, n, v->points, v->xyz, v->faces, pos_tol, &bad, why, size);
     double s0[3];
     tg_test_point_position(m, start, s0);
     if (tg_test_dist3(s0, v->xyz) > pos_tol) BAD_("starts %.3g from the start point", tg_test_dist3(s0, v->xyz));

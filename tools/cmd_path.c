@@ -14,30 +14,6 @@
 
 /* ---- output ---- */
 
-static void json_point(FILE* f, const tg_surface_point* p)
-{
-    if (p->kind == TG_SURFACE_VERTEX)
-        fprintf(f, "{\"kind\": \"vertex\", \"vertex\": %u}", p->index);
-    else if (p->kind == TG_SURFACE_EDGE)
-        fprintf(f, "{\"kind\": \"edge\", \"halfedge\": %u, \"t\": %.17g}", p->index, p->t);
-    else
-        fprintf(f, "{\"kind\": \"face\", \"face\": %u, \"bary\": [%.17g, %.17g, %.17g]}", p->index, p->bary[0],
-                p->bary[1], p->bary[2]);
-}
-
-static void json_string(FILE* f, const char* s)
-{
-    fputc('"', f);
-    for (; *s; ++s) {
-        if (*s == '"' || *s == '\\') fputc('\\', f);
-        if ((unsigned char)*s < 0x20)
-            fprintf(f, "\\u%04x", (unsigned char)*s);
-        else
-            fputc(*s, f);
-    }
-    fputc('"', f);
-}
-
 /* JSON has no infinity: an unreachable path's lengths are null. */
 static void json_number(FILE* f, double x)
 {
@@ -59,7 +35,7 @@ typedef struct waypoints {
 static void print_json(FILE* f, const char* mesh_path, const char* method, const tg_path_view* v, const waypoints* w)
 {
     fprintf(f, "{\n  \"mesh\": ");
-    json_string(f, mesh_path);
+    cli_json_string(f, mesh_path);
     fprintf(f, ",\n  \"method\": \"%s\",\n  \"status\": \"%s\",\n  \"global\": \"%s\",\n  \"length\": ", method,
             tg_path_status_name(v->status), tg_path_global_name(v->global));
     json_number(f, v->length);
@@ -69,7 +45,7 @@ static void print_json(FILE* f, const char* mesh_path, const char* method, const
             v->max_angle_defect, v->iterations, v->point_count);
     for (size_t i = 0; i < v->point_count; ++i) {
         fputs(i ? ",\n    " : "\n    ", f);
-        json_point(f, &v->points[i]);
+        cli_json_point(f, &v->points[i]);
     }
     fprintf(f, "%s],\n  \"xyz\": [", v->point_count ? "\n  " : "");
     for (size_t i = 0; i < v->point_count; ++i)

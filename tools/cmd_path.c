@@ -392,7 +392,8 @@ static int run(int argc, char** argv)
 
 const cli_command cli_cmd_path = {
     "path",
-    "path MESH (--from SPEC --to SPEC | --through \"SPEC;SPEC;...\" [--closed]) [-o PATH.obj|.json] [--json] | --pairs PAIRS [-o OUT.csv]) [--method M] [--certify]",
+    "path MESH ((--from SPEC --to SPEC | --through \"SPEC;SPEC;...\" [--closed]) [-o PATH.obj|.json] [--json] |\n"
+    "       --pairs PAIRS [-o OUT.csv]) [--method M] [--certify]",
     "Geodesic paths on the surface between any two surface points (never snapped to a vertex): by\n"
     "default the globally shortest path, proven by an exact window propagation; or, faster, the\n"
     "shortest edge path (A*) with the endpoints inserted virtually, then shortened.\n\n"

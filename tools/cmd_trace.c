@@ -154,21 +154,7 @@ done:
 /* X,Y,Z: three finite numbers, not all zero. */
 static bool parse_vector(const char* s, double out[3])
 {
-    char buf[256];
-    size_t n = strlen(s);
-    if (n == 0 || n >= sizeof buf) return false;
-    memcpy(buf, s, n + 1);
-    char* parts[3];
-    char* p = buf;
-    for (int k = 0; k < 3; ++k) {
-        parts[k] = p;
-        char* comma = strchr(p, ',');
-        if ((comma != NULL) != (k < 2)) return false;
-        if (comma) *comma = '\0', p = comma + 1;
-    }
-    for (int k = 0; k < 3; ++k)
-        if (!cli_parse_double(parts[k], &out[k])) return false;
-    return out[0] != 0.0 || out[1] != 0.0 || out[2] != 0.0;
+    return cli_parse_doubles(s, 3, out) && (out[0] != 0.0 || out[1] != 0.0 || out[2] != 0.0);
 }
 
 /* ---- the batch ---- */

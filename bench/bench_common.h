@@ -1,11 +1,14 @@
-/* bench_common.h - clocks, order statistics and memory figures shared by the bench programs. */
+/* bench_common.h - clocks, order statistics, memory figures and random queries shared by the bench
+ * programs. */
 #ifndef TG_BENCH_COMMON_H
 #define TG_BENCH_COMMON_H
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <sys/resource.h>
 #include <time.h>
+#include <trigeo.h>
 
 static inline double bench_clock_(clockid_t id)
 {
@@ -40,6 +43,25 @@ static inline long bench_peak_rss_kib(void)
     struct rusage ru;
     getrusage(RUSAGE_SELF, &ru);
     return ru.ru_maxrss;
+}
+
+/* xorshift64* (fixed seeds: every run times the same queries) */
+static inline uint64_t bench_rng_next(uint64_t* s)
+{
+    *s ^= *s >> 12;
+    *s ^= *s << 25;
+    *s ^= *s >> 27;
+    return *s * 2685821657736338717ull;
+}
+static inline double bench_rng_unit(uint64_t* s) { return (double)(bench_rng_next(s) >> 11) * (1.0 / 9007199254740992.0); }
+
+/* A face chosen uniformly (not by area), a point uniform in it. */
+static inline tg_surface_point bench_random_face_point(uint64_t* s, size_t faces)
+{
+    uint32_t f = (uint32_t)(bench_rng_next(s) % faces);
+    double u = bench_rng_unit(s), w = bench_rng_unit(s);
+    if (u + w > 1) u = 1 - u, w = 1 - w;
+    return tg_surface_face(f, 1 - u - w, u, w);
 }
 
 #endif

@@ -43,24 +43,6 @@ static void die(const char* msg, const char* arg)
     exit(2);
 }
 
-/* xorshift64* (fixed seeds: every run times the same pairs) */
-static uint64_t rng_next(uint64_t* s)
-{
-    *s ^= *s >> 12;
-    *s ^= *s << 25;
-    *s ^= *s >> 27;
-    return *s * 2685821657736338717ull;
-}
-static double rng_unit(uint64_t* s) { return (double)(rng_next(s) >> 11) * (1.0 / 9007199254740992.0); }
-
-static tg_surface_point random_face_point(uint64_t* s, size_t faces)
-{
-    uint32_t f = (uint32_t)(rng_next(s) % faces);
-    double u = rng_unit(s), w = rng_unit(s);
-    if (u + w > 1) u = 1 - u, w = 1 - w;
-    return tg_surface_face(f, 1 - u - w, u, w);
-}
-
 typedef struct pair {
     tg_surface_point a, b;
 } pair;
@@ -207,13 +189,13 @@ int main(int argc, char** argv)
 
     uint64_t s = 0x9E3779B97F4A7C15ull;
     for (size_t i = 0; i < n; ++i) {
-        pairs[i].a = tg_surface_vertex((uint32_t)(rng_next(&s) % verts));
-        pairs[i].b = tg_surface_vertex((uint32_t)(rng_next(&s) % verts));
+        pairs[i].a = tg_surface_vertex((uint32_t)(bench_rng_next(&s) % verts));
+        pairs[i].b = tg_surface_vertex((uint32_t)(bench_rng_next(&s) % verts));
     }
     run_set(&c, name, faces, "vertex pairs", pairs, n, reps, relax_near_only ? 0 : relax_pairs, exact_pairs);
     for (size_t i = 0; i < n; ++i) {
-        pairs[i].a = random_face_point(&s, faces);
-        pairs[i].b = random_face_point(&s, faces);
+        pairs[i].a = bench_random_face_point(&s, faces);
+        pairs[i].b = bench_random_face_point(&s, faces);
     }
     run_set(&c, name, faces, "face-point pairs", pairs, n, reps, relax_near_only ? 0 : relax_pairs, exact_pairs);
     if (near > 0) {
@@ -223,10 +205,10 @@ int main(int argc, char** argv)
         /* rejection sampling: a random face point, then random face points until one is within r */
         for (size_t i = 0; i < n; ++i) {
             double pa[3], pb[3], d2;
-            pairs[i].a = random_face_point(&s, faces);
+            pairs[i].a = bench_random_face_point(&s, faces);
             tg_surface_point_position(mesh, &pairs[i].a, pa);
             do {
-                pairs[i].b = random_face_point(&s, faces);
+                pairs[i].b = bench_random_face_point(&s, faces);
                 tg_surface_point_position(mesh, &pairs[i].b, pb);
                 d2 = (pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) + (pa[2] - pb[2]) * (pa[2] - pb[2]);
             } while (d2 > r * r);

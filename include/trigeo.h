@@ -903,6 +903,213 @@ TG_API tg_status tg_geodesic_path(const tg_geodesic* geodesic, tg_geodesic_works
  *  diag (may be NULL), TG_ERR_INVALID_ARGUMENT. */
 TG_API tg_status tg_path_write_obj(const tg_path* path, const char* filename, tg_diag* diag);
 
+/* ============================================================================================== */
+/* Paths through waypoints (src/geodesic/waypoints.c)                                             */
+/* ============================================================================================== */
+
+/** Whether a route through waypoints returns to its first point. */
+typedef enum tg_path_closure {
+    TG_PATH_OPEN = 0,  /**< from the first point to the last */
+    TG_PATH_CLOSED = 1 /**< a loop: from the last point back to the first as well */
+} tg_path_closure;
+
+/** The shortest route visiting `points` in the given order (and back to the first with
+ *  TG_PATH_CLOSED), as one path: the exact shortest path (tg_geodesic_path with the default
+ *  method, TG_PATH_EXACT) between each pair of consecutive points, joined end to end. Each piece
+ *  is globally shortest and proven, so the route is the shortest one through the points in that
+ *  order; its length is the sum of the pieces' lengths (added in order) and its global flag is
+ *  TG_PATH_PROVEN. The path bends at the waypoints, which are not part of its certificate:
+ *  max_angle_defect is the largest over the pieces. Each waypoint appears once in the points
+ *  (a piece's first point is the previous piece's last); consecutive equal waypoints give an
+ *  empty segment. initial_length equals length, iterations and edge_path_vertices are 0.
+ *  points: point_count >= 1 valid surface points (one point: the path from it to itself, two
+ *  equal points and length 0). closure: TG_PATH_OPEN or TG_PATH_CLOSED.
+ *  workspace: one of this solver's, or NULL for a temporary one. path: the result (its
+ *  allocator also serves the pieces' scratch path).
+ *  out_waypoint_points: NULL, or point_count (+ 1 when closed) entries receiving the index in
+ *  the path's points of each waypoint in visiting order (the last entry of a closed route is the
+ *  point where it returns to the first waypoint, which is the path's last point).
+ *  When two consecutive waypoints lie in different components the route does not exist: the
+ *  path is empty with status TG_PATH_UNREACHABLE and length +inf, out_waypoint_points is
+ *  untouched, and the call returns TG_OK.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic, points or path, point_count 0, an invalid
+ *  point, an unknown closure, a workspace of another solver), TG_ERR_OUT_OF_MEMORY,
+ *  TG_ERR_INTERNAL (as tg_geodesic_path); on error the path is empty and out_waypoint_points
+ *  untouched. Every point is validated before any path is computed.
+ *  Complexity: the sum of the pieces' tg_geodesic_path calls. Thread-safe for distinct
+ *  workspaces and paths. */
+TG_API tg_status tg_geodesic_path_through(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
+                                   const tg_surface_point* points, size_t point_count, tg_path_closure closure,
+                                   tg_path* path, size_t* out_waypoint_points);
+
+
+/* ============================================================================================== */
+/* Geodesic tracing, the exponential map (src/geodesic/walk.c)                                    */
+/* ============================================================================================== */
+
+/** How the direction of a trace is given. */
+typedef enum tg_trace_direction_kind {
+    /** A 3D vector (any length > 0), taken as the direction of the surface at the start point
+     *  nearest to it: its projection onto the start face's plane for a point inside a face; at a
+     *  point of an edge or at a vertex, the direction closest to the vector (largest cosine) among
+     *  those of the faces around the point that lead into the face or along its sides (the face
+     *  of lowest index on ties). Refused (TG_ERR_INVALID_ARGUMENT) when that cosine is at most
+     *  1e-9: a vector perpendicular to the start face (or to every face around the point). */
+    TG_TRACE_VECTOR = 0,
+    /** An angle in radians from a reference direction, counterclockwise about the normal of the
+     *  reference face (its corners 0, 1, 2 in the file's order are counterclockwise), measured as
+     *  the surface unfolds (intrinsically), by the start point's kind as given by the caller:
+     *  - a face point of face f: from f's corner 0 towards its corner 1;
+     *  - an edge point of halfedge h: from h's start towards its end, counterclockwise in h's face;
+     *    angles in (pi, 2 pi) point across the edge, into the face beyond it unfolded;
+     *  - a vertex v: from the halfedge tg_mesh_vertex_halfedges gives for v, counterclockwise in
+     *    its face and on around v, with the vertex's angle sum scaled to 2 pi (to pi where the
+     *    fan of faces around v is not closed: a boundary vertex), as geometry-central's vertex
+     *    tangent spaces: 0.5 pi is a quarter of the way round whatever the cone angle.
+     *  The reference face must have a non-zero area. */
+    TG_TRACE_ANGLE = 1
+} tg_trace_direction_kind;
+
+/** The direction of a trace: kind, then vector (TG_TRACE_VECTOR, 3 finite doubles, the same unit
+ *  as the coordinates or any other) or angle (TG_TRACE_ANGLE, finite radians; any value, taken
+ *  modulo 2 pi where the fan is closed). The unused member is ignored. */
+typedef struct tg_trace_direction {
+    tg_trace_direction_kind kind;
+    double vector[3];
+    double angle;
+} tg_trace_direction;
+
+/** Why a trace ended. */
+typedef enum tg_trace_status {
+    TG_TRACE_COMPLETE = 0, /**< the whole length was walked */
+    /** stopped on the boundary: the walk reached a boundary edge, or a vertex whose fan of faces
+     *  is not closed by crossable edges because it meets a boundary edge (a boundary vertex), or
+     *  an angle pointed off the surface at the start */
+    TG_TRACE_BOUNDARY = 1,
+    /** stopped at a vertex where no straightest continuation is defined: its fan of faces is not
+     *  closed for another reason (a non-manifold edge, a pinch, a misoriented seam or a zero-length
+     *  edge at it), or the start point lies in zero-area faces only */
+    TG_TRACE_SINGULAR = 2,
+    TG_TRACE_STEP_LIMIT = 3, /**< options->max_steps faces were entered before the length was used */
+    /** more than 1000 faces in a row were entered without advancing (zero-area faces around one
+     *  point): the walk stopped there rather than loop */
+    TG_TRACE_STALLED = 4
+} tg_trace_status;
+
+/** "complete", "boundary", "singular", "step_limit", "stalled"; "unknown" for other values.
+ *  Never NULL. */
+TG_API const char* tg_trace_status_name(tg_trace_status status);
+
+/** Options of tg_geodesic_trace and tg_geodesic_trace_batch. NULL or all-zero means defaults. */
+typedef struct tg_trace_options {
+    /** the most faces one walk may enter (each edge crossing and each face entered at a vertex
+     *  counts one); 0: 16 times the face count plus 65536. A walk that reaches it stops with
+     *  TG_TRACE_STEP_LIMIT: raise it for walks many times around a mesh. */
+    uint64_t max_steps;
+} tg_trace_options;
+
+/** Where a trace ended, and how. */
+typedef struct tg_trace_end {
+    tg_surface_point point; /**< the end point (canonical form; the start point when nothing was walked) */
+    double xyz[3];          /**< its position (tg_surface_point_position) */
+    /** the unit direction of the walk at the end (3D, in the mesh's frame), in the plane of the
+     *  last face of non-zero area it was in (`face`, unless that is a zero-area face): the start
+     *  direction when nothing was walked */
+    double direction[3];
+    uint32_t face;          /**< the face of the last segment (of the start direction when nothing was walked) */
+    tg_trace_status status;
+    /** the length walked: exactly the requested length when status is TG_TRACE_COMPLETE, the
+     *  distance along the walk to where it stopped otherwise */
+    double length;
+    uint64_t crossings;     /**< edges crossed (zero-area faces included) */
+    uint32_t vertices;      /**< vertices passed through (straightest continuations) */
+    /** non-manifold edges crossed: at each the walk took, of the other faces at the edge, the one
+     *  where it continues straightest in space (the largest cosine between the 3D directions
+     *  before and after; the lowest face index on ties); tg_trace_view lists where */
+    uint32_t branches;
+} tg_trace_end;
+
+/** A geodesic trace: a caller-owned result object reused across calls (its buffers grow to the
+ *  longest trace and are kept). Read it through tg_trace_get_view. */
+typedef struct tg_trace tg_trace;
+
+/** Read-only view of a trace, valid until the next call into the same tg_trace or its
+ *  destruction. Consecutive points are joined by straight segments, segment i lying in face
+ *  faces[i]; a segment across a zero-area face has length 0. */
+typedef struct tg_trace_view {
+    size_t point_count;             /**< >= 2 after a trace: start, every edge crossing and vertex
+                                         passage, end (the end is not repeated when it is the last
+                                         crossing or vertex); 0 before the first */
+    const tg_surface_point* points; /**< the surface points (canonical forms) */
+    const double* xyz;              /**< 3 * point_count positions */
+    const uint32_t* faces;          /**< point_count - 1 faces */
+    size_t branch_count;            /**< == end.branches */
+    /** the index in points of each non-manifold crossing; the face taken there is
+     *  faces[branch_points[i]] */
+    const size_t* branch_points;
+    tg_trace_end end;
+} tg_trace_view;
+
+/** Creates an empty trace object. allocator may be NULL (libc). Errors:
+ *  TG_ERR_INVALID_ARGUMENT, TG_ERR_OUT_OF_MEMORY. */
+TG_API tg_status tg_trace_create(const tg_allocator* allocator, tg_trace** out_trace);
+
+/** Frees a trace object. NULL is a no-op. */
+TG_API void tg_trace_destroy(tg_trace* trace);
+
+/** Fills *out_view with the trace's current content (no points before the first call). O(1). */
+TG_API void tg_trace_get_view(const tg_trace* trace, tg_trace_view* out_view);
+
+/** The exponential map: walks from `start` in `direction` straight across the faces for `length`
+ *  (the same unit as the coordinates), in double precision, into `trace`: the polyline (surface
+ *  points, positions, faces), the end point and the direction there.
+ *
+ *  Method: the walk unfolds each face it enters into the plane of the one before (the solver's
+ *  halfedge frames), so that it is a straight line of the unfolding, and decides which edge it
+ *  leaves by through exact orientation tests. A walk passing a vertex within 1e-11 of the face's
+ *  longest edge goes through the vertex (on which side of it a ray passes is rounding noise
+ *  below that) and leaves it as the straightest geodesic of Polthier and Schmies (1998): with
+ *  the same angle sum on both sides, half the vertex's total angle, so that it goes on straight
+ *  through a flat vertex and along the unique bisecting direction at a cone or saddle vertex.
+ *  A walk along an edge goes through the vertex at its end. Zero-area faces with a zero-length
+ *  edge (slits) are crossed straight through to their other side; other zero-area faces are
+ *  crossed where the walk meets them. At a non-manifold edge the walk continues into the face
+ *  where it runs straightest in space (see tg_trace_end.branches). The walk stops at the
+ *  boundary (TG_TRACE_BOUNDARY), at a vertex with no straightest continuation
+ *  (TG_TRACE_SINGULAR), after options->max_steps faces (TG_TRACE_STEP_LIMIT) or after 1000
+ *  faces in a row without advancing (TG_TRACE_STALLED); these are statuses of the result, not
+ *  errors. The results are the same, bit for bit, for a mesh scaled by a power of two (and to
+ *  rounding at any scale and position), and the same whatever other calls run.
+ *
+ *  start: a valid surface point (vertex, edge point or face point). direction: see
+ *  tg_trace_direction. length: finite and >= 0 (0 gives the start point, two equal points).
+ *  options: NULL for defaults. trace: the result.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic, start, direction or trace; an invalid start
+ *  point; a negative, NaN or infinite length; a zero, NaN or infinite vector, or one
+ *  perpendicular to the surface at the start (see TG_TRACE_VECTOR); a NaN or infinite angle, or
+ *  one measured in a zero-area reference face; an unknown direction kind), TG_ERR_OUT_OF_MEMORY;
+ *  on error the trace is empty (no points).
+ *  Complexity: O(k) in the k faces crossed, a small constant per face (figures in
+ *  BENCHMARKS.md), plus the vertices' fans at vertex passages; no allocation once the trace's
+ *  buffers hold k points. Thread-safe for distinct trace objects. */
+TG_API tg_status tg_geodesic_trace(const tg_geodesic* geodesic, const tg_surface_point* start,
+                            const tg_trace_direction* direction, double length, const tg_trace_options* options,
+                            tg_trace* trace);
+
+/** Many traces at once: out_ends[i] is the end of tg_geodesic_trace(starts[i], directions[i],
+ *  lengths[i]), bit for bit (the walk records no polyline here, so it allocates nothing). The
+ *  traces run in parallel with OpenMP on `threads` threads (0: the OpenMP default; 1: this thread
+ *  only); each walk keeps its state in a few local variables, so the results do not depend on
+ *  the number of threads or the order in which they run.
+ *  starts, directions, lengths: count entries each (NULL allowed when count is 0); every entry is
+ *  validated before any walk, as tg_geodesic_trace does. out_ends: count entries.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (as tg_geodesic_trace for any entry, NULL arrays with a
+ *  non-zero count, a negative thread count); out_ends is then untouched.
+ *  Complexity: the sum of the walks', divided among the threads. Thread-safe. */
+TG_API tg_status tg_geodesic_trace_batch(const tg_geodesic* geodesic, const tg_surface_point* starts,
+                                  const tg_trace_direction* directions, const double* lengths, size_t count,
+                                  const tg_trace_options* options, int threads, tg_trace_end* out_ends);
+
 
 /* ============================================================================================== */
 /* Exact geodesic distance fields (src/geodesic/field)                                             */

@@ -213,6 +213,49 @@ static inline double tg_test_point_face_distance(const tg_mesh* m, const double*
     return tg_test_point_triangle_distance(p, x + 3 * (size_t)t[0], x + 3 * (size_t)t[1], x + 3 * (size_t)t[2]);
 }
 
+/* The polyline of a path or a trace on m (n points, n - 1 faces): every point finite, a valid
+ * surface point at its own position in pts (within pos_tol), both ends of every segment in its face
+ * by their indices and by their distance to the triangle. Adds the problems to *bad (the first
+ * described in why, size bytes) and returns the sum of the segments' lengths. */
+static inline double tg_test_polyline_problems(const tg_mesh* m, size_t n, const tg_surface_point* points,
+                                               const double* pts, const uint32_t* faces, double pos_tol, int* bad,
+                                               char* why, size_t size)
+{
+#define TG_POLY_BAD_(...)                                       \
+    do {                                                        \
+        if ((*bad)++ == 0) snprintf(why, size, __VA_ARGS__);    \
+    } while (0)
+    double sum = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        const double* p = pts + 3 * i;
+        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) {
+            TG_POLY_BAD_("point %zu not finite", i);
+            continue;
+        }
+        if (tg_surface_point_validate(m, &points[i], NULL) != TG_OK) {
+            TG_POLY_BAD_("point %zu (kind %d, index %u) invalid", i, (int)points[i].kind, points[i].index);
+            continue;
+        }
+        double own[3];
+        tg_test_point_position(m, &points[i], own);
+        if (tg_test_dist3(own, p) > pos_tol) TG_POLY_BAD_("point %zu is %.3g from its surface point", i, tg_test_dist3(own, p));
+        if (i + 1 == n) continue;
+        uint32_t f = faces[i];
+        if (f >= tg_mesh_face_count(m)) {
+            TG_POLY_BAD_("segment %zu: face %u out of range", i, f);
+            continue;
+        }
+        if (!tg_test_point_in_face(m, &points[i], f) || !tg_test_point_in_face(m, &points[i + 1], f))
+            TG_POLY_BAD_("segment %zu: its end points are not points of face %u", i, f);
+        double tol = tg_test_face_tolerance(m, f), d0 = tg_test_point_face_distance(m, p, f),
+               d1 = tg_test_point_face_distance(m, p + 3, f);
+        if (!(d0 <= tol && d1 <= tol)) TG_POLY_BAD_("segment %zu: %.3g and %.3g outside face %u", i, d0, d1, f);
+        sum += tg_test_dist3(p, p + 3);
+    }
+#undef TG_POLY_BAD_
+    return sum;
+}
+
 /* What tg_test_path_problems requires beyond the contract. */
 enum {
     TG_TEST_PATH_UNREACHABLE = 1, /* the endpoints are in different components */
@@ -260,34 +303,8 @@ static inline int tg_test_path_problems(const tg_mesh* m, const tg_path_view* v,
     }
     /* positions agree to rounding: 16 ulps of the coordinates, 1e-13 of the mesh */
     double pos_tol = 16.0 * DBL_EPSILON * mag + 1e-13 * sqrt(diag);
-    double sum = 0.0;
     size_t n = v->point_count;
-    for (size_t i = 0; i < n; ++i) {
-        const double* p = v->xyz + 3 * i;
-        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) {
-            TG_PATH_BAD_("point %zu not finite", i);
-            continue;
-        }
-        if (tg_surface_point_validate(m, &v->points[i], NULL) != TG_OK) {
-            TG_PATH_BAD_("point %zu (kind %d, index %u) invalid", i, (int)v->points[i].kind, v->points[i].index);
-            continue;
-        }
-        double own[3];
-        tg_test_point_position(m, &v->points[i], own);
-        if (tg_test_dist3(own, p) > pos_tol) TG_PATH_BAD_("point %zu is %.3g from its surface point", i, tg_test_dist3(own, p));
-        if (i + 1 == n) continue;
-        uint32_t f = v->faces[i];
-        if (f >= tg_mesh_face_count(m)) {
-            TG_PATH_BAD_("segment %zu: face %u out of range", i, f);
-            continue;
-        }
-        if (!tg_test_point_in_face(m, &v->points[i], f) || !tg_test_point_in_face(m, &v->points[i + 1], f))
-            TG_PATH_BAD_("segment %zu: its end points are not points of face %u", i, f);
-        double tol = tg_test_face_tolerance(m, f), d0 = tg_test_point_face_distance(m, p, f),
-               d1 = tg_test_point_face_distance(m, p + 3, f);
-        if (!(d0 <= tol && d1 <= tol)) TG_PATH_BAD_("segment %zu: %.3g and %.3g outside face %u", i, d0, d1, f);
-        sum += tg_test_dist3(p, p + 3);
-    }
+    double sum = tg_test_polyline_problems(m, n, v->points, v->xyz, v->faces, pos_tol, &bad, why, size);
     double pa[3], pb[3];
     tg_test_point_position(m, from, pa);
     tg_test_point_position(m, to, pb);

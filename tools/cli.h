@@ -51,9 +51,31 @@ typedef struct cli_spec {
 } cli_spec;
 /* Parses v:IDX | f:FACE:b0,b1,b2 | e:HALFEDGE:t | p:x,y,z; false on a syntax error. */
 bool cli_parse_spec(const char* s, cli_spec* out);
+/* Splits the ';'-separated list in place into items (at most cap); returns the count, or 0 for
+ * an empty item or more than cap. */
+size_t cli_split_list(char* list, char** items, size_t cap);
+/* A ';'-separated list of specs given to an option ("SPEC;SPEC;..."): its items, parsed, and
+ * their surface points once resolved on a mesh. */
+#define CLI_SPEC_LIST_MAX 4096
+typedef struct cli_spec_list {
+    char* buffer;            /* the list, split in place */
+    char** text;             /* each item's text */
+    cli_spec* spec;
+    tg_surface_point* point; /* filled by cli_spec_list_resolve */
+    size_t count;
+} cli_spec_list;
+/* Parses `list` (at most CLI_SPEC_LIST_MAX items): CLI_OK, or CLI_USAGE after naming `option` of
+ * command `cmd` and the bad item (CLI_INPUT out of memory). cli_spec_list_free afterwards in any
+ * case. */
+int cli_spec_list_parse(const char* cmd, const char* option, const char* list, cli_spec_list* out);
+/* Resolves every item on the mesh (cli_resolve_spec); false after printing the error. */
+bool cli_spec_list_resolve(const char* mesh_path, tg_mesh* mesh, tg_bvh** bvh, cli_spec_list* l);
+void cli_spec_list_free(cli_spec_list* l);
 /* Barycentric coordinates read from text that sum to 1 within this are rescaled to sum to 1
  * (the library itself accepts 1e-9); farther off, they are refused. */
 #define CLI_BARY_RENORMALIZE 1e-6
+/* Prints a surface point as a SPEC (v:IDX | e:HALFEDGE:t | f:FACE:b0,b1,b2, %.17g). */
+void cli_print_spec(FILE* f, const tg_surface_point* p);
 /* A face point from barycentrics as read from text (renormalized within CLI_BARY_RENORMALIZE). */
 tg_surface_point cli_face_point(uint32_t face, const double b[3]);
 /* The surface point closest to xyz (through the BVH *bvh, built on first use); false for an
@@ -98,6 +120,9 @@ int cli_output_finish_library(cli_output* o, tg_status st, const tg_diag* d);
 /* Does `path` end with `ext` (".json", ".csv", ...; case-insensitive)? The CLI's -o picks the
  * output format by extension. */
 bool cli_ext_is(const char* path, const char* ext);
+/* JSON pieces: a string (quoted, escaped); a surface point as {"kind": ..., ...}. */
+void cli_json_string(FILE* f, const char* s);
+void cli_json_point(FILE* f, const tg_surface_point* p);
 /* Writes a float64 array as NumPy .npy: (rows, cols) when matrix, else (cols,). */
 bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bool matrix);
 
@@ -129,5 +154,6 @@ extern const cli_command cli_cmd_closest;
 extern const cli_command cli_cmd_render;
 extern const cli_command cli_cmd_path;
 extern const cli_command cli_cmd_field;
+extern const cli_command cli_cmd_trace;
 
 #endif

@@ -274,3 +274,29 @@ bool cli_ext_is(const char* path, const char* ext)
     size_t n = strlen(path), e = strlen(ext);
     return n >= e && !strcasecmp(path + n - e, ext);
 }
+
+/* ---- JSON ---- */
+
+void cli_json_string(FILE* f, const char* s)
+{
+    fputc('"', f);
+    for (; *s; ++s) {
+        if (*s == '"' || *s == '\\') fputc('\\', f);
+        if ((unsigned char)*s < 0x20)
+            fprintf(f, "\\u%04x", (unsigned char)*s);
+        else
+            fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+void cli_json_point(FILE* f, const tg_surface_point* p)
+{
+    if (p->kind == TG_SURFACE_VERTEX)
+        fprintf(f, "{\"kind\": \"vertex\", \"vertex\": %u}", p->index);
+    else if (p->kind == TG_SURFACE_EDGE)
+        fprintf(f, "{\"kind\": \"edge\", \"halfedge\": %u, \"t\": %.17g}", p->index, p->t);
+    else
+        fprintf(f, "{\"kind\": \"face\", \"face\": %u, \"bary\": [%.17g, %.17g, %.17g]}", p->index, p->bary[0],
+                p->bary[1], p->bary[2]);
+}

@@ -1,5 +1,6 @@
 /* cli_spec.c - surface point specifications of the CLI (v:IDX | f:FACE:b0,b1,b2 | e:HALFEDGE:t |
- * p:x,y,z), shared by `trigeo path` and `trigeo field`.
+ * p:x,y,z) and ';'-separated lists of them, shared by `trigeo path`, `trigeo field` and
+ * `trigeo trace`.
  * Based on: the CLI contract of the project's DESIGN.md (SPEC). */
 #include "cli.h"
 
@@ -23,6 +24,16 @@ bool cli_parse_doubles(const char* s, int n, double* out)
         }
     }
     return true;
+}
+
+void cli_print_spec(FILE* f, const tg_surface_point* p)
+{
+    if (p->kind == TG_SURFACE_VERTEX)
+        fprintf(f, "v:%u", p->index);
+    else if (p->kind == TG_SURFACE_EDGE)
+        fprintf(f, "e:%u:%.17g", p->index, p->t);
+    else
+        fprintf(f, "f:%u:%.17g,%.17g,%.17g", p->index, p->bary[0], p->bary[1], p->bary[2]);
 }
 
 tg_surface_point cli_face_point(uint32_t face, const double b[3])
@@ -63,6 +74,19 @@ bool cli_parse_spec(const char* s, cli_spec* out)
     return cli_parse_doubles(colon + 1, out->kind == 'f' ? 3 : 1, out->v);
 }
 
+size_t cli_split_list(char* list, char** items, size_t cap)
+{
+    size_t n = 0;
+    for (char* s = list;;) {
+        char* semi = strchr(s, ';');
+        if (semi) *semi = '\0';
+        if (!*s || n == cap) return 0;
+        items[n++] = s;
+        if (!semi) return n;
+        s = semi + 1;
+    }
+}
+
 /* Resolves a spec on the mesh (p: through the BVH, built on first use). Prints the error and
  * returns false when the location is invalid. */
 bool cli_resolve_spec(const char* mesh_path, tg_mesh* mesh, tg_bvh** bvh, const char* text, const cli_spec* sp,
@@ -93,4 +117,45 @@ bool cli_resolve_spec(const char* mesh_path, tg_mesh* mesh, tg_bvh** bvh, const 
         return false;
     }
     return true;
+}
+
+int cli_spec_list_parse(const char* cmd, const char* option, const char* list, cli_spec_list* out)
+{
+    memset(out, 0, sizeof *out);
+    size_t len = strlen(list);
+    out->buffer = malloc(len + 1);
+    out->text = malloc(CLI_SPEC_LIST_MAX * sizeof *out->text);
+    if (!out->buffer || !out->text) {
+        cli_error(NULL, 0, "out of memory");
+        return CLI_INPUT;
+    }
+    memcpy(out->buffer, list, len + 1);
+    out->count = cli_split_list(out->buffer, out->text, CLI_SPEC_LIST_MAX);
+    if (!out->count)
+        return cli_usage(cmd, "bad %s list \"%s\" (SPEC;SPEC;..., no empty item, at most %d)", option, list,
+                         CLI_SPEC_LIST_MAX);
+    out->spec = malloc(out->count * sizeof *out->spec);
+    out->point = malloc(out->count * sizeof *out->point);
+    if (!out->spec || !out->point) {
+        cli_error(NULL, 0, "out of memory");
+        return CLI_INPUT;
+    }
+    for (size_t i = 0; i < out->count; ++i)
+        if (!cli_parse_spec(out->text[i], &out->spec[i]))
+            return cli_usage(cmd, "bad %s item %zu '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", option, i + 1,
+                             out->text[i]);
+    return CLI_OK;
+}
+
+bool cli_spec_list_resolve(const char* mesh_path, tg_mesh* mesh, tg_bvh** bvh, cli_spec_list* l)
+{
+    for (size_t i = 0; i < l->count; ++i)
+        if (!cli_resolve_spec(mesh_path, mesh, bvh, l->text[i], &l->spec[i], &l->point[i])) return false;
+    return true;
+}
+
+void cli_spec_list_free(cli_spec_list* l)
+{
+    free(l->buffer), free(l->text), free(l->spec), free(l->point);
+    memset(l, 0, sizeof *l);
 }

@@ -14,20 +14,6 @@
 
 #define MAX_SOURCES 4096
 
-/* Splits the ';'-separated list in place; returns the count, or 0 for an empty item or too many. */
-static size_t split_specs(char* list, char** items, size_t cap)
-{
-    size_t n = 0;
-    for (char* s = list;;) {
-        char* semi = strchr(s, ';');
-        if (semi) *semi = '\0';
-        if (!*s || n == cap) return 0;
-        items[n++] = s;
-        if (!semi) return n;
-        s = semi + 1;
-    }
-}
-
 /* The output format, from the file name's extension. */
 enum { OUT_NONE, OUT_PLY, OUT_CSV, OUT_NPY };
 
@@ -393,7 +379,7 @@ static int run(int argc, char** argv)
         return CLI_INPUT;
     }
     memcpy(list, from, len + 1);
-    size_t count = split_specs(list, items, MAX_SOURCES);
+    size_t count = cli_split_list(list, items, MAX_SOURCES);
     rc = count ? run_field(&fa, items, NULL, count)
                : cli_usage("field", "bad --from list (SPEC[;SPEC...], at most %d)", MAX_SOURCES);
     free(list), free(items);

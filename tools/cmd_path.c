@@ -1,6 +1,8 @@
-/* cmd_path.c - `trigeo path MESH --from SPEC --to SPEC [-o PATH.obj] [--json] [--method M]` and
+/* cmd_path.c - `trigeo path MESH --from SPEC --to SPEC [-o PATH.obj] [--json] [--method M]`,
+ * `trigeo path MESH --through "SPEC;SPEC;..." [--closed]` and
  * `trigeo path MESH --pairs PAIRS [-o OUT.csv] [--method M]`: geodesic paths between surface
- * points (one, written as an OBJ polyline or JSON; or a batch, as CSV with timings). */
+ * points (one, or one through waypoints, written as an OBJ polyline or JSON; or a batch, as CSV
+ * with timings). */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include "cli.h"
 
@@ -12,30 +14,6 @@
 
 /* ---- output ---- */
 
-static void json_point(FILE* f, const tg_surface_point* p)
-{
-    if (p->kind == TG_SURFACE_VERTEX)
-        fprintf(f, "{\"kind\": \"vertex\", \"vertex\": %u}", p->index);
-    else if (p->kind == TG_SURFACE_EDGE)
-        fprintf(f, "{\"kind\": \"edge\", \"halfedge\": %u, \"t\": %.17g}", p->index, p->t);
-    else
-        fprintf(f, "{\"kind\": \"face\", \"face\": %u, \"bary\": [%.17g, %.17g, %.17g]}", p->index, p->bary[0],
-                p->bary[1], p->bary[2]);
-}
-
-static void json_string(FILE* f, const char* s)
-{
-    fputc('"', f);
-    for (; *s; ++s) {
-        if (*s == '"' || *s == '\\') fputc('\\', f);
-        if ((unsigned char)*s < 0x20)
-            fprintf(f, "\\u%04x", (unsigned char)*s);
-        else
-            fputc(*s, f);
-    }
-    fputc('"', f);
-}
-
 /* JSON has no infinity: an unreachable path's lengths are null. */
 static void json_number(FILE* f, double x)
 {
@@ -45,10 +23,19 @@ static void json_number(FILE* f, double x)
         fputs("null", f);
 }
 
-static void print_json(FILE* f, const char* mesh_path, const char* method, const tg_path_view* v)
+/* --through: the waypoints, where they are in the path's points (count + 1 entries when closed),
+ * and whether the route is a loop. */
+typedef struct waypoints {
+    cli_spec_list list;
+    size_t* at;
+    bool closed;
+} waypoints;
+
+/* w: the waypoints of --through, NULL for --from/--to. */
+static void print_json(FILE* f, const char* mesh_path, const char* method, const tg_path_view* v, const waypoints* w)
 {
     fprintf(f, "{\n  \"mesh\": ");
-    json_string(f, mesh_path);
+    cli_json_string(f, mesh_path);
     fprintf(f, ",\n  \"method\": \"%s\",\n  \"status\": \"%s\",\n  \"global\": \"%s\",\n  \"length\": ", method,
             tg_path_status_name(v->status), tg_path_global_name(v->global));
     json_number(f, v->length);
@@ -58,17 +45,23 @@ static void print_json(FILE* f, const char* mesh_path, const char* method, const
             v->max_angle_defect, v->iterations, v->point_count);
     for (size_t i = 0; i < v->point_count; ++i) {
         fputs(i ? ",\n    " : "\n    ", f);
-        json_point(f, &v->points[i]);
+        cli_json_point(f, &v->points[i]);
     }
     fprintf(f, "%s],\n  \"xyz\": [", v->point_count ? "\n  " : "");
     for (size_t i = 0; i < v->point_count; ++i)
         fprintf(f, "%s[%.17g, %.17g, %.17g]", i ? ",\n    " : "\n    ", v->xyz[3 * i], v->xyz[3 * i + 1], v->xyz[3 * i + 2]);
     fprintf(f, "%s],\n  \"faces\": [", v->point_count ? "\n  " : "");
     for (size_t i = 0; i + 1 < v->point_count; ++i) fprintf(f, "%s%u", i ? ", " : "", v->faces[i]);
-    fprintf(f, "]\n}\n");
+    fprintf(f, "]");
+    if (w && v->point_count) {
+        fprintf(f, ",\n  \"closed\": %s,\n  \"waypoint_points\": [", w->closed ? "true" : "false");
+        for (size_t i = 0; i < w->list.count + (w->closed ? 1 : 0); ++i) fprintf(f, "%s%zu", i ? ", " : "", w->at[i]);
+        fprintf(f, "]");
+    }
+    fprintf(f, "\n}\n");
 }
 
-static void print_summary(FILE* f, tg_path_method method, const tg_path_view* v)
+static void print_summary(FILE* f, tg_path_method method, const tg_path_view* v, const waypoints* w)
 {
     int crossings = 0, vertices = 0;
     for (size_t i = 1; i + 1 < v->point_count; ++i) {
@@ -87,6 +80,8 @@ static void print_summary(FILE* f, tg_path_method method, const tg_path_view* v)
     else
         fprintf(f, "edge path length   %.17g\n", v->initial_length);
     fprintf(f, "points             %zu (%d edge crossings, %d vertex passages)\n", v->point_count, crossings, vertices);
+    if (w && v->point_count)
+        fprintf(f, "waypoints          %zu%s (the path bends there)\n", w->list.count, w->closed ? ", closed" : "");
     fprintf(f, "max angle defect   %.3g rad\n", v->max_angle_defect);
     fprintf(f, "iterations         %u\n", v->iterations);
 }
@@ -250,12 +245,12 @@ done:
     return rc;
 }
 
-static int run_single(const char* mesh_path, const char* from, const char* to, const char* out_path, bool json,
-                      const char* method_name, const tg_path_options* o)
+static int run_single(const char* mesh_path, const char* from, const char* to, waypoints* through, const char* out_path,
+                      bool json, const char* method_name, const tg_path_options* o)
 {
     cli_spec sa, sb;
-    if (!cli_parse_spec(from, &sa)) return cli_usage("path", "bad --from '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", from);
-    if (!cli_parse_spec(to, &sb)) return cli_usage("path", "bad --to '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", to);
+    if (!through && !cli_parse_spec(from, &sa)) return cli_usage("path", "bad --from '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", from);
+    if (!through && !cli_parse_spec(to, &sb)) return cli_usage("path", "bad --to '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", to);
     int rc = CLI_INPUT;
     tg_bvh* bvh = NULL;
     tg_geodesic* geo = NULL;
@@ -268,11 +263,19 @@ static int run_single(const char* mesh_path, const char* from, const char* to, c
         cli_error(mesh_path, 0, "the mesh has no faces");
         goto done;
     }
-    if (!cli_resolve_spec(mesh_path, mesh, &bvh, from, &sa, &a) || !cli_resolve_spec(mesh_path, mesh, &bvh, to, &sb, &b)) goto done;
+    if (through ? !cli_spec_list_resolve(mesh_path, mesh, &bvh, &through->list)
+                : !cli_resolve_spec(mesh_path, mesh, &bvh, from, &sa, &a) || !cli_resolve_spec(mesh_path, mesh, &bvh, to, &sb, &b))
+        goto done;
     tg_status st = tg_geodesic_create(mesh, NULL, &geo);
     if (st == TG_OK) st = tg_geodesic_workspace_create(geo, &ws);
     if (st == TG_OK) st = tg_path_create(NULL, &path);
-    if (st == TG_OK) st = tg_geodesic_path(geo, ws, &a, &b, o, path);
+    if (st == TG_OK && through) {
+        size_t n = through->list.count;
+        st = tg_geodesic_path_through(geo, ws, through->list.point, n, through->closed ? TG_PATH_CLOSED : TG_PATH_OPEN,
+                                      path, through->at);
+    } else if (st == TG_OK) {
+        st = tg_geodesic_path(geo, ws, &a, &b, o, path);
+    }
     if (st != TG_OK) {
         cli_error(mesh_path, 0, "%s", tg_status_string(st));
         goto done;
@@ -283,7 +286,7 @@ static int run_single(const char* mesh_path, const char* from, const char* to, c
         cli_output out;
         FILE* f = cli_output_open(&out, out_path);
         if (!f) goto done;
-        print_json(f, mesh_path, method_name, &v);
+        print_json(f, mesh_path, method_name, &v, through);
         if (cli_output_commit(&out) != CLI_OK) goto done;
     } else if (out_path) { /* the OBJ polyline, to a temporary name renamed when complete */
         tg_diag d;
@@ -294,9 +297,9 @@ static int run_single(const char* mesh_path, const char* from, const char* to, c
         if (cli_output_finish_library(&out, tg_path_write_obj(path, out.tmp, &d), &d) != CLI_OK) goto done;
     }
     if (json)
-        print_json(stdout, mesh_path, method_name, &v);
+        print_json(stdout, mesh_path, method_name, &v, through);
     else
-        print_summary(stdout, o->method, &v);
+        print_summary(stdout, o->method, &v, through);
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
     tg_path_destroy(path);
@@ -309,14 +312,15 @@ done:
 
 static int run(int argc, char** argv)
 {
-    const char *mesh_path = NULL, *from = NULL, *to = NULL, *pairs = NULL, *out_path = NULL, *method = "exact";
-    bool json = false, certify = false;
+    const char *mesh_path = NULL, *from = NULL, *to = NULL, *pairs = NULL, *out_path = NULL, *method = NULL;
+    const char* through = NULL;
+    bool json = false, certify = false, closed = false;
     tg_path_options o;
     memset(&o, 0, sizeof o);
     for (int i = 1; i < argc; ++i) {
         const char* a = argv[i];
         if (!strcmp(a, "--from") || !strcmp(a, "--to") || !strcmp(a, "--pairs") || !strcmp(a, "-o") ||
-            !strcmp(a, "--method")) {
+            !strcmp(a, "--method") || !strcmp(a, "--through")) {
             if (i + 1 >= argc) return cli_usage("path", "%s needs a value", a);
             const char* val = argv[++i];
             if (!strcmp(a, "--from"))
@@ -327,12 +331,16 @@ static int run(int argc, char** argv)
                 pairs = val;
             else if (!strcmp(a, "-o"))
                 out_path = val;
+            else if (!strcmp(a, "--through"))
+                through = val;
             else
                 method = val;
         } else if (!strcmp(a, "--json")) {
             json = true;
         } else if (!strcmp(a, "--certify")) {
             certify = true;
+        } else if (!strcmp(a, "--closed")) {
+            closed = true;
         } else if (a[0] == '-' && a[1]) {
             return cli_usage("path", "unknown option '%s'", a);
         } else if (!mesh_path) {
@@ -341,6 +349,14 @@ static int run(int argc, char** argv)
             return cli_usage("path", "unexpected argument '%s'", a);
         }
     }
+    if (through) {
+        if (from || to || pairs) return cli_usage("path", "--through excludes --from, --to and --pairs");
+        if ((method && strcmp(method, "exact")) || certify)
+            return cli_usage("path", "--through joins exact paths (proven): --method and --certify do not apply");
+    } else if (closed) {
+        return cli_usage("path", "--closed applies to --through");
+    }
+    if (!method) method = "exact";
     if (!strcmp(method, "exact"))
         o.method = TG_PATH_EXACT;
     else if (!strcmp(method, "straighten"))
@@ -358,15 +374,26 @@ static int run(int argc, char** argv)
         if (json) return cli_usage("path", "--json applies to a single path (--from/--to)");
         return run_pairs(mesh_path, pairs, out_path, &o);
     }
-    if (!from || !to) return cli_usage("path", "missing %s (or --pairs FILE)", from ? "--to" : "--from");
+    if (!through && (!from || !to)) return cli_usage("path", "missing %s (or --pairs FILE)", from ? "--to" : "--from");
     if (out_path && !cli_ext_is(out_path, ".obj") && !cli_ext_is(out_path, ".json"))
         return cli_usage("path", "-o takes PATH.obj (the polyline) or PATH.json (the whole answer)");
-    return run_single(mesh_path, from, to, out_path, json, method, &o);
+    if (!through) return run_single(mesh_path, from, to, NULL, out_path, json, method, &o);
+    waypoints w = {{NULL, NULL, NULL, NULL, 0}, NULL, closed};
+    int rc = cli_spec_list_parse("path", "--through", through, &w.list);
+    if (rc == CLI_OK && !(w.at = malloc((w.list.count + 1) * sizeof *w.at))) {
+        cli_error(NULL, 0, "out of memory");
+        rc = CLI_INPUT;
+    }
+    if (rc == CLI_OK) rc = run_single(mesh_path, NULL, NULL, &w, out_path, json, method, &o);
+    cli_spec_list_free(&w.list);
+    free(w.at);
+    return rc;
 }
 
 const cli_command cli_cmd_path = {
     "path",
-    "path MESH (--from SPEC --to SPEC [-o PATH.obj|.json] [--json] | --pairs PAIRS [-o OUT.csv]) [--method M] [--certify]",
+    "path MESH ((--from SPEC --to SPEC | --through \"SPEC;SPEC;...\" [--closed]) [-o PATH.obj|.json] [--json] |\n"
+    "       --pairs PAIRS [-o OUT.csv]) [--method M] [--certify]",
     "Geodesic paths on the surface between any two surface points (never snapped to a vertex): by\n"
     "default the globally shortest path, proven by an exact window propagation; or, faster, the\n"
     "shortest edge path (A*) with the endpoints inserted virtually, then shortened.\n\n"
@@ -375,6 +402,10 @@ const cli_command cli_cmd_path = {
     "                                                    of summing to 1 they are rescaled)\n"
     "                                       e:HALFEDGE:t     a point of an edge (halfedge 3*face+corner)\n"
     "                                       p:x,y,z          the surface point closest to x,y,z\n"
+    "  --through \"SPEC;SPEC;...\" the shortest route through these points in this order: the exact\n"
+    "                           paths between consecutive points, each proven, joined into one\n"
+    "                           path (quote the list: ';' is special to the shell)\n"
+    "  --closed                 with --through: back to the first point too (a loop)\n"
     "  -o PATH.obj|PATH.json    write the path as an OBJ polyline (v and l records), or the\n"
     "                           JSON document of --json (the format follows the extension)\n"
     "  --json                   print surface points, faces, 3D points, length, status, certificate\n"

@@ -19,7 +19,7 @@ which is snapped to the closest surface point.
 
 Every C call releases the GIL, so Python threads run queries in parallel; batch calls also take
 a `threads` argument (0: all cores) and run on C threads. Errors raise trigeo.Error subclasses
-carrying the file, line and reason. Objects: Mesh, Path, SurfacePoint; functions: load.
+carrying the file, line and reason. Objects: Mesh, Path, Trace, SurfacePoint; functions: load.
 For batches over many machines, see trigeo.dask.
 """
 from __future__ import annotations
@@ -38,7 +38,7 @@ from . import _lib as _c
 from ._lib import lib as _L
 
 __all__ = [
-    "load", "Mesh", "Path", "SurfacePoint", "version", "Error", "InvalidArgumentError", "OutOfMemoryError",
+    "load", "Mesh", "Path", "Trace", "SurfacePoint", "version", "Error", "InvalidArgumentError", "OutOfMemoryError",
     "FileError", "ParseError", "InvalidMeshError", "UnsupportedError", "CapacityError", "CancelledError",
 ]
 
@@ -435,6 +435,7 @@ class Mesh:
         self._geo_ws = _Pool(lambda: _new(_L.tg_geodesic_workspace_create, self._geo),
                              _L.tg_geodesic_workspace_destroy)
         self._paths = _Pool(lambda: _new(_L.tg_path_create, None), _L.tg_path_destroy)
+        self._traces = _Pool(lambda: _new(_L.tg_trace_create, None), _L.tg_trace_destroy)
 
     # -- lifetime ---------------------------------------------------------------------------
 
@@ -444,7 +445,7 @@ class Mesh:
         h = getattr(self, "_h", None)
         if not h:
             return
-        for pool in (self._bvh_ws, self._geo_ws, self._paths):
+        for pool in (self._bvh_ws, self._geo_ws, self._paths, self._traces):
             pool.close()
         if self._geo:
             _L.tg_geodesic_destroy(self._geo)
@@ -731,6 +732,154 @@ class Mesh:
                     f.result()
         return out
 
+    def path_through(self, points: Any, closed: bool = False) -> "Path":
+        """The shortest route visiting `points` in this order (and back to the first with
+        closed=True): the exact shortest path between each pair of consecutive points, each
+        proven, joined into one Path (global_ "proven"; its length is the sum of the pieces').
+
+        points: a sequence of surface points as path() takes them (vertex indices, SurfacePoints,
+        (x, y, z) positions), at least one. The Path's waypoint_points ((m,) int64, m = the number
+        of points, + 1 when closed) gives the index in path.points of each waypoint in visiting
+        order. Consecutive points in different components give status "unreachable", length inf."""
+        pts = self._surface_points(points, "points")
+        if len(pts) == 0:
+            raise _bad("path_through needs at least one point")
+        m = len(pts) + (1 if closed else 0)
+        at = (ctypes.c_size_t * m)()
+        geo = self._get_geo()
+        with self._geo_ws.take() as ws, self._paths.take() as ph:
+            _check(_L.tg_geodesic_path_through(geo, ws, pts, len(pts), 1 if closed else 0, ph, at), "path_through")
+            view = _c.PathView()
+            _L.tg_path_get_view(ph, ctypes.byref(view))
+            p = Path._from_view(view)
+        p.waypoint_points = np.array(at[:], dtype=np.int64) if view.point_count else np.empty(0, np.int64)
+        return p
+
+    # -- tracing ------------------------------------------------------------------------------
+
+    @staticmethod
+    def _trace_options(max_steps: int) -> _c.TraceOptions:
+        ms = _index(max_steps, "max_steps")
+        return _c.TraceOptions(ms)
+
+    @staticmethod
+    def _directions(directions: Any, k: int, angles: bool) -> ctypes.Array:
+        """k directions: (k, 3) or one (3,) vector (TG_TRACE_VECTOR); with angles, k or one angle
+        in radians (TG_TRACE_ANGLE)."""
+        try:
+            a = np.asarray(directions, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise _bad(f"direction must be a 3D vector or an angle in radians, not {directions!r}") from None
+        vectors = not angles
+        if vectors and a.ndim in (1, 2) and a.shape[-1] == 3:
+            a = a.reshape(-1, 3)
+        elif angles and a.ndim <= 1:
+            a = a.reshape(-1)
+        else:
+            raise _bad(f"direction must be {'angles (a number or (k,) array)' if angles else 'a (3,) or (k, 3) array'}, "
+                       f"not shape {a.shape}")
+        if a.shape[0] not in (1, k):
+            raise _bad(f"{a.shape[0]} directions for {k} starts")
+        out = (_c.TraceDirection * k)()
+        for i in range(k):
+            d = a[i if a.shape[0] == k else 0]
+            if vectors:
+                if not np.all(np.isfinite(d)) or not np.any(d):
+                    raise _bad(f"direction[{i}] = {d.tolist()} must be three finite numbers, not all zero")
+                out[i] = _c.TraceDirection(0, tuple(d), 0.0)
+            else:
+                if not math.isfinite(d):
+                    raise _bad(f"angle[{i}] = {float(d)!r} must be finite (radians)")
+                out[i] = _c.TraceDirection(1, (0.0, 0.0, 0.0), float(d))
+        return out
+
+    @staticmethod
+    def _lengths(lengths: Any, k: int) -> np.ndarray:
+        a = np.asarray(lengths, dtype=np.float64).reshape(-1)
+        if a.shape[0] not in (1, k):
+            raise _bad(f"{a.shape[0]} lengths for {k} starts")
+        if not np.all(np.isfinite(a) & (a >= 0)):
+            i = int(np.flatnonzero(~(np.isfinite(a) & (a >= 0)))[0])
+            raise _bad(f"length[{i}] = {a[i]!r} must be a finite number >= 0")
+        return np.ascontiguousarray(np.broadcast_to(a, (k,)))
+
+    def _refused(self, what: str, geo: int, starts, dirs, lengths, opts) -> None:
+        """The library refused directions that passed the checks above: say which and why."""
+        for i in range(len(starts)):
+            end = _c.TraceEnd()
+            if _L.tg_geodesic_trace_batch(geo, ctypes.byref(starts[i]), ctypes.byref(dirs[i]),
+                                          _ptr(lengths[i:i + 1]), 1, ctypes.byref(opts), 1, ctypes.byref(end)):
+                why = ("is perpendicular to the surface at the start" if dirs[i].kind == 0 else
+                       "is measured in the start's reference face, which has zero area (give a 3D vector)")
+                raise _bad(f"{what}: direction[{i}] {why}")
+
+    def trace(self, start: Any, direction: Any, length: float, max_steps: int = 0) -> "Trace":
+        """The exponential map: the geodesic walked straight from `start` in `direction` for
+        `length`, across the faces as they unfold, through a vertex as the straightest geodesic
+        (Polthier and Schmies), stopping at the boundary (status "boundary").
+
+        start: a vertex index, SurfacePoint or (x, y, z) (snapped). direction: a 3D vector (its
+        projection onto the start face; at an edge or vertex the nearest direction of the surface)
+        or an angle in radians from the start's reference direction (include/trigeo.h,
+        TG_TRACE_ANGLE). length: finite, >= 0. max_steps: the most faces to enter (0: default).
+        Zero, NaN or perpendicular directions and negative lengths raise InvalidArgumentError.
+        Returns a Trace (points, faces, surface points, the end and its direction, the status)."""
+        sp = (_c.SurfacePointC * 1)(self._surface_point(start, "start"))
+        is_angle = isinstance(direction, (int, float, np.integer, np.floating)) and not isinstance(direction, (bool, np.bool_))
+        if not is_angle and np.shape(direction) != (3,):
+            raise _bad(f"direction must be a 3D vector or an angle in radians, not {direction!r}")
+        d = self._directions(direction, 1, is_angle)
+        lengths = self._lengths(length, 1)
+        opts = self._trace_options(max_steps)
+        geo = self._get_geo()
+        with self._traces.take() as th:
+            st = _L.tg_geodesic_trace(geo, sp, d, float(lengths[0]), ctypes.byref(opts), th)
+            if st == 1:
+                self._refused("trace", geo, sp, d, lengths, opts)
+            _check(st, "trace")
+            view = _c.TraceView()
+            _L.tg_trace_get_view(th, ctypes.byref(view))
+            return Trace._from_view(view)
+
+    def trace_batch(self, starts: Any, directions: Any, lengths: Any, threads: int = 0,
+                    max_steps: int = 0, angles: bool = False) -> dict:
+        """Many traces at once (the vectorised trace(), on `threads` C threads, 0: all cores):
+        the end of each, bit for bit trace()'s. starts: k surface points as field() takes them
+        (vertex indices, SurfacePoints, (k, 3) positions). directions: (k, 3) vectors, or one for
+        all; with angles=True, k angles in radians (or one). lengths: k lengths or one. Every
+        entry is checked before any walk.
+
+        Returns a dict of arrays: "xyz" (k, 3) end positions, "direction" (k, 3) unit end
+        directions, "face" (k,) the last segment's face, "length" (k,) the length walked,
+        "status" (k,) str ("complete", "boundary", "singular", "step_limit", "stalled"),
+        "crossings" (k,) edges crossed, "points" the k end SurfacePoints."""
+        threads = _threads(threads)
+        sps = self._surface_points(starts, "starts")
+        k = len(sps)
+        dirs = self._directions(directions, k, angles) if k else (_c.TraceDirection * 0)()
+        lens = self._lengths(lengths, k) if k else np.empty(0)
+        opts = self._trace_options(max_steps)
+        ends = (_c.TraceEnd * k)()
+        geo = self._get_geo()
+        st = _L.tg_geodesic_trace_batch(geo, sps, dirs, _ptr(lens), k, ctypes.byref(opts), threads, ends)
+        if st == 1:
+            self._refused("trace_batch", geo, sps, dirs, lens, opts)
+        _check(st, "trace_batch")
+        names = {}
+        status = np.empty(k, dtype=object)
+        for i in range(k):
+            s = ends[i].status
+            status[i] = names.get(s) or names.setdefault(s, _L.tg_trace_status_name(s).decode())
+        return {
+            "xyz": np.array([e.xyz[:] for e in ends], dtype=np.float64).reshape(k, 3),
+            "direction": np.array([e.direction[:] for e in ends], dtype=np.float64).reshape(k, 3),
+            "face": np.array([e.face for e in ends], dtype=np.int64),
+            "length": np.array([e.length for e in ends], dtype=np.float64),
+            "status": status.astype(str) if k else np.empty(0, dtype=str),
+            "crossings": np.array([e.crossings for e in ends], dtype=np.int64),
+            "points": [SurfacePoint._from_c(e.point) for e in ends],
+        }
+
     # -- fields -------------------------------------------------------------------------------
 
     def _field_options(self, max_distance: Optional[float], progress: _Progress) -> _c.FieldOptions:
@@ -898,13 +1047,15 @@ class Path:
     max_angle_defect  the certificate, radians: the largest deviation from straight over the
                       crossings and vertex passages (0 for a straight path)
     global_           "proven" (an exact computation showed no shorter path exists) or "unproven"
+    waypoint_points   Mesh.path_through only: (m,) int64, where each waypoint is in points
+                      (None for other paths)
     proven            bool, global_ == "proven"
     initial_length    the length of the initial shortest edge path ("exact" computes none: length)
     iterations        straightening sweeps or relaxation passes performed (0 for "exact")
     """
 
     __slots__ = ("length", "points", "faces", "surface_points", "status", "max_angle_defect", "global_",
-                 "initial_length", "iterations")
+                 "initial_length", "iterations", "waypoint_points")
 
     @classmethod
     def _from_view(cls, v: _c.PathView) -> "Path":
@@ -916,6 +1067,7 @@ class Path:
         p.status = _L.tg_path_status_name(v.status).decode()
         p.global_ = _L.tg_path_global_name(v.global_).decode()
         p.iterations = int(v.iterations)
+        p.waypoint_points = None
         if k:
             p.points = np.ctypeslib.as_array(v.xyz, shape=(k, 3)).copy()
             p.faces = np.ctypeslib.as_array(v.faces, shape=(k - 1,)).astype(np.int64) if k > 1 else np.empty(0, np.int64)
@@ -935,3 +1087,50 @@ class Path:
     def __repr__(self) -> str:
         return (f"<trigeo.Path length={self.length!r} points={len(self)} status={self.status} "
                 f"global={self.global_} max_angle_defect={self.max_angle_defect:.3g}>")
+
+
+# ---------------------------------------------------------------------------------------------
+# Trace
+# ---------------------------------------------------------------------------------------------
+
+class Trace:
+    """A geodesic trace (from Mesh.trace). Attributes:
+
+    points          (k, 3) float64: the start, every edge crossing and vertex passage, the end
+    faces           (k - 1,) int64: the face each segment lies in
+    surface_points  list of k SurfacePoints (the same points on the mesh)
+    status          "complete", "boundary", "singular", "step_limit" or "stalled"
+    length          the length walked (the requested one when status is "complete")
+    end             the end SurfacePoint; end_xyz (3,), end_direction (3,) unit, end_face
+    crossings       edges crossed; vertices: vertices passed through; branches: non-manifold
+                    edges crossed, at points[branch_points]
+    """
+
+    __slots__ = ("points", "faces", "surface_points", "status", "length", "end", "end_xyz", "end_direction",
+                 "end_face", "crossings", "vertices", "branches", "branch_points")
+
+    @classmethod
+    def _from_view(cls, v: _c.TraceView) -> "Trace":
+        t = cls.__new__(cls)
+        k = int(v.point_count)
+        t.points = np.ctypeslib.as_array(v.xyz, shape=(k, 3)).copy()
+        t.faces = np.ctypeslib.as_array(v.faces, shape=(k - 1,)).astype(np.int64) if k > 1 else np.empty(0, np.int64)
+        t.surface_points = [SurfacePoint._from_c(v.points[i]) for i in range(k)]
+        e = v.end
+        t.status = _L.tg_trace_status_name(e.status).decode()
+        t.length = float(e.length)
+        t.end = SurfacePoint._from_c(e.point)
+        t.end_xyz = np.array(e.xyz[:])
+        t.end_direction = np.array(e.direction[:])
+        t.end_face = int(e.face)
+        t.crossings, t.vertices, t.branches = int(e.crossings), int(e.vertices), int(e.branches)
+        nb = int(v.branch_count)
+        t.branch_points = (np.ctypeslib.as_array(v.branch_points, shape=(nb,)).astype(np.int64) if nb
+                           else np.empty(0, np.int64))
+        return t
+
+    def __len__(self) -> int:
+        return self.points.shape[0]
+
+    def __repr__(self) -> str:
+        return f"<trigeo.Trace length={self.length!r} points={len(self)} status={self.status}>"

@@ -107,6 +107,26 @@ class PathView(ctypes.Structure):
                 ("edge_path_vertices", c_uint32)]
 
 
+class TraceDirection(ctypes.Structure):
+    _fields_ = [("kind", c_int), ("vector", c_double * 3), ("angle", c_double)]
+
+
+class TraceOptions(ctypes.Structure):
+    _fields_ = [("max_steps", c_uint64)]
+
+
+class TraceEnd(ctypes.Structure):
+    _fields_ = [("point", SurfacePointC), ("xyz", c_double * 3), ("direction", c_double * 3), ("face", c_uint32),
+                ("status", c_int), ("length", c_double), ("crossings", c_uint64), ("vertices", c_uint32),
+                ("branches", c_uint32)]
+
+
+class TraceView(ctypes.Structure):
+    _fields_ = [("point_count", c_size_t), ("points", POINTER(SurfacePointC)), ("xyz", POINTER(c_double)),
+                ("faces", POINTER(c_uint32)), ("branch_count", c_size_t), ("branch_points", POINTER(c_size_t)),
+                ("end", TraceEnd)]
+
+
 class VertexScalar(ctypes.Structure):
     _fields_ = [("name", c_char_p), ("values", POINTER(c_double))]
 
@@ -178,6 +198,14 @@ _SIGNATURES = {
     "tg_path_global_name": (c_char_p, [c_int]),
     "tg_geodesic_path": (c_int, [_vp, _vp, _psp, _psp, POINTER(PathOptions), _vp]),
     "tg_path_write_obj": (c_int, [_vp, c_char_p, _pdiag]),
+    "tg_geodesic_path_through": (c_int, [_vp, _vp, _psp, c_size_t, c_int, _vp, POINTER(c_size_t)]),
+    "tg_trace_create": (c_int, [_vp, _pvp]),
+    "tg_trace_destroy": (None, [_vp]),
+    "tg_trace_get_view": (None, [_vp, POINTER(TraceView)]),
+    "tg_trace_status_name": (c_char_p, [c_int]),
+    "tg_geodesic_trace": (c_int, [_vp, _psp, POINTER(TraceDirection), c_double, POINTER(TraceOptions), _vp]),
+    "tg_geodesic_trace_batch": (c_int, [_vp, _psp, POINTER(TraceDirection), _pd, c_size_t, POINTER(TraceOptions),
+                                        c_int, POINTER(TraceEnd)]),
     "tg_geodesic_field": (c_int, [_vp, _vp, _psp, c_size_t, POINTER(FieldOptions), _pd, _vp]),
     "tg_geodesic_field_at": (c_int, [_vp, _vp, _psp, c_size_t, _psp, c_size_t, POINTER(FieldOptions), _pd, _pd, _vp]),
     "tg_geodesic_distance_matrix": (c_int, [_vp, _psp, c_size_t, POINTER(FieldOptions), c_int, _pd, _vp]),

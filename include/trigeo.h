@@ -534,7 +534,11 @@ typedef struct tg_signed_hit {
                                      (fractional on open meshes); otherwise 0 */
 } tg_signed_hit;
 
-/** Signed distance from xyz to the mesh. With TG_SIGN_PSEUDONORMAL the sign is that of
+/** Signed distance from xyz to the mesh. Signs and winding numbers do not depend on the unit of
+ *  the coordinates: every intermediate is computed in a frame scaled by powers of two, so a mesh
+ *  and its queries scaled uniformly (anywhere within +-1e150, down to meshes whose edges are
+ *  normal doubles) or translated get the same signs, and winding numbers equal up to rounding
+ *  (bit-identical under scaling by a power of two). With TG_SIGN_PSEUDONORMAL the sign is that of
  *  (xyz - closest point) . pseudonormal of the closest feature (face normal; sum of the two face
  *  normals of an edge; angle-weighted sum around a vertex); if that dot product is exactly 0 with
  *  a non-zero distance (degenerate normals), the winding number decides. With TG_SIGN_WINDING
@@ -554,7 +558,8 @@ TG_API tg_status tg_bvh_signed_distance_batch(const tg_bvh* bvh, const double* x
                                        tg_signed_hit* out_hits);
 
 /** The generalized winding number of the mesh at xyz: (1/4pi) * sum of the signed solid angles
- *  of its triangles (Van Oosterom and Strackee 1983). 1 inside and 0 outside a closed,
+ *  of its triangles (Van Oosterom and Strackee 1983), scale-invariant as tg_bvh_signed_distance
+ *  says (never NaN for coordinates within +-1e150). 1 inside and 0 outside a closed,
  *  consistently oriented mesh; fractional near holes. Evaluated hierarchically: clusters far from
  *  xyz (distance > 3 * their radius) contribute their dipole term, near ones the exact sum (the
  *  approximation is typically within 1e-2 of the exact value); without dipole data

@@ -806,6 +806,22 @@ typedef enum tg_path_status {
 /** "converged", "iteration_cap", "unreachable", "stalled"; "unknown" for other values. Never NULL. */
 TG_API const char* tg_path_status_name(tg_path_status status);
 
+/** What a progress callback of a field or a path is told (defined here, before the paths, which
+ *  take the same callback). */
+typedef struct tg_field_progress {
+    double front_distance;   /**< distance of the wavefront: the last vertex settled */
+    double settled_fraction; /**< share of the mesh's vertices settled (in [0, 1]; vertices no
+                                  source reaches are never settled); for a batch, the share of all
+                                  rows' work: (rows done + this row's share) / rows */
+    size_t rows_done;        /**< batch: rows finished so far (0 for a single field) */
+    size_t row_count;        /**< batch: number of rows (1 for a single field) */
+} tg_field_progress;
+
+/** Progress callback: called every few milliseconds of work (about every 5 ms, from the thread
+ *  doing the work; in a batch, from one thread at a time). Return 0 to go on, anything else to
+ *  cancel: the call then returns TG_ERR_CANCELLED with the outputs untouched. */
+typedef int (*tg_field_progress_fn)(void* user, const tg_field_progress* progress);
+
 /** Query options. NULL or all-zero means defaults. */
 typedef struct tg_path_options {
     tg_path_method method;   /**< TG_PATH_EXACT (0) by default */
@@ -821,6 +837,16 @@ typedef struct tg_path_options {
      *  search (§3.4.2). */
     const tg_geodesic_kernel_options* kernel; /**< out of range: TG_ERR_INVALID_ARGUMENT */
     tg_path_certify certify; /**< TG_PATH_CERTIFY_OFF by default */
+    /** Called from the querying thread while the query works, so that a caller can stop it
+     *  (Ctrl-C): during an exact propagation (TG_PATH_EXACT, certify) every few milliseconds with
+     *  the field's figures (settled_fraction of the component; an A*-bounded run stops well
+     *  before 1), and after every straightening sweep (STRAIGHTEN) or relaxation pass (RELAX)
+     *  with front_distance 0, settled_fraction 0, rows_done the sweeps or passes done and
+     *  row_count 0. Returning non-zero stops the query: TG_ERR_CANCELLED, the path empty.
+     *  NULL: none. (progress and progress_user are new members: code compiled against an
+     *  older trigeo.h passes a shorter struct and must be rebuilt.) */
+    tg_field_progress_fn progress;
+    void* progress_user; /**< passed to progress */
 } tg_path_options;
 
 /** A geodesic path: a caller-owned result object reused across queries (its buffers grow to the
@@ -894,7 +920,8 @@ TG_API void tg_path_get_view(const tg_path* path, tg_path_view* out_view);
  *  options: NULL or zero for the defaults.
  *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic, from, to or path, a workspace of another
  *  solver, an invalid surface point, out-of-range options), TG_ERR_OUT_OF_MEMORY,
- *  TG_ERR_INTERNAL (see TG_PATH_EXACT); on error the path is empty (unreachable).
+ *  TG_ERR_INTERNAL (see TG_PATH_EXACT), TG_ERR_CANCELLED (options->progress asked to stop); on
+ *  error the path is empty (unreachable).
  *  Complexity: EXACT is the field's (tg_geodesic_field) over the region its A* order and bound
  *  explore; A* is O(n log n) in the n explored vertices; straightening is O(k) per sweep in the
  *  k faces of the path's strips (figures in BENCHMARKS.md). Thread-safe for distinct workspaces
@@ -912,21 +939,6 @@ TG_API tg_status tg_path_write_obj(const tg_path* path, const char* filename, tg
 /* ============================================================================================== */
 /* Exact geodesic distance fields (src/geodesic/field)                                             */
 /* ============================================================================================== */
-
-/** What a progress callback is told. */
-typedef struct tg_field_progress {
-    double front_distance;   /**< distance of the wavefront: the last vertex settled */
-    double settled_fraction; /**< share of the mesh's vertices settled (in [0, 1]; vertices no
-                                  source reaches are never settled); for a batch, the share of all
-                                  rows' work: (rows done + this row's share) / rows */
-    size_t rows_done;        /**< batch: rows finished so far (0 for a single field) */
-    size_t row_count;        /**< batch: number of rows (1 for a single field) */
-} tg_field_progress;
-
-/** Progress callback: called every few milliseconds of work (about every 5 ms, from the thread
- *  doing the work; in a batch, from one thread at a time). Return 0 to go on, anything else to
- *  cancel: the call then returns TG_ERR_CANCELLED with the outputs untouched. */
-typedef int (*tg_field_progress_fn)(void* user, const tg_field_progress* progress);
 
 /** Whether max_distance applies. */
 typedef enum tg_field_limit {

@@ -95,11 +95,6 @@ class KernelOptions(ctypes.Structure):
     _fields_ = [("digits", c_int), ("max_iterations", c_int), ("strategy", c_int), ("root_method", c_int)]
 
 
-class PathOptions(ctypes.Structure):
-    _fields_ = [("method", c_int), ("max_iterations", c_uint32), ("tolerance", c_double),
-                ("kernel", POINTER(KernelOptions)), ("certify", c_int)]
-
-
 class PathView(ctypes.Structure):
     _fields_ = [("point_count", c_size_t), ("points", POINTER(SurfacePointC)), ("xyz", POINTER(c_double)),
                 ("faces", POINTER(c_uint32)), ("length", c_double), ("initial_length", c_double),
@@ -117,6 +112,12 @@ class FieldProgress(ctypes.Structure):
 
 
 PROGRESS_FN = ctypes.CFUNCTYPE(c_int, c_void_p, POINTER(FieldProgress))
+
+
+class PathOptions(ctypes.Structure):
+    _fields_ = [("method", c_int), ("max_iterations", c_uint32), ("tolerance", c_double),
+                ("kernel", POINTER(KernelOptions)), ("certify", c_int), ("progress", PROGRESS_FN),
+                ("progress_user", c_void_p)]
 
 
 class FieldOptions(ctypes.Structure):

@@ -1056,6 +1056,15 @@ TG_API tg_status tg_geodesic_distance_matrix(const tg_geodesic* g, const tg_surf
 /* Pictures (src/render)                                                                          */
 /* ============================================================================================== */
 
+/** The memory budget of tg_render_png: 16 bytes per sample (width x height x supersample^2)
+ *  plus 7 per pixel may not exceed it (2 GiB). The default supersampling (3 x 3) is lowered to
+ *  2 x 2 or 1 x 1 for pictures that would not fit (beyond about 3770 x 3770 and 5500 x 5500
+ *  pixels); an explicit supersample that does not fit is refused. */
+#define TG_RENDER_MAX_BYTES ((size_t)2 << 30)
+
+/** Render progress: fraction in [0, 1]; return non-zero to stop (TG_ERR_CANCELLED). */
+typedef int (*tg_render_progress_fn)(void* user, double fraction);
+
 /** What to draw and how. A zero-initialised struct (or NULL) means: 960 x 720 pixels, the default
  *  three-quarter view, the mesh in neutral grey, no overlay. */
 typedef struct tg_render_options {
@@ -1074,15 +1083,23 @@ typedef struct tg_render_options {
                                        over the surface (depth-tested, slightly lifted toward the
                                        camera), endpoints as dots */
     size_t polyline_count;
-    int supersample;              /**< samples per pixel side for anti-aliasing; 0: 3; 1: none */
+    int supersample;              /**< samples per pixel side for anti-aliasing, 1..8; 0: 3, or
+                                       fewer where TG_RENDER_MAX_BYTES needs; 1: none */
+    /** Called every few thousand faces and picture rows from the rendering thread (NULL: none);
+     *  non-zero stops the call with TG_ERR_CANCELLED, before the file is opened. (progress and
+     *  progress_user are new members: code compiled against an older trigeo.h must be rebuilt.) */
+    tg_render_progress_fn progress;
+    void* progress_user;
 } tg_render_options;
 
 /** Renders the mesh (software rasterizer, z-buffer, smooth two-sided headlight shading) with the
  *  optional scalar field and polyline, and writes an 8-bit RGB PNG (libpng) to png_path.
  *  Degenerate faces are skipped; an empty mesh gives a background-only image. Deterministic: the
  *  same inputs give the same bytes. Errors: TG_ERR_INVALID_ARGUMENT (NULL mesh/path, size out of
- *  range, polyline_count > 0 with NULL polyline), TG_ERR_OUT_OF_MEMORY, TG_ERR_IO (cannot write).
- *  Cost: O(F + pixels * supersample^2). Thread-safe (no shared state). */
+ *  range, over TG_RENDER_MAX_BYTES (diag says how much it would need), polyline_count > 0 with NULL
+ *  polyline), TG_ERR_OUT_OF_MEMORY, TG_ERR_IO (cannot write), TG_ERR_CANCELLED (progress said
+ *  stop; no file is written). Cost: O(F + pixels * supersample^2), memory at most
+ *  TG_RENDER_MAX_BYTES plus the mesh's projected vertices. Thread-safe (no shared state). */
 TG_API tg_status tg_render_png(const tg_mesh* mesh, const tg_render_options* options, const char* png_path,
                         tg_diag* diag);
 

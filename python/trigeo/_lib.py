@@ -125,10 +125,14 @@ class FieldOptions(ctypes.Structure):
                 ("progress", PROGRESS_FN), ("progress_user", c_void_p)]
 
 
+RENDER_PROGRESS_FN = ctypes.CFUNCTYPE(c_int, c_void_p, c_double)
+
+
 class RenderOptions(ctypes.Structure):
     _fields_ = [("width", c_int), ("height", c_int), ("view_dir", c_double * 3), ("up", c_double * 3),
                 ("vertex_scalar", POINTER(c_double)), ("isolines", c_int), ("polyline", POINTER(c_double)),
-                ("polyline_count", c_size_t), ("supersample", c_int)]
+                ("polyline_count", c_size_t), ("supersample", c_int), ("progress", RENDER_PROGRESS_FN),
+                ("progress_user", c_void_p)]
 
 
 _vp = c_void_p

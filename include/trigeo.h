@@ -170,16 +170,29 @@ TG_API tg_status tg_mesh_create(const double* xyz, size_t vertex_count, const ui
                          size_t face_count, const tg_mesh_options* options, tg_diag* diag,
                          tg_mesh** out_mesh);
 
-/** Loads a mesh file (OBJ, OFF, PLY ascii/binary LE/BE, STL ascii/binary; a path ending in .gz
- *  is decompressed with zlib). Polygons are fan-triangulated; vertices keep file order (STL welds
- *  bit-identical positions in first-seen order). format: TG_FORMAT_AUTO or a forced format.
+/** Loads a mesh file (OBJ, OFF, PLY ascii/binary LE/BE, STL ascii/binary; gzip data, by the
+ *  .gz extension or its magic bytes, is decompressed with zlib). Polygons are fan-triangulated;
+ *  vertices keep file order (STL welds bit-identical positions in first-seen order). format:
+ *  TG_FORMAT_AUTO or a forced format. Pipes and files whose size the system does not report
+ *  (those of /proc) are read to their end; directories, devices and sockets are refused
+ *  (TG_ERR_IO: /dev/urandom would never end).
+ *  Counts are checked against the data: a binary STL whose facet count, an OFF whose vertex or
+ *  face count, or a PLY whose element counts leave data unread (whole facet records, record
+ *  lines, bytes) is refused with TG_ERR_PARSE naming both numbers, never loaded short; an ascii
+ *  PLY line with more or fewer values than its record takes is named as such. Tolerated, with a
+ *  warning: fewer bytes than a facet record after a binary STL's last facet, and blanks, line
+ *  ends or NUL bytes after a binary PLY's last record (padding some writers add). Data that is
+ *  none of the formats (no extension, no header, no OBJ statement) says so.
  *  Errors: TG_ERR_IO (cannot open/read), TG_ERR_PARSE (malformed), TG_ERR_INVALID_MESH,
- *  TG_ERR_UNSUPPORTED; diag (may be NULL) gets file, line or byte offset, and a sentence. */
+ *  TG_ERR_UNSUPPORTED; diag (may be NULL) gets file, line or byte offset, and a sentence. On
+ *  success diag->message is empty unless a warning was given: then it starts with "warning: "
+ *  (the CLI prints it, Python issues a trigeo.LoadWarning). */
 TG_API tg_status tg_mesh_load(const char* path, tg_format format, const tg_mesh_options* options,
                        tg_diag* diag, tg_mesh** out_mesh);
 
-/** Parses a mesh from memory (uncompressed bytes). name is used in diagnostics and, with
- *  TG_FORMAT_AUTO, for the extension; it may be NULL. Same errors as tg_mesh_load. */
+/** Parses a mesh from memory: the bytes of a mesh file, inflated first when they are gzip data
+ *  (the gzip magic bytes 1f 8b; the same limits as files). name is used in diagnostics and, with
+ *  TG_FORMAT_AUTO, for the extension; it may be NULL. Same errors and warnings as tg_mesh_load. */
 TG_API tg_status tg_mesh_load_memory(const void* data, size_t size, const char* name, tg_format format,
                               const tg_mesh_options* options, tg_diag* diag, tg_mesh** out_mesh);
 

@@ -66,6 +66,7 @@ tg_mesh* cli_load_mesh(const char* path)
         cli_error_diag(&diag, st);
         return NULL;
     }
+    if (diag.message[0]) cli_error_diag(&diag, st); /* a warning: something the reader tolerated */
     return mesh;
 }
 

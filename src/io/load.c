@@ -1,5 +1,9 @@
-/* load.c - tg_mesh_load / tg_mesh_load_memory: read the file (zlib for .gz), pick the reader,
- * hand the soup to tg_mesh. Based on: zlib's gzread interface (reads plain files too). */
+/* load.c - tg_mesh_load / tg_mesh_load_memory: read the file (zlib for .gz; pipes and files
+ * whose size the system does not know, such as /proc's, to their end; devices refused), inflate
+ * gzip data given in memory, pick the reader, hand the soup to tg_mesh.
+ * Based on: zlib's gzread interface (reads plain files too) and its inflate interface with
+ * windowBits 15 + 32 (zlib or gzip header detected; RFC 1952 members may be concatenated). */
+#define _POSIX_C_SOURCE 200809L /* fileno, fstat, S_ISSOCK */
 #include "io/io_internal.h"
 #include "mesh/mesh_internal.h"
 
@@ -143,6 +147,126 @@ static tg_status read_gz(const char* path, const tg_allocator* a, tg_diag* diag,
     return TG_OK;
 }
 
+static bool gzip_magic(const char* data, size_t size)
+{
+    return size >= 2 && (unsigned char)data[0] == 0x1f && (unsigned char)data[1] == 0x8b;
+}
+
+/* Inflates gzip data held in memory (one member or several concatenated, as gzread reads them;
+ * bytes after the last member that do not start another are ignored, as gzread does) under the
+ * same limits as read_gz. *out_data: '\0'-terminated, allocated with a. */
+static tg_status inflate_memory(const char* data, size_t size, const char* name, const tg_allocator* a,
+                                tg_diag* diag, char** out_data, size_t* out_size)
+{
+    z_stream z;
+    memset(&z, 0, sizeof z);
+    if (inflateInit2(&z, 15 + 32) != Z_OK) {
+        tg__diag_set(diag, name, 0, 0, 0, "out of memory for gzip decompression");
+        return TG_ERR_OUT_OF_MEMORY;
+    }
+    tg__vec buf = {NULL, 0, 0, 1};
+    size_t in = 0; /* input bytes consumed */
+    tg_status st = TG_OK;
+    for (;;) {
+        if (!tg__vec_reserve(a, &buf, (size_t)1 << 20)) {
+            st = TG_ERR_OUT_OF_MEMORY;
+            break;
+        }
+        size_t room = buf.capacity - buf.count - 1, left = size - in;
+        z.next_in = (Bytef*)(uintptr_t)(data + in);
+        z.avail_in = (uInt)(left < (1u << 30) ? left : (1u << 30));
+        z.next_out = (Bytef*)buf.data + buf.count;
+        z.avail_out = (uInt)(room < (16u << 20) ? room : (16u << 20));
+        uInt avail_in = z.avail_in, avail_out = z.avail_out;
+        int ret = inflate(&z, Z_NO_FLUSH);
+        in += avail_in - z.avail_in;
+        buf.count += avail_out - z.avail_out;
+        if (ret == Z_STREAM_END) {
+            if (!gzip_magic(data + in, size - in)) break; /* the end, or trailing bytes gzread skips too */
+            inflateReset(&z);                              /* another member follows */
+            continue;
+        }
+        if (ret == Z_BUF_ERROR && in == size) {
+            tg__diag_set(diag, name, 0, 0, buf.count,
+                         "truncated gzip data: the data ends inside the compressed stream (after %zu bytes)", buf.count);
+            st = TG_ERR_PARSE;
+            break;
+        }
+        if (ret != Z_OK && ret != Z_BUF_ERROR) {
+            tg__diag_set(diag, name, 0, 0, buf.count, "corrupt gzip data: %s", z.msg ? z.msg : "unknown error");
+            st = ret == Z_MEM_ERROR ? TG_ERR_OUT_OF_MEMORY : TG_ERR_PARSE;
+            break;
+        }
+        if (buf.count > TG_GZIP_RATIO_SLACK && buf.count / TG_MAX_GZIP_RATIO > in) {
+            tg__diag_set(diag, name, 0, 0, buf.count,
+                         "gzip data expands more than %dx (%zu bytes from %zu): not a mesh (a gzip bomb?)",
+                         TG_MAX_GZIP_RATIO, buf.count, in);
+            st = TG_ERR_UNSUPPORTED;
+            break;
+        }
+        if (buf.count > TG_MAX_INPUT_BYTES) {
+            tg__diag_set(diag, name, 0, 0, buf.count, "decompressed data exceeds %zu bytes", TG_MAX_INPUT_BYTES);
+            st = TG_ERR_UNSUPPORTED;
+            break;
+        }
+    }
+    inflateEnd(&z);
+    if (st == TG_OK && !tg__vec_reserve(a, &buf, 1)) st = TG_ERR_OUT_OF_MEMORY;
+    if (st != TG_OK) {
+        if (st == TG_ERR_OUT_OF_MEMORY) tg__diag_set(diag, name, 0, 0, buf.count, "out of memory decompressing gzip data");
+        tg__vec_free(a, &buf);
+        return st;
+    }
+    ((char*)buf.data)[buf.count] = '\0';
+    *out_data = buf.data;
+    *out_size = buf.count;
+    return TG_OK;
+}
+
+/* Reads an open stream to its end (a pipe, or a file whose size the system reports as 0, like
+ * those of /proc), then inflates it if it is gzip data. */
+static tg_status read_stream(FILE* f, const char* path, const tg_allocator* a, tg_diag* diag, char** out_data,
+                             size_t* out_size)
+{
+    tg__vec buf = {NULL, 0, 0, 1};
+    tg_status st = TG_OK;
+    for (;;) {
+        if (!tg__vec_reserve(a, &buf, (size_t)1 << 16)) {
+            st = TG_ERR_OUT_OF_MEMORY;
+            tg__diag_set(diag, path, 0, 0, buf.count, "out of memory reading the data (%zu bytes so far)", buf.count);
+            break;
+        }
+        size_t got = fread((char*)buf.data + buf.count, 1, buf.capacity - buf.count - 1, f);
+        buf.count += got;
+        if (got == 0) {
+            if (ferror(f)) {
+                tg__diag_set(diag, path, 0, 0, buf.count, "read error after %zu bytes: %s", buf.count, strerror(errno));
+                st = TG_ERR_IO;
+            }
+            break;
+        }
+        if (buf.count > TG_MAX_INPUT_BYTES) {
+            tg__diag_set(diag, path, 0, 0, buf.count, "the data exceeds %zu bytes: not a mesh file", TG_MAX_INPUT_BYTES);
+            st = TG_ERR_UNSUPPORTED;
+            break;
+        }
+    }
+    fclose(f);
+    if (st != TG_OK) {
+        tg__vec_free(a, &buf);
+        return st;
+    }
+    if (gzip_magic(buf.data, buf.count)) {
+        st = inflate_memory(buf.data, buf.count, path, a, diag, out_data, out_size);
+        tg__vec_free(a, &buf);
+        return st;
+    }
+    ((char*)buf.data)[buf.count] = '\0'; /* the first reserve left room for it */
+    *out_data = buf.data;
+    *out_size = buf.count;
+    return TG_OK;
+}
+
 tg_status tg__read_file(const char* path, const tg_allocator* a, tg_diag* diag, char** out_data,
                         size_t* out_size)
 {
@@ -154,10 +278,15 @@ tg_status tg__read_file(const char* path, const tg_allocator* a, tg_diag* diag, 
         return TG_ERR_IO;
     }
     struct stat sb;
-    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
-        fclose(f);
-        tg__diag_set(diag, path, 0, 0, 0, "is a directory, not a mesh file");
-        return TG_ERR_IO;
+    if (fstat(fileno(f), &sb) == 0) {
+        const char* kind = S_ISDIR(sb.st_mode) ? "a directory" : S_ISCHR(sb.st_mode) ? "a character device"
+                         : S_ISBLK(sb.st_mode) ? "a block device" : S_ISSOCK(sb.st_mode) ? "a socket" : NULL;
+        if (kind) { /* /dev/urandom would be read forever, /dev/null is no mesh either */
+            fclose(f);
+            tg__diag_set(diag, path, 0, 0, 0, "is %s, not a mesh file", kind);
+            return TG_ERR_IO;
+        }
+        if (!S_ISREG(sb.st_mode) || sb.st_size == 0) return read_stream(f, path, a, diag, out_data, out_size);
     }
     unsigned char magic[2] = {0, 0};
     size_t got = fread(magic, 1, 2, f);
@@ -199,7 +328,8 @@ static bool starts_with_ci(const char* p, const char* end, const char* word)
     return true;
 }
 
-tg_format tg__detect_format(const char* name, const char* data, size_t size)
+/* The format a name's extension (before .gz) says; TG_FORMAT_AUTO when it says none. */
+static tg_format format_from_name(const char* name)
 {
     if (name && *name) {
         char base[1024];
@@ -213,6 +343,13 @@ tg_format tg__detect_format(const char* name, const char* data, size_t size)
         if (ends_with_ci(base, ".ply")) return TG_FORMAT_PLY;
         if (ends_with_ci(base, ".stl")) return TG_FORMAT_STL;
     }
+    return TG_FORMAT_AUTO;
+}
+
+tg_format tg__detect_format(const char* name, const char* data, size_t size)
+{
+    tg_format by_name = format_from_name(name);
+    if (by_name != TG_FORMAT_AUTO) return by_name;
     const char* p = data;
     const char* end = data + (size < 256 ? size : 256);
     while (p < end && isspace((unsigned char)*p)) p++;
@@ -258,6 +395,8 @@ static tg_status parse_buffer(const char* data, size_t size, const char* name, t
                           !(size - 3 >= 5 && !strncmp(data + 3, "solid", 5));
         if (!binary_stl) data += 3, size -= 3, format = text;
     }
+    /* OBJ chosen for want of anything recognisable (no extension, no header) */
+    bool detected = format == TG_FORMAT_AUTO && format_from_name(name) == TG_FORMAT_AUTO;
     if (format == TG_FORMAT_AUTO) format = tg__detect_format(name, data, size);
     tg__reader_fn reader = format == TG_FORMAT_OBJ ? tg__read_obj
                          : format == TG_FORMAT_OFF ? tg__read_off
@@ -280,8 +419,12 @@ static tg_status parse_buffer(const char* data, size_t size, const char* name, t
         tg__free(a, soup.tri);
         /* text formats get the line of the end of the data; binary ones only the offset */
         bool text = format == TG_FORMAT_OBJ || format == TG_FORMAT_OFF;
-        return tg__io_fail(diag, name, text ? data : NULL, size, TG_ERR_PARSE, "%s data has no faces",
-                           format_name(format));
+        if (format == TG_FORMAT_OBJ && soup.vertex_count == 0) /* OBJ is also what unrecognised data is read as */
+            return tg__io_fail(diag, name, data, size, TG_ERR_PARSE,
+                               "not a mesh: no 'v' or 'f' statement of OBJ%s",
+                               detected ? ", and no OFF, PLY or STL header either" : "");
+        return tg__io_fail(diag, name, text ? data : NULL, size, TG_ERR_PARSE, "%s data has %zu vertices but no faces",
+                           format_name(format), soup.vertex_count);
     }
     return tg__mesh_create_owned(soup.xyz, soup.vertex_count, soup.tri, soup.face_count, a, name,
                                  diag, out_mesh);
@@ -313,12 +456,18 @@ tg_status tg_mesh_load_memory(const void* data, size_t size, const char* name, t
     if (!name) name = "";
     tg__diag_clear(diag, name);
     const tg_allocator* a = options ? options->allocator : NULL;
-    /* copy to guarantee the '\0' terminator every reader relies on */
-    char* buf = tg__alloc(a, size + 1);
-    if (!buf) return TG_ERR_OUT_OF_MEMORY;
-    if (size) memcpy(buf, data, size);
-    buf[size] = '\0';
-    tg_status st = parse_buffer(buf, size, name, format, a, diag, out_mesh);
+    char* buf = NULL;
+    tg_status st = TG_OK;
+    if (gzip_magic(data, size)) { /* gzip data (a .gz file piped in): inflated first */
+        st = inflate_memory(data, size, name, a, diag, &buf, &size);
+        if (st != TG_OK) return st;
+    } else { /* copy to guarantee the '\0' terminator every reader relies on */
+        buf = tg__alloc(a, size + 1);
+        if (!buf) return TG_ERR_OUT_OF_MEMORY;
+        if (size) memcpy(buf, data, size);
+        buf[size] = '\0';
+    }
+    st = parse_buffer(buf, size, name, format, a, diag, out_mesh);
     tg__free(a, buf);
     return st;
 }

@@ -377,12 +377,20 @@ tg_status tg_render_png(const tg_mesh* m, const tg_render_options* options, cons
         st = TG_ERR_OUT_OF_MEMORY;
         goto done;
     }
-    for (size_t i = 0; i < px; ++i) {
-        cv.depth[i] = INFINITY;
+    /* progress: the canvas rows, the faces, the picture rows (a row about a face's cost) */
+    progress_ctx pc = {&o, (double)cv.h + (double)m->face_count + 16.0 * o.height, 0.0, now_s() + PROGRESS_PERIOD_S, 0};
+    for (int y = 0; y < cv.h; ++y) { /* first touch of the canvas: seconds for the largest */
         /* a soft vertical gradient keeps silhouettes readable on screen and paper */
-        float g = 0.97f - 0.10f * (float)(i / (size_t)cv.w) / (float)cv.h;
-        cv.rgb[3 * i] = cv.rgb[3 * i + 1] = g;
-        cv.rgb[3 * i + 2] = g + 0.01f;
+        float g = 0.97f - 0.10f * (float)y / (float)cv.h;
+        for (size_t i = (size_t)y * (size_t)cv.w, end = i + (size_t)cv.w; i < end; ++i) {
+            cv.depth[i] = INFINITY;
+            cv.rgb[3 * i] = cv.rgb[3 * i + 1] = g;
+            cv.rgb[3 * i + 2] = g + 0.01f;
+        }
+        if (stop_requested(&pc, 1.0)) {
+            st = TG_ERR_CANCELLED;
+            goto done;
+        }
     }
     camera cam;
     camera_basis(&o, &cam);
@@ -391,8 +399,6 @@ tg_status tg_render_png(const tg_mesh* m, const tg_render_options* options, cons
     vertex_normals(m, vn);
     shade_ctx sc = {&o, 0, 0, o.isolines == 0 ? 16 : o.isolines};
     if (o.vertex_scalar) scalar_range(m, o.vertex_scalar, &sc.smin, &sc.smax);
-    /* progress: faces, then rows of the picture (16 steps each, about a face's cost per pixel row) */
-    progress_ctx pc = {&o, (double)m->face_count + 16.0 * o.height, 0.0, now_s() + PROGRESS_PERIOD_S, 0};
     for (size_t f = 0; f < m->face_count; ++f) {
         raster_face(m, f, sp, vn, &sc, &cam, &cv);
         if (stop_requested(&pc, 1.0)) {

@@ -55,6 +55,11 @@ extern "C" {
 /** The library's version as "MAJOR.MINOR.PATCH". Static storage; never NULL; thread-safe. */
 TG_API const char* tg_version(void);
 
+/** The most threads a `threads` argument may ask for. The CLI (--threads) and the Python package
+ *  (threads=) refuse larger counts with a clear error instead of letting the OpenMP runtime abort
+ *  the process when it cannot start them all; 0 (one thread per core) is not limited. */
+#define TG_MAX_THREADS 256
+
 /* ============================================================================================== */
 /* Status codes and diagnostics                                                                   */
 /* ============================================================================================== */

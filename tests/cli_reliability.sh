@@ -199,7 +199,7 @@ open(victim, "w").write("precious\n")
 target = os.path.join(d, "f.csv")
 def plant():
     os.symlink(victim, "%s.tmp-%d" % (target, os.getpid()))
-r = subprocess.run([trigeo, "field", m, "--from", "v:0", "-o", target], capture_output=True, preexec_fn=plant)
+r = subprocess.run([trigeo, "field", spot, "--from", "v:0", "-o", target], capture_output=True, preexec_fn=plant)
 check(r.returncode == 0 and open(victim).read() == "precious\n" and open(target).read().startswith("vertex,distance"),
       "a link at the old temporary name is not followed: %d %r, victim %r" % (r.returncode, r.stderr, open(victim).read()[:30]))
 for f in os.listdir(d):

@@ -117,7 +117,7 @@ cases = [
 open(pairs.replace("antipodes", "srcs"), "w").write("".join("v:%d\n" % (i * 997) for i in range(30)))
 for what, args, needle in cases:
     rc, after, err = interrupted(args, 1.0 * slow, what)
-    check(rc == 130 and after < 1.0 * slow and needle in err,
+    check(rc == 130 and after < 2.0 * slow and needle in err,  # ~0.05 s; slack for a loaded machine
           "Ctrl-C %s: exit %s after %.2f s, stderr %r" % (what, rc, after, err[-200:]))
 check(not os.listdir(cdir), "Ctrl-C: nothing left behind: %s" % os.listdir(cdir))
 # SIGTERM is handled the same way

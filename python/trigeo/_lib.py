@@ -148,6 +148,7 @@ _SIGNATURES = {
     "tg_status_string": (c_char_p, [c_int]),
     "tg_mesh_create": (c_int, [_pd, c_size_t, _pu32, c_size_t, _vp, _pdiag, _pvp]),
     "tg_mesh_load": (c_int, [c_char_p, c_int, _vp, _pdiag, _pvp]),
+    "tg_mesh_load_memory": (c_int, [c_char_p, c_size_t, c_char_p, c_int, _vp, _pdiag, _pvp]),
     "tg_mesh_destroy": (None, [_vp]),
     "tg_mesh_vertex_count": (c_size_t, [_vp]),
     "tg_mesh_face_count": (c_size_t, [_vp]),

@@ -108,9 +108,16 @@ cdir = os.path.join(tmp, "ctrlc")
 os.mkdir(cdir)
 pairs = os.path.join(tmp, "antipodes.txt")
 open(pairs, "w").write("v 0 3\nv 1 2\n")
+# many short paths on spot: a second in, the pairs loop runs (the polling path, which names what
+# was stopped); on the icosphere the signal may come while the mesh still loads (then it ends
+# at once: "trigeo: interrupted")
+many = os.path.join(tmp, "many_pairs.txt")
+open(many, "w").write("".join("v %d %d\n" % (i % 2930, (i * 7919) % 2930) for i in range(20000)))
 cases = [
-    ("path", ["path", ico, "--from", "v:0", "--to", "v:3", "-o", os.path.join(cdir, "p.obj")], b"interrupted: nothing written"),
-    ("path --pairs", ["path", ico, "--pairs", pairs, "-o", os.path.join(cdir, "p.csv")], b"interrupted: nothing written"),
+    ("path", ["path", ico, "--from", "v:0", "--to", "v:3", "-o", os.path.join(cdir, "p.obj")], b"interrupted"),
+    ("path --pairs", ["path", ico, "--pairs", pairs, "-o", os.path.join(cdir, "p.csv")], b"interrupted"),
+    ("path --pairs (many)", ["path", spot, "--pairs", many, "-o", os.path.join(cdir, "pm.csv")],
+     b"interrupted: nothing written"),
     ("render", ["render", ico, "--size", "5000x5000", "-o", os.path.join(cdir, "p.png")], b"interrupted"),
     ("field", ["field", ico, "--sources", pairs.replace("antipodes", "srcs"), "-o", os.path.join(cdir, "m.npy"), "--threads", "1"], b"interrupted"),
 ]

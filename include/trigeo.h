@@ -12,6 +12,15 @@
  *  - Indices are 0-based uint32_t in file order; TG_NONE (0xFFFFFFFF) means "no such element".
  *  - Coordinates and lengths are double. The library never prints, exits, aborts or keeps mutable
  *    globals.
+ *  - Supported coordinate range: every coordinate within +-1e150 (so that squared distances stay
+ *    finite). Meshes beyond it load, report and write, but the distance entry points refuse them
+ *    (tg_bvh_create, tg_geodesic_create: TG_ERR_UNSUPPORTED; the CLI names the range) rather
+ *    than answer wrongly; query points beyond it are refused (TG_ERR_INVALID_ARGUMENT). Within
+ *    it, distances, fields, paths, signs and winding numbers do not depend on the unit or the
+ *    position of the coordinates (they are computed in frames scaled by powers of two): a mesh
+ *    scaled by any factor and moved anywhere in range gives the same results times the factor,
+ *    to rounding (bit for bit under powers of two), down to coordinate differences of normal
+ *    doubles (about 1e-307; subnormal ones have fewer digits).
  *
  * Compiles as C11 and as C++ (extern "C").
  */
@@ -509,7 +518,7 @@ typedef struct tg_closest_hit {
 /** Finds the face closest to xyz with a squared distance <= max_dist_sq (pass INFINITY for no
  *  limit), with the kernel's closest point, barycentric coordinates and feature. When no face is
  *  that close (or the mesh is empty), returns TG_OK with out_hit->face == TG_NONE.
- *  Returns TG_ERR_INVALID_ARGUMENT for a NULL argument, a non-finite xyz, a NaN or negative
+ *  Returns TG_ERR_INVALID_ARGUMENT for a NULL argument, an xyz not finite or beyond +-1e150, a NaN or negative
  *  max_dist_sq, or a workspace of another BVH.
  *  Complexity: O(log F) node visits for typical meshes, O(F) worst case. Thread-safe with one
  *  workspace per thread. */

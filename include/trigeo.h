@@ -870,8 +870,7 @@ typedef struct tg_path_options {
      *  before 1), and after every straightening sweep (STRAIGHTEN) or relaxation pass (RELAX)
      *  with front_distance 0, settled_fraction 0, rows_done the sweeps or passes done and
      *  row_count 0. Returning non-zero stops the query: TG_ERR_CANCELLED, the path empty.
-     *  NULL: none. (progress and progress_user are new members: code compiled against an
-     *  older trigeo.h passes a shorter struct and must be rebuilt.) */
+     *  NULL: none. (New in 0.3.) */
     tg_field_progress_fn progress;
     void* progress_user; /**< passed to progress */
 } tg_path_options;
@@ -1113,8 +1112,7 @@ typedef struct tg_render_options {
     int supersample;              /**< samples per pixel side for anti-aliasing, 1..8; 0: 3, or
                                        fewer where TG_RENDER_MAX_BYTES needs; 1: none */
     /** Called every few thousand faces and picture rows from the rendering thread (NULL: none);
-     *  non-zero stops the call with TG_ERR_CANCELLED, before the file is opened. (progress and
-     *  progress_user are new members: code compiled against an older trigeo.h must be rebuilt.) */
+     *  non-zero stops the call with TG_ERR_CANCELLED, before the file is opened. (New in 0.3.) */
     tg_render_progress_fn progress;
     void* progress_user;
 } tg_render_options;

@@ -101,7 +101,7 @@ tg_status tg__field_queries_setup(tg__field_run* run)
     /* by face, for the lookups while lists cross (the order (face, point) is total: deterministic) */
     tg__query_pair* q = fs->qpairs.data;
     size_t n = fs->qpairs.count;
-    qsort(q, n, sizeof *q, cmp_pair);
+    if (n > 1) qsort(q, n, sizeof *q, cmp_pair); /* none: q may be NULL, which qsort must not get */
     for (size_t i = 0; i < n; ++i) fs->qface[q[i].face] = 1;
     return TG_OK;
 }

@@ -141,8 +141,9 @@ static bool copy_step(const straightener* sr, size_t i)
     tg__sleeve* d = (tg__sleeve*)next->sleeves.data + (np - 1);
     *d = *s;
     d->fresh = 0;
-    memcpy((uint32_t*)next->portals.data + nq, (const uint32_t*)now->portals.data + s->portal_begin,
-           k * sizeof(uint32_t));
+    if (k) /* no portals: the arrays may still be NULL */
+        memcpy((uint32_t*)next->portals.data + nq, (const uint32_t*)now->portals.data + s->portal_begin,
+               k * sizeof(uint32_t));
     d->portal_begin = (uint32_t)nq;
     d->portal_end = (uint32_t)(nq + k);
     next->portals.count = nq + k;

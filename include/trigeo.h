@@ -12,6 +12,15 @@
  *  - Indices are 0-based uint32_t in file order; TG_NONE (0xFFFFFFFF) means "no such element".
  *  - Coordinates and lengths are double. The library never prints, exits, aborts or keeps mutable
  *    globals.
+ *  - Supported coordinate range: every coordinate within +-1e150 (so that squared distances stay
+ *    finite). Meshes beyond it load, report and write, but the distance entry points refuse them
+ *    (tg_bvh_create, tg_geodesic_create: TG_ERR_UNSUPPORTED; the CLI names the range) rather
+ *    than answer wrongly; query points beyond it are refused (TG_ERR_INVALID_ARGUMENT). Within
+ *    it, distances, fields, paths, signs and winding numbers do not depend on the unit or the
+ *    position of the coordinates (they are computed in frames scaled by powers of two): a mesh
+ *    scaled by any factor and moved anywhere in range gives the same results times the factor,
+ *    to rounding (bit for bit under powers of two), down to coordinate differences of normal
+ *    doubles (about 1e-307; subnormal ones have fewer digits).
  *
  * Compiles as C11 and as C++ (extern "C").
  */
@@ -54,6 +63,11 @@ extern "C" {
 
 /** The library's version as "MAJOR.MINOR.PATCH". Static storage; never NULL; thread-safe. */
 TG_API const char* tg_version(void);
+
+/** The most threads a `threads` argument may ask for. The CLI (--threads) and the Python package
+ *  (threads=) refuse larger counts with a clear error instead of letting the OpenMP runtime abort
+ *  the process when it cannot start them all; 0 (one thread per core) is not limited. */
+#define TG_MAX_THREADS 256
 
 /* ============================================================================================== */
 /* Status codes and diagnostics                                                                   */
@@ -170,16 +184,29 @@ TG_API tg_status tg_mesh_create(const double* xyz, size_t vertex_count, const ui
                          size_t face_count, const tg_mesh_options* options, tg_diag* diag,
                          tg_mesh** out_mesh);
 
-/** Loads a mesh file (OBJ, OFF, PLY ascii/binary LE/BE, STL ascii/binary; a path ending in .gz
- *  is decompressed with zlib). Polygons are fan-triangulated; vertices keep file order (STL welds
- *  bit-identical positions in first-seen order). format: TG_FORMAT_AUTO or a forced format.
+/** Loads a mesh file (OBJ, OFF, PLY ascii/binary LE/BE, STL ascii/binary; gzip data, by the
+ *  .gz extension or its magic bytes, is decompressed with zlib). Polygons are fan-triangulated;
+ *  vertices keep file order (STL welds bit-identical positions in first-seen order). format:
+ *  TG_FORMAT_AUTO or a forced format. Pipes and files whose size the system does not report
+ *  (those of /proc) are read to their end; directories, devices and sockets are refused
+ *  (TG_ERR_IO: /dev/urandom would never end).
+ *  Counts are checked against the data: a binary STL whose facet count, an OFF whose vertex or
+ *  face count, or a PLY whose element counts leave data unread (whole facet records, record
+ *  lines, bytes) is refused with TG_ERR_PARSE naming both numbers, never loaded short; an ascii
+ *  PLY line with more or fewer values than its record takes is named as such. Tolerated, with a
+ *  warning: fewer bytes than a facet record after a binary STL's last facet, and blanks, line
+ *  ends or NUL bytes after a binary PLY's last record (padding some writers add). Data that is
+ *  none of the formats (no extension, no header, no OBJ statement) says so.
  *  Errors: TG_ERR_IO (cannot open/read), TG_ERR_PARSE (malformed), TG_ERR_INVALID_MESH,
- *  TG_ERR_UNSUPPORTED; diag (may be NULL) gets file, line or byte offset, and a sentence. */
+ *  TG_ERR_UNSUPPORTED; diag (may be NULL) gets file, line or byte offset, and a sentence. On
+ *  success diag->message is empty unless a warning was given: then it starts with "warning: "
+ *  (the CLI prints it, Python issues a trigeo.LoadWarning). */
 TG_API tg_status tg_mesh_load(const char* path, tg_format format, const tg_mesh_options* options,
                        tg_diag* diag, tg_mesh** out_mesh);
 
-/** Parses a mesh from memory (uncompressed bytes). name is used in diagnostics and, with
- *  TG_FORMAT_AUTO, for the extension; it may be NULL. Same errors as tg_mesh_load. */
+/** Parses a mesh from memory: the bytes of a mesh file, inflated first when they are gzip data
+ *  (the gzip magic bytes 1f 8b; the same limits as files). name is used in diagnostics and, with
+ *  TG_FORMAT_AUTO, for the extension; it may be NULL. Same errors and warnings as tg_mesh_load. */
 TG_API tg_status tg_mesh_load_memory(const void* data, size_t size, const char* name, tg_format format,
                               const tg_mesh_options* options, tg_diag* diag, tg_mesh** out_mesh);
 
@@ -491,7 +518,7 @@ typedef struct tg_closest_hit {
 /** Finds the face closest to xyz with a squared distance <= max_dist_sq (pass INFINITY for no
  *  limit), with the kernel's closest point, barycentric coordinates and feature. When no face is
  *  that close (or the mesh is empty), returns TG_OK with out_hit->face == TG_NONE.
- *  Returns TG_ERR_INVALID_ARGUMENT for a NULL argument, a non-finite xyz, a NaN or negative
+ *  Returns TG_ERR_INVALID_ARGUMENT for a NULL argument, an xyz not finite or beyond +-1e150, a NaN or negative
  *  max_dist_sq, or a workspace of another BVH.
  *  Complexity: O(log F) node visits for typical meshes, O(F) worst case. Thread-safe with one
  *  workspace per thread. */
@@ -534,7 +561,11 @@ typedef struct tg_signed_hit {
                                      (fractional on open meshes); otherwise 0 */
 } tg_signed_hit;
 
-/** Signed distance from xyz to the mesh. With TG_SIGN_PSEUDONORMAL the sign is that of
+/** Signed distance from xyz to the mesh. Signs and winding numbers do not depend on the unit of
+ *  the coordinates: every intermediate is computed in a frame scaled by powers of two, so a mesh
+ *  and its queries scaled uniformly (anywhere within +-1e150, down to meshes whose edges are
+ *  normal doubles) or translated get the same signs, and winding numbers equal up to rounding
+ *  (bit-identical under scaling by a power of two). With TG_SIGN_PSEUDONORMAL the sign is that of
  *  (xyz - closest point) . pseudonormal of the closest feature (face normal; sum of the two face
  *  normals of an edge; angle-weighted sum around a vertex); if that dot product is exactly 0 with
  *  a non-zero distance (degenerate normals), the winding number decides. With TG_SIGN_WINDING
@@ -554,7 +585,8 @@ TG_API tg_status tg_bvh_signed_distance_batch(const tg_bvh* bvh, const double* x
                                        tg_signed_hit* out_hits);
 
 /** The generalized winding number of the mesh at xyz: (1/4pi) * sum of the signed solid angles
- *  of its triangles (Van Oosterom and Strackee 1983). 1 inside and 0 outside a closed,
+ *  of its triangles (Van Oosterom and Strackee 1983), scale-invariant as tg_bvh_signed_distance
+ *  says (never NaN for coordinates within +-1e150). 1 inside and 0 outside a closed,
  *  consistently oriented mesh; fractional near holes. Evaluated hierarchically: clusters far from
  *  xyz (distance > 3 * their radius) contribute their dipole term, near ones the exact sum (the
  *  approximation is typically within 1e-2 of the exact value); without dipole data
@@ -801,6 +833,22 @@ typedef enum tg_path_status {
 /** "converged", "iteration_cap", "unreachable", "stalled"; "unknown" for other values. Never NULL. */
 TG_API const char* tg_path_status_name(tg_path_status status);
 
+/** What a progress callback of a field or a path is told (defined here, before the paths, which
+ *  take the same callback). */
+typedef struct tg_field_progress {
+    double front_distance;   /**< distance of the wavefront: the last vertex settled */
+    double settled_fraction; /**< share of the mesh's vertices settled (in [0, 1]; vertices no
+                                  source reaches are never settled); for a batch, the share of all
+                                  rows' work: (rows done + this row's share) / rows */
+    size_t rows_done;        /**< batch: rows finished so far (0 for a single field) */
+    size_t row_count;        /**< batch: number of rows (1 for a single field) */
+} tg_field_progress;
+
+/** Progress callback: called every few milliseconds of work (about every 5 ms, from the thread
+ *  doing the work; in a batch, from one thread at a time). Return 0 to go on, anything else to
+ *  cancel: the call then returns TG_ERR_CANCELLED with the outputs untouched. */
+typedef int (*tg_field_progress_fn)(void* user, const tg_field_progress* progress);
+
 /** Query options. NULL or all-zero means defaults. */
 typedef struct tg_path_options {
     tg_path_method method;   /**< TG_PATH_EXACT (0) by default */
@@ -816,6 +864,15 @@ typedef struct tg_path_options {
      *  search (§3.4.2). */
     const tg_geodesic_kernel_options* kernel; /**< out of range: TG_ERR_INVALID_ARGUMENT */
     tg_path_certify certify; /**< TG_PATH_CERTIFY_OFF by default */
+    /** Called from the querying thread while the query works, so that a caller can stop it
+     *  (Ctrl-C): during an exact propagation (TG_PATH_EXACT, certify) every few milliseconds with
+     *  the field's figures (settled_fraction of the component; an A*-bounded run stops well
+     *  before 1), and after every straightening sweep (STRAIGHTEN) or relaxation pass (RELAX)
+     *  with front_distance 0, settled_fraction 0, rows_done the sweeps or passes done and
+     *  row_count 0. Returning non-zero stops the query: TG_ERR_CANCELLED, the path empty.
+     *  NULL: none. (New in 0.3.) */
+    tg_field_progress_fn progress;
+    void* progress_user; /**< passed to progress */
 } tg_path_options;
 
 /** A geodesic path: a caller-owned result object reused across queries (its buffers grow to the
@@ -889,7 +946,8 @@ TG_API void tg_path_get_view(const tg_path* path, tg_path_view* out_view);
  *  options: NULL or zero for the defaults.
  *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic, from, to or path, a workspace of another
  *  solver, an invalid surface point, out-of-range options), TG_ERR_OUT_OF_MEMORY,
- *  TG_ERR_INTERNAL (see TG_PATH_EXACT); on error the path is empty (unreachable).
+ *  TG_ERR_INTERNAL (see TG_PATH_EXACT), TG_ERR_CANCELLED (options->progress asked to stop); on
+ *  error the path is empty (unreachable).
  *  Complexity: EXACT is the field's (tg_geodesic_field) over the region its A* order and bound
  *  explore; A* is O(n log n) in the n explored vertices; straightening is O(k) per sweep in the
  *  k faces of the path's strips (figures in BENCHMARKS.md). Thread-safe for distinct workspaces
@@ -1115,21 +1173,6 @@ TG_API tg_status tg_geodesic_trace_batch(const tg_geodesic* geodesic, const tg_s
 /* Exact geodesic distance fields (src/geodesic/field)                                             */
 /* ============================================================================================== */
 
-/** What a progress callback is told. */
-typedef struct tg_field_progress {
-    double front_distance;   /**< distance of the wavefront: the last vertex settled */
-    double settled_fraction; /**< share of the mesh's vertices settled (in [0, 1]; vertices no
-                                  source reaches are never settled); for a batch, the share of all
-                                  rows' work: (rows done + this row's share) / rows */
-    size_t rows_done;        /**< batch: rows finished so far (0 for a single field) */
-    size_t row_count;        /**< batch: number of rows (1 for a single field) */
-} tg_field_progress;
-
-/** Progress callback: called every few milliseconds of work (about every 5 ms, from the thread
- *  doing the work; in a batch, from one thread at a time). Return 0 to go on, anything else to
- *  cancel: the call then returns TG_ERR_CANCELLED with the outputs untouched. */
-typedef int (*tg_field_progress_fn)(void* user, const tg_field_progress* progress);
-
 /** Whether max_distance applies. */
 typedef enum tg_field_limit {
     TG_FIELD_UNLIMITED = 0,   /**< default: the whole surface reachable from the sources */
@@ -1246,6 +1289,15 @@ TG_API tg_status tg_geodesic_distance_matrix(const tg_geodesic* g, const tg_surf
 /* Pictures (src/render)                                                                          */
 /* ============================================================================================== */
 
+/** The memory budget of tg_render_png: 16 bytes per sample (width x height x supersample^2)
+ *  plus 7 per pixel may not exceed it (2 GiB). The default supersampling (3 x 3) is lowered to
+ *  2 x 2 or 1 x 1 for pictures that would not fit (beyond about 3770 x 3770 and 5500 x 5500
+ *  pixels); an explicit supersample that does not fit is refused. */
+#define TG_RENDER_MAX_BYTES ((size_t)2 << 30)
+
+/** Render progress: fraction in [0, 1]; return non-zero to stop (TG_ERR_CANCELLED). */
+typedef int (*tg_render_progress_fn)(void* user, double fraction);
+
 /** What to draw and how. A zero-initialised struct (or NULL) means: 960 x 720 pixels, the default
  *  three-quarter view, the mesh in neutral grey, no overlay. */
 typedef struct tg_render_options {
@@ -1264,15 +1316,22 @@ typedef struct tg_render_options {
                                        over the surface (depth-tested, slightly lifted toward the
                                        camera), endpoints as dots */
     size_t polyline_count;
-    int supersample;              /**< samples per pixel side for anti-aliasing; 0: 3; 1: none */
+    int supersample;              /**< samples per pixel side for anti-aliasing, 1..8; 0: 3, or
+                                       fewer where TG_RENDER_MAX_BYTES needs; 1: none */
+    /** Called every few thousand faces and picture rows from the rendering thread (NULL: none);
+     *  non-zero stops the call with TG_ERR_CANCELLED, before the file is opened. (New in 0.3.) */
+    tg_render_progress_fn progress;
+    void* progress_user;
 } tg_render_options;
 
 /** Renders the mesh (software rasterizer, z-buffer, smooth two-sided headlight shading) with the
  *  optional scalar field and polyline, and writes an 8-bit RGB PNG (libpng) to png_path.
  *  Degenerate faces are skipped; an empty mesh gives a background-only image. Deterministic: the
  *  same inputs give the same bytes. Errors: TG_ERR_INVALID_ARGUMENT (NULL mesh/path, size out of
- *  range, polyline_count > 0 with NULL polyline), TG_ERR_OUT_OF_MEMORY, TG_ERR_IO (cannot write).
- *  Cost: O(F + pixels * supersample^2). Thread-safe (no shared state). */
+ *  range, over TG_RENDER_MAX_BYTES (diag says how much it would need), polyline_count > 0 with NULL
+ *  polyline), TG_ERR_OUT_OF_MEMORY, TG_ERR_IO (cannot write), TG_ERR_CANCELLED (progress said
+ *  stop; no file is written). Cost: O(F + pixels * supersample^2), memory at most
+ *  TG_RENDER_MAX_BYTES plus the mesh's projected vertices. Thread-safe (no shared state). */
 TG_API tg_status tg_render_png(const tg_mesh* mesh, const tg_render_options* options, const char* png_path,
                         tg_diag* diag);
 

@@ -129,7 +129,7 @@ check(not left, "no partial outputs: %s" % left)
 r = run("path", spot, "--pairs", "-", "-o", out, stdin=b"v 0 1\n")
 r2 = run("closest", spot, "-", "-o", out2, stdin=q)
 check(r.returncode == 0 and r2.returncode == 0 and os.path.exists(out) and os.path.exists(out2), "good runs write")
-check(not [f for f in os.listdir(tmp) if ".tmp-" in f], "no temporary files left: %s" % os.listdir(tmp))
+check(not [f for f in os.listdir(tmp) if ".tmp-" in f or f.startswith(".trigeo-")], "no temporary files left: %s" % os.listdir(tmp))
 
 # one CLI language
 r = run("help", "help")

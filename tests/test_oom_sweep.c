@@ -840,7 +840,7 @@ static bool same_path(const tg_path* p, const path_copy* ref)
 
 static path_copy short_path_reference; /* far_a to near_b, STRAIGHTEN, default allocator */
 /* the straightener, asked for by name: the default method is EXACT, swept with the others below */
-static const tg_path_options straighten = {TG_PATH_STRAIGHTEN, 0, 0.0, NULL, TG_PATH_CERTIFY_OFF};
+static const tg_path_options straighten = {TG_PATH_STRAIGHTEN, 0, 0.0, NULL, TG_PATH_CERTIFY_OFF, NULL, NULL};
 
 /* A solver for a mesh, checked by its size and one short path against the default allocator's. */
 typedef struct geodesic_ctx {

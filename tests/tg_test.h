@@ -192,6 +192,15 @@ static inline uint64_t tg_rng_next(tg_rng* r)
 static inline double tg_rng_unit(tg_rng* r) { return (double)(tg_rng_next(r) >> 11) * (1.0 / 9007199254740992.0); }
 static inline double tg_rng_range(tg_rng* r, double lo, double hi) { return lo + (hi - lo) * tg_rng_unit(r); }
 
+/* A uniformly random point of a uniformly random face. */
+static inline tg_surface_point random_face_point(tg_rng* r, size_t face_count)
+{
+    uint32_t f = (uint32_t)(tg_rng_next(r) % face_count);
+    double u = tg_rng_unit(r), w = tg_rng_unit(r);
+    if (u + w > 1) u = 1 - u, w = 1 - w;
+    return tg_surface_face(f, 1 - u - w, u, w);
+}
+
 /* Loads dir/file of the corpus; NULL (with a failed check naming the file) if it does not load. */
 static inline tg_mesh* tg_test_load_corpus_mesh(const char* dir, const char* file)
 {

@@ -69,14 +69,6 @@ static tg_mesh* finish(void)
     return m;
 }
 
-static tg_surface_point random_face_point(tg_rng* r, size_t face_count)
-{
-    uint32_t f = (uint32_t)(tg_rng_next(r) % face_count);
-    double u = tg_rng_unit(r), w = tg_rng_unit(r);
-    if (u + w > 1) u = 1 - u, w = 1 - w;
-    return tg_surface_face(f, 1 - u - w, u, w);
-}
-
 /* ---- flat square [0,1]^2, jittered interior vertices, random diagonals ---- */
 
 static tg_mesh* flat_square(int n, uint64_t seed)

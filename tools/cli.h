@@ -78,9 +78,10 @@ void cli_spec_list_free(cli_spec_list* l);
 void cli_print_spec(FILE* f, const tg_surface_point* p);
 /* A face point from barycentrics as read from text (renormalized within CLI_BARY_RENORMALIZE). */
 tg_surface_point cli_face_point(uint32_t face, const double b[3]);
-/* The surface point closest to xyz (through the BVH *bvh, built on first use); false for an
- * empty mesh or out of memory. */
-bool cli_locate(tg_mesh* mesh, tg_bvh** bvh, const double xyz[3], tg_surface_point* out);
+/* The surface point closest to xyz (through the BVH *bvh, built on first use); false, with the
+ * reason in *why (a coordinate beyond +-1e150, a mesh without faces, out of memory), when there
+ * is none. */
+bool cli_locate(tg_mesh* mesh, tg_bvh** bvh, const double xyz[3], tg_surface_point* out, const char** why);
 /* Resolves a spec on the mesh (p: through the BVH *bvh, built on first use; the caller destroys
  * it). Prints the error and returns false when the location is invalid. */
 bool cli_resolve_spec(const char* mesh_path, tg_mesh* mesh, tg_bvh** bvh, const char* text, const cli_spec* sp,
@@ -97,17 +98,26 @@ char* cli_read_all(const char* path, size_t* out_size);
 
 /* ---- outputs, Ctrl-C and progress (cli_output.c) ---- */
 
-/* A file output written to a temporary name beside `path` and renamed into place by
- * cli_output_commit, so that an error or Ctrl-C never leaves a partial file. "-" is stdout. */
+/* A file output written into a private temporary directory beside `path` (mkdtemp) and renamed
+ * into place by cli_output_commit, so that an error or Ctrl-C never leaves a partial file and no
+ * link planted beside the target is followed. "-" is stdout; an existing character device or
+ * FIFO is written directly (no rename could keep it); directories, block devices and sockets
+ * are refused. */
 typedef struct cli_output {
     const char* path;
-    char* tmp; /* the temporary name, NULL for stdout */
+    char* tmp; /* the name written: inside dir, or path itself when direct; NULL for stdout */
+    char* dir; /* the private temporary directory, NULL when direct or stdout */
     FILE* f;
+    int slot;  /* registration for removal on a signal, -1 if none */
 } cli_output;
 /* Opens the temporary file (or stdout for "-"); prints the error and returns NULL on failure. */
 FILE* cli_output_open(cli_output* o, const char* path);
-/* Only picks the temporary name, for a library writer that takes a file name (o->tmp). */
+/* Only makes the temporary name, for a library writer that takes a file name (o->tmp). */
 bool cli_output_reserve(cli_output* o, const char* path);
+/* Refuses an output that is the same file as an input (device and inode, through links and
+ * hard links) and an output that is a directory, before any work: CLI_OK, or CLI_USAGE /
+ * CLI_INPUT after printing why. inputs[i] (NULL or "-": skipped) is described as what[i]. */
+int cli_output_check_inputs(const char* out, const char* const* inputs, const char* const* what, size_t count);
 /* Closes (checking every write) and renames into place; CLI_OK or CLI_INPUT (error printed,
  * temporary removed). */
 int cli_output_commit(cli_output* o);
@@ -115,13 +125,12 @@ int cli_output_commit(cli_output* o);
 void cli_output_abort(cli_output* o);
 /* After a library writer wrote o->tmp (cli_output_reserve) with status st: renames it into place,
  * or prints the error under the user's file name and removes it. CLI_OK, CLI_USAGE (invalid
- * argument) or CLI_INPUT. */
+ * argument), CLI_INPUT, or 130 (TG_ERR_CANCELLED: interrupted). */
 int cli_output_finish_library(cli_output* o, tg_status st, const tg_diag* d);
 /* Does `path` end with `ext` (".json", ".csv", ...; case-insensitive)? The CLI's -o picks the
  * output format by extension. */
 bool cli_ext_is(const char* path, const char* ext);
-/* JSON pieces: a string (quoted, escaped); a surface point as {"kind": ..., ...}. */
-void cli_json_string(FILE* f, const char* s);
+/* A surface point as JSON: {"kind": ..., ...} (strings: cli_json_string below). */
 void cli_json_point(FILE* f, const tg_surface_point* p);
 /* Writes a float64 array as NumPy .npy: (rows, cols) when matrix, else (cols,). */
 bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bool matrix);
@@ -130,11 +139,19 @@ bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bo
  * runtime would end the process instead of failing. */
 bool cli_threads_available(int threads, const char* what);
 
+/* s as a JSON string: quotes and backslashes escaped, control characters as \u00XX, and bytes
+ * that are not UTF-8 (a file name in another encoding) as U+FFFD, so the document stays valid. */
+void cli_json_string(FILE* f, const char* s);
+
 /* Past a leading UTF-8 byte-order mark, if any (text written by Windows tools). */
 char* cli_skip_bom(char* text);
 
-/* SIGINT and SIGTERM set a flag that long work polls (a second Ctrl-C exits at once). */
+/* SIGINT and SIGTERM end the process with exit 130, removing the temporaries of the outputs
+ * being written (installed for every command). While polling is on (work whose library call has
+ * a progress hook that returns cli_interrupted()), the first signal only sets the flag and the
+ * work ends itself, with exit 130; a second one ends the process at once. */
 void cli_interrupt_install(void);
+void cli_interrupt_polling(bool on);
 bool cli_interrupted(void);
 
 /* A progress line on stderr, drawn only when it is a terminal, not quiet, and the work has

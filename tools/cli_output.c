@@ -1,45 +1,96 @@
-/* cli_output.c - CLI outputs that never leave a partial file (written to a temporary name beside
- * the target and renamed into place only when complete), Ctrl-C as a polite request to stop, a
- * progress line on a terminal, and the NumPy .npy format.
+/* cli_output.c - CLI outputs that never destroy data: written into a private temporary directory
+ * beside the target and renamed into place only when complete (devices and FIFOs written
+ * directly, an output that is one of the inputs refused); Ctrl-C and SIGTERM end the work with
+ * exit 130 and no temporary left behind; a progress line on a terminal; the NumPy .npy format.
  * Based on: the CLI contract of the project's DESIGN.md; rename(2) being atomic within one file
- * system (POSIX); the NPY format version 1.0 (NumPy Enhancement Proposal 1). */
+ * system and mkdtemp(3) creating a new directory exclusively (POSIX 2008); the async-signal-safe
+ * functions of POSIX (unlink, rmdir, write, _exit); the NPY format version 1.0 (NEP 1). */
 #define _POSIX_C_SOURCE 200809L
 #include "cli.h"
 
 #include <errno.h>
 #include <pthread.h>
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
 /* ---- Ctrl-C ---- */
 
-static volatile sig_atomic_t interrupted;
+/* Temporaries to remove when a signal ends the process: the file being written and its private
+ * directory. Strings are written before the slot is marked used (and unmarked before they
+ * change), so the handler, which may run on any thread, only reads complete names. */
+#define MAX_TEMPORARIES 4
+static char temp_file[MAX_TEMPORARIES][4096], temp_dir[MAX_TEMPORARIES][4096];
+static volatile sig_atomic_t temp_used[MAX_TEMPORARIES];
+static volatile sig_atomic_t interrupted, polling;
 
-static void on_sigint(int sig)
+static void remove_temporaries(void)
+{
+    for (int i = 0; i < MAX_TEMPORARIES; ++i)
+        if (temp_used[i]) {
+            unlink(temp_file[i]); /* async-signal-safe, as are rmdir, write and _exit */
+            rmdir(temp_dir[i]);
+        }
+}
+
+static void on_signal(int sig)
 {
     (void)sig;
-    if (interrupted) _exit(130); /* a second Ctrl-C: stop at once (temporary files may remain) */
-    interrupted = 1;
+    if (polling && !interrupted) { /* the work looks at the flag soon and ends cleanly */
+        interrupted = 1;
+        return;
+    }
+    /* a call that cannot look (a library call without a progress hook), or a second Ctrl-C */
+    remove_temporaries();
+    static const char msg[] = "trigeo: interrupted\n";
+    ssize_t w = write(STDERR_FILENO, msg, sizeof msg - 1);
+    (void)w;
+    _exit(130);
 }
 
 void cli_interrupt_install(void)
 {
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_sigint;
+    sa.sa_handler = on_signal;
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
 }
 
+void cli_interrupt_polling(bool on)
+{
+    polling = on;
+}
+
 bool cli_interrupted(void)
 {
     return interrupted != 0;
+}
+
+static int temp_register(const char* file, const char* dir)
+{
+    for (int i = 0; i < MAX_TEMPORARIES; ++i)
+        if (!temp_used[i] && strlen(file) < sizeof temp_file[i] && strlen(dir) < sizeof temp_dir[i]) {
+            strcpy(temp_file[i], file);
+            strcpy(temp_dir[i], dir);
+            atomic_signal_fence(memory_order_seq_cst);
+            temp_used[i] = 1;
+            return i;
+        }
+    return -1; /* not registered: a signal then leaves this temporary behind */
+}
+
+static void temp_unregister(int slot)
+{
+    if (slot >= 0) temp_used[slot] = 0;
+    atomic_signal_fence(memory_order_seq_cst);
 }
 
 /* ---- progress line ---- */
@@ -82,10 +133,68 @@ void cli_progress_end(cli_progress* p)
 
 /* ---- outputs ---- */
 
+/* The kind of an existing path (following links); NULL for a regular file or none. */
+static const char* special_kind(const struct stat* st)
+{
+    return S_ISDIR(st->st_mode)    ? "a directory"
+         : S_ISCHR(st->st_mode)    ? "a character device"
+         : S_ISBLK(st->st_mode)    ? "a block device"
+         : S_ISFIFO(st->st_mode)   ? "a FIFO"
+         : S_ISSOCK(st->st_mode)   ? "a socket"
+                                   : NULL;
+}
+
+bool cli_output_reserve(cli_output* o, const char* path)
+{
+    memset(o, 0, sizeof *o);
+    o->path = path;
+    o->slot = -1;
+    struct stat st;
+    if (stat(path, &st) == 0 && special_kind(&st)) {
+        /* a character device or a FIFO (/dev/null, a named pipe) is written to directly:
+         * renaming a file over it would replace the node; anything else is refused */
+        if (!S_ISCHR(st.st_mode) && !S_ISFIFO(st.st_mode)) {
+            cli_error(path, 0, "is %s: give a file name (or a character device or FIFO, written directly)",
+                      special_kind(&st));
+            return false;
+        }
+        o->tmp = strdup(path);
+        if (!o->tmp) cli_error(path, 0, "out of memory");
+        return o->tmp != NULL;
+    }
+    /* a private directory beside the target (so the final rename stays within one file
+     * system), made with mkdtemp: an unpredictable name, created exclusively with mode 0700, so
+     * no one else can place a link where the file will be written */
+    size_t n = strlen(path);
+    const char* slash = strrchr(path, '/');
+    size_t dir_len = slash ? (size_t)(slash - path) + 1 : 0;
+    const char* base = slash ? slash + 1 : path;
+    o->dir = malloc(dir_len + 32);
+    o->tmp = malloc(dir_len + 32 + n + 2);
+    if (!o->dir || !o->tmp) {
+        cli_error(path, 0, "out of memory");
+        free(o->dir), free(o->tmp);
+        o->dir = o->tmp = NULL;
+        return false;
+    }
+    memcpy(o->dir, path, dir_len);
+    strcpy(o->dir + dir_len, ".trigeo-XXXXXX");
+    if (!mkdtemp(o->dir)) {
+        cli_error(path, 0, "cannot create a temporary directory beside it: %s", strerror(errno));
+        free(o->dir), free(o->tmp);
+        o->dir = o->tmp = NULL;
+        return false;
+    }
+    sprintf(o->tmp, "%s/%s", o->dir, base);
+    o->slot = temp_register(o->tmp, o->dir);
+    return true;
+}
+
 FILE* cli_output_open(cli_output* o, const char* path)
 {
     memset(o, 0, sizeof *o);
     o->path = path;
+    o->slot = -1;
     if (!strcmp(path, "-")) {
         o->f = stdout;
         return o->f;
@@ -94,25 +203,20 @@ FILE* cli_output_open(cli_output* o, const char* path)
     o->f = fopen(o->tmp, "wb");
     if (!o->f) {
         cli_error(path, 0, "cannot open for writing: %s", strerror(errno));
-        free(o->tmp);
-        o->tmp = NULL;
+        cli_output_abort(o);
         return NULL;
     }
     return o->f;
 }
 
-bool cli_output_reserve(cli_output* o, const char* path)
+/* Forgets the temporary names (after the rename or the removal). */
+static void release(cli_output* o)
 {
-    o->path = path;
-    size_t n = strlen(path);
-    o->tmp = malloc(n + 32);
-    if (!o->tmp) {
-        cli_error(path, 0, "out of memory");
-        return false;
-    }
-    /* beside the target (same directory, so the rename stays within one file system) */
-    snprintf(o->tmp, n + 32, "%s.tmp-%ld", path, (long)getpid());
-    return true;
+    temp_unregister(o->slot);
+    o->slot = -1;
+    if (o->dir) rmdir(o->dir);
+    free(o->dir), free(o->tmp);
+    o->dir = o->tmp = NULL;
 }
 
 int cli_output_commit(cli_output* o)
@@ -130,21 +234,25 @@ int cli_output_commit(cli_output* o)
             rc = CLI_INPUT;
         }
     }
-    if (o->tmp) {
+    if (o->dir) { /* a temporary: into place, or away */
         if (rc == CLI_OK && rename(o->tmp, o->path) != 0) {
             cli_error(o->path, 0, "cannot rename the finished output into place: %s", strerror(errno));
             rc = CLI_INPUT;
         }
-        if (rc != CLI_OK) remove(o->tmp);
-        free(o->tmp);
-        o->tmp = NULL;
+        if (rc != CLI_OK) unlink(o->tmp);
     }
+    release(o);
     return rc;
 }
 
 int cli_output_finish_library(cli_output* o, tg_status st, const tg_diag* d)
 {
     if (st == TG_OK) return cli_output_commit(o);
+    if (st == TG_ERR_CANCELLED) {
+        cli_error(o->path, 0, "interrupted: nothing written");
+        cli_output_abort(o);
+        return 130;
+    }
     /* the library named the temporary file: name the one the user asked for */
     cli_error(o->path, 0, "%s", d && d->message[0] ? d->message : tg_status_string(st));
     cli_output_abort(o);
@@ -155,11 +263,65 @@ void cli_output_abort(cli_output* o)
 {
     if (o->f && o->f != stdout) fclose(o->f);
     o->f = NULL;
-    if (o->tmp) {
-        remove(o->tmp);
-        free(o->tmp);
-        o->tmp = NULL;
+    if (o->dir) unlink(o->tmp);
+    release(o);
+}
+
+int cli_output_check_inputs(const char* out, const char* const* inputs, const char* const* what, size_t count)
+{
+    struct stat so, si;
+    if (!out || !strcmp(out, "-") || stat(out, &so) != 0) return CLI_OK; /* a new file clashes with nothing */
+    if (S_ISDIR(so.st_mode)) {
+        cli_error(out, 0, "is a directory: -o needs a file name");
+        return CLI_INPUT;
     }
+    for (size_t i = 0; i < count; ++i) {
+        if (!inputs[i] || !strcmp(inputs[i], "-") || stat(inputs[i], &si) != 0) continue;
+        if (si.st_dev == so.st_dev && si.st_ino == so.st_ino) { /* the same file, by any name or link */
+            cli_error(out, 0, "is the same file as the %s %s: writing it would destroy the input; choose another "
+                              "output", what[i], inputs[i]);
+            return CLI_USAGE;
+        }
+    }
+    return CLI_OK;
+}
+
+/* Length of the valid UTF-8 sequence at s (1-4), or 0 (RFC 3629: no overlong forms, no
+ * surrogates, nothing above U+10FFFF). */
+static int utf8_length(const unsigned char* s)
+{
+    unsigned c = s[0];
+    if (c < 0x80) return 1;
+    int n = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3 : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
+    for (int i = 1; i < n; ++i)
+        if ((s[i] & 0xC0) != 0x80) return 0;
+    if (n == 3 && ((c == 0xE0 && s[1] < 0xA0) || (c == 0xED && s[1] > 0x9F))) return 0;
+    if (n == 4 && ((c == 0xF0 && s[1] < 0x90) || (c == 0xF4 && s[1] > 0x8F))) return 0;
+    return n;
+}
+
+void cli_json_string(FILE* f, const char* s)
+{
+    const unsigned char* u = (const unsigned char*)s;
+    fputc('"', f);
+    while (*u) {
+        if (*u == '"' || *u == '\\') {
+            fputc('\\', f);
+            fputc(*u++, f);
+        } else if (*u < 0x20 || *u == 0x7F) {
+            fprintf(f, "\\u%04x", *u++);
+        } else {
+            int n = utf8_length(u);
+            if (n) {
+                fwrite(u, 1, (size_t)n, f);
+                u += n;
+            } else {
+                fputs("\\ufffd", f);
+                u++;
+            }
+        }
+    }
+    fputc('"', f);
 }
 
 char* cli_skip_bom(char* text)
@@ -276,19 +438,6 @@ bool cli_ext_is(const char* path, const char* ext)
 }
 
 /* ---- JSON ---- */
-
-void cli_json_string(FILE* f, const char* s)
-{
-    fputc('"', f);
-    for (; *s; ++s) {
-        if (*s == '"' || *s == '\\') fputc('\\', f);
-        if ((unsigned char)*s < 0x20)
-            fprintf(f, "\\u%04x", (unsigned char)*s);
-        else
-            fputc(*s, f);
-    }
-    fputc('"', f);
-}
 
 void cli_json_point(FILE* f, const tg_surface_point* p)
 {

@@ -44,14 +44,24 @@ tg_surface_point cli_face_point(uint32_t face, const double b[3])
     return tg_surface_face(face, b[0], b[1], b[2]);
 }
 
-bool cli_locate(tg_mesh* mesh, tg_bvh** bvh, const double xyz[3], tg_surface_point* out)
+bool cli_locate(tg_mesh* mesh, tg_bvh** bvh, const double xyz[3], tg_surface_point* out, const char** why)
 {
+    for (int k = 0; k < 3; ++k)
+        if (!(fabs(xyz[k]) <= 1e150)) {
+            *why = "a coordinate is beyond the supported range of +-1e150 (squared distances would overflow)";
+            return false;
+        }
+    if (tg_mesh_face_count(mesh) == 0) {
+        *why = "the mesh has no faces";
+        return false;
+    }
     tg_status st = TG_OK;
     tg_bvh_workspace* ws = NULL;
     if (!*bvh) st = tg_bvh_create(mesh, NULL, bvh);
     if (st == TG_OK) st = tg_bvh_workspace_create(*bvh, &ws);
     if (st == TG_OK) st = tg_bvh_locate(*bvh, ws, xyz, out, NULL);
     tg_bvh_workspace_destroy(ws);
+    *why = tg_status_string(st);
     return st == TG_OK;
 }
 
@@ -93,8 +103,9 @@ bool cli_resolve_spec(const char* mesh_path, tg_mesh* mesh, tg_bvh** bvh, const 
                       tg_surface_point* out)
 {
     if (sp->kind == 'p') {
-        if (!cli_locate(mesh, bvh, sp->v, out)) {
-            cli_error(mesh_path, 0, "cannot locate '%s' on the surface (an empty mesh, or out of memory)", text);
+        const char* why = NULL;
+        if (!cli_locate(mesh, bvh, sp->v, out, &why)) {
+            cli_error(mesh_path, 0, "cannot locate '%s' on the surface: %s", text, why);
             return false;
         }
         return true;

@@ -113,8 +113,9 @@ static int run(int argc, char** argv)
                 return cli_usage("closest", "--sign must be pseudonormal or winding, not '%s'", argv[i]);
             want_sign = true;
         } else if (!strcmp(a, "--threads")) {
-            if (++i >= argc || !cli_parse_uint(argv[i], &threads) || threads > 4096)
-                return cli_usage("closest", "--threads needs a count (0 = all cores)");
+            if (++i >= argc || !cli_parse_uint(argv[i], &threads) || threads > TG_MAX_THREADS)
+                return cli_usage("closest", "--threads needs a count in 0..%d (0 = all cores), not '%s'", TG_MAX_THREADS,
+                                 i < argc ? argv[i] : "");
         } else if (!strcmp(a, "-o")) {
             if (++i >= argc) return cli_usage("closest", "-o needs a file name");
             out_path = argv[i];
@@ -130,7 +131,10 @@ static int run(int argc, char** argv)
     }
     if (!mesh_path || !query_path) return cli_usage("closest", "missing %s", mesh_path ? "QUERIES" : "MESH");
 
-    cli_interrupt_install();
+    const char* inputs[2] = {mesh_path, query_path};
+    static const char* const what[2] = {"mesh", "queries file"};
+    int rc = cli_output_check_inputs(out_path, inputs, what, 2);
+    if (rc != CLI_OK) return rc;
     if (!cli_threads_available((int)threads, "closest")) return CLI_INPUT;
     size_t size = 0;
     char* text = cli_read_all(query_path, &size);
@@ -140,7 +144,7 @@ static int run(int argc, char** argv)
     free(text);
     if (n == (size_t)-1) return CLI_INPUT;
 
-    int rc = CLI_INPUT;
+    rc = CLI_INPUT;
     tg_mesh* mesh = cli_load_mesh_for_distances(mesh_path);
     tg_bvh* bvh = NULL;
     tg_closest_hit* hits = NULL;
@@ -204,7 +208,7 @@ const cli_command cli_cmd_closest = {
     "              pseudonormals for closed, consistently oriented manifolds, else the generalized\n"
     "              winding number (>= 1/2 is inside); the choice is reported on stderr\n"
     "  --sign M    force the method: pseudonormal or winding (implies --signed)\n"
-    "  --threads N worker threads (default 0 = all cores)\n"
+    "  --threads N worker threads, at most 256 (default 0 = all cores)\n"
     "  -o OUT.csv  write there instead of stdout\n\n"
     "Output: CSV with header i,face,sqdist,cx,cy,cz,b0,b1,b2[,sign], numbers with %.17g.\n"
     "A malformed or non-finite query line is reported as QUERIES:LINE and nothing is written.\n",

@@ -228,7 +228,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     cli_progress_start(&prog, "field", fa->quiet);
     o.progress = on_progress;
     o.progress_user = &prog;
-    cli_interrupt_install();
+    cli_interrupt_polling(true); /* the progress callback looks at the flag */
     tg_field_stats stats;
     memset(&stats, 0, sizeof stats);
     double t0 = cli_seconds();
@@ -237,6 +237,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     else if (st == TG_OK)
         st = tg_geodesic_field_at(geo, NULL, pts, count, at_pts, fa->at_count, &o, at_d, dist, &stats);
     double secs = cli_seconds() - t0;
+    cli_interrupt_polling(false);
     cli_progress_end(&prog);
     if (st == TG_ERR_CANCELLED) {
         cli_error(fa->mesh_path, 0, "interrupted: nothing written");
@@ -348,9 +349,13 @@ static int run(int argc, char** argv)
     if (maxd && (!cli_parse_double(maxd, &fa.max_dist) || !(fa.max_dist >= 0)))
         return cli_usage("field", "--max-distance needs a non-negative number, not '%s'", maxd);
     unsigned long long nt = 0;
-    if (threads && (!cli_parse_uint(threads, &nt) || nt > 1024))
-        return cli_usage("field", "--threads needs a number in 0..1024, not '%s'", threads);
+    if (threads && (!cli_parse_uint(threads, &nt) || nt > TG_MAX_THREADS))
+        return cli_usage("field", "--threads needs a number in 0..%d (0 = all cores), not '%s'", TG_MAX_THREADS, threads);
     fa.threads = (int)nt;
+    const char* inputs[3] = {fa.mesh_path, fa.sources_path, fa.at_path};
+    static const char* const what[3] = {"mesh", "sources file", "points file (--at)"};
+    int check = cli_output_check_inputs(fa.out, inputs, what, 3);
+    if (check != CLI_OK) return check;
     if (fa.sources_path && !cli_threads_available(fa.threads, "field")) return CLI_INPUT;
     int rc;
     if (fa.matrix) {
@@ -416,12 +421,13 @@ const cli_command cli_cmd_field = {
     "                         surface point); one distance a line (%.17g) to -o (.txt, .csv or\n"
     "                         .npy) or stdout\n"
     "  --max-distance D       stop at distance D (0 allowed): farther vertices get inf\n"
-    "  --threads N            --sources: threads (default: all cores)\n"
+    "  --threads N            --sources: threads, at most 256 (default 0: all cores)\n"
     "  --quiet                no progress line (drawn on stderr when it is a terminal and the\n"
     "                         work passes about a second)\n\n"
-    "Unreachable vertices (other components, unused vertices) get inf. Outputs are written to a\n"
-    "temporary name and renamed when complete: an error or Ctrl-C (exit 130) leaves no partial\n"
-    "file. Without -o - a summary (vertices reached, largest distance, windows, seconds) goes to\n"
-    "stdout. Quote the --from list: ';' is special to the shell.\n",
+    "Unreachable vertices (other components, unused vertices) get inf. Outputs are written into a\n"
+    "private temporary directory beside the target and renamed when complete: an error or Ctrl-C\n"
+    "(exit 130) leaves no partial file; an output that is one of the inputs is refused. Without\n"
+    "-o - a summary (vertices reached, largest distance, windows, seconds) goes to stdout. Quote\n"
+    "the --from list: ';' is special to the shell.\n",
     run,
 };

@@ -5,13 +5,9 @@
 
 static void print_json(FILE* f, const char* path, const tg_mesh_report* r)
 {
-    fprintf(f, "{\n  \"file\": \"");
-    for (const char* p = path; *p; ++p) {
-        if (*p == '"' || *p == '\\') fputc('\\', f);
-        if ((unsigned char)*p < 0x20) fprintf(f, "\\u%04x", (unsigned char)*p);
-        else fputc(*p, f);
-    }
-    fprintf(f, "\",\n");
+    fprintf(f, "{\n  \"file\": ");
+    cli_json_string(f, path);
+    fprintf(f, ",\n");
     fprintf(f, "  \"vertices\": %llu,\n", (unsigned long long)r->vertices);
     fprintf(f, "  \"faces\": %llu,\n", (unsigned long long)r->faces);
     fprintf(f, "  \"edges\": %llu,\n", (unsigned long long)r->edges);
@@ -79,6 +75,9 @@ static int run(int argc, char** argv)
             return cli_usage("info", "unexpected argument '%s'", argv[i]);
     }
     if (!path) return cli_usage("info", "missing MESH");
+    static const char* const what[1] = {"mesh"};
+    int check = cli_output_check_inputs(out_path, &path, what, 1);
+    if (check != CLI_OK) return check;
     tg_mesh* mesh = cli_load_mesh(path);
     if (!mesh) return CLI_INPUT;
     const tg_mesh_report* r = tg_mesh_get_report(mesh);

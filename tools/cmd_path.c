@@ -86,6 +86,22 @@ static void print_summary(FILE* f, tg_path_method method, const tg_path_view* v,
     fprintf(f, "iterations         %u\n", v->iterations);
 }
 
+/* Ctrl-C while a path is computed: the query's progress callback stops it (polling mode). */
+static int on_progress(void* user, const tg_field_progress* p)
+{
+    (void)user, (void)p;
+    return cli_interrupted();
+}
+
+/* The options with the callback, and polling on for the computation. */
+static tg_path_options interruptible(const tg_path_options* o)
+{
+    tg_path_options c = *o;
+    c.progress = on_progress;
+    c.progress_user = NULL;
+    return c;
+}
+
 /* ---- batch ---- */
 
 /* Parses one PAIRS line into two surface points: "v SRC TGT" (vertices), "f F0 b0 b1 b2 F1 c0 c1
@@ -120,8 +136,15 @@ static bool parse_pair(const char* name, unsigned long long line, char* s, tg_me
         *a = cli_face_point((uint32_t)i0, c);
         *b = cli_face_point((uint32_t)i1, c + 3);
     } else if (n == 7 && nums && !strcmp(tok[0], "p")) {
-        if (!cli_locate(mesh, bvh, c, a) || !cli_locate(mesh, bvh, c + 3, b)) {
-            cli_error(name, line, "cannot locate the positions on the surface (an empty mesh, or out of memory)");
+        for (int k = 0; k < 6; ++k)
+            if (fabs(c[k]) > 1e150) {
+                cli_error(name, line, "coordinate %g is beyond the supported range of +-1e150 (squared distances "
+                          "would overflow)", c[k]);
+                return false;
+            }
+        const char* why = NULL;
+        if (!cli_locate(mesh, bvh, c, a, &why) || !cli_locate(mesh, bvh, c + 3, b, &why)) {
+            cli_error(name, line, "cannot locate the positions on the surface: %s", why);
             return false;
         }
     } else {
@@ -209,20 +232,21 @@ static int run_pairs(const char* mesh_path, const char* pairs_path, const char* 
         cli_error(mesh_path, 0, "%s", tg_status_string(st));
         goto done;
     }
-    cli_interrupt_install();
     FILE* f = cli_output_open(&out, out_path ? out_path : "-");
     if (!f) goto done;
     opened = true;
     fprintf(f, "i,length,points,status,max_angle_defect,microseconds,global\n");
+    tg_path_options oi = interruptible(o);
+    cli_interrupt_polling(true);
     for (long i = 0; i < n; ++i) {
-        if (cli_interrupted()) {
+        double t0 = cli_seconds();
+        st = cli_interrupted() ? TG_ERR_CANCELLED : tg_geodesic_path(geo, ws, &pairs[i].a, &pairs[i].b, &oi, path);
+        double us = 1e6 * (cli_seconds() - t0);
+        if (st == TG_ERR_CANCELLED) {
             cli_error(pairs_path, pairs[i].line, "interrupted: nothing written");
             rc = 130;
             goto done;
         }
-        double t0 = cli_seconds();
-        st = tg_geodesic_path(geo, ws, &pairs[i].a, &pairs[i].b, o, path);
-        double us = 1e6 * (cli_seconds() - t0);
         if (st != TG_OK) {
             cli_error(pairs_path, pairs[i].line, "%s", tg_status_string(st));
             goto done;
@@ -232,9 +256,11 @@ static int run_pairs(const char* mesh_path, const char* pairs_path, const char* 
         fprintf(f, "%ld,%.17g,%zu,%s,%.17g,%.3f,%s\n", i, v.length, v.point_count, tg_path_status_name(v.status),
                 v.max_angle_defect, us, tg_path_global_name(v.global));
     }
+    cli_interrupt_polling(false);
     opened = false;
     rc = cli_output_commit(&out);
 done:
+    cli_interrupt_polling(false);
     if (opened) cli_output_abort(&out);
     free(pairs);
     tg_bvh_destroy(bvh);
@@ -269,12 +295,20 @@ static int run_single(const char* mesh_path, const char* from, const char* to, w
     tg_status st = tg_geodesic_create(mesh, NULL, &geo);
     if (st == TG_OK) st = tg_geodesic_workspace_create(geo, &ws);
     if (st == TG_OK) st = tg_path_create(NULL, &path);
+    tg_path_options oi = interruptible(o);
+    cli_interrupt_polling(true);
     if (st == TG_OK && through) {
         size_t n = through->list.count;
         st = tg_geodesic_path_through(geo, ws, through->list.point, n, through->closed ? TG_PATH_CLOSED : TG_PATH_OPEN,
                                       path, through->at);
     } else if (st == TG_OK) {
-        st = tg_geodesic_path(geo, ws, &a, &b, o, path);
+        st = tg_geodesic_path(geo, ws, &a, &b, &oi, path);
+    }
+    cli_interrupt_polling(false);
+    if (st == TG_ERR_CANCELLED) {
+        cli_error(mesh_path, 0, "interrupted: nothing written");
+        rc = 130;
+        goto done;
     }
     if (st != TG_OK) {
         cli_error(mesh_path, 0, "%s", tg_status_string(st));
@@ -294,7 +328,11 @@ static int run_single(const char* mesh_path, const char* from, const char* to, w
         cli_output out;
         if (!cli_output_reserve(&out, out_path)) goto done;
         out.f = NULL;
-        if (cli_output_finish_library(&out, tg_path_write_obj(path, out.tmp, &d), &d) != CLI_OK) goto done;
+        if ((rc = cli_output_finish_library(&out, tg_path_write_obj(path, out.tmp, &d), &d)) != CLI_OK) {
+            rc = rc == CLI_USAGE ? CLI_INPUT : rc;
+            goto done;
+        }
+        rc = CLI_INPUT;
     }
     if (json)
         print_json(stdout, mesh_path, method_name, &v, through);
@@ -369,17 +407,22 @@ static int run(int argc, char** argv)
         return cli_usage("path", "--method must be exact, straighten, relax or edge, not '%s'", method);
     if (certify) o.certify = TG_PATH_CERTIFY_ON;
     if (!mesh_path) return cli_usage("path", "missing MESH");
+    const char* inputs[2] = {mesh_path, pairs};
+    static const char* const what[2] = {"mesh", "pairs file"};
     if (pairs) {
         if (from || to) return cli_usage("path", "--pairs excludes --from and --to");
         if (json) return cli_usage("path", "--json applies to a single path (--from/--to)");
-        return run_pairs(mesh_path, pairs, out_path, &o);
+        int rc = cli_output_check_inputs(out_path, inputs, what, 2);
+        return rc != CLI_OK ? rc : run_pairs(mesh_path, pairs, out_path, &o);
     }
     if (!through && (!from || !to)) return cli_usage("path", "missing %s (or --pairs FILE)", from ? "--to" : "--from");
     if (out_path && !cli_ext_is(out_path, ".obj") && !cli_ext_is(out_path, ".json"))
         return cli_usage("path", "-o takes PATH.obj (the polyline) or PATH.json (the whole answer)");
+    int rc = cli_output_check_inputs(out_path, inputs, what, 1);
+    if (rc != CLI_OK) return rc;
     if (!through) return run_single(mesh_path, from, to, NULL, out_path, json, method, &o);
     waypoints w = {{NULL, NULL, NULL, NULL, 0}, NULL, closed};
-    int rc = cli_spec_list_parse("path", "--through", through, &w.list);
+    rc = cli_spec_list_parse("path", "--through", through, &w.list);
     if (rc == CLI_OK && !(w.at = malloc((w.list.count + 1) * sizeof *w.at))) {
         cli_error(NULL, 0, "out of memory");
         rc = CLI_INPUT;
@@ -431,6 +474,7 @@ const cli_command cli_cmd_path = {
     "points, length inf) or stalled (straighten's certificate exceeds 1e-8 rad; never proven).\n"
     "Timings of the methods: BENCHMARKS.md. The certificate (max angle\n"
     "defect, radians) is the largest deviation from straightness over edge crossings and vertex\n"
-    "passages. Indices are 0-based in file order.\n",
+    "passages. Indices are 0-based in file order. Ctrl-C stops the computation (exit 130, no\n"
+    "file written).\n",
     run,
 };

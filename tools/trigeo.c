@@ -67,6 +67,7 @@ tg_mesh* cli_load_mesh(const char* path)
         cli_error_diag(&diag, st);
         return NULL;
     }
+    if (diag.message[0]) cli_error_diag(&diag, st); /* a warning: something the reader tolerated */
     return mesh;
 }
 
@@ -128,7 +129,11 @@ static void print_overview(FILE* f)
     fprintf(f, "  trigeo help [COMMAND]\n  trigeo --version\n\n");
     fprintf(f, "Meshes: OBJ, OFF, PLY (ascii, binary), STL (ascii, binary), optionally .gz; '-' reads the\n"
                "mesh from standard input (uncompressed; the format from --format obj|off|ply|stl or the content).\n");
-    fprintf(f, "Indices are 0-based in file order. Exit codes: 0 ok, 1 usage, 2 input/IO error.\n");
+    fprintf(f, "Indices are 0-based in file order. Exit codes: 0 ok, 1 usage, 2 input/IO error, 130 interrupted\n"
+               "(Ctrl-C or SIGTERM).\n");
+    fprintf(f, "Outputs (-o) appear only when complete: written into a private temporary directory beside the\n"
+               "target and renamed; an existing character device or FIFO is written directly; an output that\n"
+               "is one of the inputs is refused.\n");
 }
 
 static const cli_command* find_command(const char* name)
@@ -213,5 +218,6 @@ static int dispatch(int argc, char** argv)
             return CLI_OK;
         }
     }
+    cli_interrupt_install(); /* Ctrl-C: exit 130, no temporary left, whatever the command does */
     return c->run(argc - 1, argv + 1);
 }

@@ -2,6 +2,7 @@
 make test runs these through CTest (tests/CMakeLists.txt), which sets TG_TRIGEO (the CLI),
 TG_MESHES_DIR (../shared/meshes) and TRIGEO_LIB (the library of the same build)."""
 import os
+import signal
 import subprocess
 import sys
 
@@ -29,6 +30,33 @@ def corpus(name: str) -> str:
     if not os.path.exists(p):
         pytest.skip(f"corpus mesh {p} not present")
     return p
+
+
+def cpu_seconds(pid: int) -> float:
+    """User + system CPU time of a running process (all its threads), from /proc."""
+    with open(f"/proc/{pid}/stat") as f:
+        fields = f.read().rsplit(")", 1)[1].split()  # fields from the 3rd (state) on
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")  # utime, stime
+
+
+def interrupt(p: subprocess.Popen, timeout: float = 60):
+    """Sends SIGINT to p, a Python child that prints "interrupted CPU" (CPU: its
+    time.process_time()) when the KeyboardInterrupt reaches it. Returns (the CPU seconds the
+    child spent between the signal and the interrupt, or None if it did not print that line,
+    its output). CPU time, not wall time: on a loaded machine the child may wait seconds for a
+    core, but the work it does after the signal is what shows whether the call stopped."""
+    cpu0 = cpu_seconds(p.pid)
+    p.send_signal(signal.SIGINT)
+    try:
+        out, err = p.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        out, err = p.communicate()
+        return None, (out or "") + (err or "") + f" (still running {timeout} s after Ctrl-C)"
+    lines = (out or "").strip().splitlines()
+    if not lines or not lines[-1].startswith("interrupted "):
+        return None, (out or "") + (err or "")
+    return float(lines[-1].split()[1]) - cpu0, (out or "") + (err or "")
 
 
 def run_cli(*args: str, stdin: str = None) -> subprocess.CompletedProcess:

@@ -75,3 +75,53 @@ def test_failing_chunk_raises_the_workers_error(client, tmp_path):
     with pytest.raises(trigeo.InvalidMeshError, match=r"chunk 0 .*bad.obj:4"):
         tgd.closest(client, str(bad), np.zeros((3, 3)))
     assert np.isfinite(tgd.path_lengths(client, SPOT, pairs, chunk=6)).all()
+
+
+def _spot_variant(path, scale):
+    """Spot with every coordinate times `scale` (same topology, other distances), written as OBJ."""
+    m = trigeo.load(SPOT)
+    trigeo.Mesh(m.vertices * scale, m.faces).save(path)
+
+
+def test_the_mesh_given_not_the_files_newer_content(client, tmp_path):
+    """Issue 20 item 3: after m = trigeo.load(f) and a rewrite of f, distance_matrix(client, m)
+    used the new file."""
+    f = str(tmp_path / "spot.obj")
+    _spot_variant(f, 1.0)
+    m = trigeo.load(f)
+    want = m.distance_matrix([0, 7])
+    assert np.array_equal(tgd.distance_matrix(client, m, [0, 7]), want)
+    _spot_variant(f, 2.0)  # rewritten: twice the distances
+    assert np.array_equal(tgd.distance_matrix(client, m, [0, 7]), want)  # the Mesh given
+    assert np.array_equal(tgd.distance_matrix(client, f, [0, 7]), 2 * want)  # the path: the file now
+    assert np.array_equal(tgd.distance_matrix(client, m, [0, 7]), want)
+
+
+def test_an_edit_keeping_time_and_size_is_seen(client, tmp_path):
+    """The worker cache was keyed by (path, mtime, size): an in-place edit keeping both returned
+    stale rows (16 of 16) with no warning."""
+    f = str(tmp_path / "spot.obj")
+    _spot_variant(f, 1.0)
+    before = trigeo.load(f)
+    first = tgd.distance_matrix(client, f, list(range(16)))  # cached on the workers
+    assert np.array_equal(first, before.distance_matrix(list(range(16))))
+    st = os.stat(f)
+    text = open(f).read()
+    # the same bytes but one: vertex 0's first coordinate digit changes, the size stays
+    i = text.index("\nv ") + 3
+    digit = text[i + 1] if text[i] == "-" else text[i]
+    j = i + 1 if text[i] == "-" else i
+    text = text[:j] + ("1" if digit != "1" else "2") + text[j + 1:]
+    open(f, "w").write(text)
+    os.utime(f, ns=(st.st_atime_ns, st.st_mtime_ns))
+    assert os.stat(f).st_size == st.st_size and os.stat(f).st_mtime_ns == st.st_mtime_ns
+    after = trigeo.load(f)
+    got = tgd.distance_matrix(client, f, list(range(16)))
+    assert np.array_equal(got, after.distance_matrix(list(range(16))))
+    assert not np.array_equal(got, first)
+    assert np.array_equal(tgd.distance_matrix(client, before, list(range(16))), first)  # still the Mesh given
+
+
+def test_a_missing_file_is_a_file_error(client, tmp_path):
+    with pytest.raises(trigeo.FileError):
+        tgd.distance_matrix(client, str(tmp_path / "nowhere.obj"), [0])

@@ -1,7 +1,6 @@
 """Python threads query one Mesh at once (the GIL is released in C calls), and Ctrl-C stops a
 long field."""
 import os
-import signal
 import subprocess
 import sys
 import textwrap
@@ -11,7 +10,7 @@ import time
 import numpy as np
 
 import trigeo
-from conftest import REPO, SPOT, grid
+from conftest import REPO, SPOT, grid, interrupt
 
 
 def test_threads_share_a_mesh():
@@ -76,20 +75,16 @@ def test_ctrl_c_stops_long_fields():
         from conftest import grid
         m = trigeo.Mesh(*grid(700, 0.3))
         print("ready", flush=True)
-        cpu = time.process_time()
         try:
             m.distance_matrix(list(range(0, 40000, 100)), threads=1)  # 400 fields: minutes
             print("finished", flush=True)
         except KeyboardInterrupt:
-            print("interrupted", time.process_time() - cpu)
+            print("interrupted %.6f" % time.process_time(), flush=True)
     """)
     p = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True, env=os.environ.copy())
     assert p.stdout.readline().strip() == "ready"
     time.sleep(0.3)
-    p.send_signal(signal.SIGINT)
-    out, _ = p.communicate(timeout=900)
+    cpu, out = interrupt(p, timeout=900)
     # uninterrupted, the 400 fields take minutes of CPU; honoured, the interrupt ends the call
-    # within about a second of the child's CPU time (CPU time, not wall time: a loaded machine
-    # stretches the latter; the bound is far below the whole call's)
-    words = out.split()
-    assert words[0] == "interrupted" and float(words[1]) < 10.0, out
+    # after a few milliseconds of it (CPU time: on a loaded machine the wall time stretches)
+    assert cpu is not None and cpu < 1.0, f"{cpu} CPU seconds after the signal; {out[-1500:]}"

@@ -24,10 +24,13 @@ For batches over many machines, see trigeo.dask.
 """
 from __future__ import annotations
 
+import atexit
 import ctypes
 import math
 import os
 import threading
+import time
+import warnings
 from concurrent.futures import ThreadPoolExecutor
 from contextlib import contextmanager
 from typing import Any, Callable, Iterator, Optional, Sequence, Union
@@ -38,8 +41,9 @@ from . import _lib as _c
 from ._lib import lib as _L
 
 __all__ = [
-    "load", "Mesh", "Path", "Trace", "SurfacePoint", "version", "Error", "InvalidArgumentError", "OutOfMemoryError",
-    "FileError", "ParseError", "InvalidMeshError", "UnsupportedError", "CapacityError", "CancelledError",
+    "load", "load_bytes", "Mesh", "Path", "Trace", "SurfacePoint", "version", "Error", "InvalidArgumentError",
+    "OutOfMemoryError", "FileError", "ParseError", "InvalidMeshError", "UnsupportedError", "CapacityError",
+    "CancelledError", "LoadWarning", "MAX_THREADS",
 ]
 
 __version__ = _L.tg_version().decode()
@@ -244,12 +248,23 @@ def _points(points: Any, what: str = "points") -> np.ndarray:
     if not finite.all():
         i = int(np.argmin(finite))
         raise _bad(f"{what}[{i}] is not finite: {a[i].tolist()}")
+    inside = (np.abs(a) <= MAX_COORDINATE).all(axis=1)
+    if not inside.all():
+        i = int(np.argmin(inside))
+        raise _bad(f"{what}[{i}] = {a[i].tolist()} is beyond the supported range of +-1e150 "
+                   "(squared distances would overflow)")
     return a
+
+
+MAX_THREADS = 256  # TG_MAX_THREADS of include/trigeo.h
+MAX_COORDINATE = 1e150  # the library's range for distances (tg_bvh_create, tg_geodesic_create)
 
 
 def _threads(threads: int) -> int:
     if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 0:
         raise _bad(f"threads must be an integer >= 0 (0: all cores), not {threads!r}")
+    if threads > MAX_THREADS:
+        raise _bad(f"threads must be at most {MAX_THREADS} (trigeo.MAX_THREADS), not {int(threads)}")
     return int(threads)
 
 
@@ -309,51 +324,226 @@ def _new(create: Callable, *args) -> int:
 
 
 # ---------------------------------------------------------------------------------------------
-# Progress callbacks: Ctrl-C and the user's callback both stop a long field
+# Calls: Ctrl-C, progress callbacks, and close() while calls run
 # ---------------------------------------------------------------------------------------------
 
-class _Progress:
-    """The progress callback of a field call. On the main thread the C call runs on a helper
-    thread while the main thread waits, so Ctrl-C raises KeyboardInterrupt there as usual; the
-    callback (on whichever thread the library calls it) then asks the library to stop."""
+TG_ERR_CANCELLED_ = 8
+_local = threading.local()  # .callbacks: depth of user progress callbacks on this thread
 
-    def __init__(self, user: Optional[Callable[[float], Any]]):
+
+class _Call:
+    """One public call: its cancellation flag and the C callbacks that report it to the library.
+
+    From the main thread the C work runs on a helper thread while the main thread waits, so
+    that Ctrl-C raises KeyboardInterrupt at once: the flag is set, the library stops at its
+    next look (fields, paths and renders every few milliseconds, batches of points between
+    chunks), and the main thread re-raises. Work that cannot stop (building a BVH or a solver,
+    writing a file, loading one) is left to finish on its own after a short grace period; the
+    Mesh counts it as running until it ends, so close() still waits for it."""
+
+    GRACE_S = 0.5  # how long Ctrl-C waits for work to stop before leaving it to finish alone
+
+    def __init__(self, user: Optional[Callable[[float], Any]] = None):
         self.user, self.error, self.cancel = user, None, False
-        self.fn = _c.PROGRESS_FN(self._call)
+        self.field_fn = _c.PROGRESS_FN(self._field)
+        self.render_fn = _c.RENDER_PROGRESS_FN(self._render)
 
-    def _call(self, _user, progress) -> int:
+    def _report(self, fraction: float) -> int:
         if self.cancel or self.error is not None:
             return 1
         if self.user is None:
             return 0
+        _local.callbacks = getattr(_local, "callbacks", 0) + 1
         try:
-            return 1 if self.user(float(progress.contents.settled_fraction)) is False else 0
+            return 1 if self.user(fraction) is False else 0
         except BaseException as e:  # stop the C call; re-raised by finish()
             self.error = e
             return 1
+        finally:
+            _local.callbacks -= 1
 
-    def run(self, call: Callable[[], int]) -> int:
+    def _field(self, _user, progress) -> int:
+        return self._report(float(progress.contents.settled_fraction))
+
+    def _render(self, _user, fraction) -> int:
+        return self._report(float(fraction))
+
+    def run(self, work: Callable[[], Any], uses: Optional["_Uses"] = None) -> Any:
+        """work() on this thread, or from the main thread on a helper thread (see the class)."""
         if threading.current_thread() is not threading.main_thread():
-            return call()
-        result: list = []
-        t = threading.Thread(target=lambda: result.append(call()), name="trigeo-field", daemon=True)
-        t.start()
+            return work()
+        box: dict = {}
+
+        def target():
+            try:
+                box["result"] = work()
+            except BaseException as e:
+                box["error"] = e
+            finally:
+                if uses is not None:
+                    uses.release()
+
+        if uses is not None:
+            uses.hold()  # the helper's own claim: released when it ends, even if left alone
+        t = threading.Thread(target=target, name="trigeo-call", daemon=True)
+        try:
+            t.start()
+        except BaseException:
+            if uses is not None:
+                uses.release()
+            raise
         try:
             while t.is_alive():
                 t.join(0.05)
         except BaseException:
-            self.cancel = True  # KeyboardInterrupt: the library stops at its next callback
-            t.join()
+            self.cancel = True
+            t.join(self.GRACE_S)
             raise
-        return result[0] if result else TG_ERR_CANCELLED_
+        if "error" in box:
+            raise box["error"]
+        return box["result"]
 
-    def finish(self, status: int, what: str) -> None:
+    def finish(self, status: int, what: str, diag: Optional[_c.Diag] = None) -> None:
+        """Raises the user callback's exception, else the status's Error."""
         if self.error is not None:
             raise self.error
-        _check(status, what)
+        _check(status, what, diag)
 
 
-TG_ERR_CANCELLED_ = 8
+class _Uses:
+    """The calls running on a Mesh, so that close() frees nothing while one of them uses it:
+    close() waits for them (and refuses from inside one: a progress callback); calls started
+    after close() are refused."""
+
+    def __init__(self):
+        self._cond = threading.Condition()
+        self._count = 0
+        self._closed = False
+        self._waiting = False  # close() is waiting for the calls to end
+        self._free: Optional[Callable[[], None]] = None
+
+    def enter(self) -> None:
+        with self._cond:
+            if self._closed:
+                raise _bad("this Mesh was closed")
+            self._count += 1
+
+    def hold(self) -> None:
+        with self._cond:
+            self._count += 1
+
+    def release(self) -> None:
+        free = None
+        with self._cond:
+            self._count -= 1
+            if self._count == 0:
+                self._cond.notify_all()
+                if self._closed and not self._waiting:  # close() was interrupted: the last call frees
+                    free, self._free = self._free, None
+        if free is not None:
+            free()
+
+    @contextmanager
+    def use(self) -> Iterator[None]:
+        self.enter()
+        try:
+            yield
+        finally:
+            self.release()
+
+    def close(self, free: Callable[[], None]) -> None:
+        if getattr(_local, "callbacks", 0):
+            raise _bad("close() from inside a progress callback would wait for its own call; close the Mesh "
+                       "after the call returns")
+        with self._cond:
+            if self._closed:
+                return
+            self._closed = True
+            self._free = free
+            self._waiting = True
+            try:
+                while self._count:
+                    self._cond.wait()
+            finally:
+                self._waiting = False
+            free, self._free = self._free, None
+        if free is not None:
+            free()
+
+
+# ---- files written whole: a private temporary directory beside the target, then a rename ----
+
+_TEMP_DIRS: set = set()  # in-flight temporaries, removed at exit (work left running by Ctrl-C)
+_TEMP_LOCK = threading.Lock()
+
+
+def _remove_temporaries() -> None:
+    import shutil
+    with _TEMP_LOCK:
+        dirs = list(_TEMP_DIRS)
+    for d in dirs:
+        shutil.rmtree(d, ignore_errors=True)
+
+
+atexit.register(_remove_temporaries)
+
+
+def _fs_path(path: Any, what: str) -> str:
+    p = os.fspath(path)
+    if isinstance(p, bytes):
+        p = os.fsdecode(p)
+    if "\0" in p:
+        raise _bad(f"{what} {p!r} contains a NUL character (the file name would end there)")
+    return p
+
+
+def _write_whole(path: str, call: _Call, write: Callable[[bytes, _c.Diag], int]) -> None:
+    """Writes a file through a library writer so that it appears only complete: into a private
+    directory made by mkdtemp beside the target (no predictable name, no link followed), then
+    renamed over it. A character device or FIFO is written directly; a directory is refused.
+    A cancelled call (Ctrl-C) removes its temporary instead of renaming it."""
+    import stat
+    import tempfile
+    try:
+        st = os.stat(path)
+    except OSError:
+        st = None
+    if st is not None and (stat.S_ISDIR(st.st_mode) or stat.S_ISBLK(st.st_mode) or stat.S_ISSOCK(st.st_mode)):
+        kind = "a directory" if stat.S_ISDIR(st.st_mode) else "a block device or socket"
+        raise FileError(f"{path}: is {kind}: give a file name", path, 0, 0, f"is {kind}")
+    diag = _c.Diag()
+    if st is not None and (stat.S_ISCHR(st.st_mode) or stat.S_ISFIFO(st.st_mode)):
+        _check(write(os.fsencode(path), diag), path, diag)
+        return
+    try:
+        tmpdir = tempfile.mkdtemp(prefix=".trigeo-", dir=os.path.dirname(os.path.abspath(path)))
+    except OSError as e:
+        raise FileError(f"{path}: cannot create a temporary directory beside it: {e.strerror}", path, 0, 0,
+                        f"cannot create a temporary directory beside it: {e.strerror}") from None
+    with _TEMP_LOCK:
+        _TEMP_DIRS.add(tmpdir)
+    tmp = os.path.join(tmpdir, os.path.basename(path))
+    try:
+        status = write(os.fsencode(tmp), diag)
+        if status == 0 and not call.cancel:
+            try:
+                os.replace(tmp, path)
+            except OSError as e:
+                raise FileError(f"{path}: cannot rename the finished file into place: {e.strerror}", path, 0, 0,
+                                e.strerror) from None
+    finally:
+        for f in (lambda: os.unlink(tmp), lambda: os.rmdir(tmpdir)):
+            try:
+                f()
+            except OSError:
+                pass
+        with _TEMP_LOCK:
+            _TEMP_DIRS.discard(tmpdir)
+    if status:
+        # the library named the temporary file: name the one asked for
+        diag.file = os.fsencode(path)[:255]
+        diag.message = diag.message.replace(os.fsencode(tmp)[:255], os.fsencode(path)[:200])
+        call.finish(status, path, diag)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -367,21 +557,74 @@ _HIT = np.dtype(_c.ClosestHit)
 _SIGNED = np.dtype(_c.SignedHit)
 
 
+class LoadWarning(UserWarning):
+    """A mesh file loaded, but its reader tolerated something (e.g. padding bytes after the last
+    record of a binary STL or PLY). .file and .reason as for Error."""
+
+    def __init__(self, message: str, file: str = "", reason: str = ""):
+        super().__init__(message)
+        self.file, self.reason = file, reason or message
+
+
+def _warn_diag(diag: _c.Diag, stacklevel: int = 3) -> None:
+    """A warning a successful load left in diag ("warning: ..."), as a LoadWarning."""
+    if diag.message:
+        file = diag.file.decode(errors="replace")
+        reason = diag.message.decode(errors="replace")
+        where = f"byte {int(diag.byte_offset)}: " if not diag.line and diag.byte_offset else ""
+        if diag.line:
+            where = f"line {int(diag.line)}: "
+        warnings.warn(LoadWarning(f"{file}: {where}{reason}", file, reason), stacklevel=stacklevel)
+
+
+def _mesh_from_handle(handle: int, source: Optional[str]) -> "Mesh":
+    m = Mesh.__new__(Mesh)
+    m._init(handle, source)
+    return m
+
+
 def load(path: Union[str, os.PathLike], format: str = "auto") -> "Mesh":
     """Loads a mesh file: OBJ, OFF, PLY (ascii or binary), STL (ascii or binary), optionally
     gzip-compressed (.gz). format: "auto" (by extension, then content), "obj", "off", "ply" or
-    "stl". Polygons are fan-triangulated; vertices keep file order. Raises FileError,
-    ParseError (with .file and .line), InvalidMeshError or UnsupportedError."""
+    "stl". Polygons are fan-triangulated; vertices keep file order. Counts in the file are
+    checked against its data. Raises FileError, ParseError (with .file and .line),
+    InvalidMeshError or UnsupportedError (InvalidArgumentError for a path with a NUL
+    character); something the reader tolerated (padding after a binary STL) is a LoadWarning.
+    Ctrl-C interrupts it."""
     if format not in _FORMATS:
         raise _bad(f"format must be one of {sorted(_FORMATS)}, not {format!r}")
-    p = os.fsencode(os.fspath(path))
+    name = _fs_path(path, "path")
+    p = os.fsencode(name)
+    call = _Call()
+    diag = _c.Diag()
+
+    def work() -> Optional[int]:
+        h = ctypes.c_void_p()
+        st = _L.tg_mesh_load(p, _FORMATS[format], None, ctypes.byref(diag), ctypes.byref(h))
+        if st == 0 and call.cancel:  # Ctrl-C came first: nobody will take this mesh
+            _L.tg_mesh_destroy(h.value)
+            return None
+        _check(st, name, diag)
+        return h.value
+
+    handle = call.run(work)
+    _warn_diag(diag)
+    return _mesh_from_handle(handle, os.path.abspath(name))
+
+
+def load_bytes(data: bytes, name: str = "", format: str = "auto") -> "Mesh":
+    """A mesh from the bytes of a mesh file (gzip data is inflated); name is used in messages and,
+    with format "auto", for its extension. Errors and warnings as load()."""
+    if format not in _FORMATS:
+        raise _bad(f"format must be one of {sorted(_FORMATS)}, not {format!r}")
+    data = bytes(data)
     diag = _c.Diag()
     h = ctypes.c_void_p()
-    st = _L.tg_mesh_load(p, _FORMATS[format], None, ctypes.byref(diag), ctypes.byref(h))
-    _check(st, os.fsdecode(p), diag)
-    m = Mesh.__new__(Mesh)
-    m._init(h.value, source=os.path.abspath(os.fsdecode(p)))
-    return m
+    st = _L.tg_mesh_load_memory(data, len(data), os.fsencode(name), _FORMATS[format], None, ctypes.byref(diag),
+                                ctypes.byref(h))
+    _check(st, name or "load_bytes", diag)
+    _warn_diag(diag)
+    return _mesh_from_handle(h.value, None)
 
 
 class Mesh:
@@ -394,7 +637,8 @@ class Mesh:
     come from trigeo.load. Any mesh real files contain is accepted: boundaries, several
     components, non-manifold edges, degenerate and duplicate faces (see .report).
 
-    Thread-safe: any number of threads may query one Mesh at once.
+    Thread-safe: any number of threads may query one Mesh at once, and close() waits for the
+    calls running on it. Ctrl-C interrupts every call (KeyboardInterrupt within about a second).
     """
 
     def __init__(self, vertices: Any, faces: Any):
@@ -423,7 +667,9 @@ class Mesh:
         self._init(h.value, source=None)
 
     def _init(self, handle: int, source: Optional[str]) -> None:
-        self._dask_arrays = None  # trigeo.dask: (client, key, future) of the scattered arrays
+        self._dask_arrays = None  # trigeo.dask: (client, future) of the scattered arrays
+        self._content_hash = None  # trigeo.dask: the hash of vertices and faces, made once
+        self._uses = _Uses()
         self._owner = _MeshHandle(handle)
         self._h = handle
         self._source = source
@@ -440,10 +686,17 @@ class Mesh:
     # -- lifetime ---------------------------------------------------------------------------
 
     def close(self) -> None:
-        """Frees the library's objects now (also done when the Mesh is garbage-collected).
-        Arrays previously returned by .vertices and .faces stay valid."""
-        h = getattr(self, "_h", None)
-        if not h:
+        """Frees the library's objects (also done when the Mesh is garbage-collected). Calls
+        running on the Mesh in other threads finish first: close() waits for them, and calls
+        made after it raise InvalidArgumentError. From a progress callback of a call on this
+        Mesh it raises (it would wait for itself). Arrays previously returned by .vertices and
+        .faces stay valid."""
+        uses = getattr(self, "_uses", None)
+        if uses is not None and getattr(self, "_h", None):
+            uses.close(self._free)
+
+    def _free(self) -> None:
+        if not self._h:
             return
         for pool in (self._bvh_ws, self._geo_ws, self._paths, self._traces):
             pool.close()
@@ -454,6 +707,13 @@ class Mesh:
         self._geo = self._bvh = None
         self._h = None
         self._owner = None  # the C mesh goes with the last view of its arrays
+
+    def _run(self, work: Callable[[_Call], Any], progress: Optional[Callable[[float], Any]] = None) -> Any:
+        """A public call: the Mesh in use for its duration (close() waits), work(call) run so
+        that Ctrl-C interrupts it (see _Call)."""
+        call = _Call(progress)
+        with self._uses.use():
+            return call.run(lambda: work(call), self._uses)
 
     def __del__(self):
         try:
@@ -494,22 +754,26 @@ class Mesh:
     @property
     def vertex_count(self) -> int:
         """Number of vertices."""
-        return int(_L.tg_mesh_vertex_count(self._handle()))
+        with self._uses.use():
+            return int(_L.tg_mesh_vertex_count(self._handle()))
 
     @property
     def face_count(self) -> int:
         """Number of triangles."""
-        return int(_L.tg_mesh_face_count(self._handle()))
+        with self._uses.use():
+            return int(_L.tg_mesh_face_count(self._handle()))
 
     @property
     def vertices(self) -> np.ndarray:
         """(n, 3) float64, a read-only view of the library's positions (no copy)."""
-        return _view(self._owner, _L.tg_mesh_positions(self._handle()), (self.vertex_count, 3), "<f8")
+        with self._uses.use():
+            return _view(self._owner, _L.tg_mesh_positions(self._handle()), (self.vertex_count, 3), "<f8")
 
     @property
     def faces(self) -> np.ndarray:
         """(m, 3) uint32, a read-only view of the library's triangles (no copy)."""
-        return _view(self._owner, _L.tg_mesh_triangles(self._handle()), (self.face_count, 3), "<u4")
+        with self._uses.use():
+            return _view(self._owner, _L.tg_mesh_triangles(self._handle()), (self.face_count, 3), "<u4")
 
     @property
     def source(self) -> Optional[str]:
@@ -522,12 +786,13 @@ class Mesh:
         boundary edges and loops, non-manifold edges and vertices, misoriented edges, degenerate,
         duplicate faces, unreferenced vertices, Euler characteristic, genus (-1 unless a closed
         manifold), closed_manifold (bool), bbox_min and bbox_max."""
-        r = _L.tg_mesh_get_report(self._handle()).contents
-        out = {name: int(getattr(r, name)) for name, _ in _c.MeshReport._fields_[:14]}
-        out["closed_manifold"] = bool(r.closed_manifold)
-        out["bbox_min"] = tuple(r.bbox_min)
-        out["bbox_max"] = tuple(r.bbox_max)
-        return out
+        with self._uses.use():
+            r = _L.tg_mesh_get_report(self._handle()).contents
+            out = {name: int(getattr(r, name)) for name, _ in _c.MeshReport._fields_[:14]}
+            out["closed_manifold"] = bool(r.closed_manifold)
+            out["bbox_min"] = tuple(r.bbox_min)
+            out["bbox_max"] = tuple(r.bbox_max)
+            return out
 
     def __repr__(self) -> str:
         if not getattr(self, "_h", None):
@@ -537,19 +802,42 @@ class Mesh:
 
     # -- point queries ------------------------------------------------------------------------
 
+    def _batch(self, call: _Call, n: int, threads: int, run_chunk: Callable[[int, int], int]) -> int:
+        """Runs a batch of n point queries in chunks (answers are per point, so chunking changes
+        none), sized to about 0.2 s each so that Ctrl-C is seen between them: from 16 points up,
+        since one point can cost milliseconds (an exact winding number over a million faces)."""
+        lo, size = 0, 16
+        while lo < n:
+            if call.cancel:
+                return TG_ERR_CANCELLED_
+            hi = min(n, lo + size)
+            t0 = time.perf_counter()
+            st = run_chunk(lo, hi)
+            if st:
+                return st
+            dt = time.perf_counter() - t0
+            size = int(min(max(size * (0.2 / dt if dt > 0 else 4.0), 1024), 4 * size, 1 << 22))
+            lo = hi
+        return 0
+
     def closest(self, points: Any, threads: int = 0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The closest surface point to each of k query points (exact in double, equal to a linear
         scan over all faces; the lowest face index wins ties).
 
-        points: (k, 3) or (3,). threads: 0 all cores, n at most n. Returns (distance (k,) float64,
-        face (k,) int64, point (k, 3) float64); face is -1 and distance inf on an empty mesh."""
+        points: (k, 3) or (3,), within +-1e150. threads: 0 all cores, n at most n (at most
+        MAX_THREADS). Returns (distance (k,) float64, face (k,) int64, point (k, 3) float64);
+        face is -1 and distance inf on an empty mesh. Ctrl-C interrupts it."""
         p = _points(points)
         threads = _threads(threads)
         hits = np.empty(p.shape[0], dtype=_HIT)
-        bvh = self._get_bvh(threads)
-        st = _L.tg_bvh_closest_batch(bvh, _ptr(p), p.shape[0], math.inf, threads,
-                                     hits.ctypes.data_as(ctypes.POINTER(_c.ClosestHit)))
-        _check(st, "closest")
+
+        def work(call: _Call) -> int:
+            bvh = self._get_bvh(threads)
+            return self._batch(call, p.shape[0], threads, lambda lo, hi: _L.tg_bvh_closest_batch(
+                bvh, _ptr(p[lo:hi]), hi - lo, math.inf, threads,
+                hits[lo:hi].ctypes.data_as(ctypes.POINTER(_c.ClosestHit))))
+
+        _check(self._run(work), "closest")
         return _hits(hits)
 
     def signed_distance(self, points: Any, method: str = "auto",
@@ -558,29 +846,40 @@ class Mesh:
         outside). method: "pseudonormal" (angle-weighted pseudonormal at the closest feature;
         exact on closed manifolds), "winding" (generalized winding number >= 1/2 is inside; robust
         on open or broken meshes) or "auto" (pseudonormal on a consistently oriented closed
-        manifold without degenerate faces, else winding). Returns (signed distance (k,), face
-        (k,), closest point (k, 3)); 0 exactly on the surface."""
+        manifold without degenerate faces, else winding). The sign does not depend on the scale
+        or position of the mesh. Returns (signed distance (k,), face (k,), closest point (k, 3));
+        0 exactly on the surface. threads as closest(); Ctrl-C interrupts it."""
         if method not in _SIGN:
             raise _bad(f"method must be one of {sorted(_SIGN)}, not {method!r}")
         p = _points(points)
         threads = _threads(threads)
         hits = np.empty(p.shape[0], dtype=_SIGNED)
-        bvh = self._get_bvh(threads)
-        st = _L.tg_bvh_signed_distance_batch(bvh, _ptr(p), p.shape[0], _SIGN[method], threads,
-                                             hits.ctypes.data_as(ctypes.POINTER(_c.SignedHit)))
-        _check(st, "signed_distance")
+
+        def work(call: _Call) -> int:
+            bvh = self._get_bvh(threads)
+            return self._batch(call, p.shape[0], threads, lambda lo, hi: _L.tg_bvh_signed_distance_batch(
+                bvh, _ptr(p[lo:hi]), hi - lo, _SIGN[method], threads,
+                hits[lo:hi].ctypes.data_as(ctypes.POINTER(_c.SignedHit))))
+
+        _check(self._run(work), "signed_distance")
         _, face, point = _hits(hits["hit"])
         return hits["distance"].copy(), face, point
 
     def winding_number(self, points: Any, threads: int = 0) -> np.ndarray:
         """The generalized winding number at each point: 1 inside and 0 outside a closed,
         consistently oriented mesh, fractional near holes (hierarchical evaluation, typically
-        within 1e-2 of the exact sum). Returns (k,) float64."""
+        within 1e-2 of the exact sum; independent of the mesh's scale). Returns (k,) float64.
+        threads as closest(); Ctrl-C interrupts it."""
         p = _points(points)
         threads = _threads(threads)
         out = np.empty(p.shape[0])
-        st = _L.tg_bvh_winding_number_batch(self._get_bvh(threads), _ptr(p), p.shape[0], threads, _ptr(out))
-        _check(st, "winding_number")
+
+        def work(call: _Call) -> int:
+            bvh = self._get_bvh(threads)
+            return self._batch(call, p.shape[0], threads, lambda lo, hi: _L.tg_bvh_winding_number_batch(
+                bvh, _ptr(p[lo:hi]), hi - lo, threads, _ptr(out[lo:hi])))
+
+        _check(self._run(work), "winding_number")
         return out
 
     def locate(self, xyz: Any) -> SurfacePoint:
@@ -588,10 +887,10 @@ class Mesh:
         p = _points(xyz, "xyz")
         if p.shape[0] != 1:
             raise _bad(f"locate takes one position, not {p.shape[0]}")
-        return SurfacePoint._from_c(self._locate(p[0]))
+        return SurfacePoint._from_c(self._run(lambda call: self._locate(p[0])))
 
     def _locate(self, p: np.ndarray) -> _c.SurfacePointC:
-        if self.face_count == 0:
+        if _L.tg_mesh_face_count(self._handle()) == 0:
             raise _bad("the mesh has no faces: there is no surface point to snap a position to")
         out = _c.SurfacePointC()
         bvh = self._get_bvh()
@@ -662,18 +961,24 @@ class Mesh:
         shortest edge path only). certify=True checks a straighten/relax/edge result against the
         exact distance and replaces it with the exact path if a shorter one exists, so the path
         comes out proven (redundant with "exact").
-        Endpoints in different components give a Path with status "unreachable" and length inf."""
+        Endpoints in different components give a Path with status "unreachable" and length inf.
+        Ctrl-C interrupts it (KeyboardInterrupt within a few milliseconds of work)."""
         if method not in _METHODS:
             raise _bad(f"method must be one of {sorted(_METHODS)}, not {method!r}")
-        spa = self._surface_point(a, "a")
-        spb = self._surface_point(b, "b")
-        opts = _c.PathOptions(_METHODS[method], 0, 0.0, None, 1 if certify else 0)
-        geo = self._get_geo()
-        with self._geo_ws.take() as ws, self._paths.take() as ph:
-            _check(_L.tg_geodesic_path(geo, ws, ctypes.byref(spa), ctypes.byref(spb), ctypes.byref(opts), ph), "path")
-            view = _c.PathView()
-            _L.tg_path_get_view(ph, ctypes.byref(view))
-            return Path._from_view(view)
+
+        def work(call: _Call) -> "Path":
+            spa = self._surface_point(a, "a")
+            spb = self._surface_point(b, "b")
+            opts = _c.PathOptions(_METHODS[method], 0, 0.0, None, 1 if certify else 0, call.field_fn, None)
+            geo = self._get_geo()
+            with self._geo_ws.take() as ws, self._paths.take() as ph:
+                st = _L.tg_geodesic_path(geo, ws, ctypes.byref(spa), ctypes.byref(spb), ctypes.byref(opts), ph)
+                call.finish(st, "path")
+                view = _c.PathView()
+                _L.tg_path_get_view(ph, ctypes.byref(view))
+                return Path._from_view(view)
+
+        return self._run(work)
 
     def _pair_points(self, pairs: Any, froms: Any, tos: Any) -> tuple:
         """The endpoints of path_lengths' pairs, as two C arrays."""
@@ -700,37 +1005,54 @@ class Mesh:
         long sequences of endpoints as path() takes them (SurfacePoints, vertex indices, (x, y, z)
         positions). Every endpoint is checked before any path is computed. method, certify: as
         path() (default "exact": globally shortest). threads: 0 all cores; the pairs are shared
-        out among that many threads, each with its own workspace. Returns (k,) float64, the same numbers as k calls of path()."""
+        out among that many threads, each with its own workspace. Returns (k,) float64, the same
+        numbers as k calls of path(). Ctrl-C interrupts it."""
         if method not in _METHODS:
             raise _bad(f"method must be one of {sorted(_METHODS)}, not {method!r}")
         threads = _threads(threads)
-        froms, tos = self._pair_points(pairs, froms, tos)
-        k = len(froms)
-        out = np.empty(k)
-        if k == 0:
+
+        def work(call: _Call) -> np.ndarray:
+            a, b = self._pair_points(pairs, froms, tos)
+            k = len(a)
+            out = np.empty(k)
+            if k == 0:
+                return out
+            geo = self._get_geo()
+            opts = _c.PathOptions(_METHODS[method], 0, 0.0, None, 1 if certify else 0, call.field_fn, None)
+            nt = (os.cpu_count() or 1) if threads == 0 else threads
+            nt = max(1, min(nt, k, MAX_THREADS))
+
+            def run(lo: int, hi: int) -> None:
+                view = _c.PathView()
+                with self._geo_ws.take() as ws, self._paths.take() as ph:
+                    for i in range(lo, hi):
+                        if call.cancel:  # Ctrl-C, or another chunk failed
+                            return
+                        st = _L.tg_geodesic_path(geo, ws, ctypes.byref(a[i]), ctypes.byref(b[i]), ctypes.byref(opts),
+                                                 ph)
+                        if st == TG_ERR_CANCELLED_ and call.cancel:
+                            return
+                        _check(st, f"path_lengths: pair {i}")
+                        _L.tg_path_get_view(ph, ctypes.byref(view))
+                        out[i] = view.length
+
+            if nt == 1:
+                run(0, k)
+            else:
+                step = max(1, min(64, k // (4 * nt)))
+                with ThreadPoolExecutor(nt) as ex:
+                    futures = [ex.submit(run, lo, min(k, lo + step)) for lo in range(0, k, step)]
+                    try:
+                        for f in futures:
+                            f.result()
+                    except BaseException:
+                        call.cancel = True  # the other chunks stop at their next pair
+                        raise
+            if call.cancel:
+                raise CancelledError("path_lengths: cancelled")
             return out
-        geo = self._get_geo()
-        opts = _c.PathOptions(_METHODS[method], 0, 0.0, None, 1 if certify else 0)
-        nt = (os.cpu_count() or 1) if threads == 0 else threads
-        nt = max(1, min(nt, k))
 
-        def run(lo: int, hi: int) -> None:
-            view = _c.PathView()
-            with self._geo_ws.take() as ws, self._paths.take() as ph:
-                for i in range(lo, hi):
-                    _check(_L.tg_geodesic_path(geo, ws, ctypes.byref(froms[i]), ctypes.byref(tos[i]), ctypes.byref(opts), ph),
-                           f"path_lengths: pair {i}")
-                    _L.tg_path_get_view(ph, ctypes.byref(view))
-                    out[i] = view.length
-
-        if nt == 1:
-            run(0, k)
-        else:
-            step = max(1, min(64, k // (4 * nt)))
-            with ThreadPoolExecutor(nt) as ex:
-                for f in [ex.submit(run, lo, min(k, lo + step)) for lo in range(0, k, step)]:
-                    f.result()
-        return out
+        return self._run(work)
 
     def path_through(self, points: Any, closed: bool = False) -> "Path":
         """The shortest route visiting `points` in this order (and back to the first with
@@ -882,14 +1204,14 @@ class Mesh:
 
     # -- fields -------------------------------------------------------------------------------
 
-    def _field_options(self, max_distance: Optional[float], progress: _Progress) -> _c.FieldOptions:
+    def _field_options(self, max_distance: Optional[float], call: _Call) -> _c.FieldOptions:
         o = _c.FieldOptions()
         if max_distance is not None and max_distance != math.inf:
             md = float(max_distance)
             if not md >= 0.0:
                 raise _bad(f"max_distance must be >= 0 (or None for no limit), not {max_distance!r}")
             o.limit, o.max_distance = 1, md
-        o.progress = progress.fn
+        o.progress = call.field_fn
         return o
 
     def field(self, sources: Any, max_distance: Optional[float] = None,
@@ -901,47 +1223,58 @@ class Mesh:
         edges too), or (k, 3) positions snapped to the surface. max_distance: stop there (vertices
         beyond get inf). progress: called with the settled fraction in [0, 1] every few ms; return
         False to cancel (CancelledError). Ctrl-C stops the computation too. Returns (n,) float64;
-        inf where no path reaches (other components, unused vertices)."""
-        src = self._surface_points(sources, "sources")
-        pr = _Progress(progress)
-        o = self._field_options(max_distance, pr)
-        out = np.empty(self.vertex_count)
-        geo = self._get_geo()
-        with self._geo_ws.take() as ws:
-            st = pr.run(lambda: _L.tg_geodesic_field(geo, ws, src, len(src), ctypes.byref(o), _ptr(out), None))
-        pr.finish(st, "field")
-        return out
+        inf where no path reaches (other components, unused vertices). At least one source is
+        needed (InvalidArgumentError otherwise)."""
+        def work(call: _Call) -> np.ndarray:
+            src = self._surface_points(sources, "sources")
+            if len(src) == 0:
+                raise _bad("field needs at least one source (with none, no vertex has a distance)")
+            o = self._field_options(max_distance, call)
+            out = np.empty(self.vertex_count)
+            geo = self._get_geo()
+            with self._geo_ws.take() as ws:
+                st = _L.tg_geodesic_field(geo, ws, src, len(src), ctypes.byref(o), _ptr(out), None)
+            call.finish(st, "field")
+            return out
+
+        return self._run(work, progress)
 
     def field_at(self, sources: Any, points: Any, max_distance: Optional[float] = None) -> np.ndarray:
         """The exact geodesic distance from the sources to arbitrary surface points (in faces, on
         edges, vertices) in one propagation. sources as field(); points: SurfacePoints, vertex
         indices or (k, 3) positions. Returns (k,) float64."""
-        src = self._surface_points(sources, "sources")
-        pts = self._surface_points(points, "points")
-        pr = _Progress(None)
-        o = self._field_options(max_distance, pr)
-        out = np.empty(len(pts))
-        geo = self._get_geo()
-        with self._geo_ws.take() as ws:
-            st = pr.run(lambda: _L.tg_geodesic_field_at(geo, ws, src, len(src), pts, len(pts), ctypes.byref(o),
-                                                        _ptr(out), None, None))
-        pr.finish(st, "field_at")
-        return out
+        def work(call: _Call) -> np.ndarray:
+            src = self._surface_points(sources, "sources")
+            if len(src) == 0:
+                raise _bad("field_at needs at least one source")
+            pts = self._surface_points(points, "points")
+            o = self._field_options(max_distance, call)
+            out = np.empty(len(pts))
+            geo = self._get_geo()
+            with self._geo_ws.take() as ws:
+                st = _L.tg_geodesic_field_at(geo, ws, src, len(src), pts, len(pts), ctypes.byref(o), _ptr(out),
+                                             None, None)
+            call.finish(st, "field_at")
+            return out
+
+        return self._run(work)
 
     def distance_matrix(self, sources: Any, max_distance: Optional[float] = None, threads: int = 0,
                         progress: Optional[Callable[[float], Any]] = None) -> np.ndarray:
         """One exact field per source: row i is field([sources[i]]) exactly (bit-identical).
         Rows run in parallel on `threads` C threads (0: all cores). Returns (K, n) float64."""
-        src = self._surface_points(sources, "sources")
         threads = _threads(threads)
-        pr = _Progress(progress)
-        o = self._field_options(max_distance, pr)
-        n = self.vertex_count
-        out = np.empty((len(src), n))
-        geo = self._get_geo()
-        st = pr.run(lambda: _L.tg_geodesic_distance_matrix(geo, src, len(src), ctypes.byref(o), threads, _ptr(out), None))
-        pr.finish(st, "distance_matrix")
-        return out
+
+        def work(call: _Call) -> np.ndarray:
+            src = self._surface_points(sources, "sources")
+            o = self._field_options(max_distance, call)
+            out = np.empty((len(src), self.vertex_count))
+            geo = self._get_geo()
+            st = _L.tg_geodesic_distance_matrix(geo, src, len(src), ctypes.byref(o), threads, _ptr(out), None)
+            call.finish(st, "distance_matrix")
+            return out
+
+        return self._run(work, progress)
 
     # -- files ------------------------------------------------------------------------------
 
@@ -949,9 +1282,11 @@ class Mesh:
         """Writes the mesh: PATH.obj (Wavefront OBJ) or PATH.ply (binary PLY, with one double
         vertex property per entry of `fields`, a dict of name -> (n,) array, e.g.
         {"distance": mesh.field(0)}, readable by ParaView, MeshLab, trimesh and `trigeo render
-        --field`). Names: 1-64 letters, digits and '_', not x, y or z. Raises FileError when the file
-        cannot be written."""
-        p = os.fspath(path)
+        --field`). Names: 1-64 letters, digits and '_', not x, y or z. The file appears only when
+        complete (written into a private temporary directory beside it, then renamed over it: a
+        full disk or Ctrl-C leaves the previous file as it was); a character device or FIFO is
+        written directly. Raises FileError when the file cannot be written."""
+        p = _fs_path(path, "path")
         low = p.lower()
         if not (low.endswith(".obj") or low.endswith(".ply")):
             raise _bad(f"save writes .obj or .ply files, not {p!r}")
@@ -968,12 +1303,12 @@ class Mesh:
             b = name.encode()
             keep += [a, b]
             arr[i].name, arr[i].values = b, _ptr(a)
-        diag = _c.Diag()
-        if low.endswith(".ply"):
-            st = _L.tg_mesh_write_ply(self._handle(), os.fsencode(p), arr, len(fields), ctypes.byref(diag))
-        else:
-            st = _L.tg_mesh_write_obj(self._handle(), os.fsencode(p), ctypes.byref(diag))
-        _check(st, p, diag)
+        def write(name: bytes, diag: _c.Diag) -> int:
+            if low.endswith(".ply"):
+                return _L.tg_mesh_write_ply(self._handle(), name, arr, len(fields), ctypes.byref(diag))
+            return _L.tg_mesh_write_obj(self._handle(), name, ctypes.byref(diag))
+
+        self._run(lambda call: _write_whole(p, call, write))
 
     # -- pictures -----------------------------------------------------------------------------
 
@@ -982,8 +1317,12 @@ class Mesh:
         """Writes a PNG picture of the mesh (orthographic, shaded), with an optional path (a Path
         or a (k, 3) polyline, drawn as a red tube) and an optional per-vertex field (n values,
         coloured dark blue to yellow with isolines; inf drawn grey). view: the direction the
-        camera looks along, e.g. (0, 0, -1); None: a three-quarter view. isolines: 0 for none."""
+        camera looks along, e.g. (0, 0, -1); None: a three-quarter view. isolines: 0 for none.
+        Memory is bounded (the library's TG_RENDER_MAX_BYTES, 2 GiB: large pictures get less
+        supersampling). The file appears only when complete, as with save(); Ctrl-C interrupts
+        the drawing and leaves no file."""
         o = _c.RenderOptions()
+        png = _fs_path(png_path, "png_path")
         if not (isinstance(width, (int, np.integer)) and isinstance(height, (int, np.integer))
                 and 1 <= width <= 8192 and 1 <= height <= 8192):
             raise _bad(f"width and height must be integers in [1, 8192], not {width!r}, {height!r}")
@@ -1006,9 +1345,12 @@ class Mesh:
             pl = _points(pts, "path") if len(pts) else np.empty((0, 3))
             keep.append(pl)
             o.polyline, o.polyline_count = _ptr(pl), pl.shape[0]
-        diag = _c.Diag()
-        st = _L.tg_render_png(self._handle(), ctypes.byref(o), os.fsencode(os.fspath(png_path)), ctypes.byref(diag))
-        _check(st, os.fspath(png_path), diag)
+        def work(call: _Call) -> None:
+            o.progress = call.render_fn
+            _write_whole(png, call, lambda name, diag: _L.tg_render_png(self._handle(), ctypes.byref(o), name,
+                                                                        ctypes.byref(diag)))
+
+        self._run(work)
 
 
 def _hits(hits: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

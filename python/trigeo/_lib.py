@@ -95,11 +95,6 @@ class KernelOptions(ctypes.Structure):
     _fields_ = [("digits", c_int), ("max_iterations", c_int), ("strategy", c_int), ("root_method", c_int)]
 
 
-class PathOptions(ctypes.Structure):
-    _fields_ = [("method", c_int), ("max_iterations", c_uint32), ("tolerance", c_double),
-                ("kernel", POINTER(KernelOptions)), ("certify", c_int)]
-
-
 class PathView(ctypes.Structure):
     _fields_ = [("point_count", c_size_t), ("points", POINTER(SurfacePointC)), ("xyz", POINTER(c_double)),
                 ("faces", POINTER(c_uint32)), ("length", c_double), ("initial_length", c_double),
@@ -139,15 +134,25 @@ class FieldProgress(ctypes.Structure):
 PROGRESS_FN = ctypes.CFUNCTYPE(c_int, c_void_p, POINTER(FieldProgress))
 
 
+class PathOptions(ctypes.Structure):
+    _fields_ = [("method", c_int), ("max_iterations", c_uint32), ("tolerance", c_double),
+                ("kernel", POINTER(KernelOptions)), ("certify", c_int), ("progress", PROGRESS_FN),
+                ("progress_user", c_void_p)]
+
+
 class FieldOptions(ctypes.Structure):
     _fields_ = [("allocator", c_void_p), ("limit", c_int), ("max_distance", c_double),
                 ("progress", PROGRESS_FN), ("progress_user", c_void_p)]
 
 
+RENDER_PROGRESS_FN = ctypes.CFUNCTYPE(c_int, c_void_p, c_double)
+
+
 class RenderOptions(ctypes.Structure):
     _fields_ = [("width", c_int), ("height", c_int), ("view_dir", c_double * 3), ("up", c_double * 3),
                 ("vertex_scalar", POINTER(c_double)), ("isolines", c_int), ("polyline", POINTER(c_double)),
-                ("polyline_count", c_size_t), ("supersample", c_int)]
+                ("polyline_count", c_size_t), ("supersample", c_int), ("progress", RENDER_PROGRESS_FN),
+                ("progress_user", c_void_p)]
 
 
 _vp = c_void_p
@@ -163,6 +168,7 @@ _SIGNATURES = {
     "tg_status_string": (c_char_p, [c_int]),
     "tg_mesh_create": (c_int, [_pd, c_size_t, _pu32, c_size_t, _vp, _pdiag, _pvp]),
     "tg_mesh_load": (c_int, [c_char_p, c_int, _vp, _pdiag, _pvp]),
+    "tg_mesh_load_memory": (c_int, [c_char_p, c_size_t, c_char_p, c_int, _vp, _pdiag, _pvp]),
     "tg_mesh_destroy": (None, [_vp]),
     "tg_mesh_vertex_count": (c_size_t, [_vp]),
     "tg_mesh_face_count": (c_size_t, [_vp]),

@@ -10,9 +10,16 @@
             matrix = trigeo.dask.distance_matrix(client, "mesh.ply", [0, 10, 20])
 
 The work is split into chunks, one task each. The mesh reaches each worker once and stays
-there, with its BVH and geodesic solver, for every later task and call:
-- given a path (str or os.PathLike, or a Mesh loaded from a file), each worker loads that
-  file itself, so the path must be readable on the workers (a shared filesystem);
+there, with its BVH and geodesic solver, for every later task and call, and every task computes
+on exactly the mesh the call was given, identified by content, never by a file's name, time or
+size:
+- given a path (str or os.PathLike), the client hashes the file's bytes when the call starts;
+  each worker reads the file itself (a shared filesystem: the path must be readable on the
+  client and the workers), and a worker that finds other bytes (the file changed during the
+  call) raises trigeo.FileError;
+- given a Mesh loaded from a file, each worker loads that file and compares the mesh it gets
+  with the Mesh's vertices and faces (a hash of both); if the file has changed since
+  trigeo.load, the Mesh's own arrays are scattered to the workers instead;
 - given a Mesh made from arrays, its vertices and faces are scattered to the workers once.
 Results come back in input order and are bit-identical to the serial Mesh calls. A chunk that
 fails raises the worker's trigeo.Error (same class) in the client, its message naming the
@@ -25,9 +32,11 @@ chunk on `threads` C threads (default 1: Dask runs one task per worker thread).
 """
 from __future__ import annotations
 
+import hashlib
 import os
 import threading
 import uuid
+import warnings
 from collections import OrderedDict
 from typing import Any, Optional, Union
 
@@ -37,55 +46,125 @@ import trigeo
 
 __all__ = ["closest", "path_lengths", "distance_matrix", "cached_meshes"]
 
-# Worker side: meshes by key, kept across tasks (a few at most; least recently used dropped).
+# Worker side: meshes by key, kept across tasks (a few at most; least recently used dropped). A
+# mesh read from a file is kept under two keys: the file's path and bytes hash, and its content.
 _CACHE: "OrderedDict[tuple, trigeo.Mesh]" = OrderedDict()
 _CACHE_LOCK = threading.Lock()
-_CACHE_SIZE = 4
+_CACHE_SIZE = 8
 
 
 def cached_meshes() -> int:
     """How many meshes this process keeps for Dask tasks (for tests and monitoring)."""
     with _CACHE_LOCK:
-        return len(_CACHE)
+        return len({id(m) for m in _CACHE.values()})
 
 
-def _worker_mesh(source: tuple, arrays: Any = None) -> trigeo.Mesh:
-    """The mesh of a task, loaded or built once per worker process."""
-    if source[0] == "path":
-        st = os.stat(source[1])
-        key = ("path", source[1], st.st_mtime_ns, st.st_size)
-    else:
-        key = source
+def _content_hash(mesh: trigeo.Mesh) -> str:
+    """A hash of the mesh's vertices and faces (their bytes and shapes), made once per Mesh."""
+    h = getattr(mesh, "_content_hash", None)
+    if h is None:
+        v, f = mesh.vertices, mesh.faces
+        d = hashlib.blake2b(digest_size=20, person=b"trigeo-mesh")
+        d.update(np.array([v.shape[0], f.shape[0]], dtype="<u8").tobytes())
+        d.update(np.ascontiguousarray(v, dtype="<f8").data)
+        d.update(np.ascontiguousarray(f, dtype="<u4").data)
+        h = mesh._content_hash = d.hexdigest()
+    return h
+
+
+def _read_file(path: str) -> bytes:
+    try:
+        with open(path, "rb") as fh:
+            return fh.read()
+    except OSError as e:
+        raise trigeo.FileError(f"{path}: cannot read: {e.strerror}", path, 0, 0, f"cannot read: {e.strerror}") from None
+
+
+def _bytes_hash(data: bytes) -> str:
+    return hashlib.blake2b(data, digest_size=20, person=b"trigeo-file").hexdigest()
+
+
+class _Changed(trigeo.FileError):
+    """A worker found the file of a Mesh changed since it was loaded (the client then sends the
+    Mesh's own arrays)."""
+
+
+def _cached(key: tuple) -> Optional[trigeo.Mesh]:
     with _CACHE_LOCK:
         m = _CACHE.get(key)
         if m is not None:
             _CACHE.move_to_end(key)
-            return m
-    m = trigeo.load(source[1]) if source[0] == "path" else trigeo.Mesh(arrays[0], arrays[1])
+        return m
+
+
+def _remember(keys: tuple, m: trigeo.Mesh) -> trigeo.Mesh:
     with _CACHE_LOCK:
-        m = _CACHE.setdefault(key, m)
-        _CACHE.move_to_end(key)
+        for key in keys:
+            _CACHE[key] = _CACHE.get(key, m)
+            _CACHE.move_to_end(key)
         while len(_CACHE) > _CACHE_SIZE:
             _CACHE.popitem(last=False)
+        return _CACHE[keys[0]]
+
+
+def _worker_mesh(source: tuple, arrays: Any = None) -> trigeo.Mesh:
+    """The mesh of a task, loaded or built once per worker process. source: ("mesh", content
+    hash) with the scattered arrays, or ("file", path, hash of its bytes or None, content hash
+    the mesh must have or None)."""
+    if source[0] == "mesh":
+        m = _cached(source)
+        if m is None:
+            m = trigeo.Mesh(arrays[0], arrays[1])
+            if _content_hash(m) != source[1]:  # cannot happen: the arrays are the Mesh's own
+                raise trigeo.InvalidArgumentError("trigeo.dask: the scattered arrays do not match their mesh")
+            m = _remember((source,), m)
+        return m
+    _, path, file_hash, want = source
+    m = _cached(("file", path, file_hash)) if file_hash else None
+    if m is None:
+        data = _read_file(path)
+        got = _bytes_hash(data)
+        if file_hash and got != file_hash:
+            raise trigeo.FileError(f"{path}: the file changed during the call (its bytes differ from when the call "
+                                   "started)", path, 0, 0, "the file changed during the call")
+        m = _cached(("file", path, got))
+        if m is None:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", trigeo.LoadWarning)  # the client's load warned already
+                m = trigeo.load_bytes(data, path)
+            m = _remember((("file", path, got), ("mesh", _content_hash(m))), m)
+    if want and _content_hash(m) != want:
+        raise _Changed(f"{path}: the file's mesh differs from the Mesh given (changed since trigeo.load)", path, 0, 0,
+                       "changed since trigeo.load")
     return m
 
 
 class _Source:
-    """What a task needs to find its mesh: ("path", abspath) or ("arrays", token) with the
-    scattered arrays' future."""
+    """What a task needs to find its mesh: ("file", path, bytes hash, content hash) or ("mesh",
+    content hash) with the scattered arrays' future."""
 
     def __init__(self, client: Any, mesh: Union[str, os.PathLike, trigeo.Mesh]):
+        self.client, self.mesh, self.arrays = client, mesh, None
         if isinstance(mesh, trigeo.Mesh) and mesh.source is None:
-            # scattered once per client and mesh; later calls reuse the workers' copies
-            cached = getattr(mesh, "_dask_arrays", None)
-            if cached is None or cached[0] is not client or cached[2].status != "finished":
-                [future] = client.scatter([(np.array(mesh.vertices), np.array(mesh.faces))], broadcast=True)
-                cached = (client, ("arrays", uuid.uuid4().hex), future)
-                mesh._dask_arrays = cached
-            self.key, self.arrays = cached[1], cached[2]
+            self.scatter()
+        elif isinstance(mesh, trigeo.Mesh):
+            self.key = ("file", mesh.source, None, _content_hash(mesh))
         else:
-            path = mesh.source if isinstance(mesh, trigeo.Mesh) else os.path.abspath(os.fspath(mesh))
-            self.key, self.arrays = ("path", path), None
+            path = os.path.abspath(trigeo._fs_path(mesh, "mesh path"))
+            self.key = ("file", path, _bytes_hash(_read_file(path)), None)
+
+    def scatter(self) -> None:
+        """The Mesh's arrays on every worker, scattered once per client and mesh."""
+        mesh, client = self.mesh, self.client
+        cached = getattr(mesh, "_dask_arrays", None)
+        if cached is None or cached[0] is not client or cached[1].status != "finished":
+            # hash=False: a key of its own; the same arrays scattered again (the same mesh content
+            # as a Mesh released a moment ago) could otherwise meet their old key being forgotten,
+            # and Dask then waits forever
+            [future] = client.scatter([(np.array(mesh.vertices), np.array(mesh.faces))], broadcast=True, hash=False)
+            cached = (client, future)
+            mesh._dask_arrays = cached
+        self.key, self.arrays = ("mesh", _content_hash(mesh)), cached[1]
 
 
 def _run(kind: str, source: tuple, arrays: Any, chunk: int, lo: int, hi: int, args: tuple) -> Any:
@@ -98,6 +177,8 @@ def _run(kind: str, source: tuple, arrays: Any, chunk: int, lo: int, hi: int, ar
             return m.path_lengths(froms=froms, tos=tos, method=method, certify=certify, threads=threads)
         sources, max_distance, threads = args
         return m.distance_matrix(sources, max_distance=max_distance, threads=threads)
+    except _Changed:
+        raise
     except trigeo.Error as e:
         raise type(e)(f"{kind}: chunk {chunk} (items {lo}-{hi - 1}): {e}", e.file, e.line, e.column,
                       e.reason) from None
@@ -107,16 +188,22 @@ def _map(client: Any, kind: str, mesh: Any, n: int, chunk: int, slicer, *extra) 
     if not isinstance(chunk, int) or chunk < 1:
         raise trigeo.InvalidArgumentError(f"chunk must be a positive integer, not {chunk!r}")
     src = _Source(client, mesh)
-    futures = []
-    for c, lo in enumerate(range(0, n, chunk)):
-        hi = min(n, lo + chunk)
-        futures.append(client.submit(_run, kind, src.key, src.arrays, c, lo, hi, slicer(lo, hi) + extra,
-                                     pure=False, key=f"trigeo-{kind}-{uuid.uuid4().hex}-{c}"))
-    try:
-        return client.gather(futures)
-    finally:
-        for f in futures:
-            f.release()
+    for attempt in range(2):
+        futures = []
+        for c, lo in enumerate(range(0, n, chunk)):
+            hi = min(n, lo + chunk)
+            futures.append(client.submit(_run, kind, src.key, src.arrays, c, lo, hi, slicer(lo, hi) + extra,
+                                         pure=False, key=f"trigeo-{kind}-{uuid.uuid4().hex}-{c}"))
+        try:
+            return client.gather(futures)
+        except _Changed:
+            if attempt or src.arrays is not None:
+                raise
+            src.scatter()  # the Mesh's file has changed: its own arrays, to every worker
+        finally:
+            for f in futures:
+                f.release()
+    raise AssertionError("unreachable")
 
 
 def closest(client: Any, mesh: Union[str, os.PathLike, trigeo.Mesh], points: Any, chunk: int = 262144,

@@ -1,4 +1,5 @@
-/* io_internal.h - the contract between the loader (load.c) and the per-format readers.
+/* io_internal.h - the contract between the loader (load.c), the file reading (read_file.c), the
+ * per-format readers and what they share (reader_util.c).
  * Based on: the project's STYLE.md (validate everything from outside; no allocation sized by an
  * untrusted count before it is checked against the data size). */
 #ifndef TG_IO_INTERNAL_H
@@ -33,6 +34,15 @@ tg_status tg__read_stl(const char* data, size_t size, const char* name, const tg
  * allocated with a. */
 tg_status tg__read_file(const char* path, const tg_allocator* a, tg_diag* diag, char** out_data,
                         size_t* out_size);
+
+/* Whether s ends with suffix, ignoring ASCII case. */
+bool tg__ends_with_ci(const char* s, const char* suffix);
+/* Whether data starts with the gzip magic bytes. */
+bool tg__gzip_magic(const char* data, size_t size);
+/* Inflates gzip data held in memory (one member or several concatenated) under the limits of
+ * tg__read_file. *out_data: '\0'-terminated, allocated with a. */
+tg_status tg__inflate_memory(const char* data, size_t size, const char* name, const tg_allocator* a,
+                             tg_diag* diag, char** out_data, size_t* out_size);
 
 /* Format from the name's extension (before .gz), else sniffed from the content. */
 tg_format tg__detect_format(const char* name, const char* data, size_t size);

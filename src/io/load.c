@@ -1,196 +1,11 @@
-/* load.c - tg_mesh_load / tg_mesh_load_memory: read the file (zlib for .gz), pick the reader,
- * hand the soup to tg_mesh. Based on: zlib's gzread interface (reads plain files too). */
+/* load.c - tg_mesh_load / tg_mesh_load_memory: read the file (read_file.c), inflate gzip data
+ * given in memory, pick the reader, hand the soup to tg_mesh.
+ * Based on: the project's STYLE.md (a clear error naming the file, line and reason). */
 #include "io/io_internal.h"
 #include "mesh/mesh_internal.h"
 
 #include <ctype.h>
-#include <errno.h>
-#include <stdio.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <zlib.h>
-
-/* Decompressed inputs larger than this are refused: halfedge ids are 32-bit, so no usable mesh
- * needs more than a few GiB of text, and a gzip bomb must not exhaust memory. */
-#define TG_MAX_INPUT_BYTES ((size_t)8 << 30)
-/* A gzip stream that expands more than this many times (beyond the first 64 MiB) is refused as
- * it is read: mesh files compress 3-12x (the corpus's .gz files: 3.4-11.4x), while runs of zeros,
- * what a gzip bomb is made of, expand about 1000x. So a bomb is refused after ~100 KB of input
- * and ~70 MB of output, not after 8 GiB. */
-#define TG_MAX_GZIP_RATIO 200
-#define TG_GZIP_RATIO_SLACK ((size_t)64 << 20)
-
-static bool ends_with_ci(const char* s, const char* suffix)
-{
-    size_t n = strlen(s), k = strlen(suffix);
-    if (k > n) return false;
-    for (size_t i = 0; i < k; ++i)
-        if (tolower((unsigned char)s[n - k + i]) != tolower((unsigned char)suffix[i])) return false;
-    return true;
-}
-
-void tg__line_col(const char* data, size_t off, uint64_t* line, uint64_t* col)
-{
-    uint64_t l = 1;
-    size_t start = 0;
-    for (size_t i = 0; i < off; ++i) {
-        if (data[i] == '\n' || (data[i] == '\r' && data[i + 1] != '\n')) {
-            l++;
-            start = i + 1;
-        }
-    }
-    *line = l;
-    *col = off - start + 1;
-}
-
-tg_status tg__io_vfail(tg_diag* diag, const char* name, const char* text, size_t off, tg_status status,
-                       const char* fmt, va_list ap)
-{
-    uint64_t line = 0, col = 0;
-    if (text) tg__line_col(text, off, &line, &col);
-    tg__diag_vset(diag, name, line, col, off, fmt, ap);
-    return status;
-}
-
-tg_status tg__io_fail(tg_diag* diag, const char* name, const char* text, size_t off, tg_status status,
-                      const char* fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    tg__io_vfail(diag, name, text, off, status, fmt, ap);
-    va_end(ap);
-    return status;
-}
-
-bool tg__fan_push(const tg_allocator* a, tg__vec* tris, const uint32_t* poly, size_t corners)
-{
-    if (corners < 3) return true;
-    if (!tg__vec_reserve(a, tris, 3 * (corners - 2))) return false;
-    uint32_t* t = (uint32_t*)tris->data + tris->count;
-    for (size_t k = 1; k + 1 < corners; ++k) {
-        *t++ = poly[0];
-        *t++ = poly[k];
-        *t++ = poly[k + 1];
-    }
-    tris->count += 3 * (corners - 2);
-    return true;
-}
-
-static tg_status read_gz(const char* path, const tg_allocator* a, tg_diag* diag, char** out_data,
-                         size_t* out_size)
-{
-    gzFile gz = gzopen(path, "rb");
-    if (!gz) {
-        tg__diag_set(diag, path, 0, 0, 0, "cannot open: %s", strerror(errno));
-        return TG_ERR_IO;
-    }
-    tg__vec buf = {NULL, 0, 0, 1};
-    tg_status st = TG_OK;
-    for (;;) {
-        if (!tg__vec_reserve(a, &buf, (size_t)1 << 20)) {
-            st = TG_ERR_OUT_OF_MEMORY;
-            break;
-        }
-        size_t room = buf.capacity - buf.count - 1;
-        if (room > (16u << 20)) room = 16u << 20; /* small steps: the ratio is checked between them */
-        int n = gzread(gz, (char*)buf.data + buf.count, (unsigned)room);
-        if (n < 0) {
-            int zerr;
-            const char* msg = gzerror(gz, &zerr);
-            tg__diag_set(diag, path, 0, 0, buf.count, "corrupt gzip data: %s", msg ? msg : "unknown error");
-            st = TG_ERR_PARSE;
-            break;
-        }
-        if (n == 0) {
-            int zerr = Z_OK;
-            gzerror(gz, &zerr);
-            if (zerr == Z_BUF_ERROR) { /* the input ended inside a gzip stream */
-                tg__diag_set(diag, path, 0, 0, buf.count,
-                             "truncated gzip data: the file ends inside the compressed stream (after %zu bytes)",
-                             buf.count);
-                st = TG_ERR_PARSE;
-            }
-            break;
-        }
-        buf.count += (size_t)n;
-        z_off_t in = gzoffset(gz);
-        if (in >= 0 && buf.count > TG_GZIP_RATIO_SLACK &&
-            buf.count / TG_MAX_GZIP_RATIO > (size_t)in) {
-            tg__diag_set(diag, path, 0, 0, buf.count,
-                         "gzip data expands more than %dx (%zu bytes from %lld): not a mesh (a gzip bomb?)",
-                         TG_MAX_GZIP_RATIO, buf.count, (long long)in);
-            st = TG_ERR_UNSUPPORTED;
-            break;
-        }
-        if (buf.count > TG_MAX_INPUT_BYTES) {
-            tg__diag_set(diag, path, 0, 0, buf.count, "decompressed data exceeds %zu bytes", TG_MAX_INPUT_BYTES);
-            st = TG_ERR_UNSUPPORTED;
-            break;
-        }
-    }
-    gzclose(gz);
-    if (st != TG_OK) {
-        tg__vec_free(a, &buf);
-        return st;
-    }
-    if (!tg__vec_reserve(a, &buf, 1)) {
-        tg__vec_free(a, &buf);
-        return TG_ERR_OUT_OF_MEMORY;
-    }
-    ((char*)buf.data)[buf.count] = '\0';
-    *out_data = buf.data;
-    *out_size = buf.count;
-    return TG_OK;
-}
-
-tg_status tg__read_file(const char* path, const tg_allocator* a, tg_diag* diag, char** out_data,
-                        size_t* out_size)
-{
-    *out_data = NULL;
-    *out_size = 0;
-    FILE* f = fopen(path, "rb");
-    if (!f) {
-        tg__diag_set(diag, path, 0, 0, 0, "cannot open: %s", strerror(errno));
-        return TG_ERR_IO;
-    }
-    struct stat sb;
-    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
-        fclose(f);
-        tg__diag_set(diag, path, 0, 0, 0, "is a directory, not a mesh file");
-        return TG_ERR_IO;
-    }
-    unsigned char magic[2] = {0, 0};
-    size_t got = fread(magic, 1, 2, f);
-    if (ends_with_ci(path, ".gz") || (got == 2 && magic[0] == 0x1f && magic[1] == 0x8b)) {
-        fclose(f);
-        return read_gz(path, a, diag, out_data, out_size);
-    }
-    long size = -1;
-    if (fseek(f, 0, SEEK_END) == 0) size = ftell(f);
-    if (size < 0 || fseek(f, 0, SEEK_SET) != 0) {
-        fclose(f);
-        tg__diag_set(diag, path, 0, 0, 0, "cannot determine the file size (not a regular file?)");
-        return TG_ERR_IO;
-    }
-    char* data = tg__alloc(a, (size_t)size + 1);
-    if (!data) {
-        fclose(f);
-        tg__diag_set(diag, path, 0, 0, 0, "out of memory reading %ld bytes", size);
-        return TG_ERR_OUT_OF_MEMORY;
-    }
-    size_t n = size ? fread(data, 1, (size_t)size, f) : 0;
-    int err = ferror(f);
-    fclose(f);
-    if (n != (size_t)size || err) {
-        tg__free(a, data);
-        tg__diag_set(diag, path, 0, 0, n, "read error after %zu of %ld bytes", n, size);
-        return TG_ERR_IO;
-    }
-    data[size] = '\0';
-    *out_data = data;
-    *out_size = (size_t)size;
-    return TG_OK;
-}
 
 static bool starts_with_ci(const char* p, const char* end, const char* word)
 {
@@ -199,7 +14,8 @@ static bool starts_with_ci(const char* p, const char* end, const char* word)
     return true;
 }
 
-tg_format tg__detect_format(const char* name, const char* data, size_t size)
+/* The format a name's extension (before .gz) says; TG_FORMAT_AUTO when it says none. */
+static tg_format format_from_name(const char* name)
 {
     if (name && *name) {
         char base[1024];
@@ -207,12 +23,19 @@ tg_format tg__detect_format(const char* name, const char* data, size_t size)
         if (n >= sizeof base) n = sizeof base - 1;
         memcpy(base, name, n);
         base[n] = '\0';
-        if (ends_with_ci(base, ".gz")) base[n - 3] = '\0';
-        if (ends_with_ci(base, ".obj")) return TG_FORMAT_OBJ;
-        if (ends_with_ci(base, ".off")) return TG_FORMAT_OFF;
-        if (ends_with_ci(base, ".ply")) return TG_FORMAT_PLY;
-        if (ends_with_ci(base, ".stl")) return TG_FORMAT_STL;
+        if (tg__ends_with_ci(base, ".gz")) base[n - 3] = '\0';
+        if (tg__ends_with_ci(base, ".obj")) return TG_FORMAT_OBJ;
+        if (tg__ends_with_ci(base, ".off")) return TG_FORMAT_OFF;
+        if (tg__ends_with_ci(base, ".ply")) return TG_FORMAT_PLY;
+        if (tg__ends_with_ci(base, ".stl")) return TG_FORMAT_STL;
     }
+    return TG_FORMAT_AUTO;
+}
+
+tg_format tg__detect_format(const char* name, const char* data, size_t size)
+{
+    tg_format by_name = format_from_name(name);
+    if (by_name != TG_FORMAT_AUTO) return by_name;
     const char* p = data;
     const char* end = data + (size < 256 ? size : 256);
     while (p < end && isspace((unsigned char)*p)) p++;
@@ -258,6 +81,8 @@ static tg_status parse_buffer(const char* data, size_t size, const char* name, t
                           !(size - 3 >= 5 && !strncmp(data + 3, "solid", 5));
         if (!binary_stl) data += 3, size -= 3, format = text;
     }
+    /* OBJ chosen for want of anything recognisable (no extension, no header) */
+    bool detected = format == TG_FORMAT_AUTO && format_from_name(name) == TG_FORMAT_AUTO;
     if (format == TG_FORMAT_AUTO) format = tg__detect_format(name, data, size);
     tg__reader_fn reader = format == TG_FORMAT_OBJ ? tg__read_obj
                          : format == TG_FORMAT_OFF ? tg__read_off
@@ -280,8 +105,12 @@ static tg_status parse_buffer(const char* data, size_t size, const char* name, t
         tg__free(a, soup.tri);
         /* text formats get the line of the end of the data; binary ones only the offset */
         bool text = format == TG_FORMAT_OBJ || format == TG_FORMAT_OFF;
-        return tg__io_fail(diag, name, text ? data : NULL, size, TG_ERR_PARSE, "%s data has no faces",
-                           format_name(format));
+        if (format == TG_FORMAT_OBJ && soup.vertex_count == 0) /* OBJ is also what unrecognised data is read as */
+            return tg__io_fail(diag, name, data, size, TG_ERR_PARSE,
+                               "not a mesh: no 'v' or 'f' statement of OBJ%s",
+                               detected ? ", and no OFF, PLY or STL header either" : "");
+        return tg__io_fail(diag, name, text ? data : NULL, size, TG_ERR_PARSE, "%s data has %zu vertices but no faces",
+                           format_name(format), soup.vertex_count);
     }
     return tg__mesh_create_owned(soup.xyz, soup.vertex_count, soup.tri, soup.face_count, a, name,
                                  diag, out_mesh);
@@ -313,12 +142,18 @@ tg_status tg_mesh_load_memory(const void* data, size_t size, const char* name, t
     if (!name) name = "";
     tg__diag_clear(diag, name);
     const tg_allocator* a = options ? options->allocator : NULL;
-    /* copy to guarantee the '\0' terminator every reader relies on */
-    char* buf = tg__alloc(a, size + 1);
-    if (!buf) return TG_ERR_OUT_OF_MEMORY;
-    if (size) memcpy(buf, data, size);
-    buf[size] = '\0';
-    tg_status st = parse_buffer(buf, size, name, format, a, diag, out_mesh);
+    char* buf = NULL;
+    tg_status st = TG_OK;
+    if (tg__gzip_magic(data, size)) { /* gzip data (a .gz file piped in): inflated first */
+        st = tg__inflate_memory(data, size, name, a, diag, &buf, &size);
+        if (st != TG_OK) return st;
+    } else { /* copy to guarantee the '\0' terminator every reader relies on */
+        buf = tg__alloc(a, size + 1);
+        if (!buf) return TG_ERR_OUT_OF_MEMORY;
+        if (size) memcpy(buf, data, size);
+        buf[size] = '\0';
+    }
+    st = parse_buffer(buf, size, name, format, a, diag, out_mesh);
     tg__free(a, buf);
     return st;
 }

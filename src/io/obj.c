@@ -120,12 +120,16 @@ tg_status tg__read_obj(const char* data, size_t size, const char* name, const tg
     tg_status st = TG_OK;
     while (c.p < c.end && st == TG_OK) {
         skip_blanks(&c);
-        if (c.p + 1 < c.end && tg__is_blank(c.p[1])) {
-            if (c.p[0] == 'v') {
-                c.p += 2;
+        /* "v" and "f" end at a blank or at the end of the line ("f" alone is an empty face, an
+         * error; "vt", "vn", "fo" are other statements) */
+        if (c.p < c.end && (c.p[0] == 'v' || c.p[0] == 'f')) {
+            const char* after = c.p + 1;
+            bool ends = after >= c.end || tg__is_blank(*after) || *after == '\n' || *after == '\r' || *after == '#';
+            if (ends && c.p[0] == 'v') {
+                c.p = after;
                 st = parse_vertex(&c, name, a, diag, &xyz);
-            } else if (c.p[0] == 'f') {
-                c.p += 2;
+            } else if (ends) {
+                c.p = after;
                 st = parse_face(&c, name, a, diag, xyz.count / 3, &poly, &tris);
             }
         }

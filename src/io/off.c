@@ -140,8 +140,48 @@ static tg_status parse_vertices(off_cursor* c, size_t vertex_count, double* xyz)
     return TG_OK;
 }
 
+/* Whether the line at p holds exactly three numbers that cannot start a face (one is not an
+ * integer, or the first, a corner count, is below 3): a vertex line where a face was expected. */
+static bool vertex_like(const off_cursor* c, const char* p)
+{
+    int n = 0;
+    bool face_like = true;
+    while (p < c->end && !tg__is_eol(*p) && *p != '#') {
+        while (p < c->end && tg__is_blank(*p)) p++;
+        if (p >= c->end || tg__is_eol(*p) || *p == '#') break;
+        double x;
+        const char* q = tg__parse_double(p, &x);
+        if (!q || q > c->end || !token_ends(c, q)) return false;
+        if (x != floor(x) || (n == 0 && x < 3)) face_like = false;
+        n++, p = q;
+    }
+    return n == 3 && !face_like;
+}
+
+static tg_status parse_face_records(off_cursor* c, const tg_allocator* a, size_t vertex_count, size_t face_count,
+                                    tg__vec* poly, tg__vec* tris);
+
+/* The faces; a first face that fails to parse and looks like a vertex line is reported as what
+ * it most likely is: a vertex the header's count left out. */
 static tg_status parse_faces(off_cursor* c, const tg_allocator* a, size_t vertex_count, size_t face_count,
                              tg__vec* poly, tg__vec* tris)
+{
+    skip_space(c);
+    const char* first = c->p;
+    tg_status st = parse_face_records(c, a, vertex_count, face_count, poly, tris);
+    if (st != TG_OK && st != TG_ERR_OUT_OF_MEMORY && tris->count == 0 && first < c->end && vertex_like(c, first)) {
+        const char* eol = first;
+        while (eol < c->end && !tg__is_eol(*eol)) eol++;
+        return fail_at(c, first, TG_ERR_PARSE,
+                       "face 0 ('%.*s') is a vertex line: the data holds more vertices than the %zu the header "
+                       "declares (a wrong vertex count)",
+                       (int)(eol - first < 40 ? eol - first : 40), first, vertex_count);
+    }
+    return st;
+}
+
+static tg_status parse_face_records(off_cursor* c, const tg_allocator* a, size_t vertex_count, size_t face_count,
+                                    tg__vec* poly, tg__vec* tris)
 {
     for (size_t f = 0; f < face_count; ++f) {
         skip_space(c);
@@ -179,6 +219,28 @@ static tg_status parse_faces(off_cursor* c, const tg_allocator* a, size_t vertex
     return TG_OK;
 }
 
+/* After the declared faces only blanks and comments may follow: more records mean the header's
+ * face count is wrong, and reading only the declared ones would drop data silently. */
+static tg_status check_end(off_cursor* c, size_t face_count)
+{
+    skip_space(c);
+    if (c->p >= c->end) return TG_OK;
+    const char* first = c->p;
+    size_t records = 0;
+    while (c->p < c->end) { /* one record a line, as the faces are written */
+        records++;
+        skip_line(c);
+        skip_space(c);
+    }
+    const char* eol = first;
+    while (eol < c->end && !tg__is_eol(*eol)) eol++;
+    return fail_at(c, first, TG_ERR_PARSE,
+                   "the header declares %zu face%s but %zu more record line%s follow%s the last of them ('%.*s'): a "
+                   "wrong face count",
+                   face_count, face_count == 1 ? "" : "s", records, records == 1 ? "" : "s", records == 1 ? "s" : "",
+                   (int)(eol - first < 40 ? eol - first : 40), first);
+}
+
 tg_status tg__read_off(const char* data, size_t size, const char* name, const tg_allocator* a,
                        tg_diag* diag, tg__soup* out)
 {
@@ -207,6 +269,7 @@ tg_status tg__read_off(const char* data, size_t size, const char* name, const tg
         st = TG_ERR_OUT_OF_MEMORY;
     if (st == TG_OK) st = parse_vertices(&c, (size_t)nv, xyz.data);
     if (st == TG_OK) st = parse_faces(&c, a, (size_t)nv, (size_t)nf, &poly, &tris);
+    if (st == TG_OK) st = check_end(&c, (size_t)nf);
     tg__vec_free(a, &poly);
     if (st != TG_OK) {
         if (st == TG_ERR_OUT_OF_MEMORY) fail_at(&c, c.p, st, "out of memory");

@@ -11,6 +11,7 @@
 #include "io/numparse.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 /* ---- header model ---- */
@@ -582,6 +583,68 @@ static tg_status ascii_record(ply_file* f, const ply_element* e, uint64_t rec, s
     return TG_OK;
 }
 
+/* ---- ascii diagnosis: records that do not fill their lines ---- */
+
+/* Values are read as a stream of tokens, so records may wrap across lines. When reading fails
+ * on a file that has one line per record (as most writers, and Turk's ply library, which reads a
+ * line per record, make them), the first line whose value count is not what its record takes is
+ * the real cause (an undeclared property, a wrong list length), not the end of data the stream
+ * reader met far later. Returns false when the file is not laid out that way or every line fits. */
+static bool ascii_line_mismatch(ply_file* f)
+{
+    const char* d = f->data;
+    size_t n = f->size, lines = 0, records = 0;
+    for (size_t i = 0; i < f->elems.count; ++i) records += (size_t)elem_at(f, i)->count;
+    for (size_t p = f->body; p < n;) { /* non-blank lines of the body */
+        size_t e = p;
+        bool blank = true;
+        while (e < n && !tg__is_eol(d[e])) blank &= tg__is_space(d[e]), e++;
+        lines += !blank;
+        p = e + 1;
+    }
+    if (lines != records) return false;
+    size_t p = f->body;
+    for (size_t i = 0; i < f->elems.count; ++i) {
+        const ply_element* e = elem_at(f, i);
+        for (uint64_t rec = 0; rec < e->count; ++rec) {
+            while (p < n && tg__is_space(d[p])) p++; /* to the next non-blank line */
+            size_t line_start = p, end = p;
+            while (end < n && !tg__is_eol(d[end])) end++;
+            size_t tokens = 0, need = 0, k = 0;
+            int64_t items = -1;
+            for (size_t q = line_start; q < end;) { /* count the values; the record's need as they come */
+                while (q < end && tg__is_space(d[q])) q++;
+                if (q >= end) break;
+                tokens++;
+                if (k < e->prop_count && items < 0) {
+                    const ply_prop* pr = prop_at(f, e->first_prop + k);
+                    if (pr->count_type) {
+                        if (!tg__parse_int(d + q, &items) || items < 0) return false;
+                        need += 1 + (size_t)items;
+                        if (items == 0) items = -1, k++;
+                    } else {
+                        need++, k++;
+                    }
+                } else if (items > 0 && --items == 0) {
+                    items = -1, k++;
+                }
+                while (q < end && !tg__is_space(d[q])) q++;
+            }
+            for (; k < e->prop_count && items < 0; ++k) need++; /* properties the line lacks */
+            if (tokens != need) {
+                body_fail(f, line_start, TG_ERR_PARSE,
+                          "%.*s %llu has %zu values on its line, its %zu propert%s take%s %zu: %s", E_ARGS(e),
+                          (unsigned long long)rec, tokens, e->prop_count, e->prop_count == 1 ? "y" : "ies",
+                          e->prop_count == 1 ? "s" : "", need,
+                          tokens > need ? "a value the header does not declare" : "values missing");
+                return true;
+            }
+            p = end;
+        }
+    }
+    return false;
+}
+
 /* ---- elements ---- */
 
 static tg_status read_records(ply_file* f, const ply_element* e, size_t* pos, const ply_pick* pick, tg__vec* tris)
@@ -610,13 +673,56 @@ static tg_status read_records(ply_file* f, const ply_element* e, size_t* pos, co
     return TG_OK;
 }
 
+/* "vertex 4, face 2" (the declared counts, for messages). */
+static void declared_counts(const ply_file* f, char* buf, size_t cap)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; i < f->elems.count && used + 1 < cap; ++i) {
+        const ply_element* e = elem_at(f, i);
+        int w = snprintf(buf + used, cap - used, "%s%.*s %llu", i ? ", " : "", E_ARGS(e), (unsigned long long)e->count);
+        if (w < 0) break;
+        used += (size_t)w;
+    }
+}
+
+/* After the last element only line ends and blanks may follow (ascii), or nothing (binary):
+ * more data means a count that is too small, and reading only the declared records would drop
+ * data silently. Binary files padded with line ends, blanks or NUL bytes are read with a
+ * warning (diag set, TG_OK). */
+static tg_status check_end(ply_file* f, size_t pos)
+{
+    char counts[160];
+    if (pos >= f->size) return TG_OK;
+    size_t q = pos;
+    if (f->encoding == PLY_ASCII) {
+        q = skip_space(f->data, pos, f->size);
+        if (q >= f->size) return TG_OK;
+        size_t len = 0;
+        while (q + len < f->size && !tg__is_space(f->data[q + len]) && len < 40) len++;
+        declared_counts(f, counts, sizeof counts);
+        return body_fail(f, q, TG_ERR_PARSE,
+                         "data continues after the last declared record ('%.*s'; the header declares %s): a wrong "
+                         "element count", (int)len, f->data + q, counts);
+    }
+    while (q < f->size && (f->data[q] == '\0' || tg__is_space(f->data[q]))) q++;
+    declared_counts(f, counts, sizeof counts);
+    if (q < f->size)
+        return body_fail(f, pos, TG_ERR_PARSE,
+                         "%zu bytes follow the last declared record (the header declares %s): a wrong element count",
+                         f->size - pos, counts);
+    body_fail(f, pos, TG_OK, "warning: %zu padding bytes after the last declared record ignored", f->size - pos);
+    return TG_OK;
+}
+
 /* Walks the body element by element: vertex columns of element vidx go to vals, the face list
  * of element fidx (PLY_NO_PROP: none) to tris; others are skipped. Stops after the last
- * element it needs. */
+ * element it needs, or with to_end walks every element and checks that nothing follows. */
 static tg_status read_body(ply_file* f, size_t vidx, const ply_pick* vpick, size_t fidx, const ply_pick* fpick,
-                           tg__vec* tris)
+                           tg__vec* tris, bool to_end)
 {
     size_t pos = f->body, last = fidx != PLY_NO_PROP && fidx > vidx ? fidx : vidx;
+    if (to_end) last = f->elems.count - 1;
     static const ply_pick skip = {{0, 0, 0}, 0, false, NULL, PLY_NO_PROP, 0, NULL};
     for (size_t i = 0; i <= last; ++i) {
         const ply_element* e = elem_at(f, i);
@@ -628,7 +734,7 @@ static tg_status read_body(ply_file* f, size_t vidx, const ply_pick* vpick, size
             return st;
         }
     }
-    return TG_OK;
+    return to_end ? check_end(f, pos) : TG_OK;
 }
 
 static void ply_free(ply_file* f)
@@ -708,7 +814,9 @@ tg_status tg__read_ply(const char* data, size_t size, const char* name, const tg
             if (!tg__vec_reserve(a, &tris, 3 * (size_t)cap + 3))
                 st = header_fail(&f, 0, TG_ERR_OUT_OF_MEMORY, "out of memory for %llu faces", (unsigned long long)cap);
         }
-        if (st == TG_OK) st = read_body(&f, vidx, &vpick, fidx, &fpick, &tris);
+        if (st == TG_OK) st = read_body(&f, vidx, &vpick, fidx, &fpick, &tris, true);
+        if ((st == TG_ERR_PARSE || st == TG_ERR_INVALID_MESH) && f.encoding == PLY_ASCII && ascii_line_mismatch(&f))
+            st = TG_ERR_PARSE;
         if (st == TG_OK) {
             out->xyz = xyz;
             out->vertex_count = nv;
@@ -763,7 +871,7 @@ tg_status tg_ply_read_vertex_scalar(const char* path, const char* name, double* 
         /* read into scratch so that the caller's array is untouched on failure */
         vals = tg__alloc_array(NULL, nv + 1, sizeof(double));
         vpick.vals = vals;
-        st = vals ? read_body(&f, vidx, &vpick, PLY_NO_PROP, NULL, NULL) : TG_ERR_OUT_OF_MEMORY;
+        st = vals ? read_body(&f, vidx, &vpick, PLY_NO_PROP, NULL, NULL, false) : TG_ERR_OUT_OF_MEMORY;
         if (st == TG_OK) memcpy(out_values, vals, nv * sizeof(double));
     }
     if (st == TG_OK || st == TG_ERR_CAPACITY) *out_count = nv;

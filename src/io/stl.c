@@ -118,6 +118,16 @@ static tg_status read_binary(const char* data, size_t size, const char* name, co
         return tg__io_fail(diag, name, NULL, 80, TG_ERR_PARSE,
                            "binary STL declares %llu facets (%llu bytes) but the data has %zu bytes (truncated file?)",
                            (unsigned long long)n, (unsigned long long)(84 + 50 * n), size);
+    /* The count must account for the data: whole facet records after the declared ones mean a
+     * wrong count, and reading only the declared ones would drop faces silently. Fewer bytes
+     * than a record are padding some exporters add (the corpus's reference reader,
+     * meshstats.py, skips them too): a warning, not an error. */
+    uint64_t records = (size - 84) / 50, extra = size - 84 - 50 * n;
+    if (records > n)
+        return tg__io_fail(diag, name, NULL, 80, TG_ERR_PARSE,
+                           "binary STL declares %llu facet%s but the data holds %llu facet records (%zu bytes): "
+                           "a wrong facet count",
+                           (unsigned long long)n, n == 1 ? "" : "s", (unsigned long long)records, size);
     double* xyz = tg__alloc_array(a, 9 * (size_t)n + 1, sizeof(double));
     if (!xyz) return tg__io_fail(diag, name, NULL, 80, TG_ERR_OUT_OF_MEMORY, "out of memory for %llu facets", (unsigned long long)n);
     for (size_t f = 0; f < (size_t)n; ++f) {
@@ -134,7 +144,12 @@ static tg_status read_binary(const char* data, size_t size, const char* name, co
             xyz[9 * f + (size_t)k] = v;
         }
     }
-    return finish(a, name, diag, xyz, 3 * (size_t)n, out);
+    tg_status st = finish(a, name, diag, xyz, 3 * (size_t)n, out);
+    if (st == TG_OK && extra)
+        tg__io_fail(diag, name, NULL, 84 + 50 * (size_t)n, TG_OK,
+                    "warning: %llu bytes after the last of the %llu declared facets ignored (less than a facet record)",
+                    (unsigned long long)extra, (unsigned long long)n);
+    return st;
 }
 
 /* ---- ascii ---- */

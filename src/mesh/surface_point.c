@@ -19,7 +19,19 @@ tg_status tg_surface_point_validate(const tg_mesh* m, const tg_surface_point* p,
             return TG_ERR_INVALID_ARGUMENT;
         }
         if (m->vhe[p->index] == TG_NONE) {
-            tg__diag_set(diag, "", 0, 0, 0, "vertex %u is used by no face", p->index);
+            /* error path only: say whether a face names it at all (a face with a repeated
+             * vertex index, "f 1 1 1", is no part of the surface) */
+            size_t f = 0;
+            while (f < m->face_count && m->tri[3 * f] != p->index && m->tri[3 * f + 1] != p->index &&
+                   m->tri[3 * f + 2] != p->index)
+                f++;
+            if (f < m->face_count)
+                tg__diag_set(diag, "", 0, 0, 0,
+                             "vertex %u is used only by faces with a repeated vertex index (face %zu: %u %u %u), "
+                             "which are not part of the surface",
+                             p->index, f, m->tri[3 * f], m->tri[3 * f + 1], m->tri[3 * f + 2]);
+            else
+                tg__diag_set(diag, "", 0, 0, 0, "vertex %u is used by no face", p->index);
             return TG_ERR_INVALID_ARGUMENT;
         }
         return TG_OK;

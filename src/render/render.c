@@ -5,6 +5,7 @@
  *   interpolation with area-weighted vertex normals; box-filter supersampling; libpng's
  *   simplified write API (png_image_write_to_memory, libpng 1.6), which reports errors by return
  *   value, so this file never sees libpng's longjmp. */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include "mesh/mesh_internal.h"
 #include "core/vec3.h"
 
@@ -12,8 +13,18 @@
 #include <png.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 
 #define MAX_SIDE 8192
+/* Bytes per supersample (float depth + float rgb) and per pixel (the 8-bit image and the PNG
+ * buffer, which a few rows of filter bytes and zlib's stored-block overhead can make larger than
+ * the image): what TG_RENDER_MAX_BYTES bounds. */
+#define SAMPLE_BYTES 16u
+#define PIXEL_BYTES 7u
+/* The clock is read every this many faces or rows, and the progress callback asked when
+ * PROGRESS_PERIOD_S has passed (a face can cover millions of samples in a large picture). */
+#define CHECK_EVERY 16u
+#define PROGRESS_PERIOD_S 0.005
 
 typedef struct camera {
     tg_vec3 right, up, fwd; /* orthonormal; fwd points into the screen */
@@ -212,12 +223,50 @@ static void raster_segment(tg_vec3 a, tg_vec3 b, double radius, const camera* ca
         }
 }
 
-static tg_status write_png(const tg_allocator* a, const canvas* cv, int ss, const char* path, tg_diag* diag)
+static double now_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* The caller's progress callback, asked every PROGRESS_PERIOD_S; true to stop. */
+typedef struct progress_ctx {
+    const tg_render_options* o;
+    double total, done, next_s;
+    unsigned since;
+} progress_ctx;
+
+static bool stop_requested(progress_ctx* pc, double steps)
+{
+    pc->done += steps;
+    if (!pc->o->progress || ++pc->since < CHECK_EVERY) return false;
+    pc->since = 0;
+    double t = now_s();
+    if (t < pc->next_s) return false;
+    pc->next_s = t + PROGRESS_PERIOD_S;
+    double fraction = pc->total > 0.0 && pc->done < pc->total ? pc->done / pc->total : 1.0;
+    return pc->o->progress(pc->o->progress_user, fraction) != 0;
+}
+
+/* The memory of a w x h picture at ss x ss samples per pixel (SAMPLE_BYTES, PIXEL_BYTES). */
+static double render_bytes(int w, int h, int ss)
+{
+    double px = (double)w * (double)h;
+    return px * (double)ss * (double)ss * SAMPLE_BYTES + px * PIXEL_BYTES;
+}
+
+static tg_status write_png(const tg_allocator* a, const canvas* cv, int ss, const char* path, progress_ctx* pc,
+                           tg_diag* diag)
 {
     int w = cv->w / ss, h = cv->h / ss;
     unsigned char* img = tg__alloc_array(a, (size_t)w * (size_t)h, 3);
     if (!img) return TG_ERR_OUT_OF_MEMORY;
-    for (int y = 0; y < h; ++y)
+    for (int y = 0; y < h; ++y) {
+        if (stop_requested(pc, 16.0)) {
+            tg__free(a, img);
+            return TG_ERR_CANCELLED;
+        }
         for (int x = 0; x < w; ++x)
             for (int c = 0; c < 3; ++c) {
                 float acc = 0.0f;
@@ -227,17 +276,34 @@ static tg_status write_png(const tg_allocator* a, const canvas* cv, int ss, cons
                 int v = (int)lrintf(255.0f * acc / (float)(ss * ss));
                 img[3 * ((size_t)y * (size_t)w + (size_t)x) + c] = (unsigned char)(v < 0 ? 0 : v > 255 ? 255 : v);
             }
+    }
     png_image pi;
     memset(&pi, 0, sizeof pi);
     pi.version = PNG_IMAGE_VERSION;
     pi.width = (png_uint_32)w;
     pi.height = (png_uint_32)h;
     pi.format = PNG_FORMAT_RGB;
-    png_alloc_size_t size = 0;
+    /* one compression pass into a buffer the PNG of this image all but certainly fits (the raw
+     * image, a filter byte per row, zlib's 5 bytes per stored 16 KiB block, headers); libpng
+     * says the size it needs when it does not fit, and then a second pass is made */
+    png_alloc_size_t size = (png_alloc_size_t)w * (png_alloc_size_t)h * 3u + (png_alloc_size_t)h +
+                            ((png_alloc_size_t)w * (png_alloc_size_t)h * 3u >> 12) + 4096u;
     tg_status st = TG_OK;
-    void* mem = NULL;
-    if (!png_image_write_to_memory(&pi, NULL, &size, 0, img, 0, NULL) ||
-        !(mem = tg__alloc(a, size)) || !png_image_write_to_memory(&pi, mem, &size, 0, img, 0, NULL)) {
+    void* mem = tg__alloc(a, size);
+    png_alloc_size_t capacity = size;
+    bool ok = mem && png_image_write_to_memory(&pi, mem, &size, 0, img, 0, NULL);
+    if (mem && !ok && size > capacity) { /* too small: libpng said how large */
+        tg__free(a, mem);
+        png_image_free(&pi);
+        memset(&pi, 0, sizeof pi);
+        pi.version = PNG_IMAGE_VERSION;
+        pi.width = (png_uint_32)w;
+        pi.height = (png_uint_32)h;
+        pi.format = PNG_FORMAT_RGB;
+        mem = tg__alloc(a, size);
+        ok = mem && png_image_write_to_memory(&pi, mem, &size, 0, img, 0, NULL);
+    }
+    if (!ok) {
         tg__diag_set(diag, path, 0, 0, 0, "PNG encoding failed: %s", pi.message[0] ? pi.message : "out of memory");
         st = mem ? TG_ERR_IO : TG_ERR_OUT_OF_MEMORY;
     }
@@ -275,11 +341,24 @@ tg_status tg_render_png(const tg_mesh* m, const tg_render_options* options, cons
     if (!m || !png_path || (o.polyline_count && !o.polyline)) return TG_ERR_INVALID_ARGUMENT;
     if (!o.width) o.width = 960;
     if (!o.height) o.height = 720;
-    if (!o.supersample) o.supersample = 3;
-    if (o.width < 1 || o.height < 1 || o.width > MAX_SIDE || o.height > MAX_SIDE || o.supersample < 1 ||
+    if (o.width < 1 || o.height < 1 || o.width > MAX_SIDE || o.height > MAX_SIDE || o.supersample < 0 ||
         o.supersample > 8) {
         tg__diag_set(diag, png_path, 0, 0, 0, "image size %d x %d (supersample %d) out of range", o.width,
                      o.height, o.supersample);
+        return TG_ERR_INVALID_ARGUMENT;
+    }
+    if (!o.supersample) { /* the default 3 x 3, lowered as far as the memory budget needs */
+        o.supersample = 3;
+        while (o.supersample > 1 && render_bytes(o.width, o.height, o.supersample) > (double)TG_RENDER_MAX_BYTES)
+            o.supersample--;
+    }
+    if (render_bytes(o.width, o.height, o.supersample) > (double)TG_RENDER_MAX_BYTES) {
+        tg__diag_set(diag, png_path, 0, 0, 0,
+                     "a %d x %d image with %d x %d samples per pixel needs %.2f GiB, over the budget of %.0f GiB "
+                     "(TG_RENDER_MAX_BYTES): choose a smaller size or fewer samples",
+                     o.width, o.height, o.supersample, o.supersample,
+                     render_bytes(o.width, o.height, o.supersample) / 1073741824.0,
+                     (double)TG_RENDER_MAX_BYTES / 1073741824.0);
         return TG_ERR_INVALID_ARGUMENT;
     }
     for (size_t i = 0; i < 3 * o.polyline_count; ++i)
@@ -298,12 +377,20 @@ tg_status tg_render_png(const tg_mesh* m, const tg_render_options* options, cons
         st = TG_ERR_OUT_OF_MEMORY;
         goto done;
     }
-    for (size_t i = 0; i < px; ++i) {
-        cv.depth[i] = INFINITY;
+    /* progress: the canvas rows, the faces, the picture rows (a row about a face's cost) */
+    progress_ctx pc = {&o, (double)cv.h + (double)m->face_count + 16.0 * o.height, 0.0, now_s() + PROGRESS_PERIOD_S, 0};
+    for (int y = 0; y < cv.h; ++y) { /* first touch of the canvas: seconds for the largest */
         /* a soft vertical gradient keeps silhouettes readable on screen and paper */
-        float g = 0.97f - 0.10f * (float)(i / (size_t)cv.w) / (float)cv.h;
-        cv.rgb[3 * i] = cv.rgb[3 * i + 1] = g;
-        cv.rgb[3 * i + 2] = g + 0.01f;
+        float g = 0.97f - 0.10f * (float)y / (float)cv.h;
+        for (size_t i = (size_t)y * (size_t)cv.w, end = i + (size_t)cv.w; i < end; ++i) {
+            cv.depth[i] = INFINITY;
+            cv.rgb[3 * i] = cv.rgb[3 * i + 1] = g;
+            cv.rgb[3 * i + 2] = g + 0.01f;
+        }
+        if (stop_requested(&pc, 1.0)) {
+            st = TG_ERR_CANCELLED;
+            goto done;
+        }
     }
     camera cam;
     camera_basis(&o, &cam);
@@ -312,7 +399,13 @@ tg_status tg_render_png(const tg_mesh* m, const tg_render_options* options, cons
     vertex_normals(m, vn);
     shade_ctx sc = {&o, 0, 0, o.isolines == 0 ? 16 : o.isolines};
     if (o.vertex_scalar) scalar_range(m, o.vertex_scalar, &sc.smin, &sc.smax);
-    for (size_t f = 0; f < m->face_count; ++f) raster_face(m, f, sp, vn, &sc, &cam, &cv);
+    for (size_t f = 0; f < m->face_count; ++f) {
+        raster_face(m, f, sp, vn, &sc, &cam, &cv);
+        if (stop_requested(&pc, 1.0)) {
+            st = TG_ERR_CANCELLED;
+            goto done;
+        }
+    }
     double radius = 1.6 * o.supersample * (o.width > 1200 ? o.width / 1200.0 : 1.0);
     for (size_t i = 0; i + 1 < o.polyline_count; ++i)
         raster_segment(project(&cam, tg_v3_load(o.polyline + 3 * i)), project(&cam, tg_v3_load(o.polyline + 3 * i + 3)),
@@ -323,7 +416,7 @@ tg_status tg_render_png(const tg_mesh* m, const tg_render_options* options, cons
         raster_segment(e0, e0, 2.6 * radius, &cam, &cv);
         raster_segment(e1, e1, 2.6 * radius, &cam, &cv);
     }
-    st = write_png(&m->allocator, &cv, o.supersample, png_path, diag);
+    st = write_png(&m->allocator, &cv, o.supersample, png_path, &pc, diag);
 done:
     if (st == TG_ERR_OUT_OF_MEMORY) tg__diag_set(diag, png_path, 0, 0, 0, "out of memory for a %d x %d image", o.width, o.height);
     tg__free(&m->allocator, cv.depth);

@@ -6,7 +6,12 @@
  * for a face point, the sum of the two face normals (each weighted by pi) for an edge point, and
  * the sum of incident face normals weighted by their incident angles for a vertex); Thurrner and
  * Wuthrich 1998 (angle-weighted vertex normals); Jacobson et al. 2013 (winding number, see
- * bvh_winding.c). */
+ * bvh_winding.c).
+ * Scale: a sign must not depend on the unit of the coordinates, but a face normal is a product
+ * of two lengths whose square overflows beyond ~1e77 (and underflows below ~1e-77), which made
+ * every normal zero and the sign fall to a NaN winding number (issue 20: spot scaled by 1e110).
+ * Every vector below is scaled by a power of two before it is multiplied (exact, and directions,
+ * angles and signs do not change), so the sign is the same at any scale within +-1e150. */
 #include "core/vec3.h"
 #include "spatial/bvh_internal.h"
 
@@ -15,13 +20,31 @@
 
 static const double* corner(const tg_mesh* m, uint32_t face, int k) { return m->xyz + 3 * (size_t)m->tri[3 * (size_t)face + k]; }
 
-/* Unit normal of a face (zero for a degenerate face). */
+/* v times the power of two that puts its largest |component| into [1/2, 1) (zero stays zero). */
+static void unit_scaled(double* v)
+{
+    double m = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+    int k = 0;
+    if (m > 0.0) frexp(m, &k);
+    double s = ldexp(1.0, -k);
+    for (int i = 0; i < 3; ++i) v[i] *= s;
+}
+
+/* The difference b - a of two points, scaled by a power of two (its direction). */
+static void direction(const double* b, const double* a, double* out)
+{
+    tg_a3_sub(b, a, out);
+    unit_scaled(out);
+}
+
+/* Unit normal of a face (zero for a degenerate face: a cross product exactly zero). */
 static void face_unit_normal(const tg_mesh* m, uint32_t f, double* n)
 {
     double e1[3], e2[3];
-    tg_a3_sub(corner(m, f, 1), corner(m, f, 0), e1);
-    tg_a3_sub(corner(m, f, 2), corner(m, f, 0), e2);
+    direction(corner(m, f, 1), corner(m, f, 0), e1);
+    direction(corner(m, f, 2), corner(m, f, 0), e2);
     tg_a3_cross(e1, e2, n);
+    unit_scaled(n);
     double l = sqrt(tg_a3_dot(n, n));
     if (l > 0.0)
         for (int k = 0; k < 3; ++k) n[k] /= l;
@@ -39,8 +62,8 @@ static void vertex_pseudonormal(const tg_mesh* m, uint32_t v, double* n)
         uint32_t f = tg_halfedge_face(h), hp = tg_halfedge_prev(h);
         const double* x = m->xyz + 3 * (size_t)v;
         double e1[3], e2[3], c[3], fn[3];
-        tg_a3_sub(m->xyz + 3 * (size_t)m->tri[tg_halfedge_next(h)], x, e1); /* to(h) - v */
-        tg_a3_sub(m->xyz + 3 * (size_t)m->tri[hp], x, e2);                  /* from(prev(h)) - v */
+        direction(m->xyz + 3 * (size_t)m->tri[tg_halfedge_next(h)], x, e1); /* to(h) - v */
+        direction(m->xyz + 3 * (size_t)m->tri[hp], x, e2);                  /* from(prev(h)) - v */
         tg_a3_cross(e1, e2, c);
         double angle = atan2(sqrt(tg_a3_dot(c, c)), tg_a3_dot(e1, e2));
         face_unit_normal(m, f, fn);
@@ -77,7 +100,7 @@ static int pseudonormal_sign(const tg_mesh* m, const double* p, const tg_closest
         face_unit_normal(m, f, n);
         break;
     }
-    tg_a3_sub(p, hit->point, d);
+    direction(p, hit->point, d);
     double s = tg_a3_dot(d, n);
     return s > 0.0 ? 1 : s < 0.0 ? -1 : 0;
 }

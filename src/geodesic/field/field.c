@@ -32,16 +32,21 @@ static double limit_of(const tg_geodesic* g, const tg_field_options* opt)
     return opt && opt->limit == TG_FIELD_MAX_DISTANCE ? opt->max_distance * g->scale : INFINITY;
 }
 
+void tg__field_progress_of(const tg__field_run* run, tg_field_progress* out)
+{
+    out->front_distance = run->front * run->g->unscale;
+    out->settled_fraction = run->referenced ? (double)run->settled / (double)run->referenced : 1.0;
+    if (out->settled_fraction > 1.0) out->settled_fraction = 1.0; /* components joined by misoriented edges */
+    out->rows_done = 0;
+    out->row_count = 1;
+}
+
 /* The progress hook of a single field: the caller's callback with this run's figures. */
 static int report_single(void* user, const tg__field_run* run)
 {
     const tg_field_options* opt = user;
     tg_field_progress p;
-    p.front_distance = run->front * run->g->unscale;
-    p.settled_fraction = run->referenced ? (double)run->settled / (double)run->referenced : 1.0;
-    if (p.settled_fraction > 1.0) p.settled_fraction = 1.0; /* components joined by misoriented edges */
-    p.rows_done = 0;
-    p.row_count = 1;
+    tg__field_progress_of(run, &p);
     return opt->progress(opt->progress_user, &p);
 }
 
@@ -130,12 +135,10 @@ static int report_batch(void* user, const tg__field_run* run)
     batch_lock(b);
     {
         tg_field_progress p;
-        double share = run->referenced ? (double)run->settled / (double)run->referenced : 1.0;
-        if (share > 1.0) share = 1.0;
-        p.front_distance = run->front * run->g->unscale;
+        tg__field_progress_of(run, &p);
         p.rows_done = b->done;
         p.row_count = b->rows;
-        p.settled_fraction = ((double)b->done + share) / (double)b->rows;
+        p.settled_fraction = ((double)b->done + p.settled_fraction) / (double)b->rows;
         if (p.settled_fraction > 1.0) p.settled_fraction = 1.0;
         stop = b->opt->progress(b->opt->progress_user, &p) != 0;
         if (stop) b->stop = 1;

@@ -223,4 +223,10 @@ tg_status tg__field_seed(tg__field_run* run, const tg_surface_point* src);
 /* Runs the wavefront to the end (or past max_dist). TG_ERR_CANCELLED when progress says stop. */
 tg_status tg__field_propagate(tg__field_run* run);
 
+/* ---- the public figures (field.c) ---- */
+
+/* A run's progress as tg_field_progress tells it for a single field: the front in the mesh's
+ * units, the settled share of the referenced vertices (at most 1), one row. */
+void tg__field_progress_of(const tg__field_run* run, tg_field_progress* out);
+
 #endif

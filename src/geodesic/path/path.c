@@ -29,6 +29,7 @@ typedef struct request {
     uint32_t max_iterations;
     double tolerance;
     tg_geodesic_kernel_options kernel;
+    tg__path_progress progress;
 } request;
 
 static tg_status read_options(const tg_path_options* o, request* rq)
@@ -49,34 +50,49 @@ static tg_status read_options(const tg_path_options* o, request* rq)
                                                                                    : DEFAULT_STRAIGHTEN_TOL;
     memset(&rq->kernel, 0, sizeof rq->kernel); /* zero: the kernels' defaults */
     if (o->kernel) rq->kernel = *o->kernel;
+    rq->progress.fn = o->progress;
+    rq->progress.user = o->progress_user;
     return TG_OK;
 }
 
 /* ---- the stages ---- */
 
+/* The exact propagation's progress hook: the query's callback with the run's figures (the settled
+ * share of the component; an A*-bounded run stops well before 1). */
+static int report_propagation(void* user, const tg__field_run* run)
+{
+    const tg__path_progress* progress = user;
+    tg_field_progress p;
+    tg__field_progress_of(run, &p);
+    return progress->fn(progress->user, &p);
+}
+
 /* The exact propagation from `from`, ordered toward `to` and bounded by `limit` (and by the best
- * distance to `to` found so far), recording how every vertex and `to` got its distance. */
-static tg_status exact_propagation(tg_geodesic_workspace* ws, const tg_surface_point* from, const tg_surface_point* to,
-                                   double limit, tg__field_run* out_run)
+ * distance to `to` found so far), recording how every vertex and `to` got its distance;
+ * TG_ERR_CANCELLED when the query's progress callback asks to stop. */
+static tg_status exact_propagation(tg_geodesic_workspace* ws, const request* rq, const tg_surface_point* from,
+                                   const tg_surface_point* to, double limit, tg__field_run* out_run)
 {
     tg_surface_point t = tg__surface_in(ws->geo, to);
     tg__node tn = tg__node_from_surface(&t);
     double toward[3];
     tg_v3_store(tg__node_pos(ws->geo, &tn), toward);
-    tg__field_query q = {from, 1, to, 1, limit, NULL, NULL, NULL, true, toward};
+    tg__field_query q = {from, 1, to, 1, limit, rq->progress.fn ? report_propagation : NULL,
+                         (void*)&rq->progress, NULL, true, toward};
     return tg__field_execute(&ws->field, &q, out_run);
 }
 
 /* The exact distance from `from` to `to` within `limit` (+inf beyond) into *out_distance, and the
  * path traced back into `route` (*out_traced false, and no nodes, when the trace found no way). */
-static tg_status exact_route(tg_geodesic_workspace* ws, const tg_surface_point* from, const tg_surface_point* to,
-                             double limit, tg__route* route, double* out_distance, bool* out_traced)
+static tg_status exact_route(tg_geodesic_workspace* ws, const request* rq, const tg_surface_point* from,
+                             const tg_surface_point* to, double limit, tg__route* route, double* out_distance,
+                             bool* out_traced)
 {
     const tg_geodesic* g = ws->geo;
     route->nodes.count = route->faces.count = 0;
     *out_traced = false;
     tg__field_run run;
-    tg_status st = exact_propagation(ws, from, to, limit, &run);
+    tg_status st = exact_propagation(ws, rq, from, to, limit, &run);
     *out_distance = st == TG_OK ? run.qdist[0] : INFINITY;
     if (st != TG_OK || !(*out_distance < INFINITY)) return st;
     tg_surface_point ss = tg__surface_in(g, from), ts = tg__surface_in(g, to);
@@ -115,10 +131,10 @@ static tg_status shorten(tg_geodesic_workspace* ws, const request* rq, tg__route
     if (route->nodes.count <= 2) return TG_OK;
     if (rq->method == TG_PATH_STRAIGHTEN)
         return tg__straighten(ws->geo, &ws->allocator, &ws->straighten, &ws->sleeve, route, rq->max_iterations,
-                              rq->tolerance, out);
+                              rq->tolerance, &rq->progress, out);
     if (rq->method == TG_PATH_RELAX)
         return tg__relax(ws->geo, &ws->allocator, &ws->relax, route, rq->max_iterations, rq->tolerance,
-                         &rq->kernel, out);
+                         &rq->kernel, &rq->progress, out);
     return TG_OK;
 }
 
@@ -169,12 +185,12 @@ static tg_status fill_exact(const tg_geodesic* g, const tg_allocator* a, tg__rou
 /* TG_PATH_EXACT: the exact propagation toward `to`, unbounded but for the best distance to it
  * found so far, then the trace back. A trace that finds no way back is a bug of the library
  * (TG_ERR_INTERNAL): it would be a window with no chain of faces behind it. */
-static tg_status exact_path(tg_geodesic_workspace* ws, const tg_surface_point* from, const tg_surface_point* to,
-                            tg_path* path)
+static tg_status exact_path(tg_geodesic_workspace* ws, const request* rq, const tg_surface_point* from,
+                            const tg_surface_point* to, tg_path* path)
 {
     double d;
     bool traced;
-    tg_status st = exact_route(ws, from, to, INFINITY, &ws->route, &d, &traced);
+    tg_status st = exact_route(ws, rq, from, to, INFINITY, &ws->route, &d, &traced);
     if (st != TG_OK || !(d < INFINITY)) return st;
     if (!traced || !traced_exact(ws->geo, &ws->route, d)) return TG_ERR_INTERNAL;
     st = fill_exact(ws->geo, &ws->allocator, &ws->route, path);
@@ -186,13 +202,13 @@ static tg_status exact_path(tg_geodesic_workspace* ws, const tg_surface_point* f
 /* The exact check of a shortened path: the exact distance within its length (plus the margin).
  * A converged path within the margin of it is proven globally shortest; a longer one is replaced
  * by the path traced back, when that is the exact path. */
-static tg_status certify(tg_geodesic_workspace* ws, const tg_surface_point* from, const tg_surface_point* to,
-                         tg_path* path)
+static tg_status certify(tg_geodesic_workspace* ws, const request* rq, const tg_surface_point* from,
+                         const tg_surface_point* to, tg_path* path)
 {
     double d;
     bool traced;
     double length = path->length * ws->geo->scale; /* in the solver's frame (exact) */
-    tg_status st = exact_route(ws, from, to, length * (1.0 + PROVEN_REL), &ws->route, &d, &traced);
+    tg_status st = exact_route(ws, rq, from, to, length * (1.0 + PROVEN_REL), &ws->route, &d, &traced);
     if (st != TG_OK) return st;
     bool shortest = length <= d * (1.0 + PROVEN_REL) && path->status != TG_PATH_STALLED;
     if (!shortest && traced && traced_exact(ws->geo, &ws->route, d)) {
@@ -229,7 +245,7 @@ static tg_status shortened_path(tg_geodesic_workspace* ws, const request* rq, co
      * the sweeps concluded (degenerate-by-underflow faces) */
     if (rq->method == TG_PATH_STRAIGHTEN && path->status == TG_PATH_CONVERGED && path->max_angle_defect > STALLED_DEFECT)
         path->status = TG_PATH_STALLED;
-    return rq->certify ? certify(ws, from, to, path) : TG_OK;
+    return rq->certify ? certify(ws, rq, from, to, path) : TG_OK;
 }
 
 tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* from,
@@ -249,7 +265,7 @@ tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, cons
     st = tg__endpoint_make(g, &ws->allocator, from, g->vertex_count, &ws->from_neighbours, &src);
     if (st == TG_OK) st = tg__endpoint_make(g, &ws->allocator, to, g->vertex_count + 1, &ws->to_neighbours, &dst);
     if (st == TG_OK && src.comp == dst.comp && src.comp != TG_NONE) /* else unreachable: the cleared path */
-        st = rq.method == TG_PATH_EXACT ? exact_path(ws, from, to, path) : shortened_path(ws, &rq, &src, &dst, from, to, path);
+        st = rq.method == TG_PATH_EXACT ? exact_path(ws, &rq, from, to, path) : shortened_path(ws, &rq, &src, &dst, from, to, path);
     if (st != TG_OK) tg__path_clear(path);
     tg__workspace_release(own);
     return st;

@@ -151,6 +151,21 @@ typedef struct tg__shorten_result {
     bool capped; /* the iteration cap was reached (or no progress was possible) */
 } tg__shorten_result;
 
+/* The query's progress callback (tg_path_options.progress, progress_user); fn NULL: none. */
+typedef struct tg__path_progress {
+    tg_field_progress_fn fn;
+    void* user;
+} tg__path_progress;
+
+/* After a sweep or pass: true when the query's progress callback asks to stop (the header's
+ * figures for the shortening stages: the sweeps or passes done as rows_done, the rest 0). */
+static inline bool tg__shorten_cancelled(const tg__path_progress* progress, uint32_t iterations)
+{
+    if (!progress->fn) return false;
+    tg_field_progress p = {0.0, 0.0, iterations, 0};
+    return progress->fn(progress->user, &p) != 0;
+}
+
 /* Whether and how a vertex passage is re-routed in the next sweep. */
 typedef struct tg__straighten_decision {
     int side;       /* -1: keep the passage; 0 / 1: re-route through that side's fan */
@@ -171,13 +186,14 @@ typedef struct tg__relax_scratch {
     tg__route pass;      /* the route a pass writes (then swapped with the caller's) */
 } tg__relax_scratch;
 
-/* Both shorten `route` in place. */
+/* Both shorten `route` in place; TG_ERR_CANCELLED when `progress` asks to stop after a sweep or
+ * pass (the route is then partly shortened). */
 tg_status tg__straighten(const tg_geodesic* g, const tg_allocator* a, tg__straighten_scratch* st,
                          tg__sleeve_scratch* ss, tg__route* route, uint32_t max_sweeps, double angle_tol,
-                         tg__shorten_result* out);
+                         const tg__path_progress* progress, tg__shorten_result* out);
 tg_status tg__relax(const tg_geodesic* g, const tg_allocator* a, tg__relax_scratch* rs, tg__route* route,
                     uint32_t max_passes, double rel_tol, const tg_geodesic_kernel_options* kernel,
-                    tg__shorten_result* out);
+                    const tg__path_progress* progress, tg__shorten_result* out);
 
 /* ---- the exact trace (trace.c) ---- */
 

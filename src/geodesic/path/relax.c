@@ -261,7 +261,7 @@ static tg_status relax_pass(const relaxer* rx, tg__route* route, const tg_geodes
 
 tg_status tg__relax(const tg_geodesic* g, const tg_allocator* a, tg__relax_scratch* rs, tg__route* route,
                     uint32_t max_passes, double rel_tol, const tg_geodesic_kernel_options* kernel,
-                    tg__shorten_result* out)
+                    const tg__path_progress* progress, tg__shorten_result* out)
 {
     relaxer rx = {g, a, rs};
     memset(out, 0, sizeof *out);
@@ -275,6 +275,7 @@ tg_status tg__relax(const tg_geodesic* g, const tg_allocator* a, tg__relax_scrat
         tg_status st = relax_pass(&rx, route, &kopt);
         if (st != TG_OK) return st;
         out->iterations++;
+        if (tg__shorten_cancelled(progress, out->iterations)) return TG_ERR_CANCELLED;
         double new_len = path_length(g, tg__route_nodes(route), tg__route_faces(route), route->nodes.count);
         bool stalled = !(len - new_len > rel_tol * new_len);
         len = new_len;

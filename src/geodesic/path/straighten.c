@@ -141,7 +141,7 @@ static bool copy_step(const straightener* sr, size_t i)
     tg__sleeve* d = (tg__sleeve*)next->sleeves.data + (np - 1);
     *d = *s;
     d->fresh = 0;
-    if (k) /* portals.data may still be NULL (memcpy's pointers are nonnull even for 0 bytes) */
+    if (k) /* no portals: the arrays may still be NULL */
         memcpy((uint32_t*)next->portals.data + nq, (const uint32_t*)now->portals.data + s->portal_begin,
                k * sizeof(uint32_t));
     d->portal_begin = (uint32_t)nq;
@@ -294,7 +294,7 @@ static void polish(const tg_geodesic* g, tg__node* nodes, const uint32_t* faces,
 
 tg_status tg__straighten(const tg_geodesic* g, const tg_allocator* a, tg__straighten_scratch* st,
                          tg__sleeve_scratch* ss, tg__route* route, uint32_t max_sweeps, double angle_tol,
-                         tg__shorten_result* out)
+                         const tg__path_progress* progress, tg__shorten_result* out)
 {
     straightener sr = {g, a, st, ss};
     size_t count = route->nodes.count;
@@ -334,6 +334,7 @@ tg_status tg__straighten(const tg_geodesic* g, const tg_allocator* a, tg__straig
         tg_status s = sweep(&sr, dec, &accepted, &retry);
         if (s != TG_OK) return s;
         out->iterations++;
+        if (tg__shorten_cancelled(progress, out->iterations)) return TG_ERR_CANCELLED;
         tg__pivot_path t = st->now;
         st->now = st->next, st->next = t;
         if (retry) single = true;

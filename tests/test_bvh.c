@@ -2,7 +2,9 @@
  * face, bit-identical squared distance, point, barycentrics and feature; ties to the lowest face
  * index) on random meshes: soups with degenerate and duplicate faces, a grid full of exact ties,
  * a mesh far from the origin, tiny and empty meshes; maximum distances; batches; locate; errors;
- * allocation failures. */
+ * allocation failures. Every comparison with the scan runs once per instruction-set level of the
+ * kernels that the machine supports (tg_test_simd.h). */
+#include "tg_test_simd.h"
 #include "tg_test.h"
 
 #include <trigeo.h>
@@ -159,15 +161,22 @@ static double* make_queries(tg_rng* r, const tg_mesh* m, size_t n)
 
 /* ---- checks ---- */
 
-static void check_against_brute_force(const char* what, const tg_mesh* m, const double* q, size_t n, uint32_t leaf)
+static void check_at_level(const char* what, const tg_mesh* m, const double* q, size_t n, uint32_t leaf,
+                           tg__simd_level level)
 {
+    char label[96];
+    snprintf(label, sizeof label, "%s [%s]", what, tg__simd_level_name(level));
+    what = label;
+    tg_test_simd_force(level);
     tg_bvh_options o = {0};
     o.max_leaf_size = leaf;
     tg_bvh* bvh = NULL;
     tg_bvh_workspace* ws = NULL;
     CHECK_STATUS(tg_bvh_create(m, &o, &bvh), TG_OK);
     CHECK_STATUS(tg_bvh_workspace_create(bvh, &ws), TG_OK);
+    unsetenv("TRIGEO_SIMD");
     if (!bvh || !ws) return;
+    CHECK_MSG(bvh->simd == level, "%s: the BVH runs level %d", what, (int)bvh->simd);
     tg_closest_hit* batch = malloc((n ? n : 1) * sizeof *batch);
     CHECK_STATUS(tg_bvh_closest_batch(bvh, q, n, INFINITY, 0, batch), TG_OK);
     int failures = tg_test_failed_;
@@ -189,6 +198,13 @@ static void check_against_brute_force(const char* what, const tg_mesh* m, const 
     free(batch);
     tg_bvh_workspace_destroy(ws);
     tg_bvh_destroy(bvh);
+}
+
+static void check_against_brute_force(const char* what, const tg_mesh* m, const double* q, size_t n, uint32_t leaf)
+{
+    tg__simd_level levels[3];
+    int nl = tg_test_simd_levels(levels);
+    for (int l = 0; l < nl; ++l) check_at_level(what, m, q, n, leaf, levels[l]);
 }
 
 static void test_random_soups(void)

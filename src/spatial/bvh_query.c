@@ -10,6 +10,10 @@
 #include "spatial/simd4.h"
 #include "kernels/point_triangle.h"
 
+#ifdef TG_HAVE_X86_KERNELS
+#include <immintrin.h>
+#endif
+
 #include <float.h>
 #include <math.h>
 
@@ -26,14 +30,15 @@
 /* Where one query stands. Pruning compares float lower bounds in local units against thr, an
  * upper bound of the best squared distance in local units: a subtree is skipped only when its box
  * is certainly farther than the best face so far, so that any face at the final best distance
- * (ties included) is always examined. */
+ * (ties included) is always examined. The best face's closest point, barycentrics and feature are
+ * computed once, at the end, by the scalar kernel on the corners kept in best_v. */
 typedef struct query {
     const double* p;
     float plo[3], phi[3]; /* float interval around the local coordinates of p */
     float width2;         /* twice the sum of the interval's widths */
     double best;          /* best squared distance so far (world units) */
     uint32_t best_face;
-    tg_point_triangle best_pt;
+    const double* best_v[3]; /* the best face's corners (leaf or mesh copies: the same doubles) */
     float thr;            /* prune bound for boxes, float local units (see threshold) */
     double thr_world;     /* the same bound in world units, double, for the faces' own boxes */
 } query;
@@ -43,20 +48,21 @@ typedef struct query {
  * be within 2^-45 * (d + E)^2 (plus underflow, 2^-1070 absolute) of the true ones, d the
  * distance and E the mesh diagonal (it subtracts coordinates and works with differences no
  * longer than d + E); doubling that margin makes the prune sound for faces farther than best.
- * Float lower bounds carry a relative error below 6 * 2^-24 (one rounding per subtraction,
- * square and sum of three non-negative terms): the threshold is inflated by 2^-19 for them, and
- * never drops below 2 * FLT_MIN, which absorbs the absolute error of underflowing squares. */
+ * (d + E)^2 <= 2 d^2 + 2 E^2 spares a square root. Float lower bounds carry a relative error
+ * below 6 * 2^-24 (one rounding per subtraction, square and sum of three non-negative terms):
+ * the threshold is inflated by 2^-18 for them (of which the conversion to float, rounding to
+ * nearest, takes at most 2^-24), and never drops below 2 * FLT_MIN, which absorbs the absolute
+ * error of underflowing squares. */
 static void set_threshold(const tg_bvh* bvh, query* q, double best)
 {
-    /* in local units, where the mesh diagonal is at most 2 * sqrt(3) < 3.5 */
-    double s = bvh->scale, r = sqrt(best) * s + 3.5, rw = sqrt(best) + 3.5 / s;
-    double local = best * s * s + 0x1p-44 * r * r + 0x1p-1060 * s * s;
+    /* in local units, where the mesh diagonal is at most 2 * sqrt(3) < 3.5; products are taken
+     * left to right, as scale^2 alone may overflow (scale is up to 2^1000) */
+    double s = bvh->scale, x = best * s * s;
+    double local = (x + 0x1p-44 * (2.0 * x + 2.0 * 3.5 * 3.5) + 0x1p-1060 * s * s) * (1.0 + 0x1p-18);
     float f = (float)local;
-    if ((double)f < local) f = tg__f32_next_up(f);
-    f = f * (1.0f + 0x1p-19f);
     q->thr = f < 2.0f * FLT_MIN ? 2.0f * FLT_MIN : f;
     /* a double lower bound has a relative error of a few 2^-53, far inside the 2^-44 margin */
-    q->thr_world = best + 0x1p-44 * rw * rw + 0x1p-1060;
+    q->thr_world = best + 0x1p-44 * (2.0 * best + 2.0 * 3.5 * 3.5 / s / s) + 0x1p-1060;
 }
 
 static void query_init(const tg_bvh* bvh, query* q, const double* p, double max_dist_sq)
@@ -73,7 +79,32 @@ static void query_init(const tg_bvh* bvh, query* q, const double* p, double max_
     q->p = p;
     q->best = max_dist_sq;
     q->best_face = TG_NONE;
+    q->best_v[0] = q->best_v[1] = q->best_v[2] = NULL;
     set_threshold(bvh, q, max_dist_sq);
+}
+
+/* Work counters for profiling builds (-DTG_BVH_STATS): nodes visited, leaves tested, triangles
+ * tested, stack entries dropped. Never compiled into the library otherwise. */
+#ifdef TG_BVH_STATS
+_Thread_local unsigned long long tg__bvh_stats[4];
+#define STAT(i) (++tg__bvh_stats[i])
+#define STAT_ADD(i, n) (tg__bvh_stats[i] += (n))
+#else
+#define STAT(i) ((void)0)
+#define STAT_ADD(i, n) ((void)0)
+#endif
+
+/* A face and its kernel squared distance, in the order a linear scan would see them: it becomes
+ * the best when strictly nearer, or as near with a lower index. */
+static inline void offer(const tg_bvh* bvh, query* q, uint32_t face, double sqdist, const double* v0, const double* v1,
+                         const double* v2)
+{
+    if (sqdist < q->best || (sqdist == q->best && face < q->best_face)) {
+        q->best = sqdist;
+        q->best_face = face;
+        q->best_v[0] = v0, q->best_v[1] = v1, q->best_v[2] = v2;
+        set_threshold(bvh, q, sqdist);
+    }
 }
 
 /* The kernel call is the inner loop's main work: flatten asks the compiler to inline it here. */
@@ -88,38 +119,7 @@ static TG_FLATTEN void consider(const tg_bvh* bvh, query* q, uint32_t face, cons
 {
     tg_point_triangle r;
     tg__point_triangle_robust_3d(q->p, v0, v1, v2, &r);
-    if (r.sqdist < q->best || (r.sqdist == q->best && face < q->best_face)) {
-        q->best = r.sqdist;
-        q->best_face = face;
-        q->best_pt = r;
-        set_threshold(bvh, q, r.sqdist);
-    }
-}
-
-/* Squared distance from p to the bounding box of a triangle, from its exact corners: a cheap lower
- * bound that spares the kernel call for faces beside the query. */
-static inline double face_box_sq(const double* p, const double* a, const double* b, const double* c)
-{
-    double s = 0.0;
-    for (int k = 0; k < 3; ++k) {
-        double lo = a[k] < b[k] ? a[k] : b[k], hi = a[k] < b[k] ? b[k] : a[k];
-        lo = c[k] < lo ? c[k] : lo;
-        hi = c[k] > hi ? c[k] : hi;
-        double g = lo - p[k] > 0.0 ? lo - p[k] : p[k] - hi > 0.0 ? p[k] - hi : 0.0;
-        s += g * g;
-    }
-    return s;
-}
-
-static void test_leaf(const tg_bvh* bvh, query* q, uint32_t child, uint32_t k)
-{
-    tg__bvh_leaf l = tg__bvh_leaf_at(bvh, child, k);
-    for (uint32_t i = 0; i < k; ++i) {
-        const uint8_t* c = l.corner + 3 * i;
-        const double *a = l.vertex + 3 * c[0], *b = l.vertex + 3 * c[1], *d = l.vertex + 3 * c[2];
-        if (face_box_sq(q->p, a, b, d) > q->thr_world) continue;
-        consider(bvh, q, l.face[i], a, b, d);
-    }
+    offer(bvh, q, face, r.sqdist, v0, v1, v2);
 }
 
 /* Asks for the cache lines of a leaf block (its vertex count is usually at most k + 2). */
@@ -130,95 +130,37 @@ static inline void prefetch_leaf(const tg_bvh* bvh, uint32_t child, uint32_t k)
     for (size_t off = 0; off < bytes; off += 64) PREFETCH(base + off);
 }
 
-/* Lower bounds of the squared distance from the query to the node's children (local units): the
- * larger of the distance to the child's box and the distance to its oriented box (see
- * tg__bvh_node). For the oriented box, t = M (p - c) is evaluated in float from the lower end of
- * p's interval: with |M_ij| <= n it is within n * (4 eps * sum_j |d_j| + the interval's width) of
- * the exact value (a rounded difference, three products and two sums, eps = 2^-24), so each gap
- * is first reduced by twice that. Returns the mask of used children not farther than the
- * threshold. */
-static inline int node_bounds(const tg__bvh_node* n, const query* q, float* out)
+/* Asks for the three cache lines of a node. */
+static inline void prefetch_node(const tg_bvh* bvh, uint32_t node)
 {
-    tg_v4 acc = tg_v4_set1(0.0f), zero = tg_v4_set1(0.0f), half = tg_v4_set1(0.5f), two = tg_v4_set1(2.0f);
-    tg_v4 ext[3], d[3];
-    for (int a = 0; a < 3; ++a) {
-        tg_v4 o = tg_v4_set1(n->origin[a]);
-        tg_v4 step = tg_v4_set1(tg__f32_pow2(n->exponent[a]));
-        tg_v4 lo = tg_v4_add(o, tg_v4_mul(tg_v4_from_u8(n->qlo[a]), step));
-        tg_v4 hi = tg_v4_add(o, tg_v4_mul(tg_v4_from_u8(n->qhi[a]), step));
-        tg_v4 g = tg_v4_max(tg_v4_max(tg_v4_sub(lo, tg_v4_set1(q->phi[a])), tg_v4_sub(tg_v4_set1(q->plo[a]), hi)), zero);
-        acc = tg_v4_add(acc, tg_v4_mul(g, g));
-        ext[a] = tg_v4_sub(hi, lo);
-        d[a] = tg_v4_sub(tg_v4_set1(q->plo[a]), tg_v4_mul(tg_v4_add(lo, hi), half));
-    }
-    /* the oriented boxes: M from the quaternions, as tg__bvh_quat_matrix does lane by lane */
-    tg_v4 qa = tg_v4_from_i8(n->quat[0]), qb = tg_v4_from_i8(n->quat[1]), qc = tg_v4_from_i8(n->quat[2]),
-          qd = tg_v4_from_i8(n->quat[3]);
-    tg_v4 aa = tg_v4_mul(qa, qa), bb = tg_v4_mul(qb, qb), cc = tg_v4_mul(qc, qc), dd = tg_v4_mul(qd, qd);
-    tg_v4 ab = tg_v4_mul(qa, qb), ac = tg_v4_mul(qa, qc), ad = tg_v4_mul(qa, qd), bc = tg_v4_mul(qb, qc),
-          bd = tg_v4_mul(qb, qd), cd = tg_v4_mul(qc, qd);
-    tg_v4 M[9];
-    M[0] = tg_v4_sub(tg_v4_add(aa, bb), tg_v4_add(cc, dd)), M[1] = tg_v4_mul(two, tg_v4_sub(bc, ad));
-    M[2] = tg_v4_mul(two, tg_v4_add(bd, ac)), M[3] = tg_v4_mul(two, tg_v4_add(bc, ad));
-    M[4] = tg_v4_add(tg_v4_sub(aa, bb), tg_v4_sub(cc, dd)), M[5] = tg_v4_mul(two, tg_v4_sub(cd, ab));
-    M[6] = tg_v4_mul(two, tg_v4_sub(bd, ac)), M[7] = tg_v4_mul(two, tg_v4_add(cd, ab));
-    M[8] = tg_v4_sub(tg_v4_sub(aa, bb), tg_v4_sub(cc, dd));
-    tg_v4 nn = tg_v4_add(tg_v4_add(aa, bb), tg_v4_add(cc, dd));
-    tg_v4 v = tg_v4_mul(tg_v4_mul(tg_v4_add(tg_v4_add(ext[0], ext[1]), ext[2]), nn), tg_v4_set1(0.004f));
-    tg_v4 spread = tg_v4_add(tg_v4_add(tg_v4_abs(d[0]), tg_v4_abs(d[1])), tg_v4_abs(d[2]));
-    tg_v4 delta = tg_v4_mul(tg_v4_add(tg_v4_mul(spread, tg_v4_set1(0x1p-21f)), tg_v4_set1(q->width2)), nn);
-    tg_v4 acc2 = zero;
-    for (int i = 0; i < 3; ++i) {
-        tg_v4 t = tg_v4_add(tg_v4_add(tg_v4_mul(M[3 * i], d[0]), tg_v4_mul(M[3 * i + 1], d[1])), tg_v4_mul(M[3 * i + 2], d[2]));
-        tg_v4 lo = tg_v4_mul(tg_v4_from_i8(n->olo[i]), v), hi = tg_v4_mul(tg_v4_from_i8(n->ohi[i]), v);
-        tg_v4 g = tg_v4_max(tg_v4_sub(tg_v4_max(tg_v4_sub(lo, t), tg_v4_sub(t, hi)), delta), zero);
-        acc2 = tg_v4_add(acc2, tg_v4_mul(g, g));
-    }
-    /* |M y| = n |y|: divide by n^2 (at least 1, so that a disabled slot gives 0 / 1) */
-    acc = tg_v4_max(acc, tg_v4_div(acc2, tg_v4_max(tg_v4_mul(nn, nn), tg_v4_set1(1.0f))));
-    tg_v4_storeu(out, acc);
-    return tg_v4_le_mask(acc, tg_v4_set1(q->thr)) & ((1 << n->child_count) - 1);
+    const char* base = (const char*)(bvh->nodes + node);
+    PREFETCH(base), PREFETCH(base + 64), PREFETCH(base + 128);
 }
 
-static void traverse(const tg_bvh* bvh, tg_bvh_workspace* ws, query* q)
-{
-    tg__bvh_entry* stack = ws->stack;
-    uint32_t sp = 0;
-    stack[sp++] = (tg__bvh_entry){0, 0, 0.0f};
-    while (sp > 0) {
-        tg__bvh_entry e = stack[--sp];
-        if (e.dist > q->thr) continue;
-        if (e.count) {
-            test_leaf(bvh, q, e.ref, e.count);
-            continue;
-        }
-        const tg__bvh_node* n = &bvh->nodes[e.ref];
-        float d[4];
-        int mask = node_bounds(n, q, d);
-        /* Push the surviving children farthest first, so that the nearest is popped next. */
-        int slot[4], k = 0;
-        for (int s = 0; s < 4; ++s)
-            if (mask >> s & 1) {
-                int j = k++;
-                while (j > 0 && d[slot[j - 1]] < d[s]) {
-                    slot[j] = slot[j - 1];
-                    --j;
-                }
-                slot[j] = s;
-            }
-        for (int i = 0; i < k; ++i) {
-            int s = slot[i];
-            uint32_t c = n->child[s];
-            if (n->leaf_count[s])
-                prefetch_leaf(bvh, c, n->leaf_count[s]);
-            else {
-                PREFETCH(bvh->nodes + c); /* both cache lines of the node */
-                PREFETCH((const char*)(bvh->nodes + c) + 64);
-            }
-            stack[sp++] = (tg__bvh_entry){c, n->leaf_count[s], d[s]};
-        }
-    }
-}
+/* The traversal, once per instruction-set level (bvh_closest_isa.h). */
+#define ISA portable
+#define ISA_ATTR
+#define ISA_LEVEL 0
+#include "spatial/bvh_closest_isa.h"
+#undef ISA
+#undef ISA_ATTR
+#undef ISA_LEVEL
+#ifdef TG_HAVE_X86_KERNELS
+#define ISA avx2
+#define ISA_ATTR TG_TARGET_AVX2
+#define ISA_LEVEL 1
+#include "spatial/bvh_closest_isa.h"
+#undef ISA
+#undef ISA_ATTR
+#undef ISA_LEVEL
+#define ISA avx512
+#define ISA_ATTR TG_TARGET_AVX512
+#define ISA_LEVEL 2
+#include "spatial/bvh_closest_isa.h"
+#undef ISA
+#undef ISA_ATTR
+#undef ISA_LEVEL
+#endif
 
 static void fill_hit(const query* q, tg_closest_hit* hit)
 {
@@ -229,11 +171,14 @@ static void fill_hit(const query* q, tg_closest_hit* hit)
         hit->sqdist = INFINITY;
         return;
     }
+    /* the scalar kernel on the winner: the same doubles the scan compared */
+    tg_point_triangle r;
+    tg__point_triangle_robust_3d(q->p, q->best_v[0], q->best_v[1], q->best_v[2], &r);
     hit->face = q->best_face;
-    hit->feature = q->best_pt.feature;
-    hit->sqdist = q->best_pt.sqdist;
-    memcpy(hit->point, q->best_pt.closest, sizeof hit->point);
-    memcpy(hit->bary, q->best_pt.bary, sizeof hit->bary);
+    hit->feature = r.feature;
+    hit->sqdist = r.sqdist;
+    memcpy(hit->point, r.closest, sizeof hit->point);
+    memcpy(hit->bary, r.bary, sizeof hit->bary);
 }
 
 /* One query; hint is a face whose distance seeds the bound (TG_NONE: none). The answer does not
@@ -249,7 +194,13 @@ static void closest(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p, do
             const uint32_t* t = m->tri + 3 * (size_t)hint;
             consider(bvh, &q, hint, m->xyz + 3 * (size_t)t[0], m->xyz + 3 * (size_t)t[1], m->xyz + 3 * (size_t)t[2]);
         }
-        traverse(bvh, ws, &q);
+        switch (bvh->simd) {
+#ifdef TG_HAVE_X86_KERNELS
+        case TG__SIMD_AVX512: traverse_avx512(bvh, ws, &q); break;
+        case TG__SIMD_AVX2: traverse_avx2(bvh, ws, &q); break;
+#endif
+        default: traverse_portable(bvh, ws, &q); break;
+        }
     }
     fill_hit(&q, hit);
 }

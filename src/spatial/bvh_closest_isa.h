@@ -100,6 +100,10 @@ static inline ISA_ATTR int FN(node_bounds)(const tg__bvh_node* n, const query* q
         ext[a] = V8_SUB(hi, lo);
         d[a] = V8_SUB(plo, V8_MUL(V8_ADD(lo, hi), half));
     }
+    if (!obb_wanted(n, q)) {
+        V8_STORE(out, acc);
+        return V8_LE_MASK(acc, V8_SET1(q->thr)) & ((1 << n->child_count) - 1);
+    }
     /* the oriented boxes: M from the quaternions, as tg__bvh_quat_matrix does lane by lane */
     v8 qa = V8_I8(n->quat[0]), qb = V8_I8(n->quat[1]), qc = V8_I8(n->quat[2]), qd = V8_I8(n->quat[3]);
     v8 aa = V8_MUL(qa, qa), bb = V8_MUL(qb, qb), cc = V8_MUL(qc, qc), dd = V8_MUL(qd, qd);
@@ -274,25 +278,88 @@ static inline ISA_ATTR wd FN(kernel_sq)(wd px, wd py, wd pz, const FN(tri_lanes)
 
 /* Loads triangles first .. first + n - 1 (n <= W) of a leaf into lanes; returns the live lanes. */
 #if ISA_LEVEL == 2
-static inline ISA_ATTR unsigned FN(load_lanes)(const tg__bvh_leaf* l, uint32_t first, uint32_t n, FN(tri_lanes) * t)
+/* The leaf's corner bytes (c0 c1 c2 per triangle), and, when it has at most 16 distinct vertices
+ * (all but a few leaves in a thousand), its vertex coordinates transposed into registers: x, y, z of
+ * vertices 0-7 and 8-15. A triangle's corners are then picked from them with one two-table
+ * permutation per coordinate, instead of a gather from memory. */
+typedef struct FN(leaf_regs) {
+    __m512i bytes_lo, bytes_hi; /* corner bytes 0-15 and 16-31 as 32-bit lanes (then 32-47 in a second pair) */
+    __m512i bytes2_lo;
+    bool small;                 /* at most 16 distinct vertices: x, y, z below are valid */
+    __m512d x[2], y[2], z[2];
+} FN(leaf_regs);
+
+static inline ISA_ATTR void FN(leaf_load)(const tg__bvh_leaf* l, uint32_t k, FN(leaf_regs) * r)
 {
-    /* the corners are bytes c0 c1 c2 per triangle: spread to 32 bits, then picked with a stride of 3 */
-    __m256i bytes = _mm256_maskz_loadu_epi8((__mmask32)((1u << (3 * n)) - 1), l->corner + 3 * (size_t)first);
-    __m512i lo = _mm512_cvtepu8_epi32(_mm256_castsi256_si128(bytes));
-    __m512i hi = _mm512_cvtepu8_epi32(_mm256_extracti128_si256(bytes, 1));
+    const uint64_t nb = 3 * (uint64_t)k; /* at most 45 */
+    __m512i b = _mm512_maskz_loadu_epi8((__mmask64)((nb >= 64 ? 0 : ((uint64_t)1 << nb)) - 1), l->corner);
+    r->bytes_lo = _mm512_cvtepu8_epi32(_mm512_castsi512_si128(b));
+    r->bytes_hi = _mm512_cvtepu8_epi32(_mm512_extracti32x4_epi32(b, 1));
+    r->bytes2_lo = _mm512_cvtepu8_epi32(_mm512_extracti32x4_epi32(b, 2));
+    /* the number of distinct vertices: 1 + the largest corner byte */
+    __m512i m = _mm512_max_epu8(b, _mm512_shuffle_i64x2(b, b, _MM_SHUFFLE(1, 0, 3, 2)));
+    m = _mm512_max_epu8(m, _mm512_shuffle_i64x2(m, m, _MM_SHUFFLE(2, 3, 0, 1)));
+    __m128i x = _mm512_castsi512_si128(m);
+    x = _mm_max_epu8(x, _mm_srli_si128(x, 8));
+    x = _mm_max_epu8(x, _mm_srli_si128(x, 4));
+    x = _mm_max_epu8(x, _mm_srli_si128(x, 2));
+    x = _mm_max_epu8(x, _mm_srli_si128(x, 1));
+    const unsigned u = 1 + (unsigned)(_mm_cvtsi128_si32(x) & 0xFF);
+    r->small = u <= 16;
+    if (!r->small) return;
+    /* 3u doubles in six registers (masked: nothing past the leaf is read), then de-interleaved */
+    __m512d v[6];
+    for (unsigned i = 0; i < 6; ++i) {
+        unsigned have = 3 * u > 8 * i ? 3 * u - 8 * i : 0;
+        v[i] = _mm512_maskz_loadu_pd((__mmask8)(have >= 8 ? 0xFF : (1u << have) - 1), l->vertex + 8 * i);
+    }
+    /* coordinate a of vertices 0-7 is at doubles a, a+3, ..., a+21: the first ones in v[0..1], the
+     * last two or three in v[2]; likewise vertices 8-15 in v[3..5] */
+    const __m512i ix = _mm512_setr_epi64(0, 3, 6, 9, 12, 15, 0, 0), ix2 = _mm512_setr_epi64(0, 0, 0, 0, 0, 0, 2, 5);
+    const __m512i iy = _mm512_setr_epi64(1, 4, 7, 10, 13, 0, 0, 0), iy2 = _mm512_setr_epi64(0, 0, 0, 0, 0, 0, 3, 6);
+    const __m512i iz = _mm512_setr_epi64(2, 5, 8, 11, 14, 0, 0, 0), iz2 = _mm512_setr_epi64(0, 0, 0, 0, 0, 1, 4, 7);
+    for (int h = 0; h < 2; ++h) {
+        const __m512d *a = v + 3 * h;
+        r->x[h] = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(a[0], ix, a[1]), 0xC0, ix2, a[2]);
+        r->y[h] = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(a[0], iy, a[1]), 0xE0, _mm512_setr_epi64(0, 0, 0, 0, 0, 0, 3, 6), a[2]);
+        r->z[h] = _mm512_mask_permutexvar_pd(_mm512_permutex2var_pd(a[0], iz, a[1]), 0xE0, iz2, a[2]);
+        (void)iy2;
+    }
+}
+
+static inline ISA_ATTR unsigned FN(load_lanes)(const tg__bvh_leaf* l, const FN(leaf_regs) * r, uint32_t first,
+                                               uint32_t n, FN(tri_lanes) * t)
+{
     const __mmask8 live = (__mmask8)((1u << n) - 1);
+    /* corner c of triangles first..first+7: bytes 3 first + c + 3 i (first is 0 or 8) */
+    const __m512i lo = first ? r->bytes_hi : r->bytes_lo, hi = first ? r->bytes2_lo : r->bytes_hi;
+    const int o = first ? 8 : 0; /* 24 = 16 + 8: byte 3 * 8 + c sits at lane 8 + c of bytes_hi */
     for (int c = 0; c < 3; ++c) {
-        __m512i pick = _mm512_setr_epi32(c, c + 3, c + 6, c + 9, c + 12, c + 15, c + 18, c + 21, 0, 0, 0, 0, 0, 0, 0, 0);
+        __m512i pick = _mm512_setr_epi32(o + c, o + c + 3, o + c + 6, o + c + 9, o + c + 12, o + c + 15, o + c + 18,
+                                         o + c + 21, 0, 0, 0, 0, 0, 0, 0, 0);
         __m256i idx = _mm512_castsi512_si256(_mm512_permutex2var_epi32(lo, pick, hi));
-        idx = _mm256_add_epi32(idx, _mm256_add_epi32(idx, idx)); /* 3 doubles per vertex */
-        for (int k = 0; k < 3; ++k)
-            t->v[3 * c + k] = _mm512_mask_i32gather_pd(_mm512_setzero_pd(), live, idx, l->vertex + k, 8);
+        if (r->small) {
+            __m512i i64 = _mm512_cvtepu32_epi64(idx);
+            t->v[3 * c] = _mm512_permutex2var_pd(r->x[0], i64, r->x[1]);
+            t->v[3 * c + 1] = _mm512_permutex2var_pd(r->y[0], i64, r->y[1]);
+            t->v[3 * c + 2] = _mm512_permutex2var_pd(r->z[0], i64, r->z[1]);
+        } else {
+            idx = _mm256_add_epi32(idx, _mm256_add_epi32(idx, idx)); /* 3 doubles per vertex */
+            for (int k = 0; k < 3; ++k)
+                t->v[3 * c + k] = _mm512_mask_i32gather_pd(_mm512_setzero_pd(), live, idx, l->vertex + k, 8);
+        }
     }
     return live;
 }
 #else
-static inline ISA_ATTR unsigned FN(load_lanes)(const tg__bvh_leaf* l, uint32_t first, uint32_t n, FN(tri_lanes) * t)
+typedef struct FN(leaf_regs) {
+    int unused;
+} FN(leaf_regs);
+static inline void FN(leaf_load)(const tg__bvh_leaf* l, uint32_t k, FN(leaf_regs) * r) { (void)l, (void)k, (void)r; }
+static inline ISA_ATTR unsigned FN(load_lanes)(const tg__bvh_leaf* l, const FN(leaf_regs) * r, uint32_t first,
+                                               uint32_t n, FN(tri_lanes) * t)
 {
+    (void)r;
     uint8_t b[16] = {0};
     memcpy(b, l->corner + 3 * (size_t)first, 3 * (size_t)n);
     __m128i bytes = _mm_loadu_si128((const __m128i*)(const void*)b);
@@ -315,10 +382,12 @@ static ISA_ATTR void FN(test_leaf)(const tg_bvh* bvh, query* q, uint32_t child, 
 {
     tg__bvh_leaf l = tg__bvh_leaf_at(bvh, child, k);
     const wd px = WSET1(q->p[0]), py = WSET1(q->p[1]), pz = WSET1(q->p[2]);
+    FN(leaf_regs) regs;
+    FN(leaf_load)(&l, k, &regs);
     for (uint32_t first = 0; first < k; first += W) {
         uint32_t n = k - first < W ? k - first : W;
         FN(tri_lanes) t;
-        unsigned live = FN(load_lanes)(&l, first, n, &t);
+        unsigned live = FN(load_lanes)(&l, &regs, first, n, &t);
         wm deg;
         wd sq = FN(kernel_sq)(px, py, pz, &t, &deg);
         double s[W];

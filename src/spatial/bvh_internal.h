@@ -52,7 +52,8 @@ typedef struct tg__bvh_node {
     /* line 2 */
     int8_t quat[4][TG__BVH_WIDTH];
     int8_t olo[3][TG__BVH_WIDTH];
-    uint8_t reserved[8];
+    uint8_t has_obb;       /* 1 if some slot's oriented box is enabled (non-zero quaternion) */
+    uint8_t reserved[7];
     /* line 3 */
     int8_t ohi[3][TG__BVH_WIDTH];
     uint8_t leaf_count[TG__BVH_WIDTH]; /* 0: inner child; 1..15: triangles of a leaf */
@@ -137,6 +138,10 @@ struct tg_bvh_workspace {
     const tg_bvh* bvh;
     uint32_t capacity;
     tg__bvh_entry* stack;
+    /* the previous closest-point answer through this workspace (TG_NONE: none) and its corners in
+     * the leaf blocks (or the mesh), for a batch's hint (see closest() in bvh_query.c) */
+    uint32_t last_face;
+    const double* last_v[3];
 };
 
 static inline tg__bvh_leaf tg__bvh_leaf_at(const tg_bvh* b, uint32_t child, uint32_t k)

@@ -141,6 +141,7 @@ struct tg_bvh_workspace {
     /* the previous closest-point answer through this workspace (TG_NONE: none) and its corners in
      * the leaf blocks (or the mesh), for a batch's hint (see closest() in bvh_query.c) */
     uint32_t last_face;
+    double last_sq_local;  /* its squared distance in local units */
     const double* last_v[3];
 };
 

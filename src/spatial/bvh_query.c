@@ -16,6 +16,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 
 #ifdef TG_HAVE_OPENMP
 #include <omp.h>
@@ -23,8 +24,10 @@
 
 #if defined(__GNUC__) || defined(__clang__)
 #define PREFETCH(p) __builtin_prefetch(p)
+#define PREFETCH_W(p) __builtin_prefetch(p, 1)
 #else
 #define PREFETCH(p) ((void)0)
+#define PREFETCH_W(p) ((void)0)
 #endif
 
 /* Where one query stands. Pruning compares float lower bounds in local units against thr, an
@@ -203,6 +206,12 @@ static void fill_hit(const query* q, tg_closest_hit* hit)
     memcpy(hit->bary, r.bary, sizeof hit->bary);
 }
 
+/* A batch's previous answer seeds the next query only when it was at least this far (squared,
+ * local units where the mesh's half extent is below 1: 2^-5, a few percent of the diagonal). In
+ * Morton order, seeded near queries (within 1% of the diagonal) took 4% longer, queries on the
+ * surface 6-10% longer, queries in the 1.5x box 12-28% less (kitten and armadillo_1m). */
+#define HINT_MIN_SQ_LOCAL 0x1p-10
+
 /* One query; hint is a face whose distance seeds the bound (TG_NONE: none). The answer does not
  * depend on the hint: it only starts the search with a real candidate, and every face that could
  * beat or tie it is still examined. When the hint is the workspace's previous answer (a batch
@@ -215,7 +224,10 @@ static void closest(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p, do
     query_init(bvh, &q, p, max_dist_sq);
     if (bvh->node_count) {
         if (hint != TG_NONE && hint == ws->last_face) {
-            consider(bvh, &q, hint, ws->last_v[0], ws->last_v[1], ws->last_v[2]);
+            /* a near answer makes a poor seed: the walk soon finds as good a bound, and a finite
+             * one from the start costs oriented-box tests on the way down; a far one saves most
+             * of a far query's search */
+            if (ws->last_sq_local > HINT_MIN_SQ_LOCAL) consider(bvh, &q, hint, ws->last_v[0], ws->last_v[1], ws->last_v[2]);
         } else if (hint != TG_NONE) {
             const tg_mesh* m = bvh->mesh;
             const uint32_t* t = m->tri + 3 * (size_t)hint;
@@ -232,6 +244,7 @@ static void closest(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p, do
     fill_hit(&q, hit);
     if (hit->face != TG_NONE) {
         ws->last_face = hit->face;
+        ws->last_sq_local = hit->sqdist * bvh->scale * bvh->scale;
         memcpy(ws->last_v, q.best_v, sizeof q.best_v);
     }
 }
@@ -292,10 +305,14 @@ static void morton_order(const tg_bvh* bvh, const double* xyz, uint32_t count, u
 }
 
 
+/* How many queries ahead the batch asks for a point and its answer's cache lines. */
+#define BATCH_PREFETCH_AHEAD 8
+
 /* Runs fn over count points in Morton order, chunks of consecutive points per thread, each chunk
- * passing a hint from one query to the next. Shared by the closest and signed batches. */
+ * passing a hint from one query to the next. Shared by the closest, signed and winding batches;
+ * out (may be NULL) is the array fn writes out_size bytes to at each point's index, prefetched. */
 static tg_status run_batch(const tg_bvh* bvh, const double* xyz, size_t count, int threads, tg__bvh_batch_fn fn,
-                           void* ctx)
+                           void* ctx, void* out, size_t out_size)
 {
     const tg_allocator* a = &bvh->allocator;
     for (size_t i = 0; i < count; ++i)
@@ -329,6 +346,13 @@ static tg_status run_batch(const tg_bvh* bvh, const double* xyz, size_t count, i
             uint32_t hint = TG_NONE;
             size_t end = (size_t)(c + 1) * (size_t)chunk < n ? (size_t)(c + 1) * (size_t)chunk : n;
             for (size_t i = (size_t)c * (size_t)chunk; i < end; ++i) {
+                /* in Morton order the points and the answers are read and written all over the
+                 * caller's arrays: ask for both a few queries ahead */
+                if (i + BATCH_PREFETCH_AHEAD < end) {
+                    uint32_t ahead = (uint32_t)order[i + BATCH_PREFETCH_AHEAD];
+                    PREFETCH(pts + 3 * (size_t)ahead);
+                    if (out) PREFETCH_W((char*)out + (base + ahead) * out_size);
+                }
                 uint32_t idx = (uint32_t)order[i];
                 fn(bvh, ws[t], pts + 3 * (size_t)idx, &hint, ctx, base + idx);
             }
@@ -366,7 +390,7 @@ void tg__bvh_closest_hinted(const tg_bvh* bvh, tg_bvh_workspace* ws, const doubl
 tg_status tg__bvh_run_batch(const tg_bvh* bvh, const double* xyz, size_t count, int threads, tg__bvh_batch_fn fn,
                             void* ctx)
 {
-    return run_batch(bvh, xyz, count, threads, fn, ctx);
+    return run_batch(bvh, xyz, count, threads, fn, ctx, NULL, 0);
 }
 
 /* ---- public entry points ---- */
@@ -386,7 +410,7 @@ tg_status tg_bvh_closest_batch(const tg_bvh* bvh, const double* xyz, size_t coun
     if (!bvh || (count && (!xyz || !out_hits)) || threads < 0 || !(max_dist_sq >= 0.0))
         return TG_ERR_INVALID_ARGUMENT;
     closest_ctx c = {max_dist_sq, out_hits};
-    return run_batch(bvh, xyz, count, threads, closest_one, &c);
+    return run_batch(bvh, xyz, count, threads, closest_one, &c, out_hits, sizeof *out_hits);
 }
 
 tg_status tg_bvh_locate(const tg_bvh* bvh, tg_bvh_workspace* ws, const double xyz[3], tg_surface_point* out_point,

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -78,6 +79,8 @@ inline tg_mesh* load(const char* path)
 // order; medians of reps passes), writes the squared distances to FILE.<name>.d and prints
 // "<name> FILE faces build_s bytes_per_face ns_1t ns_2t". query(p) returns the squared distance
 // from the point p[0..2] to the mesh and must be safe to call from several threads.
+// With TG_BENCH_THREADS=1 in the environment only the 1-thread passes run (ns_2t prints as nan):
+// for timing a whole process that answers the queries on one thread.
 template <class Query>
 inline void run_query_files(int argc, char** argv, int first, int reps, const char* name, size_t nf, double build,
                             double bytes, Query query)
@@ -86,8 +89,10 @@ inline void run_query_files(int argc, char** argv, int first, int reps, const ch
         std::vector<double> q = read_array(argv[a], "TGQUERY1", 3);
         const long n = (long)(q.size() / 3);
         std::vector<double> d(n);
-        double ns[2];
-        for (int threads = 1; threads <= 2; ++threads) {
+        double ns[2] = {NAN, NAN};
+        const char* only = std::getenv("TG_BENCH_THREADS");
+        const int max_threads = only && std::atoi(only) == 1 ? 1 : 2;
+        for (int threads = 1; threads <= max_threads; ++threads) {
             std::vector<double> tt;
             for (int r = 0; r < reps; ++r) {
                 double t0 = now();

@@ -91,8 +91,11 @@ static void query_init(const tg_bvh* bvh, query* q, const double* p, double max_
     for (int k = 0; k < 3; ++k) {
         /* Moving a far point towards the mesh box (inside [-2, 2]^3) only lowers lower bounds. */
         double c = x[k] < -0x1p30 ? -0x1p30 : x[k] > 0x1p30 ? 0x1p30 : x[k];
-        q->plo[k] = tg__f32_below(c);
-        q->phi[k] = tg__f32_above(c);
+        /* a float interval around c without branches (their direction is a coin toss per
+         * coordinate): c moved out by 2^-23 of its magnitude, more than the conversion's half
+         * step (2^-24 of it) plus the rounding of c itself, and by 2^-100 near 0 */
+        q->plo[k] = (float)(c - fabs(c) * 0x1p-23 - 0x1p-100);
+        q->phi[k] = (float)(c + fabs(c) * 0x1p-23 + 0x1p-100);
     }
     q->width2 = 2.0f * (((q->phi[0] - q->plo[0]) + (q->phi[1] - q->plo[1])) + (q->phi[2] - q->plo[2]));
     q->p = p;

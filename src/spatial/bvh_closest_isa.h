@@ -401,11 +401,26 @@ static ISA_ATTR void FN(test_leaf)(const tg_bvh* bvh, query* q, uint32_t child, 
             tg__point_triangle_robust_3d(q->p, l.vertex + 3 * c[0], l.vertex + 3 * c[1], l.vertex + 3 * c[2], &r);
             s[j] = r.sqdist;
         }
+#if ISA_LEVEL == 2
+        /* only the group's least (squared distance, face) can become the best: the scan's order of
+         * offers would end at the same face */
+        if (cand) {
+            if (odd) sq = _mm512_loadu_pd(s);
+            const double m = _mm512_mask_reduce_min_pd((__mmask8)cand, sq);
+            const __mmask8 at_min = _mm512_mask_cmp_pd_mask((__mmask8)cand, sq, _mm512_set1_pd(m), _CMP_EQ_OQ);
+            const __m256i faces = _mm256_maskz_loadu_epi32(at_min, l.face + first);
+            const unsigned f = _mm512_mask_reduce_min_epu32((__mmask16)at_min, _mm512_castsi256_si512(faces));
+            const unsigned j = tg__ctz32(_mm256_mask_cmpeq_epu32_mask(at_min, faces, _mm256_set1_epi32((int)f)));
+            const uint8_t* c = l.corner + 3 * (first + j);
+            offer(bvh, q, f, m, l.vertex + 3 * c[0], l.vertex + 3 * c[1], l.vertex + 3 * c[2]);
+        }
+#else
         for (; cand; cand &= cand - 1) {
             unsigned j = tg__ctz32(cand);
             const uint8_t* c = l.corner + 3 * (first + j);
             offer(bvh, q, l.face[first + j], s[j], l.vertex + 3 * c[0], l.vertex + 3 * c[1], l.vertex + 3 * c[2]);
         }
+#endif
     }
 }
 

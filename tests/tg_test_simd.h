@@ -22,7 +22,7 @@ static inline int tg_test_simd_levels(tg__simd_level out[3])
     return n;
 }
 
-/* Makes BVHs built from now on use `level`; tg_test_simd_restore undoes it. */
+/* Makes BVHs built from now on use `level`; unsetenv("TRIGEO_SIMD") undoes it. */
 static inline void tg_test_simd_force(tg__simd_level level) { setenv("TRIGEO_SIMD", tg__simd_level_name(level), 1); }
 
 #endif

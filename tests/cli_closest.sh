@@ -137,49 +137,49 @@ PY
     then ok; else fail ".npy output${signed:+ (signed)} differs from the CSV: $(cat "$tmp/err")"; fi
 done
 # malformed .npy queries: exit 2, "QUERIES: .npy: reason", no output file
-check_bad_npy() { # $1 = what, $2 = expected words in the message, then npy_file arguments
-    local what=$1 want=$2
-    shift 2
-    npy_file "$tmp/bad.npy" "$@"
+expect_npy_error() { # $1 = the reason expected in the message about $tmp/bad.npy (a grep pattern)
     rm -f "$tmp/bad.csv"
     "$trigeo" closest "$mesh" "$tmp/bad.npy" -o "$tmp/bad.csv" > "$tmp/bad.out" 2> "$tmp/bad.err"
     local rc=$?
-    if [ $rc -eq 2 ] && grep -q "^trigeo: $tmp/bad.npy: .npy: .*$want" "$tmp/bad.err" && [ ! -e "$tmp/bad.csv" ]; then ok
-    else fail "malformed .npy ($what): exit $rc, stderr '$(cat "$tmp/bad.err")', output $( [ -e "$tmp/bad.csv" ] && echo written || echo absent)"; fi
+    if [ $rc -eq 2 ] && grep -q "^trigeo: $tmp/bad.npy: .npy: $1" "$tmp/bad.err" && [ ! -e "$tmp/bad.csv" ] && [ ! -s "$tmp/bad.out" ]; then ok
+    else fail "malformed .npy ($1): exit $rc, stderr '$(cat "$tmp/bad.err")', output $( [ -e "$tmp/bad.csv" ] && echo written || echo absent)"; fi
 }
-check_bad_npy "float32" "dtype '<f4'" "'<f4'" False "(4, 3)"
-check_bad_npy "big endian" "dtype '>f8'" "'>f8'" False "(4, 3)"
-check_bad_npy "shape (4, 2)" "shape (6, 2)" "'<f8'" False "(6, 2)"
-check_bad_npy "one dimension" "shape (12,)" "'<f8'" False "(12,)"
-check_bad_npy "Fortran order" "Fortran order" "'<f8'" True "(4, 3)"
-check_bad_npy "truncated data" "truncated data: 90 bytes" "'<f8'" False "(4, 3)" 90
-check_bad_npy "excess data" "8 bytes after the data" "'<f8'" False "(4, 3)" 104
-check_bad_npy "more rows than data" "truncated data" "'<f8'" False "(5, 3)"
+check_bad_npy() { # $1 = expected words in the message, then npy_file arguments
+    local want=$1
+    shift
+    npy_file "$tmp/bad.npy" "$@"
+    expect_npy_error ".*$want"
+}
+check_bad_npy "dtype '<f4'" "'<f4'" False "(4, 3)"
+check_bad_npy "dtype '>f8'" "'>f8'" False "(4, 3)"
+check_bad_npy "shape (6, 2)" "'<f8'" False "(6, 2)"
+check_bad_npy "shape (12,)" "'<f8'" False "(12,)"
+check_bad_npy "Fortran order" "'<f8'" True "(4, 3)"
+check_bad_npy "truncated data: 90 bytes" "'<f8'" False "(4, 3)" 90
+check_bad_npy "8 bytes after the data" "'<f8'" False "(4, 3)" 104
+check_bad_npy "truncated data" "'<f8'" False "(5, 3)"
 python3 -c "
 h=\"{'descr': '<f8', 'fortran_order': False, }\"; h+=' '*((64-(len(h)+11)%64)%64)+'\n'
 open('$tmp/bad.npy','wb').write(b'\x93NUMPY\x01\x00'+bytes([len(h),0])+h.encode())"
-"$trigeo" closest "$mesh" "$tmp/bad.npy" -o "$tmp/bad.csv" > /dev/null 2> "$tmp/bad.err"
-if [ $? -eq 2 ] && grep -q "^trigeo: $tmp/bad.npy: .npy: the header lacks 'shape'" "$tmp/bad.err" && [ ! -e "$tmp/bad.csv" ]; then ok
-else fail ".npy without a shape: $(cat "$tmp/bad.err")"; fi
+expect_npy_error "the header lacks 'shape'"
 printf '\x93NUMPY\x01\x00\x40\x00{not a dict' > "$tmp/bad.npy"
-"$trigeo" closest "$mesh" "$tmp/bad.npy" -o "$tmp/bad.csv" > /dev/null 2> "$tmp/bad.err"
-if [ $? -eq 2 ] && grep -q "^trigeo: $tmp/bad.npy: .npy: truncated header" "$tmp/bad.err" && [ ! -e "$tmp/bad.csv" ]; then ok
-else fail "truncated .npy header: $(cat "$tmp/bad.err")"; fi
+expect_npy_error "truncated header"
 printf '\x93NUMPY\x01\x00\x08\x00[1, 2]  ' > "$tmp/bad.npy"
-"$trigeo" closest "$mesh" "$tmp/bad.npy" -o "$tmp/bad.csv" > /dev/null 2> "$tmp/bad.err"
-if [ $? -eq 2 ] && grep -q "^trigeo: $tmp/bad.npy: .npy: the header is not a dictionary" "$tmp/bad.err" && [ ! -e "$tmp/bad.csv" ]; then ok
-else fail ".npy header not a dict: $(cat "$tmp/bad.err")"; fi
+expect_npy_error "the header is not a dictionary"
 printf '\x93NUMPY\x07\x00\x08\x00{}      ' > "$tmp/bad.npy"
-"$trigeo" closest "$mesh" "$tmp/bad.npy" -o "$tmp/bad.csv" > /dev/null 2> "$tmp/bad.err"
-if [ $? -eq 2 ] && grep -q "^trigeo: $tmp/bad.npy: .npy: unsupported format version 7.0" "$tmp/bad.err" && [ ! -e "$tmp/bad.csv" ]; then ok
-else fail ".npy version 7: $(cat "$tmp/bad.err")"; fi
+expect_npy_error "unsupported format version 7.0"
 # a non-finite coordinate in a .npy
 python3 -c "
 import struct; h=\"{'descr': '<f8', 'fortran_order': False, 'shape': (1, 3), }\"; h+=' '*((64-(len(h)+11)%64)%64)+'\n'
 open('$tmp/bad.npy','wb').write(b'\x93NUMPY\x01\x00'+struct.pack('<H',len(h))+h.encode()+struct.pack('<3d',0.0,float('nan'),0.0))"
-"$trigeo" closest "$mesh" "$tmp/bad.npy" -o "$tmp/bad.csv" > /dev/null 2> "$tmp/bad.err"
-if [ $? -eq 2 ] && grep -q "^trigeo: $tmp/bad.npy: .npy: row 0, coordinate 2" "$tmp/bad.err" && [ ! -e "$tmp/bad.csv" ]; then ok
-else fail ".npy with NaN: $(cat "$tmp/bad.err")"; fi
+expect_npy_error "row 0, coordinate 2"
+# nor is a partial .npy written, nor anything to stdout without -o
+npy_file "$tmp/bad.npy" "'<f8'" False "(4, 3)" 90
+rm -f "$tmp/bad_out.npy"
+"$trigeo" closest "$mesh" "$tmp/bad.npy" -o "$tmp/bad_out.npy" > /dev/null 2>&1
+[ $? -eq 2 ] && [ ! -e "$tmp/bad_out.npy" ] && ok || fail "a malformed .npy left a partial .npy output"
+"$trigeo" closest "$mesh" "$tmp/bad.npy" > "$tmp/bad.out" 2>/dev/null
+[ $? -eq 2 ] && [ ! -s "$tmp/bad.out" ] && ok || fail "a malformed .npy wrote to stdout"
 
 # --- every corpus mesh: identical to the brute-force scan ---
 # same_csv GOT WANT: same header, same faces, the same doubles (the brute force prints %.17g)

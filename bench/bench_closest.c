@@ -13,7 +13,9 @@
  *       builds the BVH REPS times, then per QFILE times REPS passes of each mode and prints
  *       "trigeo QFILE faces build_s bytes_per_face ns_1t ns_2t ns_batch_1t ns_batch_2t" (medians);
  *       loop = tg_bvh_closest per point in file order; batch = tg_bvh_closest_batch (which
- *       reorders internally). Writes the squared distances to QFILE.trigeo.d.
+ *       reorders internally). Writes the squared distances to QFILE.trigeo.d. TG_BENCH_THREADS=1:
+ *       only the 1-thread modes (the others print nan); TG_BENCH_CLOCK=thread: those timed by the
+ *       CPU time of the thread that runs them (bench_pass_clock in bench_common.h).
  *   bench_closest build MESH REPS
  *       times tg_bvh_create (no winding data) REPS times on 1 thread and on all threads and prints
  *       "build MESH faces threads wall_s cpu_s min_cpu_s" per thread count (medians of REPS, and the
@@ -195,7 +197,7 @@ static int cmd_gen(int argc, char** argv)
 static double time_loop(const tg_bvh* bvh, const double* q, size_t n, int threads, tg_closest_hit* hits)
 {
     int failed = 0;
-    double t0 = bench_wall();
+    double t0 = bench_pass_clock(threads);
 #ifdef _OPENMP
 #pragma omp parallel num_threads(threads) reduction(| : failed)
 #endif
@@ -209,8 +211,7 @@ static double time_loop(const tg_bvh* bvh, const double* q, size_t n, int thread
             if (ws && tg_bvh_closest(bvh, ws, q + 3 * i, INFINITY, &hits[i]) != TG_OK) failed = 1;
         tg_bvh_workspace_destroy(ws);
     }
-    double t = bench_wall() - t0;
-    (void)threads;
+    double t = bench_pass_clock(threads) - t0;
     if (failed) die("query failed", NULL);
     return t;
 }
@@ -280,15 +281,17 @@ static int cmd_run(int argc, char** argv)
         uint64_t n;
         double* q = read_array(argv[a], "TGQUERY1", &n, 3);
         tg_closest_hit* hits = malloc((size_t)n * sizeof *hits + 1);
-        double ns[4];
+        double ns[4] = {NAN, NAN, NAN, NAN};
         for (int mode = 0; mode < 4; ++mode) {
+            const int threads = mode % 2 + 1;
+            if (threads > bench_max_threads()) continue;
             for (int r = 0; r < reps; ++r) {
                 if (mode < 2) {
-                    t[r] = time_loop(bvh, q, (size_t)n, mode + 1, hits);
+                    t[r] = time_loop(bvh, q, (size_t)n, threads, hits);
                 } else {
-                    double t0 = bench_wall();
-                    if (tg_bvh_closest_batch(bvh, q, (size_t)n, INFINITY, mode - 1, hits) != TG_OK) die("batch failed", NULL);
-                    t[r] = bench_wall() - t0;
+                    double t0 = bench_pass_clock(threads);
+                    if (tg_bvh_closest_batch(bvh, q, (size_t)n, INFINITY, threads, hits) != TG_OK) die("batch failed", NULL);
+                    t[r] = bench_pass_clock(threads) - t0;
                 }
             }
             ns[mode] = 1e9 * bench_median(t, reps) / (double)n;

@@ -6,8 +6,9 @@
 #include <malloc.h>
 #include <trigeo.h>
 
+#include "../bench_common.h"
+
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -24,10 +25,7 @@ namespace peer {
     std::exit(2);
 }
 
-inline double now()
-{
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+inline double now() { return bench_wall(); }
 
 inline double median(std::vector<double> v)
 {
@@ -80,7 +78,8 @@ inline tg_mesh* load(const char* path)
 // "<name> FILE faces build_s bytes_per_face ns_1t ns_2t". query(p) returns the squared distance
 // from the point p[0..2] to the mesh and must be safe to call from several threads.
 // With TG_BENCH_THREADS=1 in the environment only the 1-thread passes run (ns_2t prints as nan):
-// for timing a whole process that answers the queries on one thread.
+// for timing a whole process that answers the queries on one thread. TG_BENCH_CLOCK=thread times
+// the 1-thread passes by thread CPU time (bench_pass_clock in bench/bench_common.h).
 template <class Query>
 inline void run_query_files(int argc, char** argv, int first, int reps, const char* name, size_t nf, double build,
                             double bytes, Query query)
@@ -90,17 +89,16 @@ inline void run_query_files(int argc, char** argv, int first, int reps, const ch
         const long n = (long)(q.size() / 3);
         std::vector<double> d(n);
         double ns[2] = {NAN, NAN};
-        const char* only = std::getenv("TG_BENCH_THREADS");
-        const int max_threads = only && std::atoi(only) == 1 ? 1 : 2;
+        const int max_threads = bench_max_threads();
         for (int threads = 1; threads <= max_threads; ++threads) {
             std::vector<double> tt;
             for (int r = 0; r < reps; ++r) {
-                double t0 = now();
+                double t0 = bench_pass_clock(threads);
 #ifdef _OPENMP
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1024)
 #endif
                 for (long i = 0; i < n; ++i) d[i] = query(&q[3 * i]);
-                tt.push_back(now() - t0);
+                tt.push_back(bench_pass_clock(threads) - t0);
             }
             ns[threads - 1] = 1e9 * median(tt) / (double)n;
         }

@@ -20,6 +20,10 @@
  *       times tg_bvh_create (no winding data) REPS times on 1 thread and on all threads and prints
  *       "build MESH faces threads wall_s cpu_s min_cpu_s" per thread count (medians of REPS, and the
  *       least CPU time, the figure least disturbed by other jobs on a shared machine).
+ *   bench_closest stats MESH QFILE...      (only in a build configured with -DCMAKE_C_FLAGS=-DTG_BVH_STATS)
+ *       per QFILE, the work of tg_bvh_closest per query in file order: "stats QFILE nodes N leaves
+ *       N triangles N dropped N" (nodes visited, leaves tested, triangles in them, stack entries
+ *       dropped unvisited), from the library's counters.
  *   bench_closest compare REF.d OTHER.d DIAG
  *       prints "maxrel maxabs": the largest |d_ref - d_other| / max(d_ref, 1e-9 DIAG) and
  *       the largest |d_ref - d_other| / DIAG, d = sqrt(sqdist).
@@ -337,8 +341,46 @@ static int cmd_compare(int argc, char** argv)
     return 0;
 }
 
+/* ---- stats (profiling builds only) ---- */
+
+#ifdef TG_BVH_STATS
+/* the library's per-thread work counters (src/spatial/bvh_query.c) */
+extern _Thread_local unsigned long long tg__bvh_stats[4];
+
+static int cmd_stats(int argc, char** argv)
+{
+    if (argc < 4) die("usage: stats MESH QFILE...", NULL);
+    tg_mesh* m = load(argv[2]);
+    tg_bvh* bvh = NULL;
+    tg_bvh_workspace* ws = NULL;
+    tg_bvh_options o = {0};
+    o.winding_data = TG_BVH_WINDING_NEVER;
+    if (tg_bvh_create(m, &o, &bvh) != TG_OK || tg_bvh_workspace_create(bvh, &ws) != TG_OK) die("build failed", argv[2]);
+    for (int a = 3; a < argc; ++a) {
+        uint64_t n;
+        double* q = read_array(argv[a], "TGQUERY1", &n, 3);
+        memset(tg__bvh_stats, 0, sizeof tg__bvh_stats);
+        for (uint64_t i = 0; i < n; ++i) {
+            tg_closest_hit h;
+            if (tg_bvh_closest(bvh, ws, q + 3 * i, INFINITY, &h) != TG_OK) die("query failed", argv[a]);
+        }
+        const double k = n ? 1.0 / (double)n : 0.0;
+        printf("stats %s nodes %.1f leaves %.1f triangles %.1f dropped %.1f\n", argv[a], k * (double)tg__bvh_stats[0],
+               k * (double)tg__bvh_stats[1], k * (double)tg__bvh_stats[2], k * (double)tg__bvh_stats[3]);
+        free(q);
+    }
+    tg_bvh_workspace_destroy(ws);
+    tg_bvh_destroy(bvh);
+    tg_mesh_destroy(m);
+    return 0;
+}
+#endif
+
 int main(int argc, char** argv)
 {
+#ifdef TG_BVH_STATS
+    if (argc >= 2 && !strcmp(argv[1], "stats")) return cmd_stats(argc, argv);
+#endif
     if (argc >= 2 && !strcmp(argv[1], "gen")) return cmd_gen(argc, argv);
     if (argc >= 2 && !strcmp(argv[1], "run")) return cmd_run(argc, argv);
     if (argc >= 2 && !strcmp(argv[1], "build")) return cmd_build(argc, argv);

@@ -13,11 +13,17 @@
  *       builds the BVH REPS times, then per QFILE times REPS passes of each mode and prints
  *       "trigeo QFILE faces build_s bytes_per_face ns_1t ns_2t ns_batch_1t ns_batch_2t" (medians);
  *       loop = tg_bvh_closest per point in file order; batch = tg_bvh_closest_batch (which
- *       reorders internally). Writes the squared distances to QFILE.trigeo.d.
+ *       reorders internally). Writes the squared distances to QFILE.trigeo.d. TG_BENCH_THREADS=1:
+ *       only the 1-thread modes (the others print nan); TG_BENCH_CLOCK=thread: those timed by the
+ *       CPU time of the thread that runs them (bench_pass_clock in bench_common.h).
  *   bench_closest build MESH REPS
  *       times tg_bvh_create (no winding data) REPS times on 1 thread and on all threads and prints
  *       "build MESH faces threads wall_s cpu_s min_cpu_s" per thread count (medians of REPS, and the
  *       least CPU time, the figure least disturbed by other jobs on a shared machine).
+ *   bench_closest stats MESH QFILE...      (only in a build configured with -DCMAKE_C_FLAGS=-DTG_BVH_STATS)
+ *       per QFILE, the work of tg_bvh_closest per query in file order: "stats QFILE nodes N leaves
+ *       N triangles N dropped N" (nodes visited, leaves tested, triangles in them, stack entries
+ *       dropped unvisited), from the library's counters.
  *   bench_closest compare REF.d OTHER.d DIAG
  *       prints "maxrel maxabs": the largest |d_ref - d_other| / max(d_ref, 1e-9 DIAG) and
  *       the largest |d_ref - d_other| / DIAG, d = sqrt(sqdist).
@@ -195,7 +201,7 @@ static int cmd_gen(int argc, char** argv)
 static double time_loop(const tg_bvh* bvh, const double* q, size_t n, int threads, tg_closest_hit* hits)
 {
     int failed = 0;
-    double t0 = bench_wall();
+    double t0 = bench_pass_clock(threads);
 #ifdef _OPENMP
 #pragma omp parallel num_threads(threads) reduction(| : failed)
 #endif
@@ -209,8 +215,7 @@ static double time_loop(const tg_bvh* bvh, const double* q, size_t n, int thread
             if (ws && tg_bvh_closest(bvh, ws, q + 3 * i, INFINITY, &hits[i]) != TG_OK) failed = 1;
         tg_bvh_workspace_destroy(ws);
     }
-    double t = bench_wall() - t0;
-    (void)threads;
+    double t = bench_pass_clock(threads) - t0;
     if (failed) die("query failed", NULL);
     return t;
 }
@@ -280,15 +285,17 @@ static int cmd_run(int argc, char** argv)
         uint64_t n;
         double* q = read_array(argv[a], "TGQUERY1", &n, 3);
         tg_closest_hit* hits = malloc((size_t)n * sizeof *hits + 1);
-        double ns[4];
+        double ns[4] = {NAN, NAN, NAN, NAN};
         for (int mode = 0; mode < 4; ++mode) {
+            const int threads = mode % 2 + 1;
+            if (threads > bench_max_threads()) continue;
             for (int r = 0; r < reps; ++r) {
                 if (mode < 2) {
-                    t[r] = time_loop(bvh, q, (size_t)n, mode + 1, hits);
+                    t[r] = time_loop(bvh, q, (size_t)n, threads, hits);
                 } else {
-                    double t0 = bench_wall();
-                    if (tg_bvh_closest_batch(bvh, q, (size_t)n, INFINITY, mode - 1, hits) != TG_OK) die("batch failed", NULL);
-                    t[r] = bench_wall() - t0;
+                    double t0 = bench_pass_clock(threads);
+                    if (tg_bvh_closest_batch(bvh, q, (size_t)n, INFINITY, threads, hits) != TG_OK) die("batch failed", NULL);
+                    t[r] = bench_pass_clock(threads) - t0;
                 }
             }
             ns[mode] = 1e9 * bench_median(t, reps) / (double)n;
@@ -334,8 +341,46 @@ static int cmd_compare(int argc, char** argv)
     return 0;
 }
 
+/* ---- stats (profiling builds only) ---- */
+
+#ifdef TG_BVH_STATS
+/* the library's per-thread work counters (src/spatial/bvh_query.c) */
+extern _Thread_local unsigned long long tg__bvh_stats[4];
+
+static int cmd_stats(int argc, char** argv)
+{
+    if (argc < 4) die("usage: stats MESH QFILE...", NULL);
+    tg_mesh* m = load(argv[2]);
+    tg_bvh* bvh = NULL;
+    tg_bvh_workspace* ws = NULL;
+    tg_bvh_options o = {0};
+    o.winding_data = TG_BVH_WINDING_NEVER;
+    if (tg_bvh_create(m, &o, &bvh) != TG_OK || tg_bvh_workspace_create(bvh, &ws) != TG_OK) die("build failed", argv[2]);
+    for (int a = 3; a < argc; ++a) {
+        uint64_t n;
+        double* q = read_array(argv[a], "TGQUERY1", &n, 3);
+        memset(tg__bvh_stats, 0, sizeof tg__bvh_stats);
+        for (uint64_t i = 0; i < n; ++i) {
+            tg_closest_hit h;
+            if (tg_bvh_closest(bvh, ws, q + 3 * i, INFINITY, &h) != TG_OK) die("query failed", argv[a]);
+        }
+        const double k = n ? 1.0 / (double)n : 0.0;
+        printf("stats %s nodes %.1f leaves %.1f triangles %.1f dropped %.1f\n", argv[a], k * (double)tg__bvh_stats[0],
+               k * (double)tg__bvh_stats[1], k * (double)tg__bvh_stats[2], k * (double)tg__bvh_stats[3]);
+        free(q);
+    }
+    tg_bvh_workspace_destroy(ws);
+    tg_bvh_destroy(bvh);
+    tg_mesh_destroy(m);
+    return 0;
+}
+#endif
+
 int main(int argc, char** argv)
 {
+#ifdef TG_BVH_STATS
+    if (argc >= 2 && !strcmp(argv[1], "stats")) return cmd_stats(argc, argv);
+#endif
     if (argc >= 2 && !strcmp(argv[1], "gen")) return cmd_gen(argc, argv);
     if (argc >= 2 && !strcmp(argv[1], "run")) return cmd_run(argc, argv);
     if (argc >= 2 && !strcmp(argv[1], "build")) return cmd_build(argc, argv);

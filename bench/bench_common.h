@@ -21,6 +21,23 @@ static inline double bench_wall(void) { return bench_clock_(CLOCK_MONOTONIC); }
 static inline double bench_cpu_process(void) { return bench_clock_(CLOCK_PROCESS_CPUTIME_ID); }
 static inline double bench_cpu_thread(void) { return bench_clock_(CLOCK_THREAD_CPUTIME_ID); }
 
+/* The clock of a timed pass that runs on `threads` threads. With TG_BENCH_CLOCK=thread in the
+ * environment a one-thread pass is timed by the CPU time of the calling thread, which runs it (an
+ * OpenMP team of one is its master): on a machine shared with other jobs, a process that gets a
+ * fraction of a core then counts only its own work (others still slow it through the caches they
+ * share). Otherwise, and for several threads, wall time. */
+static inline double bench_pass_clock(int threads)
+{
+    const char* c = getenv("TG_BENCH_CLOCK");
+    return threads == 1 && c && c[0] == 't' ? bench_cpu_thread() : bench_wall();
+}
+/* TG_BENCH_THREADS=1 in the environment: only the one-thread passes run (the others print nan). */
+static inline int bench_max_threads(void)
+{
+    const char* only = getenv("TG_BENCH_THREADS");
+    return only && atoi(only) == 1 ? 1 : 2;
+}
+
 static inline int bench_cmp_double(const void* a, const void* b)
 {
     double x = *(const double*)a, y = *(const double*)b;

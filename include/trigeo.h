@@ -456,7 +456,7 @@ typedef struct tg_bvh tg_bvh;
  *  generalized winding number. */
 typedef enum tg_bvh_winding_data {
     TG_BVH_WINDING_AUTO = 0,   /**< precompute exactly when TG_SIGN_AUTO would pick the winding number */
-    TG_BVH_WINDING_ALWAYS = 1, /**< always precompute (about 256 bytes per BVH node) */
+    TG_BVH_WINDING_ALWAYS = 1, /**< always precompute (512 bytes per BVH node, about 16 per face) */
     TG_BVH_WINDING_NEVER = 2   /**< never; winding numbers are then exact sums over all faces, O(F) */
 } tg_bvh_winding_data;
 
@@ -470,18 +470,27 @@ typedef struct tg_bvh_options {
     int threads;
 } tg_bvh_options;
 
-/** Builds a 4-wide BVH over all faces of mesh: top levels split in Morton order, subtrees of at
- *  most 4096 faces by the binned surface area heuristic; 128-byte nodes holding axis-aligned and
- *  oriented boxes of their four children; leaves store their triangles' vertices contiguously.
+/** Builds an 8-wide BVH over all faces of mesh: top levels split in Morton order, subtrees of at
+ *  most 4096 faces by the binned surface area heuristic; 192-byte nodes holding axis-aligned and
+ *  oriented boxes of their eight children; leaves store their triangles' vertices contiguously.
  *  With OpenMP the subtrees, leaves and boxes are built on options->threads threads (default:
  *  all cores); the tree is the same whatever the number of threads. With the default allocator on Linux the large arrays are
  *  advised as transparent huge pages.
+ *
+ *  Queries run kernels for the widest instruction set the processor offers, chosen here once:
+ *  AVX-512 (F, VL, DQ, BW), AVX2, or portable C on any other processor (the library itself is
+ *  built for the baseline of its target). Every level gives bit-identical answers. The
+ *  environment variable TRIGEO_SIMD=portable|avx2|avx512, read by this call, lowers the level
+ *  for the BVHs built while it is set (a level the processor lacks is not used; for testing and
+ *  measuring).
+ *
  *  Any valid mesh is accepted, including an empty one (every query then finds nothing).
  *  Returns TG_OK; TG_ERR_INVALID_ARGUMENT for a NULL mesh or out_bvh or an option out of range;
  *  TG_ERR_OUT_OF_MEMORY; TG_ERR_UNSUPPORTED beyond 2^31 faces or 32 GiB of leaf data, or for
  *  coordinates beyond +-1e150 (squared distances would overflow). On failure
  *  *out_bvh is NULL.
- *  Complexity: O(F log F) time, about 50 bytes per face (see tg_bvh_memory_bytes).
+ *  Complexity: O(F log F) time, about 41 bytes per face (see tg_bvh_memory_bytes; nodes about 4,
+ *  leaf blocks about 35 with the vertices they copy; more with winding data).
  *  Thread-safe (reads the mesh only). */
 TG_API tg_status tg_bvh_create(const tg_mesh* mesh, const tg_bvh_options* options, tg_bvh** out_bvh);
 
@@ -527,8 +536,9 @@ TG_API tg_status tg_bvh_closest(const tg_bvh* bvh, tg_bvh_workspace* workspace, 
 
 /** tg_bvh_closest for count points (xyz: 3 * count doubles; out_hits: count entries, in input
  *  order). Queries are processed in Morton (Z-curve) order so that consecutive queries share cache
- *  lines, each seeded with the answer of its predecessor as an upper bound; the answers are
- *  identical to calling tg_bvh_closest on each point. threads: 0 = all cores (OpenMP), 1 = the
+ *  lines, each seeded with the answer of its predecessor as an upper bound when that answer was
+ *  far (a near one is soon matched by the search itself); the answers are identical to calling
+ *  tg_bvh_closest on each point. threads: 0 = all cores (OpenMP), 1 = the
  *  calling thread only. Allocates O(count) scratch with the BVH's allocator.
  *  Returns TG_ERR_INVALID_ARGUMENT (NULL with count > 0, a non-finite point, a NaN or negative
  *  max_dist_sq, threads < 0; out_hits is then unspecified) or TG_ERR_OUT_OF_MEMORY.

@@ -2,12 +2,16 @@
  * face, bit-identical squared distance, point, barycentrics and feature; ties to the lowest face
  * index) on random meshes: soups with degenerate and duplicate faces, a grid full of exact ties,
  * a mesh far from the origin, tiny and empty meshes; maximum distances; batches; locate; errors;
- * allocation failures. */
+ * allocation failures. Every comparison with the scan runs once per instruction-set level of the
+ * kernels that the machine supports (tg_test_simd.h). */
+#include "tg_test_simd.h"
 #include "tg_test.h"
 
 #include <trigeo.h>
 
 #include "kernels/point_triangle.h"
+
+#include <float.h>
 #include "spatial/bvh_internal.h"
 
 #ifdef _OPENMP
@@ -159,15 +163,22 @@ static double* make_queries(tg_rng* r, const tg_mesh* m, size_t n)
 
 /* ---- checks ---- */
 
-static void check_against_brute_force(const char* what, const tg_mesh* m, const double* q, size_t n, uint32_t leaf)
+static void check_at_level(const char* what, const tg_mesh* m, const double* q, size_t n, uint32_t leaf,
+                           tg__simd_level level)
 {
+    char label[96];
+    snprintf(label, sizeof label, "%s [%s]", what, tg__simd_level_name(level));
+    what = label;
+    tg_test_simd_force(level);
     tg_bvh_options o = {0};
     o.max_leaf_size = leaf;
     tg_bvh* bvh = NULL;
     tg_bvh_workspace* ws = NULL;
     CHECK_STATUS(tg_bvh_create(m, &o, &bvh), TG_OK);
     CHECK_STATUS(tg_bvh_workspace_create(bvh, &ws), TG_OK);
+    unsetenv("TRIGEO_SIMD");
     if (!bvh || !ws) return;
+    CHECK_MSG(bvh->simd == level, "%s: the BVH runs level %d", what, (int)bvh->simd);
     tg_closest_hit* batch = malloc((n ? n : 1) * sizeof *batch);
     CHECK_STATUS(tg_bvh_closest_batch(bvh, q, n, INFINITY, 0, batch), TG_OK);
     int failures = tg_test_failed_;
@@ -191,6 +202,13 @@ static void check_against_brute_force(const char* what, const tg_mesh* m, const 
     tg_bvh_destroy(bvh);
 }
 
+static void check_against_brute_force(const char* what, const tg_mesh* m, const double* q, size_t n, uint32_t leaf)
+{
+    tg__simd_level levels[3];
+    int nl = tg_test_simd_levels(levels);
+    for (int l = 0; l < nl; ++l) check_at_level(what, m, q, n, leaf, levels[l]);
+}
+
 static void test_random_soups(void)
 {
     tg_rng r = {0x9E3779B97F4A7C15ull};
@@ -212,6 +230,48 @@ static void test_random_soups(void)
         tg_mesh_destroy(m);
         soup_free(&s);
     }
+}
+
+/* Does the robust kernel (kernels/point_triangle.h) find p's projection inside the triangle with
+ * t = wc / hh rounded above 1, so that it clamps t? The kernel's own operations, in its order. */
+static bool kernel_clamps_t(const double* p, const double* a, const double* b, const double* c)
+{
+    const tg_vec3 v0 = tg_v3_load(a), e0 = tg_v3_sub(tg_v3_load(b), v0), e1 = tg_v3_sub(tg_v3_load(c), v0);
+    const tg_vec3 r = tg_v3_sub(tg_v3_load(p), v0);
+    const double aa = tg_v3_len_sq(e0), mu = tg_v3_dot(e1, e0) / aa, sigma = tg_v3_dot(r, e0) / aa;
+    const tg_vec3 h = tg_v3_sub(e1, tg_v3_scale(e0, mu)), q = tg_v3_sub(r, tg_v3_scale(e0, sigma));
+    const double hh = tg_v3_len_sq(h), wc = tg_v3_dot(q, h);
+    const double wb = sigma * hh - mu * wc, wa = (1.0 - sigma) * hh - (1.0 - mu) * wc;
+    return aa >= DBL_MIN && hh >= DBL_MIN && wa >= 0.0 && wb >= 0.0 && wc >= 0.0 && wc * (1.0 / hh) > 1.0;
+}
+
+/* Points a little above corner 2 of a triangle where the kernel rounds t = wc / hh above 1 and
+ * clamps it (about one point in 150): the vector kernels must clamp exactly as the scalar one does.
+ * Each such triangle makes a mesh with a second copy of itself, corners rotated, so that the answer
+ * is whichever copy's squared distance is smaller in its last bits: a kernel that computes either
+ * copy's differently shows. */
+static void test_corner_queries(void)
+{
+    tg_rng r = {0xC0FFEEull};
+    int found = 0;
+    for (long tries = 0; found < 300 && tries < 2000000; ++tries) {
+        double x[18], p[3];
+        for (int k = 0; k < 9; ++k) x[k] = tg_rng_range(&r, -1.0, 1.0);
+        for (int c = 0; c < 3; ++c) memcpy(x + 9 + 3 * c, x + 3 * ((c + 1) % 3), 3 * sizeof(double));
+        double e1[3], e2[3], n[3];
+        for (int k = 0; k < 3; ++k) e1[k] = x[3 + k] - x[k], e2[k] = x[6 + k] - x[k];
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), up = tries % 2 ? 1e-9 : 1e-14;
+        for (int k = 0; k < 3; ++k) p[k] = x[6 + k] + up * n[k] / len;
+        if (!(len > 0.0) || !kernel_clamps_t(p, x, x + 3, x + 6)) continue;
+        const uint32_t tri[6] = {0, 1, 2, 3, 4, 5};
+        tg_mesh* m = NULL;
+        CHECK_STATUS(tg_mesh_create(x, 6, tri, 2, NULL, NULL, &m), TG_OK);
+        if (m) check_against_brute_force("corner", m, p, 1, 0);
+        tg_mesh_destroy(m);
+        ++found;
+    }
+    CHECK_MSG(found == 300, "only %d points where the kernel clamps t", found);
 }
 
 /* Points above edges and vertices of a grid are at the same distance from two to eight faces. */
@@ -445,6 +505,7 @@ static void test_build_determinism(void)
 int main(void)
 {
     test_random_soups();
+    test_corner_queries();
     test_grid_ties();
     test_all_duplicates();
     test_empty_and_errors();

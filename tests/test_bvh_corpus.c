@@ -20,11 +20,13 @@
  *   test_bvh_corpus --queries MESH N SEED   prints N mixed query points, "x y z" per line (%.17g)
  *   test_bvh_corpus --brute MESH QUERIES    prints the plain scan's answers in the CSV format of
  *                                           `trigeo closest` */
+#include "tg_test_simd.h"
 #include "tg_test.h"
 
 #include <trigeo.h>
 
 #include "kernels/point_triangle.h"
+#include "spatial/bvh_internal.h"
 #include "spatial/simd4.h"
 
 #ifdef TG_UNDER_ASAN
@@ -233,17 +235,46 @@ static int same_hit(const tg_closest_hit* a, const tg_closest_hit* b)
            memcmp(a->bary, b->bary, sizeof a->bary) == 0 && a->feature == b->feature;
 }
 
+/* The BVH built at one forced level answers every query as the scan did (single and batch). */
+static int check_level(const char* file, const tg_mesh* m, const double* q, size_t nq, const tg_closest_hit* want,
+                       tg__simd_level level)
+{
+    tg_test_simd_force(level);
+    tg_bvh* bvh = NULL;
+    tg_bvh_workspace* ws = NULL;
+    tg_closest_hit* batch = malloc(nq * sizeof *batch);
+    int bad = 0;
+    CHECK_STATUS(tg_bvh_create(m, NULL, &bvh), TG_OK);
+    CHECK_MSG(bvh && bvh->simd == level, "%s: the BVH runs level %d, not the forced %d", file, bvh ? (int)bvh->simd : -1,
+              (int)level);
+    CHECK_STATUS(tg_bvh_workspace_create(bvh, &ws), TG_OK);
+    CHECK_STATUS(tg_bvh_closest_batch(bvh, q, nq, INFINITY, 0, batch), TG_OK);
+    for (size_t i = 0; i < nq && ws; ++i) {
+        tg_closest_hit h;
+        tg_bvh_closest(bvh, ws, q + 3 * i, INFINITY, &h);
+        for (int mode = 0; mode < 2; ++mode) {
+            const tg_closest_hit* g = mode ? &batch[i] : &h;
+            if (!same_hit(g, &want[i]) && bad++ < 3)
+                TG_FAIL_("%s [%s] query %zu (%.17g %.17g %.17g) %s: bvh face %u sqdist %.17g feature %d, scan face %u "
+                         "sqdist %.17g feature %d", file, tg__simd_level_name(level), i, q[3 * i], q[3 * i + 1], q[3 * i + 2],
+                         mode ? "batch" : "single", g->face, g->sqdist, (int)g->feature, want[i].face, want[i].sqdist,
+                         (int)want[i].feature);
+        }
+    }
+    tg_bvh_workspace_destroy(ws);
+    tg_bvh_destroy(bvh);
+    free(batch);
+    return bad;
+}
+
 static void check_mesh(const char* dir, const char* file, size_t nq)
 {
     tg_mesh* m = tg_test_load_corpus_mesh(dir, file);
     if (!m) return;
     ref_mesh r;
     ref_init(&r, m);
-    tg_bvh* bvh = NULL;
-    CHECK_STATUS(tg_bvh_create(m, NULL, &bvh), TG_OK);
     double* q = malloc(3 * nq * sizeof *q);
     tg_closest_hit* want = malloc(nq * sizeof *want);
-    tg_closest_hit* batch = malloc(nq * sizeof *batch);
     make_queries(m, nq, 0x5EEDu + r.nf, q);
     int bad = 0;
 #ifdef _OPENMP
@@ -259,30 +290,21 @@ static void check_mesh(const char* dir, const char* file, size_t nq)
             TG_FAIL_("%s query %zu: filtered scan face %u sqdist %.17g, plain scan face %u sqdist %.17g", file, i,
                      want[i].face, want[i].sqdist, h.face, h.sqdist);
     }
-    tg_bvh_workspace* ws = NULL;
-    CHECK_STATUS(tg_bvh_workspace_create(bvh, &ws), TG_OK);
-    CHECK_STATUS(tg_bvh_closest_batch(bvh, q, nq, INFINITY, 0, batch), TG_OK);
-    for (size_t i = 0; i < nq && ws; ++i) {
-        tg_closest_hit h;
-        tg_bvh_closest(bvh, ws, q + 3 * i, INFINITY, &h);
-        for (int mode = 0; mode < 2; ++mode) {
-            const tg_closest_hit* g = mode ? &batch[i] : &h;
-            if (!same_hit(g, &want[i]) && bad++ < 3)
-                TG_FAIL_("%s query %zu (%.17g %.17g %.17g) %s: bvh face %u sqdist %.17g feature %d, scan face %u "
-                         "sqdist %.17g feature %d", file, i, q[3 * i], q[3 * i + 1], q[3 * i + 2], mode ? "batch" : "single",
-                         g->face, g->sqdist, (int)g->feature, want[i].face, want[i].sqdist, (int)want[i].feature);
-        }
+    tg__simd_level levels[3];
+    int nl = tg_test_simd_levels(levels);
+    char names[64] = "";
+    for (int l = 0; l < nl; ++l) {
+        bad += check_level(file, m, q, nq, want, levels[l]);
+        snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", l ? "+" : "", tg__simd_level_name(levels[l]));
     }
+    unsetenv("TRIGEO_SIMD");
     if (!bad) tg_test_passed_++;
     else TG_FAIL_("%s: %d mismatches", file, bad);
-    printf("%-36s %9zu faces, %zu queries: %s\n", file, r.nf, nq, bad ? "MISMATCH" : "ok");
+    printf("%-36s %9zu faces, %zu queries (%s): %s\n", file, r.nf, nq, names, bad ? "MISMATCH" : "ok");
     fflush(stdout);
-    tg_bvh_workspace_destroy(ws);
-    free(batch);
     free(want);
     free(q);
     for (int k = 0; k < 6; ++k) free(r.box[k]);
-    tg_bvh_destroy(bvh);
     tg_mesh_destroy(m);
 }
 

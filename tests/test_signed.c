@@ -2,7 +2,10 @@
  * cube (both sign methods, with points very near sharp edges and vertices, also for a rotated cube
  * far from the origin), a cube with a hole (the winding number as it is: 5/6 at the centre, the
  * solid angle of the hole outside), two cubes sharing an edge (non-manifold), the automatic choice
- * of method, the hierarchical winding number against the exact sum, batches against single calls. */
+ * of method, the hierarchical winding number against the exact sum, batches against single calls.
+ * All of it once per instruction-set level of the closest-point kernels that the machine supports
+ * (tg_test_simd.h): the sign by pseudonormal rests on the feature the kernel reports. */
+#include "tg_test_simd.h"
 #include "tg_test.h"
 
 #include <trigeo.h>
@@ -383,10 +386,18 @@ static void test_hierarchical_and_batch(void)
 
 int main(void)
 {
-    test_sphere();
-    test_cube();
-    test_hole();
-    test_nonmanifold();
-    test_hierarchical_and_batch();
+    tg__simd_level levels[3];
+    int nl = tg_test_simd_levels(levels);
+    for (int l = 0; l < nl; ++l) {
+        int failed_before = tg_test_failed_;
+        tg_test_simd_force(levels[l]);
+        test_sphere();
+        test_cube();
+        test_hole();
+        test_nonmanifold();
+        test_hierarchical_and_batch();
+        printf("kernel level %s: %s\n", tg__simd_level_name(levels[l]), tg_test_failed_ == failed_before ? "ok" : "FAILED");
+    }
+    unsetenv("TRIGEO_SIMD");
     return tg_test_finish();
 }

@@ -134,6 +134,25 @@ bool cli_ext_is(const char* path, const char* ext);
 void cli_json_point(FILE* f, const tg_surface_point* p);
 /* Writes a float64 array as NumPy .npy: (rows, cols) when matrix, else (cols,). */
 bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bool matrix);
+/* Writes a .npy header (version 1.0, C order, data aligned to 64 bytes) for `rows` records of the
+ * dtype `descr` (a NumPy descr literal: '<f8' or [('face', '<u4'), ...]); shape (rows,). */
+bool cli_write_npy_header(FILE* f, const char* descr, size_t rows);
+/* Is this file content a NumPy .npy file (its magic string)? */
+bool cli_is_npy(const char* data, size_t size);
+/* The (k, 3) little-endian float64 C-order array of a .npy file's content, as k points; every
+ * other dtype, shape or order, a bad header or truncated or excess data is refused with the file
+ * name and the reason (printed). Returns the count, or (size_t)-1 after printing the error;
+ * *out is malloc'd (at least one element). */
+size_t cli_read_npy_points(const char* name, const char* data, size_t size, double** out);
+
+/* ---- numbers (cli_number.c) ---- */
+
+/* The shortest decimal that reads back (strtod) to exactly x, '\0'-terminated; at most 25 bytes
+ * with the terminator. Fixed notation for decimal exponents -4 to 15 (as Python's repr), else
+ * d.ddde+XX / d.ddde-XX.
+ * Returns the length. Thread-compatible: the first call fills static tables (call it once before
+ * starting threads). */
+int cli_format_double(double x, char* out);
 
 /* Can `threads` threads (0: one per core) be started? Prints why not (naming `what`): OpenMP's
  * runtime would end the process instead of failing. */

@@ -9,6 +9,7 @@
 #include "cli.h"
 
 #include <errno.h>
+#include <math.h>
 #include <pthread.h>
 #include <signal.h>
 #include <stdatomic.h>
@@ -358,6 +359,27 @@ bool cli_threads_available(int threads, const char* what)
 
 /* ---- .npy ---- */
 
+/* magic (6) + version 1.0 (2) + header length (2) + the dict padded with spaces and a newline to a
+ * multiple of 64 bytes, so that the data is aligned */
+static bool write_npy_dict(FILE* f, const char* dict)
+{
+    size_t len = strlen(dict), total = 10 + len + 1;
+    size_t pad = (64 - total % 64) % 64, hlen = len + pad + 1;
+    if (hlen > 65535) return false;
+    unsigned char pre[10] = {0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0, (unsigned char)(hlen & 0xFF), (unsigned char)(hlen >> 8)};
+    if (fwrite(pre, 1, 10, f) != 10 || fwrite(dict, 1, len, f) != len) return false;
+    for (size_t i = 0; i < pad; ++i)
+        if (fputc(' ', f) == EOF) return false;
+    return fputc('\n', f) != EOF;
+}
+
+bool cli_write_npy_header(FILE* f, const char* descr, size_t rows)
+{
+    char dict[1024];
+    int n = snprintf(dict, sizeof dict, "{'descr': %s, 'fortran_order': False, 'shape': (%zu,), }", descr, rows);
+    return n > 0 && (size_t)n < sizeof dict && write_npy_dict(f, dict);
+}
+
 bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bool matrix)
 {
     char dict[160];
@@ -365,15 +387,7 @@ bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bo
         snprintf(dict, sizeof dict, "{'descr': '<f8', 'fortran_order': False, 'shape': (%zu, %zu), }", rows, cols);
     else
         snprintf(dict, sizeof dict, "{'descr': '<f8', 'fortran_order': False, 'shape': (%zu,), }", cols);
-    /* magic (6) + version (2) + header length (2) + dict padded with spaces and a newline to a
-     * multiple of 64 bytes, so that the data is aligned */
-    size_t len = strlen(dict), total = 10 + len + 1;
-    size_t pad = (64 - total % 64) % 64, hlen = len + pad + 1;
-    unsigned char pre[10] = {0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0, (unsigned char)(hlen & 0xFF), (unsigned char)(hlen >> 8)};
-    if (fwrite(pre, 1, 10, f) != 10 || fwrite(dict, 1, len, f) != len) return false;
-    for (size_t i = 0; i < pad; ++i)
-        if (fputc(' ', f) == EOF) return false;
-    if (fputc('\n', f) == EOF) return false;
+    if (!write_npy_dict(f, dict)) return false;
     size_t n = rows * cols;
     for (size_t i = 0; i < n; ++i) {
         uint64_t bits;
@@ -383,6 +397,126 @@ bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bo
         if (fwrite(b, 1, 8, f) != 8) return false;
     }
     return true;
+}
+
+bool cli_is_npy(const char* data, size_t size) { return size >= 6 && !memcmp(data, "\x93NUMPY", 6); }
+
+/* The value of key `key` in a .npy header dict (text of `len` bytes): a pointer just past
+ * "'key':" and blanks, or NULL. */
+static const char* npy_value(const char* dict, size_t len, const char* key)
+{
+    size_t k = strlen(key);
+    for (size_t i = 0; i + k + 2 < len; ++i) {
+        if (dict[i] != '\'' || memcmp(dict + i + 1, key, k) || dict[i + 1 + k] != '\'') continue;
+        const char* p = dict + i + k + 2;
+        while (p < dict + len && *p == ' ') ++p;
+        if (p >= dict + len || *p != ':') return NULL;
+        ++p;
+        while (p < dict + len && *p == ' ') ++p;
+        return p;
+    }
+    return NULL;
+}
+
+size_t cli_read_npy_points(const char* name, const char* data, size_t size, double** out)
+{
+    const unsigned char* u = (const unsigned char*)data;
+    if (!cli_is_npy(data, size) || size < 10) {
+        cli_error(name, 0, ".npy: not a NumPy file (no \\x93NUMPY magic)");
+        return (size_t)-1;
+    }
+    size_t hlen, start;
+    if (u[6] == 1) {
+        hlen = (size_t)u[8] | (size_t)u[9] << 8;
+        start = 10;
+    } else if ((u[6] == 2 || u[6] == 3) && size >= 12) {
+        hlen = (size_t)u[8] | (size_t)u[9] << 8 | (size_t)u[10] << 16 | (size_t)u[11] << 24;
+        start = 12;
+    } else {
+        cli_error(name, 0, ".npy: unsupported format version %u.%u (1.0, 2.0 and 3.0 are read)", u[6], size > 7 ? u[7] : 0);
+        return (size_t)-1;
+    }
+    if (hlen > size - start) {
+        cli_error(name, 0, ".npy: truncated header (%zu bytes announced, %zu in the file)", hlen, size - start);
+        return (size_t)-1;
+    }
+    const char* dict = data + start;
+    if (!hlen || dict[0] != '{' || !memchr(dict, '}', hlen)) {
+        cli_error(name, 0, ".npy: the header is not a dictionary");
+        return (size_t)-1;
+    }
+    const char* descr = npy_value(dict, hlen, "descr");
+    const char* order = npy_value(dict, hlen, "fortran_order");
+    const char* shape = npy_value(dict, hlen, "shape");
+    if (!descr || !order || !shape) {
+        cli_error(name, 0, ".npy: the header lacks '%s'", !descr ? "descr" : !order ? "fortran_order" : "shape");
+        return (size_t)-1;
+    }
+    if (strncmp(descr, "'<f8'", 5)) {
+        const char* end = memchr(descr, ',', (size_t)(dict + hlen - descr));
+        cli_error(name, 0, ".npy: dtype %.*s, expected little-endian float64 ('<f8')",
+                  (int)(end ? end - descr : 20), descr);
+        return (size_t)-1;
+    }
+    if (strncmp(order, "False", 5)) {
+        cli_error(name, 0, ".npy: Fortran order; expected a C-order array (numpy.ascontiguousarray)");
+        return (size_t)-1;
+    }
+    /* shape: (k, 3) with k a non-negative integer */
+    const char* p = shape;
+    const char* close = memchr(shape, ')', (size_t)(dict + hlen - shape));
+    unsigned long long k = 0, c = 0;
+    bool ok = *p == '(' && close;
+    if (ok) {
+        char* e;
+        ++p;
+        while (*p == ' ') ++p;
+        ok = *p >= '0' && *p <= '9';
+        k = strtoull(p, &e, 10);
+        p = e;
+        while (*p == ' ') ++p;
+        ok = ok && *p == ',';
+        if (ok) {
+            ++p;
+            while (*p == ' ') ++p;
+            ok = *p >= '0' && *p <= '9';
+            c = strtoull(p, &e, 10);
+            p = e;
+            while (*p == ' ' || *p == ',') ++p;
+            ok = ok && p == close;
+        }
+    }
+    if (!ok || c != 3) {
+        cli_error(name, 0, ".npy: shape %.*s, expected (k, 3): one point (x, y, z) a row", close ? (int)(close - shape + 1) : 12,
+                  shape);
+        return (size_t)-1;
+    }
+    size_t body = size - start - hlen;
+    if (k > (size_t)-1 / 24 / 2 || body != 24 * (size_t)k) {
+        if (body < 24 * k)
+            cli_error(name, 0, ".npy: truncated data: %zu bytes for shape (%llu, 3), expected %llu", body, k, 24 * k);
+        else
+            cli_error(name, 0, ".npy: %zu bytes after the data of shape (%llu, 3)", body - 24 * (size_t)k, k);
+        return (size_t)-1;
+    }
+    double* xyz = malloc(24 * (size_t)k + 8);
+    if (!xyz) {
+        cli_error(name, 0, "out of memory");
+        return (size_t)-1;
+    }
+    const unsigned char* b = u + start + hlen;
+    for (size_t i = 0; i < 3 * (size_t)k; ++i) {
+        uint64_t bits = 0;
+        for (int j = 0; j < 8; ++j) bits |= (uint64_t)b[8 * i + (size_t)j] << (8 * j);
+        memcpy(&xyz[i], &bits, sizeof bits);
+        if (!isfinite(xyz[i]) || fabs(xyz[i]) > 1e150) {
+            cli_error(name, 0, ".npy: row %zu, coordinate %d is %g: not finite or beyond +-1e150", i / 3, (int)(i % 3) + 1, xyz[i]);
+            free(xyz);
+            return (size_t)-1;
+        }
+    }
+    *out = xyz;
+    return (size_t)k;
 }
 
 bool cli_grow(void** p, size_t* cap, size_t need, size_t elem)

@@ -1,9 +1,11 @@
-/* cmd_closest.c - `trigeo closest MESH QUERIES [--signed] [--sign M] [--threads N] [-o OUT.csv]`:
- * closest points (and optionally signed distances) of query points, as CSV. */
+/* cmd_closest.c - `trigeo closest MESH QUERIES [--signed] [--sign M] [--threads N] [-o OUT]`:
+ * closest points (and optionally signed distances) of query points (text or .npy), as CSV or as a
+ * NumPy structured array. */
 #include "cli.h"
 
 #include <errno.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -70,17 +72,93 @@ static size_t parse_queries(const char* name, char* text, double** out)
     return count;
 }
 
+/* Unsigned decimal at s; returns the length. */
+static int format_uint(unsigned long long v, char* s)
+{
+    char r[24];
+    int n = 0;
+    do r[n++] = (char)('0' + v % 10), v /= 10;
+    while (v);
+    for (int i = 0; i < n; ++i) s[i] = r[n - 1 - i];
+    return n;
+}
+
+/* CSV rows, numbers as the shortest decimals that read back to the same doubles (cli_format_double),
+ * built in a buffer written in large blocks. Returns 0, 1 after Ctrl-C, -1 on a write error. */
 static int write_csv(FILE* f, size_t n, const tg_closest_hit* hits, const tg_signed_hit* signed_hits)
 {
-    fprintf(f, "i,face,sqdist,cx,cy,cz,b0,b1,b2%s\n", signed_hits ? ",sign" : "");
+    enum { BLOCK = 1 << 16, ROW_MAX = 20 + 11 + 7 * 26 + 4 };
+    char* buf = malloc(BLOCK + ROW_MAX);
+    if (!buf) return -1;
+    size_t used = (size_t)sprintf(buf, "i,face,sqdist,cx,cy,cz,b0,b1,b2%s\n", signed_hits ? ",sign" : "");
     for (size_t i = 0; i < n; ++i) {
         const tg_closest_hit* h = signed_hits ? &signed_hits[i].hit : &hits[i];
-        fprintf(f, "%zu,%u,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", i, h->face, h->sqdist, h->point[0], h->point[1],
-                h->point[2], h->bary[0], h->bary[1], h->bary[2]);
-        if (signed_hits) fprintf(f, ",%d", signed_hits[i].sign);
-        fputc('\n', f);
-        if ((i & 4095) == 4095 && cli_interrupted()) return 1; /* Ctrl-C: nothing is kept */
+        char* s = buf + used;
+        s += format_uint(i, s);
+        *s++ = ',';
+        s += format_uint(h->face, s);
+        const double v[7] = {h->sqdist, h->point[0], h->point[1], h->point[2], h->bary[0], h->bary[1], h->bary[2]};
+        for (int k = 0; k < 7; ++k) {
+            *s++ = ',';
+            s += cli_format_double(v[k], s);
+        }
+        if (signed_hits) {
+            int sign = signed_hits[i].sign;
+            *s++ = ',';
+            if (sign < 0) *s++ = '-';
+            *s++ = sign ? '1' : '0';
+        }
+        *s++ = '\n';
+        used = (size_t)(s - buf);
+        if (used >= BLOCK) {
+            if (fwrite(buf, 1, used, f) != used) break;
+            used = 0;
+            if (cli_interrupted()) { /* Ctrl-C: nothing is kept */
+                free(buf);
+                return 1;
+            }
+        }
     }
+    if (used && fwrite(buf, 1, used, f) != used) used = 0;
+    free(buf);
+    return ferror(f) ? -1 : 0;
+}
+
+/* The same records as a NumPy structured array of shape (n,), fields named as the CSV columns
+ * (the row number is the index): face uint32, sqdist, cx, cy, cz, b0, b1, b2 float64[, sign int8],
+ * packed, little-endian. */
+static int write_npy(FILE* f, size_t n, const tg_closest_hit* hits, const tg_signed_hit* signed_hits)
+{
+    const char* descr = signed_hits ? "[('face', '<u4'), ('sqdist', '<f8'), ('cx', '<f8'), ('cy', '<f8'), ('cz', '<f8'), "
+                                      "('b0', '<f8'), ('b1', '<f8'), ('b2', '<f8'), ('sign', 'i1')]"
+                                    : "[('face', '<u4'), ('sqdist', '<f8'), ('cx', '<f8'), ('cy', '<f8'), ('cz', '<f8'), "
+                                      "('b0', '<f8'), ('b1', '<f8'), ('b2', '<f8')]";
+    if (!cli_write_npy_header(f, descr, n)) return -1;
+    enum { REC_MAX = 4 + 7 * 8 + 1, PER_BLOCK = 4096 };
+    const size_t rec = signed_hits ? REC_MAX : REC_MAX - 1;
+    unsigned char* buf = malloc(PER_BLOCK * REC_MAX);
+    if (!buf) return -1;
+    for (size_t i0 = 0; i0 < n; i0 += PER_BLOCK) {
+        size_t m = n - i0 < PER_BLOCK ? n - i0 : PER_BLOCK;
+        for (size_t j = 0; j < m; ++j) {
+            const tg_closest_hit* h = signed_hits ? &signed_hits[i0 + j].hit : &hits[i0 + j];
+            unsigned char* r = buf + j * rec;
+            for (int b = 0; b < 4; ++b) r[b] = (unsigned char)(h->face >> (8 * b));
+            const double v[7] = {h->sqdist, h->point[0], h->point[1], h->point[2], h->bary[0], h->bary[1], h->bary[2]};
+            for (int k = 0; k < 7; ++k) {
+                uint64_t bits;
+                memcpy(&bits, &v[k], sizeof bits);
+                for (int b = 0; b < 8; ++b) r[4 + 8 * k + b] = (unsigned char)(bits >> (8 * b));
+            }
+            if (signed_hits) r[REC_MAX - 1] = (unsigned char)(signed char)signed_hits[i0 + j].sign;
+        }
+        if (fwrite(buf, rec, m, f) != m) break;
+        if (cli_interrupted()) {
+            free(buf);
+            return 1;
+        }
+    }
+    free(buf);
     return ferror(f) ? -1 : 0;
 }
 
@@ -140,7 +218,7 @@ static int run(int argc, char** argv)
     char* text = cli_read_all(query_path, &size);
     if (!text) return CLI_INPUT;
     double* xyz = NULL;
-    size_t n = parse_queries(query_path, text, &xyz);
+    size_t n = cli_is_npy(text, size) ? cli_read_npy_points(query_path, text, size, &xyz) : parse_queries(query_path, text, &xyz);
     free(text);
     if (n == (size_t)-1) return CLI_INPUT;
 
@@ -177,7 +255,8 @@ static int run(int argc, char** argv)
     cli_output out;
     FILE* f = cli_output_open(&out, out_path ? out_path : "-");
     if (!f) goto done;
-    int werr = write_csv(f, n, hits, shits);
+    (void)cli_format_double(0.0, (char[32]){0}); /* its tables, before any thread could ask */
+    int werr = out_path && cli_ext_is(out_path, ".npy") ? write_npy(f, n, hits, shits) : write_csv(f, n, hits, shits);
     if (werr) {
         if (werr > 0) {
             cli_error(out_path ? out_path : "-", 0, "interrupted: nothing written");
@@ -199,18 +278,24 @@ done:
 }
 
 const cli_command cli_cmd_closest = {
-    "closest", "closest MESH QUERIES [--signed] [--sign pseudonormal|winding] [--threads N] [-o OUT.csv]",
+    "closest", "closest MESH QUERIES [--signed] [--sign pseudonormal|winding] [--threads N] [-o OUT.csv|OUT.npy]",
     "For each query point, the closest point of MESH: face (0-based, file order), squared distance,\n"
     "closest point and its barycentric coordinates on that face. Ties go to the lowest face index;\n"
     "the answers equal a linear scan over all faces.\n\n"
-    "  QUERIES     text, one \"x y z\" per line ('-' = stdin); blank lines and '#' comments allowed\n"
+    "  QUERIES     text, one \"x y z\" per line ('-' = stdin); blank lines and '#' comments allowed;\n"
+    "              or a NumPy .npy file (recognized by its content) holding a (k, 3) float64\n"
+    "              little-endian C-order array, e.g. numpy.save(\"q.npy\", points)\n"
     "  --signed    add a sign column: -1 inside, +1 outside, 0 on the surface. Angle-weighted\n"
     "              pseudonormals for closed, consistently oriented manifolds, else the generalized\n"
     "              winding number (>= 1/2 is inside); the choice is reported on stderr\n"
     "  --sign M    force the method: pseudonormal or winding (implies --signed)\n"
     "  --threads N worker threads, at most 256 (default 0 = all cores)\n"
-    "  -o OUT.csv  write there instead of stdout\n\n"
-    "Output: CSV with header i,face,sqdist,cx,cy,cz,b0,b1,b2[,sign], numbers with %.17g.\n"
-    "A malformed or non-finite query line is reported as QUERIES:LINE and nothing is written.\n",
+    "  -o OUT      write there instead of stdout; a name ending in .npy gets a NumPy structured\n"
+    "              array of shape (k,) with the CSV's columns as fields: face (uint32), sqdist, cx,\n"
+    "              cy, cz, b0, b1, b2 (float64)[, sign (int8)] - numpy.load(OUT)[\"sqdist\"]\n\n"
+    "Output: CSV with header i,face,sqdist,cx,cy,cz,b0,b1,b2[,sign]; each number is the shortest\n"
+    "decimal that reads back to exactly the computed double.\n"
+    "A malformed or non-finite query line is reported as QUERIES:LINE, a malformed .npy file with\n"
+    "the reason (dtype, shape, order, truncation), and nothing is written.\n",
     run,
 };

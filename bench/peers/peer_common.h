@@ -6,8 +6,10 @@
 #include <malloc.h>
 #include <trigeo.h>
 
+#include "../bench_common.h"
+
 #include <algorithm>
-#include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -23,10 +25,7 @@ namespace peer {
     std::exit(2);
 }
 
-inline double now()
-{
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+inline double now() { return bench_wall(); }
 
 inline double median(std::vector<double> v)
 {
@@ -78,6 +77,9 @@ inline tg_mesh* load(const char* path)
 // order; medians of reps passes), writes the squared distances to FILE.<name>.d and prints
 // "<name> FILE faces build_s bytes_per_face ns_1t ns_2t". query(p) returns the squared distance
 // from the point p[0..2] to the mesh and must be safe to call from several threads.
+// With TG_BENCH_THREADS=1 in the environment only the 1-thread passes run (ns_2t prints as nan):
+// for timing a whole process that answers the queries on one thread. TG_BENCH_CLOCK=thread times
+// the 1-thread passes by thread CPU time (bench_pass_clock in bench/bench_common.h).
 template <class Query>
 inline void run_query_files(int argc, char** argv, int first, int reps, const char* name, size_t nf, double build,
                             double bytes, Query query)
@@ -86,16 +88,17 @@ inline void run_query_files(int argc, char** argv, int first, int reps, const ch
         std::vector<double> q = read_array(argv[a], "TGQUERY1", 3);
         const long n = (long)(q.size() / 3);
         std::vector<double> d(n);
-        double ns[2];
-        for (int threads = 1; threads <= 2; ++threads) {
+        double ns[2] = {NAN, NAN};
+        const int max_threads = bench_max_threads();
+        for (int threads = 1; threads <= max_threads; ++threads) {
             std::vector<double> tt;
             for (int r = 0; r < reps; ++r) {
-                double t0 = now();
+                double t0 = bench_pass_clock(threads);
 #ifdef _OPENMP
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1024)
 #endif
                 for (long i = 0; i < n; ++i) d[i] = query(&q[3 * i]);
-                tt.push_back(now() - t0);
+                tt.push_back(bench_pass_clock(threads) - t0);
             }
             ns[threads - 1] = 1e9 * median(tt) / (double)n;
         }

@@ -18,6 +18,18 @@
 #define TG_UNLIKELY(x) (x)
 #endif
 
+/* The index of the lowest set bit of x != 0. */
+static inline unsigned tg__ctz32(uint32_t x)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    return (unsigned)__builtin_ctz(x);
+#else
+    unsigned i = 0;
+    while (!(x >> i & 1)) ++i;
+    return i;
+#endif
+}
+
 /* Allocation through a tg_allocator (NULL or incomplete hooks: libc). */
 void* tg__alloc(const tg_allocator* a, size_t size);
 void* tg__realloc(const tg_allocator* a, void* ptr, size_t size);

@@ -1,4 +1,4 @@
-/* bvh_build.c - builds the 4-wide BVH: Morton-ordered top levels, binned-SAH subtrees built in
+/* bvh_build.c - builds the 8-wide BVH: Morton-ordered top levels, binned-SAH subtrees built in
  * parallel, quantized nodes, leaf blocks with the triangles' vertices, oriented boxes (bvh_obb.c).
  * Based on: MacDonald and Booth 1990, "Heuristics for ray tracing using space subdivision" (surface
  * area heuristic: cost = C_trav + C_isect * (A_L N_L + A_R N_R) / A); Wald 2007, "On fast
@@ -6,7 +6,7 @@
  * two sweeps, in-place partition); Lauterbach et al. 2009, "Fast BVH construction on GPUs" §3
  * (LBVH: primitives sorted by the Morton code of their centroids, a range split at the highest
  * differing bit) and §4 (hybrid: a cheap top hierarchy over SAH-built subtrees); Dammertz, Hanika,
- * Keller 2008 §2.1 (a 4-wide node is made by repeatedly splitting the child with the largest
+ * Keller 2008 §2.1 (a wide node is made by repeatedly splitting the child with the largest
  * surface area); Ylitie, Karras, Laine 2017 §3.1 (8-bit child bounds relative to the parent with a
  * power-of-two step, rounded outward).
  * Single-thread cost (bench_closest build, armadillo_1m): the faces are keyed and sorted before
@@ -21,7 +21,7 @@
 #include <float.h>
 #include <math.h>
 
-_Static_assert(sizeof(tg__bvh_node) == 128, "a BVH node is two 64-byte cache lines");
+_Static_assert(sizeof(tg__bvh_node) == 192, "a BVH node is three 64-byte cache lines");
 
 #define BIN_COUNT 16
 /* How many primitives ahead scattered mesh vertices are prefetched. */
@@ -355,7 +355,7 @@ static bool nodes_reserve(builder* bd, size_t extra)
     size_t bytes = (cap + 1) * sizeof(tg__bvh_node);
     void* raw = tg__bvh_big_alloc(bd->a, bytes, &mapped);
     if (!raw) return false;
-    tg__bvh_node* nodes = (tg__bvh_node*)(((uintptr_t)raw + 127) & ~(uintptr_t)127);
+    tg__bvh_node* nodes = (tg__bvh_node*)(((uintptr_t)raw + 63) & ~(uintptr_t)63);
     if (bd->node_count) memcpy(nodes, bd->nodes, bd->node_count * sizeof *nodes);
     tg__bvh_big_free(bd->a, bd->nodes_raw, bd->nodes_raw_bytes, bd->nodes_mapped);
     bd->nodes_raw = raw;
@@ -415,7 +415,7 @@ static void quantize(tg__bvh_node* node, const range* child, int count)
 }
 
 /* Turns the range of one work item into a node: opens the largest splittable child until there
- * are four (Dammertz et al. 2008), then emits leaves and pushes inner children. */
+ * are TG__BVH_WIDTH (Dammertz et al. 2008), then emits leaves and pushes inner children. */
 static bool build_node(builder* bd, const work* w, work* stack, size_t* sp, binning* g)
 {
     range cand[TG__BVH_WIDTH];
@@ -468,7 +468,7 @@ static bool build_node(builder* bd, const work* w, work* stack, size_t* sp, binn
 static tg_status sah_build(builder* bd, const range* r, uint32_t depth)
 {
     binning* g = tg__alloc(bd->a, sizeof *g);
-    work* stack = tg__alloc_array(bd->a, (size_t)4 * (MAX_DEPTH + 2), sizeof *stack);
+    work* stack = tg__alloc_array(bd->a, (size_t)TG__BVH_WIDTH * (MAX_DEPTH + 2), sizeof *stack);
     tg_status st = TG_OK;
     if (!g || !stack || !nodes_reserve(bd, (size_t)(r->end - r->begin) / 4 + 1)) {
         st = TG_ERR_OUT_OF_MEMORY;
@@ -630,13 +630,13 @@ typedef struct top_work {
     uint32_t node, depth, begin, end;
 } top_work;
 
-/* The top levels: 4-wide nodes whose children are Morton halves (the largest opened first), down
+/* The top levels: wide nodes whose children are Morton halves (the largest opened first), down
  * to ranges of at most SUBTREE_MAX primitives, which become subtrees (or leaves if they fit). */
 static tg_status build_top(builder* top, const uint32_t* keys, uint32_t n, subtree** out, size_t* out_count)
 {
     size_t cap = 64, count = 0;
     subtree* tasks = tg__alloc_array(top->a, cap, sizeof *tasks);
-    top_work* stack = tg__alloc_array(top->a, (size_t)4 * 40, sizeof *stack);
+    top_work* stack = tg__alloc_array(top->a, (size_t)TG__BVH_WIDTH * 40, sizeof *stack);
     tg_status st = tasks && stack && nodes_reserve(top, 64) ? TG_OK : TG_ERR_OUT_OF_MEMORY;
     size_t sp = 0;
     if (st == TG_OK) {
@@ -965,6 +965,7 @@ tg_status tg_bvh_create(const tg_mesh* mesh, const tg_bvh_options* opts, tg_bvh*
     bvh->build_threads = o.threads;
     bvh->mesh = mesh;
     bvh->auto_method = auto_sign_method(mesh);
+    bvh->simd = tg__simd_level_detect();
     choose_frame(bvh);
     tg_status st = TG_OK;
     uint32_t n = (uint32_t)mesh->face_count;
@@ -998,8 +999,8 @@ tg_status tg_bvh_create(const tg_mesh* mesh, const tg_bvh_options* opts, tg_bvh*
         tg_bvh_destroy(bvh);
         return st;
     }
-    /* Nearest-first traversal pushes at most 3 entries more than it pops per level. */
-    bvh->stack_capacity = 3 * bvh->depth + 4;
+    /* Nearest-first traversal pushes at most WIDTH - 1 entries per level it goes down. */
+    bvh->stack_capacity = (TG__BVH_WIDTH - 1) * bvh->depth + 4;
     bvh->memory_bytes = sizeof *bvh + (bvh->node_count + 1) * sizeof(tg__bvh_node) +
                         bvh->leaf_words * sizeof(uint64_t) +
                         (bvh->clusters ? bvh->node_count * TG__BVH_WIDTH * sizeof(tg__bvh_cluster) : 0);

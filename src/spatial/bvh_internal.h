@@ -1,33 +1,38 @@
 /* bvh_internal.h - the tg_bvh layout shared by the spatial layer (build, queries, sign, winding).
  * Based on: Wald 2007, "On fast construction of SAH-based bounding volume hierarchies" §3 (binned
  * SAH); Dammertz, Hanika, Keller 2008, "Shallow bounding volume hierarchies for fast SIMD ray
- * tracing of incoherent rays" §2 (4-wide nodes, children tested together); Ylitie, Karras, Laine
+ * tracing of incoherent rays" §2 (wide nodes, children tested together; they use 4, the AVX
+ * width of floats is 8); Ylitie, Karras, Laine
  * 2017, "Efficient incoherent ray traversal on GPUs through compressed wide BVHs" §3.1 (child boxes
  * quantized to 8 bits relative to the parent, power-of-two scale, rounded outward). */
 #ifndef TG_BVH_INTERNAL_H
 #define TG_BVH_INTERNAL_H
 
+#include "core/cpu.h"
 #include "mesh/mesh_internal.h"
 
 #include <math.h>
 #include <string.h>
 
-#define TG__BVH_WIDTH 4
+#define TG__BVH_WIDTH 8
 #define TG__BVH_MAX_LEAF 15
 #define TG__BVH_DEFAULT_LEAF 12
 
-/* One 4-wide node in two 64-byte cache lines. Coordinates are "local": (x - origin) * scale of the
- * tg_bvh, so that the mesh fits in [-1, 1]^3 and float keeps relative precision whatever the
- * mesh's position and size.
+/* One 8-wide node in three 64-byte cache lines. Coordinates are "local": (x - origin) * scale of
+ * the tg_bvh, so that the mesh fits in [-1, 1]^3 and float keeps relative precision whatever the
+ * mesh's position and size. Eight children are tested together by 8-lane float vectors (two
+ * 4-lane halves in the portable code); against four-wide nodes this halves the number of
+ * dependent node fetches on the way down, which is what a query waits for, and costs 24 instead
+ * of 32 bytes per child.
  *
  * Line 1, the child boxes: on axis a,
  *     lo = origin[a] + (float)qlo[a][slot] * 2^exponent[a]   (float multiply, then float add)
  * and likewise hi; the builder checks with exactly these float operations that the decoded box
  * contains the child, so pruning with it is conservative.
  *
- * Line 2, an oriented box per child (Gottschalk, Lin, Manocha 1996, "OBBTree", §3: boxes aligned
- * with the local surface are far tighter than axis-aligned ones around a tilted patch). The frame
- * is an integer quaternion q = (a, b, c, d) (8 bits each); its matrix
+ * Lines 2 and 3, an oriented box per child (Gottschalk, Lin, Manocha 1996, "OBBTree", §3: boxes
+ * aligned with the local surface are far tighter than axis-aligned ones around a tilted patch),
+ * then the children. The frame is an integer quaternion q = (a, b, c, d) (8 bits each); its matrix
  *     M = [a2+b2-c2-d2, 2(bc-ad), 2(bd+ac); 2(bc+ad), a2-b2+c2-d2, 2(cd-ab); 2(bd-ac), 2(cd+ab), a2-b2-c2+d2]
  * has integer entries below 2^17, exact in float, and M^T M = n^2 I exactly with n = |q|^2: it is
  * n times a rotation, so |M y| = n |y| and no bound is lost to rounding of the frame. With the
@@ -38,19 +43,21 @@
  * rows of M are tangent directions and the last the normal of the child's geometry. A zero
  * quaternion (n = 0) disables a slot's oriented box. */
 typedef struct tg__bvh_node {
+    /* line 1 */
     float origin[3];       /* lower corner of this node's box */
     int8_t exponent[3];    /* per-axis power-of-two quantization step */
-    uint8_t child_count;   /* slots 0 .. child_count-1 are used (1..4) */
+    uint8_t child_count;   /* slots 0 .. child_count-1 are used (1..8) */
     uint8_t qlo[3][TG__BVH_WIDTH];
     uint8_t qhi[3][TG__BVH_WIDTH];
-    uint32_t child[TG__BVH_WIDTH];     /* inner child: node index; leaf: leaf block offset in words */
-    uint8_t leaf_count[TG__BVH_WIDTH]; /* 0: inner child; 1..15: triangles of a leaf */
-    uint32_t reserved;
-    /* second cache line */
+    /* line 2 */
     int8_t quat[4][TG__BVH_WIDTH];
     int8_t olo[3][TG__BVH_WIDTH];
+    uint8_t has_obb;       /* 1 if some slot's oriented box is enabled (non-zero quaternion) */
+    uint8_t reserved[7];
+    /* line 3 */
     int8_t ohi[3][TG__BVH_WIDTH];
-    uint8_t reserved2[24];
+    uint8_t leaf_count[TG__BVH_WIDTH]; /* 0: inner child; 1..15: triangles of a leaf */
+    uint32_t child[TG__BVH_WIDTH];     /* inner child: node index; leaf: leaf block offset in words */
 } tg__bvh_node;
 
 /* The oriented-box step of a slot (same float operations as the query's vector code):
@@ -111,7 +118,7 @@ struct tg_bvh {
     const tg_mesh* mesh;
     double origin[3]; /* local = (x - origin) * scale */
     double scale;     /* a power of two */
-    tg__bvh_node* nodes; /* 128-byte aligned inside nodes_raw; node 0 is the root */
+    tg__bvh_node* nodes; /* 64-byte aligned inside nodes_raw; node 0 is the root */
     void* nodes_raw;
     size_t nodes_raw_bytes;
     bool nodes_mapped;
@@ -123,6 +130,7 @@ struct tg_bvh {
     uint32_t depth;            /* node levels (root alone: 1; empty mesh: 0) */
     uint32_t stack_capacity;   /* entries a workspace needs */
     tg_sign_method auto_method;
+    tg__simd_level simd; /* the query kernels' instruction set (tg__simd_level_detect at build) */
     size_t memory_bytes;
 };
 
@@ -130,6 +138,11 @@ struct tg_bvh_workspace {
     const tg_bvh* bvh;
     uint32_t capacity;
     tg__bvh_entry* stack;
+    /* the previous closest-point answer through this workspace (TG_NONE: none) and its corners in
+     * the leaf blocks (or the mesh), for a batch's hint (see closest() in bvh_query.c) */
+    uint32_t last_face;
+    double last_sq_local;  /* its squared distance in local units */
+    const double* last_v[3];
 };
 
 static inline tg__bvh_leaf tg__bvh_leaf_at(const tg_bvh* b, uint32_t child, uint32_t k)

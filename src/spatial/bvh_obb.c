@@ -297,6 +297,9 @@ tg_status tg__bvh_build_obbs(tg_bvh* bvh, void* scratch, size_t scratch_bytes, c
             for (int k = 0; k < 4; ++k) node->quat[k][s] = q[k];
             if (!slot_intervals(bvh, node, s, leaf_first[id], leaf_end[id], leaf_vertex_word, leaf_u)) disable_slot(node, s);
         }
+        node->has_obb = 0;
+        for (int s = 0; s < node->child_count; ++s)
+            node->has_obb |= (node->quat[0][s] | node->quat[1][s] | node->quat[2][s] | node->quat[3][s]) != 0;
     }
     if (own) tg__free(a, all);
     return TG_OK;

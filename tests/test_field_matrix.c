@@ -367,8 +367,12 @@ static void test_selected_points(void)
             tg_field_options o = limit_options(0.3 * diag);
             const tg_field_options* use = limited ? &o : NULL;
             double want[K * T], got[3][K * T];
+            /* the oracle: each source's whole field (asked for every vertex too, so it never stops
+               at the points) */
+            double* whole = malloc(tg_mesh_vertex_count(m) * sizeof *whole);
             for (int i = 0; i < K; ++i)
-                CHECK_STATUS(tg_geodesic_field_at(g, NULL, &s[i], 1, t, T, use, want + i * T, NULL, NULL), TG_OK);
+                CHECK_STATUS(tg_geodesic_field_at(g, NULL, &s[i], 1, t, T, use, want + i * T, whole, NULL), TG_OK);
+            free(whole);
             for (int th = 0; th < 3; ++th) {
                 memset(got[th], 0, sizeof got[th]);
                 CHECK_STATUS(tg_geodesic_distance_matrix_at(g, s, K, t, T, use, th, got[th], NULL), TG_OK);
@@ -383,6 +387,50 @@ static void test_selected_points(void)
         tg_geodesic_destroy(g);
         tg_mesh_destroy(m);
     }
+}
+
+/* Targets near the sources: each row's field stops once its targets are settled, so the matrix
+ * propagates a fraction of the windows of the whole fields, with the same entries. */
+static void test_points_stop_early(void)
+{
+    tg_mesh* m = load("nvd_spot.obj");
+    if (!m) return;
+    tg_geodesic* g = NULL;
+    CHECK_STATUS(tg_geodesic_create(m, NULL, &g), TG_OK);
+    size_t nv = tg_mesh_vertex_count(m);
+    double c[3], diag = tg_test_mesh_box(m, c);
+    /* the vertices within 5% of the diagonal of vertex 0: the first 6 the sources, all the targets */
+    tg_surface_point v0 = tg_surface_vertex(0);
+    tg_sparse_matrix* near = NULL;
+    CHECK_STATUS(tg_geodesic_local_matrix(g, &v0, 1, 0.05 * diag, NULL, 1, &near, NULL), TG_OK);
+    tg_sparse_matrix_view v;
+    tg_sparse_matrix_get_view(near, &v);
+    size_t T = v.entry_count, K = T < 6 ? T : 6;
+    CHECK_MSG(T >= 6, "only %zu vertices near vertex 0", T);
+    tg_surface_point* t = malloc(T * sizeof *t);
+    for (size_t j = 0; j < T; ++j) t[j] = tg_surface_vertex(v.col[j]);
+    double* got = malloc(K * T * sizeof *got);
+    double* whole = malloc(nv * sizeof *whole);
+    tg_field_stats st;
+    CHECK_STATUS(tg_geodesic_distance_matrix_at(g, t, K, t, T, NULL, 2, got, &st), TG_OK);
+    uint64_t full_windows = 0;
+    size_t differ = 0;
+    for (size_t i = 0; i < K; ++i) {
+        tg_field_stats fst;
+        CHECK_STATUS(tg_geodesic_field(g, NULL, &t[i], 1, NULL, whole, &fst), TG_OK);
+        full_windows += fst.windows_propagated;
+        for (size_t j = 0; j < T; ++j) differ += !same_double(got[i * T + j], whole[v.col[j]]);
+    }
+    CHECK_EQ_INT(differ, 0);
+    CHECK_MSG(st.windows_propagated * 4 < full_windows, "the %zu x %zu matrix of near points propagated %llu "
+              "windows, the whole fields %llu: its fields did not stop at their targets", K, T,
+              (unsigned long long)st.windows_propagated, (unsigned long long)full_windows);
+    printf("%zu x %zu near points: %llu windows propagated, %llu by the whole fields\n", K, T,
+           (unsigned long long)st.windows_propagated, (unsigned long long)full_windows);
+    free(t), free(got), free(whole);
+    tg_sparse_matrix_destroy(near);
+    tg_geodesic_destroy(g);
+    tg_mesh_destroy(m);
 }
 
 /* ---- bad input, progress, cancellation ---- */
@@ -554,10 +602,10 @@ static double seconds(void)
 
 int main(void)
 {
-    void (*tests[])(void) = {test_flat_grid, test_local_corpus, test_selected_points, test_errors_and_cancel,
-                             test_out_of_memory};
-    const char* names[] = {"flat grid", "local matrices on the corpus", "selected points", "errors and cancellation",
-                           "allocation failures"};
+    void (*tests[])(void) = {test_flat_grid, test_local_corpus, test_selected_points, test_points_stop_early,
+                             test_errors_and_cancel, test_out_of_memory};
+    const char* names[] = {"flat grid", "local matrices on the corpus", "selected points", "points stop early",
+                           "errors and cancellation", "allocation failures"};
     for (size_t i = 0; i < sizeof tests / sizeof tests[0]; ++i) {
         double t0 = seconds();
         tests[i]();

@@ -1,6 +1,7 @@
 /* matrix.c - distance matrices of many exact fields, one field per row, rows in parallel: the
- * sparse local matrix (every vertex within a radius of each source, compressed sparse rows) and
- * the matrix between sources and selected surface points.
+ * dense matrix (sources x vertices), the sparse local matrix (every vertex within a radius of each
+ * source, compressed sparse rows) and the matrix between sources and selected surface points
+ * (each row's field stopped once its points are settled).
  * Based on: the exact engine of field.h (Qin et al. 2016), whose run bounded by a distance
  *   explores only the disc within it and notes every vertex it wrote, so a row of the local
  *   matrix costs its disc, not the mesh; compressed sparse rows (W. F. Tinney and J. W. Walker,
@@ -158,10 +159,10 @@ struct batch {
 #endif
     tg_status (*row)(worker* w, size_t i);
     const tg_surface_point* sources; /* NULL: row i is vertex i (local matrix) */
-    const tg_surface_point* targets; /* the dense matrix's columns */
+    const tg_surface_point* targets; /* the columns of the matrix at points */
     size_t target_count;
     double limit;                    /* in the solver's frame; +inf: none */
-    double* dense;                   /* rows x target_count */
+    double* dense;                   /* rows x target_count, or rows x vertices without targets */
     csr_build csr;
 };
 
@@ -232,6 +233,7 @@ static tg__field_query row_query(batch* b, worker* w, const tg_surface_point* so
     q.progress = b->opt && b->opt->progress ? report_row : NULL;
     q.progress_user = w;
     q.cancel = &b->stop;
+    q.stop_at_points = b->target_count > 0;
     return q;
 }
 
@@ -289,22 +291,6 @@ static tg_status batch_run(batch* b, int threads, tg_field_stats* out_sum)
     return first_error;
 }
 
-static tg_status check_points(const tg_geodesic* g, const tg_surface_point* p, size_t n)
-{
-    if (n > 0 && !p) return TG_ERR_INVALID_ARGUMENT;
-    for (size_t i = 0; i < n; ++i)
-        if (tg_surface_point_validate(g->mesh, &p[i], NULL) != TG_OK) return TG_ERR_INVALID_ARGUMENT;
-    return TG_OK;
-}
-
-static tg_status check_options(const tg_field_options* opt)
-{
-    if (!opt) return TG_OK;
-    if (opt->limit != TG_FIELD_UNLIMITED && opt->limit != TG_FIELD_MAX_DISTANCE) return TG_ERR_INVALID_ARGUMENT;
-    if (opt->limit == TG_FIELD_MAX_DISTANCE && !(opt->max_distance >= 0.0)) return TG_ERR_INVALID_ARGUMENT;
-    return TG_OK;
-}
-
 static void batch_init(batch* b, const tg_geodesic* g, const tg_field_options* options, size_t rows)
 {
     memset(b, 0, sizeof *b);
@@ -314,7 +300,7 @@ static void batch_init(batch* b, const tg_geodesic* g, const tg_field_options* o
     b->rows = rows;
 }
 
-/* ---- sources x selected points ---- */
+/* ---- dense rows: sources x vertices, or sources x selected points ---- */
 
 static tg_status dense_row(worker* w, size_t i)
 {
@@ -323,9 +309,45 @@ static tg_status dense_row(worker* w, size_t i)
     tg__field_run run;
     tg_status st = tg__field_execute(&w->fs, &q, &run);
     if (st != TG_OK) return st;
-    double* out = b->dense + i * b->target_count;
-    for (size_t j = 0; j < b->target_count; ++j) out[j] = run.qdist[j] * b->g->unscale;
+    if (b->target_count) {
+        double* out = b->dense + i * b->target_count;
+        for (size_t j = 0; j < b->target_count; ++j) out[j] = run.qdist[j] * b->g->unscale;
+    } else {
+        tg__field_copy_out(&run, b->dense + i * b->g->vertex_count);
+    }
     stats_add(&w->stats, &run.stats);
+    return TG_OK;
+}
+
+/* The dense matrix of sources x columns: the targets (at_points), or every vertex. */
+static tg_status dense_matrix(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+                              bool at_points, const tg_surface_point* targets, size_t columns,
+                              const tg_field_options* options, int threads, double* out_matrix,
+                              tg_field_stats* out_stats)
+{
+    if (threads < 0) return TG_ERR_INVALID_ARGUMENT;
+    tg_status st = tg__field_check(g, sources, source_count, options);
+    if (st == TG_OK && at_points) st = tg__field_check(g, targets, columns, NULL);
+    if (st != TG_OK) return st;
+    size_t cells;
+    if (tg__mul_overflows(source_count, columns, &cells) || cells > SIZE_MAX / sizeof(double))
+        return TG_ERR_INVALID_ARGUMENT;
+    if (cells > 0 && !out_matrix) return TG_ERR_INVALID_ARGUMENT;
+    tg_field_stats sum;
+    memset(&sum, 0, sizeof sum);
+    if (cells > 0) {
+        batch b;
+        batch_init(&b, g, options, source_count);
+        b.row = dense_row;
+        b.sources = sources;
+        b.targets = targets;
+        b.target_count = at_points ? columns : 0;
+        b.limit = tg__field_limit(g, options);
+        b.dense = out_matrix;
+        st = batch_run(&b, threads, &sum);
+        if (st != TG_OK) return st;
+    }
+    if (out_stats) *out_stats = sum;
     return TG_OK;
 }
 
@@ -407,8 +429,10 @@ static bool deposit_row(worker* w, size_t i)
         pending_row* p = tg__alloc(a, sizeof *p + n * (sizeof(double) + sizeof(uint32_t)));
         if (!p) return false;
         p->count = n;
-        memcpy(pending_values(p), w->values.data, n * sizeof(double));
-        memcpy(pending_cols(p), w->cols.data, n * sizeof(uint32_t));
+        if (n) { /* an empty row's buffers may never have been allocated */
+            memcpy(pending_values(p), w->values.data, n * sizeof(double));
+            memcpy(pending_cols(p), w->cols.data, n * sizeof(uint32_t));
+        }
         c->pending[i] = p;
         return true;
     }
@@ -446,36 +470,22 @@ static tg_status local_row(worker* w, size_t i)
 
 /* ---- public entry points ---- */
 
+tg_status tg_geodesic_distance_matrix(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+                                      const tg_field_options* options, int threads, double* out_matrix,
+                                      tg_field_stats* out_stats)
+{
+    if (!out_matrix || !g) return TG_ERR_INVALID_ARGUMENT;
+    return dense_matrix(g, sources, source_count, false, NULL, g->vertex_count, options, threads, out_matrix,
+                        out_stats);
+}
+
 tg_status tg_geodesic_distance_matrix_at(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
                                          const tg_surface_point* targets, size_t target_count,
                                          const tg_field_options* options, int threads, double* out_matrix,
                                          tg_field_stats* out_stats)
 {
-    if (!g || threads < 0) return TG_ERR_INVALID_ARGUMENT;
-    tg_status st = check_options(options);
-    if (st == TG_OK) st = check_points(g, sources, source_count);
-    if (st == TG_OK) st = check_points(g, targets, target_count);
-    if (st != TG_OK) return st;
-    size_t cells;
-    if (tg__mul_overflows(source_count, target_count, &cells) || cells > SIZE_MAX / sizeof(double))
-        return TG_ERR_INVALID_ARGUMENT;
-    if (cells > 0 && !out_matrix) return TG_ERR_INVALID_ARGUMENT;
-    tg_field_stats sum;
-    memset(&sum, 0, sizeof sum);
-    if (source_count > 0 && target_count > 0) {
-        batch b;
-        batch_init(&b, g, options, source_count);
-        b.row = dense_row;
-        b.sources = sources;
-        b.targets = targets;
-        b.target_count = target_count;
-        b.limit = options && options->limit == TG_FIELD_MAX_DISTANCE ? options->max_distance * g->scale : INFINITY;
-        b.dense = out_matrix;
-        st = batch_run(&b, threads, &sum);
-        if (st != TG_OK) return st;
-    }
-    if (out_stats) *out_stats = sum;
-    return TG_OK;
+    return dense_matrix(g, sources, source_count, true, targets, target_count, options, threads, out_matrix,
+                        out_stats);
 }
 
 tg_status tg_geodesic_local_matrix(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
@@ -485,7 +495,7 @@ tg_status tg_geodesic_local_matrix(const tg_geodesic* g, const tg_surface_point*
     if (out_matrix) *out_matrix = NULL;
     if (!g || !out_matrix || threads < 0 || !(max_distance >= 0.0)) return TG_ERR_INVALID_ARGUMENT;
     if (!sources && source_count != g->vertex_count) return TG_ERR_INVALID_ARGUMENT;
-    tg_status st = sources ? check_points(g, sources, source_count) : TG_OK;
+    tg_status st = sources ? tg__field_check(g, sources, source_count, NULL) : TG_OK;
     if (st != TG_OK) return st;
     if (source_count >= SIZE_MAX / sizeof(uint64_t) - 1) return TG_ERR_OUT_OF_MEMORY;
     batch b;

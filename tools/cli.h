@@ -101,6 +101,9 @@ bool cli_ext_is(const char* path, const char* ext);
 /* Writes a float64 array as NumPy .npy: (rows, cols) when matrix, else (cols,). */
 bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bool matrix);
 
+/* Writes a sparse matrix as the .npz archive scipy.sparse.load_npz reads (cli_npz.c). */
+bool cli_write_npz_csr(FILE* f, const tg_sparse_matrix_view* v);
+
 /* Can `threads` threads (0: one per core) be started? Prints why not (naming `what`): OpenMP's
  * runtime would end the process instead of failing. */
 bool cli_threads_available(int threads, const char* what);

@@ -75,3 +75,19 @@ def test_failing_chunk_raises_the_workers_error(client, tmp_path):
     with pytest.raises(trigeo.InvalidMeshError, match=r"chunk 0 .*bad.obj:4"):
         tgd.closest(client, str(bad), np.zeros((3, 3)))
     assert np.isfinite(tgd.path_lengths(client, SPOT, pairs, chunk=6)).all()
+
+
+def test_sparse_and_selected_matrices_equal_serial(client):
+    m = trigeo.load(SPOT)
+    # an unused vertex at the end: the "all" matrix gives it an empty row, in any block
+    v = np.vstack([m.vertices, [[5.0, 5.0, 5.0]]])
+    arrays_mesh = trigeo.Mesh(v, m.faces)
+    want = arrays_mesh.distance_matrix("all", max_distance=0.05, sparse=True)
+    got = tgd.distance_matrix(client, arrays_mesh, "all", max_distance=0.05, sparse=True, chunk=700)
+    assert got.shape == want.shape == (m.vertex_count + 1, m.vertex_count + 1)
+    assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
+    assert np.array_equal(got.data, want.data) and got.indptr[-1] == got.indptr[-2]
+    sources = [0, 100, trigeo.SurfacePoint(5, (0.3, 0.3, 0.4))]
+    targets = [7, trigeo.SurfacePoint.edge(30, 0.25)]
+    assert np.array_equal(tgd.distance_matrix(client, SPOT, sources, targets=targets, chunk=2),
+                          m.distance_matrix(sources, targets=targets))

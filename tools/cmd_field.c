@@ -170,6 +170,18 @@ typedef struct field_args {
     size_t at_count;
 } field_args;
 
+/* The options of the computation (the limit, progress on a terminal, Ctrl-C as cancellation). */
+static void start_work(const field_args* fa, tg_field_options* o, cli_progress* prog, tg_field_stats* stats)
+{
+    memset(o, 0, sizeof *o);
+    if (fa->max_dist >= 0) o->limit = TG_FIELD_MAX_DISTANCE, o->max_distance = fa->max_dist;
+    cli_progress_start(prog, "field", fa->quiet);
+    o->progress = on_progress;
+    o->progress_user = prog;
+    cli_interrupt_install();
+    memset(stats, 0, sizeof *stats);
+}
+
 /* The exit code of the computation: CLI_OK, 130 after Ctrl-C, CLI_INPUT on an error (printed). */
 static int finished(const field_args* fa, tg_status st)
 {
@@ -261,15 +273,9 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     dist = malloc((n ? n * rows : 1) * sizeof *dist);
     tg_status st = dist ? tg_geodesic_create(mesh, NULL, &geo) : TG_ERR_OUT_OF_MEMORY;
     tg_field_options o;
-    memset(&o, 0, sizeof o);
-    if (fa->max_dist >= 0) o.limit = TG_FIELD_MAX_DISTANCE, o.max_distance = fa->max_dist;
     cli_progress prog;
-    cli_progress_start(&prog, "field", fa->quiet);
-    o.progress = on_progress;
-    o.progress_user = &prog;
-    cli_interrupt_install();
     tg_field_stats stats;
-    memset(&stats, 0, sizeof stats);
+    start_work(fa, &o, &prog, &stats);
     double t0 = cli_seconds();
     if (st == TG_OK && fa->matrix && fa->at_count)
         st = tg_geodesic_distance_matrix_at(geo, pts, count, at_pts, fa->at_count, &o, fa->threads, dist, &stats);
@@ -365,14 +371,9 @@ static int run_sparse(const field_args* fa, char** items, const unsigned long lo
     }
     tg_status st = tg_geodesic_create(mesh, NULL, &geo);
     tg_field_options o;
-    memset(&o, 0, sizeof o);
     cli_progress prog;
-    cli_progress_start(&prog, "field", fa->quiet);
-    o.progress = on_progress;
-    o.progress_user = &prog;
-    cli_interrupt_install();
     tg_field_stats stats;
-    memset(&stats, 0, sizeof stats);
+    start_work(fa, &o, &prog, &stats);
     double t0 = cli_seconds();
     if (st == TG_OK)
         st = tg_geodesic_local_matrix(geo, pts, count, fa->max_dist >= 0 ? fa->max_dist : INFINITY, &o, fa->threads,

@@ -18,7 +18,8 @@ FUZZ_SECONDS ?= 60
 CMAKE_FLAGS ?=
 
 DEPS := cmake make gcc g++ clang libclang-rt-14-dev libomp-dev zlib1g-dev libpng-dev libgmp-dev pkg-config python3 locales \
-        python3-numpy python3-pytest python3-distributed
+        python3-numpy python3-scipy python3-pytest python3-distributed python3-pip python3-setuptools python3-wheel \
+        python3-venv
 BENCH_DEPS := libembree-dev libcgal-dev libeigen3-dev time
 
 .PHONY: all deps bench-deps build demo test test-release test-asan bench fuzz clean large install

@@ -154,6 +154,9 @@ size_t cli_read_npy_points(const char* name, const char* data, size_t size, doub
  * starting threads). */
 int cli_format_double(double x, char* out);
 
+/* Writes a sparse matrix as the .npz archive scipy.sparse.load_npz reads (cli_npz.c). */
+bool cli_write_npz_csr(FILE* f, const tg_sparse_matrix_view* v);
+
 /* Can `threads` threads (0: one per core) be started? Prints why not (naming `what`): OpenMP's
  * runtime would end the process instead of failing. */
 bool cli_threads_available(int threads, const char* what);

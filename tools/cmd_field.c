@@ -1,7 +1,9 @@
-/* cmd_field.c - `trigeo field MESH --from SPEC[;SPEC...] | --sources FILE [-o OUT.ply|.csv|.npy]
- * [--max-distance D]`: the exact geodesic distance from surface points to every vertex
- * (tg_geodesic_field), or one field per source as a matrix (tg_geodesic_distance_matrix), written
- * as a PLY vertex property `distance` (which `trigeo render --field` draws), CSV or NumPy .npy.
+/* cmd_field.c - `trigeo field MESH --from SPEC[;SPEC...] | --sources FILE|all [-o OUT.ply|.csv|
+ * .npy|.npz] [--max-distance D] [--to POINTS]`: the exact geodesic distance from surface points
+ * to every vertex (tg_geodesic_field), or one field per source as a matrix: dense over the
+ * vertices (tg_geodesic_distance_matrix) or over selected points (tg_geodesic_distance_matrix_at),
+ * or sparse within a radius (tg_geodesic_local_matrix); written as a PLY vertex property
+ * `distance` (which `trigeo render --field` draws), CSV, NumPy .npy or SciPy's sparse .npz.
  * Based on: the CLI contract of the project's DESIGN.md. */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include "cli.h"
@@ -15,7 +17,7 @@
 #define MAX_SOURCES 4096
 
 /* The output format, from the file name's extension. */
-enum { OUT_NONE, OUT_PLY, OUT_CSV, OUT_NPY };
+enum { OUT_NONE, OUT_PLY, OUT_CSV, OUT_NPY, OUT_NPZ };
 
 static int format_of(const char* path)
 {
@@ -24,6 +26,7 @@ static int format_of(const char* path)
     if (!strcmp(dot, ".ply")) return OUT_PLY;
     if (!strcmp(dot, ".csv")) return OUT_CSV;
     if (!strcmp(dot, ".npy")) return OUT_NPY;
+    if (!strcmp(dot, ".npz")) return OUT_NPZ;
     return OUT_NONE;
 }
 
@@ -113,8 +116,15 @@ static long read_lines(const char* path, const char* what, char** out_text, char
     return n;
 }
 
-static void print_summary(size_t sources, bool matrix, const double* d, size_t rows, size_t n, double secs,
-                          const tg_field_stats* st)
+static void print_stats(const tg_field_stats* st, double secs)
+{
+    printf("windows            %llu propagated, %llu created\n", (unsigned long long)st->windows_propagated,
+           (unsigned long long)st->windows_created);
+    printf("seconds            %.3f\n", secs);
+}
+
+static void print_summary(size_t sources, bool matrix, const char* columns, const double* d, size_t rows, size_t n,
+                          double secs, const tg_field_stats* st)
 {
     size_t reached = 0;
     double far = 0;
@@ -122,13 +132,11 @@ static void print_summary(size_t sources, bool matrix, const double* d, size_t r
         if (isfinite(d[v])) reached++, far = fmax(far, d[v]);
     printf("sources            %zu%s\n", sources, matrix ? " (one field each)" : "");
     if (matrix)
-        printf("vertices           %zu (%zu of %zu matrix entries reached)\n", n, reached, n * rows);
+        printf("%-18s %zu (%zu of %zu matrix entries reached)\n", columns, n, reached, n * rows);
     else
-        printf("vertices           %zu (%zu reached)\n", n, reached);
+        printf("%-18s %zu (%zu reached)\n", columns, n, reached);
     printf("max distance       %.17g\n", far);
-    printf("windows            %llu propagated, %llu created\n", (unsigned long long)st->windows_propagated,
-           (unsigned long long)st->windows_created);
-    printf("seconds            %.3f\n", secs);
+    print_stats(st, secs);
 }
 
 typedef struct field_args {
@@ -139,12 +147,40 @@ typedef struct field_args {
     int threads;
     bool quiet;
     bool matrix;          /* --sources: one row per source */
+    bool all;             /* --sources all: every vertex a row */
+    bool sparse;          /* the matrix within the radius, sparse (.npz, or .csv triplets) */
     const char* sources_path;
-    const char* at_path;  /* --at: distances at these points */
+    const char* at_path;  /* --at (--from) or --to (--sources): distances at these points */
     char** at_items;
     unsigned long long* at_lines;
     size_t at_count;
 } field_args;
+
+/* The options of the computation (the limit, progress on a terminal, Ctrl-C as cancellation). */
+static void start_work(const field_args* fa, tg_field_options* o, cli_progress* prog, tg_field_stats* stats)
+{
+    memset(o, 0, sizeof *o);
+    if (fa->max_dist >= 0) o->limit = TG_FIELD_MAX_DISTANCE, o->max_distance = fa->max_dist;
+    cli_progress_start(prog, "field", fa->quiet);
+    o->progress = on_progress;
+    o->progress_user = prog;
+    cli_interrupt_polling(true); /* the progress callback looks at the flag */
+    memset(stats, 0, sizeof *stats);
+}
+
+/* The exit code of the computation: CLI_OK, 130 after Ctrl-C, CLI_INPUT on an error (printed). */
+static int finished(const field_args* fa, tg_status st)
+{
+    if (st == TG_ERR_CANCELLED) {
+        cli_error(fa->mesh_path, 0, "interrupted: nothing written");
+        return 130;
+    }
+    if (st != TG_OK) {
+        cli_error(fa->mesh_path, 0, "%s", tg_status_string(st));
+        return CLI_INPUT;
+    }
+    return CLI_OK;
+}
 
 /* Resolves the spec texts items[0..count) (lines: from the sources file, named in errors).
  * CLI_OK, CLI_USAGE (a --from spec that does not parse) or CLI_INPUT (error printed). */
@@ -214,7 +250,8 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
         (rc = resolve_all(fa, fa->at_path, true, mesh, &bvh, fa->at_items, fa->at_lines, fa->at_count, at_pts)) != CLI_OK)
         goto done;
     rc = CLI_INPUT;
-    size_t n = tg_mesh_vertex_count(mesh), rows = fa->matrix ? count : 1;
+    /* the columns: the vertices, or with --sources and --to the points */
+    size_t n = fa->matrix && fa->at_count ? fa->at_count : tg_mesh_vertex_count(mesh), rows = fa->matrix ? count : 1;
     if (n && rows > SIZE_MAX / sizeof(double) / n) {
         cli_error(fa->sources_path, 0, "%zu sources x %zu vertices is too large", count, n);
         goto done;
@@ -222,33 +259,22 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     dist = malloc((n ? n * rows : 1) * sizeof *dist);
     tg_status st = dist ? tg_geodesic_create(mesh, NULL, &geo) : TG_ERR_OUT_OF_MEMORY;
     tg_field_options o;
-    memset(&o, 0, sizeof o);
-    if (fa->max_dist >= 0) o.limit = TG_FIELD_MAX_DISTANCE, o.max_distance = fa->max_dist;
     cli_progress prog;
-    cli_progress_start(&prog, "field", fa->quiet);
-    o.progress = on_progress;
-    o.progress_user = &prog;
-    cli_interrupt_polling(true); /* the progress callback looks at the flag */
     tg_field_stats stats;
-    memset(&stats, 0, sizeof stats);
+    start_work(fa, &o, &prog, &stats);
     double t0 = cli_seconds();
-    if (st == TG_OK && fa->matrix)
+    if (st == TG_OK && fa->matrix && fa->at_count)
+        st = tg_geodesic_distance_matrix_at(geo, pts, count, at_pts, fa->at_count, &o, fa->threads, dist, &stats);
+    else if (st == TG_OK && fa->matrix)
         st = tg_geodesic_distance_matrix(geo, pts, count, &o, fa->threads, dist, &stats);
     else if (st == TG_OK)
         st = tg_geodesic_field_at(geo, NULL, pts, count, at_pts, fa->at_count, &o, at_d, dist, &stats);
     double secs = cli_seconds() - t0;
     cli_interrupt_polling(false);
     cli_progress_end(&prog);
-    if (st == TG_ERR_CANCELLED) {
-        cli_error(fa->mesh_path, 0, "interrupted: nothing written");
-        rc = 130;
-        goto done;
-    }
-    if (st != TG_OK) {
-        cli_error(fa->mesh_path, 0, "%s", tg_status_string(st));
-        goto done;
-    }
-    if (fa->at_count) { /* one distance a line (or a .npy vector), to -o or stdout */
+    if ((rc = finished(fa, st)) != CLI_OK) goto done;
+    rc = CLI_INPUT; /* for the failures below */
+    if (fa->at_count && !fa->matrix) { /* one distance a line (or a .npy vector), to -o or stdout */
         const char* path = fa->out ? fa->out : "-";
         if (fa->format == OUT_NPY) {
             rc = write_table(path, OUT_NPY, at_d, 1, fa->at_count, false);
@@ -268,7 +294,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
             }
         }
         if (rc != CLI_OK) goto done;
-        if (strcmp(path, "-")) print_summary(count, false, dist, rows, n, secs, &stats);
+        if (strcmp(path, "-")) print_summary(count, false, "vertices", dist, rows, n, secs, &stats);
         rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
         goto done;
     }
@@ -284,10 +310,89 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     } else if (fa->out && (rc = write_table(fa->out, fa->format, dist, rows, n, fa->matrix)) != CLI_OK) {
         goto done;
     }
-    if (!fa->out || strcmp(fa->out, "-")) print_summary(count, fa->matrix, dist, rows, n, secs, &stats);
+    if (!fa->out || strcmp(fa->out, "-"))
+        print_summary(count, fa->matrix, fa->matrix && fa->at_count ? "points" : "vertices", dist, rows, n, secs, &stats);
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
     free(pts), free(dist), free(at_pts), free(at_d);
+    tg_geodesic_destroy(geo);
+    tg_bvh_destroy(bvh);
+    tg_mesh_destroy(mesh);
+    return rc;
+}
+
+/* The sparse matrix as "i,j,d" lines (a header, then one line per stored entry, rows in order). */
+static bool write_triplets(FILE* f, const tg_sparse_matrix_view* v)
+{
+    bool ok = fprintf(f, "i,j,d\n") > 0;
+    for (size_t r = 0; ok && r < v->row_count; ++r)
+        for (uint64_t e = v->row_start[r]; ok && e < v->row_start[r + 1]; ++e)
+            ok = fprintf(f, "%zu,%u,%.17g\n", r, (unsigned)v->col[e], v->value[e]) > 0;
+    return ok;
+}
+
+/* --sources FILE|all with a sparse output: every vertex within the radius of each source. */
+static int run_sparse(const field_args* fa, char** items, const unsigned long long* lines, size_t count)
+{
+    int rc = CLI_INPUT;
+    tg_bvh* bvh = NULL;
+    tg_geodesic* geo = NULL;
+    tg_sparse_matrix* mat = NULL;
+    tg_surface_point* pts = NULL;
+    tg_mesh* mesh = cli_load_mesh_for_distances(fa->mesh_path);
+    if (!mesh) goto done;
+    if (tg_mesh_face_count(mesh) == 0) {
+        cli_error(fa->mesh_path, 0, "the mesh has no faces");
+        goto done;
+    }
+    if (fa->all) {
+        count = tg_mesh_vertex_count(mesh);
+    } else {
+        pts = malloc(count * sizeof *pts);
+        if (!pts) {
+            cli_error(NULL, 0, "out of memory");
+            goto done;
+        }
+        if ((rc = resolve_all(fa, fa->sources_path, false, mesh, &bvh, items, lines, count, pts)) != CLI_OK) goto done;
+        rc = CLI_INPUT;
+    }
+    tg_status st = tg_geodesic_create(mesh, NULL, &geo);
+    tg_field_options o;
+    cli_progress prog;
+    tg_field_stats stats;
+    start_work(fa, &o, &prog, &stats);
+    double t0 = cli_seconds();
+    if (st == TG_OK)
+        st = tg_geodesic_local_matrix(geo, pts, count, fa->max_dist >= 0 ? fa->max_dist : INFINITY, &o, fa->threads,
+                                      &mat, &stats);
+    double secs = cli_seconds() - t0;
+    cli_interrupt_polling(false);
+    cli_progress_end(&prog);
+    if ((rc = finished(fa, st)) != CLI_OK) goto done;
+    rc = CLI_INPUT; /* for the failures below */
+    tg_sparse_matrix_view v;
+    tg_sparse_matrix_get_view(mat, &v);
+    cli_output out;
+    FILE* f = cli_output_open(&out, fa->out);
+    if (!f) goto done;
+    if (!(fa->format == OUT_NPZ ? cli_write_npz_csr(f, &v) : write_triplets(f, &v))) {
+        cli_error(fa->out, 0, "write failed: %s", strerror(errno));
+        cli_output_abort(&out);
+        goto done;
+    }
+    if ((rc = cli_output_commit(&out)) != CLI_OK) goto done;
+    if (strcmp(fa->out, "-")) {
+        printf("sources            %zu (one field each%s)\n", count, fa->all ? ", every vertex" : "");
+        printf("radius             %.17g\n", fa->max_dist >= 0 ? fa->max_dist : INFINITY);
+        printf("entries            %zu (%.1f a row, %.1f MiB as CSR)\n", v.entry_count,
+               count ? (double)v.entry_count / (double)count : 0.0,
+               (double)tg_sparse_matrix_memory_bytes(mat) / 1048576.0);
+        print_stats(&stats, secs);
+    }
+    rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
+done:
+    free(pts);
+    tg_sparse_matrix_destroy(mat);
     tg_geodesic_destroy(geo);
     tg_bvh_destroy(bvh);
     tg_mesh_destroy(mesh);
@@ -299,13 +404,15 @@ static int run(int argc, char** argv)
     field_args fa;
     memset(&fa, 0, sizeof fa);
     fa.max_dist = -1;
-    const char *from = NULL, *csv = NULL, *maxd = NULL, *threads = NULL;
+    const char *from = NULL, *csv = NULL, *maxd = NULL, *threads = NULL, *at_opt = NULL;
     for (int i = 1; i < argc; ++i) {
         const char* a = argv[i];
         if (!strcmp(a, "--quiet")) {
             fa.quiet = true;
+        } else if (!strcmp(a, "--sparse")) {
+            fa.sparse = true;
         } else if (!strcmp(a, "--from") || !strcmp(a, "-o") || !strcmp(a, "--csv") || !strcmp(a, "--max-distance") ||
-                   !strcmp(a, "--sources") || !strcmp(a, "--threads") || !strcmp(a, "--at")) {
+                   !strcmp(a, "--sources") || !strcmp(a, "--threads") || !strcmp(a, "--at") || !strcmp(a, "--to")) {
             if (i + 1 >= argc) return cli_usage("field", "%s needs a value", a);
             const char* val = argv[++i];
             if (!strcmp(a, "--from"))
@@ -319,7 +426,9 @@ static int run(int argc, char** argv)
             else if (!strcmp(a, "--threads"))
                 threads = val;
             else if (!strcmp(a, "--at"))
-                fa.at_path = val;
+                fa.at_path = val, at_opt = "--at";
+            else if (!strcmp(a, "--to"))
+                fa.at_path = val, at_opt = "--to";
             else
                 maxd = val;
         } else if (a[0] == '-' && a[1]) {
@@ -339,13 +448,22 @@ static int run(int argc, char** argv)
     } else if (fa.out) {
         fa.format = !strcmp(fa.out, "-") ? OUT_CSV : format_of(fa.out);
         if (fa.format == OUT_NONE && !(fa.at_path && strrchr(fa.out, '.') && !strcmp(strrchr(fa.out, '.'), ".txt")))
-            return cli_usage("field", "-o %s: the extension must be .ply, .csv or .npy", fa.out);
+            return cli_usage("field", "-o %s: the extension must be .ply, .csv, .npy or .npz", fa.out);
     }
     fa.matrix = fa.sources_path != NULL;
-    if (fa.at_path && fa.matrix) return cli_usage("field", "--at goes with --from, not --sources");
-    if (fa.at_path && fa.out && fa.format == OUT_PLY) return cli_usage("field", "--at writes distances: -o OUT.csv, .npy or .txt");
-    if (fa.matrix && !fa.out) return cli_usage("field", "--sources needs -o MATRIX.npy or -o MATRIX.csv");
-    if (fa.matrix && fa.format == OUT_PLY) return cli_usage("field", "--sources writes a matrix: -o MATRIX.npy or .csv");
+    fa.all = fa.matrix && !strcmp(fa.sources_path, "all");
+    if (at_opt && !strcmp(at_opt, "--at") && fa.matrix) return cli_usage("field", "--at goes with --from; with --sources, --to");
+    if (at_opt && !strcmp(at_opt, "--to") && !fa.matrix) return cli_usage("field", "--to goes with --sources; with --from, --at");
+    if (fa.at_path && fa.out && fa.format == OUT_PLY) return cli_usage("field", "%s writes distances: -o OUT.csv, .npy or .txt", at_opt);
+    if (fa.matrix && !fa.out) return cli_usage("field", "--sources needs -o MATRIX.npz, .npy or .csv");
+    if (fa.matrix && fa.format == OUT_PLY) return cli_usage("field", "--sources writes a matrix: -o MATRIX.npz, .npy or .csv");
+    if (!fa.matrix && (fa.format == OUT_NPZ || fa.sparse))
+        return cli_usage("field", "a sparse matrix (.npz, --sparse) needs --sources FILE|all");
+    fa.sparse = fa.sparse || fa.format == OUT_NPZ || fa.all;
+    if (fa.sparse && fa.format == OUT_NPY)
+        return cli_usage("field", "the sparse matrix (--sources all, --sparse) is written as .npz or .csv, not .npy");
+    if (fa.sparse && fa.at_path)
+        return cli_usage("field", "--to writes the dense sources x points matrix: -o .npy or .csv, without --sparse");
     if (maxd && (!cli_parse_double(maxd, &fa.max_dist) || !(fa.max_dist >= 0)))
         return cli_usage("field", "--max-distance needs a non-negative number, not '%s'", maxd);
     unsigned long long nt = 0;
@@ -358,21 +476,24 @@ static int run(int argc, char** argv)
     if (check != CLI_OK) return check;
     if (fa.sources_path && !cli_threads_available(fa.threads, "field")) return CLI_INPUT;
     int rc;
-    if (fa.matrix) {
-        char* text = NULL;
-        char** items = NULL;
-        unsigned long long* lines = NULL;
-        long n = read_lines(fa.sources_path, "sources", &text, &items, &lines);
-        if (n < 0) return CLI_INPUT;
-        rc = run_field(&fa, items, lines, (size_t)n);
-        free(text), free(items), free(lines);
-        return rc;
-    }
     char* at_text = NULL;
     if (fa.at_path) {
         long na = read_lines(fa.at_path, "points", &at_text, &fa.at_items, &fa.at_lines);
         if (na < 0) return CLI_INPUT;
         fa.at_count = (size_t)na;
+    }
+    if (fa.matrix) {
+        char* text = NULL;
+        char** items = NULL;
+        unsigned long long* lines = NULL;
+        long n = fa.all ? 0 : read_lines(fa.sources_path, "sources", &text, &items, &lines);
+        if (n < 0)
+            rc = CLI_INPUT;
+        else
+            rc = fa.sparse ? run_sparse(&fa, items, lines, (size_t)n) : run_field(&fa, items, lines, (size_t)n);
+        free(text), free(items), free(lines);
+        free(at_text), free(fa.at_items), free(fa.at_lines);
+        return rc;
     }
     size_t len = strlen(from);
     char* list = malloc(len + 1);
@@ -394,7 +515,8 @@ static int run(int argc, char** argv)
 
 const cli_command cli_cmd_field = {
     "field",
-    "field MESH --from SPEC[;SPEC...] [--at POINTS] | --sources FILE [-o OUT.ply|.csv|.npy] [--max-distance D]",
+    "field MESH --from SPEC[;SPEC...] [--at POINTS] | --sources FILE|all [--to POINTS] [-o OUT.ply|.csv|.npy|.npz]\n"
+    "       [--max-distance D] [--sparse]",
     "The exact geodesic distance from surface points to every vertex (window propagation: window\n"
     "lists crossing one face at a time behind a front of vertices, after Qin et al. 2016 and Xin &\n"
     "Wang 2009). Distance is intrinsic: faces' winding does not matter, and paths continue into\n"
@@ -405,15 +527,24 @@ const cli_command cli_cmd_field = {
     "                                                    of summing to 1 they are rescaled)\n"
     "                                   e:HALFEDGE:t     a point of an edge (halfedge 3*face+corner)\n"
     "                                   p:x,y,z          the surface point closest to x,y,z\n"
-    "  --sources FILE         one field per source: FILE has one SPEC a line ('#' comments and\n"
-    "                         blank lines skipped; '-' reads stdin); the fields are computed in\n"
-    "                         parallel and written as the distance matrix, one row per source\n"
+    "  --sources FILE|all     one field per source: FILE has one SPEC a line ('#' comments and\n"
+    "                         blank lines skipped; '-' reads stdin), 'all' is every vertex in order\n"
+    "                         (sparse outputs only); the fields are computed in parallel and\n"
+    "                         written as the distance matrix, one row per source\n"
+    "  --to POINTS            with --sources: the matrix of sources x these points (SPEC or \"x y z\"\n"
+    "                         a line), each field stopped once its points are settled (.npy, .csv)\n"
+    "  --sparse               with --sources: only the entries within --max-distance (every\n"
+    "                         reachable one without it), as .csv triplets; implied by .npz and 'all'\n"
     "  -o OUT                 the format follows the extension:\n"
     "                           .ply  (--from) the mesh as binary PLY with a per-vertex double\n"
     "                                 property 'distance' (trigeo render MESH --field OUT.ply)\n"
     "                           .csv  --from: rows vertex,distance; --sources: one row of\n"
     "                                 vertex_count distances per source, no header (%.17g)\n"
     "                           .npy  NumPy float64: shape (vertices,) or (sources, vertices)\n"
+    "                           .npz  (--sources) the sparse matrix as scipy.sparse.load_npz reads\n"
+    "                                 it (CSR: format, shape, indptr, indices, data)\n"
+    "                           .csv  sparse: a header i,j,d, then one line per entry (row i =\n"
+    "                                 source, column j = vertex, d = distance)\n"
     "                         '-' writes CSV to stdout\n"
     "  --csv OUT              the same as -o with CSV whatever the extension\n"
     "  --at POINTS            with --from: the distance at these surface points instead of the\n"

@@ -36,6 +36,7 @@ C_NAME = {
     "VertexScalar": "tg_vertex_scalar",
     "FieldProgress": "tg_field_progress",
     "FieldOptions": "tg_field_options",
+    "SparseMatrixView": "tg_sparse_matrix_view",
     "RenderOptions": "tg_render_options",
 }
 # Python field names that differ from C's (keywords)

@@ -125,3 +125,19 @@ def test_an_edit_keeping_time_and_size_is_seen(client, tmp_path):
 def test_a_missing_file_is_a_file_error(client, tmp_path):
     with pytest.raises(trigeo.FileError):
         tgd.distance_matrix(client, str(tmp_path / "nowhere.obj"), [0])
+
+
+def test_sparse_and_selected_matrices_equal_serial(client):
+    m = trigeo.load(SPOT)
+    # an unused vertex at the end: the "all" matrix gives it an empty row, in any block
+    v = np.vstack([m.vertices, [[5.0, 5.0, 5.0]]])
+    arrays_mesh = trigeo.Mesh(v, m.faces)
+    want = arrays_mesh.distance_matrix("all", max_distance=0.05, sparse=True)
+    got = tgd.distance_matrix(client, arrays_mesh, "all", max_distance=0.05, sparse=True, chunk=700)
+    assert got.shape == want.shape == (m.vertex_count + 1, m.vertex_count + 1)
+    assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
+    assert np.array_equal(got.data, want.data) and got.indptr[-1] == got.indptr[-2]
+    sources = [0, 100, trigeo.SurfacePoint(5, (0.3, 0.3, 0.4))]
+    targets = [7, trigeo.SurfacePoint.edge(30, 0.25)]
+    assert np.array_equal(tgd.distance_matrix(client, SPOT, sources, targets=targets, chunk=2),
+                          m.distance_matrix(sources, targets=targets))

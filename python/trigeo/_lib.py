@@ -26,6 +26,8 @@ def _candidates() -> list[tuple[str, str]]:
         return out  # an explicit choice is never silently replaced by another library
     repo_build = os.path.normpath(os.path.join(_HERE, "..", "..", "build", "libtrigeo.so"))
     out.append(("the repository's build", repo_build))
+    # `pip install .`: setup.py puts the library inside the package
+    out.append(("the library inside the package", os.path.join(_HERE, "libtrigeo.so")))
     # `make install`: PREFIX/LIBDIR/python3/dist-packages/trigeo beside PREFIX/LIBDIR/libtrigeo.so
     installed = os.path.normpath(os.path.join(_HERE, "..", "..", "..", "libtrigeo.so"))
     out.append(("the installed library beside the package", installed))
@@ -146,6 +148,9 @@ class FieldOptions(ctypes.Structure):
 
 
 RENDER_PROGRESS_FN = ctypes.CFUNCTYPE(c_int, c_void_p, c_double)
+class SparseMatrixView(ctypes.Structure):
+    _fields_ = [("row_count", c_size_t), ("col_count", c_size_t), ("entry_count", c_size_t),
+                ("row_start", POINTER(c_uint64)), ("col", POINTER(c_uint32)), ("value", POINTER(c_double))]
 
 
 class RenderOptions(ctypes.Structure):
@@ -215,6 +220,11 @@ _SIGNATURES = {
     "tg_geodesic_field": (c_int, [_vp, _vp, _psp, c_size_t, POINTER(FieldOptions), _pd, _vp]),
     "tg_geodesic_field_at": (c_int, [_vp, _vp, _psp, c_size_t, _psp, c_size_t, POINTER(FieldOptions), _pd, _pd, _vp]),
     "tg_geodesic_distance_matrix": (c_int, [_vp, _psp, c_size_t, POINTER(FieldOptions), c_int, _pd, _vp]),
+    "tg_geodesic_distance_matrix_at": (c_int, [_vp, _psp, c_size_t, _psp, c_size_t, POINTER(FieldOptions), c_int,
+                                               _pd, _vp]),
+    "tg_geodesic_local_matrix": (c_int, [_vp, _psp, c_size_t, c_double, POINTER(FieldOptions), c_int, _pvp, _vp]),
+    "tg_sparse_matrix_get_view": (None, [_vp, POINTER(SparseMatrixView)]),
+    "tg_sparse_matrix_destroy": (None, [_vp]),
     "tg_render_png": (c_int, [_vp, POINTER(RenderOptions), c_char_p, _pdiag]),
 }
 

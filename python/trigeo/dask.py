@@ -8,6 +8,7 @@
             d, face, p = trigeo.dask.closest(client, "mesh.ply", points)
             lengths = trigeo.dask.path_lengths(client, "mesh.ply", pairs)
             matrix = trigeo.dask.distance_matrix(client, "mesh.ply", [0, 10, 20])
+            local = trigeo.dask.distance_matrix(client, "mesh.ply", "all", max_distance=0.05, sparse=True)
 
 The work is split into chunks, one task each. The mesh reaches each worker once and stays
 there, with its BVH and geodesic solver, for every later task and call, and every task computes
@@ -175,13 +176,35 @@ def _run(kind: str, source: tuple, arrays: Any, chunk: int, lo: int, hi: int, ar
         if kind == "path_lengths":
             froms, tos, method, certify, threads = args
             return m.path_lengths(froms=froms, tos=tos, method=method, certify=certify, threads=threads)
-        sources, max_distance, threads = args
-        return m.distance_matrix(sources, max_distance=max_distance, threads=threads)
+        if kind == "local_matrix":
+            return _local_rows(m, *args)
+        sources, max_distance, threads, targets = args
+        return m.distance_matrix(sources, max_distance=max_distance, threads=threads, targets=targets)
     except _Changed:
         raise
     except trigeo.Error as e:
         raise type(e)(f"{kind}: chunk {chunk} (items {lo}-{hi - 1}): {e}", e.file, e.line, e.column,
                       e.reason) from None
+
+
+def _local_rows(m: trigeo.Mesh, sources: Any, every: bool, max_distance: Optional[float], threads: int) -> Any:
+    """A block of rows of the local matrix. every: sources are the block's vertex indices of
+    distance_matrix(mesh, "all", ...), where a vertex no face uses gets an empty row."""
+    if not every:
+        return m.distance_matrix(sources, max_distance=max_distance, threads=threads, sparse=True)
+    import scipy.sparse
+
+    used = np.zeros(m.vertex_count, dtype=bool)
+    used[m.faces.reshape(-1)] = True
+    rows = np.asarray(sources, dtype=np.int64)
+    keep = used[rows]
+    part = m.distance_matrix(rows[keep], max_distance=max_distance, threads=threads, sparse=True)
+    if keep.all():
+        return part
+    counts = np.zeros(len(rows), dtype=np.int64)
+    counts[keep] = np.diff(part.indptr)
+    indptr = np.concatenate(([0], np.cumsum(counts)))
+    return scipy.sparse.csr_matrix((part.data, part.indices, indptr), shape=(len(rows), m.vertex_count))
 
 
 def _map(client: Any, kind: str, mesh: Any, n: int, chunk: int, slicer, *extra) -> list:
@@ -244,16 +267,38 @@ def path_lengths(client: Any, mesh: Union[str, os.PathLike, trigeo.Mesh], pairs:
     return np.concatenate(parts)
 
 
-def distance_matrix(client: Any, mesh: Union[str, os.PathLike, trigeo.Mesh], sources: Any, chunk: int = 1,
-                    max_distance: Optional[float] = None, threads: int = 1) -> np.ndarray:
+def distance_matrix(client: Any, mesh: Union[str, os.PathLike, trigeo.Mesh], sources: Any,
+                    chunk: Optional[int] = None, max_distance: Optional[float] = None, threads: int = 1, *,
+                    targets: Any = None, sparse: bool = False) -> Any:
     """Mesh.distance_matrix over a cluster: sources (vertex indices, SurfacePoints or
-    positions) in chunks of `chunk` rows. Returns the (K, n) matrix, row i bit-identical to
-    mesh.field(sources[i])."""
-    if isinstance(sources, (int, np.integer, trigeo.SurfacePoint)):
-        sources = [sources]
-    src = list(sources) if not isinstance(sources, np.ndarray) else sources
+    positions) in blocks of `chunk` rows (default 1 for dense rows, 4096 for sparse ones).
+    Returns the (K, n) matrix, row i bit-identical to mesh.field(sources[i]); with targets=,
+    the (K, T) matrix to those points (each field stopped once they are settled); with
+    sparse=True, the local matrix within max_distance as one scipy.sparse.csr_matrix, its row
+    blocks computed on the workers and stacked in order (sources may be "all": every vertex)."""
+    if chunk is None:
+        chunk = 4096 if sparse else 1
+    every = sparse and (sources is None or (isinstance(sources, str) and sources == "all"))
+    if every:
+        if not isinstance(mesh, trigeo.Mesh):
+            mesh = trigeo.load(mesh)
+        src: Any = np.arange(mesh.vertex_count)
+    else:
+        if isinstance(sources, (int, np.integer, trigeo.SurfacePoint)):
+            sources = [sources]
+        src = list(sources) if not isinstance(sources, np.ndarray) else sources
     if len(src) == 0:
         raise trigeo.InvalidArgumentError("distance_matrix needs at least one source")
+    if targets is not None and sparse:
+        raise trigeo.InvalidArgumentError("targets gives a dense (K, T) matrix: sparse=True does not apply")
+    if sparse:
+        import scipy.sparse
+
+        parts = _map(client, "local_matrix", mesh, len(src), chunk, lambda lo, hi: (src[lo:hi],), every,
+                     max_distance, threads)
+        return scipy.sparse.vstack(parts, format="csr")
+    if targets is not None and not isinstance(targets, np.ndarray):
+        targets = [targets] if isinstance(targets, (int, np.integer, trigeo.SurfacePoint)) else list(targets)
     parts = _map(client, "distance_matrix", mesh, len(src), chunk, lambda lo, hi: (src[lo:hi],), max_distance,
-                 threads)
+                 threads, targets)
     return np.concatenate(parts, axis=0)

@@ -80,6 +80,7 @@ typedef struct tg__corner_hit {
     X(qpairs, tg__query_pair)  /* (face, point, barycentrics) of the query points, by face */      \
     X(qdist, double)           /* the distance of each query point */                             \
     X(qpred, tg__pred)         /* how each query point got it (runs that trace) */                \
+    X(qbound, tg__query_bound) /* the vertices bounding each query point (runs that stop early) */ \
     X(touched_v, uint32_t)     /* vertices a run wrote (reset only those) */                      \
     X(touched_h, uint32_t)     /* halfedges a run wrote */
 
@@ -88,6 +89,13 @@ typedef struct tg__query_pair {
     uint32_t face, id;
     double b[3];
 } tg__query_pair;
+
+/* A query point's upper bound while a run propagates: the distance of each vertex v[k] (TG_NONE:
+ * none) plus len[k], the segment from it to the point inside one face, is a real path to it. */
+typedef struct tg__query_bound {
+    uint32_t v[3];
+    double len[3];
+} tg__query_bound;
 
 /* The engine's scratch: tables sized for the mesh once, buffers that grow to the largest run
  * and are kept. A run writes only what it reaches and notes it (touched_v, touched_h), so the
@@ -146,6 +154,8 @@ typedef struct tg__field_query {
     const double* toward;            /* NULL, or the position of the one query point: order the
                                         front by distance plus the Euclidean distance to it, bound
                                         the work by the best distance to it found so far (A*) */
+    bool stop_at_points;             /* only the points' distances are wanted: once every point
+                                        has a finite upper bound, the limit drops to the largest */
 } tg__field_query;
 
 /* One run: its state while it propagates, then its results. */
@@ -166,6 +176,7 @@ typedef struct tg__field_run {
     size_t settled, referenced;
     uint64_t work_since_check;
     double next_check_s;
+    size_t next_bound_check; /* q->stop_at_points: the settled count of the next look at the bounds */
     /* results: vertex distances and predecessors are the scratch's (solver numbering) */
     const double* vertex_dist;
     const tg__pred* vertex_pred; /* NULL unless q->trace */
@@ -185,6 +196,19 @@ static inline void tg__field_tighten(tg__field_run* run, double d)
 /* Runs the query on the scratch; the results stay in *run (and the scratch) until its next run.
  * Errors: TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED. */
 tg_status tg__field_execute(tg__field_scratch* fs, const tg__field_query* q, tg__field_run* run);
+
+/* ---- the public calls' common checks (field.c) ---- */
+
+/* TG_OK when g is set, points[0 .. count) are valid (points may be NULL when count is 0) and the
+ * options (NULL: defaults) are; else TG_ERR_INVALID_ARGUMENT. */
+tg_status tg__field_check(const tg_geodesic* g, const tg_surface_point* points, size_t count,
+                          const tg_field_options* opt);
+/* The options' distance limit in the solver's frame (solver.h: distances enter times scale). */
+double tg__field_limit(const tg_geodesic* g, const tg_field_options* opt);
+
+/* The run's vertex distances in the mesh's numbering and units (out: vertex_count), +inf beyond
+ * the limit. */
+void tg__field_copy_out(const tg__field_run* run, double* out);
 
 /* ---- window geometry (window.c) ---- */
 
@@ -210,6 +234,9 @@ tg_status tg__field_queries_setup(tg__field_run* run);
 void tg__field_queries_cross(tg__field_run* run, uint32_t h, const tg__window* pool, const uint32_t* ids, size_t n);
 /* A point source (or a point a zero-area face carries) at distance sigma inside face f. */
 void tg__field_queries_source(tg__field_run* run, const double src[3], double sigma, uint32_t f, uint32_t origin);
+/* q->stop_at_points: lowers the limit to the largest upper bound of the points' distances (times
+ * 1 + TG__TIGHT_REL) once every point has a finite one; then every point is settled within it. */
+void tg__field_queries_bound(tg__field_run* run);
 /* After the propagation (ok) the corners' paths, vertex queries and the distance limit; in any
  * case the face marks are cleared for the next run. */
 void tg__field_queries_finish(tg__field_run* run, bool ok);

@@ -604,6 +604,11 @@ tg_status tg__field_propagate(tg__field_run* run)
             if (!keep_going(run)) return TG_ERR_CANCELLED;
         }
         fs->fifo.count = fs->fifo_head = 0;
+        if (run->q->stop_at_points && run->settled >= run->next_bound_check) {
+            /* a look at the points' bounds costs O(points): one every as many settled vertices */
+            tg__field_queries_bound(run);
+            run->next_bound_check = run->settled + (run->q->point_count > 64 ? run->q->point_count : 64);
+        }
         tg__heap_item it = {INFINITY, 0};
         if (fs->front.count) it = tg__heap_take(fs->front.data, &fs->front.count);
         uint32_t v = it.node;

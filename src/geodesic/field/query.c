@@ -64,6 +64,47 @@ static int cmp_pair(const void* x, const void* y)
     return (a->id > b->id) - (a->id < b->id);
 }
 
+/* The vertices joined to point p (solver numbering) by a segment inside one face, and the
+ * segments' lengths: p itself, the ends of its edge, or the corners of its face. */
+static void bound_of(const tg_geodesic* g, const tg_surface_point* p, tg__query_bound* out)
+{
+    for (int k = 0; k < 3; ++k) out->v[k] = TG_NONE, out->len[k] = 0.0;
+    if (p->kind == TG_SURFACE_VERTEX) {
+        out->v[0] = p->index;
+        return;
+    }
+    tg_vec3 at;
+    uint32_t corners[3];
+    int n;
+    if (p->kind == TG_SURFACE_EDGE) {
+        corners[0] = g->tri[p->index], corners[1] = g->tri[tg_halfedge_next(p->index)], n = 2;
+        at = tg_v3_add(tg_v3_scale(tg__gpos(g, corners[0]), 1.0 - p->t), tg_v3_scale(tg__gpos(g, corners[1]), p->t));
+    } else {
+        tg__query_pair face = {p->index, 0, {p->bary[0], p->bary[1], p->bary[2]}};
+        for (n = 0; n < 3; ++n) corners[n] = g->tri[3 * (size_t)p->index + (size_t)n];
+        at = pair_pos(g, &face);
+    }
+    for (int k = 0; k < n; ++k) out->v[k] = corners[k], out->len[k] = tg_v3_dist(at, tg__gpos(g, corners[k]));
+}
+
+void tg__field_queries_bound(tg__field_run* run)
+{
+    const tg__field_scratch* fs = run->fs;
+    const tg__query_bound* bound = fs->qbound.data;
+    double worst = 0.0;
+    for (size_t i = 0; i < run->q->point_count; ++i) {
+        double d = run->qdist[i];
+        for (int k = 0; k < 3 && bound[i].v[k] != TG_NONE; ++k) {
+            double via = fs->dist[bound[i].v[k]] + bound[i].len[k];
+            if (via < d) d = via;
+        }
+        if (!(d < INFINITY)) return; /* a point not reached yet: no bound */
+        if (d > worst) worst = d;
+    }
+    double limit = worst * (1.0 + TG__TIGHT_REL);
+    if (limit < run->max_dist) run->max_dist = limit;
+}
+
 tg_status tg__field_queries_setup(tg__field_run* run)
 {
     tg__field_scratch* fs = run->fs;
@@ -79,9 +120,16 @@ tg_status tg__field_queries_setup(tg__field_run* run)
         if (!tg__field_grow(fs, &fs->qpred, count)) return TG_ERR_OUT_OF_MEMORY;
         run->qpred = fs->qpred.data;
     }
+    tg__query_bound* bound = NULL;
+    if (run->q->stop_at_points) {
+        fs->qbound.count = 0;
+        if (!tg__field_grow(fs, &fs->qbound, count)) return TG_ERR_OUT_OF_MEMORY;
+        bound = fs->qbound.data;
+    }
     for (size_t i = 0; i < count; ++i) {
         out[i] = INFINITY;
         tg_surface_point p = tg__surface_in(g, &run->q->points[i]);
+        if (bound) bound_of(g, &p, &bound[i]);
         if (p.kind == TG_SURFACE_FACE) {
             if (!pair_add(fs, p.index, (uint32_t)i, p.bary)) return TG_ERR_OUT_OF_MEMORY;
             if (!add_on_edges(fs, p.index, (uint32_t)i, p.bary)) return TG_ERR_OUT_OF_MEMORY;

@@ -68,3 +68,10 @@ tg_status tg__field_execute(tg__field_scratch* fs, const tg__field_query* q, tg_
     run->stats.peak_bytes = fs->peak_bytes;
     return st;
 }
+
+void tg__field_copy_out(const tg__field_run* run, double* out)
+{
+    const tg_geodesic* g = run->g;
+    for (uint32_t u = 0; u < g->vertex_count; ++u)
+        out[g->mesh_vertex[u]] = run->vertex_dist[u] <= run->max_dist ? run->vertex_dist[u] * g->unscale : INFINITY;
+}

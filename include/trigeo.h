@@ -1035,6 +1035,70 @@ TG_API tg_status tg_geodesic_distance_matrix(const tg_geodesic* g, const tg_surf
                                   tg_field_stats* out_stats);
 
 
+/** Geodesic Voronoi labels: for every vertex, the index of its nearest source in exact geodesic
+ *  distance, and that distance.
+ *
+ *  Method: the sources' fields are added one at a time, in index order, to a nearest-source
+ *  field: each runs the exact engine (as tg_geodesic_field) but passes on only what can get below
+ *  the distance of the sources before it (a vertex reached no more shortly starts nothing; a
+ *  window is dropped when its least distance over its interval of an edge is at least the largest
+ *  over that interval of min(d(a) + |ax|, d(b) + |bx|), d the earlier sources' distance at the
+ *  edge's ends), so that each run covers about its own cell. A vertex takes the new source's
+ *  distance and label only when strictly shorter, as doubles: a tie goes to the lowest index.
+ *  The result is the argmin over the sources' separate fields (tg_geodesic_field of each source
+ *  alone), ties to the lowest index, the distance their minimum (each run keeps the windows of
+ *  every path that beats the earlier sources, so where it wins it finds the separate field's
+ *  value; the tests compare both bit for bit on corpus meshes).
+ *
+ *  workspace: one of this solver's, or NULL for a temporary one. sources: source_count valid
+ *  surface points (any kind; repeated points are allowed: the later one's cell is empty).
+ *  options: NULL for defaults; with TG_FIELD_MAX_DISTANCE vertices farther than max_distance
+ *  from every source get +inf and TG_NONE; progress is told rows_done = sources done, row_count
+ *  = source_count. out_vertex_label: vertex_count labels (source indices; TG_NONE where no source
+ *  reaches: other components, unreferenced vertices, beyond the limit), or NULL.
+ *  out_vertex_distance: vertex_count doubles (the distance to the nearest source), or NULL. At
+ *  least one of the two. out_stats (may be NULL): counters summed over the runs.
+ *  Errors: as tg_geodesic_field, and TG_ERR_INVALID_ARGUMENT when both outputs are NULL or
+ *  source_count exceeds 0xFFFFFFFE; on error the outputs are untouched. Complexity: one run per
+ *  source over about its cell and its boundary, plus O(vertex_count) memory for the running
+ *  field (made with the options' or the solver's allocator). Thread-safe as tg_geodesic_field. */
+TG_API tg_status tg_geodesic_voronoi(const tg_geodesic* g, tg_geodesic_workspace* workspace,
+                                     const tg_surface_point* sources, size_t source_count,
+                                     const tg_field_options* options, uint32_t* out_vertex_label,
+                                     double* out_vertex_distance, tg_field_stats* out_stats);
+
+/** Farthest-point sampling in exact geodesic distance: sample 0 is start_vertex, and each next
+ *  sample is the vertex farthest from all earlier ones (the largest distance to the nearest
+ *  sample; +inf, a component no sample reaches yet, counts as farthest; ties to the lowest
+ *  vertex index; vertices already sampled and unreferenced vertices are never chosen).
+ *
+ *  Method: the nearest-source field of tg_geodesic_voronoi, one sample added at a time, each
+ *  run passing on only what gets below the earlier samples' distance; the farthest vertex is
+ *  found by a scan of the vertices after each run. The result equals the brute-force loop over
+ *  the samples' separate fields (tg_geodesic_field of each, their minimum, its argmax).
+ *
+ *  start_vertex: the first sample, a referenced vertex (used by some face); or TG_NONE to take it
+ *  from `seed`: the (s mod R)-th referenced vertex in index order, R their number and s the
+ *  SplitMix64 output of the seed (the CLI's --seed and Python's seed= use this). Ignored
+ *  otherwise. sample_count: 1 .. the number of referenced vertices. options: NULL for
+ *  defaults; the limit must be TG_FIELD_UNLIMITED; progress is told rows_done = samples done,
+ *  row_count = sample_count. out_samples: sample_count vertex indices in the order chosen.
+ *  out_vertex_distance (may be NULL): vertex_count doubles, the distance to the nearest sample
+ *  (+inf where none reaches). out_vertex_label (may be NULL): vertex_count labels, the position
+ *  in out_samples of the nearest sample (ties to the earliest), TG_NONE where none reaches.
+ *  out_stats (may be NULL): counters summed over the runs.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL g or out_samples, sample_count 0 or larger than the
+ *  referenced vertices, start_vertex out of range or unreferenced, a limit, a workspace of
+ *  another solver), TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED; on error the outputs are untouched.
+ *  Complexity: one run per sample over about its cell, plus O(vertex_count) per sample for the
+ *  scan. Thread-safe as tg_geodesic_field. */
+TG_API tg_status tg_geodesic_farthest_point_sampling(const tg_geodesic* g, tg_geodesic_workspace* workspace,
+                                                     uint32_t start_vertex, uint64_t seed, size_t sample_count,
+                                                     const tg_field_options* options, uint32_t* out_samples,
+                                                     double* out_vertex_distance, uint32_t* out_vertex_label,
+                                                     tg_field_stats* out_stats);
+
+
 /* ============================================================================================== */
 /* Pictures (src/render)                                                                          */
 /* ============================================================================================== */

@@ -13,8 +13,8 @@
 
 /* ---- one field ---- */
 
-static tg_status check_sources(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
-                               const tg_field_options* opt)
+tg_status tg__field_check_sources(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+                                  const tg_field_options* opt)
 {
     if (!g || (source_count > 0 && !sources)) return TG_ERR_INVALID_ARGUMENT;
     if (opt) {
@@ -26,10 +26,20 @@ static tg_status check_sources(const tg_geodesic* g, const tg_surface_point* sou
     return TG_OK;
 }
 
-/* The limit in the solver's frame (solver.h: distances enter times scale). */
-static double limit_of(const tg_geodesic* g, const tg_field_options* opt)
+double tg__field_limit(const tg_geodesic* g, const tg_field_options* opt)
 {
     return opt && opt->limit == TG_FIELD_MAX_DISTANCE ? opt->max_distance * g->scale : INFINITY;
+}
+
+void tg__field_progress_of(const tg__field_run* run, size_t rows_done, size_t rows, tg_field_progress* out)
+{
+    double share = run->referenced ? (double)run->settled / (double)run->referenced : 1.0;
+    if (share > 1.0) share = 1.0; /* components joined by misoriented edges */
+    out->front_distance = run->front * run->g->unscale;
+    out->rows_done = rows_done;
+    out->row_count = rows;
+    out->settled_fraction = ((double)rows_done + share) / (double)rows;
+    if (out->settled_fraction > 1.0) out->settled_fraction = 1.0;
 }
 
 /* The progress hook of a single field: the caller's callback with this run's figures. */
@@ -37,11 +47,7 @@ static int report_single(void* user, const tg__field_run* run)
 {
     const tg_field_options* opt = user;
     tg_field_progress p;
-    p.front_distance = run->front * run->g->unscale;
-    p.settled_fraction = run->referenced ? (double)run->settled / (double)run->referenced : 1.0;
-    if (p.settled_fraction > 1.0) p.settled_fraction = 1.0; /* components joined by misoriented edges */
-    p.rows_done = 0;
-    p.row_count = 1;
+    tg__field_progress_of(run, 0, 1, &p);
     return opt->progress(opt->progress_user, &p);
 }
 
@@ -59,15 +65,15 @@ tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* ws, 
                                double* out_vertex_distance, tg_field_stats* out_stats)
 {
     if (point_count > 0 && (!points || !out_point_distance)) return TG_ERR_INVALID_ARGUMENT;
-    tg_status st = check_sources(g, sources, source_count, options);
+    tg_status st = tg__field_check_sources(g, sources, source_count, options);
     if (st != TG_OK) return st;
     for (size_t i = 0; i < point_count; ++i)
         if (tg_surface_point_validate(g->mesh, &points[i], NULL) != TG_OK) return TG_ERR_INVALID_ARGUMENT;
     tg_geodesic_workspace* own;
     st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
     if (st != TG_OK) return st;
-    tg__field_query q = {sources, source_count, points, point_count, limit_of(g, options),
-                         options && options->progress ? report_single : NULL, (void*)options, NULL, false, NULL};
+    tg__field_query q = {sources, source_count, points, point_count, tg__field_limit(g, options),
+                         options && options->progress ? report_single : NULL, (void*)options, NULL, false, NULL, NULL};
     tg__field_run run;
     st = tg__field_execute(&ws->field, &q, &run);
     if (st == TG_OK) {
@@ -130,13 +136,7 @@ static int report_batch(void* user, const tg__field_run* run)
     batch_lock(b);
     {
         tg_field_progress p;
-        double share = run->referenced ? (double)run->settled / (double)run->referenced : 1.0;
-        if (share > 1.0) share = 1.0;
-        p.front_distance = run->front * run->g->unscale;
-        p.rows_done = b->done;
-        p.row_count = b->rows;
-        p.settled_fraction = ((double)b->done + share) / (double)b->rows;
-        if (p.settled_fraction > 1.0) p.settled_fraction = 1.0;
+        tg__field_progress_of(run, b->done, b->rows, &p);
         stop = b->opt->progress(b->opt->progress_user, &p) != 0;
         if (stop) b->stop = 1;
     }
@@ -144,7 +144,7 @@ static int report_batch(void* user, const tg__field_run* run)
     return stop;
 }
 
-static void stats_add(tg_field_stats* sum, const tg_field_stats* s)
+void tg__field_stats_add(tg_field_stats* sum, const tg_field_stats* s)
 {
     sum->windows_created += s->windows_created;
     sum->windows_propagated += s->windows_propagated;
@@ -163,7 +163,7 @@ tg_status tg_geodesic_distance_matrix(const tg_geodesic* g, const tg_surface_poi
 {
     if (threads < 0) return TG_ERR_INVALID_ARGUMENT;
     if (!out_matrix) return TG_ERR_INVALID_ARGUMENT;
-    tg_status st = check_sources(g, sources, source_count, options);
+    tg_status st = tg__field_check_sources(g, sources, source_count, options);
     if (st != TG_OK) return st;
     size_t nv = g->vertex_count, cells;
     if (tg__mul_overflows(source_count, nv, &cells) || cells > SIZE_MAX / sizeof(double)) return TG_ERR_INVALID_ARGUMENT;
@@ -199,8 +199,8 @@ tg_status tg_geodesic_distance_matrix(const tg_geodesic* g, const tg_surface_poi
 #endif
         for (long long i = 0; i < (long long)source_count; ++i) {
             if (b.stop || mine != TG_OK) continue;
-            tg__field_query q = {&sources[i], 1, NULL, 0, limit_of(g, options),
-                                 options && options->progress ? report_batch : NULL, &row, &b.stop, false, NULL};
+            tg__field_query q = {&sources[i], 1, NULL, 0, tg__field_limit(g, options),
+                                 options && options->progress ? report_batch : NULL, &row, &b.stop, false, NULL, NULL};
             tg__field_run run;
             mine = tg__field_execute(&fs, &q, &run);
             if (mine != TG_OK) {
@@ -208,14 +208,14 @@ tg_status tg_geodesic_distance_matrix(const tg_geodesic* g, const tg_surface_poi
                 continue;
             }
             copy_out(&run, out_matrix + (size_t)i * nv);
-            stats_add(&local, &run.stats);
+            tg__field_stats_add(&local, &run.stats);
             batch_lock(&b);
             b.done++;
             batch_unlock(&b);
         }
         batch_lock(&b);
         {
-            stats_add(&sum, &local);
+            tg__field_stats_add(&sum, &local);
             /* the most telling error: out of memory before cancellation before "stopped by another" */
             if (mine == TG_ERR_OUT_OF_MEMORY || (mine != TG_OK && first_error == TG_OK)) first_error = mine;
         }

@@ -146,6 +146,10 @@ typedef struct tg__field_query {
     const double* toward;            /* NULL, or the position of the one query point: order the
                                         front by distance plus the Euclidean distance to it, bound
                                         the work by the best distance to it found so far (A*) */
+    const double* bound;             /* NULL, or per vertex (solver numbering and frame) the
+                                        distance of a real path from other sources: the run only
+                                        finds where it can get below (nearest-source fields,
+                                        voronoi.c); elsewhere its distances may stay too large */
 } tg__field_query;
 
 /* One run: its state while it propagates, then its results. */
@@ -157,6 +161,7 @@ typedef struct tg__field_run {
                              1 + TG__TIGHT_REL) */
     int all_ready;        /* past max_dist: every list propagates whatever its vertices */
     int astar;            /* q->toward is set */
+    int bounded;          /* q->bound is set: pruned by it, lists all released once the front is empty */
     tg_vec3 target;       /* its position */
     /* the vertices joined to the target by a segment in a face (A*): their distance bounds it */
     uint32_t tcorner[4];
@@ -179,6 +184,22 @@ static inline void tg__field_tighten(tg__field_run* run, double d)
     double b = d * (1.0 + TG__TIGHT_REL);
     if (run->astar && b < run->max_dist) run->max_dist = b;
 }
+
+/* ---- the public calls' checks (field.c) ---- */
+
+/* TG_OK when g is set, the sources valid (NULL only with a zero count) and the options' limit
+ * known and, with TG_FIELD_MAX_DISTANCE, a non-negative number; else TG_ERR_INVALID_ARGUMENT. */
+tg_status tg__field_check_sources(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+                                  const tg_field_options* opt);
+/* The options' distance limit in the solver's frame (solver.h: distances enter times scale);
+ * +inf without one. */
+double tg__field_limit(const tg_geodesic* g, const tg_field_options* opt);
+
+struct tg__field_run;
+/* What a progress callback is told about `run`, row rows_done of `rows` (a single field: 0 of 1). */
+void tg__field_progress_of(const struct tg__field_run* run, size_t rows_done, size_t rows, tg_field_progress* out);
+/* Adds the counters of one run to a sum (largest values for the peaks). */
+void tg__field_stats_add(tg_field_stats* sum, const tg_field_stats* s);
 
 /* ---- one run (run.c) ---- */
 

@@ -63,7 +63,7 @@ static tg_status exact_propagation(tg_geodesic_workspace* ws, const tg_surface_p
     tg__node tn = tg__node_from_surface(&t);
     double toward[3];
     tg_v3_store(tg__node_pos(ws->geo, &tn), toward);
-    tg__field_query q = {from, 1, to, 1, limit, NULL, NULL, NULL, true, toward};
+    tg__field_query q = {from, 1, to, 1, limit, NULL, NULL, NULL, true, toward, NULL};
     return tg__field_execute(&ws->field, &q, out_run);
 }
 

@@ -101,6 +101,12 @@ bool cli_ext_is(const char* path, const char* ext);
 /* Writes a float64 array as NumPy .npy: (rows, cols) when matrix, else (cols,). */
 bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bool matrix);
 
+/* Voronoi labels (trigeo field --labels, trigeo sample --field): per vertex the index of the nearest
+ * source (-1 where none reaches) and its distance, as PLY vertex properties `label` and
+ * `distance` (a .ply path) or CSV rows vertex,label,distance (anything else; '-' is stdout).
+ * Written to a temporary name and renamed; CLI_OK or CLI_INPUT (error printed). */
+int cli_write_labels(const char* path, const tg_mesh* mesh, const uint32_t* label, const double* dist, size_t n);
+
 /* Can `threads` threads (0: one per core) be started? Prints why not (naming `what`): OpenMP's
  * runtime would end the process instead of failing. */
 bool cli_threads_available(int threads, const char* what);
@@ -129,5 +135,6 @@ extern const cli_command cli_cmd_closest;
 extern const cli_command cli_cmd_render;
 extern const cli_command cli_cmd_path;
 extern const cli_command cli_cmd_field;
+extern const cli_command cli_cmd_sample;
 
 #endif

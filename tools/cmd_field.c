@@ -153,6 +153,7 @@ typedef struct field_args {
     int threads;
     bool quiet;
     bool matrix;          /* --sources: one row per source */
+    bool labels;          /* --labels: the nearest source's index per vertex (Voronoi) */
     const char* sources_path;
     const char* at_path;  /* --at: distances at these points */
     char** at_items;
@@ -209,6 +210,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     tg_geodesic* geo = NULL;
     double *dist = NULL, *at_d = NULL;
     tg_surface_point* at_pts = NULL;
+    uint32_t* label = NULL; /* --labels */
     tg_surface_point* pts = malloc(count * sizeof *pts);
     tg_mesh* mesh = pts ? cli_load_mesh_for_distances(fa->mesh_path) : NULL;
     if (!pts) cli_error(NULL, 0, "out of memory");
@@ -246,7 +248,10 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     tg_field_stats stats;
     memset(&stats, 0, sizeof stats);
     double t0 = cli_seconds();
-    if (st == TG_OK && fa->matrix)
+    if (st == TG_OK && fa->labels) {
+        label = malloc((n ? n : 1) * sizeof *label);
+        st = label ? tg_geodesic_voronoi(geo, NULL, pts, count, &o, label, dist, &stats) : TG_ERR_OUT_OF_MEMORY;
+    } else if (st == TG_OK && fa->matrix)
         st = tg_geodesic_distance_matrix(geo, pts, count, &o, fa->threads, dist, &stats);
     else if (st == TG_OK)
         st = tg_geodesic_field_at(geo, NULL, pts, count, at_pts, fa->at_count, &o, at_d, dist, &stats);
@@ -285,6 +290,13 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
         rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
         goto done;
     }
+    if (fa->labels) {
+        rc = fa->out ? cli_write_labels(fa->out, mesh, label, dist, n) : CLI_OK;
+        if (rc != CLI_OK) goto done;
+        if (!fa->out || strcmp(fa->out, "-")) print_summary(count, false, dist, rows, n, secs, &stats);
+        rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
+        goto done;
+    }
     if (fa->out && fa->format == OUT_PLY) {
         tg_diag d;
         memset(&d, 0, sizeof d);
@@ -300,7 +312,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     if (!fa->out || strcmp(fa->out, "-")) print_summary(count, fa->matrix, dist, rows, n, secs, &stats);
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
-    free(pts), free(dist), free(at_pts), free(at_d);
+    free(pts), free(dist), free(at_pts), free(at_d), free(label);
     tg_geodesic_destroy(geo);
     tg_bvh_destroy(bvh);
     tg_mesh_destroy(mesh);
@@ -317,6 +329,8 @@ static int run(int argc, char** argv)
         const char* a = argv[i];
         if (!strcmp(a, "--quiet")) {
             fa.quiet = true;
+        } else if (!strcmp(a, "--labels")) {
+            fa.labels = true;
         } else if (!strcmp(a, "--from") || !strcmp(a, "-o") || !strcmp(a, "--csv") || !strcmp(a, "--max-distance") ||
                    !strcmp(a, "--sources") || !strcmp(a, "--threads") || !strcmp(a, "--at")) {
             if (i + 1 >= argc) return cli_usage("field", "%s needs a value", a);
@@ -354,7 +368,9 @@ static int run(int argc, char** argv)
         if (fa.format == OUT_NONE && !(fa.at_path && strrchr(fa.out, '.') && !strcmp(strrchr(fa.out, '.'), ".txt")))
             return cli_usage("field", "-o %s: the extension must be .ply, .csv or .npy", fa.out);
     }
-    fa.matrix = fa.sources_path != NULL;
+    fa.matrix = fa.sources_path != NULL && !fa.labels;
+    if (fa.labels && fa.at_path) return cli_usage("field", "--labels and --at exclude each other");
+    if (fa.labels && fa.format == OUT_NPY) return cli_usage("field", "--labels writes -o OUT.ply or OUT.csv");
     if (fa.at_path && fa.matrix) return cli_usage("field", "--at goes with --from, not --sources");
     if (fa.at_path && fa.out && fa.format == OUT_PLY) return cli_usage("field", "--at writes distances: -o OUT.csv, .npy or .txt");
     if (fa.matrix && !fa.out) return cli_usage("field", "--sources needs -o MATRIX.npy or -o MATRIX.csv");
@@ -367,7 +383,7 @@ static int run(int argc, char** argv)
     fa.threads = (int)nt;
     if (fa.sources_path && !cli_threads_available(fa.threads, "field")) return CLI_INPUT;
     int rc;
-    if (fa.matrix) {
+    if (fa.sources_path) {
         char* text = NULL;
         char** items = NULL;
         unsigned long long* lines = NULL;
@@ -403,7 +419,7 @@ static int run(int argc, char** argv)
 
 const cli_command cli_cmd_field = {
     "field",
-    "field MESH --from SPEC[;SPEC...] [--at POINTS] | --sources FILE [-o OUT.ply|.csv|.npy] [--max-distance D]",
+    "field MESH --from SPEC[;SPEC...] [--at POINTS] | --sources FILE [--labels] [-o OUT.ply|.csv|.npy] [--max-distance D]",
     "The exact geodesic distance from surface points to every vertex (window propagation: window\n"
     "lists crossing one face at a time behind a front of vertices, after Qin et al. 2016 and Xin &\n"
     "Wang 2009). Distance is intrinsic: faces' winding does not matter, and paths continue into\n"
@@ -429,6 +445,12 @@ const cli_command cli_cmd_field = {
     "                         vertices: POINTS has one SPEC or \"x y z\" a line (x y z: the closest\n"
     "                         surface point); one distance a line (%.17g) to -o (.txt, .csv or\n"
     "                         .npy) or stdout\n"
+    "  --labels               Voronoi cells of the sources (--from or --sources): per vertex the\n"
+    "                         index of the nearest source (0-based, in the order given; ties to\n"
+    "                         the lowest; -1 where none reaches) and its distance, as PLY\n"
+    "                         properties 'label' and 'distance' (trigeo render --labels) or CSV\n"
+    "                         rows vertex,label,distance; equal to the argmin over the sources'\n"
+    "                         separate fields\n"
     "  --max-distance D       stop at distance D (0 allowed): farther vertices get inf\n"
     "  --threads N            --sources: threads (default: all cores)\n"
     "  --quiet                no progress line (drawn on stderr when it is a terminal and the\n"

@@ -826,6 +826,62 @@ class Mesh:
             st = _L.tg_mesh_write_obj(self._handle(), os.fsencode(p), ctypes.byref(diag))
         _check(st, p, diag)
 
+    # -- Voronoi cells and sampling --------------------------------------------------------
+
+    def voronoi(self, sources: Any, max_distance: Optional[float] = None,
+                progress: Optional[Callable[[float], Any]] = None) -> tuple[np.ndarray, np.ndarray]:
+        """Geodesic Voronoi cells: per vertex the index of the nearest source (in the order
+        given; ties to the lowest index) and the exact distance to it. sources as field().
+        Equal to the argmin over each source's own field (distance_matrix(sources).argmin(0)
+        where reached). Returns (labels (n,) int64, -1 where no source reaches;
+        distance (n,) float64, inf there)."""
+        src = self._surface_points(sources, "sources")
+        pr = _Progress(progress)
+        o = self._field_options(max_distance, pr)
+        n = self.vertex_count
+        labels = np.empty(n, dtype=np.uint32)
+        dist = np.empty(n)
+        geo = self._get_geo()
+        with self._geo_ws.take() as ws:
+            st = pr.run(lambda: _L.tg_geodesic_voronoi(geo, ws, src, len(src), ctypes.byref(o),
+                                                       _ptr(labels, ctypes.c_uint32), _ptr(dist), None))
+        pr.finish(st, "voronoi")
+        return _labels(labels), dist
+
+    def farthest_point_sampling(self, count: int, start: Optional[int] = None, seed: int = 0,
+                                progress: Optional[Callable[[float], Any]] = None
+                                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Farthest-point sampling in exact geodesic distance: sample 0 is `start` (a vertex used
+        by a face), or, when None, the vertex `seed` picks (the same as `trigeo sample --seed`);
+        each next sample is the vertex farthest from all earlier ones (a component no sample
+        reaches yet first; ties to the lowest index). Each new sample's field runs only where it
+        gets below the earlier ones. Returns (samples (count,) int64 in order, distance (n,)
+        float64 to the nearest sample, labels (n,) int64: its position in samples, -1 where
+        none reaches)."""
+        k = _index(count, "count")
+        if k < 1:
+            raise _bad(f"count must be at least 1, not {count!r}")
+        first = _c.NONE if start is None else _index(start, "start")
+        if start is not None and first >= self.vertex_count:
+            raise _bad(f"start {start!r} is not a vertex (the mesh has {self.vertex_count})")
+        sd = _index(seed, "seed")
+        pr = _Progress(progress)
+        o = self._field_options(None, pr)
+        n = self.vertex_count
+        samples = np.empty(k, dtype=np.uint32)
+        labels = np.empty(n, dtype=np.uint32)
+        dist = np.empty(n)
+        geo = self._get_geo()
+        with self._geo_ws.take() as ws:
+            st = pr.run(lambda: _L.tg_geodesic_farthest_point_sampling(
+                geo, ws, first, sd, k, ctypes.byref(o), _ptr(samples, ctypes.c_uint32), _ptr(dist),
+                _ptr(labels, ctypes.c_uint32), None))
+        if st == 1:  # TG_ERR_INVALID_ARGUMENT: the arguments were checked but these two
+            raise _bad(f"start {start!r} is used by no face" if start is not None and k <= n else
+                       f"count {k} exceeds the vertices used by faces (or start {start!r} is used by none)")
+        pr.finish(st, "farthest_point_sampling")
+        return samples.astype(np.int64), dist, _labels(labels)
+
     # -- pictures -----------------------------------------------------------------------------
 
     def render(self, png_path: Union[str, os.PathLike], path: Any = None, field: Any = None, view: Any = None,
@@ -860,6 +916,12 @@ class Mesh:
         diag = _c.Diag()
         st = _L.tg_render_png(self._handle(), ctypes.byref(o), os.fsencode(os.fspath(png_path)), ctypes.byref(diag))
         _check(st, os.fspath(png_path), diag)
+
+
+def _labels(labels: np.ndarray) -> np.ndarray:
+    out = labels.astype(np.int64)
+    out[labels == _c.NONE] = -1
+    return out
 
 
 def _hits(hits: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

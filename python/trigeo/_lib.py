@@ -182,6 +182,9 @@ _SIGNATURES = {
     "tg_geodesic_field_at": (c_int, [_vp, _vp, _psp, c_size_t, _psp, c_size_t, POINTER(FieldOptions), _pd, _pd, _vp]),
     "tg_geodesic_distance_matrix": (c_int, [_vp, _psp, c_size_t, POINTER(FieldOptions), c_int, _pd, _vp]),
     "tg_render_png": (c_int, [_vp, POINTER(RenderOptions), c_char_p, _pdiag]),
+    "tg_geodesic_voronoi": (c_int, [_vp, _vp, _psp, c_size_t, POINTER(FieldOptions), _pu32, _pd, _vp]),
+    "tg_geodesic_farthest_point_sampling": (c_int, [_vp, _vp, c_uint32, c_uint64, c_size_t, POINTER(FieldOptions),
+                                                    _pu32, _pd, _pu32, _vp]),
 }
 
 for _name, (_res, _args) in _SIGNATURES.items():

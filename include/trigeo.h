@@ -1035,8 +1035,11 @@ TG_API tg_status tg_geodesic_distance_matrix(const tg_geodesic* g, const tg_surf
                                   tg_field_stats* out_stats);
 
 
+/** The boundaries of geodesic Voronoi cells (tg_geodesic_voronoi), an object of its own. */
+typedef struct tg_voronoi_boundaries tg_voronoi_boundaries;
+
 /** Geodesic Voronoi labels: for every vertex, the index of its nearest source in exact geodesic
- *  distance, and that distance.
+ *  distance, and that distance; optionally the cells' boundaries as polylines on the surface.
  *
  *  Method: the sources' fields are added one at a time, in index order, to a nearest-source
  *  field: each runs the exact engine (as tg_geodesic_field) but passes on only what can get below
@@ -1057,15 +1060,45 @@ TG_API tg_status tg_geodesic_distance_matrix(const tg_geodesic* g, const tg_surf
  *  = source_count. out_vertex_label: vertex_count labels (source indices; TG_NONE where no source
  *  reaches: other components, unreferenced vertices, beyond the limit), or NULL.
  *  out_vertex_distance: vertex_count doubles (the distance to the nearest source), or NULL. At
- *  least one of the two. out_stats (may be NULL): counters summed over the runs.
- *  Errors: as tg_geodesic_field, and TG_ERR_INVALID_ARGUMENT when both outputs are NULL or
+ *  out_boundaries: NULL, or where the boundaries go (a new object, or NULL on error): on every
+ *  edge whose end vertices have different labels (both reached, the edge of non-zero length),
+ *  the crossing point where the two sources' exact distances are equal within 1e-12 relative
+ *  (far inside the 1e-9 the tests hold it to; found by regula falsi with the Illinois step on
+ *  distances the engine evaluates at edge points, a round of runs bounded by the final field per
+ *  step, about 10 rounds; each evaluation is exact where its source is nearest and never below
+ *  the true distance elsewhere, so the bracket's signs are exact). Inside each face whose
+ *  corners lie in two cells the two crossings are joined by a segment; a face of three cells gets
+ *  a junction at the mean of its three crossings (a face point; not itself equidistant). Faces
+ *  with an unreached corner have no segments. Segments are chained into polylines between
+ *  junctions and ends (the mesh boundary); closed loops repeat their first point at the end.
+ *  At least one of the three outputs. out_stats (may be NULL): counters summed over the runs.
+ *  Errors: as tg_geodesic_field, and TG_ERR_INVALID_ARGUMENT when all outputs are NULL or
  *  source_count exceeds 0xFFFFFFFE; on error the outputs are untouched. Complexity: one run per
  *  source over about its cell and its boundary, plus O(vertex_count) memory for the running
- *  field (made with the options' or the solver's allocator). Thread-safe as tg_geodesic_field. */
+ *  field (made with the options' or the solver's allocator); the boundaries add one such pass
+ *  per round (each source's run evaluating its crossings). Thread-safe as tg_geodesic_field. */
 TG_API tg_status tg_geodesic_voronoi(const tg_geodesic* g, tg_geodesic_workspace* workspace,
                                      const tg_surface_point* sources, size_t source_count,
                                      const tg_field_options* options, uint32_t* out_vertex_label,
-                                     double* out_vertex_distance, tg_field_stats* out_stats);
+                                     double* out_vertex_distance, tg_voronoi_boundaries** out_boundaries,
+                                     tg_field_stats* out_stats);
+
+/** The boundaries' polylines (valid until tg_voronoi_boundaries_destroy). */
+typedef struct tg_voronoi_boundaries_view {
+    size_t polyline_count;
+    const size_t* polyline_start;   /**< polyline_count + 1 offsets: polyline p is points
+                                         [polyline_start[p], polyline_start[p + 1]) (two or more) */
+    const uint32_t* polyline_cells; /**< 2 per polyline: the labels of the cells on its two sides,
+                                         lower first */
+    size_t point_count;
+    const tg_surface_point* points; /**< edge points (crossings) and face points (junctions) */
+    const double* xyz;              /**< 3 per point: their positions */
+} tg_voronoi_boundaries_view;
+
+TG_API void tg_voronoi_boundaries_get_view(const tg_voronoi_boundaries* boundaries,
+                                           tg_voronoi_boundaries_view* out_view);
+/** NULL-safe. */
+TG_API void tg_voronoi_boundaries_destroy(tg_voronoi_boundaries* boundaries);
 
 /** Farthest-point sampling in exact geodesic distance: sample 0 is start_vertex, and each next
  *  sample is the vertex farthest from all earlier ones (the largest distance to the nearest

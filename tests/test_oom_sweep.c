@@ -1285,7 +1285,7 @@ static tg_status run_nearest(const nearest_ctx* nc, const tg_geodesic* g, tg_geo
 {
     if (nc->fps)
         return tg_geodesic_farthest_point_sampling(g, ws, field_sources[1].index, 0, 12, o, samples, dist, label, NULL);
-    return tg_geodesic_voronoi(g, ws, field_sources, FIELD_SOURCES, o, label, dist, NULL);
+    return tg_geodesic_voronoi(g, ws, field_sources, FIELD_SOURCES, o, label, dist, NULL, NULL);
 }
 
 static tg_status try_nearest(sweep* s, void* ctx)

@@ -69,6 +69,85 @@ static void oracle_fps(const tg_mesh* m, const tg_geodesic* g, uint32_t start, s
 
 /* ---- the checks ---- */
 
+/* The boundaries: every edge point is a crossing of an edge whose ends lie in the polyline's two
+ * cells, where those two sources' separate fields (tg_geodesic_field_at) agree to 1e-9 relative;
+ * every junction lies in a face of three cells; every edge between two reached cells (in a face
+ * whose corners are all reached) is crossed. */
+static void check_boundaries(const char* name, const tg_mesh* m, const tg_geodesic* g, const tg_surface_point* s,
+                             size_t k, const tg_field_options* o, const uint32_t* lab, const tg_voronoi_boundaries* b)
+{
+    tg_voronoi_boundaries_view v;
+    tg_voronoi_boundaries_get_view(b, &v);
+    const uint32_t* t = tg_mesh_triangles(m);
+    size_t nfaces = tg_mesh_face_count(m), junctions = 0, crossings = 0, bad = 0;
+    tg_surface_point* pts = malloc((v.point_count + 1) * sizeof *pts);
+    uint32_t* which = malloc((v.point_count + 1) * sizeof *which);
+    double *dist = malloc((v.point_count + 1) * sizeof *dist), *da = malloc((v.point_count + 1) * sizeof *da);
+    bool* crossed = calloc(3 * nfaces, sizeof *crossed);
+    for (size_t c = 0; c < k; ++c) { /* each source's points in one call */
+        size_t np = 0;
+        for (size_t p = 0; p < v.polyline_count; ++p)
+            for (size_t i = v.polyline_start[p]; i < v.polyline_start[p + 1]; ++i)
+                if (v.points[i].kind == TG_SURFACE_EDGE && (v.polyline_cells[2 * p] == c || v.polyline_cells[2 * p + 1] == c))
+                    pts[np] = v.points[i], which[np++] = (uint32_t)i;
+        if (!np) continue;
+        tg_field_options lim;
+        memset(&lim, 0, sizeof lim);
+        if (o) lim = *o;
+        CHECK_STATUS(tg_geodesic_field_at(g, NULL, &s[c], 1, pts, np, &lim, dist, NULL, NULL), TG_OK);
+        for (size_t q = 0; q < np; ++q) {
+            size_t i = which[q];
+            size_t p = 0;
+            while (v.polyline_start[p + 1] <= i) p++;
+            if (v.polyline_cells[2 * p] == c) da[i] = dist[q];
+            else if (fabs(da[i] - dist[q]) > 1e-9 * fmax(da[i], dist[q]) && bad++ < 5)
+                CHECK_MSG(0, "%s: boundary point %zu between cells %u and %u: distances %.17g and %.17g", name, i,
+                          v.polyline_cells[2 * p], v.polyline_cells[2 * p + 1], da[i], dist[q]);
+        }
+    }
+    CHECK_MSG(bad == 0, "%s: %zu boundary points not equidistant", name, bad);
+    for (size_t p = 0; p < v.polyline_count; ++p) {
+        CHECK(v.polyline_start[p + 1] - v.polyline_start[p] >= 2 && v.polyline_cells[2 * p] < v.polyline_cells[2 * p + 1]);
+        for (size_t i = v.polyline_start[p]; i < v.polyline_start[p + 1]; ++i) {
+            const tg_surface_point* q = &v.points[i];
+            if (q->kind == TG_SURFACE_EDGE) {
+                uint32_t h = q->index, a = t[h], bb = t[3 * (h / 3) + (h % 3 + 1) % 3];
+                uint32_t la = lab[a] < lab[bb] ? lab[a] : lab[bb], lb = lab[a] < lab[bb] ? lab[bb] : lab[a];
+                CHECK_MSG(la == v.polyline_cells[2 * p] && lb == v.polyline_cells[2 * p + 1],
+                          "%s: crossing on an edge of cells %u, %u in a polyline of %u, %u", name, la, lb,
+                          v.polyline_cells[2 * p], v.polyline_cells[2 * p + 1]);
+                crossed[h] = true;
+                crossings++;
+            } else {
+                const uint32_t* c = t + 3 * (size_t)q->index;
+                CHECK_MSG(q->kind == TG_SURFACE_FACE && lab[c[0]] != lab[c[1]] && lab[c[1]] != lab[c[2]] &&
+                              lab[c[0]] != lab[c[2]],
+                          "%s: junction point %zu not in a face of three cells", name, i);
+                junctions++;
+            }
+        }
+    }
+    /* every edge between two reached cells is crossed (named by one of its halfedges) */
+    const uint32_t* opp = tg_mesh_opposites(m);
+    size_t missed = 0;
+    for (size_t h = 0; h < 3 * nfaces; ++h) {
+        uint32_t a = t[h], bb = t[3 * (h / 3) + (h % 3 + 1) % 3];
+        if (lab[a] == lab[bb] || lab[a] == TG_NONE || lab[bb] == TG_NONE || a == bb) continue;
+        /* only faces with every corner reached carry segments */
+        const uint32_t* c = t + 3 * (h / 3);
+        bool in_reached = lab[c[0]] != TG_NONE && lab[c[1]] != TG_NONE && lab[c[2]] != TG_NONE;
+        if (opp[h] != TG_NONE) {
+            const uint32_t* c2 = t + 3 * (opp[h] / 3);
+            in_reached |= lab[c2[0]] != TG_NONE && lab[c2[1]] != TG_NONE && lab[c2[2]] != TG_NONE;
+        }
+        if (!in_reached) continue;
+        missed += !crossed[h] && !(opp[h] != TG_NONE && crossed[opp[h]]);
+    }
+    CHECK_MSG(missed == 0, "%s: %zu halfedges between two cells not crossed", name, missed);
+    printf("%s: %zu polylines, %zu crossings, %zu junctions\n", name, v.polyline_count, crossings, junctions);
+    free(pts), free(which), free(dist), free(da), free(crossed);
+}
+
 static size_t check_voronoi(const char* name, const tg_mesh* m, const tg_geodesic* g, const tg_surface_point* s,
                             size_t k, const tg_field_options* o)
 {
@@ -77,7 +156,10 @@ static size_t check_voronoi(const char* name, const tg_mesh* m, const tg_geodesi
     double *d = malloc(n * sizeof *d), *want_d = malloc(n * sizeof *want_d);
     size_t ties = oracle_voronoi(g, n, s, k, o, want_lab, want_d);
     tg_field_stats st;
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, k, o, lab, d, &st), TG_OK);
+    tg_voronoi_boundaries* bounds = NULL;
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, k, o, lab, d, &bounds, &st), TG_OK);
+    check_boundaries(name, m, g, s, k, o, lab, bounds);
+    tg_voronoi_boundaries_destroy(bounds);
     size_t bad = 0;
     for (size_t v = 0; v < n; ++v)
         if (lab[v] != want_lab[v] || memcmp(&d[v], &want_d[v], sizeof d[v]) != 0) {
@@ -89,8 +171,8 @@ static size_t check_voronoi(const char* name, const tg_mesh* m, const tg_geodesi
     /* the labels alone and the distances alone are the same */
     uint32_t* lab2 = malloc(n * sizeof *lab2);
     double* d2 = malloc(n * sizeof *d2);
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, k, o, lab2, NULL, NULL), TG_OK);
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, k, o, NULL, d2, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, k, o, lab2, NULL, NULL, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, k, o, NULL, d2, NULL, NULL), TG_OK);
     CHECK_MSG(!memcmp(lab, lab2, n * sizeof *lab) && !memcmp(d, d2, n * sizeof *d), "%s: outputs alone differ", name);
     printf("%s: %zu sources, %zu vertices, %zu ties, %llu windows propagated\n", name, k, n, ties,
            (unsigned long long)st.windows_propagated);
@@ -137,7 +219,7 @@ static void test_corpus(const char* dir, const char* file, size_t k_voronoi, siz
     /* with a limit: a third of the largest distance */
     size_t n = tg_mesh_vertex_count(m);
     double* d = malloc(n * sizeof *d);
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, 3, NULL, NULL, d, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, 3, NULL, NULL, d, NULL, NULL), TG_OK);
     double far = 0;
     for (size_t v = 0; v < n; ++v)
         if (isfinite(d[v]) && d[v] > far) far = d[v];
@@ -181,7 +263,7 @@ static void test_components(void)
     check_voronoi("two components", c.mesh, c.geo, s, 2, NULL);
     uint32_t lab[64];
     double d[64];
-    CHECK_STATUS(tg_geodesic_voronoi(c.geo, NULL, s, 2, NULL, lab, d, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_voronoi(c.geo, NULL, s, 2, NULL, lab, d, NULL, NULL), TG_OK);
     CHECK_MSG(lab[second] == TG_NONE && isinf(d[second]) && lab[lone] == TG_NONE && isinf(d[lone]),
               "other component / unreferenced: labels %u %u, distances %g %g", lab[second], lab[lone], d[second], d[lone]);
     /* sample 1 is in the other component (+inf is farthest), at its lowest index */
@@ -256,7 +338,7 @@ static void test_cancel_and_bad_input(const char* data_dir)
     o.progress = cancel_third, o.progress_user = &log;
     memset(lab, 0xA5, n * sizeof *lab);
     memset(samples, 0xA5, sizeof samples);
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, 20, &o, lab, NULL, NULL), TG_ERR_CANCELLED);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, 20, &o, lab, NULL, NULL, NULL), TG_ERR_CANCELLED);
     CHECK_MSG(log.calls == 3 && log.ordered, "progress: %d calls, ordered %d", log.calls, log.ordered);
     log = (progress_log){0, 0, true};
     CHECK_STATUS(tg_geodesic_farthest_point_sampling(g, NULL, 0, 0, 20, &o, samples, NULL, lab, NULL), TG_ERR_CANCELLED);
@@ -266,15 +348,15 @@ static void test_cancel_and_bad_input(const char* data_dir)
     CHECK_MSG(untouched, "outputs written after cancellation");
 
     tg_surface_point bad = tg_surface_vertex((uint32_t)n);
-    CHECK_STATUS(tg_geodesic_voronoi(NULL, NULL, s, 2, NULL, lab, d, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, 2, NULL, NULL, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, NULL, 2, NULL, lab, d, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, &bad, 1, NULL, lab, d, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_voronoi(g, ows, s, 2, NULL, lab, d, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_voronoi(NULL, NULL, s, 2, NULL, lab, d, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, 2, NULL, NULL, NULL, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, NULL, 2, NULL, lab, d, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, &bad, 1, NULL, lab, d, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_voronoi(g, ows, s, 2, NULL, lab, d, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
     tg_field_options neg;
     memset(&neg, 0, sizeof neg);
     neg.limit = TG_FIELD_MAX_DISTANCE, neg.max_distance = NAN;
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, 2, &neg, lab, d, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, 2, &neg, lab, d, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
     neg.max_distance = 1.0;
     CHECK_STATUS(tg_geodesic_farthest_point_sampling(g, NULL, 0, 0, 2, &neg, samples, d, lab, NULL),
                  TG_ERR_INVALID_ARGUMENT);
@@ -291,7 +373,7 @@ static void test_cancel_and_bad_input(const char* data_dir)
     CHECK_STATUS(tg_geodesic_farthest_point_sampling(g, NULL, 0, 0, n + 1, NULL, samples, d, lab, NULL),
                  TG_ERR_INVALID_ARGUMENT);
     /* no sources: every vertex unreached */
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, NULL, 0, NULL, lab, d, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, NULL, 0, NULL, lab, d, NULL, NULL), TG_OK);
     CHECK_MSG(lab[0] == TG_NONE && isinf(d[0]), "no sources: %u %g", lab[0], d[0]);
     free(lab), free(d);
     tg_geodesic_workspace_destroy(ows);

@@ -250,7 +250,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     double t0 = cli_seconds();
     if (st == TG_OK && fa->labels) {
         label = malloc((n ? n : 1) * sizeof *label);
-        st = label ? tg_geodesic_voronoi(geo, NULL, pts, count, &o, label, dist, &stats) : TG_ERR_OUT_OF_MEMORY;
+        st = label ? tg_geodesic_voronoi(geo, NULL, pts, count, &o, label, dist, NULL, &stats) : TG_ERR_OUT_OF_MEMORY;
     } else if (st == TG_OK && fa->matrix)
         st = tg_geodesic_distance_matrix(geo, pts, count, &o, fa->threads, dist, &stats);
     else if (st == TG_OK)

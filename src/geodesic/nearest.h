@@ -33,4 +33,11 @@ tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surfa
  * labels, each output may be NULL. */
 void tg__nearest_copy_out(const tg__nearest* nf, double* out_dist, uint32_t* out_label);
 
+/* The cell boundaries of the complete field nf of these sources (bisector.c): every crossing of
+ * an edge between two cells found by rounds of runs bounded by nf->dist (stats added to nf),
+ * chained into polylines, allocated with nf's allocator. Errors: TG_ERR_OUT_OF_MEMORY (*out
+ * untouched). */
+tg_status tg__voronoi_boundaries(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources,
+                                 size_t source_count, tg_voronoi_boundaries** out);
+
 #endif

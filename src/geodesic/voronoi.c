@@ -74,9 +74,11 @@ void tg__nearest_copy_out(const tg__nearest* nf, double* out_dist, uint32_t* out
 
 tg_status tg_geodesic_voronoi(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
                               size_t source_count, const tg_field_options* options, uint32_t* out_vertex_label,
-                              double* out_vertex_distance, tg_field_stats* out_stats)
+                              double* out_vertex_distance, tg_voronoi_boundaries** out_boundaries,
+                              tg_field_stats* out_stats)
 {
-    if (!out_vertex_label && !out_vertex_distance) return TG_ERR_INVALID_ARGUMENT;
+    if (out_boundaries) *out_boundaries = NULL;
+    if (!out_vertex_label && !out_vertex_distance && !out_boundaries) return TG_ERR_INVALID_ARGUMENT;
     if (source_count >= TG_NONE) return TG_ERR_INVALID_ARGUMENT; /* labels are uint32_t, TG_NONE: none */
     tg_status st = tg__field_check_sources(g, sources, source_count, options);
     if (st != TG_OK) return st;
@@ -91,7 +93,10 @@ tg_status tg_geodesic_voronoi(const tg_geodesic* g, tg_geodesic_workspace* ws, c
     }
     nf.options = options, nf.rows = source_count;
     for (size_t i = 0; st == TG_OK && i < source_count; ++i) st = tg__nearest_add(&nf, &ws->field, &sources[i]);
+    tg_voronoi_boundaries* bounds = NULL;
+    if (st == TG_OK && out_boundaries) st = tg__voronoi_boundaries(&nf, &ws->field, sources, source_count, &bounds);
     if (st == TG_OK) {
+        if (out_boundaries) *out_boundaries = bounds;
         tg__nearest_copy_out(&nf, out_vertex_distance, out_vertex_label);
         if (out_stats) *out_stats = nf.stats;
     }

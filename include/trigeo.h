@@ -1155,13 +1155,24 @@ typedef struct tg_render_options {
                                        camera), endpoints as dots */
     size_t polyline_count;
     int supersample;              /**< samples per pixel side for anti-aliasing; 0: 3; 1: none */
+    /** optional: one cell label per vertex (tg_geodesic_voronoi): each face is painted piecewise
+     *  by the label of its nearest corner, every label in its own colour (hues spaced by the
+     *  golden ratio), TG_NONE grey; drawn instead of vertex_scalar */
+    const uint32_t* vertex_label;
+    /** optional: split the polyline into polyline_parts polylines, part p being points
+     *  [polyline_start[p], polyline_start[p + 1]) (polyline_parts + 1 non-decreasing offsets, the
+     *  last at most polyline_count), drawn as dark tubes without end dots (cell boundaries);
+     *  NULL / 0: one red polyline with its end dots */
+    const size_t* polyline_start;
+    size_t polyline_parts;
 } tg_render_options;
 
 /** Renders the mesh (software rasterizer, z-buffer, smooth two-sided headlight shading) with the
  *  optional scalar field and polyline, and writes an 8-bit RGB PNG (libpng) to png_path.
  *  Degenerate faces are skipped; an empty mesh gives a background-only image. Deterministic: the
  *  same inputs give the same bytes. Errors: TG_ERR_INVALID_ARGUMENT (NULL mesh/path, size out of
- *  range, polyline_count > 0 with NULL polyline), TG_ERR_OUT_OF_MEMORY, TG_ERR_IO (cannot write).
+ *  range, polyline_count > 0 with NULL polyline, polyline_parts > 0 with NULL or out-of-order
+ *  polyline_start), TG_ERR_OUT_OF_MEMORY, TG_ERR_IO (cannot write).
  *  Cost: O(F + pixels * supersample^2). Thread-safe (no shared state). */
 TG_API tg_status tg_render_png(const tg_mesh* mesh, const tg_render_options* options, const char* png_path,
                         tg_diag* diag);

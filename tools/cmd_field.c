@@ -154,12 +154,69 @@ typedef struct field_args {
     bool quiet;
     bool matrix;          /* --sources: one row per source */
     bool labels;          /* --labels: the nearest source's index per vertex (Voronoi) */
+    const char* boundaries; /* --boundaries: the cells' boundaries (.obj or .json) */
     const char* sources_path;
     const char* at_path;  /* --at: distances at these points */
     char** at_items;
     unsigned long long* at_lines;
     size_t at_count;
 } field_args;
+
+/* A surface point as a spec (cli_spec.c's syntax), %.17g. */
+static void spec_text(const tg_surface_point* p, char* buf, size_t cap)
+{
+    if (p->kind == TG_SURFACE_EDGE)
+        snprintf(buf, cap, "e:%u:%.17g", p->index, p->t);
+    else if (p->kind == TG_SURFACE_FACE)
+        snprintf(buf, cap, "f:%u:%.17g,%.17g,%.17g", p->index, p->bary[0], p->bary[1], p->bary[2]);
+    else
+        snprintf(buf, cap, "v:%u", p->index);
+}
+
+/* --boundaries: OBJ (a `v` per point, an `l` per polyline, a comment naming its two cells) or JSON
+ * ({"polylines": [{"cells": [a, b], "points": [[x, y, z], ...], "surface": ["e:H:t", ...]}]}). */
+static int write_boundaries(const char* path, const tg_voronoi_boundaries* b)
+{
+    tg_voronoi_boundaries_view v;
+    tg_voronoi_boundaries_get_view(b, &v);
+    cli_output out;
+    FILE* f = cli_output_open(&out, path);
+    if (!f) return CLI_INPUT;
+    bool json = cli_ext_is(path, ".json"), ok = true;
+    char spec[160];
+    if (!json) {
+        ok = fprintf(f, "# trigeo Voronoi boundaries: %zu polylines\n", v.polyline_count) > 0;
+        for (size_t i = 0; ok && i < v.point_count; ++i)
+            ok = fprintf(f, "v %.17g %.17g %.17g\n", v.xyz[3 * i], v.xyz[3 * i + 1], v.xyz[3 * i + 2]) > 0;
+        for (size_t p = 0; ok && p < v.polyline_count; ++p) {
+            ok = fprintf(f, "# cells %u %u\nl", v.polyline_cells[2 * p], v.polyline_cells[2 * p + 1]) > 0;
+            for (size_t i = v.polyline_start[p]; ok && i < v.polyline_start[p + 1]; ++i) ok = fprintf(f, " %zu", i + 1) > 0;
+            ok = ok && fputc('\n', f) != EOF;
+        }
+    } else {
+        ok = fprintf(f, "{\"polylines\": [") > 0;
+        for (size_t p = 0; ok && p < v.polyline_count; ++p) {
+            ok = fprintf(f, "%s\n  {\"cells\": [%u, %u], \"points\": [", p ? "," : "", v.polyline_cells[2 * p],
+                         v.polyline_cells[2 * p + 1]) > 0;
+            for (size_t i = v.polyline_start[p]; ok && i < v.polyline_start[p + 1]; ++i)
+                ok = fprintf(f, "%s[%.17g, %.17g, %.17g]", i > v.polyline_start[p] ? ", " : "", v.xyz[3 * i],
+                             v.xyz[3 * i + 1], v.xyz[3 * i + 2]) > 0;
+            ok = ok && fprintf(f, "], \"surface\": [") > 0;
+            for (size_t i = v.polyline_start[p]; ok && i < v.polyline_start[p + 1]; ++i) {
+                spec_text(&v.points[i], spec, sizeof spec);
+                ok = fprintf(f, "%s\"%s\"", i > v.polyline_start[p] ? ", " : "", spec) > 0;
+            }
+            ok = ok && fprintf(f, "]}") > 0;
+        }
+        ok = ok && fprintf(f, "\n]}\n") > 0;
+    }
+    if (!ok) {
+        cli_error(path, 0, "write failed: %s", strerror(errno));
+        cli_output_abort(&out);
+        return CLI_INPUT;
+    }
+    return cli_output_commit(&out);
+}
 
 /* Resolves the spec texts items[0..count) (lines: from the sources file, named in errors).
  * CLI_OK, CLI_USAGE (a --from spec that does not parse) or CLI_INPUT (error printed). */
@@ -211,6 +268,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     double *dist = NULL, *at_d = NULL;
     tg_surface_point* at_pts = NULL;
     uint32_t* label = NULL; /* --labels */
+    tg_voronoi_boundaries* bounds = NULL;
     tg_surface_point* pts = malloc(count * sizeof *pts);
     tg_mesh* mesh = pts ? cli_load_mesh_for_distances(fa->mesh_path) : NULL;
     if (!pts) cli_error(NULL, 0, "out of memory");
@@ -250,7 +308,8 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     double t0 = cli_seconds();
     if (st == TG_OK && fa->labels) {
         label = malloc((n ? n : 1) * sizeof *label);
-        st = label ? tg_geodesic_voronoi(geo, NULL, pts, count, &o, label, dist, NULL, &stats) : TG_ERR_OUT_OF_MEMORY;
+        st = label ? tg_geodesic_voronoi(geo, NULL, pts, count, &o, label, dist,
+                                                    fa->boundaries ? &bounds : NULL, &stats) : TG_ERR_OUT_OF_MEMORY;
     } else if (st == TG_OK && fa->matrix)
         st = tg_geodesic_distance_matrix(geo, pts, count, &o, fa->threads, dist, &stats);
     else if (st == TG_OK)
@@ -292,6 +351,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     }
     if (fa->labels) {
         rc = fa->out ? cli_write_labels(fa->out, mesh, label, dist, n) : CLI_OK;
+        if (rc == CLI_OK && fa->boundaries) rc = write_boundaries(fa->boundaries, bounds);
         if (rc != CLI_OK) goto done;
         if (!fa->out || strcmp(fa->out, "-")) print_summary(count, false, dist, rows, n, secs, &stats);
         rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
@@ -313,6 +373,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
     free(pts), free(dist), free(at_pts), free(at_d), free(label);
+    tg_voronoi_boundaries_destroy(bounds);
     tg_geodesic_destroy(geo);
     tg_bvh_destroy(bvh);
     tg_mesh_destroy(mesh);
@@ -332,7 +393,8 @@ static int run(int argc, char** argv)
         } else if (!strcmp(a, "--labels")) {
             fa.labels = true;
         } else if (!strcmp(a, "--from") || !strcmp(a, "-o") || !strcmp(a, "--csv") || !strcmp(a, "--max-distance") ||
-                   !strcmp(a, "--sources") || !strcmp(a, "--threads") || !strcmp(a, "--at")) {
+                   !strcmp(a, "--sources") || !strcmp(a, "--threads") || !strcmp(a, "--at") ||
+                   !strcmp(a, "--boundaries")) {
             if (i + 1 >= argc) return cli_usage("field", "%s needs a value", a);
             const char* val = argv[++i];
             if (!strcmp(a, "--from"))
@@ -347,6 +409,8 @@ static int run(int argc, char** argv)
                 threads = val;
             else if (!strcmp(a, "--at"))
                 fa.at_path = val;
+            else if (!strcmp(a, "--boundaries"))
+                fa.boundaries = val;
             else
                 maxd = val;
         } else if (a[0] == '-' && a[1]) {
@@ -369,6 +433,9 @@ static int run(int argc, char** argv)
             return cli_usage("field", "-o %s: the extension must be .ply, .csv or .npy", fa.out);
     }
     fa.matrix = fa.sources_path != NULL && !fa.labels;
+    if (fa.boundaries && !fa.labels) return cli_usage("field", "--boundaries goes with --labels");
+    if (fa.boundaries && !cli_ext_is(fa.boundaries, ".obj") && !cli_ext_is(fa.boundaries, ".json"))
+        return cli_usage("field", "--boundaries %s: the extension must be .obj or .json", fa.boundaries);
     if (fa.labels && fa.at_path) return cli_usage("field", "--labels and --at exclude each other");
     if (fa.labels && fa.format == OUT_NPY) return cli_usage("field", "--labels writes -o OUT.ply or OUT.csv");
     if (fa.at_path && fa.matrix) return cli_usage("field", "--at goes with --from, not --sources");
@@ -419,7 +486,7 @@ static int run(int argc, char** argv)
 
 const cli_command cli_cmd_field = {
     "field",
-    "field MESH --from SPEC[;SPEC...] [--at POINTS] | --sources FILE [--labels] [-o OUT.ply|.csv|.npy] [--max-distance D]",
+    "field MESH --from SPEC[;SPEC...] [--at POINTS] | --sources FILE [--labels [--boundaries B.obj|.json]] [-o OUT.ply|.csv|.npy] [--max-distance D]",
     "The exact geodesic distance from surface points to every vertex (window propagation: window\n"
     "lists crossing one face at a time behind a front of vertices, after Qin et al. 2016 and Xin &\n"
     "Wang 2009). Distance is intrinsic: faces' winding does not matter, and paths continue into\n"
@@ -451,6 +518,13 @@ const cli_command cli_cmd_field = {
     "                         properties 'label' and 'distance' (trigeo render --labels) or CSV\n"
     "                         rows vertex,label,distance; equal to the argmin over the sources'\n"
     "                         separate fields\n"
+    "  --boundaries B         with --labels: the cells' boundaries as polylines; on every edge\n"
+    "                         between two cells the point where the two sources' distances are\n"
+    "                         equal (1e-12 relative), joined inside faces (a face of three cells\n"
+    "                         gets a junction at the mean of its crossings); .obj: 'v' and 'l'\n"
+    "                         records (a '# cells A B' comment before each 'l'; trigeo render\n"
+    "                         --path draws them); .json: {\"polylines\": [{\"cells\": [A, B],\n"
+    "                         \"points\": [[x, y, z], ...], \"surface\": [\"e:H:t\" | \"f:F:b0,b1,b2\"]}]}\n"
     "  --max-distance D       stop at distance D (0 allowed): farther vertices get inf\n"
     "  --threads N            --sources: threads (default: all cores)\n"
     "  --quiet                no progress line (drawn on stderr when it is a terminal and the\n"

@@ -33,6 +33,7 @@ C_NAME = {
     "FieldProgress": "tg_field_progress",
     "FieldOptions": "tg_field_options",
     "RenderOptions": "tg_render_options",
+    "BoundariesView": "tg_voronoi_boundaries_view",
 }
 # Python field names that differ from C's (keywords)
 C_FIELD = {"global_": "global"}

@@ -86,3 +86,22 @@ def test_bad_input(tmp_path):
     assert r.returncode == 1
     r = run_cli("field", SPOT, "--from", "v:1;v:2", "--labels", "-o", str(tmp_path / "x.npy"))
     assert r.returncode == 1 and not (tmp_path / "x.npy").exists()
+
+
+def test_boundaries_equidistant_and_render(tmp_path):
+    m = trigeo.load(SPOT)
+    src = [3, 700, 1500, 2200, trigeo.SurfacePoint.face(40, (0.5, 0.25, 0.25))]
+    labels, dist, lines = m.voronoi(src, boundaries=True)
+    assert np.array_equal(labels, m.voronoi(src)[0])
+    assert lines and all(a < b for a, b in (ln["cells"] for ln in lines))
+    for ln in lines:
+        a, b = ln["cells"]
+        edge = [p for p in ln["surface_points"] if p.kind == "edge"]
+        da, db = m.field_at(src[a], edge), m.field_at(src[b], edge)
+        assert np.all(np.abs(da - db) <= 1e-9 * np.maximum(da, db))
+        assert ln["points"].shape == (len(ln["surface_points"]), 3)
+    png = tmp_path / "v.png"
+    m.render(png, labels=labels, boundaries=lines, width=64, height=48)
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    with pytest.raises(trigeo.InvalidArgumentError):
+        m.render(png, labels=labels[:-1])

@@ -1273,19 +1273,33 @@ static void sweep_fields(void)
 /* ---- Voronoi labels and farthest-point sampling ---- */
 
 typedef struct nearest_ctx {
-    int fps;       /* 0: tg_geodesic_voronoi of field_sources; 1: 12 farthest points from field_sources[1], a vertex */
+    int fps;       /* 0: tg_geodesic_voronoi of field_sources; 1: 12 farthest points from field_sources[1], a
+                      vertex; 2: the Voronoi cells with their boundaries */
     int workspace; /* 0: a temporary one from options.allocator; 1: a fresh one */
     size_t nv;
     uint32_t *ref_label, ref_samples[12];
     double* ref_dist;
+    double* ref_xyz; /* the boundaries' points */
+    size_t ref_points;
 } nearest_ctx;
 
-static tg_status run_nearest(const nearest_ctx* nc, const tg_geodesic* g, tg_geodesic_workspace* ws,
-                             const tg_field_options* o, uint32_t* label, double* dist, uint32_t* samples)
+/* The boundaries' point count and positions equal the reference's (and the object is freed). */
+static bool same_boundaries(const nearest_ctx* nc, tg_voronoi_boundaries* b)
 {
-    if (nc->fps)
+    tg_voronoi_boundaries_view v;
+    tg_voronoi_boundaries_get_view(b, &v);
+    bool same = v.point_count == nc->ref_points && same_bytes(v.xyz, nc->ref_xyz, 3 * v.point_count * sizeof(double));
+    tg_voronoi_boundaries_destroy(b);
+    return same;
+}
+
+static tg_status run_nearest(const nearest_ctx* nc, const tg_geodesic* g, tg_geodesic_workspace* ws,
+                             const tg_field_options* o, uint32_t* label, double* dist, uint32_t* samples,
+                             tg_voronoi_boundaries** bounds)
+{
+    if (nc->fps == 1)
         return tg_geodesic_farthest_point_sampling(g, ws, field_sources[1].index, 0, 12, o, samples, dist, label, NULL);
-    return tg_geodesic_voronoi(g, ws, field_sources, FIELD_SOURCES, o, label, dist, NULL, NULL);
+    return tg_geodesic_voronoi(g, ws, field_sources, FIELD_SOURCES, o, label, dist, nc->fps == 2 ? bounds : NULL, NULL);
 }
 
 static tg_status try_nearest(sweep* s, void* ctx)
@@ -1310,12 +1324,15 @@ static tg_status try_nearest(sweep* s, void* ctx)
     memset(label, 0xA5, nv * sizeof *label);
     memset(dist, 0xA5, nv * sizeof *dist);
     memset(samples, 0xA5, sizeof samples);
+    tg_voronoi_boundaries* bounds = NOT_NULL;
     arm(s);
-    tg_status st = run_nearest(nc, g, ws, &o, label, dist, samples);
+    tg_status st = run_nearest(nc, g, ws, &o, label, dist, samples, &bounds);
     disarm(s);
+    if (nc->fps == 2) CHECK_NULL_ON_FAILURE(s, st, bounds);
     if (st == TG_OK) {
         CHECK_MSG(same_bytes(label, nc->ref_label, nv * sizeof *label) && same_bytes(dist, nc->ref_dist, nv * sizeof *dist) &&
-                      (!nc->fps || same_bytes(samples, nc->ref_samples, sizeof samples)),
+                      (nc->fps != 1 || same_bytes(samples, nc->ref_samples, sizeof samples)) &&
+                      (nc->fps != 2 || same_boundaries(nc, bounds)),
                   "%s: results differ from the default allocator's", s->name);
     } else {
         CHECK_MSG(all_bytes(label, nv * sizeof *label, 0xA5) && all_bytes(dist, nv * sizeof *dist, 0xA5) &&
@@ -1323,7 +1340,8 @@ static tg_status try_nearest(sweep* s, void* ctx)
                   "%s, allocation %ld failing: outputs written after %s", s->name, s->k, tg_status_name(st));
     }
     if (st != TG_OK && ws) { /* the workspace still gives the right result */
-        CHECK_STATUS(run_nearest(nc, g, ws, &o, label, dist, samples), TG_OK);
+        CHECK_STATUS(run_nearest(nc, g, ws, &o, label, dist, samples, &bounds), TG_OK);
+        if (nc->fps == 2) CHECK_MSG(same_boundaries(nc, bounds), "%s: boundaries differ after a failure", s->name);
         CHECK_MSG(same_bytes(label, nc->ref_label, nv * sizeof *label) && same_bytes(dist, nc->ref_dist, nv * sizeof *dist),
                   "%s, allocation %ld failing: the next call on the workspace differs", s->name, s->k);
     }
@@ -1337,10 +1355,12 @@ static tg_status try_nearest(sweep* s, void* ctx)
 static void sweep_nearest(void)
 {
     const long dense = TG_TEST_WORK(300, 60), stride = TG_TEST_WORK(2, 7);
-    static const char* names[2][2] = {{"tg_geodesic_voronoi (temporary workspace)", "tg_geodesic_voronoi (fresh workspace)"},
+    static const char* names[3][2] = {{"tg_geodesic_voronoi (temporary workspace)", "tg_geodesic_voronoi (fresh workspace)"},
                                       {"tg_geodesic_farthest_point_sampling (temporary workspace)",
-                                       "tg_geodesic_farthest_point_sampling (fresh workspace)"}};
-    for (int fps = 0; fps < 2; ++fps)
+                                       "tg_geodesic_farthest_point_sampling (fresh workspace)"},
+                                      {"tg_geodesic_voronoi with boundaries (temporary workspace)",
+                                       "tg_geodesic_voronoi with boundaries (fresh workspace)"}};
+    for (int fps = 0; fps < 3; ++fps)
         for (int workspace = 0; workspace < 2; ++workspace) {
             nearest_ctx nc;
             memset(&nc, 0, sizeof nc);
@@ -1348,10 +1368,18 @@ static void sweep_nearest(void)
             nc.nv = tg_mesh_vertex_count(spot);
             nc.ref_label = malloc(nc.nv * sizeof *nc.ref_label);
             nc.ref_dist = malloc(nc.nv * sizeof *nc.ref_dist);
-            CHECK_STATUS(run_nearest(&nc, spot_g, NULL, NULL, nc.ref_label, nc.ref_dist, nc.ref_samples), TG_OK);
+            tg_voronoi_boundaries* ref = NULL;
+            CHECK_STATUS(run_nearest(&nc, spot_g, NULL, NULL, nc.ref_label, nc.ref_dist, nc.ref_samples, &ref), TG_OK);
+            tg_voronoi_boundaries_view v;
+            tg_voronoi_boundaries_get_view(ref, &v);
+            nc.ref_points = v.point_count;
+            nc.ref_xyz = malloc((3 * v.point_count + 1) * sizeof *nc.ref_xyz);
+            if (v.point_count) memcpy(nc.ref_xyz, v.xyz, 3 * v.point_count * sizeof *nc.ref_xyz);
+            tg_voronoi_boundaries_destroy(ref);
             sweep_run(names[fps][workspace], try_nearest, &nc, dense, stride);
             free(nc.ref_label);
             free(nc.ref_dist);
+            free(nc.ref_xyz);
         }
 }
 

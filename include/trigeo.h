@@ -1391,6 +1391,103 @@ TG_API tg_status tg_geodesic_local_matrix(const tg_geodesic* g, const tg_surface
                                    tg_sparse_matrix** out_matrix, tg_field_stats* out_stats);
 
 
+/** The boundaries of geodesic Voronoi cells (tg_geodesic_voronoi), an object of its own. */
+typedef struct tg_voronoi_boundaries tg_voronoi_boundaries;
+
+/** Geodesic Voronoi labels: for every vertex, the index of its nearest source in exact geodesic
+ *  distance, and that distance; optionally the cells' boundaries as polylines on the surface.
+ *
+ *  Method: the sources' fields are added one at a time, in index order, to a nearest-source
+ *  field: each runs the exact engine (as tg_geodesic_field) but passes on only what can get below
+ *  the distance of the sources before it (a vertex reached no more shortly starts nothing; a
+ *  window is dropped when its least distance over its interval of an edge is at least the largest
+ *  over that interval of min(d(a) + |ax|, d(b) + |bx|), d the earlier sources' distance at the
+ *  edge's ends), so that each run covers about its own cell. A vertex takes the new source's
+ *  distance and label only when strictly shorter, as doubles: a tie goes to the lowest index.
+ *  The result is the argmin over the sources' separate fields (tg_geodesic_field of each source
+ *  alone), ties to the lowest index, the distance their minimum (each run keeps the windows of
+ *  every path that beats the earlier sources, so where it wins it finds the separate field's
+ *  value; the tests compare both bit for bit on corpus meshes).
+ *
+ *  workspace: one of this solver's, or NULL for a temporary one. sources: source_count valid
+ *  surface points (any kind; repeated points are allowed: the later one's cell is empty).
+ *  options: NULL for defaults; with TG_FIELD_MAX_DISTANCE vertices farther than max_distance
+ *  from every source get +inf and TG_NONE; progress (called while fields run and after each source) is told rows_done = sources done, row_count
+ *  = source_count. out_vertex_label: vertex_count labels (source indices; TG_NONE where no source
+ *  reaches: other components, unreferenced vertices, beyond the limit), or NULL.
+ *  out_vertex_distance: vertex_count doubles (the distance to the nearest source), or NULL. At
+ *  out_boundaries: NULL, or where the boundaries go (a new object, or NULL on error): on every
+ *  edge whose end vertices have different labels (both reached, the edge of non-zero length),
+ *  the crossing point where the two sources' exact distances are equal within 1e-12 relative
+ *  (far inside the 1e-9 the tests hold it to; found by regula falsi with the Illinois step on
+ *  distances the engine evaluates at edge points, a round of runs bounded by the final field per
+ *  step, about 10 rounds; each evaluation is exact where its source is nearest and never below
+ *  the true distance elsewhere, so the bracket's signs are exact). Inside each face whose
+ *  corners lie in two cells the two crossings are joined by a segment; a face of three cells gets
+ *  a junction at the mean of its three crossings (a face point; not itself equidistant). Faces
+ *  with an unreached corner have no segments. Segments are chained into polylines between
+ *  junctions and ends (the mesh boundary); closed loops repeat their first point at the end.
+ *  At least one of the three outputs. out_stats (may be NULL): counters summed over the runs.
+ *  Errors: as tg_geodesic_field, and TG_ERR_INVALID_ARGUMENT when all outputs are NULL or
+ *  source_count exceeds 0xFFFFFFFE; on error the outputs are untouched. Complexity: one run per
+ *  source over about its cell and its boundary, plus O(vertex_count) memory for the running
+ *  field (made with the options' or the solver's allocator); the boundaries add one such pass
+ *  per round (each source's run evaluating its crossings). Thread-safe as tg_geodesic_field. */
+TG_API tg_status tg_geodesic_voronoi(const tg_geodesic* g, tg_geodesic_workspace* workspace,
+                                     const tg_surface_point* sources, size_t source_count,
+                                     const tg_field_options* options, uint32_t* out_vertex_label,
+                                     double* out_vertex_distance, tg_voronoi_boundaries** out_boundaries,
+                                     tg_field_stats* out_stats);
+
+/** The boundaries' polylines (valid until tg_voronoi_boundaries_destroy). */
+typedef struct tg_voronoi_boundaries_view {
+    size_t polyline_count;
+    const size_t* polyline_start;   /**< polyline_count + 1 offsets: polyline p is points
+                                         [polyline_start[p], polyline_start[p + 1]) (two or more) */
+    const uint32_t* polyline_cells; /**< 2 per polyline: the labels of the cells on its two sides,
+                                         lower first */
+    size_t point_count;
+    const tg_surface_point* points; /**< edge points (crossings) and face points (junctions) */
+    const double* xyz;              /**< 3 per point: their positions */
+} tg_voronoi_boundaries_view;
+
+TG_API void tg_voronoi_boundaries_get_view(const tg_voronoi_boundaries* boundaries,
+                                           tg_voronoi_boundaries_view* out_view);
+/** NULL-safe. */
+TG_API void tg_voronoi_boundaries_destroy(tg_voronoi_boundaries* boundaries);
+
+/** Farthest-point sampling in exact geodesic distance: sample 0 is start_vertex, and each next
+ *  sample is the vertex farthest from all earlier ones (the largest distance to the nearest
+ *  sample; +inf, a component no sample reaches yet, counts as farthest; ties to the lowest
+ *  vertex index; vertices already sampled and unreferenced vertices are never chosen).
+ *
+ *  Method: the nearest-source field of tg_geodesic_voronoi, one sample added at a time, each
+ *  run passing on only what gets below the earlier samples' distance; the farthest vertex is
+ *  found by a scan of the vertices after each run. The result equals the brute-force loop over
+ *  the samples' separate fields (tg_geodesic_field of each, their minimum, its argmax).
+ *
+ *  start_vertex: the first sample, a referenced vertex (used by some face); or TG_NONE to take it
+ *  from `seed`: the (s mod R)-th referenced vertex in index order, R their number and s the
+ *  SplitMix64 output of the seed (the CLI's --seed and Python's seed= use this). Ignored
+ *  otherwise. sample_count: 1 .. the number of referenced vertices. options: NULL for
+ *  defaults; the limit must be TG_FIELD_UNLIMITED; progress (while fields run and after each sample) is told rows_done = samples done,
+ *  row_count = sample_count. out_samples: sample_count vertex indices in the order chosen.
+ *  out_vertex_distance (may be NULL): vertex_count doubles, the distance to the nearest sample
+ *  (+inf where none reaches). out_vertex_label (may be NULL): vertex_count labels, the position
+ *  in out_samples of the nearest sample (ties to the earliest), TG_NONE where none reaches.
+ *  out_stats (may be NULL): counters summed over the runs.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL g or out_samples, sample_count 0 or larger than the
+ *  referenced vertices, start_vertex out of range or unreferenced, a limit, a workspace of
+ *  another solver), TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED; on error the outputs are untouched.
+ *  Complexity: one run per sample over about its cell, plus O(vertex_count) per sample for the
+ *  scan. Thread-safe as tg_geodesic_field. */
+TG_API tg_status tg_geodesic_farthest_point_sampling(const tg_geodesic* g, tg_geodesic_workspace* workspace,
+                                                     uint32_t start_vertex, uint64_t seed, size_t sample_count,
+                                                     const tg_field_options* options, uint32_t* out_samples,
+                                                     double* out_vertex_distance, uint32_t* out_vertex_label,
+                                                     tg_field_stats* out_stats);
+
+
 /* ============================================================================================== */
 /* Pictures (src/render)                                                                          */
 /* ============================================================================================== */
@@ -1428,6 +1525,16 @@ typedef struct tg_render_options {
      *  non-zero stops the call with TG_ERR_CANCELLED, before the file is opened. (New in 0.3.) */
     tg_render_progress_fn progress;
     void* progress_user;
+    /** optional: one cell label per vertex (tg_geodesic_voronoi): each face is painted piecewise
+     *  by the label of its nearest corner, every label in its own colour (hues spaced by the
+     *  golden ratio), TG_NONE grey; drawn instead of vertex_scalar */
+    const uint32_t* vertex_label;
+    /** optional: split the polyline into polyline_parts polylines, part p being points
+     *  [polyline_start[p], polyline_start[p + 1]) (polyline_parts + 1 non-decreasing offsets, the
+     *  last at most polyline_count), drawn as dark tubes without end dots (cell boundaries);
+     *  NULL / 0: one red polyline with its end dots */
+    const size_t* polyline_start;
+    size_t polyline_parts;
 } tg_render_options;
 
 /** Renders the mesh (software rasterizer, z-buffer, smooth two-sided headlight shading) with the
@@ -1435,7 +1542,7 @@ typedef struct tg_render_options {
  *  Degenerate faces are skipped; an empty mesh gives a background-only image. Deterministic: the
  *  same inputs give the same bytes. Errors: TG_ERR_INVALID_ARGUMENT (NULL mesh/path, size out of
  *  range, over TG_RENDER_MAX_BYTES (diag says how much it would need), polyline_count > 0 with NULL
- *  polyline), TG_ERR_OUT_OF_MEMORY, TG_ERR_IO (cannot write), TG_ERR_CANCELLED (progress said
+ *  polyline, polyline_parts > 0 with NULL or out-of-order polyline_start), TG_ERR_OUT_OF_MEMORY, TG_ERR_IO (cannot write), TG_ERR_CANCELLED (progress said
  *  stop; no file is written). Cost: O(F + pixels * supersample^2), memory at most
  *  TG_RENDER_MAX_BYTES plus the mesh's projected vertices. Thread-safe (no shared state). */
 TG_API tg_status tg_render_png(const tg_mesh* mesh, const tg_render_options* options, const char* png_path,

@@ -2,7 +2,8 @@
  * 12 item 8): mesh creation, every reader (OBJ, OFF, binary and ASCII PLY, binary and ASCII STL,
  * gzip) from files and memory, the writers, the BVH build, workspaces and batch queries, the
  * geodesic solver, paths by every method with and without the certificate, exact fields (single,
- * at points, batch on 1 and 2 threads, with and without a distance limit) and the renderer.
+ * at points, batch on 1 and 2 threads, with and without a distance limit), Voronoi labels,
+ * farthest-point sampling and the renderer.
  *
  * Each entry point runs once per allocation point k (every one up to a few hundred, a sample
  * after, and always the last), with an allocator that fails its k-th request and every one after.
@@ -1269,6 +1270,119 @@ static void sweep_fields(void)
                 }
 }
 
+/* ---- Voronoi labels and farthest-point sampling ---- */
+
+typedef struct nearest_ctx {
+    int fps;       /* 0: tg_geodesic_voronoi of field_sources; 1: 12 farthest points from field_sources[1], a
+                      vertex; 2: the Voronoi cells with their boundaries */
+    int workspace; /* 0: a temporary one from options.allocator; 1: a fresh one */
+    size_t nv;
+    uint32_t *ref_label, ref_samples[12];
+    double* ref_dist;
+    double* ref_xyz; /* the boundaries' points */
+    size_t ref_points;
+} nearest_ctx;
+
+/* The boundaries' point count and positions equal the reference's (and the object is freed). */
+static bool same_boundaries(const nearest_ctx* nc, tg_voronoi_boundaries* b)
+{
+    tg_voronoi_boundaries_view v;
+    tg_voronoi_boundaries_get_view(b, &v);
+    bool same = v.point_count == nc->ref_points && same_bytes(v.xyz, nc->ref_xyz, 3 * v.point_count * sizeof(double));
+    tg_voronoi_boundaries_destroy(b);
+    return same;
+}
+
+static tg_status run_nearest(const nearest_ctx* nc, const tg_geodesic* g, tg_geodesic_workspace* ws,
+                             const tg_field_options* o, uint32_t* label, double* dist, uint32_t* samples,
+                             tg_voronoi_boundaries** bounds)
+{
+    if (nc->fps == 1)
+        return tg_geodesic_farthest_point_sampling(g, ws, field_sources[1].index, 0, 12, o, samples, dist, label, NULL);
+    return tg_geodesic_voronoi(g, ws, field_sources, FIELD_SOURCES, o, label, dist, nc->fps == 2 ? bounds : NULL, NULL);
+}
+
+static tg_status try_nearest(sweep* s, void* ctx)
+{
+    nearest_ctx* nc = ctx;
+    size_t nv = nc->nv;
+    const tg_geodesic* g = spot_g;
+    tg_geodesic* own_g = NULL;
+    tg_geodesic_workspace* ws = NULL;
+    if (nc->workspace) {
+        tg_geodesic_options go = {&s->a};
+        CHECK_STATUS(tg_geodesic_create(spot, &go, &own_g), TG_OK);
+        g = own_g;
+        CHECK_STATUS(tg_geodesic_workspace_create(g, &ws), TG_OK);
+    }
+    tg_field_options o;
+    memset(&o, 0, sizeof o);
+    o.allocator = &s->a;
+    uint32_t* label = malloc(nv * sizeof *label);
+    double* dist = malloc(nv * sizeof *dist);
+    uint32_t samples[12];
+    memset(label, 0xA5, nv * sizeof *label);
+    memset(dist, 0xA5, nv * sizeof *dist);
+    memset(samples, 0xA5, sizeof samples);
+    tg_voronoi_boundaries* bounds = NOT_NULL;
+    arm(s);
+    tg_status st = run_nearest(nc, g, ws, &o, label, dist, samples, &bounds);
+    disarm(s);
+    if (nc->fps == 2) CHECK_NULL_ON_FAILURE(s, st, bounds);
+    if (st == TG_OK) {
+        CHECK_MSG(same_bytes(label, nc->ref_label, nv * sizeof *label) && same_bytes(dist, nc->ref_dist, nv * sizeof *dist) &&
+                      (nc->fps != 1 || same_bytes(samples, nc->ref_samples, sizeof samples)) &&
+                      (nc->fps != 2 || same_boundaries(nc, bounds)),
+                  "%s: results differ from the default allocator's", s->name);
+    } else {
+        CHECK_MSG(all_bytes(label, nv * sizeof *label, 0xA5) && all_bytes(dist, nv * sizeof *dist, 0xA5) &&
+                      all_bytes(samples, sizeof samples, 0xA5),
+                  "%s, allocation %ld failing: outputs written after %s", s->name, s->k, tg_status_name(st));
+    }
+    if (st != TG_OK && ws) { /* the workspace still gives the right result */
+        CHECK_STATUS(run_nearest(nc, g, ws, &o, label, dist, samples, &bounds), TG_OK);
+        if (nc->fps == 2) CHECK_MSG(same_boundaries(nc, bounds), "%s: boundaries differ after a failure", s->name);
+        CHECK_MSG(same_bytes(label, nc->ref_label, nv * sizeof *label) && same_bytes(dist, nc->ref_dist, nv * sizeof *dist),
+                  "%s, allocation %ld failing: the next call on the workspace differs", s->name, s->k);
+    }
+    free(label);
+    free(dist);
+    tg_geodesic_workspace_destroy(ws);
+    tg_geodesic_destroy(own_g);
+    return st;
+}
+
+static void sweep_nearest(void)
+{
+    const long dense = TG_TEST_WORK(300, 60), stride = TG_TEST_WORK(2, 7);
+    static const char* names[3][2] = {{"tg_geodesic_voronoi (temporary workspace)", "tg_geodesic_voronoi (fresh workspace)"},
+                                      {"tg_geodesic_farthest_point_sampling (temporary workspace)",
+                                       "tg_geodesic_farthest_point_sampling (fresh workspace)"},
+                                      {"tg_geodesic_voronoi with boundaries (temporary workspace)",
+                                       "tg_geodesic_voronoi with boundaries (fresh workspace)"}};
+    for (int fps = 0; fps < 3; ++fps)
+        for (int workspace = 0; workspace < 2; ++workspace) {
+            nearest_ctx nc;
+            memset(&nc, 0, sizeof nc);
+            nc.fps = fps, nc.workspace = workspace;
+            nc.nv = tg_mesh_vertex_count(spot);
+            nc.ref_label = malloc(nc.nv * sizeof *nc.ref_label);
+            nc.ref_dist = malloc(nc.nv * sizeof *nc.ref_dist);
+            tg_voronoi_boundaries* ref = NULL;
+            CHECK_STATUS(run_nearest(&nc, spot_g, NULL, NULL, nc.ref_label, nc.ref_dist, nc.ref_samples, &ref), TG_OK);
+            tg_voronoi_boundaries_view v;
+            tg_voronoi_boundaries_get_view(ref, &v);
+            nc.ref_points = v.point_count;
+            nc.ref_xyz = malloc((3 * v.point_count + 1) * sizeof *nc.ref_xyz);
+            if (v.point_count) memcpy(nc.ref_xyz, v.xyz, 3 * v.point_count * sizeof *nc.ref_xyz);
+            tg_voronoi_boundaries_destroy(ref);
+            sweep_run(names[fps][workspace], try_nearest, &nc, dense, stride);
+            free(nc.ref_label);
+            free(nc.ref_dist);
+            free(nc.ref_xyz);
+        }
+}
+
 /* ---- pictures ---- */
 
 typedef struct render_ctx {
@@ -1404,6 +1518,7 @@ int main(void)
     sweep_bvh();
     sweep_geodesic(troubled, disk);
     sweep_fields();
+    sweep_nearest();
     sweep_render();
 
     tg_mesh_destroy(troubled);

@@ -104,6 +104,33 @@ int main(void)
                   lo[2], hi[0], hi[1], hi[2]);
         free(img);
     }
+    /* Voronoi cells: corner 0 (0,0) in cell 0, corner 2 (1,1) in cell 1, the others in no cell:
+     * two distinct colours and grey; two boundary parts drawn dark, with no red end dots */
+    const uint32_t cells[] = {0, TG_NONE, 1, TG_NONE};
+    o.vertex_scalar = NULL, o.vertex_label = cells;
+    const double two[] = {0.2, 0.8, 0, 0.4, 0.6, 0, 0.6, 0.4, 0, 0.8, 0.2, 0};
+    const size_t parts[] = {0, 2, 4};
+    o.polyline = two, o.polyline_count = 4, o.polyline_start = parts, o.polyline_parts = 2;
+    CHECK_STATUS(tg_render_png(m, &o, a, NULL), TG_OK);
+    img = decode(a, &w, &h);
+    if (img) {
+        const unsigned char *c0 = px(img, w, 60, 92), *c1 = px(img, w, 140, 8), *none = px(img, w, 140, 92);
+        CHECK_MSG(memcmp(c0, c1, 3) != 0 && abs(none[0] - none[1]) < 8 && abs(none[1] - none[2]) < 8 &&
+                      (abs(c0[0] - c0[1]) > 20 || abs(c0[1] - c0[2]) > 20),
+                  "cells (%d,%d,%d) (%d,%d,%d), none (%d,%d,%d)", c0[0], c0[1], c0[2], c1[0], c1[1], c1[2], none[0],
+                  none[1], none[2]);
+        int dark = 0; /* the boundary tubes: two segments of 0.28 across 90 pixels per unit */
+        for (int i = 0; i < w * h; ++i) dark += img[3 * i] < 90 && img[3 * i + 1] < 90 && img[3 * i + 2] < 90;
+        CHECK_MSG(dark > 60, "boundary pixels: %d", dark);
+        CHECK_MSG(count_red(img, w, h) == 0, "no red: %d", count_red(img, w, h));
+        free(img);
+    }
+    const size_t backwards[] = {0, 3, 2};
+    o.polyline_start = backwards;
+    CHECK_STATUS(tg_render_png(m, &o, a, NULL), TG_ERR_INVALID_ARGUMENT);
+    o.polyline_start = NULL;
+    CHECK_STATUS(tg_render_png(m, &o, a, NULL), TG_ERR_INVALID_ARGUMENT);
+    o.vertex_label = NULL, o.polyline = NULL, o.polyline_count = 0, o.polyline_parts = 0;
     /* bad arguments */
     tg_diag d;
     o.vertex_scalar = NULL;

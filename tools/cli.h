@@ -157,6 +157,12 @@ int cli_format_double(double x, char* out);
 /* Writes a sparse matrix as the .npz archive scipy.sparse.load_npz reads (cli_npz.c). */
 bool cli_write_npz_csr(FILE* f, const tg_sparse_matrix_view* v);
 
+/* Voronoi labels (trigeo field --labels, trigeo sample --field): per vertex the index of the nearest
+ * source (-1 where none reaches) and its distance, as PLY vertex properties `label` and
+ * `distance` (a .ply path) or CSV rows vertex,label,distance (anything else; '-' is stdout).
+ * Written to a temporary name and renamed; CLI_OK or CLI_INPUT (error printed). */
+int cli_write_labels(const char* path, const tg_mesh* mesh, const uint32_t* label, const double* dist, size_t n);
+
 /* Can `threads` threads (0: one per core) be started? Prints why not (naming `what`): OpenMP's
  * runtime would end the process instead of failing. */
 bool cli_threads_available(int threads, const char* what);
@@ -194,5 +200,6 @@ extern const cli_command cli_cmd_render;
 extern const cli_command cli_cmd_path;
 extern const cli_command cli_cmd_field;
 extern const cli_command cli_cmd_trace;
+extern const cli_command cli_cmd_sample;
 
 #endif

@@ -583,3 +583,38 @@ void cli_json_point(FILE* f, const tg_surface_point* p)
         fprintf(f, "{\"kind\": \"face\", \"face\": %u, \"bary\": [%.17g, %.17g, %.17g]}", p->index, p->bary[0],
                 p->bary[1], p->bary[2]);
 }
+
+int cli_write_labels(const char* path, const tg_mesh* mesh, const uint32_t* label, const double* dist, size_t n)
+{
+    if (strcmp(path, "-") != 0 && cli_ext_is(path, ".ply")) {
+        double* as_double = malloc((n ? n : 1) * sizeof *as_double);
+        if (!as_double) {
+            cli_error(NULL, 0, "out of memory");
+            return CLI_INPUT;
+        }
+        for (size_t v = 0; v < n; ++v) as_double[v] = label[v] == TG_NONE ? -1.0 : (double)label[v];
+        tg_vertex_scalar sc[2] = {{"label", as_double}, {"distance", dist}};
+        tg_diag d;
+        memset(&d, 0, sizeof d);
+        cli_output out;
+        int rc = CLI_INPUT;
+        if (cli_output_reserve(&out, path)) {
+            out.f = NULL;
+            rc = cli_output_finish_library(&out, tg_mesh_write_ply(mesh, out.tmp, sc, 2, &d), &d);
+        }
+        free(as_double);
+        return rc;
+    }
+    cli_output out;
+    FILE* f = cli_output_open(&out, path);
+    if (!f) return CLI_INPUT;
+    bool ok = fprintf(f, "vertex,label,distance\n") > 0;
+    for (size_t v = 0; ok && v < n; ++v)
+        ok = fprintf(f, "%zu,%lld,%.17g\n", v, label[v] == TG_NONE ? -1LL : (long long)label[v], dist[v]) > 0;
+    if (!ok) {
+        cli_error(path, 0, "write failed: %s", strerror(errno));
+        cli_output_abort(&out);
+        return CLI_INPUT;
+    }
+    return cli_output_commit(&out);
+}

@@ -149,6 +149,8 @@ typedef struct field_args {
     bool matrix;          /* --sources: one row per source */
     bool all;             /* --sources all: every vertex a row */
     bool sparse;          /* the matrix within the radius, sparse (.npz, or .csv triplets) */
+    bool labels;          /* --labels: the nearest source's index per vertex (Voronoi) */
+    const char* boundaries; /* --boundaries: the cells' boundaries (.obj or .json) */
     const char* sources_path;
     const char* at_path;  /* --at (--from) or --to (--sources): distances at these points */
     char** at_items;
@@ -180,6 +182,62 @@ static int finished(const field_args* fa, tg_status st)
         return CLI_INPUT;
     }
     return CLI_OK;
+}
+
+/* A surface point as a spec (cli_spec.c's syntax), %.17g. */
+static void spec_text(const tg_surface_point* p, char* buf, size_t cap)
+{
+    if (p->kind == TG_SURFACE_EDGE)
+        snprintf(buf, cap, "e:%u:%.17g", p->index, p->t);
+    else if (p->kind == TG_SURFACE_FACE)
+        snprintf(buf, cap, "f:%u:%.17g,%.17g,%.17g", p->index, p->bary[0], p->bary[1], p->bary[2]);
+    else
+        snprintf(buf, cap, "v:%u", p->index);
+}
+
+/* --boundaries: OBJ (a `v` per point, an `l` per polyline, a comment naming its two cells) or JSON
+ * ({"polylines": [{"cells": [a, b], "points": [[x, y, z], ...], "surface": ["e:H:t", ...]}]}). */
+static int write_boundaries(const char* path, const tg_voronoi_boundaries* b)
+{
+    tg_voronoi_boundaries_view v;
+    tg_voronoi_boundaries_get_view(b, &v);
+    cli_output out;
+    FILE* f = cli_output_open(&out, path);
+    if (!f) return CLI_INPUT;
+    bool json = cli_ext_is(path, ".json"), ok = true;
+    char spec[160];
+    if (!json) {
+        ok = fprintf(f, "# trigeo Voronoi boundaries: %zu polylines\n", v.polyline_count) > 0;
+        for (size_t i = 0; ok && i < v.point_count; ++i)
+            ok = fprintf(f, "v %.17g %.17g %.17g\n", v.xyz[3 * i], v.xyz[3 * i + 1], v.xyz[3 * i + 2]) > 0;
+        for (size_t p = 0; ok && p < v.polyline_count; ++p) {
+            ok = fprintf(f, "# cells %u %u\nl", v.polyline_cells[2 * p], v.polyline_cells[2 * p + 1]) > 0;
+            for (size_t i = v.polyline_start[p]; ok && i < v.polyline_start[p + 1]; ++i) ok = fprintf(f, " %zu", i + 1) > 0;
+            ok = ok && fputc('\n', f) != EOF;
+        }
+    } else {
+        ok = fprintf(f, "{\"polylines\": [") > 0;
+        for (size_t p = 0; ok && p < v.polyline_count; ++p) {
+            ok = fprintf(f, "%s\n  {\"cells\": [%u, %u], \"points\": [", p ? "," : "", v.polyline_cells[2 * p],
+                         v.polyline_cells[2 * p + 1]) > 0;
+            for (size_t i = v.polyline_start[p]; ok && i < v.polyline_start[p + 1]; ++i)
+                ok = fprintf(f, "%s[%.17g, %.17g, %.17g]", i > v.polyline_start[p] ? ", " : "", v.xyz[3 * i],
+                             v.xyz[3 * i + 1], v.xyz[3 * i + 2]) > 0;
+            ok = ok && fprintf(f, "], \"surface\": [") > 0;
+            for (size_t i = v.polyline_start[p]; ok && i < v.polyline_start[p + 1]; ++i) {
+                spec_text(&v.points[i], spec, sizeof spec);
+                ok = fprintf(f, "%s\"%s\"", i > v.polyline_start[p] ? ", " : "", spec) > 0;
+            }
+            ok = ok && fprintf(f, "]}") > 0;
+        }
+        ok = ok && fprintf(f, "\n]}\n") > 0;
+    }
+    if (!ok) {
+        cli_error(path, 0, "write failed: %s", strerror(errno));
+        cli_output_abort(&out);
+        return CLI_INPUT;
+    }
+    return cli_output_commit(&out);
 }
 
 /* Resolves the spec texts items[0..count) (lines: from the sources file, named in errors).
@@ -231,6 +289,8 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     tg_geodesic* geo = NULL;
     double *dist = NULL, *at_d = NULL;
     tg_surface_point* at_pts = NULL;
+    uint32_t* label = NULL; /* --labels */
+    tg_voronoi_boundaries* bounds = NULL;
     tg_surface_point* pts = malloc(count * sizeof *pts);
     tg_mesh* mesh = pts ? cli_load_mesh_for_distances(fa->mesh_path) : NULL;
     if (!pts) cli_error(NULL, 0, "out of memory");
@@ -263,7 +323,11 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     tg_field_stats stats;
     start_work(fa, &o, &prog, &stats);
     double t0 = cli_seconds();
-    if (st == TG_OK && fa->matrix && fa->at_count)
+    if (st == TG_OK && fa->labels) {
+        label = malloc((n ? n : 1) * sizeof *label);
+        st = label ? tg_geodesic_voronoi(geo, NULL, pts, count, &o, label, dist,
+                                                    fa->boundaries ? &bounds : NULL, &stats) : TG_ERR_OUT_OF_MEMORY;
+    } else if (st == TG_OK && fa->matrix && fa->at_count)
         st = tg_geodesic_distance_matrix_at(geo, pts, count, at_pts, fa->at_count, &o, fa->threads, dist, &stats);
     else if (st == TG_OK && fa->matrix)
         st = tg_geodesic_distance_matrix(geo, pts, count, &o, fa->threads, dist, &stats);
@@ -298,6 +362,14 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
         rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
         goto done;
     }
+    if (fa->labels) {
+        rc = fa->out ? cli_write_labels(fa->out, mesh, label, dist, n) : CLI_OK;
+        if (rc == CLI_OK && fa->boundaries) rc = write_boundaries(fa->boundaries, bounds);
+        if (rc != CLI_OK) goto done;
+        if (!fa->out || strcmp(fa->out, "-")) print_summary(count, false, "vertices", dist, rows, n, secs, &stats);
+        rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
+        goto done;
+    }
     if (fa->out && fa->format == OUT_PLY) {
         tg_diag d;
         memset(&d, 0, sizeof d);
@@ -314,7 +386,8 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
         print_summary(count, fa->matrix, fa->matrix && fa->at_count ? "points" : "vertices", dist, rows, n, secs, &stats);
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
-    free(pts), free(dist), free(at_pts), free(at_d);
+    free(pts), free(dist), free(at_pts), free(at_d), free(label);
+    tg_voronoi_boundaries_destroy(bounds);
     tg_geodesic_destroy(geo);
     tg_bvh_destroy(bvh);
     tg_mesh_destroy(mesh);
@@ -411,8 +484,11 @@ static int run(int argc, char** argv)
             fa.quiet = true;
         } else if (!strcmp(a, "--sparse")) {
             fa.sparse = true;
+        } else if (!strcmp(a, "--labels")) {
+            fa.labels = true;
         } else if (!strcmp(a, "--from") || !strcmp(a, "-o") || !strcmp(a, "--csv") || !strcmp(a, "--max-distance") ||
-                   !strcmp(a, "--sources") || !strcmp(a, "--threads") || !strcmp(a, "--at") || !strcmp(a, "--to")) {
+                   !strcmp(a, "--sources") || !strcmp(a, "--threads") || !strcmp(a, "--at") || !strcmp(a, "--to") ||
+                   !strcmp(a, "--boundaries")) {
             if (i + 1 >= argc) return cli_usage("field", "%s needs a value", a);
             const char* val = argv[++i];
             if (!strcmp(a, "--from"))
@@ -429,6 +505,8 @@ static int run(int argc, char** argv)
                 fa.at_path = val, at_opt = "--at";
             else if (!strcmp(a, "--to"))
                 fa.at_path = val, at_opt = "--to";
+            else if (!strcmp(a, "--boundaries"))
+                fa.boundaries = val;
             else
                 maxd = val;
         } else if (a[0] == '-' && a[1]) {
@@ -450,7 +528,15 @@ static int run(int argc, char** argv)
         if (fa.format == OUT_NONE && !(fa.at_path && strrchr(fa.out, '.') && !strcmp(strrchr(fa.out, '.'), ".txt")))
             return cli_usage("field", "-o %s: the extension must be .ply, .csv, .npy or .npz", fa.out);
     }
-    fa.matrix = fa.sources_path != NULL;
+    fa.matrix = fa.sources_path != NULL && !fa.labels;
+    if (fa.boundaries && !fa.labels) return cli_usage("field", "--boundaries goes with --labels");
+    if (fa.boundaries && !cli_ext_is(fa.boundaries, ".obj") && !cli_ext_is(fa.boundaries, ".json"))
+        return cli_usage("field", "--boundaries %s: the extension must be .obj or .json", fa.boundaries);
+    if (fa.labels && fa.at_path) return cli_usage("field", "--labels and %s exclude each other", at_opt);
+    if (fa.labels && (fa.format == OUT_NPY || fa.format == OUT_NPZ || fa.sparse))
+        return cli_usage("field", "--labels writes -o OUT.ply or OUT.csv");
+    if (fa.labels && fa.sources_path && !strcmp(fa.sources_path, "all"))
+        return cli_usage("field", "--labels needs the sources listed in a FILE, not all");
     fa.all = fa.matrix && !strcmp(fa.sources_path, "all");
     if (at_opt && !strcmp(at_opt, "--at") && fa.matrix) return cli_usage("field", "--at goes with --from; with --sources, --to");
     if (at_opt && !strcmp(at_opt, "--to") && !fa.matrix) return cli_usage("field", "--to goes with --sources; with --from, --at");
@@ -482,7 +568,7 @@ static int run(int argc, char** argv)
         if (na < 0) return CLI_INPUT;
         fa.at_count = (size_t)na;
     }
-    if (fa.matrix) {
+    if (fa.sources_path) { /* a matrix, or the Voronoi cells of the listed sources */
         char* text = NULL;
         char** items = NULL;
         unsigned long long* lines = NULL;
@@ -516,7 +602,7 @@ static int run(int argc, char** argv)
 const cli_command cli_cmd_field = {
     "field",
     "field MESH --from SPEC[;SPEC...] [--at POINTS] | --sources FILE|all [--to POINTS] [-o OUT.ply|.csv|.npy|.npz]\n"
-    "       [--max-distance D] [--sparse]",
+    "       [--max-distance D] [--sparse] [--labels [--boundaries B.obj|.json]]",
     "The exact geodesic distance from surface points to every vertex (window propagation: window\n"
     "lists crossing one face at a time behind a front of vertices, after Qin et al. 2016 and Xin &\n"
     "Wang 2009). Distance is intrinsic: faces' winding does not matter, and paths continue into\n"
@@ -551,6 +637,19 @@ const cli_command cli_cmd_field = {
     "                         vertices: POINTS has one SPEC or \"x y z\" a line (x y z: the closest\n"
     "                         surface point); one distance a line (%.17g) to -o (.txt, .csv or\n"
     "                         .npy) or stdout\n"
+    "  --labels               Voronoi cells of the sources (--from or --sources): per vertex the\n"
+    "                         index of the nearest source (0-based, in the order given; ties to\n"
+    "                         the lowest; -1 where none reaches) and its distance, as PLY\n"
+    "                         properties 'label' and 'distance' (trigeo render --labels) or CSV\n"
+    "                         rows vertex,label,distance; equal to the argmin over the sources'\n"
+    "                         separate fields\n"
+    "  --boundaries B         with --labels: the cells' boundaries as polylines; on every edge\n"
+    "                         between two cells the point where the two sources' distances are\n"
+    "                         equal (1e-12 relative), joined inside faces (a face of three cells\n"
+    "                         gets a junction at the mean of its crossings); .obj: 'v' and 'l'\n"
+    "                         records (a '# cells A B' comment before each 'l'; trigeo render\n"
+    "                         --path draws them); .json: {\"polylines\": [{\"cells\": [A, B],\n"
+    "                         \"points\": [[x, y, z], ...], \"surface\": [\"e:H:t\" | \"f:F:b0,b1,b2\"]}]}\n"
     "  --max-distance D       stop at distance D (0 allowed): farther vertices get inf\n"
     "  --threads N            --sources: threads, at most 256 (default 0: all cores)\n"
     "  --quiet                no progress line (drawn on stderr when it is a terminal and the\n"

@@ -8,9 +8,11 @@
 #include <string.h>
 
 /* Reads the polyline of an OBJ file: its `v` records in the order its `l` records visit them
- * (all `l` records concatenated), or in file order when there are none. */
-static double* read_polyline(const char* path, size_t* out_count)
+ * (all `l` records concatenated), or in file order when there are none. With out_starts, each
+ * `l` record is a part: *out_starts gets *out_parts + 1 offsets (malloc'd). */
+static double* read_polyline(const char* path, size_t* out_count, size_t** out_starts, size_t* out_parts)
 {
+    size_t *starts = NULL, parts = 0, scap = 0;
     FILE* f = fopen(path, "rb");
     if (!f) {
         cli_error(path, 0, "cannot open the path file");
@@ -44,6 +46,11 @@ static double* read_polyline(const char* path, size_t* out_count)
             nv++;
         } else if (p[0] == 'l' && (p[1] == ' ' || p[1] == '\t')) {
             char* q = p + 1;
+            if (out_starts && !cli_grow((void**)&starts, &scap, parts + 2, sizeof *starts)) {
+                ok = false;
+                break;
+            }
+            if (out_starts) starts[parts++] = nl;
             for (;;) {
                 char* e;
                 long idx = strtol(q, &e, 10);
@@ -73,6 +80,11 @@ static double* read_polyline(const char* path, size_t* out_count)
     free(v);
     free(order);
     *out_count = n;
+    if (out_starts) {
+        if (pts && starts) starts[parts] = nl;
+        if (!pts) free(starts), starts = NULL, parts = 0;
+        *out_starts = starts, *out_parts = parts;
+    }
     return pts;
 }
 
@@ -86,6 +98,7 @@ static int on_progress(void* user, double fraction)
 static int run(int argc, char** argv)
 {
     const char *mesh_path = NULL, *path_obj = NULL, *field = NULL, *scalar = "distance", *out = NULL;
+    const char *labels = NULL, *bounds = NULL;
     tg_render_options o;
     memset(&o, 0, sizeof o);
     for (int i = 1; i < argc; ++i) {
@@ -95,6 +108,8 @@ static int run(int argc, char** argv)
         else if (!strcmp(a, "--path") && has_value) path_obj = argv[++i];
         else if (!strcmp(a, "--field") && has_value) field = argv[++i];
         else if (!strcmp(a, "--scalar") && has_value) scalar = argv[++i];
+        else if (!strcmp(a, "--labels") && has_value) labels = argv[++i];
+        else if (!strcmp(a, "--boundaries") && has_value) bounds = argv[++i];
         else if (!strcmp(a, "--view") && has_value) {
             if (!cli_parse_doubles(argv[++i], 3, o.view_dir)) return cli_usage("render", "--view needs X,Y,Z");
         } else if (!strcmp(a, "--up") && has_value) {
@@ -109,6 +124,8 @@ static int run(int argc, char** argv)
     }
     if (!mesh_path) return cli_usage("render", "missing MESH");
     if (!out) return cli_usage("render", "missing -o OUT.png");
+    if (path_obj && bounds) return cli_usage("render", "--path and --boundaries exclude each other");
+    if (field && labels) return cli_usage("render", "--field and --labels exclude each other");
     const char* inputs[3] = {mesh_path, path_obj, field};
     static const char* const what[3] = {"mesh", "path file (--path)", "field file (--field)"};
     int check = cli_output_check_inputs(out, inputs, what, 3);
@@ -132,11 +149,37 @@ static int run(int argc, char** argv)
         }
         o.vertex_scalar = values;
     }
+    uint32_t* cells = NULL;
+    if (rc == CLI_OK && labels) { /* the `label` property: -1 none, else a non-negative integer */
+        size_t n = 0, nv = tg_mesh_vertex_count(mesh);
+        tg_diag d;
+        double* lv = malloc((nv ? nv : 1) * sizeof *lv);
+        cells = malloc((nv ? nv : 1) * sizeof *cells);
+        tg_status st = lv && cells ? tg_ply_read_vertex_scalar(labels, "label", lv, nv, &n, &d) : TG_ERR_OUT_OF_MEMORY;
+        if (st != TG_OK) {
+            cli_error_diag(&d, st);
+            rc = CLI_INPUT;
+        } else if (n != nv) {
+            cli_error(labels, 0, "the labels have %zu values but the mesh has %zu vertices", n, nv);
+            rc = CLI_INPUT;
+        }
+        for (size_t v = 0; rc == CLI_OK && v < nv; ++v) {
+            if (!(lv[v] == -1.0 || (lv[v] >= 0 && lv[v] < 4294967295.0 && lv[v] == floor(lv[v])))) {
+                cli_error(labels, 0, "vertex %zu: label %g is not -1 or a cell index", v, lv[v]);
+                rc = CLI_INPUT;
+            }
+            cells[v] = lv[v] < 0 ? TG_NONE : (uint32_t)lv[v];
+        }
+        free(lv);
+        o.vertex_label = cells;
+    }
     double* poly = NULL;
-    if (rc == CLI_OK && path_obj) {
-        poly = read_polyline(path_obj, &o.polyline_count);
+    size_t* parts = NULL;
+    if (rc == CLI_OK && (path_obj || bounds)) {
+        poly = read_polyline(path_obj ? path_obj : bounds, &o.polyline_count, bounds ? &parts : NULL, &o.polyline_parts);
         if (!poly) rc = CLI_INPUT;
         o.polyline = poly;
+        o.polyline_start = parts;
     }
     if (rc == CLI_OK) { /* to a temporary name, renamed when complete */
         tg_diag d;
@@ -154,13 +197,16 @@ static int run(int argc, char** argv)
         }
     }
     free(poly);
+    free(parts);
+    free(cells);
     free(values);
     tg_mesh_destroy(mesh);
     return rc;
 }
 
 const cli_command cli_cmd_render = {
-    "render", "render MESH [--path PATH.obj] [--field FIELD.ply [--scalar NAME]] -o OUT.png",
+    "render",
+    "render MESH [--path PATH.obj | --boundaries B.obj] [--field FIELD.ply [--scalar NAME] | --labels L.ply] -o OUT.png",
     "Draws MESH into a PNG (software rasterizer: orthographic view, smooth headlight shading,\n"
     "3x3 supersampling). Optional overlays:\n"
     "  --path PATH.obj    a polyline (OBJ 'v' + 'l' records, as 'trigeo path -o' writes) drawn as a\n"
@@ -168,6 +214,10 @@ const cli_command cli_cmd_render = {
     "  --field FIELD.ply  a per-vertex scalar (PLY vertex property NAME, default 'distance') drawn\n"
     "                     with a dark-blue-to-yellow colour map and 16 isolines; +inf (unreachable)\n"
     "                     is grey\n"
+    "  --labels L.ply     Voronoi cells: the PLY vertex property 'label' (trigeo field --labels,\n"
+    "                     trigeo sample --field) drawn one colour per cell, -1 grey\n"
+    "  --boundaries B.obj polylines (every 'l' record one; trigeo field --boundaries) drawn as\n"
+    "                     dark tubes\n"
     "  --view X,Y,Z       direction the camera looks along (default 0.55,-0.35,1)\n"
     "  --up X,Y,Z         camera up (default +y)\n"
     "  --size WxH         image size in pixels, each side 16..8192 (default 960x720); the memory\n"

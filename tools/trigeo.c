@@ -15,6 +15,7 @@ static const cli_command* const commands[] = {
     &cli_cmd_path,
     &cli_cmd_field,
     &cli_cmd_trace,
+    &cli_cmd_sample,
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 
@@ -181,11 +182,11 @@ static int dispatch(int argc, char** argv)
         }
         if (!strcmp(argv[2], "help")) {
             printf("usage: trigeo help [COMMAND]\n\nWithout COMMAND: the list of commands. With one: its full help (the same as\n"
-                   "'trigeo COMMAND --help'). Commands: info, closest, path, field, trace, render, help.\n");
+                   "'trigeo COMMAND --help'). Commands: info, closest, path, field, sample, trace, render, help.\n");
             return CLI_OK;
         }
         const cli_command* c = find_command(argv[2]);
-        if (!c) return cli_usage(NULL, "unknown command '%s' (commands: info, closest, path, field, trace, render, help)", argv[2]);
+        if (!c) return cli_usage(NULL, "unknown command '%s' (commands: info, closest, path, field, sample, trace, render, help)", argv[2]);
         printf("usage: trigeo %s\n\n%s", c->synopsis, c->help);
         return CLI_OK;
     }

@@ -38,6 +38,7 @@ C_NAME = {
     "FieldOptions": "tg_field_options",
     "SparseMatrixView": "tg_sparse_matrix_view",
     "RenderOptions": "tg_render_options",
+    "BoundariesView": "tg_voronoi_boundaries_view",
 }
 # Python field names that differ from C's (keywords)
 C_FIELD = {"global_": "global"}

@@ -1399,17 +1399,103 @@ class Mesh:
 
         self._run(lambda call: _write_whole(p, call, write))
 
+    # -- Voronoi cells and sampling --------------------------------------------------------
+
+    def voronoi(self, sources: Any, max_distance: Optional[float] = None, boundaries: bool = False,
+                progress: Optional[Callable[[float], Any]] = None) -> tuple:
+        """Geodesic Voronoi cells: per vertex the index of the nearest source (in the order
+        given; ties to the lowest index) and the exact distance to it. sources as field().
+        Equal to the argmin over each source's own field (distance_matrix(sources).argmin(0)
+        where reached). Returns (labels (n,) int64, -1 where no source reaches;
+        distance (n,) float64, inf there). With boundaries=True also a list of the cells'
+        boundary polylines, each a dict: "cells" (a, b) the labels on its two sides (a < b),
+        "points" (k, 3) float64, "surface_points" k SurfacePoints (edge crossings, where the two
+        sources' exact distances are equal to 1e-12 relative, and junctions inside faces of
+        three cells); closed loops repeat their first point."""
+        n = self.vertex_count
+        labels = np.empty(n, dtype=np.uint32)
+        dist = np.empty(n)
+        bounds = ctypes.c_void_p()
+
+        def work(call: _Call) -> None:
+            src = self._surface_points(sources, "sources")
+            o = self._field_options(max_distance, call)
+            out_b = ctypes.byref(bounds) if boundaries else None
+            geo = self._get_geo()
+            with self._geo_ws.take() as ws:
+                st = _L.tg_geodesic_voronoi(geo, ws, src, len(src), ctypes.byref(o), _ptr(labels, ctypes.c_uint32),
+                                            _ptr(dist), out_b, None)
+            call.finish(st, "voronoi")
+
+        self._run(work, progress)
+        if not boundaries:
+            return _labels(labels), dist
+        try:
+            v = _c.BoundariesView()
+            _L.tg_voronoi_boundaries_get_view(bounds, ctypes.byref(v))
+            xyz = np.ctypeslib.as_array(v.xyz, shape=(v.point_count, 3)).copy() if v.point_count else np.empty((0, 3))
+            lines = []
+            for p in range(v.polyline_count):
+                a, b = v.polyline_start[p], v.polyline_start[p + 1]
+                lines.append({"cells": (int(v.polyline_cells[2 * p]), int(v.polyline_cells[2 * p + 1])),
+                              "points": xyz[a:b].copy(),
+                              "surface_points": [SurfacePoint._from_c(v.points[i]) for i in range(a, b)]})
+        finally:
+            _L.tg_voronoi_boundaries_destroy(bounds)
+        return _labels(labels), dist, lines
+
+    def farthest_point_sampling(self, count: int, start: Optional[int] = None, seed: int = 0,
+                                progress: Optional[Callable[[float], Any]] = None
+                                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Farthest-point sampling in exact geodesic distance: sample 0 is `start` (a vertex used
+        by a face), or, when None, the vertex `seed` picks (the same as `trigeo sample --seed`);
+        each next sample is the vertex farthest from all earlier ones (a component no sample
+        reaches yet first; ties to the lowest index). Each new sample's field runs only where it
+        gets below the earlier ones. Returns (samples (count,) int64 in order, distance (n,)
+        float64 to the nearest sample, labels (n,) int64: its position in samples, -1 where
+        none reaches)."""
+        k = _index(count, "count")
+        if k < 1:
+            raise _bad(f"count must be at least 1, not {count!r}")
+        first = _c.NONE if start is None else _index(start, "start")
+        if start is not None and first >= self.vertex_count:
+            raise _bad(f"start {start!r} is not a vertex (the mesh has {self.vertex_count})")
+        sd = _index(seed, "seed")
+        n = self.vertex_count
+        samples = np.empty(k, dtype=np.uint32)
+        labels = np.empty(n, dtype=np.uint32)
+        dist = np.empty(n)
+
+        def work(call: _Call) -> None:
+            o = self._field_options(None, call)
+            geo = self._get_geo()
+            with self._geo_ws.take() as ws:
+                st = _L.tg_geodesic_farthest_point_sampling(geo, ws, first, sd, k, ctypes.byref(o),
+                                                            _ptr(samples, ctypes.c_uint32), _ptr(dist),
+                                                            _ptr(labels, ctypes.c_uint32), None)
+            if st == 1:  # TG_ERR_INVALID_ARGUMENT: the arguments were checked but these two
+                raise _bad(f"start {start!r} is used by no face" if start is not None and k <= n else
+                           f"count {k} exceeds the vertices used by faces (or start {start!r} is used by none)")
+            call.finish(st, "farthest_point_sampling")
+
+        self._run(work, progress)
+        return samples.astype(np.int64), dist, _labels(labels)
+
     # -- pictures -----------------------------------------------------------------------------
 
     def render(self, png_path: Union[str, os.PathLike], path: Any = None, field: Any = None, view: Any = None,
-               width: int = 960, height: int = 720, isolines: int = 16) -> None:
+               width: int = 960, height: int = 720, isolines: int = 16, labels: Any = None,
+               boundaries: Any = None) -> None:
         """Writes a PNG picture of the mesh (orthographic, shaded), with an optional path (a Path
         or a (k, 3) polyline, drawn as a red tube) and an optional per-vertex field (n values,
         coloured dark blue to yellow with isolines; inf drawn grey). view: the direction the
         camera looks along, e.g. (0, 0, -1); None: a three-quarter view. isolines: 0 for none.
         Memory is bounded (the library's TG_RENDER_MAX_BYTES, 2 GiB: large pictures get less
         supersampling). The file appears only when complete, as with save(); Ctrl-C interrupts
-        the drawing and leaves no file."""
+        the drawing and leaves no file.
+        labels: Voronoi cells (n labels as voronoi() returns, -1 none), one colour per cell,
+        drawn instead of field. boundaries: polylines (voronoi(..., boundaries=True)'s list, or
+        (k, 3) arrays) drawn as dark tubes, instead of path."""
         o = _c.RenderOptions()
         png = _fs_path(png_path, "png_path")
         if not (isinstance(width, (int, np.integer)) and isinstance(height, (int, np.integer))
@@ -1429,6 +1515,22 @@ class Mesh:
                 raise _bad(f"field must have one value per vertex ({self.vertex_count}), not shape {fa.shape}")
             keep.append(fa)
             o.vertex_scalar = _ptr(fa)
+        if labels is not None:
+            la = np.asarray(labels)
+            if la.shape != (self.vertex_count,) or la.dtype.kind not in "iu" or (la.size and la.min() < -1):
+                raise _bad(f"labels must be {self.vertex_count} integers (-1: no cell), not {la.dtype} {la.shape}")
+            cells = np.where(la < 0, _c.NONE, la).astype(np.uint32)
+            keep.append(cells)
+            o.vertex_label = _ptr(cells, ctypes.c_uint32)
+        if boundaries is not None:
+            if path is not None:
+                raise _bad("render takes a path or boundaries, not both")
+            parts = [_points(b["points"] if isinstance(b, dict) else b, "boundaries") for b in boundaries]
+            pl = np.concatenate(parts) if parts else np.empty((0, 3))
+            starts = np.cumsum([0] + [len(q) for q in parts]).astype(np.uintp)
+            keep += [pl, starts]
+            o.polyline, o.polyline_count = _ptr(pl), pl.shape[0]
+            o.polyline_start, o.polyline_parts = _ptr(starts, ctypes.c_size_t), len(parts)
         if path is not None:
             pts = path.points if isinstance(path, Path) else path
             pl = _points(pts, "path") if len(pts) else np.empty((0, 3))
@@ -1440,6 +1542,12 @@ class Mesh:
                                                                         ctypes.byref(diag)))
 
         self._run(work)
+
+
+def _labels(labels: np.ndarray) -> np.ndarray:
+    out = labels.astype(np.int64)
+    out[labels == _c.NONE] = -1
+    return out
 
 
 def _hits(hits: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

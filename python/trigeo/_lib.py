@@ -148,6 +148,8 @@ class FieldOptions(ctypes.Structure):
 
 
 RENDER_PROGRESS_FN = ctypes.CFUNCTYPE(c_int, c_void_p, c_double)
+
+
 class SparseMatrixView(ctypes.Structure):
     _fields_ = [("row_count", c_size_t), ("col_count", c_size_t), ("entry_count", c_size_t),
                 ("row_start", POINTER(c_uint64)), ("col", POINTER(c_uint32)), ("value", POINTER(c_double))]
@@ -157,7 +159,14 @@ class RenderOptions(ctypes.Structure):
     _fields_ = [("width", c_int), ("height", c_int), ("view_dir", c_double * 3), ("up", c_double * 3),
                 ("vertex_scalar", POINTER(c_double)), ("isolines", c_int), ("polyline", POINTER(c_double)),
                 ("polyline_count", c_size_t), ("supersample", c_int), ("progress", RENDER_PROGRESS_FN),
-                ("progress_user", c_void_p)]
+                ("progress_user", c_void_p), ("vertex_label", POINTER(c_uint32)),
+                ("polyline_start", POINTER(c_size_t)), ("polyline_parts", c_size_t)]
+
+
+class BoundariesView(ctypes.Structure):
+    _fields_ = [("polyline_count", c_size_t), ("polyline_start", POINTER(c_size_t)),
+                ("polyline_cells", POINTER(c_uint32)), ("point_count", c_size_t),
+                ("points", POINTER(SurfacePointC)), ("xyz", POINTER(c_double))]
 
 
 _vp = c_void_p
@@ -226,6 +235,11 @@ _SIGNATURES = {
     "tg_sparse_matrix_get_view": (None, [_vp, POINTER(SparseMatrixView)]),
     "tg_sparse_matrix_destroy": (None, [_vp]),
     "tg_render_png": (c_int, [_vp, POINTER(RenderOptions), c_char_p, _pdiag]),
+    "tg_geodesic_voronoi": (c_int, [_vp, _vp, _psp, c_size_t, POINTER(FieldOptions), _pu32, _pd, _pvp, _vp]),
+    "tg_voronoi_boundaries_get_view": (None, [_vp, POINTER(BoundariesView)]),
+    "tg_voronoi_boundaries_destroy": (None, [_vp]),
+    "tg_geodesic_farthest_point_sampling": (c_int, [_vp, _vp, c_uint32, c_uint64, c_size_t, POINTER(FieldOptions),
+                                                    _pu32, _pd, _pu32, _vp]),
 }
 
 for _name, (_res, _args) in _SIGNATURES.items():

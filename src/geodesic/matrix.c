@@ -203,19 +203,6 @@ static int report_row(void* user, const tg__field_run* run)
     return stop;
 }
 
-static void stats_add(tg_field_stats* sum, const tg_field_stats* s)
-{
-    sum->windows_created += s->windows_created;
-    sum->windows_propagated += s->windows_propagated;
-    sum->windows_filtered += s->windows_filtered;
-    sum->pseudo_source_events += s->pseudo_source_events;
-    /* a property of the mesh, the same in every row; a thread that ran no row adds a zero */
-    if (s->pseudo_source_vertices > sum->pseudo_source_vertices) sum->pseudo_source_vertices = s->pseudo_source_vertices;
-    if (s->max_queue > sum->max_queue) sum->max_queue = s->max_queue;
-    if (s->peak_windows > sum->peak_windows) sum->peak_windows = s->peak_windows;
-    if (s->peak_bytes > sum->peak_bytes) sum->peak_bytes = s->peak_bytes;
-}
-
 /* The question of one row: its one source, the targets, the limit, the batch's progress and
  * cancellation. Every row of both matrices is asked here, so an engine option that applies to
  * every row (such as stopping once the targets are settled) is set here and nowhere else. */
@@ -273,7 +260,7 @@ static tg_status batch_run(batch* b, int threads, tg_field_stats* out_sum)
         }
         batch_lock(b);
         {
-            stats_add(&sum, &w.stats);
+            tg__field_stats_add(&sum, &w.stats);
             if (mine == TG_ERR_OUT_OF_MEMORY || (mine != TG_OK && first_error == TG_OK)) first_error = mine;
         }
         batch_unlock(b);
@@ -313,7 +300,7 @@ static tg_status dense_row(worker* w, size_t i)
     } else {
         tg__field_copy_out(&run, b->dense + i * b->g->vertex_count);
     }
-    stats_add(&w->stats, &run.stats);
+    tg__field_stats_add(&w->stats, &run.stats);
     return TG_OK;
 }
 
@@ -457,7 +444,7 @@ static tg_status local_row(worker* w, size_t i)
         tg__field_run run;
         tg_status st = tg__field_execute(&w->fs, &q, &run);
         if (st != TG_OK) return st;
-        stats_add(&w->stats, &run.stats);
+        tg__field_stats_add(&w->stats, &run.stats);
         if (!gather_row(w, &run)) return TG_ERR_OUT_OF_MEMORY;
     }
     batch_lock(b);

@@ -111,10 +111,28 @@ typedef struct shade_ctx {
     int isolines;
 } shade_ctx;
 
-static void shade(const shade_ctx* sc, const camera* cam, tg_vec3 n, double scalar, bool has_scalar, float out[3])
+/* The colour of cell `label`: hues spaced by the golden ratio (neighbouring labels far apart on
+ * the wheel), moderate saturation; TG_NONE grey. */
+static void label_colour(uint32_t label, float out[3])
+{
+    if (label == TG_NONE) {
+        out[0] = out[1] = out[2] = 0.55f;
+        return;
+    }
+    double h = 6.0 * fmod(0.13 + 0.6180339887498949 * (double)label, 1.0), s = 0.55, v = 0.95;
+    int i = (int)h;
+    double f = h - i, p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
+    double rgb[6][3] = {{v, t, p}, {q, v, p}, {p, v, t}, {p, q, v}, {t, p, v}, {v, p, q}};
+    for (int c = 0; c < 3; ++c) out[c] = (float)rgb[i % 6][c];
+}
+
+static void shade(const shade_ctx* sc, const camera* cam, tg_vec3 n, double scalar, bool has_scalar,
+                  const float* cell, float out[3])
 {
     float base[3] = {0.72f, 0.74f, 0.78f};
-    if (has_scalar) {
+    if (cell) {
+        base[0] = cell[0], base[1] = cell[1], base[2] = cell[2];
+    } else if (has_scalar) {
         if (!isfinite(scalar)) {
             base[0] = base[1] = base[2] = 0.55f;
         } else {
@@ -171,6 +189,10 @@ static void raster_face(const tg_mesh* m, size_t f, const tg_vec3* sp, const tg_
     if (y1 > cv->h - 1) y1 = cv->h - 1;
     double inv = 1.0 / area;
     const double* sv = sc->o->vertex_scalar;
+    const uint32_t* lv = sc->o->vertex_label;
+    float cells[3][3];
+    if (lv)
+        for (int k = 0; k < 3; ++k) label_colour(lv[t[k]], cells[k]);
     for (int y = y0; y <= y1; ++y) {
         double py = y + 0.5;
         for (int x = x0; x <= x1; ++x) {
@@ -191,13 +213,16 @@ static void raster_face(const tg_mesh* m, size_t f, const tg_vec3* sp, const tg_
                 double s0 = sv[t[0]], s1 = sv[t[1]], s2 = sv[t[2]];
                 s = (isfinite(s0) && isfinite(s1) && isfinite(s2)) ? w0 * s0 + w1 * s1 + w2 * s2 : INFINITY;
             }
-            shade(sc, cam, n, s, sv != NULL, cv->rgb + 3 * idx);
+            /* cells: the nearest corner's label (ties to the lower corner) */
+            int near = w0 >= w1 && w0 >= w2 ? 0 : w1 >= w2 ? 1 : 2;
+            shade(sc, cam, n, s, sv != NULL, lv ? cells[near] : NULL, cv->rgb + 3 * idx);
         }
     }
 }
 
-/* A depth-tested disc-swept segment (the tube), coloured red with a lighter core. */
-static void raster_segment(tg_vec3 a, tg_vec3 b, double radius, const camera* cam, canvas* cv)
+/* A depth-tested disc-swept segment (the tube), coloured red with a lighter core (dark grey when
+ * `dark`: cell boundaries). */
+static void raster_segment(tg_vec3 a, tg_vec3 b, double radius, const camera* cam, canvas* cv, bool dark)
 {
     int x0 = (int)floor(fmin(a.x, b.x) - radius), x1 = (int)ceil(fmax(a.x, b.x) + radius);
     int y0 = (int)floor(fmin(a.y, b.y) - radius), y1 = (int)ceil(fmax(a.y, b.y) + radius);
@@ -217,6 +242,11 @@ static void raster_segment(tg_vec3 a, tg_vec3 b, double radius, const camera* ca
             size_t idx = (size_t)y * (size_t)cv->w + (size_t)x;
             if (!(z < cv->depth[idx])) continue;
             float core = (float)(1.0 - sqrt(d_sq) / radius); /* 1 at the centre line */
+            if (dark) {
+                cv->rgb[3 * idx + 0] = cv->rgb[3 * idx + 1] = 0.08f + 0.22f * core * core;
+                cv->rgb[3 * idx + 2] = 0.10f + 0.22f * core * core;
+                continue;
+            }
             cv->rgb[3 * idx + 0] = 0.75f + 0.25f * core;
             cv->rgb[3 * idx + 1] = 0.08f + 0.30f * core * core;
             cv->rgb[3 * idx + 2] = 0.06f + 0.20f * core * core;
@@ -361,6 +391,12 @@ tg_status tg_render_png(const tg_mesh* m, const tg_render_options* options, cons
                      (double)TG_RENDER_MAX_BYTES / 1073741824.0);
         return TG_ERR_INVALID_ARGUMENT;
     }
+    if (o.polyline_parts && !o.polyline_start) return TG_ERR_INVALID_ARGUMENT;
+    for (size_t p = 0; p < o.polyline_parts; ++p)
+        if (o.polyline_start[p] > o.polyline_start[p + 1] || o.polyline_start[p + 1] > o.polyline_count) {
+            tg__diag_set(diag, png_path, 0, 0, 0, "polyline part %zu out of order or past the points", p);
+            return TG_ERR_INVALID_ARGUMENT;
+        }
     for (size_t i = 0; i < 3 * o.polyline_count; ++i)
         if (!isfinite(o.polyline[i])) {
             tg__diag_set(diag, png_path, 0, 0, 0, "polyline point %zu is not finite", i / 3);
@@ -407,14 +443,19 @@ tg_status tg_render_png(const tg_mesh* m, const tg_render_options* options, cons
         }
     }
     double radius = 1.6 * o.supersample * (o.width > 1200 ? o.width / 1200.0 : 1.0);
-    for (size_t i = 0; i + 1 < o.polyline_count; ++i)
-        raster_segment(project(&cam, tg_v3_load(o.polyline + 3 * i)), project(&cam, tg_v3_load(o.polyline + 3 * i + 3)),
-                       radius, &cam, &cv);
-    if (o.polyline_count) {
+    bool parts = o.polyline_parts > 0;
+    for (size_t p = 0, i = 0; parts ? p < o.polyline_parts : p < 1; ++p) {
+        size_t end = parts ? o.polyline_start[p + 1] : o.polyline_count;
+        for (i = parts ? o.polyline_start[p] : 0; i + 1 < end; ++i)
+            raster_segment(project(&cam, tg_v3_load(o.polyline + 3 * i)),
+                           project(&cam, tg_v3_load(o.polyline + 3 * i + 3)), parts ? 0.7 * radius : radius, &cam, &cv,
+                           parts);
+    }
+    if (o.polyline_count && !parts) {
         tg_vec3 e0 = project(&cam, tg_v3_load(o.polyline));
         tg_vec3 e1 = project(&cam, tg_v3_load(o.polyline + 3 * (o.polyline_count - 1)));
-        raster_segment(e0, e0, 2.6 * radius, &cam, &cv);
-        raster_segment(e1, e1, 2.6 * radius, &cam, &cv);
+        raster_segment(e0, e0, 2.6 * radius, &cam, &cv, false);
+        raster_segment(e1, e1, 2.6 * radius, &cam, &cv, false);
     }
     st = write_png(&m->allocator, &cv, o.supersample, png_path, &pc, diag);
 done:

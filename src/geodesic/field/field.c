@@ -61,7 +61,7 @@ tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* ws, 
     tg__field_query q = {sources, source_count, points, point_count, tg__field_limit(g, options),
                          options && options->progress ? report_single : NULL, (void*)options, NULL, false, NULL,
                          /* only the points wanted: the run stops once they are settled */
-                         point_count > 0 && !out_vertex_distance};
+                         point_count > 0 && !out_vertex_distance, NULL};
     tg__field_run run;
     st = tg__field_execute(&ws->field, &q, &run);
     if (st == TG_OK) {
@@ -79,4 +79,18 @@ tg_status tg_geodesic_field(const tg_geodesic* g, tg_geodesic_workspace* ws, con
 {
     if (!out_vertex_distance) return TG_ERR_INVALID_ARGUMENT;
     return tg_geodesic_field_at(g, ws, sources, source_count, NULL, 0, options, NULL, out_vertex_distance, out_stats);
+}
+
+/* Adds the counters of one run to a sum (largest values for the peaks). */
+void tg__field_stats_add(tg_field_stats* sum, const tg_field_stats* s)
+{
+    sum->windows_created += s->windows_created;
+    sum->windows_propagated += s->windows_propagated;
+    sum->windows_filtered += s->windows_filtered;
+    sum->pseudo_source_events += s->pseudo_source_events;
+    /* a property of the mesh, the same in every row; a thread that ran no row adds a zero */
+    if (s->pseudo_source_vertices > sum->pseudo_source_vertices) sum->pseudo_source_vertices = s->pseudo_source_vertices;
+    if (s->max_queue > sum->max_queue) sum->max_queue = s->max_queue;
+    if (s->peak_windows > sum->peak_windows) sum->peak_windows = s->peak_windows;
+    if (s->peak_bytes > sum->peak_bytes) sum->peak_bytes = s->peak_bytes;
 }

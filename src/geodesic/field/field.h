@@ -156,6 +156,10 @@ typedef struct tg__field_query {
                                         the work by the best distance to it found so far (A*) */
     bool stop_at_points;             /* only the points' distances are wanted: once every point
                                         has a finite upper bound, the limit drops to the largest */
+    const double* bound;             /* NULL, or per vertex (solver numbering and frame) the
+                                        distance of a real path from other sources: the run only
+                                        finds where it can get below (nearest-source fields,
+                                        voronoi.c); elsewhere its distances may stay too large */
 } tg__field_query;
 
 /* One run: its state while it propagates, then its results. */
@@ -167,6 +171,7 @@ typedef struct tg__field_run {
                              1 + TG__TIGHT_REL) */
     int all_ready;        /* past max_dist: every list propagates whatever its vertices */
     int astar;            /* q->toward is set */
+    int bounded;          /* q->bound is set: pruned by it, lists all released once the front is empty */
     tg_vec3 target;       /* its position */
     /* the vertices joined to the target by a segment in a face (A*): their distance bounds it */
     uint32_t tcorner[4];
@@ -190,6 +195,9 @@ static inline void tg__field_tighten(tg__field_run* run, double d)
     double b = d * (1.0 + TG__TIGHT_REL);
     if (run->astar && b < run->max_dist) run->max_dist = b;
 }
+
+/* Adds the counters of one run to a sum (largest values for the peaks). */
+void tg__field_stats_add(tg_field_stats* sum, const tg_field_stats* s);
 
 /* ---- one run (run.c) ---- */
 

@@ -117,6 +117,9 @@ static bool relax_vertex(tg__field_run* run, uint32_t v, double d, tg__pred how)
     if (!touch_vertex(fs, v)) return false;
     fs->dist[v] = d;
     if (run->q->trace) fs->pred[v] = how;
+    /* a nearest-source field: a vertex the other sources reach more shortly passes nothing on
+     * (every path through it is longer than theirs through it); its lists are released at the end */
+    if (run->bounded && d > run->q->bound[v] * (1.0 + TG__DOMINATED_REL)) return true;
     for (int i = 0; i < run->tcorners; ++i)
         if (run->tcorner[i] == v) tg__field_tighten(run, d + tg_v3_dist(tg__gpos(fs->g, v), run->target));
     double key = front_key(run, v, d);
@@ -188,6 +191,25 @@ static bool dominated(const tg__field_run* run, uint32_t h, double c0, double c1
     return du + c1 < d1 * (1.0 - TG__DOMINATED_REL) || dw + (len - c0) < d0 * (1.0 - TG__DOMINATED_REL);
 }
 
+/* A nearest-source field: can the window, whose least distance over [c0, c1] of the edge of h is
+ * wmin, get below the other sources anywhere there? Their distance at x is at most
+ * U(x) = min(B(a) + x, B(b) + (len - x)) (a path along the edge from an end vertex, B the bound),
+ * a tent whose largest value over the interval is at its peak, clamped into it. A window at least
+ * that long everywhere leaves every point of its interval, and so everything its rays reach
+ * beyond, to the other sources (a descendant at x' is reached through some x of the interval,
+ * at w(x) + |x x'| >= B(x) + |x x'|). */
+static bool beyond_bound(const tg__field_run* run, uint32_t h, double c0, double c1, double wmin)
+{
+    const tg_geodesic* g = run->g;
+    double ba = run->q->bound[g->tri[h]], bb = run->q->bound[g->tri[tg_halfedge_next(h)]];
+    double len = g->frame[h].len;
+    double xs = 0.5 * (bb + len - ba); /* -inf when only a is unbounded, NaN when both are */
+    if (!(xs > c0)) xs = c0;
+    else if (!(xs < c1)) xs = c1;
+    double u = fmin(ba + xs, bb + (len - xs));
+    return wmin > u * (1.0 + TG__DOMINATED_REL);
+}
+
 /* Adds the window [c0, c1] on halfedge h with source image (x, y) and offset sigma to h's list,
  * unless it is empty, grazing, dominated or beyond the distance limit. */
 static bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, double x, double y, double sigma,
@@ -207,6 +229,10 @@ static bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, do
         return true;
     }
     double key = (x > c0 && x < c1) ? sigma - y : (d0 < d1 ? d0 : d1);
+    if (run->bounded && beyond_bound(run, h, c0, c1, key)) {
+        run->stats.windows_filtered++;
+        return true;
+    }
     if (run->astar) key += target_gap(run, h, c0, c1);
     if (key > run->max_dist) return true;
     uint32_t id = win_alloc(fs);
@@ -613,10 +639,11 @@ tg_status tg__field_propagate(tg__field_run* run)
         if (fs->front.count) it = tg__heap_take(fs->front.data, &fs->front.count);
         uint32_t v = it.node;
         if (it.key > run->max_dist || !(it.key < INFINITY)) {
-            /* past the limit, or the front is empty while vertices beyond the limit were never
-             * queued: every window within the limit must still cross, whatever its vertices */
+            /* past the limit, or the front is empty while vertices beyond the limit (or the
+             * bound) were never queued: every window within it must still cross, whatever its
+             * vertices */
             fs->front.count = 0; /* the rest is past the limit too (vertices pushed from here on are not) */
-            if (!run->all_ready && run->max_dist < INFINITY) {
+            if (!run->all_ready && (run->max_dist < INFINITY || run->bounded)) {
                 run->all_ready = 1;
                 if (fs->touched_all) {
                     for (uint32_t h = 0; h < 3 * g->face_count; ++h)

@@ -51,6 +51,7 @@ tg_status tg__field_execute(tg__field_scratch* fs, const tg__field_query* q, tg_
     run->g = fs->g;
     run->q = q;
     run->max_dist = q->max_distance;
+    run->bounded = q->bound != NULL;
     if (q->toward) {
         run->astar = 1, run->target = tg_v3_load(q->toward);
         if (q->point_count == 1) target_corners(run);

@@ -1,0 +1,43 @@
+/* nearest.h - the nearest-source field: sources added one at a time to a running per-vertex
+ * distance and label, each run of the exact engine bounded by what the sources before it reach
+ * (field.h: tg__field_query.bound). Used by Voronoi labels (voronoi.c) and farthest-point
+ * sampling (sampling.c).
+ * Based on: the project's DESIGN.md (Voronoi and sampling as thin layers over field runs). */
+#ifndef TG_GEODESIC_NEAREST_H
+#define TG_GEODESIC_NEAREST_H
+
+#include "geodesic/workspace.h"
+
+typedef struct tg__nearest {
+    const tg_geodesic* g;
+    tg_allocator allocator;
+    double* dist;     /* per solver vertex, in the solver's frame: the least distance so far (+inf) */
+    uint32_t* label;  /* per solver vertex: the index of the source that gave it (TG_NONE) */
+    double max_dist;  /* the limit in the solver's frame (+inf: none) */
+    uint32_t added;   /* sources added so far: the next one's label */
+    tg_field_stats stats; /* summed over the runs */
+    /* progress: the caller's options (NULL or no callback: none) and the number of rows */
+    const tg_field_options* options;
+    size_t rows;
+} tg__nearest;
+
+/* Makes the running field (every vertex +inf, TG_NONE) with allocator a; false when out of memory
+ * (nothing to free then). */
+bool tg__nearest_init(tg__nearest* nf, const tg_geodesic* g, const tg_allocator* a, double max_dist);
+void tg__nearest_free(tg__nearest* nf);
+/* Adds one source (a valid point): one run on fs, then every vertex it reached strictly more
+ * shortly takes its distance and the label nf->added. Errors: TG_ERR_OUT_OF_MEMORY,
+ * TG_ERR_CANCELLED (nf unchanged then, except the stats). */
+tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* src);
+/* The running field in the mesh's numbering and units: distances (+inf beyond the limit) and
+ * labels, each output may be NULL. */
+void tg__nearest_copy_out(const tg__nearest* nf, double* out_dist, uint32_t* out_label);
+
+/* The cell boundaries of the complete field nf of these sources (bisector.c): every crossing of
+ * an edge between two cells found by rounds of runs bounded by nf->dist (stats added to nf),
+ * chained into polylines, allocated with nf's allocator. Errors: TG_ERR_OUT_OF_MEMORY (*out
+ * untouched). */
+tg_status tg__voronoi_boundaries(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources,
+                                 size_t source_count, tg_voronoi_boundaries** out);
+
+#endif

@@ -1,0 +1,119 @@
+/* voronoi.c - geodesic Voronoi labels: the nearest-source field (nearest.h), each source's run
+ * bounded by the sources before it, and tg_geodesic_voronoi over it.
+ * Based on: Y. Qin et al., "Fast and exact discrete geodesic computation based on
+ *   triangle-oriented wavefront propagation", ACM TOG 35(4), 2016 (the engine, field.h); the
+ *   bound is the vertex-distance filter of S.-Q. Xin and G.-J. Wang, ACM TOG 28(4), 2009, with
+ *   the earlier sources' distances in place of the run's own. */
+#include "geodesic/nearest.h"
+
+#include <string.h>
+
+bool tg__nearest_init(tg__nearest* nf, const tg_geodesic* g, const tg_allocator* a, double max_dist)
+{
+    memset(nf, 0, sizeof *nf);
+    nf->g = g;
+    nf->allocator = *a;
+    nf->max_dist = max_dist;
+    size_t nv = g->vertex_count ? g->vertex_count : 1;
+    nf->dist = tg__alloc_array(a, nv, sizeof(double));
+    nf->label = tg__alloc_array(a, nv, sizeof(uint32_t));
+    if (!nf->dist || !nf->label) {
+        tg__nearest_free(nf);
+        return false;
+    }
+    for (uint32_t u = 0; u < g->vertex_count; ++u) nf->dist[u] = INFINITY, nf->label[u] = TG_NONE;
+    return true;
+}
+
+void tg__nearest_free(tg__nearest* nf)
+{
+    tg__free(&nf->allocator, nf->dist);
+    tg__free(&nf->allocator, nf->label);
+    nf->dist = NULL, nf->label = NULL;
+}
+
+/* The progress hook: the caller's callback, told sources done of all. */
+static int report(void* user, const tg__field_run* run)
+{
+    const tg__nearest* nf = user;
+    tg_field_progress p;
+    tg__field_progress_of(run, &p);
+    p.rows_done = nf->added;
+    p.row_count = nf->rows;
+    p.settled_fraction = ((double)nf->added + p.settled_fraction) / (double)nf->rows;
+    if (p.settled_fraction > 1.0) p.settled_fraction = 1.0;
+    return nf->options->progress(nf->options->progress_user, &p);
+}
+
+tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* src)
+{
+    bool progress = nf->options && nf->options->progress;
+    /* the first source alone is a plain field; later ones only where they beat the earlier */
+    tg__field_query q = {src,  1,    NULL,  0,    nf->max_dist, progress ? report : NULL, nf, NULL, false, NULL, false,
+                         nf->added ? nf->dist : NULL};
+    tg__field_run run;
+    tg_status st = tg__field_execute(fs, &q, &run);
+    tg__field_stats_add(&nf->stats, &run.stats);
+    if (st != TG_OK) return st;
+    /* a run writes only the vertices it reaches, and notes them (field.h: touched_v) */
+    const uint32_t* touched = fs->touched_v.data;
+    for (size_t i = 0; i < fs->touched_v.count; ++i) {
+        uint32_t u = touched[i];
+        double d = run.vertex_dist[u];
+        if (d <= nf->max_dist && d < nf->dist[u]) nf->dist[u] = d, nf->label[u] = nf->added;
+    }
+    nf->added++;
+    if (progress) { /* after every source too: a call per source, however fast the fields run */
+        tg_field_progress p;
+        tg__field_progress_of(&run, &p);
+        p.rows_done = nf->added;
+        p.row_count = nf->rows;
+        p.settled_fraction = (double)nf->added / (double)nf->rows;
+        if (p.settled_fraction > 1.0) p.settled_fraction = 1.0;
+        if (nf->options->progress(nf->options->progress_user, &p)) return TG_ERR_CANCELLED;
+    }
+    return TG_OK;
+}
+
+void tg__nearest_copy_out(const tg__nearest* nf, double* out_dist, uint32_t* out_label)
+{
+    const tg_geodesic* g = nf->g;
+    for (uint32_t u = 0; u < g->vertex_count; ++u) {
+        uint32_t v = g->mesh_vertex[u];
+        if (out_dist) out_dist[v] = nf->dist[u] * g->unscale;
+        if (out_label) out_label[v] = nf->label[u];
+    }
+}
+
+tg_status tg_geodesic_voronoi(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
+                              size_t source_count, const tg_field_options* options, uint32_t* out_vertex_label,
+                              double* out_vertex_distance, tg_voronoi_boundaries** out_boundaries,
+                              tg_field_stats* out_stats)
+{
+    if (out_boundaries) *out_boundaries = NULL;
+    if (!out_vertex_label && !out_vertex_distance && !out_boundaries) return TG_ERR_INVALID_ARGUMENT;
+    if (source_count >= TG_NONE) return TG_ERR_INVALID_ARGUMENT; /* labels are uint32_t, TG_NONE: none */
+    tg_status st = tg__field_check(g, sources, source_count, options);
+    if (st != TG_OK) return st;
+    const tg_allocator* a = options && options->allocator ? options->allocator : &g->allocator;
+    tg_geodesic_workspace* own;
+    st = tg__workspace_acquire(g, a, &ws, &own);
+    if (st != TG_OK) return st;
+    tg__nearest nf;
+    if (!tg__nearest_init(&nf, g, a, tg__field_limit(g, options))) {
+        tg__workspace_release(own);
+        return TG_ERR_OUT_OF_MEMORY;
+    }
+    nf.options = options, nf.rows = source_count;
+    for (size_t i = 0; st == TG_OK && i < source_count; ++i) st = tg__nearest_add(&nf, &ws->field, &sources[i]);
+    tg_voronoi_boundaries* bounds = NULL;
+    if (st == TG_OK && out_boundaries) st = tg__voronoi_boundaries(&nf, &ws->field, sources, source_count, &bounds);
+    if (st == TG_OK) {
+        if (out_boundaries) *out_boundaries = bounds;
+        tg__nearest_copy_out(&nf, out_vertex_distance, out_vertex_label);
+        if (out_stats) *out_stats = nf.stats;
+    }
+    tg__nearest_free(&nf);
+    tg__workspace_release(own);
+    return st;
+}

@@ -1,0 +1,191 @@
+/* cmd_sample.c - `trigeo sample MESH --count K [--start SPEC | --seed N] [-o SAMPLES] [--field
+ * FIELD.ply|.csv]`: farthest-point sampling in exact geodesic distance
+ * (tg_geodesic_farthest_point_sampling): the samples in order, and optionally the distance to
+ * the nearest sample and its position per vertex.
+ * Based on: the CLI contract of the project's DESIGN.md. */
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int on_progress(void* user, const tg_field_progress* p)
+{
+    char detail[96];
+    snprintf(detail, sizeof detail, "%zu/%zu samples", p->rows_done, p->row_count);
+    cli_progress_update(user, p->settled_fraction, detail);
+    return cli_interrupted();
+}
+
+/* The samples: .txt one `v:IDX` spec a line (a sources file for `trigeo field --sources`), .csv
+ * rows i,vertex,x,y,z. */
+static int write_samples(const char* path, const tg_mesh* mesh, const uint32_t* s, size_t k)
+{
+    cli_output out;
+    FILE* f = cli_output_open(&out, path);
+    if (!f) return CLI_INPUT;
+    bool csv = strcmp(path, "-") != 0 && cli_ext_is(path, ".csv");
+    const double* xyz = tg_mesh_positions(mesh);
+    bool ok = !csv || fprintf(f, "i,vertex,x,y,z\n") > 0;
+    for (size_t i = 0; ok && i < k; ++i) {
+        const double* p = xyz + 3 * (size_t)s[i];
+        ok = csv ? fprintf(f, "%zu,%u,%.17g,%.17g,%.17g\n", i, s[i], p[0], p[1], p[2]) > 0 : fprintf(f, "v:%u\n", s[i]) > 0;
+    }
+    if (!ok) {
+        cli_error(path, 0, "write failed: %s", strerror(errno));
+        cli_output_abort(&out);
+        return CLI_INPUT;
+    }
+    return cli_output_commit(&out);
+}
+
+
+typedef struct sample_args {
+    const char* mesh_path;
+    const char *out, *field_out, *start;
+    unsigned long long count, seed;
+    bool quiet;
+} sample_args;
+
+static int run_sample(const sample_args* sa)
+{
+    int rc = CLI_INPUT;
+    tg_bvh* bvh = NULL;
+    tg_geodesic* geo = NULL;
+    uint32_t *samples = NULL, *label = NULL;
+    double* dist = NULL;
+    tg_mesh* mesh = cli_load_mesh_for_distances(sa->mesh_path);
+    if (!mesh) goto done;
+    size_t n = tg_mesh_vertex_count(mesh);
+    uint32_t start = TG_NONE;
+    if (sa->start) {
+        cli_spec sp;
+        tg_surface_point p;
+        if (!cli_parse_spec(sa->start, &sp) || sp.kind != 'v') {
+            rc = cli_usage("sample", "--start needs a vertex, v:IDX, not '%s'", sa->start);
+            goto done;
+        }
+        if (!cli_resolve_spec(sa->mesh_path, mesh, &bvh, sa->start, &sp, &p)) goto done;
+        start = p.index;
+    }
+    if (tg_geodesic_create(mesh, NULL, &geo) != TG_OK) {
+        cli_error(sa->mesh_path, 0, "out of memory");
+        goto done;
+    }
+    samples = malloc(sa->count * sizeof *samples);
+    label = malloc((n ? n : 1) * sizeof *label);
+    dist = malloc((n ? n : 1) * sizeof *dist);
+    if (!samples || !label || !dist) {
+        cli_error(NULL, 0, "out of memory");
+        goto done;
+    }
+    tg_field_options o;
+    memset(&o, 0, sizeof o);
+    cli_progress prog;
+    cli_progress_start(&prog, "sample", sa->quiet);
+    o.progress = on_progress;
+    o.progress_user = &prog;
+    cli_interrupt_install();
+    tg_field_stats stats;
+    double t0 = cli_seconds();
+    tg_status st = tg_geodesic_farthest_point_sampling(geo, NULL, start, sa->seed, sa->count, &o, samples, dist, label,
+                                                       &stats);
+    double secs = cli_seconds() - t0;
+    cli_progress_end(&prog);
+    if (st == TG_ERR_CANCELLED) {
+        cli_error(sa->mesh_path, 0, "interrupted: nothing written");
+        rc = 130;
+        goto done;
+    }
+    if (st == TG_ERR_INVALID_ARGUMENT) { /* the count or the start: the library checks both */
+        cli_error(sa->mesh_path, 0, "--count %llu: the mesh has fewer vertices used by faces, or the start is unused",
+                  sa->count);
+        goto done;
+    }
+    if (st != TG_OK) {
+        cli_error(sa->mesh_path, 0, "%s", tg_status_string(st));
+        goto done;
+    }
+    if (sa->out && (rc = write_samples(sa->out, mesh, samples, sa->count)) != CLI_OK) goto done;
+    if (sa->field_out && (rc = cli_write_labels(sa->field_out, mesh, label, dist, n)) != CLI_OK) goto done;
+    if (!sa->out || strcmp(sa->out, "-")) {
+        double far = 0;
+        for (size_t v = 0; v < n; ++v)
+            if (isfinite(dist[v]) && dist[v] > far) far = dist[v];
+        printf("samples            %llu (first v:%u)\n", sa->count, samples[0]);
+        printf("vertices           %zu\n", n);
+        printf("covering radius    %.17g\n", far);
+        printf("windows            %llu propagated, %llu created\n", (unsigned long long)stats.windows_propagated,
+               (unsigned long long)stats.windows_created);
+        printf("seconds            %.3f\n", secs);
+    }
+    rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
+done:
+    free(samples), free(label), free(dist);
+    tg_geodesic_destroy(geo);
+    tg_bvh_destroy(bvh);
+    tg_mesh_destroy(mesh);
+    return rc;
+}
+
+static int run(int argc, char** argv)
+{
+    sample_args sa;
+    memset(&sa, 0, sizeof sa);
+    const char *count = NULL, *seed = NULL;
+    for (int i = 1; i < argc; ++i) {
+        const char* a = argv[i];
+        if (!strcmp(a, "--quiet")) {
+            sa.quiet = true;
+        } else if (!strcmp(a, "--count") || !strcmp(a, "--start") || !strcmp(a, "--seed") || !strcmp(a, "-o") ||
+                   !strcmp(a, "--field")) {
+            if (i + 1 >= argc) return cli_usage("sample", "%s needs a value", a);
+            const char* val = argv[++i];
+            if (!strcmp(a, "--count")) count = val;
+            else if (!strcmp(a, "--start")) sa.start = val;
+            else if (!strcmp(a, "--seed")) seed = val;
+            else if (!strcmp(a, "-o")) sa.out = val;
+            else sa.field_out = val;
+        } else if (a[0] == '-' && a[1]) {
+            return cli_usage("sample", "unknown option '%s'", a);
+        } else if (!sa.mesh_path) {
+            sa.mesh_path = a;
+        } else {
+            return cli_usage("sample", "unexpected argument '%s'", a);
+        }
+    }
+    if (!sa.mesh_path) return cli_usage("sample", "missing MESH");
+    if (!count || !cli_parse_uint(count, &sa.count) || sa.count == 0 || sa.count > 0xFFFFFFFEull)
+        return cli_usage("sample", "--count needs a positive number of samples%s%s%s", count ? ", not '" : "",
+                         count ? count : "", count ? "'" : "");
+    if (sa.start && seed) return cli_usage("sample", "--start and --seed exclude each other");
+    if (seed && !cli_parse_uint(seed, &sa.seed)) return cli_usage("sample", "--seed needs a non-negative integer, not '%s'", seed);
+    if (sa.out && strcmp(sa.out, "-") && !cli_ext_is(sa.out, ".txt") && !cli_ext_is(sa.out, ".csv"))
+        return cli_usage("sample", "-o %s: the extension must be .txt or .csv", sa.out);
+    if (sa.field_out && !cli_ext_is(sa.field_out, ".ply") && !cli_ext_is(sa.field_out, ".csv"))
+        return cli_usage("sample", "--field %s: the extension must be .ply or .csv", sa.field_out);
+    return run_sample(&sa);
+}
+
+const cli_command cli_cmd_sample = {
+    "sample",
+    "sample MESH --count K [--start v:IDX | --seed N] [-o SAMPLES.txt|.csv] [--field FIELD.ply|.csv]",
+    "Farthest-point sampling in exact geodesic distance: the first sample is --start (or the vertex\n"
+    "the seed picks, default seed 0), each next one the vertex farthest from all earlier ones (a\n"
+    "component no sample reaches yet counts as farthest; ties to the lowest index). Each sample's\n"
+    "field propagates only where it gets below the earlier samples' distance.\n\n"
+    "  --count K              the number of samples (at most the vertices used by faces)\n"
+    "  --start v:IDX          the first sample\n"
+    "  --seed N               the first sample is the (SplitMix64(N) mod R)-th of the R vertices\n"
+    "                         used by faces (Python's Mesh.farthest_point_sampling(seed=N) agrees)\n"
+    "  -o SAMPLES             .txt: one v:IDX a line (a --sources file for trigeo field);\n"
+    "                         .csv: rows i,vertex,x,y,z; '-': .txt to stdout\n"
+    "  --field FIELD          per vertex the position of the nearest sample in the order (-1:\n"
+    "                         none) and the distance to it: .ply properties 'label' and\n"
+    "                         'distance' (trigeo render --labels), .csv rows vertex,label,distance\n"
+    "  --quiet                no progress line\n\n"
+    "Outputs are written to a temporary name and renamed when complete. Without -o - a summary\n"
+    "(covering radius: the largest distance to the nearest sample) goes to stdout.\n",
+    run,
+};

@@ -191,11 +191,7 @@ static int report_row(void* user, const tg__field_run* run)
     batch_lock(b);
     {
         tg_field_progress p;
-        tg__field_progress_of(run, &p);
-        p.rows_done = b->done;
-        p.row_count = b->rows;
-        p.settled_fraction = ((double)b->done + p.settled_fraction) / (double)b->rows;
-        if (p.settled_fraction > 1.0) p.settled_fraction = 1.0;
+        tg__field_progress_rows(run, b->done, b->rows, &p);
         stop = b->opt->progress(b->opt->progress_user, &p) != 0;
         if (stop) b->stop = 1;
     }

@@ -37,11 +37,7 @@ static int report(void* user, const tg__field_run* run)
 {
     const tg__nearest* nf = user;
     tg_field_progress p;
-    tg__field_progress_of(run, &p);
-    p.rows_done = nf->added;
-    p.row_count = nf->rows;
-    p.settled_fraction = ((double)nf->added + p.settled_fraction) / (double)nf->rows;
-    if (p.settled_fraction > 1.0) p.settled_fraction = 1.0;
+    tg__field_progress_rows(run, nf->added, nf->rows, &p);
     return nf->options->progress(nf->options->progress_user, &p);
 }
 
@@ -65,11 +61,8 @@ tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surfa
     nf->added++;
     if (progress) { /* after every source too: a call per source, however fast the fields run */
         tg_field_progress p;
-        tg__field_progress_of(&run, &p);
-        p.rows_done = nf->added;
-        p.row_count = nf->rows;
-        p.settled_fraction = (double)nf->added / (double)nf->rows;
-        if (p.settled_fraction > 1.0) p.settled_fraction = 1.0;
+        tg__field_progress_rows(&run, nf->added, nf->rows, &p);
+        p.settled_fraction = (double)nf->added / (double)nf->rows; /* this source is done */
         if (nf->options->progress(nf->options->progress_user, &p)) return TG_ERR_CANCELLED;
     }
     return TG_OK;

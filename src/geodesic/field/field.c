@@ -37,6 +37,15 @@ void tg__field_progress_of(const tg__field_run* run, tg_field_progress* out)
     out->row_count = 1;
 }
 
+void tg__field_progress_rows(const tg__field_run* run, size_t rows_done, size_t rows, tg_field_progress* out)
+{
+    tg__field_progress_of(run, out);
+    out->rows_done = rows_done;
+    out->row_count = rows;
+    out->settled_fraction = ((double)rows_done + out->settled_fraction) / (double)rows;
+    if (out->settled_fraction > 1.0) out->settled_fraction = 1.0;
+}
+
 /* The progress hook of a single field: the caller's callback with this run's figures. */
 static int report_single(void* user, const tg__field_run* run)
 {

@@ -263,5 +263,8 @@ tg_status tg__field_propagate(tg__field_run* run);
 /* A run's progress as tg_field_progress tells it for a single field: the front in the mesh's
  * units, the settled share of the referenced vertices (at most 1), one row. */
 void tg__field_progress_of(const tg__field_run* run, tg_field_progress* out);
+/* The same for row rows_done of `rows` (batches, sources added one at a time): the settled share
+ * counts the rows done as whole. */
+void tg__field_progress_rows(const tg__field_run* run, size_t rows_done, size_t rows, tg_field_progress* out);
 
 #endif

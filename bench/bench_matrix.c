@@ -158,7 +158,11 @@ static void run_dense(const tg_geodesic* g, const tg_mesh* m, size_t rows, int t
 {
     size_t nv = tg_mesh_vertex_count(m);
     tg_surface_point* s = malloc(rows * sizeof *s);
-    for (size_t i = 0; i < rows; ++i) s[i] = tg_surface_vertex((uint32_t)(i * (nv / rows)));
+    for (size_t i = 0; i < rows; ++i) { /* spread over the vertices: the next one a face references */
+        uint32_t v = (uint32_t)(i * (nv / rows));
+        s[i] = tg_surface_vertex(v);
+        while (v + 1 < nv && tg_surface_point_validate(m, &s[i], NULL) != TG_OK) s[i] = tg_surface_vertex(++v);
+    }
     double* mat = malloc(rows * nv * sizeof *mat);
     double t0 = bench_wall();
     tg_status st = tg_geodesic_distance_matrix(g, s, rows, NULL, threads, mat, NULL);

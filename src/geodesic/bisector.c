@@ -1,22 +1,23 @@
 /* bisector.c - the boundaries of geodesic Voronoi cells: on every edge whose ends lie in
  * different cells, the point where the two sources' exact distances are equal (found by
- * bracketed root finding on distances the exact engine evaluates at edge points, a round of
- * bounded runs per step), joined inside each face into polylines (a face of three cells gets a
- * junction point).
+ * bracketed root finding on distances the exact engine evaluates at edge points: per round, one
+ * bounded run per source evaluates ten points of every open bracket), joined inside each face
+ * into polylines (a face of three cells gets a junction point).
  * Based on: Y. Qin et al., ACM TOG 35(4), 2016 (the engine, field.h: distances at arbitrary
- *   surface points); M. Dowell and P. Jarratt, "A modified regula falsi method for computing the
- *   root of an equation", BIT 11, 1971 (the Illinois step); the project's DESIGN.md (Voronoi). */
+ *   surface points); regula falsi (the false position of a bracket) with points around it and
+ *   across the bracket, evaluated together; the project's DESIGN.md (Voronoi). */
 #include "geodesic/nearest.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 /* A crossing is accepted when the two distances there agree to this relative margin (the public
  * promise is 1e-9; the margin leaves room for the evaluation's own rounding), or when its bracket
  * is this narrow relative to the edge (then they agree to about twice that, the distances having
  * slopes within [-1, 1] along the edge). */
-#define CROSS_EQUAL_REL 1e-12
+#define CROSS_EQUAL_REL 1e-10
 #define CROSS_BRACKET_REL 1e-14
-/* Rounds of evaluation at most (each at least halves a bracket every second round). */
+/* Rounds of evaluation at most (each shrinks a bracket at least four times). */
 #define MAX_ROUNDS 120
 
 struct tg_voronoi_boundaries {
@@ -28,14 +29,23 @@ struct tg_voronoi_boundaries {
     double* xyz;
 };
 
+/* Points evaluated per open crossing and round: the regula falsi point t of the bracket, pairs
+ * around it at 1e-2, 1e-4 and 1e-7 of the bracket's width, and its quarters. A round's cost is one
+ * bounded run per source (the windows crossing the cells); the points only add evaluations of the
+ * windows crossing their faces, so ten points a round cost little more than one. Within one
+ * smooth piece of the distances, t is off by O(w^2) for a bracket of width w, so one of the pairs
+ * brackets the root far more tightly (about squaring w each round); across pieces the quarters
+ * still shrink the bracket four times. */
+#define PROBES 10
+
 /* One boundary edge: halfedge h (the lowest of its edge), from a (cell i) to b (cell j), and the
  * bracket [lo, hi] of its crossing, with f = d_i - d_j (< 0 at lo, > 0 at hi; +-inf unknown). */
 typedef struct cross {
     uint32_t h, i, j;
     double lo, hi, f_lo, f_hi;
-    int side;    /* Illinois: the end kept last round (-1 lo, +1 hi, 0 none) */
-    double t;    /* this round's point, then the crossing */
-    double di, dj;
+    double t;    /* the crossing, once done */
+    double at[PROBES];       /* this round's points, ascending */
+    double di[PROBES], dj[PROBES];
     bool done;
 } cross;
 
@@ -46,19 +56,35 @@ static bool lowest_of_edge(const tg_geodesic* g, uint32_t h)
     return true;
 }
 
-/* The next point of an open bracket: bisection while an end's value is unknown (a bounded run
- * may leave the far cell's distance at +inf), else regula falsi with the Illinois halving. */
-static double next_point(const cross* c)
+static int cmp_double(const void* x, const void* y)
 {
-    double w = c->hi - c->lo;
-    if (!isfinite(c->f_lo) || !isfinite(c->f_hi)) return c->lo + 0.5 * w;
-    double fl = c->f_lo, fh = c->f_hi;
-    double t = c->lo + w * (-fl) / (fh - fl);
-    /* stay off the ends by a share of the bracket, so that it always shrinks */
-    double m = 1e-3 * w;
-    if (!(t > c->lo + m)) t = c->lo + m;
-    if (!(t < c->hi - m)) t = c->hi - m;
-    return t;
+    double a = *(const double*)x, b = *(const double*)y;
+    return (a > b) - (a < b);
+}
+
+/* This round's points of an open bracket (see PROBES), ascending, strictly inside it; t is the
+ * middle while an end's value is unknown (a bounded run may leave the far cell's distance at
+ * +inf). */
+static void probe_points(cross* c)
+{
+    static const double offset[3] = {1e-2, 1e-4, 1e-7};
+    double w = c->hi - c->lo, t;
+    int n = 0;
+    if (!isfinite(c->f_lo) || !isfinite(c->f_hi)) { /* no slope yet: an even grid */
+        for (int k = 0; k < PROBES; ++k) c->at[k] = c->lo + w * (double)(k + 1) / (double)(PROBES + 1);
+        return;
+    }
+    t = c->lo + w * (-c->f_lo) / (c->f_hi - c->f_lo);
+    c->at[n++] = t;
+    for (int k = 0; k < 3; ++k) c->at[n++] = t - offset[k] * w, c->at[n++] = t + offset[k] * w;
+    for (int k = 1; k <= 3; ++k) c->at[n++] = c->lo + 0.25 * (double)k * w;
+    /* inside the bracket, off its ends by a share of it */
+    double m = 1e-9 * w;
+    for (int k = 0; k < n; ++k) {
+        if (!(c->at[k] > c->lo + m)) c->at[k] = c->lo + m;
+        if (!(c->at[k] < c->hi - m)) c->at[k] = c->hi - m;
+    }
+    qsort(c->at, PROBES, sizeof c->at[0], cmp_double);
 }
 
 /* The caller's form of the point at t along halfedge h (solver numbering). */
@@ -68,21 +94,23 @@ static tg_surface_point edge_point(const tg_geodesic* g, uint32_t h, double t)
     return tg__surface_out(g, &n);
 }
 
-/* One round: every open crossing's point evaluated by each of its two sources, each source's
- * points in one run bounded by the final field. */
+/* One round: every open crossing's points evaluated by each of its two sources, each source's
+ * points in one run bounded by `bound` (the final field plus a slack). */
 static tg_status evaluate_round(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources,
-                                size_t source_count, cross* cs, size_t n, size_t* by_source, size_t* entry,
-                                tg_surface_point* pts)
+                                size_t source_count, const double* bound, cross* cs, size_t n, size_t* by_source,
+                                size_t* entry, tg_surface_point* pts)
 {
     const tg_geodesic* g = nf->g;
     memset(by_source, 0, (source_count + 1) * sizeof *by_source);
     for (size_t e = 0; e < n; ++e)
-        if (!cs[e].done) by_source[cs[e].i + 1]++, by_source[cs[e].j + 1]++;
+        if (!cs[e].done) by_source[cs[e].i + 1] += PROBES, by_source[cs[e].j + 1] += PROBES;
     for (size_t s = 0; s < source_count; ++s) by_source[s + 1] += by_source[s];
     for (size_t e = 0; e < n; ++e) {
         if (cs[e].done) continue;
-        entry[by_source[cs[e].i]++] = 2 * e;
-        entry[by_source[cs[e].j]++] = 2 * e + 1;
+        for (size_t k = 0; k < PROBES; ++k) {
+            entry[by_source[cs[e].i]++] = 2 * (PROBES * e + k);
+            entry[by_source[cs[e].j]++] = 2 * (PROBES * e + k) + 1;
+        }
     }
     for (size_t s = source_count; s > 0; --s) by_source[s] = by_source[s - 1];
     by_source[0] = 0;
@@ -90,50 +118,60 @@ static tg_status evaluate_round(tg__nearest* nf, tg__field_scratch* fs, const tg
         size_t b = by_source[s], m = by_source[s + 1] - b;
         if (!m) continue;
         for (size_t k = 0; k < m; ++k) {
-            const cross* c = &cs[entry[b + k] / 2];
-            pts[k] = edge_point(g, c->h, c->t);
+            size_t x = entry[b + k] / 2;
+            const cross* c = &cs[x / PROBES];
+            pts[k] = edge_point(g, c->h, c->at[x % PROBES]);
         }
-        tg__field_query q = {&sources[s], 1, pts, m, INFINITY, NULL, NULL, NULL, false, NULL, false, nf->dist};
+        tg__field_query q = {&sources[s], 1, pts, m, INFINITY, NULL, NULL, NULL, false, NULL, false, bound};
         tg__field_run run;
         tg_status st = tg__field_execute(fs, &q, &run);
         if (st != TG_OK) return st;
         tg__field_stats_add(&nf->stats, &run.stats);
         for (size_t k = 0; k < m; ++k) {
-            cross* c = &cs[entry[b + k] / 2];
-            if (entry[b + k] & 1) c->dj = run.qdist[k];
-            else c->di = run.qdist[k];
+            size_t x = entry[b + k] / 2;
+            cross* c = &cs[x / PROBES];
+            if (entry[b + k] & 1) c->dj[x % PROBES] = run.qdist[k];
+            else c->di[x % PROBES] = run.qdist[k];
         }
     }
     return TG_OK;
 }
 
-/* Narrows every open bracket by its evaluated point; true when all are closed. */
+/* Narrows every open bracket by its evaluated points: a point where the two distances agree
+ * closes it (the closest agreement of the round), else the bracket becomes the first pair of
+ * neighbours between which f changes sign (unknown or NaN counting as positive, as at hi); the
+ * next round's points are set. True when all are closed. */
 static bool narrow(cross* cs, size_t n)
 {
     bool all = true;
     for (size_t e = 0; e < n; ++e) {
         cross* c = &cs[e];
         if (c->done) continue;
-        double f = c->di - c->dj, big = fmax(c->di, c->dj);
-        if (fabs(f) <= CROSS_EQUAL_REL * big || f == 0.0) {
-            c->done = true;
-            continue;
+        double best = INFINITY;
+        for (int k = 0; k < PROBES; ++k) {
+            double f = c->di[k] - c->dj[k], big = fmax(c->di[k], c->dj[k]);
+            if ((fabs(f) <= CROSS_EQUAL_REL * big || f == 0.0) && fabs(f) < best) {
+                best = fabs(f);
+                c->t = c->at[k];
+                c->done = true;
+            }
         }
-        if (f < 0) {
-            c->lo = c->t, c->f_lo = f;
-            if (c->side == -1 && isfinite(c->f_hi)) c->f_hi *= 0.5;
-            c->side = -1;
-        } else {
-            c->hi = c->t, c->f_hi = f;
-            if (c->side == 1 && isfinite(c->f_lo)) c->f_lo *= 0.5;
-            c->side = 1;
+        if (c->done) continue;
+        for (int k = 0; k < PROBES; ++k) {
+            double f = c->di[k] - c->dj[k];
+            if (f < 0) {
+                c->lo = c->at[k], c->f_lo = f;
+            } else {
+                c->hi = c->at[k], c->f_hi = f;
+                break;
+            }
         }
         if (c->hi - c->lo <= CROSS_BRACKET_REL) {
             c->t = 0.5 * (c->lo + c->hi);
             c->done = true;
             continue;
         }
-        c->t = next_point(c);
+        probe_points(c);
         all = false;
     }
     return all;
@@ -165,12 +203,13 @@ typedef struct scratch {
     tg_surface_point* pts;
     segment* segs;
     tg__node* nodes;  /* per node: its solver form */
+    double* bound;    /* per vertex: the field plus the slack the rounds' runs are bounded by */
     uint32_t *adj_start, *adj, *used;
 } scratch;
 
 static void scratch_free(const tg_allocator* a, scratch* s)
 {
-    void* all[] = {s->cs, s->cross_of, s->by_source, s->entry, s->pts, s->segs, s->nodes, s->adj_start, s->adj, s->used};
+    void* all[] = {s->cs, s->cross_of, s->by_source, s->entry, s->pts, s->segs, s->nodes, s->bound, s->adj_start, s->adj, s->used};
     for (size_t i = 0; i < sizeof all / sizeof all[0]; ++i) tg__free(a, all[i]);
 }
 
@@ -300,17 +339,32 @@ tg_status tg__voronoi_boundaries(tg__nearest* nf, tg__field_scratch* fs, const t
     if (st == TG_OK) {
         s.cs = tg__alloc_array(a, n ? n : 1, sizeof *s.cs);
         s.by_source = tg__alloc_array(a, source_count + 1, sizeof *s.by_source);
-        s.entry = tg__alloc_array(a, 2 * n + 1, sizeof *s.entry);
-        s.pts = tg__alloc_array(a, 2 * n + 1, sizeof *s.pts);
+        s.entry = tg__alloc_array(a, 2 * PROBES * n + 1, sizeof *s.entry);
+        s.pts = tg__alloc_array(a, 2 * PROBES * n + 1, sizeof *s.pts);
         if (!s.cs || !s.by_source || !s.entry || !s.pts) st = TG_ERR_OUT_OF_MEMORY;
     }
+    /* The rounds' runs are bounded by the field plus twice the longest boundary edge L, so that
+     * each source's distance is finite on every boundary edge of its cell (a point x of such an
+     * edge is within L of the other cell's end b, so d_j(x) <= d(b) + L, and every point y of
+     * j's path to x has d_j(y) <= d(y) + 2 L, d being 1-Lipschitz): regula falsi has finite
+     * values from the first round instead of bisecting until both runs reach. */
+    double slack = 0.0;
+    for (uint32_t h = 0; st == TG_OK && h < nh; ++h) {
+        uint32_t la = nf->label[g->tri[h]], lb = nf->label[g->tri[tg_halfedge_next(h)]];
+        if (la != lb && la != TG_NONE && lb != TG_NONE && g->frame[h].len > slack) slack = g->frame[h].len;
+    }
+    slack *= 2.0;
+    if (st == TG_OK && !(s.bound = tg__alloc_array(a, g->vertex_count ? g->vertex_count : 1, sizeof *s.bound)))
+        st = TG_ERR_OUT_OF_MEMORY;
+    for (uint32_t v = 0; st == TG_OK && v < g->vertex_count; ++v) s.bound[v] = nf->dist[v] + slack;
     n = 0;
     for (uint32_t h = 0; st == TG_OK && h < nh; ++h) {
         uint32_t la = nf->label[g->tri[h]], lb = nf->label[g->tri[tg_halfedge_next(h)]];
         if (!(la != lb && la != TG_NONE && lb != TG_NONE && g->frame[h].len > 0.0 && !(g->fflags[h / 3] & TG__F_SKIP) &&
               lowest_of_edge(g, h)))
             continue;
-        cross c = {h, la, lb, 0.0, 1.0, -INFINITY, INFINITY, 0, 0.5, 0.0, 0.0, false};
+        cross c = {h, la, lb, 0.0, 1.0, -INFINITY, INFINITY, 0.5, {0}, {0}, {0}, false};
+        probe_points(&c);
         s.cs[n] = c;
         s.cross_of[h] = (uint32_t)n;
         for (uint32_t o = g->ring[h]; o != h; o = g->ring[o]) s.cross_of[o] = (uint32_t)n;
@@ -318,7 +372,7 @@ tg_status tg__voronoi_boundaries(tg__nearest* nf, tg__field_scratch* fs, const t
     }
     bool all = n == 0;
     for (int r = 0; st == TG_OK && !all && r < MAX_ROUNDS; ++r) {
-        st = evaluate_round(nf, fs, sources, source_count, s.cs, n, s.by_source, s.entry, s.pts);
+        st = evaluate_round(nf, fs, sources, source_count, s.bound, s.cs, n, s.by_source, s.entry, s.pts);
         if (st == TG_OK) all = narrow(s.cs, n);
     }
     for (size_t e = 0; st == TG_OK && e < n; ++e) /* past the rounds (not seen): the bracket's middle */

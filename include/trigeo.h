@@ -1279,6 +1279,52 @@ TG_API tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspac
                                const tg_surface_point* points, size_t point_count, const tg_field_options* options,
                                double* out_point_distance, double* out_vertex_distance, tg_field_stats* out_stats);
 
+/** The exact logarithmic map (polar coordinates about a point): for every vertex its exact
+ *  geodesic distance from `source` (out_distance, bit-identical to tg_geodesic_field's for this
+ *  source) and the angle at which its shortest path leaves the source (out_angle, radians).
+ *  The 2D coordinates of the map are (r cos a, r sin a).
+ *
+ *  Method: the field's window propagation, in which every window lit by the source carries the
+ *  rotation from its frame to the source's (one record per window, made only here, so plain
+ *  fields do not slow down): a vertex lit by a window of the source takes the angle of its ray
+ *  there; a vertex in a face holding the source, the angle of the segment to it; a vertex whose
+ *  shortest path passes through another vertex w (a saddle or boundary vertex, or along an edge),
+ *  w's angle. No approximation beyond rounding (about 1e-15 radians per face unfolded), unlike
+ *  the vector heat method's.
+ *
+ *  Angles: counterclockwise, measured as TG_TRACE_ANGLE measures them at the source's canonical
+ *  form (tg_surface_point_canonical), so that tg_geodesic_trace from the source along angle
+ *  out_angle[v] for length out_distance[v] ends at v wherever its shortest path is unique and
+ *  meets no vertex on the way: at a face point from its face's corner 0 towards corner 1, in
+ *  [0, 2 pi); at an edge point from its halfedge's start towards its end, in [0, pi] in the
+ *  halfedge's face and (pi, 2 pi) beyond the edge; at a vertex from tg_mesh_vertex_halfedges'
+ *  halfedge, scaled so the turn around the vertex is 2 pi (in [0, 2 pi)), or pi where the fan of
+ *  faces around it is not closed (a boundary vertex: angles in [0, pi] from the boundary side).
+ *  reference: NULL, or a 3D vector (finite, not zero) whose projection onto the plane of the
+ *  reference face (the face of the side angle 0 runs along) becomes angle 0: every angle is
+ *  then the one above minus the projection's angle (scaled at a vertex), taken into [0, 2 pi)
+ *  except around a boundary vertex.
+ *  Ties: where two paths are equally long to the last bit (the cut locus), the angle is the one
+ *  of the path the propagation found first; the result is deterministic (the same for the same
+ *  input, on any thread count).
+ *  Vertices not reached (another component, unreferenced, beyond options' max_distance): distance
+ *  +inf and angle 0 (never NaN). The source vertex itself: distance 0, angle 0.
+ *
+ *  workspace: NULL or one of this solver's. source: a valid surface point. options: as
+ *  tg_geodesic_field's (limit, allocator, progress). out_distance, out_angle: vertex_count
+ *  doubles each. out_stats: may be NULL.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL g, source or outputs; an invalid source; bad options;
+ *  a reference vector that is zero, NaN or infinite, or perpendicular to the reference face
+ *  (its projection at most 1e-9 of its length); a reference face of zero area),
+ *  TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED. On error the outputs are untouched.
+ *  Complexity: the field's, plus O(V) for the angles (BENCHMARKS.md: within 1.2x of the
+ *  field's time); memory: the field's plus 24 bytes per window and 21 bytes per vertex.
+ *  Thread-safe as tg_geodesic_field. */
+TG_API tg_status tg_geodesic_log_map(const tg_geodesic* g, tg_geodesic_workspace* workspace,
+                              const tg_surface_point* source, const double* reference,
+                              const tg_field_options* options, double* out_distance, double* out_angle,
+                              tg_field_stats* out_stats);
+
 /** The distance matrix: row i of out_matrix (row-major, source_count x vertex_count doubles) is
  *  the field of sources[i] alone, exactly as tg_geodesic_field computes it (bit-identical). The
  *  same operation is `trigeo field --sources` in the CLI and Mesh.distance_matrix in Python. Rows
@@ -1535,6 +1581,14 @@ typedef struct tg_render_options {
      *  NULL / 0: one red polyline with its end dots */
     const size_t* polyline_start;
     size_t polyline_parts;
+    /** optional: two coordinates (u, v) per vertex, such as a log map's (tg_geodesic_log_map:
+     *  u = r cos a, v = r sin a), drawn as the standard checkerboard of texture maps: (u, v)
+     *  interpolated linearly over each face, squares of side checker_size coloured by the parity
+     *  of floor(u / s) + floor(v / s); a face with a non-finite corner grey; drawn instead of
+     *  vertex_scalar and vertex_label (New in 0.4.) */
+    const double* vertex_uv;
+    /** the squares' side in the unit of (u, v); 0: the mesh's bounding box diagonal / 40 */
+    double checker_size;
 } tg_render_options;
 
 /** Renders the mesh (software rasterizer, z-buffer, smooth two-sided headlight shading) with the

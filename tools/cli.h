@@ -200,6 +200,7 @@ extern const cli_command cli_cmd_render;
 extern const cli_command cli_cmd_path;
 extern const cli_command cli_cmd_field;
 extern const cli_command cli_cmd_trace;
+extern const cli_command cli_cmd_logmap;
 extern const cli_command cli_cmd_sample;
 
 #endif

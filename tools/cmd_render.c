@@ -98,7 +98,7 @@ static int on_progress(void* user, double fraction)
 static int run(int argc, char** argv)
 {
     const char *mesh_path = NULL, *path_obj = NULL, *field = NULL, *scalar = "distance", *out = NULL;
-    const char *labels = NULL, *bounds = NULL;
+    const char *labels = NULL, *bounds = NULL, *logmap = NULL;
     tg_render_options o;
     memset(&o, 0, sizeof o);
     for (int i = 1; i < argc; ++i) {
@@ -110,6 +110,11 @@ static int run(int argc, char** argv)
         else if (!strcmp(a, "--scalar") && has_value) scalar = argv[++i];
         else if (!strcmp(a, "--labels") && has_value) labels = argv[++i];
         else if (!strcmp(a, "--boundaries") && has_value) bounds = argv[++i];
+        else if (!strcmp(a, "--logmap") && has_value) logmap = argv[++i];
+        else if (!strcmp(a, "--checker") && has_value) {
+            if (!cli_parse_double(argv[++i], &o.checker_size) || !(o.checker_size > 0.0))
+                return cli_usage("render", "--checker needs a size > 0");
+        }
         else if (!strcmp(a, "--view") && has_value) {
             if (!cli_parse_doubles(argv[++i], 3, o.view_dir)) return cli_usage("render", "--view needs X,Y,Z");
         } else if (!strcmp(a, "--up") && has_value) {
@@ -125,10 +130,13 @@ static int run(int argc, char** argv)
     if (!mesh_path) return cli_usage("render", "missing MESH");
     if (!out) return cli_usage("render", "missing -o OUT.png");
     if (path_obj && bounds) return cli_usage("render", "--path and --boundaries exclude each other");
-    if (field && labels) return cli_usage("render", "--field and --labels exclude each other");
-    const char* inputs[3] = {mesh_path, path_obj, field};
-    static const char* const what[3] = {"mesh", "path file (--path)", "field file (--field)"};
-    int check = cli_output_check_inputs(out, inputs, what, 3);
+    if ((field != NULL) + (labels != NULL) + (logmap != NULL) > 1)
+        return cli_usage("render", "--field, --labels and --logmap exclude each other");
+    if (o.checker_size > 0.0 && !logmap) return cli_usage("render", "--checker applies to --logmap");
+    const char* inputs[5] = {mesh_path, path_obj, field, labels, logmap};
+    static const char* const what[5] = {"mesh", "path file (--path)", "field file (--field)", "labels file (--labels)",
+                                        "log map file (--logmap)"};
+    int check = cli_output_check_inputs(out, inputs, what, 5);
     if (check != CLI_OK) return check;
     tg_mesh* mesh = cli_load_mesh(mesh_path);
     if (!mesh) return CLI_INPUT;
@@ -173,6 +181,27 @@ static int run(int argc, char** argv)
         free(lv);
         o.vertex_label = cells;
     }
+    double* uv = NULL;
+    if (rc == CLI_OK && logmap) { /* the properties `u` and `v` of trigeo logmap -o LM.ply */
+        size_t nv = tg_mesh_vertex_count(mesh), n[2] = {0, 0};
+        double* col = malloc((nv ? nv : 1) * sizeof *col);
+        uv = malloc((nv ? nv : 1) * 2 * sizeof *uv);
+        static const char* const name[2] = {"u", "v"};
+        for (int k = 0; rc == CLI_OK && k < 2; ++k) {
+            tg_diag d;
+            tg_status st = col && uv ? tg_ply_read_vertex_scalar(logmap, name[k], col, nv, &n[k], &d) : TG_ERR_OUT_OF_MEMORY;
+            if (st != TG_OK) {
+                cli_error_diag(&d, st);
+                rc = CLI_INPUT;
+            } else if (n[k] != nv) {
+                cli_error(logmap, 0, "the log map has %zu values but the mesh has %zu vertices", n[k], nv);
+                rc = CLI_INPUT;
+            }
+            for (size_t v = 0; rc == CLI_OK && v < nv; ++v) uv[2 * v + (size_t)k] = col[v];
+        }
+        free(col);
+        o.vertex_uv = uv;
+    }
     double* poly = NULL;
     size_t* parts = NULL;
     if (rc == CLI_OK && (path_obj || bounds)) {
@@ -200,13 +229,15 @@ static int run(int argc, char** argv)
     free(parts);
     free(cells);
     free(values);
+    free(uv);
     tg_mesh_destroy(mesh);
     return rc;
 }
 
 const cli_command cli_cmd_render = {
     "render",
-    "render MESH [--path PATH.obj | --boundaries B.obj] [--field FIELD.ply [--scalar NAME] | --labels L.ply] -o OUT.png",
+    "render MESH [--path PATH.obj | --boundaries B.obj] [--field FIELD.ply [--scalar NAME] | --labels L.ply |\n"
+    "       --logmap LM.ply [--checker S]] -o OUT.png",
     "Draws MESH into a PNG (software rasterizer: orthographic view, smooth headlight shading,\n"
     "3x3 supersampling). Optional overlays:\n"
     "  --path PATH.obj    a polyline (OBJ 'v' + 'l' records, as 'trigeo path -o' writes) drawn as a\n"
@@ -218,6 +249,10 @@ const cli_command cli_cmd_render = {
     "                     trigeo sample --field) drawn one colour per cell, -1 grey\n"
     "  --boundaries B.obj polylines (every 'l' record one; trigeo field --boundaries) drawn as\n"
     "                     dark tubes\n"
+    "  --logmap LM.ply    a log map (the PLY vertex properties 'u' and 'v' of trigeo logmap -o)\n"
+    "                     drawn as the checkerboard of its 2D coordinates: squares of side S\n"
+    "                     (--checker S, default the bounding box diagonal / 40) coloured by the\n"
+    "                     parity of floor(u / S) + floor(v / S); unreached vertices grey\n"
     "  --view X,Y,Z       direction the camera looks along (default 0.55,-0.35,1)\n"
     "  --up X,Y,Z         camera up (default +y)\n"
     "  --size WxH         image size in pixels, each side 16..8192 (default 960x720); the memory\n"

@@ -15,6 +15,7 @@ static const cli_command* const commands[] = {
     &cli_cmd_path,
     &cli_cmd_field,
     &cli_cmd_trace,
+    &cli_cmd_logmap,
     &cli_cmd_sample,
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])

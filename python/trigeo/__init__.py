@@ -1240,6 +1240,47 @@ class Mesh:
 
         return self._run(work, progress)
 
+    def log_map(self, source: Any, ref: Any = None, max_distance: Optional[float] = None,
+                progress: Optional[Callable[[float], Any]] = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The exact logarithmic map about one surface point: per vertex the exact geodesic
+        distance r (bit for bit field()'s), the angle theta in radians at which its shortest path
+        leaves the source, and the 2D coordinates (r cos theta, r sin theta).
+
+        source: a vertex index, SurfacePoint or (x, y, z) (snapped). ref: None, or a 3D vector
+        whose projection onto the reference face is angle 0 (zero, NaN or perpendicular vectors
+        raise InvalidArgumentError). Angles are counterclockwise in [0, 2 pi), measured as
+        trace()'s angles: from corner 0 towards corner 1 of a face point's face, along an edge
+        point's halfedge, from a vertex's first halfedge with the turn around it scaled to 2 pi
+        (pi at a boundary vertex, angles in [0, pi]); so trace(source, theta[v], r[v]) ends at v
+        wherever its shortest path is unique and meets no vertex. Vertices not reached: r inf,
+        theta 0, coordinates inf. Returns (r, theta, uv): (n,), (n,) and (n, 2) float64."""
+        def work(call: _Call) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+            sp = (_c.SurfacePointC * 1)(self._surface_point(source, "source"))
+            rp = None
+            if ref is not None:
+                rv = np.asarray(ref, dtype=np.float64)
+                if rv.shape != (3,) or not np.all(np.isfinite(rv)) or not np.any(rv):
+                    raise _bad(f"ref must be a finite, non-zero 3D vector, not {ref!r}")
+                rv = np.ascontiguousarray(rv)
+                rp = _ptr(rv)
+            o = self._field_options(max_distance, call)
+            r, theta = np.empty(self.vertex_count), np.empty(self.vertex_count)
+            geo = self._get_geo()
+            with self._geo_ws.take() as ws:
+                st = _L.tg_geodesic_log_map(geo, ws, sp, rp, ctypes.byref(o), _ptr(r), _ptr(theta), None)
+            if st == 1:
+                raise _bad("log_map: the reference vector is perpendicular to the reference face at the source "
+                           "(or that face has zero area)" if ref is not None else
+                           "log_map: the reference face at the source has zero area: give ref")
+            call.finish(st, "log_map")
+            far = ~(r < math.inf)
+            rr = np.where(far, 0.0, r)
+            uv = np.stack([rr * np.cos(theta), rr * np.sin(theta)], axis=1)
+            uv[far] = math.inf
+            return r, theta, uv
+
+        return self._run(work, progress)
+
     def field_at(self, sources: Any, points: Any, max_distance: Optional[float] = None) -> np.ndarray:
         """The exact geodesic distance from the sources to arbitrary surface points (in faces, on
         edges, vertices) in one propagation. sources as field(); points: SurfacePoints, vertex
@@ -1485,7 +1526,7 @@ class Mesh:
 
     def render(self, png_path: Union[str, os.PathLike], path: Any = None, field: Any = None, view: Any = None,
                width: int = 960, height: int = 720, isolines: int = 16, labels: Any = None,
-               boundaries: Any = None) -> None:
+               boundaries: Any = None, logmap: Any = None, checker: float = 0.0) -> None:
         """Writes a PNG picture of the mesh (orthographic, shaded), with an optional path (a Path
         or a (k, 3) polyline, drawn as a red tube) and an optional per-vertex field (n values,
         coloured dark blue to yellow with isolines; inf drawn grey). view: the direction the
@@ -1495,7 +1536,10 @@ class Mesh:
         the drawing and leaves no file.
         labels: Voronoi cells (n labels as voronoi() returns, -1 none), one colour per cell,
         drawn instead of field. boundaries: polylines (voronoi(..., boundaries=True)'s list, or
-        (k, 3) arrays) drawn as dark tubes, instead of path."""
+        (k, 3) arrays) drawn as dark tubes, instead of path.
+        logmap: (n, 2) coordinates per vertex (log_map()'s uv), drawn as the checkerboard of
+        squares of side `checker` (0: the bounding box diagonal / 40), instead of field and
+        labels; inf coordinates grey."""
         o = _c.RenderOptions()
         png = _fs_path(png_path, "png_path")
         if not (isinstance(width, (int, np.integer)) and isinstance(height, (int, np.integer))
@@ -1522,6 +1566,14 @@ class Mesh:
             cells = np.where(la < 0, _c.NONE, la).astype(np.uint32)
             keep.append(cells)
             o.vertex_label = _ptr(cells, ctypes.c_uint32)
+        if logmap is not None:
+            uv = np.ascontiguousarray(logmap, dtype=np.float64)
+            if uv.shape != (self.vertex_count, 2):
+                raise _bad(f"logmap must be ({self.vertex_count}, 2) coordinates, not shape {uv.shape}")
+            if not (math.isfinite(checker) and checker >= 0.0):
+                raise _bad(f"checker must be a finite size >= 0, not {checker!r}")
+            keep.append(uv)
+            o.vertex_uv, o.checker_size = _ptr(uv), float(checker)
         if boundaries is not None:
             if path is not None:
                 raise _bad("render takes a path or boundaries, not both")

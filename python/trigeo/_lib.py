@@ -160,7 +160,8 @@ class RenderOptions(ctypes.Structure):
                 ("vertex_scalar", POINTER(c_double)), ("isolines", c_int), ("polyline", POINTER(c_double)),
                 ("polyline_count", c_size_t), ("supersample", c_int), ("progress", RENDER_PROGRESS_FN),
                 ("progress_user", c_void_p), ("vertex_label", POINTER(c_uint32)),
-                ("polyline_start", POINTER(c_size_t)), ("polyline_parts", c_size_t)]
+                ("polyline_start", POINTER(c_size_t)), ("polyline_parts", c_size_t),
+                ("vertex_uv", POINTER(c_double)), ("checker_size", c_double)]
 
 
 class BoundariesView(ctypes.Structure):
@@ -227,6 +228,7 @@ _SIGNATURES = {
     "tg_geodesic_trace_batch": (c_int, [_vp, _psp, POINTER(TraceDirection), _pd, c_size_t, POINTER(TraceOptions),
                                         c_int, POINTER(TraceEnd)]),
     "tg_geodesic_field": (c_int, [_vp, _vp, _psp, c_size_t, POINTER(FieldOptions), _pd, _vp]),
+    "tg_geodesic_log_map": (c_int, [_vp, _vp, _psp, _pd, POINTER(FieldOptions), _pd, _pd, _vp]),
     "tg_geodesic_field_at": (c_int, [_vp, _vp, _psp, c_size_t, _psp, c_size_t, POINTER(FieldOptions), _pd, _pd, _vp]),
     "tg_geodesic_distance_matrix": (c_int, [_vp, _psp, c_size_t, POINTER(FieldOptions), c_int, _pd, _vp]),
     "tg_geodesic_distance_matrix_at": (c_int, [_vp, _psp, c_size_t, _psp, c_size_t, POINTER(FieldOptions), c_int,

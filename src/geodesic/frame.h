@@ -30,6 +30,31 @@ static inline void tg__frame_point(const tg_geodesic* g, uint32_t h, tg_vec3 p, 
     out[1] = tg_v3_len(tg_v3_cross(u, r));
 }
 
+/* The unit vectors of halfedge h's frame in space: u along the edge, w in the face's plane towards
+ * its opposite corner (zero in a face of zero area). */
+static inline void tg__frame_axes(const tg_geodesic* g, uint32_t h, tg_vec3* u, tg_vec3* w)
+{
+    const tg__frame* fr = &g->frame[h];
+    tg_vec3 a = tg__gpos(g, g->tri[h]);
+    *u = fr->len > 0.0 ? tg_v3_scale(tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_next(h)]), a), 1.0 / fr->len)
+                       : tg_v3(0.0, 0.0, 0.0);
+    if (!(fr->cy > 0.0)) {
+        *w = tg_v3(0.0, 0.0, 0.0);
+        return;
+    }
+    tg_vec3 c = tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_prev(h)]), a);
+    *w = tg_v3_scale(tg_v3_sub(c, tg_v3_scale(*u, fr->cx)), 1.0 / fr->cy);
+}
+
+/* A vector (in space, in the plane of h's face or not) in h's frame: its components along u, w. */
+static inline void tg__frame_vector(const tg_geodesic* g, uint32_t h, tg_vec3 v, double out[2])
+{
+    tg_vec3 u, w;
+    tg__frame_axes(g, h, &u, &w);
+    out[0] = tg_v3_dot(v, u);
+    out[1] = tg_v3_dot(v, w);
+}
+
 /* Does the 3D point p lie inside edge h (strictly between its ends, on its line to rounding:
  * within TG__GRAZING_REL of the local scale)? Then *out_x is its abscissa along h. Points of a
  * face that lie on an edge belong to the other faces at that edge too (field queries, traces). */

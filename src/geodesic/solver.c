@@ -377,6 +377,47 @@ static void build_frames(tg_geodesic* g)
     }
 }
 
+/* A kept face (not a duplicate) with the same three vertices as face f. */
+uint32_t tg__kept_face(const tg_geodesic* g, uint32_t f)
+{
+    if (!(g->fflags[f] & TG__F_SKIP)) return f;
+    const uint32_t* t = g->tri + 3 * (size_t)f;
+    for (uint32_t i = g->corner_start[t[0]]; i < g->corner_start[t[0] + 1]; ++i) {
+        uint32_t q = g->corners[i] / 3;
+        if (!(g->fflags[q] & TG__F_SKIP) && tg__corner_of(g, q, t[1]) >= 0 && tg__corner_of(g, q, t[2]) >= 0) return q;
+    }
+    return TG_NONE;
+}
+
+bool tg__angle_reference(const tg_geodesic* g, const tg_surface_point* caller, uint32_t* out_face,
+                         uint32_t* out_from, uint32_t* out_to, tg_vec3* out_n, tg_vec3* out_r)
+{
+    const tg_mesh* m = g->mesh;
+    uint32_t mf, from, to;
+    if (caller->kind == TG_SURFACE_VERTEX) {
+        uint32_t vh = m->vhe[caller->index];
+        mf = vh / 3, from = caller->index, to = m->tri[tg_halfedge_next(vh)];
+    } else if (caller->kind == TG_SURFACE_EDGE) {
+        mf = caller->index / 3, from = m->tri[caller->index], to = m->tri[tg_halfedge_next(caller->index)];
+    } else {
+        mf = caller->index, from = m->tri[3 * (size_t)mf], to = m->tri[3 * (size_t)mf + 1];
+    }
+    /* the face's normal by its file winding, the reference side's direction */
+    const uint32_t* t = m->tri + 3 * (size_t)mf;
+    tg_vec3 a = tg_v3_load(m->xyz + 3 * (size_t)t[0]), b = tg_v3_load(m->xyz + 3 * (size_t)t[1]);
+    tg_vec3 c = tg_v3_load(m->xyz + 3 * (size_t)t[2]);
+    tg_vec3 nn = tg_v3_cross(tg_v3_sub(b, a), tg_v3_sub(c, a));
+    tg_vec3 rr = tg_v3_sub(tg_v3_load(m->xyz + 3 * (size_t)to), tg_v3_load(m->xyz + 3 * (size_t)from));
+    double nl = tg_v3_len(nn), rl = tg_v3_len(rr);
+    if (!(nl > 0.0) || !(rl > 0.0) || !isfinite(nl) || !isfinite(rl)) return false;
+    uint32_t f = tg__kept_face(g, g->solver_face[mf]);
+    if (f == TG_NONE) return false;
+    *out_face = f, *out_from = g->solver_vertex[from], *out_to = g->solver_vertex[to];
+    *out_n = tg_v3_scale(nn, 1.0 / nl);
+    *out_r = tg_v3_scale(rr, 1.0 / rl);
+    return true;
+}
+
 uint32_t tg__fan_step(const tg_geodesic* g, uint32_t v, uint32_t* f, int* k, int side)
 {
     uint32_t h = side == 0 ? 3 * *f + (uint32_t)(*k + 2) % 3 : 3 * *f + (uint32_t)*k;

@@ -134,6 +134,17 @@ static inline uint32_t tg__slit_exit(const tg_geodesic* g, uint32_t h)
  * *f, *k, or TG_NONE at an edge that cannot be crossed (tg__cross_opp). */
 uint32_t tg__fan_step(const tg_geodesic* g, uint32_t v, uint32_t* f, int* k, int side);
 
+/* A kept face (not a duplicate, TG__F_SKIP) with the same three vertices as face f: f itself
+ * unless it is a duplicate; TG_NONE for a face with a repeated vertex index. */
+uint32_t tg__kept_face(const tg_geodesic* g, uint32_t f);
+
+/* The reference of angles at the caller's point `caller` (a valid point, the caller's numbering;
+ * TG_TRACE_ANGLE): the reference face (solver numbering, a kept face), the reference side from
+ * vertex *out_from to *out_to (solver numbering), the face's unit normal by the file's winding and
+ * the side's unit direction, in space. false for a face of zero area. */
+bool tg__angle_reference(const tg_geodesic* g, const tg_surface_point* caller, uint32_t* out_face,
+                         uint32_t* out_from, uint32_t* out_to, tg_vec3* out_n, tg_vec3* out_r);
+
 /* ---- path nodes and routes (nodes.c) ---- */
 
 /* A point of a path: a mesh vertex, a point on an edge, or a point inside a face (endpoints only).

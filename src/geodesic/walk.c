@@ -99,36 +99,11 @@ typedef struct walk {
 
 /* ---- frames in 3D ---- */
 
-/* The unit vectors of halfedge h's frame in space: u along the edge, w in the face's plane towards
- * its opposite corner (zero in a face of zero area). */
-static void frame_axes(const tg_geodesic* g, uint32_t h, tg_vec3* u, tg_vec3* w)
-{
-    const tg__frame* fr = &g->frame[h];
-    tg_vec3 a = tg__gpos(g, g->tri[h]);
-    *u = fr->len > 0.0 ? tg_v3_scale(tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_next(h)]), a), 1.0 / fr->len)
-                       : tg_v3(0.0, 0.0, 0.0);
-    if (!(fr->cy > 0.0)) {
-        *w = tg_v3(0.0, 0.0, 0.0);
-        return;
-    }
-    tg_vec3 c = tg_v3_sub(tg__gpos(g, g->tri[tg_halfedge_prev(h)]), a);
-    *w = tg_v3_scale(tg_v3_sub(c, tg_v3_scale(*u, fr->cx)), 1.0 / fr->cy);
-}
-
-/* A vector (in space, in the plane of h's face or not) in h's frame: its components along u, w. */
-static void frame_vector(const tg_geodesic* g, uint32_t h, tg_vec3 v, double out[2])
-{
-    tg_vec3 u, w;
-    frame_axes(g, h, &u, &w);
-    out[0] = tg_v3_dot(v, u);
-    out[1] = tg_v3_dot(v, w);
-}
-
 /* The direction (x, y) of h's frame as a unit vector in space. */
 static tg_vec3 frame_direction(const tg_geodesic* g, uint32_t h, const double d[2])
 {
     tg_vec3 u, w;
-    frame_axes(g, h, &u, &w);
+    tg__frame_axes(g, h, &u, &w);
     tg_vec3 v = tg_v3_add(tg_v3_scale(u, d[0]), tg_v3_scale(w, d[1]));
     double len = tg_v3_len(v);
     return len > 0.0 ? tg_v3_scale(v, 1.0 / len) : v;
@@ -548,18 +523,6 @@ typedef struct start_ray {
     uint32_t via_face;
 } start_ray;
 
-/* A kept face (not a duplicate) with the same three vertices as face f. */
-static uint32_t kept_face(const tg_geodesic* g, uint32_t f)
-{
-    if (!(g->fflags[f] & TG__F_SKIP)) return f;
-    const uint32_t* t = g->tri + 3 * (size_t)f;
-    for (uint32_t i = g->corner_start[t[0]]; i < g->corner_start[t[0] + 1]; ++i) {
-        uint32_t q = g->corners[i] / 3;
-        if (!(g->fflags[q] & TG__F_SKIP) && tg__corner_of(g, q, t[1]) >= 0 && tg__corner_of(g, q, t[2]) >= 0) return q;
-    }
-    return TG_NONE;
-}
-
 /* The ray starting at node n, which lies in face f, with the direction d3 in f's plane (any
  * direction of that plane, also out of f when n is on its boundary: then the walk crosses the
  * edge or turns around the vertex first, as the surface unfolds). */
@@ -573,7 +536,7 @@ static void start_in_face(const tg_geodesic* g, const tg__node* n, uint32_t f, t
         int k = b[0] != 0.0 ? 0 : b[1] != 0.0 ? 1 : 2;
         uint32_t h = 3 * f + (uint32_t)k, v = g->tri[h], wall = TG_NONE;
         double d[2];
-        frame_vector(g, h, d3, d);
+        tg__frame_vector(g, h, d3, d);
         double phi = atan2(d[1], d[0]);
         uint32_t ff = f;
         int kk = k;
@@ -602,7 +565,7 @@ static void start_in_face(const tg_geodesic* g, const tg__node* n, uint32_t f, t
         tg__frame_bary(&g->frame[h], 0, b, r.p);
         out->r = r;
     }
-    frame_vector(g, h, d3, out->r.d);
+    tg__frame_vector(g, h, d3, out->r.d);
     double dl = hypot(out->r.d[0], out->r.d[1]);
     if (dl > 0.0) out->r.d[0] /= dl, out->r.d[1] /= dl;
 }
@@ -631,7 +594,7 @@ static void corner_candidate(const tg_geodesic* g, uint32_t f, int k, tg_vec3 v,
     uint32_t h = 3 * f + (uint32_t)k;
     if (!(g->frame[h].cy > 0.0)) return; /* a zero-area face holds no direction */
     double p[2];
-    frame_vector(g, h, v, p);
+    tg__frame_vector(g, h, v, p);
     double c = tg__corner_angle(g, f, k), phi = atan2(p[1], p[0]);
     if (!(phi >= 0.0 && phi <= c)) { /* outside the sector: its nearer side */
         double to0 = fabs(phi), toc = fabs(phi - c);
@@ -656,7 +619,7 @@ static void edge_candidates(const tg_geodesic* g, uint32_t e, double t, double s
         if (!(g->frame[h].cy > 0.0) || !(g->frame[h].len > 0.0)) continue;
         bool same = g->tri[h] == a;
         double th = same ? t : s, sh = same ? s : t, len = g->frame[h].len, p[2];
-        frame_vector(g, h, v, p);
+        tg__frame_vector(g, h, v, p);
         ray r = {h, AT_EDGE, {th <= sh ? th * len : len - sh * len, 0.0}, {0.0, 0.0}, th, sh};
         double pl = hypot(p[0], p[1]);
         if (p[1] >= 0.0 && pl > 0.0) { /* into the face (or along the edge) */
@@ -695,7 +658,7 @@ static tg_status start_vector(const tg_geodesic* g, const tg__node* n, tg_vec3 v
         uint32_t h = longest_halfedge(g, n->id);
         if (g->frame[h].cy > 0.0) {
             double p[2];
-            frame_vector(g, h, v, p);
+            tg__frame_vector(g, h, v, p);
             best.cos = hypot(p[0], p[1]) / vl; /* the projection onto the face's plane */
             if (best.cos > PERP_COS) start_in_face(g, n, n->id, v, out);
             best.r = out->r;
@@ -729,23 +692,6 @@ static tg_status start_vector(const tg_geodesic* g, const tg__node* n, tg_vec3 v
 }
 
 /* ---- directions given as angles ---- */
-
-/* The caller's mesh face mf (its file winding) as the reference of an angle: the unit normal and
- * the in-plane unit vector of angle 0 from `from` towards `to` (mesh vertices). false for a face of
- * zero area (no normal). */
-static bool reference_frame(const tg_mesh* m, uint32_t mf, uint32_t from, uint32_t to, tg_vec3* n, tg_vec3* r)
-{
-    const uint32_t* t = m->tri + 3 * (size_t)mf;
-    tg_vec3 a = tg_v3_load(m->xyz + 3 * (size_t)t[0]), b = tg_v3_load(m->xyz + 3 * (size_t)t[1]);
-    tg_vec3 c = tg_v3_load(m->xyz + 3 * (size_t)t[2]);
-    tg_vec3 nn = tg_v3_cross(tg_v3_sub(b, a), tg_v3_sub(c, a));
-    tg_vec3 rr = tg_v3_sub(tg_v3_load(m->xyz + 3 * (size_t)to), tg_v3_load(m->xyz + 3 * (size_t)from));
-    double nl = tg_v3_len(nn), rl = tg_v3_len(rr);
-    if (!(nl > 0.0) || !(rl > 0.0) || !isfinite(nl) || !isfinite(rl)) return false;
-    *n = tg_v3_scale(nn, 1.0 / nl);
-    *r = tg_v3_scale(rr, 1.0 / rl);
-    return true;
-}
 
 /* A vertex start with the angle normalised around v (geometry-central's vertex tangent space):
  * the reference side is the solver's corner k of face f at v towards solver vertex `to`. */
@@ -788,22 +734,11 @@ static void start_vertex_angle(const tg_geodesic* g, uint32_t v, uint32_t f, uin
 static tg_status start_angle(const tg_geodesic* g, const tg_surface_point* caller, const tg__node* n, double angle,
                              start_ray* out)
 {
-    const tg_mesh* m = g->mesh;
-    uint32_t mf, from, to;
-    if (caller->kind == TG_SURFACE_VERTEX) {
-        uint32_t vh = m->vhe[caller->index];
-        mf = vh / 3, from = caller->index, to = m->tri[tg_halfedge_next(vh)];
-    } else if (caller->kind == TG_SURFACE_EDGE) {
-        mf = caller->index / 3, from = m->tri[caller->index], to = m->tri[tg_halfedge_next(caller->index)];
-    } else {
-        mf = caller->index, from = m->tri[3 * (size_t)mf], to = m->tri[3 * (size_t)mf + 1];
-    }
+    uint32_t f, from, to;
     tg_vec3 nrm, ref;
-    if (!reference_frame(m, mf, from, to, &nrm, &ref)) return TG_ERR_INVALID_ARGUMENT;
-    uint32_t f = kept_face(g, g->solver_face[mf]);
-    if (f == TG_NONE) return TG_ERR_INVALID_ARGUMENT;
+    if (!tg__angle_reference(g, caller, &f, &from, &to, &nrm, &ref)) return TG_ERR_INVALID_ARGUMENT;
     if (caller->kind == TG_SURFACE_VERTEX) {
-        start_vertex_angle(g, g->solver_vertex[from], f, g->solver_vertex[to], angle, out);
+        start_vertex_angle(g, from, f, to, angle, out);
         return TG_OK;
     }
     /* in the reference face's plane: cos a ref + sin a (normal x ref); beyond its edge for an

@@ -109,7 +109,21 @@ typedef struct shade_ctx {
     const tg_render_options* o;
     double smin, smax; /* finite range of the scalar */
     int isolines;
+    double checker;    /* the checkerboard's square side (vertex_uv) */
 } shade_ctx;
+
+/* The checkerboard's two colours, and grey where (u, v) is not finite. */
+static void checker_colour(double u, double v, double side, float out[3])
+{
+    static const float tone[2][3] = {{0.93f, 0.91f, 0.86f}, {0.80f, 0.25f, 0.20f}};
+    if (!isfinite(u) || !isfinite(v)) {
+        out[0] = out[1] = out[2] = 0.55f;
+        return;
+    }
+    double k = floor(u / side) + floor(v / side);
+    int odd = fmod(k, 2.0) != 0.0;
+    for (int c = 0; c < 3; ++c) out[c] = tone[odd][c];
+}
 
 /* The colour of cell `label`: hues spaced by the golden ratio (neighbouring labels far apart on
  * the wheel), moderate saturation; TG_NONE grey. */
@@ -190,7 +204,8 @@ static void raster_face(const tg_mesh* m, size_t f, const tg_vec3* sp, const tg_
     double inv = 1.0 / area;
     const double* sv = sc->o->vertex_scalar;
     const uint32_t* lv = sc->o->vertex_label;
-    float cells[3][3];
+    const double* uv = sc->o->vertex_uv;
+    float cells[3][3], square[3];
     if (lv)
         for (int k = 0; k < 3; ++k) label_colour(lv[t[k]], cells[k]);
     for (int y = y0; y <= y1; ++y) {
@@ -215,7 +230,14 @@ static void raster_face(const tg_mesh* m, size_t f, const tg_vec3* sp, const tg_
             }
             /* cells: the nearest corner's label (ties to the lower corner) */
             int near = w0 >= w1 && w0 >= w2 ? 0 : w1 >= w2 ? 1 : 2;
-            shade(sc, cam, n, s, sv != NULL, lv ? cells[near] : NULL, cv->rgb + 3 * idx);
+            const float* base = lv ? cells[near] : NULL;
+            if (uv) {
+                const double *q0 = uv + 2 * (size_t)t[0], *q1 = uv + 2 * (size_t)t[1], *q2 = uv + 2 * (size_t)t[2];
+                checker_colour(w0 * q0[0] + w1 * q1[0] + w2 * q2[0], w0 * q0[1] + w1 * q1[1] + w2 * q2[1], sc->checker,
+                               square);
+                base = square;
+            }
+            shade(sc, cam, n, s, sv != NULL, base, cv->rgb + 3 * idx);
         }
     }
 }
@@ -402,6 +424,10 @@ tg_status tg_render_png(const tg_mesh* m, const tg_render_options* options, cons
             tg__diag_set(diag, png_path, 0, 0, 0, "polyline point %zu is not finite", i / 3);
             return TG_ERR_INVALID_ARGUMENT;
         }
+    if (!(o.checker_size >= 0.0) || !isfinite(o.checker_size)) {
+        tg__diag_set(diag, png_path, 0, 0, 0, "checker size %g is not a finite number >= 0", o.checker_size);
+        return TG_ERR_INVALID_ARGUMENT;
+    }
     canvas cv = {o.width * o.supersample, o.height * o.supersample, NULL, NULL};
     size_t px = (size_t)cv.w * (size_t)cv.h;
     cv.depth = tg__alloc_array(&m->allocator, px, sizeof(float));
@@ -433,7 +459,13 @@ tg_status tg_render_png(const tg_mesh* m, const tg_render_options* options, cons
     camera_fit(m, &o, &cv, &cam);
     for (size_t v = 0; v < m->vertex_count; ++v) sp[v] = project(&cam, tg_v3_load(m->xyz + 3 * v));
     vertex_normals(m, vn);
-    shade_ctx sc = {&o, 0, 0, o.isolines == 0 ? 16 : o.isolines};
+    shade_ctx sc = {&o, 0, 0, o.isolines == 0 ? 16 : o.isolines, o.checker_size};
+    if (!(sc.checker > 0.0)) {
+        const double *lo = m->report.bbox_min, *hi = m->report.bbox_max;
+        sc.checker = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                          (hi[2] - lo[2]) * (hi[2] - lo[2])) / 40.0;
+        if (!(sc.checker > 0.0)) sc.checker = 1.0;
+    }
     if (o.vertex_scalar) scalar_range(m, o.vertex_scalar, &sc.smin, &sc.smax);
     for (size_t f = 0; f < m->face_count; ++f) {
         raster_face(m, f, sp, vn, &sc, &cam, &cv);

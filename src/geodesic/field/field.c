@@ -46,8 +46,7 @@ void tg__field_progress_rows(const tg__field_run* run, size_t rows_done, size_t 
     if (out->settled_fraction > 1.0) out->settled_fraction = 1.0;
 }
 
-/* The progress hook of a single field: the caller's callback with this run's figures. */
-static int report_single(void* user, const tg__field_run* run)
+int tg__field_report_single(void* user, const tg__field_run* run)
 {
     const tg_field_options* opt = user;
     tg_field_progress p;
@@ -68,9 +67,9 @@ tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* ws, 
     st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
     if (st != TG_OK) return st;
     tg__field_query q = {sources, source_count, points, point_count, tg__field_limit(g, options),
-                         options && options->progress ? report_single : NULL, (void*)options, NULL, false, NULL,
+                         options && options->progress ? tg__field_report_single : NULL, (void*)options, NULL, false, NULL,
                          /* only the points wanted: the run stops once they are settled */
-                         point_count > 0 && !out_vertex_distance, NULL};
+                         point_count > 0 && !out_vertex_distance, NULL, NULL};
     tg__field_run run;
     st = tg__field_execute(&ws->field, &q, &run);
     if (st == TG_OK) {

@@ -16,6 +16,7 @@
 #define TG_GEODESIC_FIELD_H
 
 #include "core/heap.h"
+#include "geodesic/field/logmap.h"
 #include "geodesic/frame.h"
 
 /* A window: the interval [b0, b1] (distances from tri[h]) of the edge of halfedge h, lit from
@@ -82,7 +83,10 @@ typedef struct tg__corner_hit {
     X(qpred, tg__pred)         /* how each query point got it (runs that trace) */                \
     X(qbound, tg__query_bound) /* the vertices bounding each query point (runs that stop early) */ \
     X(touched_v, uint32_t)     /* vertices a run wrote (reset only those) */                      \
-    X(touched_h, uint32_t)     /* halfedges a run wrote */
+    X(touched_h, uint32_t)     /* halfedges a run wrote */                                        \
+    X(lm_win, tg__lm_rec)      /* log map runs: per window slot, its record (logmap.h) */         \
+    X(lm_theta, double)        /* log map runs: per vertex lit by a window of the source, the    \
+                                  angle its ray left at (valid where pred says so) */
 
 /* A query pair: query point `id` lies in face `face` with barycentrics `b` (solver numbering). */
 typedef struct tg__query_pair {
@@ -160,6 +164,8 @@ typedef struct tg__field_query {
                                         distance of a real path from other sources: the run only
                                         finds where it can get below (nearest-source fields,
                                         voronoi.c); elsewhere its distances may stay too large */
+    tg__logmap* logmap;              /* NULL, or a log map (logmap.c): the source's windows carry
+                                        records (q->trace must be set, single source) */
 } tg__field_query;
 
 /* One run: its state while it propagates, then its results. */
@@ -259,6 +265,10 @@ tg_status tg__field_seed(tg__field_run* run, const tg_surface_point* src);
 tg_status tg__field_propagate(tg__field_run* run);
 
 /* ---- the public figures (field.c) ---- */
+
+/* The progress hook of a single field (progress_user: the caller's tg_field_options): the
+ * caller's callback with this run's figures. */
+int tg__field_report_single(void* user, const tg__field_run* run);
 
 /* A run's progress as tg_field_progress tells it for a single field: the front in the mesh's
  * units, the settled share of the referenced vertices (at most 1), one row. */

@@ -89,6 +89,37 @@ static bool take_window(tg__field_run* run, uint32_t id, tg__window* w)
     return true;
 }
 
+/* ---- log map records (logmap.h): only in log map runs, only on the source's windows ---- */
+
+/* The record a window that `origin` emits into the face of h gets in h's frame; NULL when the
+ * run makes no log map or the origin is not its source. */
+static const tg__lm_rec* lm_seed(const tg__field_run* run, uint32_t origin, uint32_t h, tg__lm_rec* out)
+{
+    const tg__logmap* lm = run->q->logmap;
+    if (!lm || origin != lm->origin) return NULL;
+    *out = tg__lm_face_rec(lm, h);
+    return out;
+}
+
+/* A copy of the record of window `id` (tag: its tag) when it carries one, else NULL. */
+static const tg__lm_rec* lm_of(const tg__field_run* run, uint32_t id, uint32_t tag, tg__lm_rec* out)
+{
+    const tg__logmap* lm = run->q->logmap;
+    if (!lm || (tag & ~TG__VIA_FLAT) != lm->origin) return NULL;
+    *out = ((const tg__lm_rec*)run->fs->lm_win.data)[id];
+    return out;
+}
+
+static bool lm_store(tg__field_scratch* fs, uint32_t id, const tg__lm_rec* r)
+{
+    if (id >= fs->lm_win.count) {
+        if (!tg__field_grow(fs, &fs->lm_win, id + 1 - fs->lm_win.count)) return false;
+        fs->lm_win.count = id + 1;
+    }
+    ((tg__lm_rec*)fs->lm_win.data)[id] = *r;
+    return true;
+}
+
 /* ---- the vertex front: the layer's heap on (distance, vertex), lazy (stale entries skipped) ---- */
 
 static bool front_push(tg__field_run* run, double key, uint32_t v)
@@ -213,7 +244,7 @@ static bool beyond_bound(const tg__field_run* run, uint32_t h, double c0, double
 /* Adds the window [c0, c1] on halfedge h with source image (x, y) and offset sigma to h's list,
  * unless it is empty, grazing, dominated or beyond the distance limit. */
 static bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, double x, double y, double sigma,
-                        uint32_t tag)
+                        uint32_t tag, const tg__lm_rec* rec)
 {
     tg__field_scratch* fs = run->fs;
     const tg_geodesic* g = fs->g;
@@ -239,6 +270,7 @@ static bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, do
     if (id == TG_NONE) return false;
     tg__window* w = &((tg__window*)fs->windows.data)[id];
     w->b0 = c0, w->b1 = c1, w->sx = x, w->sy = y, w->sigma = sigma, w->tag = tag;
+    if (rec && !lm_store(fs, id, rec)) return false;
     if (!touch_halfedge(fs, h)) return false;
     w->next = fs->head[h];
     fs->head[h] = id;
@@ -250,16 +282,18 @@ static bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, do
 
 /* The interval [t0, t1] of halfedge e (face e / 3 on its +y side) lit from (x, y) of e's frame
  * (y > 0: inside the face) at offset sigma continues as a window into every other face at the
- * edge. */
+ * edge (rec: NULL, or the log map record in e's frame). */
 static bool push_through(tg__field_run* run, uint32_t e, double t0, double t1, double x, double y, double sigma,
-                         uint32_t tag)
+                         uint32_t tag, const tg__lm_rec* rec)
 {
     const tg_geodesic* g = run->g;
     for (uint32_t o = g->ring[e]; o != e; o = g->ring[o]) {
         double ox, oy, c0, c1;
         tg__ring_point(g, e, o, x, y, &ox, &oy);
         tg__ring_interval(g, e, o, t0, t1, &c0, &c1);
-        if (!push_window(run, o, c0, c1, ox, oy, sigma, tag)) return false;
+        tg__lm_rec ro;
+        if (rec) ro = tg__lm_ring(g, e, o, *rec);
+        if (!push_window(run, o, c0, c1, ox, oy, sigma, tag, rec ? &ro : NULL)) return false;
     }
     return true;
 }
@@ -283,9 +317,10 @@ static bool emit_vertex(tg__field_run* run, uint32_t v)
         if (g->fflags[f] & TG__F_SKIP) continue;
         uint32_t e = 3 * f + (k + 1) % 3;
         const tg__frame* fr = &g->frame[e];
+        tg__lm_rec rec;
         if (g->fflags[f] & TG__F_FLAT) { /* v may lie on the opposite edge: emit across it too */
             if (!emit_face_point(run, g->xyz + 3 * (size_t)v, sigma, f, TG_NONE, v)) return false;
-        } else if (!push_through(run, e, 0.0, fr->len, fr->cx, fr->cy, sigma, v)) {
+        } else if (!push_through(run, e, 0.0, fr->len, fr->cx, fr->cy, sigma, v, lm_seed(run, v, e, &rec))) {
             return false;
         }
     }
@@ -338,7 +373,8 @@ static bool emit_face_point(tg__field_run* run, const double p[3], double sigma,
                     if (!emit_face_point(run, p, sigma, o / 3, o, origin)) return false;
             continue;
         }
-        if (!push_through(run, h, 0.0, len, x, y, sigma, origin)) return false;
+        tg__lm_rec rec;
+        if (!push_through(run, h, 0.0, len, x, y, sigma, origin, lm_seed(run, origin, h, &rec))) return false;
     }
     return true;
 }
@@ -388,13 +424,15 @@ static double ray_param(const double src[2], double b, const double o[2], const 
 /* The child of w lit through [t_lo, t_hi] of the exit halfedge e, which runs from o to d in h's
  * frame: the source image in e's frame, then on into the faces beyond. */
 static bool push_child(tg__field_run* run, const tg__window* w, uint32_t e, const double o[2], const double d[2],
-                       double t_lo, double t_hi, uint32_t via_flat)
+                       double t_lo, double t_hi, uint32_t via_flat, const tg__lm_rec* rec)
 {
     const tg_geodesic* g = run->g;
     double len = g->frame[e].len, src[2] = {w->sx, w->sy}, xy[2];
     tg__to_edge_frame(o, d, len, src, xy);
     uint32_t tag = (w->tag & ~TG__VIA_FLAT) | (via_flat ? TG__VIA_FLAT : 0u);
-    return push_through(run, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag);
+    tg__lm_rec re;
+    if (rec) re = tg__lm_turn(*rec, (d[0] - o[0]) / len, (d[1] - o[1]) / len);
+    return push_through(run, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag, rec ? &re : NULL);
 }
 
 
@@ -438,7 +476,8 @@ static tg__corner_hit hit_corner(const tg__window* w, const tg__frame* fr)
 /* Propagates window w into the face of h: the part left of C lights edge CA, the part right of
  * C edge CB; covering windows that reach C less shortly than the edge side's best are cut where
  * their rays cross the best one's ray to C inside the face (one angle, one split). */
-static bool cross_face(tg__field_run* run, uint32_t h, const tg__window* w, tg__corner_hit hc, int flat)
+static bool cross_face(tg__field_run* run, uint32_t h, const tg__window* w, tg__corner_hit hc, int flat,
+                       const tg__lm_rec* rec)
 {
     tg__field_scratch* fs = run->fs;
     const tg_geodesic* g = fs->g;
@@ -467,12 +506,12 @@ static bool cross_face(tg__field_run* run, uint32_t h, const tg__window* w, tg__
     if (has_l) { /* exit C -> A is halfedge hp */
         double t_hi = lo_l == 0.0 ? 1.0 : ray_param(src, lo_l, c, a);
         double t_lo = l_at_c ? 0.0 : ray_param(src, hi_l, c, a);
-        if (!push_child(run, w, hp, c, a, t_lo, t_hi, (uint32_t)flat)) return false;
+        if (!push_child(run, w, hp, c, a, t_lo, t_hi, (uint32_t)flat, rec)) return false;
     }
     if (has_r) { /* exit B -> C is halfedge hn */
         double t_lo = hi_r == len ? 0.0 : ray_param(src, hi_r, b, c);
         double t_hi = r_at_c ? 1.0 : ray_param(src, lo_r, b, c);
-        if (!push_child(run, w, hn, b, c, t_lo, t_hi, (uint32_t)flat)) return false;
+        if (!push_child(run, w, hn, b, c, t_lo, t_hi, (uint32_t)flat, rec)) return false;
     }
     return true;
 }
@@ -486,7 +525,10 @@ static bool cross_slit(tg__field_run* run, uint32_t h, uint32_t exit, const uint
     for (size_t i = 0; i < n; ++i) {
         tg__window w;
         if (!take_window(run, ids[i], &w)) continue;
-        if (!push_through(run, exit, len - w.b1, len - w.b0, len - w.sx, -w.sy, w.sigma, w.tag | TG__VIA_FLAT))
+        tg__lm_rec rec;
+        const tg__lm_rec* rp = lm_of(run, ids[i], w.tag, &rec);
+        if (rp) rec = tg__lm_half_turn(rec);
+        if (!push_through(run, exit, len - w.b1, len - w.b0, len - w.sx, -w.sy, w.sigma, w.tag | TG__VIA_FLAT, rp))
             return false;
     }
     (void)h;
@@ -548,13 +590,17 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
                 fs->split_d[h] = hc.dc, fs->split_x[h] = hc.xc;
             }
             tg__pred ray = {h, w->tag & ~TG__VIA_FLAT, w->sx, w->sy};
+            tg__lm_rec rec;
+            if (hc.dc < fs->dist[vc] && lm_of(run, ids[i], w->tag, &rec)) /* the angle of the ray to C */
+                ((double*)fs->lm_theta.data)[vc] = tg__lm_angle(&rec, fr->cx - w->sx, fr->cy - w->sy);
             if (!relax_vertex(run, vc, hc.dc, ray)) return false;
         }
     }
     for (size_t i = 0; i < n; ++i) {
         tg__window w;
         if (!take_window(run, ids[i], &w)) continue;
-        if (!cross_face(run, h, &w, hits[i], flat)) return false;
+        tg__lm_rec rec;
+        if (!cross_face(run, h, &w, hits[i], flat, lm_of(run, ids[i], w.tag, &rec))) return false;
     }
     return true;
 }
@@ -580,6 +626,7 @@ void tg__field_reset(tg__field_scratch* fs)
     fs->touched_all = 0;
     fs->touched_v.count = fs->touched_h.count = 0;
     fs->windows.count = 0;
+    fs->lm_win.count = 0;
     fs->free_ids.count = 0;
     fs->front.count = 0;
     fs->fifo.count = 0;

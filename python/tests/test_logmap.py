@@ -1,0 +1,74 @@
+"""Mesh.log_map: the polar coordinates of a flat sheet (1e-12), distances equal to field()'s bit
+for bit, tracing back along (r, theta) to the vertex, the checkerboard picture, and clear errors
+for bad reference vectors and sources."""
+import math
+
+import numpy as np
+import pytest
+
+import trigeo
+from conftest import grid
+
+
+def flat_sheet(n=12):
+    v, f = grid(n, amplitude=0.0)
+    rng = np.random.default_rng(5)
+    inner = (v[:, 0] > 0) & (v[:, 0] < n - 1) & (v[:, 1] > 0) & (v[:, 1] < n - 1)
+    v[inner, :2] += rng.uniform(-0.3, 0.3, (inner.sum(), 2))
+    return trigeo.Mesh(v, f)
+
+
+def test_flat_log_map_is_polar_coordinates():
+    m = flat_sheet()
+    face = 40
+    b = np.array([0.2, 0.3, 0.5])
+    p0 = b @ m.vertices[m.faces[face]]
+    r, theta, uv = m.log_map(trigeo.SurfacePoint.face(face, b), ref=(1.0, 0.0, 0.3))
+    d = m.vertices[:, :2] - p0[:2]
+    assert np.abs(r - np.hypot(d[:, 0], d[:, 1])).max() <= 1e-12 * 12
+    assert np.abs(uv - d).max() <= 1e-12 * 12
+    assert theta.min() >= 0 and theta.max() < 2 * math.pi
+    # the default reference: from the face's corner 0 towards its corner 1
+    e = m.vertices[m.faces[face][1]] - m.vertices[m.faces[face][0]]
+    a0 = math.atan2(e[1], e[0])
+    _, theta0, _ = m.log_map(trigeo.SurfacePoint.face(face, b))
+    assert np.abs(np.angle(np.exp(1j * (theta0 + a0 - theta)))).max() <= 1e-12
+
+
+def test_distances_are_the_field_and_traces_go_back():
+    v, f = grid(14, amplitude=0.3)
+    m = trigeo.Mesh(v, f)
+    src = trigeo.SurfacePoint.face(77, (0.3, 0.3, 0.4))
+    r, theta, _ = m.log_map(src)
+    assert np.array_equal(r, m.field([src]))
+    checked = 0
+    for vtx in np.argsort(r)[-12:]:
+        t = m.trace(src, float(theta[vtx]), float(r[vtx]))
+        path = m.path(src, int(vtx))
+        if any(p.kind == "vertex" for p in path.surface_points[1:-1]):
+            continue  # a path bending at a vertex: the trace goes straight through it
+        assert np.abs(t.end_xyz - m.vertices[vtx]).max() <= 1e-9 * 14
+        checked += 1
+    assert checked > 0
+
+
+def test_render_checkerboard(tmp_path):
+    m = flat_sheet()
+    _, _, uv = m.log_map(5)
+    out = tmp_path / "lm.png"
+    m.render(out, logmap=uv, checker=0.5, view=(0, 0, -1), width=64, height=48)
+    assert out.stat().st_size > 0
+    with pytest.raises(trigeo.InvalidArgumentError):
+        m.render(out, logmap=uv[:3])
+
+
+def test_bad_input():
+    m = flat_sheet()
+    for ref in [(0, 0, 0), (math.nan, 1, 0), (0, 0, 1), (1, 2)]:
+        with pytest.raises(trigeo.InvalidArgumentError):
+            m.log_map(3, ref=ref)
+    with pytest.raises(trigeo.InvalidArgumentError):
+        m.log_map(10 ** 6)
+    r, theta, uv = m.log_map(3, max_distance=1.0)
+    far = r == math.inf
+    assert far.any() and np.all(theta[far] == 0) and np.all(uv[far] == math.inf) and not np.isnan(theta).any()

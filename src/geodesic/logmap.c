@@ -1,0 +1,339 @@
+/* logmap.c - the exact logarithmic map: for every vertex the exact distance from a source point and
+ * the angle at which its shortest path leaves the source (tg_geodesic_log_map).
+ * Based on: Chen & Han, SoCG 1990, and Mitchell, Mount & Papadimitriou, SIAM J. Comput. 16(4),
+ *   1987, §3 (a window holds the unfolded image of its source, so the shortest path to any point
+ *   it lights is the straight segment from that image, and its direction at the source is the
+ *   segment's direction carried back through the unfolding: field/logmap.h); the field engine
+ *   (field.h, after Qin et al. 2016) runs unchanged, with one record per window of the source;
+ *   N. Sharp, Y. Soliman and K. Crane, "The vector heat method", ACM TOG 38(3), 2019, §5.3 and
+ *   geometry-central's vertex tangent spaces (angles at a vertex scaled so the turn is 2 pi, pi
+ *   at a boundary vertex), the conventions of TG_TRACE_ANGLE (walk.c).
+ *
+ * How each vertex gets its angle, by how it got its distance (tg__pred):
+ *   - lit by a window of the source: the angle of its ray, noted while the window's list crossed
+ *     the face (propagate.c, rule 1) from the window's record;
+ *   - in a face holding a point source (or, past a zero-area face, at the source vertex): the
+ *     direction of the segment in that face, unfolded into the source's frame;
+ *   - along an edge from the source vertex: the edge's direction around the vertex;
+ *   - through another vertex w (along an edge, inside a face, or by a window whose origin is w,
+ *     a pseudo-source): w's angle, since the path leaves the source as w's does. */
+#include "geodesic/workspace.h"
+
+#include <string.h>
+
+#define TWO_PI (2.0 * TG__PI)
+/* A reference vector is refused when its projection onto the reference face's plane is at most
+ * this share of its length (as tg_geodesic_trace refuses a direction vector: walk.c PERP_COS). */
+#define PERP_COS 1e-9
+
+/* ---- records of the source's frames (field/logmap.h) ---- */
+
+/* The unit direction of the edge of halfedge h in the frame of halfedge `base` of the same face
+ * (+x for a zero-length edge). */
+static void edge_dir_in(const tg_geodesic* g, uint32_t base, uint32_t h, double u[2])
+{
+    double c[3][2];
+    tg__frame_corners(&g->frame[base], c);
+    int i = (int)((h % 3 + 3 - base % 3) % 3), j = (i + 1) % 3;
+    double len = g->frame[h].len;
+    u[0] = 1.0, u[1] = 0.0;
+    if (len > 0.0) u[0] = (c[j][0] - c[i][0]) / len, u[1] = (c[j][1] - c[i][1]) / len;
+}
+
+/* The record of halfedge h's frame from the record r of the frame of `base`, in the same face. */
+static tg__lm_rec rec_in_face(const tg_geodesic* g, uint32_t base, uint32_t h, tg__lm_rec r)
+{
+    if (h == base) return r;
+    double u[2];
+    edge_dir_in(g, base, h, u);
+    return tg__lm_turn(r, u[0], u[1]);
+}
+
+/* A point source: the record of h's frame from the reference frame in space, for a face whose
+ * plane holds the reference (a rotation, or a reflection when the solver re-wound the face). */
+static tg__lm_rec rec_from_space(const tg__logmap* lm, uint32_t h)
+{
+    tg_vec3 u, w;
+    tg__frame_axes(lm->g, h, &u, &w);
+    double m00 = tg_v3_dot(u, lm->ref_x), m10 = tg_v3_dot(u, lm->ref_y);
+    double m01 = tg_v3_dot(w, lm->ref_x), m11 = tg_v3_dot(w, lm->ref_y);
+    double l = hypot(m00, m10);
+    tg__lm_rec r = {1.0, 0.0, 0.0};
+    if (!(l > 0.0)) return r;
+    if (m00 * m11 - m01 * m10 >= 0.0) { /* a rotation: the source's (x, y) = (c + i s) z */
+        r.c = m00 / l, r.s = m10 / l;
+    } else { /* a reflection: (x, y) = conj((c + i s) z), kept at length 2 (logmap.h) */
+        r.c = 2.0 * m00 / l, r.s = -2.0 * m10 / l;
+    }
+    return r;
+}
+
+/* A point source in face f (other than the reference face): f shares with the reference face the
+ * edge the source lies on, across which it unfolds. */
+static tg__lm_rec rec_point(const tg__logmap* lm, uint32_t h)
+{
+    const tg_geodesic* g = lm->g;
+    uint32_t f = h / 3, f0 = lm->face0;
+    if (f == f0) return rec_from_space(lm, h);
+    for (uint32_t k0 = 0; k0 < 3; ++k0) {
+        uint32_t h0 = 3 * f0 + k0, a = g->tri[h0], b = g->tri[tg_halfedge_next(h0)];
+        for (uint32_t k = 0; k < 3; ++k) {
+            uint32_t o = 3 * f + k, oa = g->tri[o], ob = g->tri[tg_halfedge_next(o)];
+            if (!((oa == a && ob == b) || (oa == b && ob == a))) continue;
+            return rec_in_face(g, o, h, tg__lm_ring(g, h0, o, rec_from_space(lm, h0)));
+        }
+    }
+    return rec_from_space(lm, h); /* (never: every face holding the source meets the reference face) */
+}
+
+/* The index of corner c among v's corners (their count when it is not one). */
+static uint32_t corner_index(const tg_geodesic* g, uint32_t v, uint32_t c)
+{
+    uint32_t c0 = g->corner_start[v], n = g->corner_start[v + 1] - c0, i = 0;
+    while (i < n && g->corners[c0 + i] != c) ++i;
+    return i;
+}
+
+/* The source vertex v: in face f at corner c (tri[c] == v), the record of the bisector of the
+ * corner, with base its angle around v; then in h's frame. */
+static tg__lm_rec rec_vertex(const tg__logmap* lm, uint32_t h)
+{
+    const tg_geodesic* g = lm->g;
+    uint32_t v = lm->origin, f = h / 3;
+    int k = tg__corner_of(g, f, v);
+    tg__lm_rec r = {1.0, 0.0, 0.0};
+    if (k < 0) return r; /* a zero-area face across v's edge: its rays leave along that edge */
+    uint32_t c = 3 * f + (uint32_t)k;
+    double half = 0.5 * tg__corner_angle(g, f, k);
+    r.c = cos(half), r.s = -sin(half), r.base = lm->fan[corner_index(g, v, c)] + half;
+    return rec_in_face(g, c, h, r);
+}
+
+tg__lm_rec tg__lm_face_rec(const tg__logmap* lm, uint32_t h)
+{
+    return lm->origin == TG__ORIGIN_SOURCE ? rec_point(lm, h) : rec_vertex(lm, h);
+}
+
+/* ---- the source ---- */
+
+/* How the angles of one log map are measured (TG_TRACE_ANGLE of the source's canonical form). */
+typedef struct lm_source {
+    tg__logmap lm;
+    tg__node node;     /* the source (solver) */
+    uint32_t vertex;   /* the source vertex, or TG_NONE for a point source */
+    /* a vertex source: the reference side's fan angle a0 and sense, the scale of fan angles to
+     * angles (2 pi or pi over the total) and whether the fan closes */
+    double a0, scale;
+    bool forward, closed;
+    double alpha;      /* the reference vector's angle, subtracted from every angle */
+} lm_source;
+
+/* The fan angles of the corners around v from the reference corner (f, k), walking both ways as
+ * the fan unfolds; corners of other fans (a pinched or non-manifold vertex) start at 0. Returns
+ * the total angle of the reference corner's fan; *closed when it closes. */
+static double fan_angles(const tg_geodesic* g, uint32_t v, uint32_t f, int k, double* fan, bool* closed)
+{
+    uint32_t c0 = g->corner_start[v], n = g->corner_start[v + 1] - c0;
+    for (uint32_t i = 0; i < n; ++i) fan[i] = NAN;
+    double total = 0.0, at = 0.0;
+    uint32_t ff = f;
+    int kk = k;
+    *closed = false;
+    for (uint32_t step = 0; step <= n; ++step) { /* the + sense: each corner starts where the last ends */
+        uint32_t i = corner_index(g, v, 3 * ff + (uint32_t)kk);
+        if (i == n) break;
+        if (fan[i] == fan[i]) {
+            *closed = ff == f && kk == k;
+            break;
+        }
+        double ang = tg__corner_angle(g, ff, kk);
+        fan[i] = at, at += ang, total += ang;
+        if (tg__fan_step(g, v, &ff, &kk, 0) == TG_NONE) break;
+    }
+    ff = f, kk = k, at = 0.0;
+    for (uint32_t step = 0; !*closed && step <= n; ++step) { /* the - sense, from the reference */
+        if (tg__fan_step(g, v, &ff, &kk, 1) == TG_NONE) break;
+        uint32_t i = corner_index(g, v, 3 * ff + (uint32_t)kk);
+        if (i == n || fan[i] == fan[i]) break;
+        double ang = tg__corner_angle(g, ff, kk);
+        at -= ang, fan[i] = at, total += ang;
+    }
+    for (uint32_t i = 0; i < n; ++i)
+        if (fan[i] != fan[i]) fan[i] = 0.0;
+    return total;
+}
+
+/* The angle, by TG_TRACE_ANGLE's convention, of the fan angle (or the point source's angle) x. */
+static double final_angle(const lm_source* s, double x)
+{
+    if (s->vertex != TG_NONE) x = (s->forward ? x - s->a0 : s->a0 - x) * s->scale;
+    x -= s->alpha;
+    if (s->vertex == TG_NONE || s->closed) {
+        x = fmod(x, TWO_PI);
+        if (x < 0.0) x += TWO_PI;
+        if (!(x < TWO_PI)) x = 0.0; /* -tiny + 2 pi rounds to 2 pi */
+    }
+    return x;
+}
+
+/* Sets up the source's frames; TG_ERR_INVALID_ARGUMENT for a zero-area reference face or a
+ * reference vector perpendicular to it. */
+static tg_status source_setup(const tg_geodesic* g, const tg_surface_point* source, const double* reference,
+                              double* fan, lm_source* s)
+{
+    memset(s, 0, sizeof *s);
+    tg_surface_point canon = tg_surface_point_canonical(g->mesh, source);
+    tg_surface_point sp = tg__surface_in(g, source);
+    s->node = tg__node_from_surface(&sp);
+    uint32_t f, from, to;
+    tg_vec3 n, x;
+    if (!tg__angle_reference(g, &canon, &f, &from, &to, &n, &x)) return TG_ERR_INVALID_ARGUMENT;
+    s->lm.g = g;
+    s->lm.face0 = f;
+    s->lm.ref_x = x, s->lm.ref_y = tg_v3_cross(n, x);
+    s->vertex = TG_NONE;
+    s->lm.origin = TG__ORIGIN_SOURCE;
+    double rscale = 1.0;
+    if (s->node.kind == TG__NODE_VERTEX) {
+        uint32_t v = s->node.id;
+        int k = tg__corner_of(g, f, v);
+        s->vertex = v, s->lm.origin = v, s->lm.fan = fan;
+        s->forward = g->tri[3 * f + (uint32_t)(k + 1) % 3] == to;
+        s->a0 = s->forward ? 0.0 : tg__corner_angle(g, f, k);
+        double total = fan_angles(g, v, f, k, fan, &s->closed);
+        s->scale = total > 0.0 ? (s->closed ? TWO_PI : TG__PI) / total : 1.0;
+        rscale = s->scale;
+    }
+    if (reference) {
+        tg_vec3 r = tg_v3(reference[0], reference[1], reference[2]);
+        double px = tg_v3_dot(r, s->lm.ref_x), py = tg_v3_dot(r, s->lm.ref_y);
+        if (!(hypot(px, py) > PERP_COS * tg_v3_len(r))) return TG_ERR_INVALID_ARGUMENT;
+        s->alpha = atan2(py, px) * rscale;
+    }
+    return TG_OK;
+}
+
+/* ---- the angles of the vertices ---- */
+
+/* The angle of vertex u (solver), reached as pred says, when it does not come from another
+ * vertex: *out set and true; false with *out_from the vertex it inherits from. */
+static bool own_angle(const lm_source* s, const tg__field_scratch* fs, uint32_t u, double* out, uint32_t* out_from)
+{
+    const tg_geodesic* g = s->lm.g;
+    tg__pred p = fs->pred[u];
+    uint32_t o = p.origin;
+    if (o == TG__ORIGIN_SOURCE && p.h == TG_NONE) { /* the source vertex itself */
+        *out = 0.0;
+        return true;
+    }
+    if (o != s->lm.origin) {
+        *out_from = o;
+        return false;
+    }
+    if (p.h == TG_NONE) { /* along an edge from the source vertex: the edge's fan angle */
+        uint32_t v = s->vertex, c0 = g->corner_start[v];
+        for (uint32_t i = c0; i < g->corner_start[v + 1]; ++i) {
+            uint32_t c = g->corners[i], f = c / 3;
+            if (g->fflags[f] & TG__F_SKIP) continue;
+            if (g->tri[tg_halfedge_next(c)] == u) return *out = final_angle(s, s->lm.fan[i - c0]), true;
+            if (g->tri[tg_halfedge_prev(c)] == u)
+                return *out = final_angle(s, s->lm.fan[i - c0] + tg__corner_angle(g, f, (int)(c % 3))), true;
+        }
+        *out = 0.0;
+        return true;
+    }
+    if (p.h & TG__PRED_FACE) { /* straight inside a face from the source */
+        uint32_t f = p.h & ~TG__PRED_FACE, h = 3 * f;
+        tg_vec3 from = s->vertex != TG_NONE ? tg__gpos(g, s->vertex) : tg__node_pos(g, &s->node);
+        double d[2];
+        tg__frame_vector(g, h, tg_v3_sub(tg__gpos(g, u), from), d);
+        tg__lm_rec r = tg__lm_face_rec(&s->lm, h);
+        *out = final_angle(s, tg__lm_angle(&r, d[0], d[1]));
+        return true;
+    }
+    *out = final_angle(s, ((const double*)fs->lm_theta.data)[u]);
+    return true;
+}
+
+/* Every reached vertex's angle into out_angle (the mesh's numbering), following the chains of
+ * vertices paths pass through with an explicit stack (state: 0 to do, 1 on the stack, 2 done). */
+static void resolve_angles(const lm_source* s, const tg__field_run* run, uint8_t* state, uint32_t* stack,
+                           double* out_angle)
+{
+    const tg_geodesic* g = s->lm.g;
+    const tg__field_scratch* fs = run->fs;
+    size_t nv = g->vertex_count;
+    memset(state, 0, nv);
+    for (uint32_t u0 = 0; u0 < nv; ++u0) {
+        if (state[u0] == 2) continue;
+        if (!(run->vertex_dist[u0] <= run->max_dist)) {
+            out_angle[g->mesh_vertex[u0]] = 0.0, state[u0] = 2;
+            continue;
+        }
+        size_t top = 0;
+        uint32_t u = u0;
+        double a = 0.0;
+        for (;;) { /* down the chain to a vertex with its own angle, or one done */
+            uint32_t from;
+            if (own_angle(s, fs, u, &a, &from)) break;
+            if (from >= nv || state[from] == 1) { a = 0.0; break; } /* (never: chains end) */
+            state[u] = 1, stack[top++] = u;
+            if (state[from] == 2) {
+                a = out_angle[g->mesh_vertex[from]];
+                u = TG_NONE;
+                break;
+            }
+            u = from;
+        }
+        if (u != TG_NONE) out_angle[g->mesh_vertex[u]] = a, state[u] = 2;
+        while (top) {
+            uint32_t w = stack[--top];
+            out_angle[g->mesh_vertex[w]] = a, state[w] = 2;
+        }
+    }
+}
+
+/* ---- the public call ---- */
+
+tg_status tg_geodesic_log_map(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* source,
+                              const double* reference, const tg_field_options* options, double* out_distance,
+                              double* out_angle, tg_field_stats* out_stats)
+{
+    if (!g || !source || !out_distance || !out_angle) return TG_ERR_INVALID_ARGUMENT;
+    tg_status st = tg__field_check(g, source, 1, options);
+    if (st != TG_OK) return st;
+    if (reference) {
+        double x = reference[0], y = reference[1], z = reference[2];
+        if (!isfinite(x) || !isfinite(y) || !isfinite(z) || (x == 0.0 && y == 0.0 && z == 0.0))
+            return TG_ERR_INVALID_ARGUMENT;
+    }
+    const tg_allocator* a = options && options->allocator ? options->allocator : &g->allocator;
+    size_t nv = g->vertex_count, nfan = 0;
+    tg_surface_point sp = tg__surface_in(g, source);
+    if (sp.kind == TG_SURFACE_VERTEX) nfan = g->corner_start[sp.index + 1] - g->corner_start[sp.index];
+    double* fan = tg__alloc_array(a, nfan ? nfan : 1, sizeof(double));
+    uint8_t* state = tg__alloc_array(a, nv ? nv : 1, 1);
+    uint32_t* stack = tg__alloc_array(a, nv ? nv : 1, sizeof(uint32_t));
+    lm_source s;
+    if (!fan || !state || !stack) st = TG_ERR_OUT_OF_MEMORY;
+    if (st == TG_OK) st = source_setup(g, source, reference, fan, &s);
+    tg_geodesic_workspace* own = NULL;
+    if (st == TG_OK) st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
+    if (st == TG_OK && !tg__field_grow(&ws->field, &ws->field.lm_theta, nv)) st = TG_ERR_OUT_OF_MEMORY;
+    if (st == TG_OK) {
+        tg__field_query q = {source, 1, NULL, 0, tg__field_limit(g, options), options && options->progress ? tg__field_report_single : NULL, (void*)options, NULL, true, NULL,
+                             false, NULL, &s.lm};
+        tg__field_run run;
+        st = tg__field_execute(&ws->field, &q, &run);
+        if (st == TG_OK) {
+            tg__field_copy_out(&run, out_distance);
+            resolve_angles(&s, &run, state, stack, out_angle);
+            if (out_stats) *out_stats = run.stats;
+        }
+    }
+    tg__workspace_release(own);
+    tg__free(a, stack);
+    tg__free(a, state);
+    tg__free(a, fan);
+    return st;
+}

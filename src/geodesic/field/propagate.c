@@ -21,6 +21,15 @@
 #include <string.h>
 #include <time.h>
 
+/* Plain fields must not pay for the log map's records: the functions that pass them on are
+ * inlined where they are called, so that the calls with no record (a constant NULL) compile to
+ * the code without them. */
+#if defined(__GNUC__) || defined(__clang__)
+#define TG__ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define TG__ALWAYS_INLINE inline
+#endif
+
 enum { VS_INSIDE = 1, VS_SOURCE = 2, VS_TOUCHED = 4 }; /* fs->inside */
 enum { Q_QUEUED = 1, Q_TOUCHED = 2 };                  /* fs->queued */
 
@@ -57,7 +66,7 @@ static double now_s(void)
 
 /* ---- window pool ---- */
 
-static uint32_t win_alloc(tg__field_scratch* fs)
+static TG__ALWAYS_INLINE uint32_t win_alloc(tg__field_scratch* fs)
 {
     if (fs->free_ids.count) return ((uint32_t*)fs->free_ids.data)[--fs->free_ids.count];
     if (fs->windows.count >= (size_t)UINT32_MAX - 1) return TG_NONE;
@@ -243,8 +252,8 @@ static bool beyond_bound(const tg__field_run* run, uint32_t h, double c0, double
 
 /* Adds the window [c0, c1] on halfedge h with source image (x, y) and offset sigma to h's list,
  * unless it is empty, grazing, dominated or beyond the distance limit. */
-static bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, double x, double y, double sigma,
-                        uint32_t tag, const tg__lm_rec* rec)
+static TG__ALWAYS_INLINE bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, double x, double y,
+                                          double sigma, uint32_t tag, const tg__lm_rec* rec)
 {
     tg__field_scratch* fs = run->fs;
     const tg_geodesic* g = fs->g;
@@ -283,8 +292,8 @@ static bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, do
 /* The interval [t0, t1] of halfedge e (face e / 3 on its +y side) lit from (x, y) of e's frame
  * (y > 0: inside the face) at offset sigma continues as a window into every other face at the
  * edge (rec: NULL, or the log map record in e's frame). */
-static bool push_through(tg__field_run* run, uint32_t e, double t0, double t1, double x, double y, double sigma,
-                         uint32_t tag, const tg__lm_rec* rec)
+static TG__ALWAYS_INLINE bool push_ring(tg__field_run* run, uint32_t e, double t0, double t1, double x, double y,
+                                        double sigma, uint32_t tag, const tg__lm_rec* rec)
 {
     const tg_geodesic* g = run->g;
     for (uint32_t o = g->ring[e]; o != e; o = g->ring[o]) {
@@ -296,6 +305,21 @@ static bool push_through(tg__field_run* run, uint32_t e, double t0, double t1, d
         if (!push_window(run, o, c0, c1, ox, oy, sigma, tag, rec ? &ro : NULL)) return false;
     }
     return true;
+}
+static bool push_plain(tg__field_run* run, uint32_t e, double t0, double t1, double x, double y, double sigma,
+                       uint32_t tag)
+{
+    return push_ring(run, e, t0, t1, x, y, sigma, tag, NULL);
+}
+static bool push_recorded(tg__field_run* run, uint32_t e, double t0, double t1, double x, double y, double sigma,
+                          uint32_t tag, const tg__lm_rec* rec)
+{
+    return push_ring(run, e, t0, t1, x, y, sigma, tag, rec);
+}
+static TG__ALWAYS_INLINE bool push_through(tg__field_run* run, uint32_t e, double t0, double t1, double x, double y,
+                                           double sigma, uint32_t tag, const tg__lm_rec* rec)
+{
+    return rec ? push_recorded(run, e, t0, t1, x, y, sigma, tag, rec) : push_plain(run, e, t0, t1, x, y, sigma, tag);
 }
 
 /* ---- sources and pseudo-sources ---- */
@@ -423,16 +447,17 @@ static double ray_param(const double src[2], double b, const double o[2], const 
 
 /* The child of w lit through [t_lo, t_hi] of the exit halfedge e, which runs from o to d in h's
  * frame: the source image in e's frame, then on into the faces beyond. */
-static bool push_child(tg__field_run* run, const tg__window* w, uint32_t e, const double o[2], const double d[2],
-                       double t_lo, double t_hi, uint32_t via_flat, const tg__lm_rec* rec)
+static TG__ALWAYS_INLINE bool push_child(tg__field_run* run, const tg__window* w, uint32_t e, const double o[2],
+                                         const double d[2], double t_lo, double t_hi, uint32_t via_flat,
+                                         const tg__lm_rec* rec)
 {
     const tg_geodesic* g = run->g;
     double len = g->frame[e].len, src[2] = {w->sx, w->sy}, xy[2];
     tg__to_edge_frame(o, d, len, src, xy);
     uint32_t tag = (w->tag & ~TG__VIA_FLAT) | (via_flat ? TG__VIA_FLAT : 0u);
-    tg__lm_rec re;
-    if (rec) re = tg__lm_turn(*rec, (d[0] - o[0]) / len, (d[1] - o[1]) / len);
-    return push_through(run, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag, rec ? &re : NULL);
+    if (!rec) return push_plain(run, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag);
+    tg__lm_rec re = tg__lm_turn(*rec, (d[0] - o[0]) / len, (d[1] - o[1]) / len);
+    return push_recorded(run, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag, &re);
 }
 
 
@@ -476,8 +501,8 @@ static tg__corner_hit hit_corner(const tg__window* w, const tg__frame* fr)
 /* Propagates window w into the face of h: the part left of C lights edge CA, the part right of
  * C edge CB; covering windows that reach C less shortly than the edge side's best are cut where
  * their rays cross the best one's ray to C inside the face (one angle, one split). */
-static bool cross_face(tg__field_run* run, uint32_t h, const tg__window* w, tg__corner_hit hc, int flat,
-                       const tg__lm_rec* rec)
+static TG__ALWAYS_INLINE bool cross_face(tg__field_run* run, uint32_t h, const tg__window* w, tg__corner_hit hc,
+                                         int flat, const tg__lm_rec* rec)
 {
     tg__field_scratch* fs = run->fs;
     const tg_geodesic* g = fs->g;
@@ -578,6 +603,7 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
     if (slit != TG_NONE) return cross_slit(run, h, slit, ids, n);
     /* rule 1: the shortest covering window to C over the list sets C and the edge side's split */
     uint32_t vc = g->tri[hp];
+    const tg__logmap* lm = run->q->logmap;
     if (!tg__field_grow(fs, &fs->hits, n)) return false;
     tg__corner_hit* hits = fs->hits.data;
     for (size_t i = 0; i < n; ++i) {
@@ -591,7 +617,7 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
             }
             tg__pred ray = {h, w->tag & ~TG__VIA_FLAT, w->sx, w->sy};
             tg__lm_rec rec;
-            if (hc.dc < fs->dist[vc] && lm_of(run, ids[i], w->tag, &rec)) /* the angle of the ray to C */
+            if (lm && hc.dc < fs->dist[vc] && lm_of(run, ids[i], w->tag, &rec)) /* the angle of the ray to C */
                 ((double*)fs->lm_theta.data)[vc] = tg__lm_angle(&rec, fr->cx - w->sx, fr->cy - w->sy);
             if (!relax_vertex(run, vc, hc.dc, ray)) return false;
         }
@@ -600,7 +626,8 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
         tg__window w;
         if (!take_window(run, ids[i], &w)) continue;
         tg__lm_rec rec;
-        if (!cross_face(run, h, &w, hits[i], flat, lm_of(run, ids[i], w.tag, &rec))) return false;
+        const tg__lm_rec* rp = lm ? lm_of(run, ids[i], w.tag, &rec) : NULL;
+        if (!(rp ? cross_face(run, h, &w, hits[i], flat, rp) : cross_face(run, h, &w, hits[i], flat, NULL))) return false;
     }
     return true;
 }

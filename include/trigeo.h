@@ -1299,7 +1299,9 @@ TG_API tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspac
  *  [0, 2 pi); at an edge point from its halfedge's start towards its end, in [0, pi] in the
  *  halfedge's face and (pi, 2 pi) beyond the edge; at a vertex from tg_mesh_vertex_halfedges'
  *  halfedge, scaled so the turn around the vertex is 2 pi (in [0, 2 pi)), or pi where the fan of
- *  faces around it is not closed (a boundary vertex: angles in [0, pi] from the boundary side).
+ *  faces around it is not closed (a boundary vertex: angles in [0, pi] from the boundary side;
+ *  at a vertex where several fans meet, a pinch or non-manifold vertex, only the reference fan is
+ *  scaled: directions into the other fans measure from their corners' sides, not meaningfully).
  *  reference: NULL, or a 3D vector (finite, not zero) whose projection onto the plane of the
  *  reference face (the face of the side angle 0 runs along) becomes angle 0: every angle is
  *  then the one above minus the projection's angle (scaled at a vertex), taken into [0, 2 pi)
@@ -1318,7 +1320,8 @@ TG_API tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspac
  *  (its projection at most 1e-9 of its length); a reference face of zero area),
  *  TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED. On error the outputs are untouched.
  *  Complexity: the field's, plus O(V) for the angles (BENCHMARKS.md: within 1.2x of the
- *  field's time); memory: the field's plus 24 bytes per window and 21 bytes per vertex.
+ *  field's time); memory: the field's plus 24 bytes per window slot and about 40 bytes per
+ *  vertex (how each got its distance, the angles, a stack).
  *  Thread-safe as tg_geodesic_field. */
 TG_API tg_status tg_geodesic_log_map(const tg_geodesic* g, tg_geodesic_workspace* workspace,
                               const tg_surface_point* source, const double* reference,

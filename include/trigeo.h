@@ -1505,6 +1505,77 @@ TG_API void tg_voronoi_boundaries_get_view(const tg_voronoi_boundaries* boundari
 /** NULL-safe. */
 TG_API void tg_voronoi_boundaries_destroy(tg_voronoi_boundaries* boundaries);
 
+/** Isolines of an exact field (tg_geodesic_isolines), an object of their own. */
+typedef struct tg_isolines tg_isolines;
+
+/** Exact isolines: for each level, the curves on the surface where the exact geodesic distance
+ *  from the sources (as tg_geodesic_field measures it: the nearest of several sources) equals
+ *  the level, as polylines of surface points.
+ *
+ *  Method: one propagation (tg_geodesic_field) that also records, for every face a level may
+ *  meet, the windows crossing it whose distance comes within the face's longest side of a level
+ *  (and the point sources in faces). The exact distance in a face is the least of those windows'
+ *  distances sigma + |p - s| (each only inside the wedge of rays it lights), of the corners'
+ *  distances plus the straight segment, and of the sources in the face. Along an edge the set
+ *  where the distance is at most the level is a union of intervals solved in closed form (one
+ *  square root per window, over every face at the edge), so crossings are exact to rounding, an
+ *  interior minimum of the distance along an edge (a window from a saddle vertex, a hole) gives
+ *  its two crossings, and the faces on both sides share them. Inside a face the curve is
+ *  followed along the exact circular arcs (centre a window's source image, radius level -
+ *  sigma), counterclockwise about the active centre (the nearer side on the left), with steps
+ *  short enough that a chord stays within 1e-3 of the face's longest side of its arc; each
+ *  point is projected back onto the level (Newton's step on the distance, whose gradient is the
+ *  unit vector from the active centre), and where the active centre changes the two circles'
+ *  intersection is inserted. The pieces of all faces are joined at their shared edge crossings.
+ *
+ *  Result: per level (in the order given), polylines of two or more points; a polyline is open
+ *  where the curve meets the mesh boundary (or stops: see below) and closed when it comes back
+ *  to its start (then its first point is repeated at its end and its closed flag is 1). Every
+ *  point is a surface point (an edge point where the curve crosses an edge, a face point inside
+ *  a face) with its 3D position and a face holding it.
+ *  Not covered (documented limits): a level equal to a vertex's distance to rounding (the curve
+ *  passes through the vertex: the polylines may break there); a closed curve inside one face
+ *  that meets no edge is found only around a source in that face (not around a local maximum of
+ *  the distance); curves in zero-area faces are not traced.
+ *
+ *  workspace: one of this solver's, or NULL for a temporary one. sources, source_count: as
+ *  tg_geodesic_field. levels: level_count >= 1 finite values >= 0 (any order, repeats allowed;
+ *  the same unit as the coordinates); levels beyond the options' max_distance give no polylines.
+ *  options: as tg_geodesic_field (the allocator also makes the result). out_isolines: receives
+ *  the result (NULL on error). out_vertex_distance: NULL or vertex_count doubles, the field as
+ *  tg_geodesic_field returns it (bit-identical). out_stats: may be NULL.
+ *  Errors: as tg_geodesic_field, and TG_ERR_INVALID_ARGUMENT for NULL levels or out_isolines, a
+ *  level_count of 0, a negative, NaN or infinite level. On error nothing is returned, nothing
+ *  leaks. Complexity: the field's propagation plus, per level, the faces it meets times the
+ *  windows recorded there (a run without levels records nothing: plain fields are not slowed).
+ *  Thread-safe as tg_geodesic_field. */
+TG_API tg_status tg_geodesic_isolines(const tg_geodesic* g, tg_geodesic_workspace* workspace,
+                                      const tg_surface_point* sources, size_t source_count, const double* levels,
+                                      size_t level_count, const tg_field_options* options,
+                                      tg_isolines** out_isolines, double* out_vertex_distance,
+                                      tg_field_stats* out_stats);
+
+/** Read-only view of isolines (valid until tg_isolines_destroy). Polylines are grouped by level:
+ *  those of level i are level_start[i] .. level_start[i + 1] - 1; polyline p is points
+ *  polyline_start[p] .. polyline_start[p + 1] - 1. */
+typedef struct tg_isolines_view {
+    size_t level_count;
+    const double* levels;            /**< the levels, as given */
+    const size_t* level_start;       /**< level_count + 1 offsets into the polylines */
+    size_t polyline_count;
+    const size_t* polyline_start;    /**< polyline_count + 1 offsets into the points */
+    const uint8_t* polyline_closed;  /**< 1: a closed curve (its first point repeated at its end) */
+    size_t point_count;
+    const tg_surface_point* points;  /**< edge points (crossings) and face points */
+    const uint32_t* faces;           /**< a face holding each point (the mesh's numbering) */
+    const double* xyz;               /**< 3 per point */
+} tg_isolines_view;
+
+/** Fills *out_view (all zero for NULL). O(1). Thread-safe. */
+TG_API void tg_isolines_get_view(const tg_isolines* isolines, tg_isolines_view* out_view);
+/** Frees the result (with the allocator it was made with). NULL is a no-op. */
+TG_API void tg_isolines_destroy(tg_isolines* isolines);
+
 /** Farthest-point sampling in exact geodesic distance: sample 0 is start_vertex, and each next
  *  sample is the vertex farthest from all earlier ones (the largest distance to the nearest
  *  sample; +inf, a component no sample reaches yet, counts as farthest; ties to the lowest

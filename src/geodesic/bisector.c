@@ -122,7 +122,7 @@ static tg_status evaluate_round(tg__nearest* nf, tg__field_scratch* fs, const tg
             const cross* c = &cs[x / PROBES];
             pts[k] = edge_point(g, c->h, c->at[x % PROBES]);
         }
-        tg__field_query q = {&sources[s], 1, pts, m, INFINITY, NULL, NULL, NULL, false, NULL, false, bound, NULL};
+        tg__field_query q = {&sources[s], 1, pts, m, INFINITY, NULL, NULL, NULL, false, NULL, false, bound, NULL, NULL, 0};
         tg__field_run run;
         tg_status st = tg__field_execute(fs, &q, &run);
         if (st != TG_OK) return st;

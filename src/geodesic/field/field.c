@@ -69,7 +69,7 @@ tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* ws, 
     tg__field_query q = {sources, source_count, points, point_count, tg__field_limit(g, options),
                          options && options->progress ? tg__field_report_single : NULL, (void*)options, NULL, false, NULL,
                          /* only the points wanted: the run stops once they are settled */
-                         point_count > 0 && !out_vertex_distance, NULL, NULL};
+                         point_count > 0 && !out_vertex_distance, NULL, NULL, NULL, 0};
     tg__field_run run;
     st = tg__field_execute(&ws->field, &q, &run);
     if (st == TG_OK) {

@@ -86,7 +86,16 @@ typedef struct tg__corner_hit {
     X(touched_h, uint32_t)     /* halfedges a run wrote */                                        \
     X(lm_win, tg__lm_rec)      /* log map runs: per window slot, its record (logmap.h) */         \
     X(lm_theta, double)        /* log map runs: per vertex lit by a window of the source, the    \
-                                  angle its ray left at (valid where pred says so) */
+                                  angle its ray left at (valid where pred says so) */     \
+    X(rec, tg__rec_window)     /* the windows near the levels (runs that record, record.c) */
+
+/* A window recorded while its list crossed face h / 3 (record.c, for isolines): its source image
+ * (sx, sy) and interval [b0, b1] in the frame of h, its offset sigma; a point source inside the
+ * face (no wedge) has h = 3f + 0, (sx, sy) in that frame and b0 > b1. */
+typedef struct tg__rec_window {
+    uint32_t h;
+    double sx, sy, sigma, b0, b1;
+} tg__rec_window;
 
 /* A query pair: query point `id` lies in face `face` with barycentrics `b` (solver numbering). */
 typedef struct tg__query_pair {
@@ -166,6 +175,11 @@ typedef struct tg__field_query {
                                         voronoi.c); elsewhere its distances may stay too large */
     tg__logmap* logmap;              /* NULL, or a log map (logmap.c): the source's windows carry
                                         records (q->trace must be set, single source) */
+    const double* record_levels;     /* NULL, or record_level_count ascending levels (solver
+                                        frame): every window crossing a face is recorded (fs->rec)
+                                        when a level lies within the face's size above its least
+                                        distance (record.c), and so is every point source */
+    size_t record_level_count;
 } tg__field_query;
 
 /* One run: its state while it propagates, then its results. */
@@ -254,6 +268,15 @@ void tg__field_queries_bound(tg__field_run* run);
 /* After the propagation (ok) the corners' paths, vertex queries and the distance limit; in any
  * case the face marks are cleared for the next run. */
 void tg__field_queries_finish(tg__field_run* run, bool ok);
+
+/* ---- recording the windows near some levels (record.c) ---- */
+
+/* The windows ids[0..n) of the list of h, trimmed, about to cross face h / 3: those whose least
+ * distance over the face lies within the face's longest side below a level are appended to
+ * fs->rec. false when out of memory. */
+bool tg__field_record_cross(tg__field_run* run, uint32_t h, const tg__window* pool, const uint32_t* ids, size_t n);
+/* A point source (or a point a zero-area face carries) at distance sigma inside face f. */
+bool tg__field_record_source(tg__field_run* run, const double src[3], double sigma, uint32_t f);
 
 /* ---- propagation (propagate.c) ---- */
 

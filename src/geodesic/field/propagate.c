@@ -378,6 +378,7 @@ static bool emit_face_point(tg__field_run* run, const double p[3], double sigma,
 {
     const tg_geodesic* g = run->g;
     tg__field_queries_source(run, p, sigma, f, origin);
+    if (run->q->record_levels && !tg__field_record_source(run, p, sigma, f)) return false;
     tg__pred inside = {TG__PRED_FACE | f, origin, 0.0, 0.0};
     for (int k = 0; k < 3; ++k) {
         uint32_t v = g->tri[3 * (size_t)f + (size_t)k];
@@ -600,6 +601,7 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
         tg__windows_trim(pool, ids, fs->keys.data, n, fr->len);
     }
     tg__field_queries_cross(run, h, pool, ids, n);
+    if (run->q->record_levels && !tg__field_record_cross(run, h, pool, ids, n)) return false;
     if (slit != TG_NONE) return cross_slit(run, h, slit, ids, n);
     /* rule 1: the shortest covering window to C over the list sets C and the edge side's split */
     uint32_t vc = g->tri[hp];

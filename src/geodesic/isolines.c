@@ -1,0 +1,852 @@
+/* isolines.c - exact isolines of a distance field: the curves where the exact geodesic distance
+ * equals given levels, from the windows one run records near them (field/record.c).
+ * Based on: J. S. B. Mitchell, D. M. Mount and C. H. Papadimitriou, "The discrete geodesic
+ *   problem", SIAM J. Comput. 16(4), 1987, §4 (inside a face the distance is the least of the
+ *   windows' sigma + |p - s| over the wedges they light, the corners' d(c) + |cp| and the sources
+ *   in the face: a lower envelope of cones, so its level sets are arcs of circles about the
+ *   source images, of radius level - sigma).
+ *
+ * Edges: {x : D(x) <= L} is the union over the pieces of {x in wedge : sigma + |x - s| <= L}, each
+ * an interval in closed form (a line against a disc and two half-planes), so the crossings are
+ * the ends of the union's parts inside the edge: exact to rounding, shared by the faces at the
+ * edge (every face's pieces are taken), and an interior minimum gives two crossings.
+ * Faces: from each crossing where the curve enters a face, the curve is walked counterclockwise
+ * about the active centre (the nearer side on the left: the gradient of D is the unit vector from
+ * that centre), one arc step at a time, each point projected back on the level (Newton on D,
+ * exact in one step while the centre stays), the two circles' intersection inserted where the
+ * centre changes, until the arc meets a side of the face: the exit snaps to the nearest crossing
+ * of that side. The pieces are joined at their crossings into polylines. */
+#include "geodesic/workspace.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- one face's distance: its pieces ---- */
+
+/* A piece of the distance in a face: sigma + |p - c| for p in its wedge (k < 3: a window in the
+ * frame of side k, its image (sx, sy) and interval [b0, b1]; k == 3: everywhere, a corner or a
+ * source in the face, `source` then set). (cx, cy): the centre in the face's frame. */
+typedef struct piece {
+    uint32_t k, source;
+    double sx, sy, b0, b1;
+    double cx, cy, sigma;
+} piece;
+
+/* A face in its own frame (that of halfedge 3f): corners c[i], sides i = c[i] -> c[i + 1] of
+ * length len[i] and direction u[i] (the face on their left). */
+typedef struct face_geo {
+    uint32_t f;
+    double c[3][2], u[3][2], len[3];
+    double span; /* longest side */
+} face_geo;
+
+/* A crossing of one level: on the edge of halfedge e (the lowest of its ring) at x from tri[e]. */
+typedef struct crossing {
+    uint32_t e;
+    double x;
+} crossing;
+
+/* A walked piece of curve in one face: from crossing a to crossing b (indices of the level's
+ * crossings; TG_NONE: the walk stopped there), through the face points [p0, p1) of `pts`; or a
+ * closed curve about a source in the face (a == b == TG_NONE, loop set). */
+typedef struct segment {
+    uint32_t a, b, face, loop;
+    size_t p0, p1;
+} segment;
+
+/* Every buffer of one call, made with the call's allocator. */
+typedef struct iso_state {
+    const tg_geodesic* g;
+    const tg_allocator* alloc;
+    const double* dist;          /* the run's vertex distances (solver numbering and frame) */
+    const tg__rec_window* rec;   /* recorded windows, by face through rec_start / rec_order */
+    size_t* rec_start;           /* F + 1 */
+    uint32_t* rec_order;
+    uint32_t* edge_first;        /* 3F, by the ring's lowest halfedge: its first crossing, TG_NONE
+                                    while not computed for this level */
+    uint32_t* edge_count;
+    tg__vec edges_done;          /* uint32_t: halfedges set in edge_first this level */
+    tg__vec pieces, pieces2;     /* piece: the face walked, a face at an edge */
+    tg__vec spans;               /* double[2]: intervals of one edge */
+    tg__vec cross;               /* crossing: this level's */
+    tg__vec segs;                /* segment: this level's */
+    tg__vec pts;                 /* tg__node: face points of this level's segments */
+    /* the result, all levels */
+    tg__vec out_nodes;           /* tg__node */
+    tg__vec out_faces;           /* uint32_t (solver numbering) */
+    tg__vec out_pstart;          /* size_t */
+    tg__vec out_closed;          /* uint8_t */
+    tg__vec adj_start, adj, used; /* chaining: uint32_t */
+} iso_state;
+
+static void face_geo_of(const tg_geodesic* g, uint32_t f, face_geo* fg)
+{
+    const tg__frame* fr = &g->frame[3 * (size_t)f];
+    fg->f = f;
+    fg->c[0][0] = 0.0, fg->c[0][1] = 0.0;
+    fg->c[1][0] = fr->len, fg->c[1][1] = 0.0;
+    fg->c[2][0] = fr->cx, fg->c[2][1] = fr->cy;
+    fg->span = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        const double* a = fg->c[i];
+        const double* b = fg->c[(i + 1) % 3];
+        double len = g->frame[3 * (size_t)f + (size_t)i].len;
+        fg->len[i] = len;
+        fg->u[i][0] = len > 0.0 ? (b[0] - a[0]) / len : 0.0;
+        fg->u[i][1] = len > 0.0 ? (b[1] - a[1]) / len : 0.0;
+        if (len > fg->span) fg->span = len;
+    }
+}
+
+/* p (face frame) in the frame of side k. */
+static void to_side(const face_geo* fg, int k, const double p[2], double out[2])
+{
+    double qx = p[0] - fg->c[k][0], qy = p[1] - fg->c[k][1];
+    out[0] = qx * fg->u[k][0] + qy * fg->u[k][1];
+    out[1] = fg->u[k][0] * qy - fg->u[k][1] * qx;
+}
+
+static bool push(const tg_allocator* a, tg__vec* v, const void* item)
+{
+    if (!tg__vec_reserve(a, v, 1)) return false;
+    memcpy((char*)v->data + v->count * v->elem, item, v->elem);
+    v->count++;
+    return true;
+}
+
+/* The pieces of face f into v (cleared first): its recorded windows, its corners, its sources. */
+static bool pieces_of(iso_state* st, const face_geo* fg, tg__vec* v)
+{
+    const tg_geodesic* g = st->g;
+    uint32_t f = fg->f;
+    v->count = 0;
+    for (size_t i = st->rec_start[f]; i < st->rec_start[f + 1]; ++i) {
+        const tg__rec_window* r = &st->rec[st->rec_order[i]];
+        piece p;
+        memset(&p, 0, sizeof p);
+        p.sigma = r->sigma;
+        if (!(r->b0 < r->b1)) { /* a point source, in the face's frame */
+            p.k = 3, p.source = 1, p.cx = r->sx, p.cy = r->sy;
+        } else {
+            uint32_t k = r->h % 3;
+            /* the snap of query.c: rays within 1e-12 of the edge beyond an end still count */
+            double snap = 1e-12 * fg->len[k];
+            p.k = k, p.sx = r->sx, p.sy = r->sy, p.b0 = r->b0 - snap, p.b1 = r->b1 + snap;
+            double vx = -fg->u[k][1], vy = fg->u[k][0];
+            p.cx = fg->c[k][0] + r->sx * fg->u[k][0] + r->sy * vx;
+            p.cy = fg->c[k][1] + r->sx * fg->u[k][1] + r->sy * vy;
+        }
+        if (!push(st->alloc, v, &p)) return false;
+    }
+    for (int i = 0; i < 3; ++i) {
+        double d = st->dist[g->tri[3 * (size_t)f + (size_t)i]];
+        if (!(d < INFINITY)) continue;
+        piece p;
+        memset(&p, 0, sizeof p);
+        p.k = 3, p.cx = fg->c[i][0], p.cy = fg->c[i][1], p.sigma = d;
+        if (!push(st->alloc, v, &p)) return false;
+    }
+    return true;
+}
+
+/* Does the piece's wedge hold p (face frame)? As query.c decides it: where the ray from the image
+ * to p crosses the window's edge. */
+static bool piece_holds(const face_geo* fg, const piece* pc, const double p[2])
+{
+    if (pc->k == 3) return true;
+    double q[2];
+    to_side(fg, (int)pc->k, p, q);
+    double xs = pc->sx + (q[0] - pc->sx) * (-pc->sy) / (q[1] - pc->sy);
+    return xs >= pc->b0 && xs <= pc->b1;
+}
+
+/* The distance at p (face frame) and its piece (*out_arg, TG_NONE when none holds p). */
+static double eval_at(const face_geo* fg, const piece* pcs, size_t n, const double p[2], uint32_t* out_arg)
+{
+    double best = INFINITY;
+    uint32_t arg = TG_NONE;
+    for (size_t i = 0; i < n; ++i) {
+        const piece* pc = &pcs[i];
+        double dx = p[0] - pc->cx, dy = p[1] - pc->cy;
+        double d = pc->sigma + sqrt(dx * dx + dy * dy);
+        if (d < best && piece_holds(fg, pc, p)) best = d, arg = (uint32_t)i;
+    }
+    *out_arg = arg;
+    return best;
+}
+
+/* The part of side m (x from c[m], in [0, len]) where the piece is at most L: [*lo, *hi];
+ * false when empty. */
+static bool side_interval(const face_geo* fg, const piece* pc, int m, double L, double* lo, double* hi)
+{
+    double r = L - pc->sigma;
+    if (!(r >= 0.0)) return false;
+    double qx = fg->c[m][0] - pc->cx, qy = fg->c[m][1] - pc->cy, ux = fg->u[m][0], uy = fg->u[m][1];
+    double a = -(qx * ux + qy * uy), b = fabs(ux * qy - uy * qx);
+    if (b > r) return false;
+    double w = sqrt((r - b) * (r + b));
+    double x0 = a - w, x1 = a + w;
+    if (pc->k < 3) { /* the wedge: two half-planes, each linear in x (see piece_holds) */
+        double o[2], du[2], s[2] = {pc->sx, pc->sy};
+        to_side(fg, (int)pc->k, fg->c[m], o);
+        int k = (int)pc->k;
+        du[0] = ux * fg->u[k][0] + uy * fg->u[k][1];
+        du[1] = fg->u[k][0] * uy - fg->u[k][1] * ux;
+        for (int side = 0; side < 2; ++side) {
+            double dx = (side ? pc->b1 : pc->b0) - s[0], dy = -s[1];
+            /* cross(d, P(x) - s) = alpha + beta x; xs >= b0 <=> <= 0, xs <= b1 <=> >= 0 */
+            double alpha = dx * (o[1] - s[1]) - dy * (o[0] - s[0]);
+            double beta = dx * du[1] - dy * du[0];
+            if (side) alpha = -alpha, beta = -beta; /* both as alpha + beta x <= 0 */
+            if (beta > 0.0) {
+                double t = -alpha / beta;
+                if (t < x1) x1 = t;
+            } else if (beta < 0.0) {
+                double t = -alpha / beta;
+                if (t > x0) x0 = t;
+            } else if (alpha > 0.0) {
+                return false;
+            }
+        }
+    }
+    if (x0 < 0.0) x0 = 0.0;
+    if (x1 > fg->len[m]) x1 = fg->len[m];
+    if (!(x0 <= x1)) return false;
+    *lo = x0, *hi = x1;
+    return true;
+}
+
+static int cmp_span(const void* x, const void* y)
+{
+    const double *a = x, *b = y;
+    return (a[0] > b[0]) - (a[0] < b[0]);
+}
+
+/* The lowest halfedge of h's edge (the edge's name). */
+static uint32_t edge_name(const tg_geodesic* g, uint32_t h)
+{
+    uint32_t e = h;
+    for (uint32_t o = g->ring[h]; o != h; o = g->ring[o])
+        if (o < e) e = o;
+    return e;
+}
+
+static bool face_traced(const tg_geodesic* g, uint32_t f)
+{
+    return !(g->fflags[f] & (TG__F_SKIP | TG__F_FLAT));
+}
+
+/* The crossings of level L on the edge named e, computed once per level from every face at it. */
+static bool edge_crossings(iso_state* st, uint32_t e, double L)
+{
+    const tg_geodesic* g = st->g;
+    if (st->edge_first[e] != TG_NONE) return true;
+    st->edge_first[e] = (uint32_t)st->cross.count, st->edge_count[e] = 0;
+    if (!push(st->alloc, &st->edges_done, &e)) return false;
+    double len = g->frame[e].len;
+    if (!(len > 0.0)) return true;
+    st->spans.count = 0;
+    uint32_t o = e;
+    do {
+        uint32_t f = o / 3;
+        if (face_traced(g, f)) {
+            face_geo fg;
+            face_geo_of(g, f, &fg);
+            if (!pieces_of(st, &fg, &st->pieces2)) return false;
+            const piece* pcs = st->pieces2.data;
+            int m = (int)(o % 3);
+            bool same = g->tri[o] == g->tri[e];
+            for (size_t i = 0; i < st->pieces2.count; ++i) {
+                double lo, hi;
+                if (!side_interval(&fg, &pcs[i], m, L, &lo, &hi)) continue;
+                double iv[2] = {same ? lo : len - hi, same ? hi : len - lo};
+                if (!tg__vec_reserve(st->alloc, &st->spans, 1)) return false;
+                memcpy((double*)st->spans.data + 2 * st->spans.count++, iv, sizeof iv);
+            }
+        }
+        o = g->ring[o];
+    } while (o != e);
+    double* iv = st->spans.data;
+    size_t n = st->spans.count;
+    if (n > 1) qsort(iv, n, 2 * sizeof(double), cmp_span);
+    /* parts of the union; gaps of rounding size (pieces meeting at a wedge's edge) are no gaps */
+    double gap = 1e-12 * len;
+    for (size_t i = 0; i < n;) {
+        double lo = iv[2 * i], hi = iv[2 * i + 1];
+        size_t j = i + 1;
+        for (; j < n && iv[2 * j] <= hi + gap; ++j)
+            if (iv[2 * j + 1] > hi) hi = iv[2 * j + 1];
+        crossing c = {e, 0.0};
+        if (lo > 0.0) {
+            c.x = lo;
+            if (!push(st->alloc, &st->cross, &c)) return false;
+            st->edge_count[e]++;
+        }
+        if (hi < len) {
+            c.x = hi;
+            if (!push(st->alloc, &st->cross, &c)) return false;
+            st->edge_count[e]++;
+        }
+        i = j;
+    }
+    return true;
+}
+
+/* ---- walking the curve through one face ---- */
+
+#define MAX_STEPS 20000
+
+/* Where crossing c lies on side m of the face (x from c[m]). */
+static double crossing_on_side(const tg_geodesic* g, const crossing* c, uint32_t h)
+{
+    return g->tri[h] == g->tri[c->e] ? c->x : g->frame[c->e].len - c->x;
+}
+
+/* The crossing of this level on side m of the face nearest to x (from c[m]); TG_NONE if none. */
+static uint32_t nearest_crossing(iso_state* st, const face_geo* fg, int m, double x, double L, bool* ok)
+{
+    const tg_geodesic* g = st->g;
+    uint32_t h = 3 * fg->f + (uint32_t)m, e = edge_name(g, h);
+    if (!edge_crossings(st, e, L)) {
+        *ok = false;
+        return TG_NONE;
+    }
+    const crossing* cs = st->cross.data;
+    uint32_t best = TG_NONE;
+    double bd = INFINITY;
+    for (uint32_t i = st->edge_first[e]; i < st->edge_first[e] + st->edge_count[e]; ++i) {
+        double d = fabs(crossing_on_side(g, &cs[i], h) - x);
+        if (d < bd) bd = d, best = i;
+    }
+    return best;
+}
+
+/* The angle step about a centre at distance r: the arc's sagitta within half the tolerance
+ * (1e-3 of the face's longest side), a chord at most a quarter of that side, at most pi / 4. */
+static double step_angle(double r, double span)
+{
+    double tol = 0.5e-3 * span;
+    double a = TG__PI / 4.0;
+    if (r > tol) {
+        double s = 4.0 * asin(sqrt(tol / (2.0 * r)));
+        if (s < a) a = s;
+        double c = 0.25 * span / r;
+        if (c < a) a = c;
+    }
+    return a;
+}
+
+/* The first angle in (amin, amax] at which the circle about c through p (counterclockwise) meets a
+ * side of the face; its side in *out_m, its abscissa along it in *out_x. */
+static double first_exit(const face_geo* fg, const double c[2], const double p[2], double amin, double amax,
+                         int* out_m, double* out_x)
+{
+    double vx = p[0] - c[0], vy = p[1] - c[1], r = sqrt(vx * vx + vy * vy);
+    double best = INFINITY;
+    for (int m = 0; m < 3; ++m) {
+        double qx = fg->c[m][0] - c[0], qy = fg->c[m][1] - c[1], ux = fg->u[m][0], uy = fg->u[m][1];
+        double a = -(qx * ux + qy * uy), b = ux * qy - uy * qx;
+        if (!(fabs(b) <= r)) continue;
+        double w = sqrt((r - fabs(b)) * (r + fabs(b)));
+        for (int s = -1; s <= 1; s += 2) {
+            double x = a + s * w;
+            if (x < 0.0 || x > fg->len[m]) continue;
+            double ex = qx + x * ux, ey = qy + x * uy; /* from the centre */
+            double ang = atan2(vx * ey - vy * ex, vx * ex + vy * ey);
+            if (ang < 0.0) ang += 2.0 * TG__PI;
+            if (ang > amin && ang <= amax && ang < best) best = ang, *out_m = m, *out_x = x;
+        }
+    }
+    return best;
+}
+
+static bool inside_face(const face_geo* fg, const double p[2])
+{
+    for (int m = 0; m < 3; ++m) {
+        double qx = p[0] - fg->c[m][0], qy = p[1] - fg->c[m][1];
+        if (fg->u[m][0] * qy - fg->u[m][1] * qx < -1e-12 * fg->span) return false;
+    }
+    return true;
+}
+
+/* The face point of p (face frame). */
+static tg__node face_node(const face_geo* fg, const double p[2])
+{
+    const double *a = fg->c[0], *b = fg->c[1], *c = fg->c[2];
+    double det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+    double l1 = ((p[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (p[1] - a[1])) / det;
+    double l2 = ((b[0] - a[0]) * (p[1] - a[1]) - (p[0] - a[0]) * (b[1] - a[1])) / det;
+    /* a point on a side may come out an ulp outside: clamped, as a valid face point */
+    double w[3] = {1.0 - l1 - l2, l1, l2}, sum = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        if (!(w[i] > 0.0)) w[i] = 0.0;
+        sum += w[i];
+    }
+    tg__node nd = {TG__NODE_FACE, fg->f, 0.0, 0.0, {w[0] / sum, w[1] / sum, w[2] / sum}};
+    return nd;
+}
+
+static bool add_point(iso_state* st, const face_geo* fg, const double p[2])
+{
+    tg__node nd = face_node(fg, p);
+    return push(st->alloc, &st->pts, &nd);
+}
+
+/* p rotated counterclockwise by angle a about the centre of piece pc. */
+static void rotate_about(const piece* pc, const double p[2], double a, double out[2])
+{
+    double vx = p[0] - pc->cx, vy = p[1] - pc->cy, cs = cos(a), sn = sin(a);
+    out[0] = pc->cx + cs * vx - sn * vy, out[1] = pc->cy + sn * vx + cs * vy;
+}
+
+/* Is piece k the distance at q (it holds q and no piece is shorter there beyond rounding)? */
+static bool piece_rules(const face_geo* fg, const piece* pcs, size_t n, uint32_t k, const double q[2], double tol)
+{
+    if (!piece_holds(fg, &pcs[k], q)) return false;
+    uint32_t arg;
+    double d = eval_at(fg, pcs, n, q, &arg);
+    double dx = q[0] - pcs[k].cx, dy = q[1] - pcs[k].cy;
+    return d >= pcs[k].sigma + sqrt(dx * dx + dy * dy) - tol;
+}
+
+/* Walks the curve of level L into face fg from crossing ci on its side m (x from c[m]) when it
+ * enters there; appends a segment. Along the arc of the ruling piece k until it stops ruling
+ * (another piece shorter, or its wedge ends): the angle where it stops is found by bisection,
+ * and the walk goes on from there along the arc of the piece that rules beyond. */
+static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, double x, double L)
+{
+    const piece* pcs = st->pieces.data;
+    size_t n = st->pieces.count;
+    double tol = 1e-14 * (L + fg->span);
+    double p[2] = {fg->c[m][0] + x * fg->u[m][0], fg->c[m][1] + x * fg->u[m][1]};
+    uint32_t j;
+    eval_at(fg, pcs, n, p, &j);
+    if (j == TG_NONE) return true;
+    double gx = p[0] - pcs[j].cx, gy = p[1] - pcs[j].cy;
+    /* the tangent (-gy, gx) must point into the face: against the inward normal (-uy, ux) */
+    double into = -gy * -fg->u[m][1] + gx * fg->u[m][0];
+    if (!(into > 1e-12 * sqrt(gx * gx + gy * gy))) return true;
+    segment sg = {ci, TG_NONE, fg->f, 0, st->pts.count, 0};
+    bool ok = true;
+    for (int step = 0; step < MAX_STEPS; ++step) {
+        const piece* pc = &pcs[j];
+        double c[2] = {pc->cx, pc->cy};
+        double vx = p[0] - c[0], vy = p[1] - c[1], r = sqrt(vx * vx + vy * vy);
+        if (!(r > 0.0)) break;
+        double da = step_angle(r, fg->span);
+        int em = -1;
+        double ex = 0.0;
+        double ea = first_exit(fg, c, p, step == 0 ? 1e-9 : 0.0, da, &em, &ex);
+        double at = ea <= da ? ea : da, q[2];
+        rotate_about(pc, p, at, q);
+        if (piece_rules(fg, pcs, n, j, q, tol)) {
+            if (ea <= da) { /* the arc leaves the face: at a crossing of that side */
+                sg.b = nearest_crossing(st, fg, em, ex, L, &ok);
+                if (!ok) return false;
+                break;
+            }
+            if (!add_point(st, fg, q)) return false;
+            p[0] = q[0], p[1] = q[1];
+            continue;
+        }
+        /* the piece stops ruling within (0, at]: where, by bisection on the angle */
+        double lo = 0.0, hi = at;
+        for (int it = 0; it < 60 && hi - lo > 1e-15 * at; ++it) {
+            double mid = 0.5 * (lo + hi), t[2];
+            rotate_about(pc, p, mid, t);
+            if (piece_rules(fg, pcs, n, j, t, tol)) lo = mid;
+            else hi = mid;
+        }
+        double xk[2], beyond[2];
+        rotate_about(pc, p, lo, xk);
+        rotate_about(pc, p, hi, beyond);
+        uint32_t next;
+        eval_at(fg, pcs, n, beyond, &next);
+        if (next == TG_NONE || next == j) break; /* nothing rules beyond: the walk stops */
+        /* onto the next arc (D is continuous: it passes within rounding of xk) */
+        double nx = xk[0] - pcs[next].cx, ny = xk[1] - pcs[next].cy, nr = sqrt(nx * nx + ny * ny);
+        double want = L - pcs[next].sigma;
+        if (nr > 0.0 && fabs(nr - want) <= 1e-9 * fg->span) xk[0] = pcs[next].cx + nx * want / nr, xk[1] = pcs[next].cy + ny * want / nr;
+        if (lo > 0.0 && !add_point(st, fg, xk)) return false;
+        p[0] = xk[0], p[1] = xk[1], j = next;
+    }
+    sg.p1 = st->pts.count;
+    return push(st->alloc, &st->segs, &sg);
+}
+
+/* A closed curve about a source inside the face that meets no side: sampled whole when every
+ * sample is on the level (no other piece below it). */
+static bool source_loop(iso_state* st, const face_geo* fg, const piece* pc, double L)
+{
+    const piece* pcs = st->pieces.data;
+    double r = L - pc->sigma;
+    if (!(r > 0.0)) return true;
+    for (int m = 0; m < 3; ++m) { /* the circle must clear every side */
+        double qx = pc->cx - fg->c[m][0], qy = pc->cy - fg->c[m][1];
+        if (!(fg->u[m][0] * qy - fg->u[m][1] * qx > r)) return true;
+    }
+    double da = step_angle(r, fg->span);
+    int count = (int)ceil(2.0 * TG__PI / da);
+    if (count < 8) count = 8;
+    size_t p0 = st->pts.count;
+    for (int i = 0; i < count; ++i) {
+        double a = 2.0 * TG__PI * i / count, q[2] = {pc->cx + r * cos(a), pc->cy + r * sin(a)};
+        uint32_t arg;
+        if (fabs(eval_at(fg, pcs, st->pieces.count, q, &arg) - L) > 1e-12 * (L + fg->span)) {
+            st->pts.count = p0;
+            return true;
+        }
+        if (!add_point(st, fg, q)) return false;
+    }
+    segment sg = {TG_NONE, TG_NONE, fg->f, 1, p0, st->pts.count};
+    return push(st->alloc, &st->segs, &sg);
+}
+
+/* Can level L meet face f? D is 1-Lipschitz: within the face it lies in
+ * [max d(c) - span, min d(c) + span] over its reached corners. */
+static bool face_meets(const iso_state* st, uint32_t f, double L, double span)
+{
+    double lo = -INFINITY, hi = INFINITY;
+    for (int i = 0; i < 3; ++i) {
+        double d = st->dist[st->g->tri[3 * (size_t)f + (size_t)i]];
+        if (!(d < INFINITY)) continue;
+        if (d - span > lo) lo = d - span;
+        if (d + span < hi) hi = d + span;
+    }
+    double m = 1e-12 * (L + span);
+    return hi < INFINITY && L >= lo - m && L <= hi + m;
+}
+
+/* Every segment of level L. */
+static bool trace_level(iso_state* st, double L)
+{
+    const tg_geodesic* g = st->g;
+    st->cross.count = st->segs.count = st->pts.count = 0;
+    for (uint32_t f = 0; f < g->face_count; ++f) {
+        if (!face_traced(g, f)) continue;
+        face_geo fg;
+        face_geo_of(g, f, &fg);
+        if (!face_meets(st, f, L, fg.span)) continue;
+        if (!pieces_of(st, &fg, &st->pieces)) return false;
+        for (int m = 0; m < 3; ++m) {
+            uint32_t h = 3 * f + (uint32_t)m, e = edge_name(g, h);
+            if (!edge_crossings(st, e, L)) return false;
+            for (uint32_t i = st->edge_first[e]; i < st->edge_first[e] + st->edge_count[e]; ++i) {
+                double x = crossing_on_side(g, &((const crossing*)st->cross.data)[i], h);
+                if (!walk_from(st, &fg, i, m, x, L)) return false;
+            }
+        }
+        for (size_t i = 0; i < st->pieces.count; ++i) {
+            piece pc = ((const piece*)st->pieces.data)[i];
+            if (pc.source && !source_loop(st, &fg, &pc, L)) return false;
+        }
+    }
+    const uint32_t* done = st->edges_done.data;
+    for (size_t i = 0; i < st->edges_done.count; ++i) st->edge_first[done[i]] = TG_NONE;
+    st->edges_done.count = 0;
+    return true;
+}
+
+/* ---- joining the segments into polylines ---- */
+
+static bool out_node(iso_state* st, const tg__node* nd, uint32_t face)
+{
+    return push(st->alloc, &st->out_nodes, nd) && push(st->alloc, &st->out_faces, &face);
+}
+
+static bool out_crossing(iso_state* st, uint32_t ci, uint32_t face)
+{
+    const crossing* c = &((const crossing*)st->cross.data)[ci];
+    double len = st->g->frame[c->e].len;
+    tg__node nd = tg__node_edge(c->e, c->x / len, (len - c->x) / len);
+    return out_node(st, &nd, face);
+}
+
+/* Appends segment s walked from end `from` (its a or b), its far crossing included. */
+static bool out_segment(iso_state* st, const segment* s, uint32_t from)
+{
+    const tg__node* pts = st->pts.data;
+    bool fwd = from == s->a;
+    for (size_t i = 0; i < s->p1 - s->p0; ++i)
+        if (!out_node(st, &pts[fwd ? s->p0 + i : s->p1 - 1 - i], s->face)) return false;
+    uint32_t to = fwd ? s->b : s->a;
+    return to == TG_NONE || out_crossing(st, to, s->face);
+}
+
+static bool close_polyline(iso_state* st, size_t first, uint8_t closed)
+{
+    size_t end = st->out_nodes.count;
+    if (end - first < 2) { /* a lone point: dropped */
+        st->out_nodes.count = st->out_faces.count = first;
+        return true;
+    }
+    return push(st->alloc, &st->out_pstart, &end) && push(st->alloc, &st->out_closed, &closed);
+}
+
+/* The segments of this level chained at their crossings: first from the crossings where a curve
+ * ends (one segment: the mesh boundary, a walk that stopped), then the closed curves. */
+static bool chain_level(iso_state* st)
+{
+    const tg_allocator* a = st->alloc;
+    size_t nc = st->cross.count, ns = st->segs.count;
+    const segment* segs = st->segs.data;
+    if (!tg__vec_fit(a, &st->adj_start, nc + 1) || !tg__vec_fit(a, &st->adj, 2 * ns + 1) ||
+        !tg__vec_fit(a, &st->used, ns + 1))
+        return false;
+    uint32_t *start = st->adj_start.data, *adj = st->adj.data, *used = st->used.data;
+    memset(start, 0, (nc + 1) * sizeof *start);
+    for (size_t i = 0; i < ns; ++i) {
+        if (segs[i].a != TG_NONE) start[segs[i].a + 1]++;
+        if (segs[i].b != TG_NONE) start[segs[i].b + 1]++;
+    }
+    for (size_t v = 0; v < nc; ++v) start[v + 1] += start[v];
+    for (size_t i = 0; i < ns; ++i) {
+        if (segs[i].a != TG_NONE) adj[start[segs[i].a]++] = (uint32_t)i;
+        if (segs[i].b != TG_NONE) adj[start[segs[i].b]++] = (uint32_t)i;
+    }
+    for (size_t v = nc; v > 0; --v) start[v] = start[v - 1];
+    start[0] = 0;
+    memset(used, 0, (ns + 1) * sizeof *used);
+    for (int pass = 0; pass < 2; ++pass) {
+        for (size_t s0 = 0; s0 < ns; ++s0) {
+            const segment* s = &segs[s0];
+            if (used[s0]) continue;
+            size_t first = st->out_nodes.count;
+            if (s->loop) {
+                if (pass == 0) continue;
+                used[s0] = 1;
+                if (!out_segment(st, s, s->a)) return false;
+                tg__node nd = ((const tg__node*)st->pts.data)[s->p0];
+                if (!out_node(st, &nd, s->face) || !close_polyline(st, first, 1)) return false;
+                continue;
+            }
+            /* pass 0: only from an end of a curve (a crossing with one segment, or none) */
+            uint32_t v0 = s->a;
+            bool a_end = v0 == TG_NONE || start[v0 + 1] - start[v0] == 1;
+            bool b_end = s->b == TG_NONE || start[s->b + 1] - start[s->b] == 1;
+            if (pass == 0 && !a_end && !b_end) continue;
+            if (pass == 0 && !a_end) v0 = s->b;
+            uint32_t sg = (uint32_t)s0, cur = v0;
+            if (cur != TG_NONE && !out_crossing(st, cur, s->face)) return false;
+            bool closed = false;
+            while (sg != TG_NONE) {
+                used[sg] = 1;
+                if (!out_segment(st, &segs[sg], cur)) return false;
+                cur = segs[sg].a == cur ? segs[sg].b : segs[sg].a;
+                sg = TG_NONE;
+                if (cur == TG_NONE) break;
+                if (cur == v0) {
+                    closed = true;
+                    break;
+                }
+                for (uint32_t q = start[cur]; q < start[cur + 1]; ++q)
+                    if (!used[adj[q]]) {
+                        sg = adj[q];
+                        break;
+                    }
+            }
+            if (!close_polyline(st, first, closed)) return false;
+        }
+    }
+    return true;
+}
+
+/* ---- the result ---- */
+
+struct tg_isolines {
+    tg_allocator allocator;
+    size_t level_count, polyline_count, point_count;
+    double* levels;
+    size_t *level_start, *polyline_start;
+    uint8_t* closed;
+    tg_surface_point* points;
+    uint32_t* faces;
+    double* xyz;
+};
+
+void tg_isolines_destroy(tg_isolines* r)
+{
+    if (!r) return;
+    tg_allocator a = r->allocator;
+    void* arrays[] = {r->levels, r->level_start, r->polyline_start, r->closed, r->points, r->faces, r->xyz};
+    for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i) tg__free(&a, arrays[i]);
+    tg__free(&a, r);
+}
+
+void tg_isolines_get_view(const tg_isolines* r, tg_isolines_view* out)
+{
+    memset(out, 0, sizeof *out);
+    if (!r) return;
+    out->level_count = r->level_count, out->levels = r->levels, out->level_start = r->level_start;
+    out->polyline_count = r->polyline_count, out->polyline_start = r->polyline_start;
+    out->polyline_closed = r->closed, out->point_count = r->point_count, out->points = r->points;
+    out->faces = r->faces, out->xyz = r->xyz;
+}
+
+static tg_isolines* make_result(const iso_state* st, const tg_allocator* a, const double* levels, size_t nl,
+                                const size_t* level_start)
+{
+    const tg_geodesic* g = st->g;
+    tg_isolines* r = tg__alloc(a, sizeof *r);
+    if (!r) return NULL;
+    memset(r, 0, sizeof *r);
+    r->allocator = *a;
+    size_t np = st->out_nodes.count, npl = st->out_closed.count;
+    r->level_count = nl, r->polyline_count = npl, r->point_count = np;
+    r->levels = tg__alloc_array(a, nl, sizeof(double));
+    r->level_start = tg__alloc_array(a, nl + 1, sizeof(size_t));
+    r->polyline_start = tg__alloc_array(a, npl + 1, sizeof(size_t));
+    r->closed = tg__alloc_array(a, npl ? npl : 1, 1);
+    r->points = tg__alloc_array(a, np ? np : 1, sizeof(tg_surface_point));
+    r->faces = tg__alloc_array(a, np ? np : 1, sizeof(uint32_t));
+    r->xyz = tg__alloc_array(a, np ? 3 * np : 1, sizeof(double));
+    if (!r->levels || !r->level_start || !r->polyline_start || !r->closed || !r->points || !r->faces || !r->xyz) {
+        tg_isolines_destroy(r);
+        return NULL;
+    }
+    memcpy(r->levels, levels, nl * sizeof(double));
+    memcpy(r->level_start, level_start, (nl + 1) * sizeof(size_t));
+    r->polyline_start[0] = 0;
+    if (npl) memcpy(r->polyline_start + 1, st->out_pstart.data, npl * sizeof(size_t));
+    if (npl) memcpy(r->closed, st->out_closed.data, npl);
+    const tg__node* nodes = st->out_nodes.data;
+    const uint32_t* faces = st->out_faces.data;
+    for (size_t i = 0; i < np; ++i) {
+        r->points[i] = tg__surface_out(g, &nodes[i]);
+        r->faces[i] = tg__face_out(g, faces[i]);
+        tg_surface_point_position(g->mesh, &r->points[i], r->xyz + 3 * i);
+    }
+    return r;
+}
+
+static void state_free(iso_state* st)
+{
+    const tg_allocator* a = st->alloc;
+    tg__free(a, st->rec_start);
+    tg__free(a, st->rec_order);
+    tg__free(a, st->edge_first);
+    tg__free(a, st->edge_count);
+    tg__vec* vs[] = {&st->edges_done, &st->pieces,    &st->pieces2,   &st->spans,      &st->cross,
+                     &st->segs,       &st->pts,       &st->out_nodes, &st->out_faces,  &st->out_pstart,
+                     &st->out_closed, &st->adj_start, &st->adj,       &st->used};
+    for (size_t i = 0; i < sizeof vs / sizeof vs[0]; ++i) tg__vec_free(a, vs[i]);
+}
+
+static int cmp_double(const void* x, const void* y)
+{
+    double a = *(const double*)x, b = *(const double*)y;
+    return (a > b) - (a < b);
+}
+
+/* The recorded windows grouped by face (a counting sort: the order within a face is the
+ * recording's, so the result is deterministic). */
+static bool group_records(iso_state* st, const tg__field_scratch* fs)
+{
+    const tg_geodesic* g = st->g;
+    size_t nr = fs->rec.count, nf = g->face_count;
+    st->rec = fs->rec.data;
+    st->rec_start = tg__calloc_array(st->alloc, nf + 2, sizeof(size_t));
+    st->rec_order = tg__alloc_array(st->alloc, nr ? nr : 1, sizeof(uint32_t));
+    if (!st->rec_start || !st->rec_order || nr > (size_t)UINT32_MAX) return false;
+    for (size_t i = 0; i < nr; ++i) st->rec_start[st->rec[i].h / 3 + 2]++;
+    for (size_t f = 0; f < nf; ++f) st->rec_start[f + 2] += st->rec_start[f + 1];
+    for (size_t i = 0; i < nr; ++i) st->rec_order[st->rec_start[st->rec[i].h / 3 + 1]++] = (uint32_t)i;
+    return true;
+}
+
+static void vec_init(iso_state* st)
+{
+    st->edges_done.elem = sizeof(uint32_t);
+    st->pieces.elem = st->pieces2.elem = sizeof(piece);
+    st->spans.elem = 2 * sizeof(double);
+    st->cross.elem = sizeof(crossing);
+    st->segs.elem = sizeof(segment);
+    st->pts.elem = st->out_nodes.elem = sizeof(tg__node);
+    st->out_faces.elem = sizeof(uint32_t);
+    st->out_pstart.elem = sizeof(size_t);
+    st->out_closed.elem = 1;
+    st->adj_start.elem = st->adj.elem = st->used.elem = sizeof(uint32_t);
+}
+
+/* The progress hook: the caller's callback with the run's figures. */
+static int report(void* user, const tg__field_run* run)
+{
+    const tg_field_options* opt = user;
+    tg_field_progress p;
+    tg__field_progress_of(run, &p);
+    return opt->progress(opt->progress_user, &p);
+}
+
+/* The run, then every level traced and chained (solver frame: levels times scale). */
+static tg_status isolines_of(const tg_geodesic* g, tg__field_scratch* fs, const tg_surface_point* sources,
+                             size_t source_count, const double* levels, size_t nl, const tg_field_options* options,
+                             const tg_allocator* a, tg_isolines** out, double* out_vertex_distance,
+                             tg_field_stats* out_stats)
+{
+    double* sorted = tg__alloc_array(a, nl, sizeof(double));
+    size_t* level_start = tg__alloc_array(a, nl + 1, sizeof(size_t));
+    iso_state st;
+    memset(&st, 0, sizeof st);
+    st.g = g, st.alloc = a;
+    vec_init(&st);
+    tg_status status = sorted && level_start ? TG_OK : TG_ERR_OUT_OF_MEMORY;
+    tg__field_run run;
+    double limit = tg__field_limit(g, options);
+    if (status == TG_OK) {
+        for (size_t i = 0; i < nl; ++i) sorted[i] = levels[i] * g->scale;
+        qsort(sorted, nl, sizeof *sorted, cmp_double);
+        bool progress = options && options->progress;
+        tg__field_query q = {sources, source_count, NULL, 0, limit, progress ? report : NULL, (void*)options,
+                             NULL, false, NULL, false, NULL, NULL, sorted, nl};
+        status = tg__field_execute(fs, &q, &run);
+    }
+    if (status == TG_OK) {
+        st.dist = run.vertex_dist;
+        size_t nh = 3 * (size_t)g->face_count;
+        st.edge_first = tg__alloc_array(a, nh ? nh : 1, sizeof(uint32_t));
+        st.edge_count = tg__alloc_array(a, nh ? nh : 1, sizeof(uint32_t));
+        if (!st.edge_first || !st.edge_count || !group_records(&st, fs)) status = TG_ERR_OUT_OF_MEMORY;
+        for (size_t h = 0; status == TG_OK && h < nh; ++h) st.edge_first[h] = TG_NONE;
+    }
+    for (size_t li = 0; status == TG_OK && li < nl; ++li) {
+        level_start[li] = st.out_closed.count;
+        double L = levels[li] * g->scale;
+        if (!(L <= limit)) continue;
+        if (!trace_level(&st, L) || !chain_level(&st)) status = TG_ERR_OUT_OF_MEMORY;
+    }
+    if (status == TG_OK) {
+        level_start[nl] = st.out_closed.count;
+        *out = make_result(&st, a, levels, nl, level_start);
+        if (!*out) status = TG_ERR_OUT_OF_MEMORY;
+    }
+    if (status == TG_OK) {
+        if (out_vertex_distance) tg__field_copy_out(&run, out_vertex_distance);
+        if (out_stats) *out_stats = run.stats;
+    }
+    state_free(&st);
+    tg__free(a, sorted);
+    tg__free(a, level_start);
+    return status;
+}
+
+tg_status tg_geodesic_isolines(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
+                               size_t source_count, const double* levels, size_t level_count,
+                               const tg_field_options* options, tg_isolines** out_isolines,
+                               double* out_vertex_distance, tg_field_stats* out_stats)
+{
+    if (!out_isolines) return TG_ERR_INVALID_ARGUMENT;
+    *out_isolines = NULL;
+    if (!levels || level_count == 0) return TG_ERR_INVALID_ARGUMENT;
+    for (size_t i = 0; i < level_count; ++i)
+        if (!(levels[i] >= 0.0 && levels[i] < INFINITY)) return TG_ERR_INVALID_ARGUMENT;
+    tg_status st = tg__field_check(g, sources, source_count, options);
+    if (st != TG_OK) return st;
+    tg_geodesic_workspace* own;
+    const tg_allocator* a = options && options->allocator ? options->allocator : &g->allocator;
+    st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
+    if (st != TG_OK) return st;
+    st = isolines_of(g, &ws->field, sources, source_count, levels, level_count, options, a, out_isolines,
+                     out_vertex_distance, out_stats);
+    tg__workspace_release(own);
+    return st;
+}

@@ -1,0 +1,262 @@
+/* test_isolines.c - exact isolines (tg_geodesic_isolines): every point at its level by the
+ * field's own point query (tg_geodesic_field_at, an independent evaluation), circles on a flat
+ * mesh, two crossings on edges whose distance dips below the level between its ends (a holed
+ * plate), one closed loop about a source on a closed surface, bad input. */
+#include "tg_test.h"
+#include "tg_test_geodesic.h"
+#include "tg_test_plate.h"
+
+#include <math.h>
+#include <string.h>
+
+/* The isolines of the sources at the levels, with the view; NULL on failure (counted). */
+static tg_isolines* iso_of(ctx* c, const tg_surface_point* src, size_t ns, const double* levels, size_t nl,
+                           tg_isolines_view* v)
+{
+    tg_isolines* iso = NULL;
+    CHECK_STATUS(tg_geodesic_isolines(c->geo, c->ws, src, ns, levels, nl, NULL, &iso, NULL, NULL), TG_OK);
+    tg_isolines_get_view(iso, v);
+    return iso;
+}
+
+/* Every point of every polyline at its level (field_at, relative rel), polylines of two or more
+ * points, closed ones ending where they start. Returns the number of points checked. */
+static size_t check_on_levels(ctx* c, const tg_surface_point* src, size_t ns, const tg_isolines_view* v,
+                              double rel, const char* what)
+{
+    if (!v->point_count) return 0;
+    double* d = malloc(v->point_count * sizeof *d);
+    CHECK_STATUS(tg_geodesic_field_at(c->geo, c->ws, src, ns, v->points, v->point_count, NULL, d, NULL, NULL), TG_OK);
+    double worst = 0.0;
+    size_t bad = 0;
+    for (size_t l = 0; l < v->level_count; ++l) {
+        double L = v->levels[l];
+        for (size_t p = v->level_start[l]; p < v->level_start[l + 1]; ++p) {
+            size_t a = v->polyline_start[p], b = v->polyline_start[p + 1];
+            CHECK_MSG(b - a >= 2, "%s: polyline %zu has %zu points", what, p, b - a);
+            if (v->polyline_closed[p]) {
+                const double *x0 = v->xyz + 3 * a, *x1 = v->xyz + 3 * (b - 1);
+                CHECK_MSG(x0[0] == x1[0] && x0[1] == x1[1] && x0[2] == x1[2], "%s: closed polyline %zu open", what, p);
+            }
+            for (size_t i = a; i < b; ++i) {
+                double e = fabs(d[i] - L) / L;
+                if (e > worst) worst = e;
+                if (!(e <= rel)) bad++;
+            }
+        }
+    }
+    CHECK_MSG(bad == 0, "%s: %zu of %zu points off their level, worst %.3g relative", what, bad, v->point_count, worst);
+    free(d);
+    return v->point_count;
+}
+
+/* ---- flat: circles ---- */
+
+static void test_flat_circles(void)
+{
+    ctx c = open_ctx_for(flat_square(16, 7));
+    tg_bvh* bvh = NULL;
+    CHECK_STATUS(tg_bvh_create(c.mesh, NULL, &bvh), TG_OK);
+    double at[3] = {0.503, 0.488, 0.0};
+    tg_surface_point src;
+    tg_bvh_workspace* bw = NULL;
+    CHECK_STATUS(tg_bvh_workspace_create(bvh, &bw), TG_OK);
+    CHECK_STATUS(tg_bvh_locate(bvh, bw, at, &src, NULL), TG_OK);
+    tg_bvh_workspace_destroy(bw);
+    tg_surface_point_position(c.mesh, &src, at);
+    double levels[] = {0.1234, 0.2718, 0.4142, 0.0123};
+    tg_isolines_view v;
+    tg_isolines* iso = iso_of(&c, &src, 1, levels, 4, &v);
+    double face = sqrt(2.0) * 1.6 / 16; /* longest side of a jittered cell's triangle, at most */
+    double worst_r = 0.0, worst_mid = 0.0;
+    for (size_t l = 0; l < 4; ++l) {
+        CHECK_MSG(v.level_start[l + 1] - v.level_start[l] == 1, "level %g: %zu polylines, want one circle", levels[l],
+                  v.level_start[l + 1] - v.level_start[l]);
+        for (size_t p = v.level_start[l]; p < v.level_start[l + 1]; ++p) {
+            CHECK_MSG(v.polyline_closed[p], "level %g: the circle is not closed", levels[l]);
+            for (size_t i = v.polyline_start[p]; i < v.polyline_start[p + 1]; ++i) {
+                const double* x = v.xyz + 3 * i;
+                double r = hypot(x[0] - at[0], x[1] - at[1]);
+                if (fabs(r - levels[l]) > worst_r) worst_r = fabs(r - levels[l]);
+                if (i + 1 < v.polyline_start[p + 1]) { /* the chord's middle: inside, near the circle */
+                    double mx = 0.5 * (x[0] + x[3]), my = 0.5 * (x[1] + x[4]);
+                    double gap = levels[l] - hypot(mx - at[0], my - at[1]);
+                    if (gap > worst_mid) worst_mid = gap;
+                }
+            }
+        }
+    }
+    CHECK_MSG(worst_r <= 1e-12, "flat: a point %.3g off its circle", worst_r);
+    CHECK_MSG(worst_mid <= 1e-3 * face, "flat: a chord %.3g inside its circle (face %.3g)", worst_mid, face);
+    check_on_levels(&c, &src, 1, &v, 1e-9, "flat");
+    tg_isolines_destroy(iso);
+    tg_bvh_destroy(bvh);
+    close_ctx(&c);
+}
+
+/* ---- a holed plate: two crossings on edges with an interior minimum ---- */
+
+static void test_plate_dips(void)
+{
+    ctx c = open_ctx_for(make_plate(8, 3, 10.0));
+    tg_surface_point src = tg_surface_vertex(0);
+    size_t nvv = tg_mesh_vertex_count(c.mesh), nff = tg_mesh_face_count(c.mesh);
+    double* vd = malloc(nvv * sizeof *vd);
+    CHECK_STATUS(tg_geodesic_field(c.geo, c.ws, &src, 1, NULL, vd, NULL), TG_OK);
+    const uint32_t* t = tg_mesh_triangles(c.mesh);
+    const uint32_t* opp = tg_mesh_opposites(c.mesh);
+    /* the edges whose sampled distance dips below both ends: field_at at 63 points of each */
+    enum { S = 63 };
+    size_t ne = 3 * nff;
+    tg_surface_point* pts = malloc(ne * S * sizeof *pts);
+    double* pd = malloc(ne * S * sizeof *pd);
+    for (size_t h = 0; h < ne; ++h)
+        for (int k = 0; k < S; ++k) pts[h * S + k] = tg_surface_edge((uint32_t)h, (k + 1.0) / (S + 1.0));
+    CHECK_STATUS(tg_geodesic_field_at(c.geo, c.ws, &src, 1, pts, ne * S, NULL, pd, NULL, NULL), TG_OK);
+    double levels[8];
+    uint32_t dip_edge[8];
+    int nl = 0;
+    for (size_t h = 0; h < ne && nl < 8; ++h) {
+        if (opp[h] != TG_NONE && opp[h] < h) continue;
+        double da = vd[t[h]], db = vd[t[3 * (h / 3) + (h + 1) % 3]], lo = INFINITY;
+        for (int k = 0; k < S; ++k) lo = fmin(lo, pd[h * S + k]);
+        double top = fmin(da, db);
+        if (lo < top - 1e-3 * top) levels[nl] = 0.5 * (lo + top), dip_edge[nl++] = (uint32_t)h;
+    }
+    CHECK_MSG(nl > 0, "plate: no edge with an interior minimum found");
+    tg_isolines_view v;
+    tg_isolines* iso = iso_of(&c, &src, 1, levels, (size_t)nl, &v);
+    for (int l = 0; l < nl; ++l) {
+        uint32_t h = dip_edge[l], o = opp[h];
+        int on_edge = 0;
+        for (size_t i = v.polyline_start[v.level_start[l]]; i < v.polyline_start[v.level_start[l + 1]]; ++i)
+            if (v.points[i].kind == TG_SURFACE_EDGE && (v.points[i].index == h || v.points[i].index == o)) on_edge++;
+        /* each crossing once per polyline through it (twice if a closed one starts there) */
+        CHECK_MSG(on_edge >= 2, "plate: level %g, edge %u dips below it but has %d crossings", levels[l], h, on_edge);
+    }
+    check_on_levels(&c, &src, 1, &v, 1e-9, "plate dips");
+    tg_isolines_destroy(iso);
+    /* the whole range too */
+    double span = 0.0;
+    for (size_t i = 0; i < nvv; ++i)
+        if (vd[i] < INFINITY && vd[i] > span) span = vd[i];
+    double all[7];
+    for (int i = 0; i < 7; ++i) all[i] = span * (i + 0.5) / 7.0;
+    iso = iso_of(&c, &src, 1, all, 7, &v);
+    CHECK(v.polyline_count >= 7);
+    check_on_levels(&c, &src, 1, &v, 1e-9, "plate");
+    tg_isolines_destroy(iso);
+    free(pts), free(pd), free(vd);
+    close_ctx(&c);
+}
+
+/* ---- corpus meshes, one and three sources ---- */
+
+static void corpus_one(const char* file, int sources)
+{
+    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), file);
+    if (!m) return;
+    ctx c = open_ctx_for(m);
+    tg_rng r = {0x15011e5u + (uint64_t)sources};
+    tg_surface_point src[3];
+    for (int i = 0; i < sources; ++i) src[i] = tg_test_random_surface_point(&r, m, NULL);
+    size_t nvv = tg_mesh_vertex_count(m);
+    double* vd = malloc(nvv * sizeof *vd);
+    CHECK_STATUS(tg_geodesic_field(c.geo, c.ws, src, (size_t)sources, NULL, vd, NULL), TG_OK);
+    double span = 0.0;
+    for (size_t i = 0; i < nvv; ++i)
+        if (vd[i] < INFINITY && vd[i] > span) span = vd[i];
+    double levels[6];
+    for (int i = 0; i < 6; ++i) levels[i] = span * (i + 0.37) / 6.0;
+    tg_isolines_view v;
+    tg_isolines* iso = iso_of(&c, src, (size_t)sources, levels, 6, &v);
+    char what[256];
+    snprintf(what, sizeof what, "%s, %d source(s)", file, sources);
+    CHECK_MSG(v.polyline_count >= 6, "%s: %zu polylines for 6 levels", what, v.polyline_count);
+    check_on_levels(&c, src, (size_t)sources, &v, 1e-9, what);
+    tg_isolines_destroy(iso);
+    free(vd);
+    close_ctx(&c);
+}
+
+static void test_corpus(void)
+{
+    static const char* const files[] = {"cgal_mpi.off", "cgal_nefertiti.off", "c3d_woody.obj", "gc_moebius.obj",
+                                        "igl_decimated-knight.off"};
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; ++i) {
+        corpus_one(files[i], 1);
+        corpus_one(files[i], 3);
+    }
+}
+
+/* ---- closed surface: a small level is one closed loop ---- */
+
+static void test_closed_loop(void)
+{
+    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), "igl_decimated-knight.off");
+    if (!m) return;
+    ctx c = open_ctx_for(m);
+    const tg_mesh_report* rep = tg_mesh_get_report(m);
+    CHECK(rep->boundary_loops == 0);
+    const double* x = tg_mesh_positions(m);
+    const uint32_t* t = tg_mesh_triangles(m);
+    double edge = 0.0;
+    for (size_t f = 0; f < tg_mesh_face_count(m); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const double *a = x + 3 * t[3 * f + k], *b = x + 3 * t[3 * f + (k + 1) % 3];
+            edge += sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+        }
+    edge /= 3.0 * (double)tg_mesh_face_count(m);
+    tg_rng r = {77};
+    for (int trial = 0; trial < 5; ++trial) {
+        tg_surface_point src = random_face_point(&r, tg_mesh_face_count(m));
+        double level = 1.5 * edge;
+        tg_isolines_view v;
+        tg_isolines* iso = iso_of(&c, &src, 1, &level, 1, &v);
+        CHECK_MSG(v.polyline_count == 1 && v.polyline_closed[0],
+                  "knight, face %u: %zu polylines (first closed: %d), want one closed loop", src.index,
+                  v.polyline_count, v.polyline_count ? v.polyline_closed[0] : -1);
+        CHECK(v.polyline_count == 0 || v.polyline_start[1] > 8);
+        check_on_levels(&c, &src, 1, &v, 1e-9, "knight loop");
+        tg_isolines_destroy(iso);
+    }
+    close_ctx(&c);
+}
+
+/* ---- bad input ---- */
+
+static void test_bad_input(void)
+{
+    ctx c = open_ctx_for(flat_square(4, 1));
+    tg_surface_point src = tg_surface_vertex(0);
+    tg_isolines* iso = (tg_isolines*)&c; /* must become NULL */
+    double good = 0.5, nan = NAN, neg = -0.1, inf = INFINITY;
+    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, &nan, 1, NULL, &iso, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK(iso == NULL);
+    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, &neg, 1, NULL, &iso, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, &inf, 1, NULL, &iso, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, &good, 0, NULL, &iso, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, NULL, 1, NULL, &iso, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, &good, 1, NULL, NULL, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    tg_surface_point bad = tg_surface_vertex(100000);
+    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &bad, 1, &good, 1, NULL, &iso, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK(iso == NULL);
+    /* the field beside the lines equals tg_geodesic_field, bit for bit */
+    double a[25], b[25];
+    CHECK_STATUS(tg_geodesic_isolines(c.geo, NULL, &src, 1, &good, 1, NULL, &iso, a, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_field(c.geo, NULL, &src, 1, NULL, b, NULL), TG_OK);
+    CHECK(memcmp(a, b, sizeof a) == 0);
+    tg_isolines_destroy(iso);
+    tg_isolines_destroy(NULL);
+    close_ctx(&c);
+}
+
+int main(void)
+{
+    test_bad_input();
+    test_flat_circles();
+    test_plate_dips();
+    test_closed_loop();
+    test_corpus();
+    return tg_test_finish();
+}

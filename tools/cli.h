@@ -163,6 +163,25 @@ bool cli_write_npz_csr(FILE* f, const tg_sparse_matrix_view* v);
  * Written to a temporary name and renamed; CLI_OK or CLI_INPUT (error printed). */
 int cli_write_labels(const char* path, const tg_mesh* mesh, const uint32_t* label, const double* dist, size_t n);
 
+/* ---- isolines (cli_isolines.c: trigeo field --isolines, trigeo render) ---- */
+
+/* --isolines VALUE: a comma-separated list of levels (finite, >= 0), or a count N (digits only,
+ * 1..4096): N levels equally spaced below the largest finite distance (cli_auto_levels). On
+ * success *out_levels (malloc'd, N entries; zeros for a count) and *out_count, and *out_auto is
+ * true for a count. Prints the error (naming `option`) and returns CLI_INPUT on a bad value. */
+int cli_parse_levels(const char* option, const char* text, double** out_levels, size_t* out_count, bool* out_auto);
+/* N levels max * k / (N + 1), k = 1..N, max the largest finite value of dist[0..n) (all 0 when
+ * none is finite). */
+void cli_auto_levels(const double* dist, size_t n, size_t count, double* out_levels);
+/* Writes isolines to path: .obj ('v' records, a group 'g level_I' with a '# level L' comment per
+ * level, an 'l' record per polyline, closed ones ending on their first vertex) or .json
+ * ({"levels": [...], "polylines": [{"level": I, "value": L, "closed": B, "points": [[x, y, z],
+ * ...], "faces": [...], "surface": ["e:H:t" | "f:F:b0,b1,b2", ...]}]}). Written to a temporary
+ * name and renamed; CLI_OK or CLI_INPUT (error printed). */
+int cli_write_isolines(const char* path, const tg_isolines* iso);
+/* A surface point as a spec (cli_spec.c's syntax: v:I, e:H:t, f:F:b0,b1,b2), %.17g. */
+void cli_spec_text(const tg_surface_point* p, char* buf, size_t cap);
+
 /* Can `threads` threads (0: one per core) be started? Prints why not (naming `what`): OpenMP's
  * runtime would end the process instead of failing. */
 bool cli_threads_available(int threads, const char* what);

@@ -151,6 +151,7 @@ typedef struct field_args {
     bool sparse;          /* the matrix within the radius, sparse (.npz, or .csv triplets) */
     bool labels;          /* --labels: the nearest source's index per vertex (Voronoi) */
     const char* boundaries; /* --boundaries: the cells' boundaries (.obj or .json) */
+    const char* isolines; /* --isolines: the levels (a list or a count); -o is then ISO.obj|.json */
     const char* sources_path;
     const char* at_path;  /* --at (--from) or --to (--sources): distances at these points */
     char** at_items;
@@ -184,17 +185,6 @@ static int finished(const field_args* fa, tg_status st)
     return CLI_OK;
 }
 
-/* A surface point as a spec (cli_spec.c's syntax), %.17g. */
-static void spec_text(const tg_surface_point* p, char* buf, size_t cap)
-{
-    if (p->kind == TG_SURFACE_EDGE)
-        snprintf(buf, cap, "e:%u:%.17g", p->index, p->t);
-    else if (p->kind == TG_SURFACE_FACE)
-        snprintf(buf, cap, "f:%u:%.17g,%.17g,%.17g", p->index, p->bary[0], p->bary[1], p->bary[2]);
-    else
-        snprintf(buf, cap, "v:%u", p->index);
-}
-
 /* --boundaries: OBJ (a `v` per point, an `l` per polyline, a comment naming its two cells) or JSON
  * ({"polylines": [{"cells": [a, b], "points": [[x, y, z], ...], "surface": ["e:H:t", ...]}]}). */
 static int write_boundaries(const char* path, const tg_voronoi_boundaries* b)
@@ -225,7 +215,7 @@ static int write_boundaries(const char* path, const tg_voronoi_boundaries* b)
                              v.xyz[3 * i + 1], v.xyz[3 * i + 2]) > 0;
             ok = ok && fprintf(f, "], \"surface\": [") > 0;
             for (size_t i = v.polyline_start[p]; ok && i < v.polyline_start[p + 1]; ++i) {
-                spec_text(&v.points[i], spec, sizeof spec);
+                cli_spec_text(&v.points[i], spec, sizeof spec);
                 ok = fprintf(f, "%s\"%s\"", i > v.polyline_start[p] ? ", " : "", spec) > 0;
             }
             ok = ok && fprintf(f, "]}") > 0;
@@ -394,6 +384,65 @@ done:
     return rc;
 }
 
+/* --isolines: the exact isolines of the field of the sources (the nearest of them), to -o. A count
+ * of levels runs the field first for its largest distance. */
+static int run_isolines(const field_args* fa, char** items, const unsigned long long* lines, size_t count)
+{
+    int rc = CLI_INPUT;
+    tg_bvh* bvh = NULL;
+    tg_geodesic* geo = NULL;
+    tg_isolines* iso = NULL;
+    double *levels = NULL, *dist = NULL;
+    size_t nl = 0;
+    bool autolv = false;
+    tg_surface_point* pts = malloc(count * sizeof *pts);
+    if (!pts) cli_error(NULL, 0, "out of memory");
+    if (!pts || (rc = cli_parse_levels("--isolines", fa->isolines, &levels, &nl, &autolv)) != CLI_OK) goto done;
+    rc = CLI_INPUT;
+    tg_mesh* mesh = cli_load_mesh_for_distances(fa->mesh_path);
+    if (!mesh) goto done;
+    size_t nv = tg_mesh_vertex_count(mesh);
+    if (tg_mesh_face_count(mesh) == 0) {
+        cli_error(fa->mesh_path, 0, "the mesh has no faces");
+    } else if ((rc = resolve_all(fa, fa->sources_path, false, mesh, &bvh, items, lines, count, pts)) == CLI_OK) {
+        rc = CLI_INPUT;
+        dist = malloc((nv ? nv : 1) * sizeof *dist);
+        tg_status st = dist ? tg_geodesic_create(mesh, NULL, &geo) : TG_ERR_OUT_OF_MEMORY;
+        tg_field_options o;
+        cli_progress prog;
+        tg_field_stats stats;
+        start_work(fa, &o, &prog, &stats);
+        double t0 = cli_seconds();
+        if (st == TG_OK && autolv) {
+            st = tg_geodesic_field(geo, NULL, pts, count, &o, dist, NULL);
+            if (st == TG_OK) cli_auto_levels(dist, nv, nl, levels);
+        }
+        if (st == TG_OK) st = tg_geodesic_isolines(geo, NULL, pts, count, levels, nl, &o, &iso, dist, &stats);
+        double secs = cli_seconds() - t0;
+        cli_interrupt_polling(false);
+        cli_progress_end(&prog);
+        if ((rc = finished(fa, st)) == CLI_OK && (rc = cli_write_isolines(fa->out, iso)) == CLI_OK &&
+            strcmp(fa->out, "-")) {
+            tg_isolines_view v;
+            tg_isolines_get_view(iso, &v);
+            size_t closed = 0;
+            for (size_t p = 0; p < v.polyline_count; ++p) closed += v.polyline_closed[p];
+            printf("sources            %zu\n", count);
+            printf("levels             %zu (%.17g .. %.17g)\n", nl, levels[0], levels[nl - 1]);
+            printf("polylines          %zu (%zu closed), %zu points\n", v.polyline_count, closed, v.point_count);
+            print_stats(&stats, secs);
+            rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
+        }
+    }
+    tg_mesh_destroy(mesh);
+done:
+    free(pts), free(levels), free(dist);
+    tg_isolines_destroy(iso);
+    tg_geodesic_destroy(geo);
+    tg_bvh_destroy(bvh);
+    return rc;
+}
+
 /* The sparse matrix as "i,j,d" lines (a header, then one line per stored entry, rows in order). */
 static bool write_triplets(FILE* f, const tg_sparse_matrix_view* v)
 {
@@ -488,7 +537,7 @@ static int run(int argc, char** argv)
             fa.labels = true;
         } else if (!strcmp(a, "--from") || !strcmp(a, "-o") || !strcmp(a, "--csv") || !strcmp(a, "--max-distance") ||
                    !strcmp(a, "--sources") || !strcmp(a, "--threads") || !strcmp(a, "--at") || !strcmp(a, "--to") ||
-                   !strcmp(a, "--boundaries")) {
+                   !strcmp(a, "--boundaries") || !strcmp(a, "--isolines")) {
             if (i + 1 >= argc) return cli_usage("field", "%s needs a value", a);
             const char* val = argv[++i];
             if (!strcmp(a, "--from"))
@@ -507,6 +556,8 @@ static int run(int argc, char** argv)
                 fa.at_path = val, at_opt = "--to";
             else if (!strcmp(a, "--boundaries"))
                 fa.boundaries = val;
+            else if (!strcmp(a, "--isolines"))
+                fa.isolines = val;
             else
                 maxd = val;
         } else if (a[0] == '-' && a[1]) {
@@ -520,7 +571,12 @@ static int run(int argc, char** argv)
     if (!fa.mesh_path) return cli_usage("field", "missing MESH");
     if (!from == !fa.sources_path) return cli_usage("field", "give either --from SPEC[;SPEC...] or --sources FILE");
     if (fa.out && csv) return cli_usage("field", "-o and --csv exclude each other");
-    if (csv) {
+    if (fa.isolines) { /* one field of the sources, its isolines to -o */
+        if (!fa.out || !(cli_ext_is(fa.out, ".obj") || cli_ext_is(fa.out, ".json")))
+            return cli_usage("field", "--isolines writes -o ISO.obj or ISO.json");
+        if (csv || fa.labels || fa.at_path || fa.sparse || (fa.sources_path && !strcmp(fa.sources_path, "all")))
+            return cli_usage("field", "--isolines goes with --from or --sources FILE, -o and --max-distance only");
+    } else if (csv) {
         fa.out = csv;
         fa.format = OUT_CSV;
     } else if (fa.out) {
@@ -528,7 +584,7 @@ static int run(int argc, char** argv)
         if (fa.format == OUT_NONE && !(fa.at_path && strrchr(fa.out, '.') && !strcmp(strrchr(fa.out, '.'), ".txt")))
             return cli_usage("field", "-o %s: the extension must be .ply, .csv, .npy or .npz", fa.out);
     }
-    fa.matrix = fa.sources_path != NULL && !fa.labels;
+    fa.matrix = fa.sources_path != NULL && !fa.labels && !fa.isolines;
     if (fa.boundaries && !fa.labels) return cli_usage("field", "--boundaries goes with --labels");
     if (fa.boundaries && !cli_ext_is(fa.boundaries, ".obj") && !cli_ext_is(fa.boundaries, ".json"))
         return cli_usage("field", "--boundaries %s: the extension must be .obj or .json", fa.boundaries);
@@ -576,7 +632,9 @@ static int run(int argc, char** argv)
         if (n < 0)
             rc = CLI_INPUT;
         else
-            rc = fa.sparse ? run_sparse(&fa, items, lines, (size_t)n) : run_field(&fa, items, lines, (size_t)n);
+            rc = fa.isolines ? run_isolines(&fa, items, lines, (size_t)n)
+                 : fa.sparse ? run_sparse(&fa, items, lines, (size_t)n)
+                             : run_field(&fa, items, lines, (size_t)n);
         free(text), free(items), free(lines);
         free(at_text), free(fa.at_items), free(fa.at_lines);
         return rc;
@@ -592,7 +650,7 @@ static int run(int argc, char** argv)
     }
     memcpy(list, from, len + 1);
     size_t count = cli_split_list(list, items, MAX_SOURCES);
-    rc = count ? run_field(&fa, items, NULL, count)
+    rc = count ? (fa.isolines ? run_isolines(&fa, items, NULL, count) : run_field(&fa, items, NULL, count))
                : cli_usage("field", "bad --from list (SPEC[;SPEC...], at most %d)", MAX_SOURCES);
     free(list), free(items);
     free(at_text), free(fa.at_items), free(fa.at_lines);
@@ -602,7 +660,7 @@ static int run(int argc, char** argv)
 const cli_command cli_cmd_field = {
     "field",
     "field MESH --from SPEC[;SPEC...] [--at POINTS] | --sources FILE|all [--to POINTS] [-o OUT.ply|.csv|.npy|.npz]\n"
-    "       [--max-distance D] [--sparse] [--labels [--boundaries B.obj|.json]]",
+    "       [--max-distance D] [--sparse] [--labels [--boundaries B.obj|.json]] [--isolines L,L,...|N -o ISO.obj|.json]",
     "The exact geodesic distance from surface points to every vertex (window propagation: window\n"
     "lists crossing one face at a time behind a front of vertices, after Qin et al. 2016 and Xin &\n"
     "Wang 2009). Distance is intrinsic: faces' winding does not matter, and paths continue into\n"
@@ -650,6 +708,15 @@ const cli_command cli_cmd_field = {
     "                         records (a '# cells A B' comment before each 'l'; trigeo render\n"
     "                         --path draws them); .json: {\"polylines\": [{\"cells\": [A, B],\n"
     "                         \"points\": [[x, y, z], ...], \"surface\": [\"e:H:t\" | \"f:F:b0,b1,b2\"]}]}\n"
+    "  --isolines L,L,...|N   the exact isolines of the field (--from, or --sources FILE: the nearest\n"
+    "                         source) at these levels, or at N levels equally spaced below the\n"
+    "                         largest distance (max * k / (N + 1)); crossings of edges exact, arcs\n"
+    "                         inside faces within 1e-3 of the face; -o ISO.obj: 'v' records, a\n"
+    "                         group 'g level_I' ('# level L') of 'l' polylines per level (closed\n"
+    "                         ones end on their first vertex); -o ISO.json: {\"levels\": [...],\n"
+    "                         \"polylines\": [{\"level\": I, \"value\": L, \"closed\": B, \"points\":\n"
+    "                         [[x, y, z], ...], \"faces\": [...], \"surface\": [\"e:H:t\", ...]}]};\n"
+    "                         negative, NaN or missing levels: exit 2, no file\n"
     "  --max-distance D       stop at distance D (0 allowed): farther vertices get inf\n"
     "  --threads N            --sources: threads, at most 256 (default 0: all cores)\n"
     "  --quiet                no progress line (drawn on stderr when it is a terminal and the\n"

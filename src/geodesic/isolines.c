@@ -167,6 +167,7 @@ static double eval_at(const face_geo* fg, const piece* pcs, size_t n, const doub
     uint32_t arg = TG_NONE;
     for (size_t i = 0; i < n; ++i) {
         const piece* pc = &pcs[i];
+        if (!(pc->sigma < best)) continue;
         double dx = p[0] - pc->cx, dy = p[1] - pc->cy;
         double d = pc->sigma + sqrt(dx * dx + dy * dy);
         if (d < best && piece_holds(fg, pc, p)) best = d, arg = (uint32_t)i;
@@ -322,7 +323,7 @@ static uint32_t nearest_crossing(iso_state* st, const face_geo* fg, int m, doubl
 }
 
 /* The angle step about a centre at distance r: the arc's sagitta within half the tolerance
- * (1e-3 of the face's longest side), a chord at most a quarter of that side, at most pi / 4. */
+ * (1e-3 of the face's longest side), a chord at most that side, at most pi / 4. */
 static double step_angle(double r, double span)
 {
     double tol = 0.5e-3 * span;
@@ -330,7 +331,7 @@ static double step_angle(double r, double span)
     if (r > tol) {
         double s = 4.0 * asin(sqrt(tol / (2.0 * r)));
         if (s < a) a = s;
-        double c = 0.25 * span / r;
+        double c = span / r;
         if (c < a) a = c;
     }
     return a;
@@ -358,15 +359,6 @@ static double first_exit(const face_geo* fg, const double c[2], const double p[2
         }
     }
     return best;
-}
-
-static bool inside_face(const face_geo* fg, const double p[2])
-{
-    for (int m = 0; m < 3; ++m) {
-        double qx = p[0] - fg->c[m][0], qy = p[1] - fg->c[m][1];
-        if (fg->u[m][0] * qy - fg->u[m][1] * qx < -1e-12 * fg->span) return false;
-    }
-    return true;
 }
 
 /* The face point of p (face frame). */
@@ -403,10 +395,15 @@ static void rotate_about(const piece* pc, const double p[2], double a, double ou
 static bool piece_rules(const face_geo* fg, const piece* pcs, size_t n, uint32_t k, const double q[2], double tol)
 {
     if (!piece_holds(fg, &pcs[k], q)) return false;
-    uint32_t arg;
-    double d = eval_at(fg, pcs, n, q, &arg);
     double dx = q[0] - pcs[k].cx, dy = q[1] - pcs[k].cy;
-    return d >= pcs[k].sigma + sqrt(dx * dx + dy * dy) - tol;
+    double bar = pcs[k].sigma + sqrt(dx * dx + dy * dy) - tol;
+    for (size_t i = 0; i < n; ++i) {
+        const piece* pc = &pcs[i];
+        if (!(pc->sigma < bar)) continue;
+        double ex = q[0] - pc->cx, ey = q[1] - pc->cy;
+        if (pc->sigma + sqrt(ex * ex + ey * ey) < bar && piece_holds(fg, pc, q)) return false;
+    }
+    return true;
 }
 
 /* Walks the curve of level L into face fg from crossing ci on its side m (x from c[m]) when it
@@ -449,9 +446,10 @@ static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, dou
             p[0] = q[0], p[1] = q[1];
             continue;
         }
-        /* the piece stops ruling within (0, at]: where, by bisection on the angle */
+        /* the piece stops ruling within (0, at]: where, by bisection on the angle, to 1e-11 of the
+         * face (far below the snap onto the next arc below) */
         double lo = 0.0, hi = at;
-        for (int it = 0; it < 60 && hi - lo > 1e-15 * at; ++it) {
+        for (int it = 0; it < 60 && (hi - lo) * r > 1e-11 * fg->span; ++it) {
             double mid = 0.5 * (lo + hi), t[2];
             rotate_about(pc, p, mid, t);
             if (piece_rules(fg, pcs, n, j, t, tol)) lo = mid;

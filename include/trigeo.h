@@ -1663,6 +1663,16 @@ typedef struct tg_render_options {
     const double* vertex_uv;
     /** the squares' side in the unit of (u, v); 0: the mesh's bounding box diagonal / 40 */
     double checker_size;
+    /** optional: exact isolines (tg_geodesic_isolines) drawn instead of the colour bands of
+     *  vertex_scalar's isolines: isoline_parts polylines, part p being the points
+     *  [isoline_start[p], isoline_start[p + 1]) of isoline_xyz (3 doubles each; isoline_parts + 1
+     *  non-decreasing offsets), drawn as thin depth-tested lines in the colour map's colour of
+     *  their level, darkened (isoline_level: one value per part, in vertex_scalar's units; NULL,
+     *  or no vertex_scalar: dark grey). With isoline_parts > 0 no bands are drawn. (New in 0.4.) */
+    const double* isoline_xyz;
+    const size_t* isoline_start;
+    const double* isoline_level;
+    size_t isoline_parts;
 } tg_render_options;
 
 /** Renders the mesh (software rasterizer, z-buffer, smooth two-sided headlight shading) with the
@@ -1670,7 +1680,8 @@ typedef struct tg_render_options {
  *  Degenerate faces are skipped; an empty mesh gives a background-only image. Deterministic: the
  *  same inputs give the same bytes. Errors: TG_ERR_INVALID_ARGUMENT (NULL mesh/path, size out of
  *  range, over TG_RENDER_MAX_BYTES (diag says how much it would need), polyline_count > 0 with NULL
- *  polyline, polyline_parts > 0 with NULL or out-of-order polyline_start), TG_ERR_OUT_OF_MEMORY, TG_ERR_IO (cannot write), TG_ERR_CANCELLED (progress said
+ *  polyline, polyline_parts > 0 with NULL or out-of-order polyline_start, isoline_parts > 0 with NULL or out-of-order
+ *  arrays or a non-finite point), TG_ERR_OUT_OF_MEMORY, TG_ERR_IO (cannot write), TG_ERR_CANCELLED (progress said
  *  stop; no file is written). Cost: O(F + pixels * supersample^2), memory at most
  *  TG_RENDER_MAX_BYTES plus the mesh's projected vertices. Thread-safe (no shared state). */
 TG_API tg_status tg_render_png(const tg_mesh* mesh, const tg_render_options* options, const char* png_path,

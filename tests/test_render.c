@@ -104,6 +104,30 @@ int main(void)
                   lo[2], hi[0], hi[1], hi[2]);
         free(img);
     }
+    /* exact isolines instead of the bands: a line at level 1 (the diagonal x + y = 1) in the colour
+     * map's colour of 1, darkened; the bands are gone (isolines 16 would draw some) */
+    const double diag_line[] = {0.05, 0.95, 0, 0.5, 0.5, 0, 0.95, 0.05, 0};
+    const size_t diag_parts[] = {0, 3};
+    const double diag_level = 1.0;
+    o.isolines = 0, o.isoline_xyz = diag_line, o.isoline_start = diag_parts, o.isoline_parts = 1;
+    o.isoline_level = &diag_level;
+    CHECK_STATUS(tg_render_png(m, &o, a, NULL), TG_OK);
+    img = decode(a, &w, &h);
+    if (img) {
+        const unsigned char *on = px(img, w, 100, 50), *off = px(img, w, 75, 70);
+        CHECK_MSG(on[0] < 60 && on[1] < 60 && on[2] < 60 && off[1] > on[1] + 40, "isoline (%d,%d,%d) beside (%d,%d,%d)",
+                  on[0], on[1], on[2], off[0], off[1], off[2]);
+        free(img);
+    }
+    const size_t diag_backwards[] = {3, 0};
+    o.isoline_start = diag_backwards;
+    CHECK_STATUS(tg_render_png(m, &o, a, NULL), TG_ERR_INVALID_ARGUMENT);
+    const double diag_nan[] = {0.05, 0.95, 0, NAN, 0.5, 0, 0.95, 0.05, 0};
+    o.isoline_start = diag_parts, o.isoline_xyz = diag_nan;
+    CHECK_STATUS(tg_render_png(m, &o, a, NULL), TG_ERR_INVALID_ARGUMENT);
+    o.isoline_xyz = NULL;
+    CHECK_STATUS(tg_render_png(m, &o, a, NULL), TG_ERR_INVALID_ARGUMENT);
+    o.isoline_parts = 0, o.isoline_start = NULL, o.isoline_level = NULL, o.isolines = -1;
     /* Voronoi cells: corner 0 (0,0) in cell 0, corner 2 (1,1) in cell 1, the others in no cell:
      * two distinct colours and grey; two boundary parts drawn dark, with no red end dots */
     const uint32_t cells[] = {0, TG_NONE, 1, TG_NONE};

@@ -95,10 +95,52 @@ static int on_progress(void* user, double fraction)
     return cli_interrupted();
 }
 
+/* --from: the field of the sources and its exact isolines at 16 levels max * k / 17 (where the
+ * colour bands were), each polyline's level for its colour. */
+typedef struct exact_isolines {
+    double* dist;
+    tg_isolines* iso;
+    double* level_of; /* per polyline */
+} exact_isolines;
+
+static int isolines_of_sources(const char* mesh_path, tg_mesh* mesh, cli_spec_list* srcs, exact_isolines* ex)
+{
+    tg_bvh* bvh = NULL;
+    tg_geodesic* geo = NULL;
+    size_t nv = tg_mesh_vertex_count(mesh);
+    if (!cli_spec_list_resolve(mesh_path, mesh, &bvh, srcs)) {
+        tg_bvh_destroy(bvh);
+        return CLI_INPUT;
+    }
+    double levels[16];
+    ex->dist = malloc((nv ? nv : 1) * sizeof *ex->dist);
+    tg_status st = ex->dist ? tg_geodesic_create(mesh, NULL, &geo) : TG_ERR_OUT_OF_MEMORY;
+    if (st == TG_OK) st = tg_geodesic_field(geo, NULL, srcs->point, srcs->count, NULL, ex->dist, NULL);
+    if (st == TG_OK) {
+        cli_auto_levels(ex->dist, nv, 16, levels);
+        st = tg_geodesic_isolines(geo, NULL, srcs->point, srcs->count, levels, 16, NULL, &ex->iso, NULL, NULL);
+    }
+    if (st == TG_OK) {
+        tg_isolines_view v;
+        tg_isolines_get_view(ex->iso, &v);
+        ex->level_of = malloc((v.polyline_count ? v.polyline_count : 1) * sizeof *ex->level_of);
+        if (!ex->level_of) st = TG_ERR_OUT_OF_MEMORY;
+        for (size_t l = 0; st == TG_OK && l < v.level_count; ++l)
+            for (size_t p = v.level_start[l]; p < v.level_start[l + 1]; ++p) ex->level_of[p] = v.levels[l];
+    }
+    tg_geodesic_destroy(geo);
+    tg_bvh_destroy(bvh);
+    if (st != TG_OK) {
+        cli_error(mesh_path, 0, "%s", tg_status_string(st));
+        return CLI_INPUT;
+    }
+    return CLI_OK;
+}
+
 static int run(int argc, char** argv)
 {
     const char *mesh_path = NULL, *path_obj = NULL, *field = NULL, *scalar = "distance", *out = NULL;
-    const char *labels = NULL, *bounds = NULL, *logmap = NULL;
+    const char *labels = NULL, *bounds = NULL, *logmap = NULL, *from = NULL, *iso_obj = NULL;
     tg_render_options o;
     memset(&o, 0, sizeof o);
     for (int i = 1; i < argc; ++i) {
@@ -115,6 +157,8 @@ static int run(int argc, char** argv)
             if (!cli_parse_double(argv[++i], &o.checker_size) || !(o.checker_size > 0.0))
                 return cli_usage("render", "--checker needs a size > 0");
         }
+        else if (!strcmp(a, "--from") && has_value) from = argv[++i];
+        else if (!strcmp(a, "--isolines") && has_value) iso_obj = argv[++i];
         else if (!strcmp(a, "--view") && has_value) {
             if (!cli_parse_doubles(argv[++i], 3, o.view_dir)) return cli_usage("render", "--view needs X,Y,Z");
         } else if (!strcmp(a, "--up") && has_value) {
@@ -133,13 +177,26 @@ static int run(int argc, char** argv)
     if ((field != NULL) + (labels != NULL) + (logmap != NULL) > 1)
         return cli_usage("render", "--field, --labels and --logmap exclude each other");
     if (o.checker_size > 0.0 && !logmap) return cli_usage("render", "--checker applies to --logmap");
-    const char* inputs[5] = {mesh_path, path_obj, field, labels, logmap};
-    static const char* const what[5] = {"mesh", "path file (--path)", "field file (--field)", "labels file (--labels)",
-                                        "log map file (--logmap)"};
-    int check = cli_output_check_inputs(out, inputs, what, 5);
-    if (check != CLI_OK) return check;
-    tg_mesh* mesh = cli_load_mesh(mesh_path);
-    if (!mesh) return CLI_INPUT;
+    if (from && (field || labels || logmap || iso_obj))
+        return cli_usage("render", "--from computes the field and its isolines: without --field, --labels, --logmap, --isolines");
+    cli_spec_list srcs;
+    memset(&srcs, 0, sizeof srcs);
+    if (from) {
+        int prc = cli_spec_list_parse("render", "--from", from, &srcs);
+        if (prc != CLI_OK) {
+            cli_spec_list_free(&srcs);
+            return prc;
+        }
+    }
+    const char* inputs[6] = {mesh_path, path_obj, field, labels, logmap, iso_obj};
+    static const char* const what[6] = {"mesh", "path file (--path)", "field file (--field)", "labels file (--labels)",
+                                        "log map file (--logmap)", "isolines (--isolines)"};
+    int check = cli_output_check_inputs(out, inputs, what, 6);
+    tg_mesh* mesh = check == CLI_OK ? cli_load_mesh(mesh_path) : NULL;
+    if (!mesh) {
+        cli_spec_list_free(&srcs);
+        return check == CLI_OK ? CLI_INPUT : check;
+    }
     int rc = CLI_OK;
     double* values = NULL;
     if (field) {
@@ -204,6 +261,24 @@ static int run(int argc, char** argv)
     }
     double* poly = NULL;
     size_t* parts = NULL;
+    exact_isolines ex;
+    memset(&ex, 0, sizeof ex);
+    if (rc == CLI_OK && from) {
+        rc = isolines_of_sources(mesh_path, mesh, &srcs, &ex);
+        o.vertex_scalar = ex.dist;
+    }
+    double* iso_pts = NULL;
+    size_t *iso_parts = NULL, iso_count = 0;
+    if (rc == CLI_OK && iso_obj) { /* polylines of trigeo field --isolines: every 'l' record one */
+        iso_pts = read_polyline(iso_obj, &iso_count, &iso_parts, &o.isoline_parts);
+        if (!iso_pts) rc = CLI_INPUT;
+        o.isoline_xyz = iso_pts, o.isoline_start = iso_parts;
+    } else if (rc == CLI_OK && from) {
+        tg_isolines_view v;
+        tg_isolines_get_view(ex.iso, &v);
+        o.isoline_xyz = v.xyz, o.isoline_start = v.polyline_start, o.isoline_parts = v.polyline_count;
+        o.isoline_level = ex.level_of;
+    }
     if (rc == CLI_OK && (path_obj || bounds)) {
         poly = read_polyline(path_obj ? path_obj : bounds, &o.polyline_count, bounds ? &parts : NULL, &o.polyline_parts);
         if (!poly) rc = CLI_INPUT;
@@ -227,6 +302,11 @@ static int run(int argc, char** argv)
     }
     free(poly);
     free(parts);
+    free(iso_pts);
+    free(iso_parts);
+    free(ex.dist), free(ex.level_of);
+    tg_isolines_destroy(ex.iso);
+    cli_spec_list_free(&srcs);
     free(cells);
     free(values);
     free(uv);
@@ -236,15 +316,21 @@ static int run(int argc, char** argv)
 
 const cli_command cli_cmd_render = {
     "render",
-    "render MESH [--path PATH.obj | --boundaries B.obj] [--field FIELD.ply [--scalar NAME] | --labels L.ply |\n"
-    "       --logmap LM.ply [--checker S]] -o OUT.png",
+    "render MESH [--path PATH.obj | --boundaries B.obj] [--field FIELD.ply [--scalar NAME] [--isolines ISO.obj] |\n"
+    "       --from SPEC[;SPEC...] | --labels L.ply | --logmap LM.ply [--checker S]] -o OUT.png",
     "Draws MESH into a PNG (software rasterizer: orthographic view, smooth headlight shading,\n"
     "3x3 supersampling). Optional overlays:\n"
     "  --path PATH.obj    a polyline (OBJ 'v' + 'l' records, as 'trigeo path -o' writes) drawn as a\n"
     "                     red tube with dots at its ends\n"
     "  --field FIELD.ply  a per-vertex scalar (PLY vertex property NAME, default 'distance') drawn\n"
-    "                     with a dark-blue-to-yellow colour map and 16 isolines; +inf (unreachable)\n"
+    "                     with a dark-blue-to-yellow colour map and 16 isolines drawn as colour bands\n"
+    "                     of the per-vertex values (exact lines: --from, or --isolines); +inf (unreachable)\n"
     "                     is grey\n"
+    "  --from SPEC[;...]  the exact distance field of these sources (trigeo field --from), drawn with\n"
+    "                     the colour map and its 16 exact isolines (trigeo field --isolines 16): lines\n"
+    "                     along the true level curves, not colour bands\n"
+    "  --isolines ISO.obj with --field: draw these polylines (trigeo field --isolines -o ISO.obj) as\n"
+    "                     the isolines instead of the colour bands\n"
     "  --labels L.ply     Voronoi cells: the PLY vertex property 'label' (trigeo field --labels,\n"
     "                     trigeo sample --field) drawn one colour per cell, -1 grey\n"
     "  --boundaries B.obj polylines (every 'l' record one; trigeo field --boundaries) drawn as\n"

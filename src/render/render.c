@@ -170,6 +170,44 @@ static void shade(const shade_ctx* sc, const camera* cam, tg_vec3 n, double scal
     }
 }
 
+/* The exact isolines' arrays: present, offsets in order, points finite. */
+static bool isolines_valid(const tg_render_options* o, const char* png_path, tg_diag* diag)
+{
+    if (!o->isoline_parts) return true;
+    if (!o->isoline_xyz || !o->isoline_start) return false;
+    for (size_t p = 0; p < o->isoline_parts; ++p)
+        if (o->isoline_start[p] > o->isoline_start[p + 1]) {
+            tg__diag_set(diag, png_path, 0, 0, 0, "isoline %zu: offsets out of order", p);
+            return false;
+        }
+    for (size_t i = 3 * o->isoline_start[0]; i < 3 * o->isoline_start[o->isoline_parts]; ++i)
+        if (!isfinite(o->isoline_xyz[i])) {
+            tg__diag_set(diag, png_path, 0, 0, 0, "isoline point %zu is not finite", i / 3);
+            return false;
+        }
+    return true;
+}
+
+static void raster_segment(tg_vec3 a, tg_vec3 b, double radius, const camera* cam, canvas* cv, bool dark,
+                           const float* flat);
+
+/* The exact isolines, each in the colour map's colour of its level darkened as the bands were. */
+static void draw_isolines(const tg_render_options* o, const shade_ctx* sc, const camera* cam, double radius,
+                          canvas* cv)
+{
+    for (size_t p = 0; p < o->isoline_parts; ++p) {
+        float c[3] = {0.25f, 0.25f, 0.27f};
+        double range = sc->smax - sc->smin;
+        if (o->isoline_level && o->vertex_scalar && range > 0) {
+            colormap((o->isoline_level[p] - sc->smin) / range, c);
+            for (int k = 0; k < 3; ++k) c[k] *= 0.35f;
+        }
+        for (size_t i = o->isoline_start[p]; i + 1 < o->isoline_start[p + 1]; ++i)
+            raster_segment(project(cam, tg_v3_load(o->isoline_xyz + 3 * i)),
+                           project(cam, tg_v3_load(o->isoline_xyz + 3 * i + 3)), radius, cam, cv, false, c);
+    }
+}
+
 static bool vertex_normals(const tg_mesh* m, tg_vec3* vn)
 {
     for (size_t v = 0; v < m->vertex_count; ++v) vn[v] = tg_v3(0, 0, 0);
@@ -244,7 +282,9 @@ static void raster_face(const tg_mesh* m, size_t f, const tg_vec3* sp, const tg_
 
 /* A depth-tested disc-swept segment (the tube), coloured red with a lighter core (dark grey when
  * `dark`: cell boundaries). */
-static void raster_segment(tg_vec3 a, tg_vec3 b, double radius, const camera* cam, canvas* cv, bool dark)
+/* dark: a dark tube (boundaries); flat: one colour, no relief (isolines); neither: the red path. */
+static void raster_segment(tg_vec3 a, tg_vec3 b, double radius, const camera* cam, canvas* cv, bool dark,
+                           const float* flat)
 {
     int x0 = (int)floor(fmin(a.x, b.x) - radius), x1 = (int)ceil(fmax(a.x, b.x) + radius);
     int y0 = (int)floor(fmin(a.y, b.y) - radius), y1 = (int)ceil(fmax(a.y, b.y) + radius);
@@ -264,6 +304,10 @@ static void raster_segment(tg_vec3 a, tg_vec3 b, double radius, const camera* ca
             size_t idx = (size_t)y * (size_t)cv->w + (size_t)x;
             if (!(z < cv->depth[idx])) continue;
             float core = (float)(1.0 - sqrt(d_sq) / radius); /* 1 at the centre line */
+            if (flat) {
+                for (int k = 0; k < 3; ++k) cv->rgb[3 * idx + (size_t)k] = flat[k];
+                continue;
+            }
             if (dark) {
                 cv->rgb[3 * idx + 0] = cv->rgb[3 * idx + 1] = 0.08f + 0.22f * core * core;
                 cv->rgb[3 * idx + 2] = 0.10f + 0.22f * core * core;
@@ -419,6 +463,7 @@ tg_status tg_render_png(const tg_mesh* m, const tg_render_options* options, cons
             tg__diag_set(diag, png_path, 0, 0, 0, "polyline part %zu out of order or past the points", p);
             return TG_ERR_INVALID_ARGUMENT;
         }
+    if (!isolines_valid(&o, png_path, diag)) return TG_ERR_INVALID_ARGUMENT;
     for (size_t i = 0; i < 3 * o.polyline_count; ++i)
         if (!isfinite(o.polyline[i])) {
             tg__diag_set(diag, png_path, 0, 0, 0, "polyline point %zu is not finite", i / 3);
@@ -459,7 +504,7 @@ tg_status tg_render_png(const tg_mesh* m, const tg_render_options* options, cons
     camera_fit(m, &o, &cv, &cam);
     for (size_t v = 0; v < m->vertex_count; ++v) sp[v] = project(&cam, tg_v3_load(m->xyz + 3 * v));
     vertex_normals(m, vn);
-    shade_ctx sc = {&o, 0, 0, o.isolines == 0 ? 16 : o.isolines, o.checker_size};
+    shade_ctx sc = {&o, 0, 0, o.isoline_parts ? -1 : o.isolines == 0 ? 16 : o.isolines, o.checker_size};
     if (!(sc.checker > 0.0)) {
         const double *lo = m->report.bbox_min, *hi = m->report.bbox_max;
         sc.checker = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
@@ -475,19 +520,20 @@ tg_status tg_render_png(const tg_mesh* m, const tg_render_options* options, cons
         }
     }
     double radius = 1.6 * o.supersample * (o.width > 1200 ? o.width / 1200.0 : 1.0);
+    draw_isolines(&o, &sc, &cam, 0.8 * radius, &cv);
     bool parts = o.polyline_parts > 0;
     for (size_t p = 0, i = 0; parts ? p < o.polyline_parts : p < 1; ++p) {
         size_t end = parts ? o.polyline_start[p + 1] : o.polyline_count;
         for (i = parts ? o.polyline_start[p] : 0; i + 1 < end; ++i)
             raster_segment(project(&cam, tg_v3_load(o.polyline + 3 * i)),
                            project(&cam, tg_v3_load(o.polyline + 3 * i + 3)), parts ? 0.7 * radius : radius, &cam, &cv,
-                           parts);
+                           parts, NULL);
     }
     if (o.polyline_count && !parts) {
         tg_vec3 e0 = project(&cam, tg_v3_load(o.polyline));
         tg_vec3 e1 = project(&cam, tg_v3_load(o.polyline + 3 * (o.polyline_count - 1)));
-        raster_segment(e0, e0, 2.6 * radius, &cam, &cv, false);
-        raster_segment(e1, e1, 2.6 * radius, &cam, &cv, false);
+        raster_segment(e0, e0, 2.6 * radius, &cam, &cv, false, NULL);
+        raster_segment(e1, e1, 2.6 * radius, &cam, &cv, false, NULL);
     }
     st = write_png(&m->allocator, &cv, o.supersample, png_path, &pc, diag);
 done:

@@ -39,6 +39,7 @@ C_NAME = {
     "SparseMatrixView": "tg_sparse_matrix_view",
     "RenderOptions": "tg_render_options",
     "BoundariesView": "tg_voronoi_boundaries_view",
+    "IsolinesView": "tg_isolines_view",
 }
 # Python field names that differ from C's (keywords)
 C_FIELD = {"global_": "global"}

@@ -1485,6 +1485,58 @@ class Mesh:
             _L.tg_voronoi_boundaries_destroy(bounds)
         return _labels(labels), dist, lines
 
+    def isolines(self, sources: Any, levels: Any, max_distance: Optional[float] = None, details: bool = False,
+                 progress: Optional[Callable[[float], Any]] = None) -> list:
+        """Exact isolines: for each level, the curves where the exact geodesic distance from the
+        nearest source equals it. sources as field(); levels: a number or a sequence of finite
+        levels >= 0 (any order). Edge crossings are placed on the exact distance function (not
+        interpolated between vertices) and the curves follow the exact circular arcs inside faces
+        (within 1e-3 of the face's size); every point's field_at() is its level to ~1e-15.
+        Returns one list per level (in the order given) of polylines, each a (k, 3) float64
+        array; a closed curve repeats its first point at its end. With details=True each
+        polyline is a dict: "points" (k, 3), "closed" bool, "faces" (k,) int64 (a face holding
+        each point), "surface_points" k SurfacePoints (edge points at crossings, face points
+        inside faces). max_distance: as field() (levels beyond it give no polylines)."""
+        lv = np.atleast_1d(np.asarray(levels, dtype=np.float64)).ravel()
+        if lv.size == 0 or not np.all(np.isfinite(lv)) or np.any(lv < 0):
+            raise _bad(f"levels must be one or more finite numbers >= 0, not {levels!r}")
+        lv = np.ascontiguousarray(lv)
+        handle = ctypes.c_void_p()
+
+        def work(call: _Call) -> None:
+            src = self._surface_points(sources, "sources")
+            if len(src) == 0:
+                raise _bad("isolines need at least one source")
+            o = self._field_options(max_distance, call)
+            geo = self._get_geo()
+            with self._geo_ws.take() as ws:
+                st = _L.tg_geodesic_isolines(geo, ws, src, len(src), _ptr(lv), lv.size, ctypes.byref(o),
+                                             ctypes.byref(handle), None, None)
+            call.finish(st, "isolines")
+
+        self._run(work, progress)
+        try:
+            v = _c.IsolinesView()
+            _L.tg_isolines_get_view(handle, ctypes.byref(v))
+            n = v.point_count
+            xyz = np.ctypeslib.as_array(v.xyz, shape=(n, 3)).copy() if n else np.empty((0, 3))
+            faces = np.ctypeslib.as_array(v.faces, shape=(n,)).astype(np.int64) if n else np.empty(0, np.int64)
+            out = []
+            for li in range(v.level_count):
+                lines = []
+                for p in range(v.level_start[li], v.level_start[li + 1]):
+                    a, b = v.polyline_start[p], v.polyline_start[p + 1]
+                    if not details:
+                        lines.append(xyz[a:b].copy())
+                        continue
+                    lines.append({"points": xyz[a:b].copy(), "closed": bool(v.polyline_closed[p]),
+                                  "faces": faces[a:b].copy(),
+                                  "surface_points": [SurfacePoint._from_c(v.points[i]) for i in range(a, b)]})
+                out.append(lines)
+        finally:
+            _L.tg_isolines_destroy(handle)
+        return out
+
     def farthest_point_sampling(self, count: int, start: Optional[int] = None, seed: int = 0,
                                 progress: Optional[Callable[[float], Any]] = None
                                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -1525,8 +1577,8 @@ class Mesh:
     # -- pictures -----------------------------------------------------------------------------
 
     def render(self, png_path: Union[str, os.PathLike], path: Any = None, field: Any = None, view: Any = None,
-               width: int = 960, height: int = 720, isolines: int = 16, labels: Any = None,
-               boundaries: Any = None, logmap: Any = None, checker: float = 0.0) -> None:
+               width: int = 960, height: int = 720, isolines: Any = 16, labels: Any = None,
+               boundaries: Any = None, logmap: Any = None, checker: float = 0.0, isoline_levels: Any = None) -> None:
         """Writes a PNG picture of the mesh (orthographic, shaded), with an optional path (a Path
         or a (k, 3) polyline, drawn as a red tube) and an optional per-vertex field (n values,
         coloured dark blue to yellow with isolines; inf drawn grey). view: the direction the
@@ -1539,15 +1591,31 @@ class Mesh:
         (k, 3) arrays) drawn as dark tubes, instead of path.
         logmap: (n, 2) coordinates per vertex (log_map()'s uv), drawn as the checkerboard of
         squares of side `checker` (0: the bounding box diagonal / 40), instead of field and
-        labels; inf coordinates grey."""
+        labels; inf coordinates grey. isolines may also be the exact curves of isolines() (its list
+        of lists of (k, 3) arrays, one list per level; isoline_levels: the levels, for their
+        colours) drawn as thin lines instead of the colour bands."""
         o = _c.RenderOptions()
         png = _fs_path(png_path, "png_path")
         if not (isinstance(width, (int, np.integer)) and isinstance(height, (int, np.integer))
                 and 1 <= width <= 8192 and 1 <= height <= 8192):
             raise _bad(f"width and height must be integers in [1, 8192], not {width!r}, {height!r}")
         o.width, o.height = int(width), int(height)
-        o.isolines = int(isolines) if isolines > 0 else -1
         keep = []
+        if isinstance(isolines, (int, np.integer)):
+            o.isolines = int(isolines) if isolines > 0 else -1
+        else:  # exact curves: one list of polylines per level
+            parts, lv = [], []
+            for li, lines in enumerate(isolines):
+                for pl in lines:
+                    parts.append(_points(pl["points"] if isinstance(pl, dict) else pl, "isolines"))
+                    lv.append(float(isoline_levels[li]) if isoline_levels is not None else 0.0)
+            pts = np.concatenate(parts) if parts else np.empty((0, 3))
+            starts = np.cumsum([0] + [len(q) for q in parts]).astype(np.uintp)
+            levels_arr = np.array(lv, dtype=np.float64)
+            keep += [pts, starts, levels_arr]
+            o.isoline_xyz, o.isoline_start, o.isoline_parts = _ptr(pts), _ptr(starts, ctypes.c_size_t), len(parts)
+            if isoline_levels is not None:
+                o.isoline_level = _ptr(levels_arr)
         if view is not None:
             v = _points(view, "view")[0]
             if not np.any(v):

@@ -161,7 +161,16 @@ class RenderOptions(ctypes.Structure):
                 ("polyline_count", c_size_t), ("supersample", c_int), ("progress", RENDER_PROGRESS_FN),
                 ("progress_user", c_void_p), ("vertex_label", POINTER(c_uint32)),
                 ("polyline_start", POINTER(c_size_t)), ("polyline_parts", c_size_t),
-                ("vertex_uv", POINTER(c_double)), ("checker_size", c_double)]
+                ("vertex_uv", POINTER(c_double)), ("checker_size", c_double),
+                ("isoline_xyz", POINTER(c_double)), ("isoline_start", POINTER(c_size_t)),
+                ("isoline_level", POINTER(c_double)), ("isoline_parts", c_size_t)]
+
+
+class IsolinesView(ctypes.Structure):
+    _fields_ = [("level_count", c_size_t), ("levels", POINTER(c_double)), ("level_start", POINTER(c_size_t)),
+                ("polyline_count", c_size_t), ("polyline_start", POINTER(c_size_t)),
+                ("polyline_closed", POINTER(ctypes.c_uint8)), ("point_count", c_size_t),
+                ("points", POINTER(SurfacePointC)), ("faces", POINTER(c_uint32)), ("xyz", POINTER(c_double))]
 
 
 class BoundariesView(ctypes.Structure):
@@ -240,6 +249,10 @@ _SIGNATURES = {
     "tg_geodesic_voronoi": (c_int, [_vp, _vp, _psp, c_size_t, POINTER(FieldOptions), _pu32, _pd, _pvp, _vp]),
     "tg_voronoi_boundaries_get_view": (None, [_vp, POINTER(BoundariesView)]),
     "tg_voronoi_boundaries_destroy": (None, [_vp]),
+    "tg_geodesic_isolines": (c_int, [_vp, _vp, _psp, c_size_t, _pd, c_size_t, POINTER(FieldOptions), _pvp, _pd,
+                                     _vp]),
+    "tg_isolines_get_view": (None, [_vp, POINTER(IsolinesView)]),
+    "tg_isolines_destroy": (None, [_vp]),
     "tg_geodesic_farthest_point_sampling": (c_int, [_vp, _vp, c_uint32, c_uint64, c_size_t, POINTER(FieldOptions),
                                                     _pu32, _pd, _pu32, _vp]),
 }

@@ -28,6 +28,8 @@
  * source in the face, `source` then set). (cx, cy): the centre in the face's frame. */
 typedef struct piece {
     uint32_t k, source;
+    uint32_t circle; /* the first piece with the same centre and offset (one distance function,
+                        split among wedges: a bundle entering through two sides, a corner) */
     double sx, sy, b0, b1;
     double cx, cy, sigma;
 } piece;
@@ -114,6 +116,33 @@ static bool push(const tg_allocator* a, tg__vec* v, const void* item)
     return true;
 }
 
+static int cmp_piece(const void* x, const void* y)
+{
+    const piece *a = x, *b = y;
+    if (a->sigma != b->sigma) return a->sigma < b->sigma ? -1 : 1;
+    if (a->cx != b->cx) return a->cx < b->cx ? -1 : 1;
+    if (a->cy != b->cy) return a->cy < b->cy ? -1 : 1;
+    if (a->k != b->k) return a->k < b->k ? -1 : 1;
+    return (a->b0 > b->b0) - (a->b0 < b->b0);
+}
+
+/* Sorts the pieces by offset and names each one's circle: the first piece with the same centre
+ * and offset to a relative 1e-12 of the face (the same image reached through different sides
+ * differs by the rounding of two unfoldings). */
+static void group_circles(piece* pcs, size_t n, double scale)
+{
+    if (n > 1) qsort(pcs, n, sizeof *pcs, cmp_piece);
+    double tol = 1e-12 * scale;
+    for (size_t i = 0; i < n; ++i) {
+        pcs[i].circle = (uint32_t)i;
+        for (size_t j = i; j-- > 0 && pcs[i].sigma - pcs[j].sigma <= tol;)
+            if (fabs(pcs[i].cx - pcs[j].cx) <= tol && fabs(pcs[i].cy - pcs[j].cy) <= tol) {
+                pcs[i].circle = pcs[j].circle;
+                break;
+            }
+    }
+}
+
 /* The pieces of face f into v (cleared first): its recorded windows, its corners, its sources. */
 static bool pieces_of(iso_state* st, const face_geo* fg, tg__vec* v)
 {
@@ -146,6 +175,7 @@ static bool pieces_of(iso_state* st, const face_geo* fg, tg__vec* v)
         p.k = 3, p.cx = fg->c[i][0], p.cy = fg->c[i][1], p.sigma = d;
         if (!push(st->alloc, v, &p)) return false;
     }
+    group_circles(v->data, v->count, fg->span + (v->count ? ((piece*)v->data)[v->count - 1].sigma : 0.0));
     return true;
 }
 
@@ -322,11 +352,11 @@ static uint32_t nearest_crossing(iso_state* st, const face_geo* fg, int m, doubl
     return best;
 }
 
-/* The angle step about a centre at distance r: the arc's sagitta within half the tolerance
+/* The angle step about a centre at distance r: the arc's sagitta within 0.9 of the tolerance
  * (1e-3 of the face's longest side), a chord at most that side, at most pi / 4. */
 static double step_angle(double r, double span)
 {
-    double tol = 0.5e-3 * span;
+    double tol = 0.9e-3 * span;
     double a = TG__PI / 4.0;
     if (r > tol) {
         double s = 4.0 * asin(sqrt(tol / (2.0 * r)));
@@ -391,19 +421,24 @@ static void rotate_about(const piece* pc, const double p[2], double a, double ou
     out[0] = pc->cx + cs * vx - sn * vy, out[1] = pc->cy + sn * vx + cs * vy;
 }
 
-/* Is piece k the distance at q (it holds q and no piece is shorter there beyond rounding)? */
+/* Is piece k's circle the distance at q (a piece of it holds q, no piece is shorter there beyond
+ * rounding)? */
 static bool piece_rules(const face_geo* fg, const piece* pcs, size_t n, uint32_t k, const double q[2], double tol)
 {
-    if (!piece_holds(fg, &pcs[k], q)) return false;
     double dx = q[0] - pcs[k].cx, dy = q[1] - pcs[k].cy;
     double bar = pcs[k].sigma + sqrt(dx * dx + dy * dy) - tol;
+    bool held = false; /* by a piece of k's circle */
     for (size_t i = 0; i < n; ++i) {
         const piece* pc = &pcs[i];
+        if (pc->circle == pcs[k].circle) {
+            held = held || piece_holds(fg, pc, q);
+            continue;
+        }
         if (!(pc->sigma < bar)) continue;
         double ex = q[0] - pc->cx, ey = q[1] - pc->cy;
         if (pc->sigma + sqrt(ex * ex + ey * ey) < bar && piece_holds(fg, pc, q)) return false;
     }
-    return true;
+    return held;
 }
 
 /* Walks the curve of level L into face fg from crossing ci on its side m (x from c[m]) when it

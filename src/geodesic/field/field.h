@@ -9,6 +9,7 @@
  *   window.c     window geometry: trimming the windows of one list against each other
  *   propagate.c  the wavefront: seeding, list propagation, the vertex front, progress
  *   query.c      distances at arbitrary surface points, evaluated while lists cross their faces
+ *   record.c     the windows crossing faces near given levels, kept for isolines (../isolines.c)
  *   run.c        one run: the scratch's reset, the query, the results
  *   field.c      the public entry points (one field, points, the distance matrix)
  * The per-mesh tables the engine reads (frames, rings, flags) are the solver's (solver.h). */

@@ -223,6 +223,36 @@ static void test_closed_loop(void)
     close_ctx(&c);
 }
 
+/* ---- a distance limit: levels within it as without it, none beyond ---- */
+
+static void test_max_distance(void)
+{
+    ctx c = open_ctx_for(make_plate(8, 3, 10.0));
+    tg_surface_point src = tg_surface_vertex(5);
+    double levels[] = {60.0, 130.0, 180.0};
+    tg_field_options o;
+    memset(&o, 0, sizeof o);
+    o.limit = TG_FIELD_MAX_DISTANCE, o.max_distance = 150.0;
+    tg_isolines *lim = NULL, *all = NULL;
+    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, levels, 3, &o, &lim, NULL, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, levels, 3, NULL, &all, NULL, NULL), TG_OK);
+    tg_isolines_view a, b;
+    tg_isolines_get_view(lim, &a);
+    tg_isolines_get_view(all, &b);
+    CHECK_MSG(a.level_start[3] == a.level_start[2], "limit 150: %zu polylines at level 180",
+              a.level_start[3] - a.level_start[2]);
+    CHECK(b.level_start[3] > b.level_start[2]);
+    /* within the limit: the same curves, point for point */
+    size_t na = a.polyline_start[a.level_start[2]], nb = b.polyline_start[b.level_start[2]];
+    CHECK_MSG(na == nb && na > 0 && memcmp(a.xyz, b.xyz, 3 * na * sizeof(double)) == 0,
+              "limit 150: %zu points below it, %zu without the limit", na, nb);
+    check_on_levels(&c, &src, 1, &a, 1e-9, "plate, limit");
+    check_on_levels(&c, &src, 1, &b, 1e-9, "plate, no limit");
+    tg_isolines_destroy(lim);
+    tg_isolines_destroy(all);
+    close_ctx(&c);
+}
+
 /* ---- bad input ---- */
 
 static void test_bad_input(void)
@@ -257,6 +287,7 @@ int main(void)
     test_flat_circles();
     test_plate_dips();
     test_closed_loop();
+    test_max_distance();
     test_corpus();
     return tg_test_finish();
 }

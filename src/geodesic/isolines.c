@@ -333,8 +333,10 @@ static double crossing_on_side(const tg_geodesic* g, const crossing* c, uint32_t
     return g->tri[h] == g->tri[c->e] ? c->x : g->frame[c->e].len - c->x;
 }
 
-/* The crossing of this level on side m of the face nearest to x (from c[m]); TG_NONE if none. */
-static uint32_t nearest_crossing(iso_state* st, const face_geo* fg, int m, double x, double L, bool* ok)
+/* The crossing of this level on side m of the face nearest to x (from c[m]), where in *out_x;
+ * TG_NONE if none. */
+static uint32_t nearest_crossing(iso_state* st, const face_geo* fg, int m, double x, double L, double* out_x,
+                                 bool* ok)
 {
     const tg_geodesic* g = st->g;
     uint32_t h = 3 * fg->f + (uint32_t)m, e = edge_name(g, h);
@@ -346,8 +348,8 @@ static uint32_t nearest_crossing(iso_state* st, const face_geo* fg, int m, doubl
     uint32_t best = TG_NONE;
     double bd = INFINITY;
     for (uint32_t i = st->edge_first[e]; i < st->edge_first[e] + st->edge_count[e]; ++i) {
-        double d = fabs(crossing_on_side(g, &cs[i], h) - x);
-        if (d < bd) bd = d, best = i;
+        double at = crossing_on_side(g, &cs[i], h), d = fabs(at - x);
+        if (d < bd) bd = d, best = i, *out_x = at;
     }
     return best;
 }
@@ -380,8 +382,9 @@ static double first_exit(const face_geo* fg, const double c[2], const double p[2
         if (!(fabs(b) <= r)) continue;
         double w = sqrt((r - fabs(b)) * (r + fabs(b)));
         for (int s = -1; s <= 1; s += 2) {
-            double x = a + s * w;
-            if (x < 0.0 || x > fg->len[m]) continue;
+            double x = a + s * w, slack = 1e-9 * fg->len[m];
+            if (x < -slack || x > fg->len[m] + slack) continue; /* through a corner: either side */
+            x = x < 0.0 ? 0.0 : x > fg->len[m] ? fg->len[m] : x;
             double ex = qx + x * ux, ey = qy + x * uy; /* from the centre */
             double ang = atan2(vx * ey - vy * ex, vx * ex + vy * ey);
             if (ang < 0.0) ang += 2.0 * TG__PI;
@@ -389,6 +392,16 @@ static double first_exit(const face_geo* fg, const double c[2], const double p[2
         }
     }
     return best;
+}
+
+/* Is p (face frame) in the face, to 1e-9 of its longest side? */
+static bool inside_face(const face_geo* fg, const double p[2])
+{
+    for (int m = 0; m < 3; ++m) {
+        double qx = p[0] - fg->c[m][0], qy = p[1] - fg->c[m][1];
+        if (fg->u[m][0] * qy - fg->u[m][1] * qx < -1e-9 * fg->span) return false;
+    }
+    return true;
 }
 
 /* The face point of p (face frame). */
@@ -473,10 +486,16 @@ static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, dou
         rotate_about(pc, p, at, q);
         if (piece_rules(fg, pcs, n, j, q, tol)) {
             if (ea <= da) { /* the arc leaves the face: at a crossing of that side */
-                sg.b = nearest_crossing(st, fg, em, ex, L, &ok);
+                double cx;
+                sg.b = nearest_crossing(st, fg, em, ex, L, &cx, &ok);
                 if (!ok) return false;
+                /* none there (the curve leaves through a vertex at the level, a zero-area face
+                 * beyond): the walk ends on the side, the polyline open */
+                if (sg.b != TG_NONE && !(fabs(cx - ex) <= 1e-6 * fg->len[em])) sg.b = TG_NONE;
+                if (sg.b == TG_NONE && !add_point(st, fg, q)) return false;
                 break;
             }
+            if (!inside_face(fg, q)) break; /* past a side unseen (rounding at a corner): stop open */
             if (!add_point(st, fg, q)) return false;
             p[0] = q[0], p[1] = q[1];
             continue;

@@ -272,6 +272,13 @@ static int resolve_all(const field_args* fa, const char* file, bool allow_xyz, t
     return CLI_OK;
 }
 
+/* The distances' array (n doubles) and the mesh's solver; TG_OK or the reason. */
+static tg_status make_solver(tg_mesh* mesh, size_t n, double** out_dist, tg_geodesic** out_geo)
+{
+    *out_dist = malloc((n ? n : 1) * sizeof **out_dist);
+    return *out_dist ? tg_geodesic_create(mesh, NULL, out_geo) : TG_ERR_OUT_OF_MEMORY;
+}
+
 static int run_field(const field_args* fa, char** items, const unsigned long long* lines, size_t count)
 {
     int rc = CLI_INPUT;
@@ -306,8 +313,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
         cli_error(fa->sources_path, 0, "%zu sources x %zu vertices is too large", count, n);
         goto done;
     }
-    dist = malloc((n ? n * rows : 1) * sizeof *dist);
-    tg_status st = dist ? tg_geodesic_create(mesh, NULL, &geo) : TG_ERR_OUT_OF_MEMORY;
+    tg_status st = make_solver(mesh, n * rows, &dist, &geo);
     tg_field_options o;
     cli_progress prog;
     tg_field_stats stats;
@@ -406,8 +412,7 @@ static int run_isolines(const field_args* fa, char** items, const unsigned long 
         cli_error(fa->mesh_path, 0, "the mesh has no faces");
     } else if ((rc = resolve_all(fa, fa->sources_path, false, mesh, &bvh, items, lines, count, pts)) == CLI_OK) {
         rc = CLI_INPUT;
-        dist = malloc((nv ? nv : 1) * sizeof *dist);
-        tg_status st = dist ? tg_geodesic_create(mesh, NULL, &geo) : TG_ERR_OUT_OF_MEMORY;
+        tg_status st = make_solver(mesh, nv, &dist, &geo);
         tg_field_options o;
         cli_progress prog;
         tg_field_stats stats;

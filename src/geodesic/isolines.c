@@ -820,15 +820,6 @@ static void vec_init(iso_state* st)
     st->adj_start.elem = st->adj.elem = st->used.elem = sizeof(uint32_t);
 }
 
-/* The progress hook: the caller's callback with the run's figures. */
-static int report(void* user, const tg__field_run* run)
-{
-    const tg_field_options* opt = user;
-    tg_field_progress p;
-    tg__field_progress_of(run, &p);
-    return opt->progress(opt->progress_user, &p);
-}
-
 /* The run, then every level traced and chained (solver frame: levels times scale). */
 static tg_status isolines_of(const tg_geodesic* g, tg__field_scratch* fs, const tg_surface_point* sources,
                              size_t source_count, const double* levels, size_t nl, const tg_field_options* options,
@@ -848,7 +839,7 @@ static tg_status isolines_of(const tg_geodesic* g, tg__field_scratch* fs, const 
         for (size_t i = 0; i < nl; ++i) sorted[i] = levels[i] * g->scale;
         qsort(sorted, nl, sizeof *sorted, cmp_double);
         bool progress = options && options->progress;
-        tg__field_query q = {sources, source_count, NULL, 0, limit, progress ? report : NULL, (void*)options,
+        tg__field_query q = {sources, source_count, NULL, 0, limit, progress ? tg__field_report_single : NULL, (void*)options,
                              NULL, false, NULL, false, NULL, NULL, sorted, nl};
         status = tg__field_execute(fs, &q, &run);
     }

@@ -2,7 +2,8 @@
 # cli_logmap.sh: `trigeo logmap` (-o CSV, .npy, .ply, '-'), `trigeo render --logmap`, exit codes
 # 0/1/2 and no output file on error. Known answer: on the flat top of a closed plate from
 # ../shared/tools/plate.py (no holes), every top vertex's (u, v) are its plane coordinates about
-# the source (1e-12 of the diagonal), angle 0 along --ref; distances equal `trigeo field`'s.
+# the source (1e-12 of the diagonal), angle 0 along --ref; distances equal `trigeo field`'s. On
+# corpus meshes: `trigeo trace` along each sampled vertex's (theta, r) ends at that vertex.
 set -u
 trigeo=${TG_TRIGEO:?}
 meshes=${TG_MESHES_DIR:?}
@@ -85,5 +86,36 @@ check(r.returncode == 1 and "same file" in r.stderr and open(plate).read(5) == o
 r = run("logmap", plate, "--from", "v:5", "--max-distance", "50", "-o", "-")
 far = [l.split(",") for l in r.stdout.split("\n")[1:] if l and l.split(",")[1] == "inf"]
 check(len(far) > 0 and all(f[2] == "0" and f[3] == "inf" and f[4] == "inf" for f in far), "unreached rows: inf,0,inf,inf")
+
+# corpus meshes, end to end through the CLI and independent of the log map's code: where the exact
+# path (`trigeo path --json`) from the source to a vertex bends at no vertex, `trigeo trace` from
+# the source at the log map's angle theta for its distance r ends at that vertex (1e-9 of the
+# diagonal); theta and r are read back from the CSV (shortest round-trip decimals)
+import json, random
+rng = random.Random(5)
+checked = 0
+for name, srcv in [("nvd_spot.obj", 11), ("igl_decimated-knight.off", 40), ("cgal_pinion.off", 7)]:
+    mesh = os.path.join(os.environ["TG_MESHES_DIR"], name)
+    out = os.path.join(tmp, "c.csv")
+    r = run("logmap", mesh, "--from", "v:%d" % srcv, "-o", out)
+    check(r.returncode == 0, "%s: logmap exit %d %s" % (name, r.returncode, r.stderr))
+    rows = [row for row in csv.DictReader(open(out))] if os.path.exists(out) else []
+    info = json.loads(run("info", mesh, "--json").stdout)
+    d = math.dist(info["bbox_min"], info["bbox_max"])
+    cand = [row for row in rows if row["r"] != "inf" and float(row["r"]) > 0]
+    for row in rng.sample(cand, min(30, len(cand))):
+        k = int(row["vertex"])
+        pj = json.loads(run("path", mesh, "--from", "v:%d" % srcv, "--to", "v:%d" % k, "--json").stdout)
+        if any(pt["kind"] == "vertex" for pt in pj["points"][1:-1]):
+            continue  # bends at a vertex: the trace would have to pass through it exactly
+        tr = run("trace", mesh, "--from", "v:%d" % srcv, "--angle", row["theta"], "--length", row["r"], "--json")
+        tj = json.loads(tr.stdout) if tr.returncode == 0 else None
+        want = pj["xyz"][-1]
+        got = tj["end"]["xyz"] if tj else None
+        check(got is not None and math.dist(got, want) <= 1e-9 * d,
+              "%s v:%d -> v:%d: trace(theta %s, r %s) ends %.3g of the diagonal away" %
+              (name, srcv, k, row["theta"], row["r"], math.dist(got, want) / d if got else float("inf")))
+        checked += 1
+check(checked >= 15, "traced %d straight log map directions on the corpus (want >= 15)" % checked)
 cli_common.finish()
 PY

@@ -198,3 +198,9 @@ double tg__strtod_c(const char* s, char** end)
     tg__c_locale_leave(l);
     return v;
 }
+
+int tg__cmp_double(const void* x, const void* y)
+{
+    double a = *(const double*)x, b = *(const double*)y;
+    return (a > b) - (a < b);
+}

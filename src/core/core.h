@@ -69,6 +69,9 @@ double tg__strtod_c(const char* s, char** end);
 /* The one growth rule of the library's buffers: the capacity (in elements or bytes) that holds
  * `need`, doubling from `cap` (or from `first` when cap is 0); `need` itself when doubling would
  * overflow. Returns cap when it already holds need. */
+/* qsort's comparison of doubles, ascending (no NaN expected). */
+int tg__cmp_double(const void* x, const void* y);
+
 size_t tg__grow_capacity(size_t cap, size_t need, size_t first);
 
 /* The library's one growable buffer (amortised doubling, checked sizes): readers' data, BVH

@@ -56,12 +56,6 @@ static bool lowest_of_edge(const tg_geodesic* g, uint32_t h)
     return true;
 }
 
-static int cmp_double(const void* x, const void* y)
-{
-    double a = *(const double*)x, b = *(const double*)y;
-    return (a > b) - (a < b);
-}
-
 /* This round's points of an open bracket (see PROBES), ascending, strictly inside it; t is the
  * middle while an end's value is unknown (a bounded run may leave the far cell's distance at
  * +inf). */
@@ -84,7 +78,7 @@ static void probe_points(cross* c)
         if (!(c->at[k] > c->lo + m)) c->at[k] = c->lo + m;
         if (!(c->at[k] < c->hi - m)) c->at[k] = c->hi - m;
     }
-    qsort(c->at, PROBES, sizeof c->at[0], cmp_double);
+    qsort(c->at, PROBES, sizeof c->at[0], tg__cmp_double);
 }
 
 /* The caller's form of the point at t along halfedge h (solver numbering). */

@@ -784,12 +784,6 @@ static void state_free(iso_state* st)
     for (size_t i = 0; i < sizeof vs / sizeof vs[0]; ++i) tg__vec_free(a, vs[i]);
 }
 
-static int cmp_double(const void* x, const void* y)
-{
-    double a = *(const double*)x, b = *(const double*)y;
-    return (a > b) - (a < b);
-}
-
 /* The recorded windows grouped by face (a counting sort: the order within a face is the
  * recording's, so the result is deterministic). */
 static bool group_records(iso_state* st, const tg__field_scratch* fs)
@@ -837,7 +831,7 @@ static tg_status isolines_of(const tg_geodesic* g, tg__field_scratch* fs, const 
     double limit = tg__field_limit(g, options);
     if (status == TG_OK) {
         for (size_t i = 0; i < nl; ++i) sorted[i] = levels[i] * g->scale;
-        qsort(sorted, nl, sizeof *sorted, cmp_double);
+        qsort(sorted, nl, sizeof *sorted, tg__cmp_double);
         bool progress = options && options->progress;
         tg__field_query q = {sources, source_count, NULL, 0, limit, progress ? tg__field_report_single : NULL, (void*)options,
                              NULL, false, NULL, false, NULL, NULL, sorted, nl};

@@ -524,6 +524,11 @@ static void test_sweep_regressions(void)
          {TG_SURFACE_FACE, 25, 0.0, {1, 0, 0}},
          {TG_SURFACE_FACE, 111, 0.0, {0.98928016281796616, 0.0031167261920959088, 0.0076031109899379334}},
          25.932341615624477},
+        /* a shortest path straight through vertices along collinear edges (A* once skipped the
+         * edges of vertices that cannot bend a path: 0.49943317875032939, proven); the length is
+         * the field's (tg_geodesic_field_at, no A*) and the path before the core v3 */
+        {"cgal_fandisk.off", {TG_SURFACE_VERTEX, 1167, 0.0, {0, 0, 0}}, {TG_SURFACE_VERTEX, 2463, 0.0, {0, 0, 0}},
+         0.48963106184244681},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         ctx c;

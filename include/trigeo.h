@@ -1526,17 +1526,21 @@ typedef struct tg_isolines tg_isolines;
  *  short enough that a chord stays within 1e-3 of the face's longest side of its arc; each
  *  point is projected back onto the level (Newton's step on the distance, whose gradient is the
  *  unit vector from the active centre), and where the active centre changes the two circles'
- *  intersection is inserted. The pieces of all faces are joined at their shared edge crossings.
+ *  intersection is inserted. The pieces of all faces are joined at their shared edge crossings
+ *  and at vertices on the level (a vertex whose distance equals the level to 1e-12 relative: the
+ *  curve passes through it, and leaves it into a face along the circle that rules there);
+ *  crossings within 1e-6 of the faces' longest side of each other or of a vertex are one node.
  *
  *  Result: per level (in the order given), polylines of two or more points; a polyline is open
  *  where the curve meets the mesh boundary (or stops: see below) and closed when it comes back
  *  to its start (then its first point is repeated at its end and its closed flag is 1). Every
  *  point is a surface point (an edge point where the curve crosses an edge, a face point inside
  *  a face) with its 3D position and a face holding it.
- *  Not covered (documented limits): a level equal to a vertex's distance to rounding (the curve
- *  passes through the vertex: the polylines may break there); a closed curve inside one face
- *  that meets no edge is found only around a source in that face (not around a local maximum of
- *  the distance); curves in zero-area faces are not traced.
+ *  Not covered (documented limits): in faces thinner than about 1e-3 of their length (walls of
+ *  thin plates) a curve passing within such a face's width of a vertex may still break into
+ *  open polylines there; a closed curve inside one face that meets no edge is found only around
+ *  a source in that face (not around a local maximum of the distance); curves in zero-area
+ *  faces are not traced.
  *
  *  workspace: one of this solver's, or NULL for a temporary one. sources, source_count: as
  *  tg_geodesic_field. levels: level_count >= 1 finite values >= 0 (any order, repeats allowed;

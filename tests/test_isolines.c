@@ -1,7 +1,8 @@
 /* test_isolines.c - exact isolines (tg_geodesic_isolines): every point at its level by the
  * field's own point query (tg_geodesic_field_at, an independent evaluation), circles on a flat
  * mesh, two crossings on edges whose distance dips below the level between its ends (a holed
- * plate), one closed loop about a source on a closed surface, bad input. */
+ * plate), one closed loop about a source on a closed surface, levels equal to vertex distances
+ * (curves through vertices: all closed on closed surfaces), bad input. */
 #include "tg_test.h"
 #include "tg_test_geodesic.h"
 #include "tg_test_plate.h"
@@ -189,6 +190,55 @@ static void test_corpus(void)
     }
 }
 
+/* ---- levels at vertex distances: curves through vertices, closed on closed surfaces ---- */
+
+/* Levels equal to the distances of vertices (round levels on CAD meshes hit them; the curve then
+ * passes through the vertex, or within rounding of it): every point on its level and, the mesh
+ * being closed, every polyline closed. */
+static void levels_at_vertices(tg_mesh* m, const char* what, uint64_t seed)
+{
+    ctx c = open_ctx_for(m);
+    CHECK(tg_mesh_get_report(m)->boundary_loops == 0);
+    size_t nvv = tg_mesh_vertex_count(m);
+    tg_rng r = {seed};
+    for (int round = 0; round < 3; ++round) {
+        tg_surface_point src = tg_surface_vertex((uint32_t)(tg_rng_next(&r) % nvv));
+        double* vd = malloc(nvv * sizeof *vd);
+        CHECK_STATUS(tg_geodesic_field(c.geo, c.ws, &src, 1, NULL, vd, NULL), TG_OK);
+        double levels[6];
+        size_t nl = 0;
+        while (nl < 6) {
+            double d = vd[tg_rng_next(&r) % nvv];
+            if (d > 0.0 && d < INFINITY) levels[nl++] = d;
+        }
+        tg_isolines_view v;
+        tg_isolines* iso = iso_of(&c, &src, 1, levels, nl, &v);
+        char w[256];
+        snprintf(w, sizeof w, "%s, levels at vertices, round %d", what, round);
+        size_t open = 0;
+        for (size_t p = 0; p < v.polyline_count; ++p) open += !v.polyline_closed[p];
+        CHECK_MSG(v.polyline_count >= nl && open == 0,
+                  "%s: %zu of %zu polylines open on a closed surface (source v:%u, levels %.17g %.17g %.17g %.17g "
+                  "%.17g %.17g)",
+                  w, open, v.polyline_count, src.index, levels[0], levels[1], levels[2], levels[3], levels[4], levels[5]);
+        check_on_levels(&c, &src, 1, &v, 1e-9, w);
+        tg_isolines_destroy(iso);
+        free(vd);
+    }
+    close_ctx(&c);
+}
+
+static void test_levels_at_vertices(void)
+{
+    levels_at_vertices(make_plate(12, 3, 1.0), "plate 12 3 1.0", 0x1e7e1u);
+    levels_at_vertices(make_plate(10, 2, 0.5), "plate 10 2 0.5", 0x1e7e2u);
+    static const char* const files[] = {"scivi_buddha.obj", "nvd_bob_tri.obj"};
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; ++i) {
+        tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), files[i]);
+        if (m) levels_at_vertices(m, files[i], 0x1e7e3u + i);
+    }
+}
+
 /* ---- closed surface: a small level is one closed loop ---- */
 
 static void test_closed_loop(void)
@@ -287,6 +337,7 @@ int main(void)
     test_flat_circles();
     test_plate_dips();
     test_closed_loop();
+    test_levels_at_vertices();
     test_max_distance();
     test_corpus();
     return tg_test_finish();

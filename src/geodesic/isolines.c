@@ -15,7 +15,9 @@
  * that centre), one arc step at a time, each point projected back on the level (Newton on D,
  * exact in one step while the centre stays), the two circles' intersection inserted where the
  * centre changes, until the arc meets a side of the face: the exit snaps to the nearest crossing
- * of that side. The pieces are joined at their crossings into polylines. */
+ * of that side. The pieces are joined at their crossings into polylines. A vertex whose distance
+ * is the level is a crossing too: walks end there, and start there into each face where the
+ * circle through it that rules beyond it enters the face. */
 #include "geodesic/workspace.h"
 
 #include <stdlib.h>
@@ -42,11 +44,28 @@ typedef struct face_geo {
     double span; /* longest side */
 } face_geo;
 
-/* A crossing of one level: on the edge of halfedge e (the lowest of its ring) at x from tri[e]. */
+/* A crossing of one level: on the edge of halfedge e (the lowest of its ring) at x from tri[e];
+ * or a vertex whose distance is the level (e == TG_NONE, the vertex v): the curve passes through
+ * it, from one face at it into another. Crossings within NEAR_REL of the same vertex (the
+ * curve passes that close to it) are one node: rep, the first of them, stands for all. */
 typedef struct crossing {
-    uint32_t e;
+    uint32_t e, v, rep;
     double x;
 } crossing;
+
+/* A vertex lies on a level when its distance is the level to this relative margin (the rounding
+ * of distances: the curve then passes within it of the vertex, and is taken through it). */
+#define VERTEX_LEVEL_REL 1e-12
+/* Nearness at an edge, relative to the longest side of the faces at it: an edge crossing this
+ * close to a vertex on the level is that vertex; to another vertex, it is one node with the
+ * other crossings that close to it, and so is one this close to the edge's previous crossing; a
+ * walk's exit joins the crossing (or vertex) of its side this close (both ways agree; in a
+ * sliver, a curve passing close to a vertex crosses the short sides far from it relative to
+ * their own length). */
+#define NEAR_REL 1e-6
+/* A walk leaves through a side it starts on only beyond this angle about its centre: a circle
+ * tangent to the side there meets it twice within about the square root of the rounding. */
+#define START_ANGLE 1e-7
 
 /* A walked piece of curve in one face: from crossing a to crossing b (indices of the level's
  * crossings; TG_NONE: the walk stopped there), through the face points [p0, p1) of `pts`; or a
@@ -68,6 +87,10 @@ typedef struct iso_state {
                                     while not computed for this level */
     uint32_t* edge_count;
     tg__vec edges_done;          /* uint32_t: halfedges set in edge_first this level */
+    uint32_t* vertex_node;       /* V, this level: the vertex's own crossing when it is on the level,
+                                    else the first crossing near it (its node's rep); TG_NONE while
+                                    not looked at, TG_NONE - 1 when neither (yet) */
+    tg__vec vertices_done;       /* uint32_t: vertices set in vertex_node this level */
     tg__vec pieces, pieces2;     /* piece: the face walked, a face at an edge */
     tg__vec spans;               /* double[2]: intervals of one edge */
     tg__vec cross;               /* crossing: this level's */
@@ -267,11 +290,69 @@ static bool face_traced(const tg_geodesic* g, uint32_t f)
     return !(g->fflags[f] & (TG__F_SKIP | TG__F_FLAT));
 }
 
-/* The crossings of level L on the edge named e, computed once per level from every face at it. */
+#define NOT_ON_LEVEL (TG_NONE - 1u)
+
+/* The crossing of vertex v when its distance is the level L (made once per level), else
+ * TG_NONE; false when out of memory. */
+static bool vertex_crossing(iso_state* st, uint32_t v, double L, uint32_t* out)
+{
+    uint32_t* vn = &st->vertex_node[v];
+    if (*vn == TG_NONE) {
+        if (!push(st->alloc, &st->vertices_done, &v)) return false;
+        *vn = NOT_ON_LEVEL;
+        if (fabs(st->dist[v] - L) <= VERTEX_LEVEL_REL * L) {
+            uint32_t id = (uint32_t)st->cross.count;
+            crossing c = {TG_NONE, v, id, 0.0};
+            if (!push(st->alloc, &st->cross, &c)) return false;
+            *vn = id;
+        }
+    }
+    *out = *vn != NOT_ON_LEVEL && ((const crossing*)st->cross.data)[*vn].e == TG_NONE ? *vn : TG_NONE;
+    return true;
+}
+
+/* NEAR_REL times the longest side of the faces at the edge of h. */
+static double near_dist(const tg_geodesic* g, uint32_t h)
+{
+    double span = 0.0;
+    uint32_t o = h;
+    do {
+        for (uint32_t k = 0; k < 3; ++k) span = fmax(span, g->frame[3 * (o / 3) + k].len);
+        o = g->ring[o];
+    } while (o != h);
+    return NEAR_REL * span;
+}
+
+/* Adds the crossing at x on the edge named e (of length len; its crossings come in ascending x):
+ * one near an end joins that end vertex's node, one near the edge's previous crossing joins that
+ * one's (the level touches the edge there, or crosses it twice within the distance at which a
+ * walk's exit joins a crossing). */
+static bool add_crossing(iso_state* st, uint32_t e, double x, double len, double near)
+{
+    const tg_geodesic* g = st->g;
+    uint32_t id = (uint32_t)st->cross.count;
+    crossing c = {e, TG_NONE, id, x};
+    const crossing* prev = st->edge_count[e] ? &((const crossing*)st->cross.data)[id - 1] : NULL;
+    if (prev && x - prev->x <= near) c.rep = prev->rep;
+    uint32_t v = x <= near ? g->tri[e] : x >= len - near ? g->tri[tg_halfedge_next(e)] : TG_NONE;
+    if (v != TG_NONE) { /* looked at by the caller: NOT_ON_LEVEL or a node's rep */
+        if (st->vertex_node[v] == NOT_ON_LEVEL) st->vertex_node[v] = c.rep;
+        else c.rep = st->vertex_node[v];
+    }
+    if (!push(st->alloc, &st->cross, &c)) return false;
+    st->edge_count[e]++;
+    return true;
+}
+
+/* The crossings of level L on the edge named e, computed once per level from every face at it
+ * (none within NEAR_REL of an end on the level: that end is the crossing). */
 static bool edge_crossings(iso_state* st, uint32_t e, double L)
 {
     const tg_geodesic* g = st->g;
     if (st->edge_first[e] != TG_NONE) return true;
+    uint32_t n0, n1;
+    if (!vertex_crossing(st, g->tri[e], L, &n0) || !vertex_crossing(st, g->tri[tg_halfedge_next(e)], L, &n1))
+        return false;
     st->edge_first[e] = (uint32_t)st->cross.count, st->edge_count[e] = 0;
     if (!push(st->alloc, &st->edges_done, &e)) return false;
     double len = g->frame[e].len;
@@ -300,24 +381,19 @@ static bool edge_crossings(iso_state* st, uint32_t e, double L)
     double* iv = st->spans.data;
     size_t n = st->spans.count;
     if (n > 1) qsort(iv, n, 2 * sizeof(double), cmp_span);
-    /* parts of the union; gaps of rounding size (pieces meeting at a wedge's edge) are no gaps */
-    double gap = 1e-12 * len;
+    /* parts of the union; gaps of rounding size (pieces meeting at a wedge's edge) are no gaps;
+     * their ends strictly inside the edge are the crossings, but none near an end on the level */
+    double gap = 1e-12 * len, near = near_dist(g, e), lo_ok = n0 != TG_NONE ? near : 0.0;
+    double hi_ok = len - (n1 != TG_NONE ? near : 0.0);
     for (size_t i = 0; i < n;) {
         double lo = iv[2 * i], hi = iv[2 * i + 1];
         size_t j = i + 1;
         for (; j < n && iv[2 * j] <= hi + gap; ++j)
             if (iv[2 * j + 1] > hi) hi = iv[2 * j + 1];
-        crossing c = {e, 0.0};
-        if (lo > 0.0) {
-            c.x = lo;
-            if (!push(st->alloc, &st->cross, &c)) return false;
-            st->edge_count[e]++;
-        }
-        if (hi < len) {
-            c.x = hi;
-            if (!push(st->alloc, &st->cross, &c)) return false;
-            st->edge_count[e]++;
-        }
+        /* a part of one point (the level touches the edge there) is one crossing */
+        double ends[2] = {lo, hi};
+        for (int k = 0; k < (hi - lo > gap ? 2 : 1); ++k)
+            if (ends[k] > lo_ok && ends[k] < hi_ok && !add_crossing(st, e, ends[k], len, near)) return false;
         i = j;
     }
     return true;
@@ -333,23 +409,41 @@ static double crossing_on_side(const tg_geodesic* g, const crossing* c, uint32_t
     return g->tri[h] == g->tri[c->e] ? c->x : g->frame[c->e].len - c->x;
 }
 
-/* The crossing of this level on side m of the face nearest to x (from c[m]), where in *out_x;
- * TG_NONE if none. */
-static uint32_t nearest_crossing(iso_state* st, const face_geo* fg, int m, double x, double L, double* out_x,
-                                 bool* ok)
+/* The crossing of this level on side m of the face (an end vertex on the level included) nearest
+ * to x (from c[m]), if within NEAR_REL of it (near_dist); else TG_NONE. */
+static uint32_t nearest_crossing(iso_state* st, const face_geo* fg, int m, double x, double L, bool* ok)
 {
     const tg_geodesic* g = st->g;
-    uint32_t h = 3 * fg->f + (uint32_t)m, e = edge_name(g, h);
-    if (!edge_crossings(st, e, L)) {
+    uint32_t h = 3 * fg->f + (uint32_t)m, e = edge_name(g, h), ends[2];
+    if (!edge_crossings(st, e, L) || !vertex_crossing(st, g->tri[h], L, &ends[0]) ||
+        !vertex_crossing(st, g->tri[tg_halfedge_next(h)], L, &ends[1])) {
         *ok = false;
         return TG_NONE;
     }
     const crossing* cs = st->cross.data;
     uint32_t best = TG_NONE;
-    double bd = INFINITY;
+    double near = near_dist(g, h), bd = near;
     for (uint32_t i = st->edge_first[e]; i < st->edge_first[e] + st->edge_count[e]; ++i) {
-        double at = crossing_on_side(g, &cs[i], h), d = fabs(at - x);
-        if (d < bd) bd = d, best = i, *out_x = at;
+        double d = fabs(crossing_on_side(g, &cs[i], h) - x);
+        if (d <= bd) bd = d, best = i;
+    }
+    for (int k = 0; k < 2; ++k) {
+        double d = fabs((k ? fg->len[m] : 0.0) - x);
+        if (ends[k] != TG_NONE && d <= bd) bd = d, best = ends[k];
+    }
+    for (int k = 0; k < 2 && best == TG_NONE; ++k) {
+        /* none on this side, but at an end: the node of crossings near that vertex on its other
+         * edges (every edge at it looked at first) */
+        uint32_t v = g->tri[k ? tg_halfedge_next(h) : h];
+        if (!(fabs((k ? fg->len[m] : 0.0) - x) <= near)) continue;
+        for (uint32_t i = g->corner_start[v]; i < g->corner_start[v + 1]; ++i) {
+            uint32_t c = g->corners[i], f = c / 3, hp = 3 * f + (c % 3 + 2) % 3;
+            if (!edge_crossings(st, edge_name(g, c), L) || !edge_crossings(st, edge_name(g, hp), L)) {
+                *ok = false;
+                return TG_NONE;
+            }
+        }
+        if (st->vertex_node[v] != NOT_ON_LEVEL) best = st->vertex_node[v];
     }
     return best;
 }
@@ -369,10 +463,10 @@ static double step_angle(double r, double span)
     return a;
 }
 
-/* The first angle in (amin, amax] at which the circle about c through p (counterclockwise) meets a
- * side of the face; its side in *out_m, its abscissa along it in *out_x. */
-static double first_exit(const face_geo* fg, const double c[2], const double p[2], double amin, double amax,
-                         int* out_m, double* out_x)
+/* The first angle in (amin[m], amax] at which the circle about c through p (counterclockwise) meets
+ * a side m of the face; its side in *out_m, its abscissa along it in *out_x. */
+static double first_exit(const face_geo* fg, const double c[2], const double p[2], const double amin[3],
+                         double amax, int* out_m, double* out_x)
 {
     double vx = p[0] - c[0], vy = p[1] - c[1], r = sqrt(vx * vx + vy * vy);
     double best = INFINITY;
@@ -388,7 +482,7 @@ static double first_exit(const face_geo* fg, const double c[2], const double p[2
             double ex = qx + x * ux, ey = qy + x * uy; /* from the centre */
             double ang = atan2(vx * ey - vy * ex, vx * ex + vy * ey);
             if (ang < 0.0) ang += 2.0 * TG__PI;
-            if (ang > amin && ang <= amax && ang < best) best = ang, *out_m = m, *out_x = x;
+            if (ang > amin[m] && ang <= amax && ang < best) best = ang, *out_m = m, *out_x = x;
         }
     }
     return best;
@@ -454,23 +548,70 @@ static bool piece_rules(const face_geo* fg, const piece* pcs, size_t n, uint32_t
     return held;
 }
 
-/* Walks the curve of level L into face fg from crossing ci on its side m (x from c[m]) when it
- * enters there; appends a segment. Along the arc of the ruling piece k until it stops ruling
- * (another piece shorter, or its wedge ends): the angle where it stops is found by bisection,
- * and the walk goes on from there along the arc of the piece that rules beyond. */
-static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, double x, double L)
+static bool walk_on(iso_state* st, const face_geo* fg, uint32_t ci, const double start[2], int m0, int m1,
+                    uint32_t j, double L);
+
+/* Starts the curve of level L into face fg from p, the crossing ci: on side m (at x from c[m]),
+ * or at corner m, a vertex on the level (corner set). The curve leaves p along the circle of a
+ * piece through p, counterclockwise (the nearer side on the left: the gradient of D is the unit
+ * vector from that centre); where pieces of several circles tie at p (the curve has a corner
+ * there) the one that rules just beyond p along its arc is taken. Its tangent must point into the
+ * face: across side m, or inside the corner's angle (along side m counts: the arc bends to its
+ * left, into the face; a curve through a vertex of a grid leaves along an edge). */
+static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, double x, bool corner, double L)
+{
+    const piece* pcs = st->pieces.data;
+    size_t n = st->pieces.count;
+    double p[2] = {fg->c[m][0] + x * fg->u[m][0], fg->c[m][1] + x * fg->u[m][1]};
+    if (corner) p[0] = fg->c[m][0], p[1] = fg->c[m][1];
+    const double* u_in = fg->u[m];             /* along side m, away from c[m] */
+    const double* u_back = fg->u[(m + 2) % 3]; /* side m - 1 arrives at c[m] */
+    double tol = 1e-14 * (L + fg->span);
+    uint32_t first;
+    eval_at(fg, pcs, n, p, &first);
+    if (first == TG_NONE) return true;
+    for (size_t t = 0; t <= n; ++t) {
+        /* the circle of the piece that holds p first, then every other circle once */
+        uint32_t c = t == 0 ? pcs[first].circle : (uint32_t)(t - 1);
+        if (t > 0 && (pcs[c].circle != c || c == pcs[first].circle)) continue;
+        const piece* pc = &pcs[c];
+        double gx = p[0] - pc->cx, gy = p[1] - pc->cy, r = sqrt(gx * gx + gy * gy);
+        if (!(r > 1e-9 * fg->span) || !(fabs(pc->sigma + r - L) <= VERTEX_LEVEL_REL * L + tol)) continue;
+        double tx = -gy / r, ty = gx / r;
+        if (corner ? !(u_in[0] * ty - u_in[1] * tx > -1e-12) || !(tx * -u_back[1] - ty * -u_back[0] > 1e-12)
+                   : !(u_in[0] * ty - u_in[1] * tx > 1e-12))
+            continue;
+        /* the circle's piece that holds the point a little along the arc (before it leaves the
+         * face: a curve may cross the corner of a sliver within far less) rules there */
+        double amin[3] = {0.0, 0.0, 0.0}, q[2], ex;
+        int em;
+        amin[m] = START_ANGLE;
+        if (corner) amin[(m + 2) % 3] = START_ANGLE;
+        double centre[2] = {pc->cx, pc->cy}, a = 1e-6 * fg->span / r;
+        double ea = first_exit(fg, centre, p, amin, a, &em, &ex);
+        rotate_about(pc, p, ea < a ? 0.5 * ea : a, q);
+        uint32_t k = TG_NONE;
+        for (size_t i = 0; i < n && k == TG_NONE; ++i)
+            if (pcs[i].circle == c && piece_holds(fg, &pcs[i], q)) k = (uint32_t)i;
+        if (k == TG_NONE || !inside_face(fg, q) || !piece_rules(fg, pcs, n, k, q, tol)) continue;
+        return walk_on(st, fg, ci, p, m, corner ? (m + 2) % 3 : -1, k, L);
+    }
+    return true;
+}
+
+/* Walks from p (on the level, piece j ruling), which lies on side m0 (and m1 >= 0: on that side
+ * too, at their corner), and appends the segment. Along the arc of the ruling piece until it stops
+ * ruling (another piece shorter, or its wedge ends): the angle where it stops is found by
+ * bisection, and the walk goes on from there along the arc of the piece that rules beyond. The
+ * first step leaves through sides m0, m1 only beyond START_ANGLE, through the others at any angle
+ * (a start near a corner may leave through the side beyond the corner at once). */
+static bool walk_on(iso_state* st, const face_geo* fg, uint32_t ci, const double start[2], int m0, int m1,
+                    uint32_t j, double L)
 {
     const piece* pcs = st->pieces.data;
     size_t n = st->pieces.count;
     double tol = 1e-14 * (L + fg->span);
-    double p[2] = {fg->c[m][0] + x * fg->u[m][0], fg->c[m][1] + x * fg->u[m][1]};
-    uint32_t j;
-    eval_at(fg, pcs, n, p, &j);
-    if (j == TG_NONE) return true;
-    double gx = p[0] - pcs[j].cx, gy = p[1] - pcs[j].cy;
-    /* the tangent (-gy, gx) must point into the face: against the inward normal (-uy, ux) */
-    double into = -gy * -fg->u[m][1] + gx * fg->u[m][0];
-    if (!(into > 1e-12 * sqrt(gx * gx + gy * gy))) return true;
+    double p[2] = {start[0], start[1]};
     segment sg = {ci, TG_NONE, fg->f, 0, st->pts.count, 0};
     bool ok = true;
     for (int step = 0; step < MAX_STEPS; ++step) {
@@ -481,17 +622,20 @@ static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, dou
         double da = step_angle(r, fg->span);
         int em = -1;
         double ex = 0.0;
-        double ea = first_exit(fg, c, p, step == 0 ? 1e-9 : 0.0, da, &em, &ex);
+        double amin[3] = {0.0, 0.0, 0.0};
+        if (step == 0) {
+            amin[m0] = START_ANGLE;
+            if (m1 >= 0) amin[m1] = START_ANGLE;
+        }
+        double ea = first_exit(fg, c, p, amin, da, &em, &ex);
         double at = ea <= da ? ea : da, q[2];
         rotate_about(pc, p, at, q);
         if (piece_rules(fg, pcs, n, j, q, tol)) {
-            if (ea <= da) { /* the arc leaves the face: at a crossing of that side */
-                double cx;
-                sg.b = nearest_crossing(st, fg, em, ex, L, &cx, &ok);
+            if (ea <= da) { /* the arc leaves the face: at a crossing of that side, or its end */
+                sg.b = nearest_crossing(st, fg, em, ex, L, &ok);
                 if (!ok) return false;
-                /* none there (the curve leaves through a vertex at the level, a zero-area face
-                 * beyond): the walk ends on the side, the polyline open */
-                if (sg.b != TG_NONE && !(fabs(cx - ex) <= 1e-6 * fg->len[em])) sg.b = TG_NONE;
+                /* none there (a zero-area face beyond): the walk ends on the side, the polyline
+                 * open */
                 if (sg.b == TG_NONE && !add_point(st, fg, q)) return false;
                 break;
             }
@@ -523,6 +667,11 @@ static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, dou
         p[0] = xk[0], p[1] = xk[1], j = next;
     }
     sg.p1 = st->pts.count;
+    /* crossings near one vertex are one node; a piece of curve between two of them is dropped */
+    const crossing* cs = st->cross.data;
+    sg.a = cs[sg.a].rep;
+    if (sg.b != TG_NONE) sg.b = cs[sg.b].rep;
+    if (sg.a == sg.b && sg.p1 == sg.p0) return true;
     return push(st->alloc, &st->segs, &sg);
 }
 
@@ -585,8 +734,11 @@ static bool trace_level(iso_state* st, double L)
             if (!edge_crossings(st, e, L)) return false;
             for (uint32_t i = st->edge_first[e]; i < st->edge_first[e] + st->edge_count[e]; ++i) {
                 double x = crossing_on_side(g, &((const crossing*)st->cross.data)[i], h);
-                if (!walk_from(st, &fg, i, m, x, L)) return false;
+                if (!walk_from(st, &fg, i, m, x, false, L)) return false;
             }
+            uint32_t vc;
+            if (!vertex_crossing(st, g->tri[h], L, &vc)) return false;
+            if (vc != TG_NONE && !walk_from(st, &fg, vc, m, 0.0, true, L)) return false;
         }
         for (size_t i = 0; i < st->pieces.count; ++i) {
             piece pc = ((const piece*)st->pieces.data)[i];
@@ -596,6 +748,9 @@ static bool trace_level(iso_state* st, double L)
     const uint32_t* done = st->edges_done.data;
     for (size_t i = 0; i < st->edges_done.count; ++i) st->edge_first[done[i]] = TG_NONE;
     st->edges_done.count = 0;
+    done = st->vertices_done.data;
+    for (size_t i = 0; i < st->vertices_done.count; ++i) st->vertex_node[done[i]] = TG_NONE;
+    st->vertices_done.count = 0;
     return true;
 }
 
@@ -609,6 +764,10 @@ static bool out_node(iso_state* st, const tg__node* nd, uint32_t face)
 static bool out_crossing(iso_state* st, uint32_t ci, uint32_t face)
 {
     const crossing* c = &((const crossing*)st->cross.data)[ci];
+    if (c->e == TG_NONE) {
+        tg__node nd = tg__node_vertex(c->v);
+        return out_node(st, &nd, face);
+    }
     double len = st->g->frame[c->e].len;
     tg__node nd = tg__node_edge(c->e, c->x / len, (len - c->x) / len);
     return out_node(st, &nd, face);
@@ -778,9 +937,10 @@ static void state_free(iso_state* st)
     tg__free(a, st->rec_order);
     tg__free(a, st->edge_first);
     tg__free(a, st->edge_count);
-    tg__vec* vs[] = {&st->edges_done, &st->pieces,    &st->pieces2,   &st->spans,      &st->cross,
-                     &st->segs,       &st->pts,       &st->out_nodes, &st->out_faces,  &st->out_pstart,
-                     &st->out_closed, &st->adj_start, &st->adj,       &st->used};
+    tg__free(a, st->vertex_node);
+    tg__vec* vs[] = {&st->vertices_done, &st->edges_done, &st->pieces,    &st->pieces2,    &st->spans,
+                     &st->cross,         &st->segs,       &st->pts,       &st->out_nodes,  &st->out_faces,
+                     &st->out_pstart,    &st->out_closed, &st->adj_start, &st->adj,        &st->used};
     for (size_t i = 0; i < sizeof vs / sizeof vs[0]; ++i) tg__vec_free(a, vs[i]);
 }
 
@@ -802,7 +962,7 @@ static bool group_records(iso_state* st, const tg__field_scratch* fs)
 
 static void vec_init(iso_state* st)
 {
-    st->edges_done.elem = sizeof(uint32_t);
+    st->edges_done.elem = st->vertices_done.elem = sizeof(uint32_t);
     st->pieces.elem = st->pieces2.elem = sizeof(piece);
     st->spans.elem = 2 * sizeof(double);
     st->cross.elem = sizeof(crossing);
@@ -842,8 +1002,11 @@ static tg_status isolines_of(const tg_geodesic* g, tg__field_scratch* fs, const 
         size_t nh = 3 * (size_t)g->face_count;
         st.edge_first = tg__alloc_array(a, nh ? nh : 1, sizeof(uint32_t));
         st.edge_count = tg__alloc_array(a, nh ? nh : 1, sizeof(uint32_t));
-        if (!st.edge_first || !st.edge_count || !group_records(&st, fs)) status = TG_ERR_OUT_OF_MEMORY;
+        st.vertex_node = tg__alloc_array(a, g->vertex_count ? g->vertex_count : 1, sizeof(uint32_t));
+        if (!st.edge_first || !st.edge_count || !st.vertex_node || !group_records(&st, fs))
+            status = TG_ERR_OUT_OF_MEMORY;
         for (size_t h = 0; status == TG_OK && h < nh; ++h) st.edge_first[h] = TG_NONE;
+        for (size_t v = 0; status == TG_OK && v < g->vertex_count; ++v) st.vertex_node[v] = TG_NONE;
     }
     for (size_t li = 0; status == TG_OK && li < nl; ++li) {
         level_start[li] = st.out_closed.count;

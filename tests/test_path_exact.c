@@ -529,6 +529,14 @@ static void test_sweep_regressions(void)
          * the field's (tg_geodesic_field_at, no A*) and the path before the core v3 */
         {"cgal_fandisk.off", {TG_SURFACE_VERTEX, 1167, 0.0, {0, 0, 0}}, {TG_SURFACE_VERTEX, 2463, 0.0, {0, 0, 0}},
          0.48963106184244681},
+        /* a point in the shadow of a nearly flat saddle (vertex 1339: total angle 2 pi + 7.6e-10, once
+         * flat below 2 pi (1 + 1e-9), so it emitted no windows and no ray reached the sliver behind
+         * it): 9.5043739422863180, proven, 0.07% long; a validated path to the surface point 4e-9
+         * away (closest to -6.90977699 0.0895301221 3.95168354) is 9.4974941140751690 long.
+         * Found by the isolines' check (tg_geodesic_field_at at their points). */
+        {"oded_plane_holes.obj", {TG_SURFACE_VERTEX, 5028, 0.0, {0, 0, 0}},
+         {TG_SURFACE_FACE, 3515, 0.0, {0.22822565519268451, 0.35639919753238086, 0.41537514727493469}},
+         9.497494118212673},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         ctx c;

@@ -537,6 +537,14 @@ static void test_sweep_regressions(void)
         {"oded_plane_holes.obj", {TG_SURFACE_VERTEX, 5028, 0.0, {0, 0, 0}},
          {TG_SURFACE_FACE, 3515, 0.0, {0.22822565519268451, 0.35639919753238086, 0.41537514727493469}},
          9.497494118212673},
+        /* a point on the tie of two windows whose ends, rounded along a long chain of unfoldings
+         * from far source images, left a gap 4.4e-12 of the edge between them, wider than the
+         * 1e-12 snap of that edge alone: 5.414548260521934, proven, 1.2e-5 long; points 1e-13
+         * away in the face's barycentrics got 5.4144831312610746 and 5.4144831312617105, a
+         * validated path to a point 4.4e-10 away is 5.414483131574619 long */
+        {"openfoam_DTC-scaled.stl.gz", {TG_SURFACE_VERTEX, 35237, 0.0, {0, 0, 0}},
+         {TG_SURFACE_FACE, 94100, 0.0, {0.10373092477233592, 0.0082028297737137372, 0.8880662454539503}},
+         5.414483131261404},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         ctx c;

@@ -181,8 +181,8 @@ static bool pieces_of(iso_state* st, const face_geo* fg, tg__vec* v)
             p.k = 3, p.source = 1, p.cx = r->sx, p.cy = r->sy;
         } else {
             uint32_t k = r->h % 3;
-            /* the snap of query.c: rays within 1e-12 of the edge beyond an end still count */
-            double snap = 1e-12 * fg->len[k];
+            /* the snap of query.c: rays that close beyond an end still count */
+            double snap = tg__window_snap(fg->len[k], r->sx, r->sy);
             p.k = k, p.sx = r->sx, p.sy = r->sy, p.b0 = r->b0 - snap, p.b1 = r->b1 + snap;
             double vx = -fg->u[k][1], vy = fg->u[k][0];
             p.cx = fg->c[k][0] + r->sx * fg->u[k][0] + r->sy * vx;

@@ -184,12 +184,12 @@ void tg__field_queries_cross(tg__field_run* run, uint32_t h, const tg__window* p
         double pt[2];
         tg__frame_bary(fr, k, q[j].b, pt);
         double px = pt[0], py = pt[1];
-        double snap = 1e-12 * fr->len; /* as the corner snap of propagate.c */
         for (size_t i = 0; i < n; ++i) {
             const tg__window* w = &pool[ids[i]];
             if (!(w->b0 < w->b1)) continue;
             /* where the ray from the source image to the point crosses the edge */
             double xs = w->sx + (px - w->sx) * (-w->sy) / (py - w->sy);
+            double snap = tg__window_snap(fr->len, w->sx, w->sy);
             if (!(xs >= w->b0 - snap && xs <= w->b1 + snap)) continue;
             double dx = px - w->sx, dy = py - w->sy;
             double d = w->sigma + sqrt(dx * dx + dy * dy);

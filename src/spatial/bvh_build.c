@@ -937,6 +937,7 @@ static void choose_frame(tg_bvh* bvh)
     if (half > 0.0) frexp(half, &e);
     if (e < -1000) e = -1000;
     bvh->scale = ldexp(1.0, -e);
+    bvh->inv_scale = ldexp(1.0, e);
 }
 
 static tg_sign_method auto_sign_method(const tg_mesh* m)

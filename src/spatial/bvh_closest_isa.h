@@ -27,6 +27,7 @@
 #define V8_MAX _mm256_max_ps
 #define V8_ABS(a) _mm256_and_ps(a, _mm256_castsi256_ps(_mm256_set1_epi32(0x7FFFFFFF)))
 #define V8_STORE _mm256_storeu_ps
+#define V8_LOAD _mm256_loadu_ps
 #define V8_LE_MASK(a, b) _mm256_movemask_ps(_mm256_cmp_ps(a, b, _CMP_LE_OQ))
 /* Eight bytes as floats (exact). */
 static inline ISA_ATTR __m256 FN(v8_u8)(const uint8_t* b)
@@ -64,6 +65,13 @@ static inline void v8_store(float* out, tg__v8 a)
     tg_v4_storeu(out, a.lo);
     tg_v4_storeu(out + 4, a.hi);
 }
+static inline tg__v8 v8_load(const float* p)
+{
+    tg__v8 r;
+    r.lo = tg_v4_loadu(p);
+    r.hi = tg_v4_loadu(p + 4);
+    return r;
+}
 static inline int v8_le_mask(tg__v8 a, tg__v8 b) { return tg_v4_le_mask(a.lo, b.lo) | tg_v4_le_mask(a.hi, b.hi) << 4; }
 #define V8_SET1 v8_set1
 #define V8_ADD v8_add
@@ -73,10 +81,50 @@ static inline int v8_le_mask(tg__v8 a, tg__v8 b) { return tg_v4_le_mask(a.lo, b.
 #define V8_MAX v8_max
 #define V8_ABS v8_abs
 #define V8_STORE v8_store
+#define V8_LOAD v8_load
 #define V8_LE_MASK v8_le_mask
 #define V8_U8 v8_u8
 #define V8_I8 v8_i8
 #endif
+
+/* Stores a node's child bounds acc to out and returns the mask of its used children not farther
+ * than the threshold; when there is one, *out_near is the nearest of them (the lowest slot among
+ * equals), found in registers: a scalar scan of out[] right after the vector store waits for the
+ * store at every step and was a seventh of a query on the surface. */
+static inline ISA_ATTR int FN(survivors)(v8 acc, const tg__bvh_node* n, const query* q, float* out, int* out_near)
+{
+    V8_STORE(out, acc);
+    const int mask = V8_LE_MASK(acc, V8_SET1(q->thr)) & ((1 << n->child_count) - 1);
+    if (!mask) return 0;
+    /* a child whose box holds the query (bound 0) is the nearest: the usual case on the surface,
+     * known without the reduction below */
+    const int zero = V8_LE_MASK(acc, V8_SET1(0.0f)) & mask;
+    if (zero) {
+        *out_near = (int)tg__ctz32((uint32_t)zero);
+        return mask;
+    }
+#if ISA_LEVEL >= 1
+    const __m256 lane = _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f);
+    const __m256 live = _mm256_and_ps(_mm256_cmp_ps(acc, _mm256_set1_ps(q->thr), _CMP_LE_OQ),
+                                      _mm256_cmp_ps(lane, _mm256_set1_ps((float)n->child_count), _CMP_LT_OQ));
+    const __m256 v = _mm256_blendv_ps(_mm256_set1_ps(INFINITY), acc, live);
+    __m256 m = _mm256_min_ps(v, _mm256_permute2f128_ps(v, v, 1));
+    m = _mm256_min_ps(m, _mm256_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)));
+    m = _mm256_min_ps(m, _mm256_shuffle_ps(m, m, _MM_SHUFFLE(2, 3, 0, 1)));
+    *out_near = (int)tg__ctz32((uint32_t)(_mm256_movemask_ps(_mm256_cmp_ps(v, m, _CMP_EQ_OQ)) & mask));
+#else
+    int near = (int)tg__ctz32((uint32_t)mask);
+    for (int r = mask & (mask - 1); r; r &= r - 1) {
+        int s = (int)tg__ctz32((uint32_t)r);
+        near = out[s] < out[near] ? s : near;
+    }
+    *out_near = near;
+#endif
+    return mask;
+}
+
+/* The mask of the bounds d[0..7] not farther than the threshold. */
+static inline ISA_ATTR int FN(within)(const float* d, const query* q) { return V8_LE_MASK(V8_LOAD(d), V8_SET1(q->thr)); }
 
 /* Lower bounds of the squared distance from the query to the node's children (local units): the
  * larger of the distance to the child's box and the distance to its oriented box (see
@@ -85,7 +133,7 @@ static inline int v8_le_mask(tg__v8 a, tg__v8 b) { return tg_v4_le_mask(a.lo, b.
  * the exact value (a rounded difference, three products and two sums, eps = 2^-24), so each gap
  * is first reduced by twice that. Returns the mask of used children not farther than the
  * threshold. */
-static inline ISA_ATTR int FN(node_bounds)(const tg__bvh_node* n, const query* q, float* out)
+static inline ISA_ATTR int FN(node_bounds)(const tg__bvh_node* n, const query* q, float* out, int* out_near)
 {
     const v8 zero = V8_SET1(0.0f), half = V8_SET1(0.5f), two = V8_SET1(2.0f);
     v8 acc = zero, ext[3], d[3];
@@ -100,10 +148,7 @@ static inline ISA_ATTR int FN(node_bounds)(const tg__bvh_node* n, const query* q
         ext[a] = V8_SUB(hi, lo);
         d[a] = V8_SUB(plo, V8_MUL(V8_ADD(lo, hi), half));
     }
-    if (!obb_wanted(n, q)) {
-        V8_STORE(out, acc);
-        return V8_LE_MASK(acc, V8_SET1(q->thr)) & ((1 << n->child_count) - 1);
-    }
+    if (!obb_wanted(n, q)) return FN(survivors)(acc, n, q, out, out_near);
     /* the oriented boxes: M from the quaternions, as tg__bvh_quat_matrix does lane by lane */
     v8 qa = V8_I8(n->quat[0]), qb = V8_I8(n->quat[1]), qc = V8_I8(n->quat[2]), qd = V8_I8(n->quat[3]);
     v8 aa = V8_MUL(qa, qa), bb = V8_MUL(qb, qb), cc = V8_MUL(qc, qc), dd = V8_MUL(qd, qd);
@@ -128,8 +173,7 @@ static inline ISA_ATTR int FN(node_bounds)(const tg__bvh_node* n, const query* q
     }
     /* |M y| = n |y|: divide by n^2 (at least 1, so that a disabled slot gives 0 / 1) */
     acc = V8_MAX(acc, V8_DIV(acc2, V8_MAX(V8_MUL(nn, nn), V8_SET1(1.0f))));
-    V8_STORE(out, acc);
-    return V8_LE_MASK(acc, V8_SET1(q->thr)) & ((1 << n->child_count) - 1);
+    return FN(survivors)(acc, n, q, out, out_near);
 }
 
 #undef v8
@@ -141,6 +185,7 @@ static inline ISA_ATTR int FN(node_bounds)(const tg__bvh_node* n, const query* q
 #undef V8_MAX
 #undef V8_ABS
 #undef V8_STORE
+#undef V8_LOAD
 #undef V8_LE_MASK
 #undef V8_U8
 #undef V8_I8
@@ -445,45 +490,66 @@ static ISA_ATTR void FN(test_leaf)(const tg_bvh* bvh, query* q, uint32_t child, 
 
 /* ---- the walk ---- */
 
-/* Nearest first: at a node, the walk goes straight on to the nearest surviving child and pushes the
- * others, farther first, so that the next nearest is popped next. A pushed entry is skipped when
- * the best distance has since dropped below its bound. Cache lines are requested when they are
- * sure to be needed soon: the child walked into (all its lines at once), and the entry that will
- * be popped after the current one (while the current subtree is being searched). */
+/* Nearest first: at a node, the walk goes straight on to the nearest surviving child; the others
+ * wait in a list of pending nodes (their bounds, the mask of waiting slots) until the walk reaches
+ * a leaf and has tested it. Only then are they pushed, shallow levels first and in slot order, and
+ * only those still within the bound: a query on the surface finds its distance (about 0) in the
+ * first leaf, and of the 30 siblings its first descent passes (6 levels of 8) all but one or two
+ * are then beyond it. Pushing each and dropping it at the pop cost a tenth of such a query.
+ * A pushed entry is skipped when the best distance has since dropped below its bound. Cache lines
+ * are requested when they are sure to be needed soon: the child walked into (all its lines at
+ * once), and the entry that will be popped after the current one. */
+#define PENDING_MAX 32
+typedef struct FN(pending) {
+    const tg__bvh_node* node;
+    int mask;
+    float d[TG__BVH_WIDTH];
+} FN(pending);
+
 static ISA_ATTR void FN(traverse)(const tg_bvh* bvh, tg_bvh_workspace* ws, query* q)
 {
     tg__bvh_entry* stack = ws->stack;
-    uint32_t sp = 0, ref = 0, count = 0;
+    FN(pending) pend[PENDING_MAX];
+    uint32_t sp = 0, ref = 0, count = 0, np = 0;
     for (;;) {
+        bool descend = false;
         if (count) {
             STAT(1), STAT_ADD(2, count);
             FN(test_leaf)(bvh, q, ref, count);
         } else {
             const tg__bvh_node* n = &bvh->nodes[ref];
             STAT(0);
-            float d[TG__BVH_WIDTH];
-            int mask = FN(node_bounds)(n, q, d);
+            FN(pending)* pe = &pend[np];
+            int near = 0;
+            int mask = FN(node_bounds)(n, q, pe->d, &near);
             if (mask) {
-                /* the nearest survivor is walked into; the others are pushed in slot order */
-                int near = (int)tg__ctz32((uint32_t)mask);
-                for (int m = mask & (mask - 1); m; m &= m - 1) {
-                    int s = (int)tg__ctz32((uint32_t)m);
-                    if (d[s] < d[near]) {
-                        stack[sp++] = (tg__bvh_entry){n->child[near], n->leaf_count[near], d[near]};
-                        near = s;
-                    } else {
-                        stack[sp++] = (tg__bvh_entry){n->child[s], n->leaf_count[s], d[s]};
-                    }
-                }
-                int s = near;
-                ref = n->child[s], count = n->leaf_count[s];
+                /* the nearest survivor is walked into */
+                pe->node = n;
+                pe->mask = mask & ~(1 << near);
+                np += pe->mask != 0;
+                ref = n->child[near], count = n->leaf_count[near];
                 if (count)
                     prefetch_leaf(bvh, ref, count);
                 else
                     prefetch_node(bvh, ref);
-                continue;
+                descend = true;
             }
         }
+        /* the pending siblings still within the bound go onto the stack, once the walk has tested
+         * a leaf or found nothing below a node (or the list is full) */
+        if (np && (!descend || np == PENDING_MAX)) {
+            for (uint32_t i = 0; i < np; ++i) {
+                const FN(pending)* pe = &pend[i];
+                const int keep = pe->mask & FN(within)(pe->d, q);
+                for (int m = pe->mask & ~keep; m; m &= m - 1) STAT(3);
+                for (int m = keep; m; m &= m - 1) {
+                    int s = (int)tg__ctz32((uint32_t)m);
+                    stack[sp++] = (tg__bvh_entry){pe->node->child[s], pe->node->leaf_count[s], pe->d[s]};
+                }
+            }
+            np = 0;
+        }
+        if (descend) continue;
         /* pop the next entry still within the bound */
         while (sp > 0 && stack[sp - 1].dist > q->thr) --sp, STAT(3);
         if (sp == 0) break;
@@ -498,6 +564,7 @@ static ISA_ATTR void FN(traverse)(const tg_bvh* bvh, tg_bvh_workspace* ws, query
         }
     }
 }
+#undef PENDING_MAX
 
 #undef FN
 #undef TG_ISA_CAT_

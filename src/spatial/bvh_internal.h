@@ -118,6 +118,7 @@ struct tg_bvh {
     const tg_mesh* mesh;
     double origin[3]; /* local = (x - origin) * scale */
     double scale;     /* a power of two */
+    double inv_scale; /* 1 / scale, exact */
     tg__bvh_node* nodes; /* 64-byte aligned inside nodes_raw; node 0 is the root */
     void* nodes_raw;
     size_t nodes_raw_bytes;

@@ -96,11 +96,11 @@ static inline ISA_ATTR int FN(survivors)(v8 acc, const tg__bvh_node* n, const qu
     V8_STORE(out, acc);
     const int mask = V8_LE_MASK(acc, V8_SET1(q->thr)) & ((1 << n->child_count) - 1);
     if (!mask) return 0;
-    /* a child whose box holds the query (bound 0) is the nearest: the usual case on the surface,
-     * known without the reduction below */
+    /* one survivor (usual once a bound is known), or a child whose box holds the query (bound 0,
+     * usual on the surface: the lowest such slot) is the nearest without the reduction below */
     const int zero = V8_LE_MASK(acc, V8_SET1(0.0f)) & mask;
-    if (zero) {
-        *out_near = (int)tg__ctz32((uint32_t)zero);
+    if (!(mask & (mask - 1)) || zero) {
+        *out_near = (int)tg__ctz32((uint32_t)(zero ? zero : mask));
         return mask;
     }
 #if ISA_LEVEL >= 1

@@ -1,4 +1,4 @@
-/* bvh_query.c - closest point on a mesh: nearest-first branch and bound over the 4-wide BVH with
+/* bvh_query.c - closest point on a mesh: nearest-first branch and bound over the 8-wide BVH with
  * conservative float pruning and exact double point-triangle distances; workspaces; batches in
  * Morton order on all cores; surface location.
  * Based on: Larsen, Gottschalk, Lin, Manocha 1999, "Fast proximity queries with swept sphere

@@ -244,13 +244,14 @@ void tg__field_copy_out(const tg__field_run* run, double* out);
 /* A ray through the edge of a window's halfedge within this distance beyond the window's interval
  * still counts as the window's when a point is evaluated (query.c, ../isolines.c): the window's
  * ends are where rays from its source image (sx, sy) cross the edge, after as many unfoldings as
- * faces crossed, so their rounding grows with the image's distance, not the edge's length alone
- * (two windows meeting at a tie on openfoam_DTC-scaled.stl.gz left a gap 4.4e-12 of a 1.1e-3 edge
- * between them: a sliver behind it lit by no window). A ray that far beyond is a real path to
- * second order in that distance. */
+ * faces crossed, so their rounding grows with the image's distance, not the edge's length alone,
+ * and windows of other images may hold slivers between two that meet (gaps of 4.4e-12 of a
+ * 1.1e-3 edge on openfoam_DTC-scaled.stl.gz, 1.8e-12 beyond 1.2e-12 on cgal_mpi.off: a sliver
+ * behind lit by no window, its points 1.2e-5 and 8.8% long). A ray that far beyond is a real path
+ * to second order in that distance (1e-20 of it), so the margin is generous. */
 static inline double tg__window_snap(double len, double sx, double sy)
 {
-    return 1e-12 * (len + fabs(sx) + fabs(sy));
+    return 1e-10 * (len + fabs(sx) + fabs(sy));
 }
 
 static inline double tg__win_dist(const tg__window* w, double x)

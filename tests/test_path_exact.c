@@ -552,6 +552,9 @@ static void test_sweep_regressions(void)
         {"cgal_mpi.off", {TG_SURFACE_VERTEX, 86, 0.0, {0, 0, 0}},
          {TG_SURFACE_FACE, 48, 0.0, {0.25584005888004857, 0.67886732935245464, 0.065292611767496775}},
          25.020191503535752},
+        /* two distinct vertices at one position (the sweep, seed 51): the exact method's trace of
+         * length 0 was refused as not joining its ends (TG_ERR_INTERNAL) */
+        {"tbvh_legocar.obj", {TG_SURFACE_VERTEX, 5763, 0.0, {0, 0, 0}}, {TG_SURFACE_VERTEX, 5625, 0.0, {0, 0, 0}}, 0.0},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         ctx c;

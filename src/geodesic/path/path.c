@@ -114,7 +114,11 @@ static bool traced_exact(const tg_geodesic* g, const tg__route* r, double d)
     double traced = 0.0;
     for (size_t i = 0; i + 1 < n; ++i) traced += tg__node_dist(g, &nodes[i], &nodes[i + 1], faces[i]);
     if (!(fabs(traced - d) <= PROVEN_REL * d)) return false;
-    return d > 0.0 || tg__node_same(g, &nodes[0], &nodes[n - 1]);
+    /* a trace of length 0 joins its ends only if they coincide: the same node, or two vertices
+     * at one position (duplicated vertices, a zero-length edge; tbvh_legocar.obj v:5763 and
+     * v:5625 once gave TG_ERR_INTERNAL) */
+    return d > 0.0 || tg__node_same(g, &nodes[0], &nodes[n - 1]) ||
+           tg_v3_dist(tg__node_pos(g, &nodes[0]), tg__node_pos(g, &nodes[n - 1])) == 0.0;
 }
 
 /* The initial edge path (A*) between the endpoints: into `route`, its length to *out_length. */

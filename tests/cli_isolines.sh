@@ -64,6 +64,32 @@ check(r.returncode == 0 and os.path.getsize(png) > 0, "render --from: exit %d %s
 r = run("render", mesh, "--field", os.path.join(tmp, "nope.ply"), "--isolines", obj, "-o", png + "2.png")
 check(r.returncode == 2 and not os.path.exists(png + "2.png"), "render: a missing field file: exit %d" % r.returncode)
 
+# levels equal to vertex distances on a closed mesh (the curves pass through those vertices): every
+# polyline closed, every point on its level by `trigeo field --at` at the written surface points
+mesh = os.path.join(meshes, "nvd_bob_tri.obj")
+csv = os.path.join(tmp, "bob.csv")
+r = run("field", mesh, "--from", "v:1556", "-o", csv, "--quiet")
+check(r.returncode == 0, "bob field: exit %d" % r.returncode)
+dist = [float(l.split(",")[1]) for l in open(csv).read().split()[1:]]
+levels = [dist[i] for i in (17, 2023, 4099)]
+out = os.path.join(tmp, "bob.json")
+r = run("field", mesh, "--from", "v:1556", "--isolines", ",".join(repr(l) for l in levels), "-o", out, "--quiet")
+check(r.returncode == 0, "bob isolines: exit %d %s" % (r.returncode, r.stderr))
+doc = json.load(open(out))
+opened = [pl for pl in doc["polylines"] if not pl["closed"]]
+check(doc["polylines"] and not opened, "levels at vertices: %d of %d polylines open" % (len(opened), len(doc["polylines"])))
+with open(pts, "w") as f:
+    want = []
+    for pl in doc["polylines"]:
+        for sp in pl["surface"]:
+            f.write(sp + "\n")
+            want.append(pl["value"])
+r = run("field", mesh, "--from", "v:1556", "--at", pts)
+got = [float(x) for x in r.stdout.split()]
+bad = [(g, w) for g, w in zip(got, want) if not abs(g - w) <= 1e-9 * w]
+check(r.returncode == 0 and len(got) == len(want) and not bad,
+      "levels at vertices: %d of %d points off their level: %r" % (len(bad), len(want), bad[:3]))
+
 # bad input: exit 2 (levels) or 1 (usage), no file, the reason named
 for bad, code, why in [("-0.1", 2, "level"), ("0.1,nan", 2, "level"), ("", 2, "level"), ("0.1,,0.2", 2, "level"),
                        ("0", 2, "count"), ("inf", 2, "level")]:

@@ -745,7 +745,8 @@ typedef struct tg_geodesic_options {
 
 /** Builds the solver for mesh (not copied; must stay alive and unchanged until
  *  tg_geodesic_destroy). options may be NULL. Errors: TG_ERR_UNSUPPORTED (coordinates beyond
- *  +-1e150: squared lengths would overflow), TG_ERR_INVALID_ARGUMENT (NULL mesh or out),
+ *  +-1e150: squared lengths would overflow; 536,870,911 vertices or more: the exact engine numbers
+ *  vertices in 29 bits), TG_ERR_INVALID_ARGUMENT (NULL mesh or out),
  *  TG_ERR_OUT_OF_MEMORY. On failure *out_geodesic is NULL. O(V + F log(valence)) time, O(V + F)
  *  memory. Thread-safe (no shared state). */
 TG_API tg_status tg_geodesic_create(const tg_mesh* mesh, const tg_geodesic_options* options,

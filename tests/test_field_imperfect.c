@@ -1,7 +1,7 @@
 /* test_field_imperfect.c - documented behaviour of exact distance fields on imperfect meshes,
  * each built here: a boundary with a reflex corner (exact: straight, or bent at the corner), two
- * components (+inf on the other one), a zero-area face inside a flat sheet (exact: windows cross
- * the sliver), a non-manifold "book" edge (a wall: exact through its end vertices), a pinched
+ * components (+inf on the other one), a zero-area face inside a flat sheet and two stacked on one
+ * edge (exact: windows cross the slivers), a non-manifold "book" edge (a wall: exact through its end vertices), a pinched
  * vertex (exact through it), a duplicate face and an unreferenced vertex (finite, between the
  * Euclidean and the edge-graph distance; +inf; rejected as a source), and allocator failure at
  * every allocation (out of memory, nothing leaked, output untouched). */
@@ -87,30 +87,29 @@ static void test_components(void)
     close_sheet(&c);
 }
 
-/* ---- a zero-area face in a flat sheet: edge (u, w) split by its midpoint m on one side ---- */
+/* ---- zero-area faces in a flat sheet ---- */
 
-static void test_zero_area_face(void)
+/* The face of the 6 x 6 sheet with edge w -> u (u = (0.5, 1/6), w = (0.5, 1/3)), its third corner
+ * in *y; -1 when there is none. */
+static int sheet_face_wu(uint32_t u, uint32_t w, uint32_t* y)
 {
-    uint32_t base = grid(6, 0, 0, 1, 0, NULL);
-    uint32_t u = base + 1 * 7 + 3, w = base + 2 * 7 + 3;
-    int f2 = -1;
     for (size_t f = 0; f < nf; ++f)
         for (int k = 0; k < 3; ++k)
-            if (tri[3 * f + (size_t)k] == w && tri[3 * f + (size_t)(k + 1) % 3] == u) f2 = (int)f;
-    CHECK(f2 >= 0);
-    if (f2 < 0) return;
-    uint32_t y = 0;
-    for (int k = 0; k < 3; ++k)
-        if (tri[3 * f2 + k] != u && tri[3 * f2 + k] != w) y = tri[3 * f2 + k];
-    uint32_t m = add_v(0.5, 0.25, 0.0);
-    tri[3 * f2] = w, tri[3 * f2 + 1] = m, tri[3 * f2 + 2] = y;
-    add_f(m, u, y);
-    add_f(w, u, m); /* zero area */
+            if (tri[3 * f + (size_t)k] == w && tri[3 * f + (size_t)(k + 1) % 3] == u) {
+                *y = tri[3 * f + (size_t)(k + 2) % 3];
+                return (int)f;
+            }
+    return -1;
+}
+
+/* Every vertex's distance is the Euclidean one (the sheet is flat and convex), from sources on
+ * either side of the edge x = 0.5 and on the given vertices. */
+static void check_sheet_sources(const char* name, int degenerate, const uint32_t* special, int specials)
+{
     ctx c = open_ctx();
-    CHECK_EQ_INT(tg_mesh_get_report(c.mesh)->degenerate_faces, 1);
+    CHECK_EQ_INT(tg_mesh_get_report(c.mesh)->degenerate_faces, degenerate);
     tg_rng rng = {8};
-    for (int q = 0; q < 12; ++q) {
-        /* sources on either side of the sliver, and on its vertices */
+    for (int q = 0; q < 10 + specials; ++q) {
         tg_surface_point s;
         double sx, sy;
         if (q < 10) {
@@ -118,18 +117,55 @@ static void test_zero_area_face(void)
             sy = tg_rng_range(&rng, 0.02, 0.98);
             s = at(find_face(sx, sy), sx, sy);
         } else {
-            uint32_t v = q == 10 ? m : u;
+            uint32_t v = special[q - 10];
             sx = xyz[3 * v], sy = xyz[3 * v + 1];
             s = tg_surface_vertex(v);
         }
         field_from(&c, &s, 1);
         for (size_t v = 0; v < nv; ++v) {
             double want = d2(sx, sy, xyz[3 * v], xyz[3 * v + 1]);
-            CHECK_MSG(fabs(fd[v] - want) <= 1e-12 * (1 + want), "sliver sheet, source %d: vertex %zu: %.17g vs %.17g", q, v,
+            CHECK_MSG(fabs(fd[v] - want) <= 1e-12 * (1 + want), "%s, source %d: vertex %zu: %.17g vs %.17g", name, q, v,
                       fd[v], want);
         }
     }
     close_sheet(&c);
+}
+
+/* Edge (u, w) split by its midpoint m on one side: one zero-area face (w, u, m). */
+static void test_zero_area_face(void)
+{
+    uint32_t base = grid(6, 0, 0, 1, 0, NULL);
+    uint32_t u = base + 1 * 7 + 3, w = base + 2 * 7 + 3, y = 0;
+    int f2 = sheet_face_wu(u, w, &y);
+    CHECK(f2 >= 0);
+    if (f2 < 0) return;
+    uint32_t m = add_v(0.5, 0.25, 0.0);
+    tri[3 * f2] = w, tri[3 * f2 + 1] = m, tri[3 * f2 + 2] = y;
+    add_f(m, u, y);
+    add_f(w, u, m); /* zero area */
+    const uint32_t special[2] = {m, u};
+    check_sheet_sources("sliver sheet", 1, special, 2);
+}
+
+/* Edge (u, w) split by two points m1, m2 on one side, the T-junctions filled as CAD meshes do:
+ * (w, u, m2) and (m2, u, m1), both of zero area, one on the other. A ray crossing the edge
+ * between u and m1 crosses both (before, it stopped at the second: vertices beyond came out long
+ * by up to 8% here; openfoam_buildings.obj.gz had a vertex 0.23% long, proven). */
+static void test_stacked_zero_area_faces(void)
+{
+    uint32_t base = grid(6, 0, 0, 1, 0, NULL);
+    uint32_t u = base + 1 * 7 + 3, w = base + 2 * 7 + 3, y = 0;
+    int f2 = sheet_face_wu(u, w, &y);
+    CHECK(f2 >= 0);
+    if (f2 < 0) return;
+    uint32_t m1 = add_v(0.5, 0.30, 0.0), m2 = add_v(0.5, 0.32, 0.0);
+    tri[3 * f2] = w, tri[3 * f2 + 1] = m2, tri[3 * f2 + 2] = y;
+    add_f(m2, m1, y);
+    add_f(m1, u, y);
+    add_f(w, u, m2);  /* zero area */
+    add_f(m2, u, m1); /* zero area, on the first */
+    const uint32_t special[3] = {m1, m2, u};
+    check_sheet_sources("stacked slivers", 2, special, 3);
 }
 
 /* ---- non-manifold book edge and pinched vertex ---- */
@@ -275,6 +311,7 @@ int main(void)
     test_reflex_corner();
     test_components();
     test_zero_area_face();
+    test_stacked_zero_area_faces();
     test_book_and_pinch();
     test_duplicate_and_unreferenced();
     test_allocator();

@@ -555,6 +555,13 @@ static void test_sweep_regressions(void)
         /* two distinct vertices at one position (the sweep, seed 51): the exact method's trace of
          * length 0 was refused as not joining its ends (TG_ERR_INTERNAL) */
         {"tbvh_legocar.obj", {TG_SURFACE_VERTEX, 5763, 0.0, {0, 0, 0}}, {TG_SURFACE_VERTEX, 5625, 0.0, {0, 0, 0}}, 0.0},
+        /* a vertex on a line of T-junctions filled by two stacked zero-area faces (vertex 148266 on
+         * edge 134804-137402, itself on edge 134804-137561): the rays crossing the line stopped at
+         * the second face, and the vertex got 2.4219843165255437, proven, 0.23% long; a validated
+         * path to the point 4.2e-7 from it in the zero-area face 324342 is 2.416475198918455 long.
+         * Found by comparing each vertex's distance with tg_geodesic_field_at near it. */
+        {"openfoam_buildings.obj.gz", {TG_SURFACE_VERTEX, 140592, 0.0, {0, 0, 0}},
+         {TG_SURFACE_VERTEX, 148266, 0.0, {0, 0, 0}}, 2.4164755500673532},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         ctx c;

@@ -29,13 +29,29 @@ typedef struct tg__window {
     double sx, sy;
     double sigma;
     uint32_t next; /* next window in the same list, TG_NONE at the end */
-    uint32_t tag;  /* origin (low 31 bits): the pseudo-source vertex whose image is (sx, sy), or
-                      TG__ORIGIN_SOURCE; bit 31 (TG__VIA_FLAT): unfolded through a zero-area face,
-                      so it may not cross another at once */
+    uint32_t tag;  /* origin (low 29 bits, TG__TAG_ORIGIN): the pseudo-source vertex whose image
+                      is (sx, sy), or TG__ORIGIN_SOURCE; bits 29-31 (TG__TAG_FLAT): how many
+                      zero-area faces it has just crossed in a row */
 } tg__window;
 
-#define TG__ORIGIN_SOURCE 0x7FFFFFFFu
-#define TG__VIA_FLAT 0x80000000u
+/* Rays cross a zero-area face (solver.h, TG__F_FLAT) at once, its three corners on one line, and
+ * go on into the faces beyond its other two edges. Such faces come stacked where CAD meshes fill
+ * a T-junction (a vertex on another face's edge, or several along one line): a ray from one side
+ * of the line crosses every face of the stack in turn (openfoam_buildings.obj.gz: a ray through
+ * two such faces, once dropped at the second, left a vertex 0.23% long, "proven"). A window may
+ * cross up to TG__FLAT_MAX of them in a row: a bound, since zero-area faces can also form cycles
+ * (a doubled face, a degenerate closed component) around which a window would pass forever. */
+#define TG__ORIGIN_SOURCE TG__MAX_VERTICES
+#define TG__FLAT_SHIFT 29
+#define TG__FLAT_MAX 7u
+#define TG__TAG_ORIGIN(tag) ((tag) & TG__ORIGIN_SOURCE)
+#define TG__TAG_FLAT(tag) ((tag) >> TG__FLAT_SHIFT)
+/* The tag of a window that crossed one more zero-area face (saturating: such a window crosses no
+ * further one, see propagate_list). */
+static inline uint32_t tg__tag_flat_more(uint32_t tag)
+{
+    return TG__TAG_FLAT(tag) < TG__FLAT_MAX ? tag + (1u << TG__FLAT_SHIFT) : tag;
+}
 
 /* How a vertex (or a query point) got its distance, for tracing the path back (recorded only
  * when a run asks for it): along the ray of a window that crossed halfedge h (its source image

@@ -114,7 +114,7 @@ static const tg__lm_rec* lm_seed(const tg__field_run* run, uint32_t origin, uint
 static const tg__lm_rec* lm_of(const tg__field_run* run, uint32_t id, uint32_t tag, tg__lm_rec* out)
 {
     const tg__logmap* lm = run->q->logmap;
-    if (!lm || (tag & ~TG__VIA_FLAT) != lm->origin) return NULL;
+    if (!lm || TG__TAG_ORIGIN(tag) != lm->origin) return NULL;
     *out = ((const tg__lm_rec*)run->fs->lm_win.data)[id];
     return out;
 }
@@ -325,7 +325,7 @@ static TG__ALWAYS_INLINE bool push_through(tg__field_run* run, uint32_t e, doubl
 /* ---- sources and pseudo-sources ---- */
 
 static bool emit_face_point(tg__field_run* run, const double p[3], double sigma, uint32_t f, uint32_t from,
-                            uint32_t origin);
+                            uint32_t origin, uint32_t depth);
 
 /* Emits from vertex v at its current distance into every face around it (each face's opposite
  * edge lit from v, which is that edge's opposite corner), and relaxes its neighbours along the
@@ -343,7 +343,7 @@ static bool emit_vertex(tg__field_run* run, uint32_t v)
         const tg__frame* fr = &g->frame[e];
         tg__lm_rec rec;
         if (g->fflags[f] & TG__F_FLAT) { /* v may lie on the opposite edge: emit across it too */
-            if (!emit_face_point(run, g->xyz + 3 * (size_t)v, sigma, f, TG_NONE, v)) return false;
+            if (!emit_face_point(run, g->xyz + 3 * (size_t)v, sigma, f, TG_NONE, v, 0)) return false;
         } else if (!push_through(run, e, 0.0, fr->len, fr->cx, fr->cy, sigma, v, lm_seed(run, v, e, &rec))) {
             return false;
         }
@@ -369,12 +369,24 @@ static bool relax_neighbours(tg__field_run* run, uint32_t v)
     return true;
 }
 
+/* Is face f, entered `depth` faces away from the point's own, a zero-area face of a T-junction
+ * stack whose edge of length len holds the point at x well inside (not at an end: coincident
+ * vertices, as at the pole of a sphere of longitudes, are not a stack)? */
+static bool stacked_on(const tg_geodesic* g, uint32_t f, double x, double len, uint32_t depth)
+{
+    const double margin = TG__GRAZING_REL * len;
+    return depth < TG__FLAT_MAX && (g->fflags[f] & TG__F_FLAT) && g->frame[3 * f].len > 0.0 &&
+           g->frame[3 * f + 1].len > 0.0 && g->frame[3 * f + 2].len > 0.0 && x > margin && x < len - margin;
+}
+
 /* Emits from the point p (3D, in face f) at distance sigma: every corner of f gets its distance,
  * and each edge of f not containing p is lit from p into the faces beyond. When p lies inside an
  * edge of f (an edge point, or a point of a zero-area face), it also lies in the other faces at
- * that edge and emits there (once: `from` is the halfedge already crossed, or TG_NONE). */
+ * that edge and emits there (`from`: the halfedge just crossed, or TG_NONE); in a zero-area face
+ * it may lie inside a second edge, and so on through a stack of them (field.h, TG__FLAT_MAX:
+ * `depth` faces deep at most). */
 static bool emit_face_point(tg__field_run* run, const double p[3], double sigma, uint32_t f, uint32_t from,
-                            uint32_t origin)
+                            uint32_t origin, uint32_t depth)
 {
     const tg_geodesic* g = run->g;
     tg__field_queries_source(run, p, sigma, f, origin);
@@ -393,9 +405,9 @@ static bool emit_face_point(tg__field_run* run, const double p[3], double sigma,
         tg__frame_point(g, h, tg_v3_load(p), xy);
         double x = xy[0], y = xy[1];
         if (y <= TG__GRAZING_REL * (fabs(x) + len)) {
-            if (from == TG_NONE && x > 0.0 && x < len)
+            if (x > 0.0 && x < len && (depth == 0 || stacked_on(g, f, x, len, depth)))
                 for (uint32_t o = g->ring[h]; o != h; o = g->ring[o])
-                    if (!emit_face_point(run, p, sigma, o / 3, o, origin)) return false;
+                    if (!emit_face_point(run, p, sigma, o / 3, o, origin, depth + 1)) return false;
             continue;
         }
         tg__lm_rec rec;
@@ -420,14 +432,14 @@ tg_status tg__field_seed(tg__field_run* run, const tg_surface_point* sp)
         tg__pred none = {TG_NONE, TG__ORIGIN_SOURCE, 0.0, 0.0};
         ok = relax_vertex(run, node.id, 0.0, none);
     } else if (node.kind == TG__NODE_FACE) {
-        ok = emit_face_point(run, p, 0.0, node.id, TG_NONE, TG__ORIGIN_SOURCE);
+        ok = emit_face_point(run, p, 0.0, node.id, TG_NONE, TG__ORIGIN_SOURCE, 0);
     } else {
         /* an edge point lies in every face holding both ends of its edge */
         uint32_t va = g->tri[node.id], vb = g->tri[tg_halfedge_next(node.id)];
         for (uint32_t i = g->corner_start[va]; ok && i < g->corner_start[va + 1]; ++i) {
             uint32_t f = g->corners[i] / 3;
             if (!(g->fflags[f] & TG__F_SKIP) && tg__corner_of(g, f, vb) >= 0)
-                ok = emit_face_point(run, p, 0.0, f, TG_NONE, TG__ORIGIN_SOURCE);
+                ok = emit_face_point(run, p, 0.0, f, TG_NONE, TG__ORIGIN_SOURCE, 0);
         }
     }
     return ok ? TG_OK : TG_ERR_OUT_OF_MEMORY;
@@ -455,7 +467,7 @@ static TG__ALWAYS_INLINE bool push_child(tg__field_run* run, const tg__window* w
     const tg_geodesic* g = run->g;
     double len = g->frame[e].len, src[2] = {w->sx, w->sy}, xy[2];
     tg__to_edge_frame(o, d, len, src, xy);
-    uint32_t tag = (w->tag & ~TG__VIA_FLAT) | (via_flat ? TG__VIA_FLAT : 0u);
+    uint32_t tag = via_flat ? tg__tag_flat_more(w->tag) : TG__TAG_ORIGIN(w->tag);
     if (!rec) return push_plain(run, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag);
     tg__lm_rec re = tg__lm_turn(*rec, (d[0] - o[0]) / len, (d[1] - o[1]) / len);
     return push_recorded(run, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag, &re);
@@ -554,7 +566,7 @@ static bool cross_slit(tg__field_run* run, uint32_t h, uint32_t exit, const uint
         tg__lm_rec rec;
         const tg__lm_rec* rp = lm_of(run, ids[i], w.tag, &rec);
         if (rp) rec = tg__lm_half_turn(rec);
-        if (!push_through(run, exit, len - w.b1, len - w.b0, len - w.sx, -w.sy, w.sigma, w.tag | TG__VIA_FLAT, rp))
+        if (!push_through(run, exit, len - w.b1, len - w.b0, len - w.sx, -w.sy, w.sigma, tg__tag_flat_more(w.tag), rp))
             return false;
     }
     (void)h;
@@ -583,7 +595,7 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
     for (; id != TG_NONE;) {
         tg__window* w = &pool[id];
         uint32_t next = w->next;
-        bool keep = crossable && !(flat && (w->tag & TG__VIA_FLAT));
+        bool keep = crossable && !(flat && TG__TAG_FLAT(w->tag) >= TG__FLAT_MAX);
         if (keep && dominated(run, h, w->b0, w->b1, tg__win_dist(w, w->b0), tg__win_dist(w, w->b1))) keep = false;
         if (keep && !tg__field_grow(fs, &fs->list, 1)) return false;
         if (keep) {
@@ -617,7 +629,7 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
                 if (!touch_halfedge(fs, h)) return false;
                 fs->split_d[h] = hc.dc, fs->split_x[h] = hc.xc;
             }
-            tg__pred ray = {h, w->tag & ~TG__VIA_FLAT, w->sx, w->sy};
+            tg__pred ray = {h, TG__TAG_ORIGIN(w->tag), w->sx, w->sy};
             tg__lm_rec rec;
             if (lm && hc.dc < fs->dist[vc] && lm_of(run, ids[i], w->tag, &rec)) /* the angle of the ray to C */
                 ((double*)fs->lm_theta.data)[vc] = tg__lm_angle(&rec, fr->cx - w->sx, fr->cy - w->sy);

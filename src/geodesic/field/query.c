@@ -197,7 +197,7 @@ void tg__field_queries_cross(tg__field_run* run, uint32_t h, const tg__window* p
                 run->qdist[q[j].id] = d;
                 tg__field_tighten(run, d);
                 if (run->q->trace) {
-                    tg__pred ray = {h, w->tag & ~TG__VIA_FLAT, w->sx, w->sy};
+                    tg__pred ray = {h, TG__TAG_ORIGIN(w->tag), w->sx, w->sy};
                     ((tg__pred*)fs->qpred.data)[q[j].id] = ray;
                 }
             }

@@ -180,27 +180,55 @@ static bool through_corner(trace* t, uint32_t o, const double x[2], const double
     return false;
 }
 
+/* Appends vertex v, whose position lies inside halfedge h, the route's last node being the point of
+ * h there: a segment of length 0 in the face at h with corner v (a zero-area face), or, where
+ * such faces are stacked (field.h, TG__FLAT_MAX), through the points of the other edges of the
+ * zero-area faces at h that hold that position, one face deeper each. False (the route as it
+ * was) when no such chain reaches v. */
+static bool to_vertex_on_edge(trace* t, uint32_t h, uint32_t v, uint32_t depth)
+{
+    const tg_geodesic* g = t->g;
+    for (uint32_t o = g->ring[h]; o != h; o = g->ring[o])
+        if (!(g->fflags[o / 3] & TG__F_SKIP) && tg__corner_of(g, o / 3, v) >= 0)
+            return add_node(t, tg__node_vertex(v), o / 3);
+    if (depth >= TG__FLAT_MAX) return false;
+    tg_vec3 pos = tg__gpos(g, v);
+    for (uint32_t o = g->ring[h]; o != h; o = g->ring[o]) {
+        uint32_t f = o / 3;
+        if (!(g->fflags[f] & TG__F_FLAT)) continue;
+        for (uint32_t k = 3 * f; k < 3 * f + 3; ++k) {
+            double x;
+            if (k == o || !tg__point_on_edge(g, k, pos, &x)) continue;
+            size_t n = t->n;
+            double tt = x / g->frame[k].len;
+            if (add_node(t, tg__node_edge(k, tt, 1.0 - tt), f) && to_vertex_on_edge(t, k, v, depth + 1)) return true;
+            if (t->out_of_memory) return false;
+            t->n = n;
+        }
+    }
+    return false;
+}
+
 /* Does the origin (a vertex) lie on the exit edge xh of the walk's face, at ns (its image in
- * xh's frame, on the edge's line to rounding), as the apex of a zero-area face beyond that edge?
- * Such a vertex is a corner of no face the ray enters (polygons split with collinear corners: a
- * CAD quad whose one triangle is a sliver), so the walk ends on the edge there: the crossing,
- * then the vertex through the zero-area face (a segment of length 0). */
+ * xh's frame, on the edge's line to rounding), as the apex of a zero-area face beyond that edge
+ * (or of one stacked on it)? Such a vertex is a corner of no face the ray enters (polygons split
+ * with collinear corners: a CAD quad whose one triangle is a sliver), so the walk ends on the
+ * edge there: the crossing, then the vertex through the zero-area faces (segments of length 0). */
 static bool on_flat_apex(trace* t, uint32_t xh, const double ns[2], double len, uint32_t origin, const tg__node* source,
                          tg__node* out)
 {
-    const tg_geodesic* g = t->g;
     uint32_t v = origin != TG__ORIGIN_SOURCE ? origin : source->kind == TG__NODE_VERTEX ? source->id : TG_NONE;
     double tol = LAND_REL * (len + fabs(ns[0]));
     if (v == TG_NONE || !(fabs(ns[1]) <= tol && ns[0] > 0.0 && ns[0] < len)) return false;
-    for (uint32_t o = g->ring[xh]; o != xh; o = g->ring[o]) {
-        uint32_t f = o / 3;
-        if (!(g->fflags[f] & TG__F_FLAT) || g->tri[tg_halfedge_prev(o)] != v) continue;
-        double tt = ns[0] / len;
-        tg__node at = tg__node_edge(xh, tt, 1.0 - tt), vn = tg__node_vertex(v);
-        if (add_node(t, at, xh / 3)) add_node(t, vn, f);
-        *out = vn;
+    size_t n = t->n;
+    double tt = ns[0] / len;
+    if (!add_node(t, tg__node_edge(xh, tt, 1.0 - tt), xh / 3)) return true; /* out of memory */
+    if (to_vertex_on_edge(t, xh, v, 0)) {
+        *out = tg__node_vertex(v);
         return true;
     }
+    if (t->out_of_memory) return true;
+    t->n = n;
     return false;
 }
 
@@ -309,7 +337,20 @@ static bool trace_back(trace* t, tg__node cur, tg__pred how, const tg__node* sou
         } else if (how.h & TG__PRED_FACE) { /* straight inside face f from a vertex or the source */
             uint32_t f = how.h & ~TG__PRED_FACE;
             next = how.origin == TG__ORIGIN_SOURCE ? *source : tg__node_vertex(how.origin);
-            if (!add_node_in(t, next, f)) return false;
+            if (how.origin != TG__ORIGIN_SOURCE && tg__corner_of(g, f, how.origin) < 0) {
+                /* a vertex emitting from a zero-area face beyond its own (field.h, TG__FLAT_MAX):
+                 * it lies inside an edge of f */
+                tg_vec3 pos = tg__gpos(g, how.origin);
+                uint32_t k = 3 * f;
+                double x = 0.0;
+                while (k < 3 * f + 3 && !tg__point_on_edge(g, k, pos, &x)) ++k;
+                if (k == 3 * f + 3) return false;
+                double tt = x / g->frame[k].len;
+                if (!add_node_in(t, tg__node_edge(k, tt, 1.0 - tt), f) || !to_vertex_on_edge(t, k, how.origin, 0))
+                    return false;
+            } else if (!add_node_in(t, next, f)) {
+                return false;
+            }
             if (how.origin == TG__ORIGIN_SOURCE) return true;
         } else { /* back along the window's ray through edge h towards its source image */
             uint32_t h = how.h;

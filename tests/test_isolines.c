@@ -2,7 +2,8 @@
  * field's own point query (tg_geodesic_field_at, an independent evaluation), circles on a flat
  * mesh, two crossings on edges whose distance dips below the level between its ends (a holed
  * plate), one closed loop about a source on a closed surface, levels equal to vertex distances
- * (curves through vertices: all closed on closed surfaces), bad input. */
+ * (curves through vertices: all closed on closed surfaces), a level above a whole face whose
+ * windows the record left out (no curve there), bad input. */
 #include "tg_test.h"
 #include "tg_test_geodesic.h"
 #include "tg_test_plate.h"
@@ -239,6 +240,78 @@ static void test_levels_at_vertices(void)
     }
 }
 
+/* ---- a face wholly below its level: no curve in it ---- */
+
+/* cgal_elephant-with-holes.off from v:2256 at the distance of v:2595 (0.46406993469951097): the
+ * record leaves the windows of face 2932 out for this level (the least distance of one of them,
+ * 0.4355, plus the face's longest side, 0.0285, is below it: the level does not meet the face),
+ * while its corners (0.4394, 0.4394, 0.4605) alone did not rule it out. The isolines then walked
+ * the face on its corners' distances alone (larger than the field inside it) and returned an
+ * open 4-point piece there 1.5% below its level. Checked independently: the field at a grid
+ * over the face (tg_geodesic_field_at) plus the grid's spacing (D is 1-Lipschitz) stays below
+ * the level, no point of the isolines lies in the face, every point is on its level, and the
+ * open polylines (the mesh has 106 holes) end on the mesh's boundary. */
+static void test_face_below_level(void)
+{
+    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), "cgal_elephant-with-holes.off");
+    if (!m) return;
+    ctx c = open_ctx_for(m);
+    const uint32_t face = 2932;
+    tg_surface_point src = tg_surface_vertex(2256);
+    size_t nvv = tg_mesh_vertex_count(m);
+    double* vd = malloc(nvv * sizeof *vd);
+    CHECK_STATUS(tg_geodesic_field(c.geo, c.ws, &src, 1, NULL, vd, NULL), TG_OK);
+    double level = vd[2595];
+    CHECK_MSG(fabs(level - 0.46406993469951097) <= 1e-12, "level %.17g", level);
+    /* the field over the face: below the level by more than the grid's spacing */
+    const double* x = tg_mesh_positions(m);
+    const uint32_t* t = tg_mesh_triangles(m);
+    double side = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        const double *a = x + 3 * t[3 * face + k], *b = x + 3 * t[3 * face + (k + 1) % 3];
+        side = fmax(side, sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2])));
+    }
+    enum { N = 40 };
+    tg_surface_point grid[(N + 1) * (N + 2) / 2];
+    double gd[(N + 1) * (N + 2) / 2], top = 0.0;
+    size_t ng = 0;
+    for (int i = 0; i <= N; ++i)
+        for (int j = 0; i + j <= N; ++j) grid[ng++] = tg_surface_face(face, (double)i / N, (double)j / N, (double)(N - i - j) / N);
+    CHECK_STATUS(tg_geodesic_field_at(c.geo, c.ws, &src, 1, grid, ng, NULL, gd, NULL, NULL), TG_OK);
+    for (size_t i = 0; i < ng; ++i) top = fmax(top, gd[i]);
+    CHECK_MSG(top + side / N < level, "face %u: the field reaches %.17g (+ spacing %.3g), level %.17g", face, top,
+              side / N, level);
+    tg_isolines_view v;
+    tg_isolines* iso = iso_of(&c, &src, 1, &level, 1, &v);
+    size_t in_face = 0, off_boundary = 0;
+    for (size_t i = 0; i < v.point_count; ++i) in_face += v.faces[i] == face;
+    for (size_t p = 0; p < v.polyline_count; ++p) {
+        if (v.polyline_closed[p]) continue;
+        size_t ends[2] = {v.polyline_start[p], v.polyline_start[p + 1] - 1};
+        for (int k = 0; k < 2; ++k) {
+            /* an end on the boundary: on an edge of one face (its halfedge has no opposite) */
+            tg_surface_point q = tg_surface_point_canonical(m, &v.points[ends[k]]);
+            CHECK_MSG(q.kind == TG_SURFACE_EDGE || q.kind == TG_SURFACE_VERTEX, "polyline %zu ends inside a face", p);
+            if (q.kind != TG_SURFACE_EDGE) continue;
+            uint32_t a = t[q.index], b = t[3 * (q.index / 3) + (q.index % 3 + 1) % 3];
+            size_t faces = 0;
+            for (size_t f = 0; f < tg_mesh_face_count(m); ++f)
+                for (int j = 0; j < 3; ++j) {
+                    uint32_t u = t[3 * f + j], w = t[3 * f + (j + 1) % 3];
+                    faces += (u == a && w == b) || (u == b && w == a);
+                }
+            off_boundary += faces != 1;
+        }
+    }
+    CHECK_MSG(in_face == 0, "face %u: %zu isoline points in a face the level does not meet", face, in_face);
+    CHECK_MSG(v.polyline_count > 0 && off_boundary == 0, "%zu polylines, %zu open ends off the boundary",
+              v.polyline_count, off_boundary);
+    check_on_levels(&c, &src, 1, &v, 1e-9, "elephant-with-holes, level above face 2932");
+    tg_isolines_destroy(iso);
+    free(vd);
+    close_ctx(&c);
+}
+
 /* ---- closed surface: a small level is one closed loop ---- */
 
 static void test_closed_loop(void)
@@ -338,6 +411,7 @@ int main(void)
     test_plate_dips();
     test_closed_loop();
     test_levels_at_vertices();
+    test_face_below_level();
     test_max_distance();
     test_corpus();
     return tg_test_finish();

@@ -17,7 +17,9 @@
  * centre changes, until the arc meets a side of the face: the exit snaps to the nearest crossing
  * of that side. The pieces are joined at their crossings into polylines. A vertex whose distance
  * is the level is a crossing too: walks end there, and start there into each face where the
- * circle through it that rules beyond it enters the face. */
+ * circle through it that rules beyond it enters the face. A face whose distance the record proves
+ * below the level everywhere (field/record.c: some of its windows were then left out, so its
+ * pieces do not give its distance) is not walked, and its sides have no crossing. */
 #include "geodesic/workspace.h"
 
 #include <stdlib.h>
@@ -80,6 +82,7 @@ typedef struct iso_state {
     const tg_geodesic* g;
     const tg_allocator* alloc;
     const double* dist;          /* the run's vertex distances (solver numbering and frame) */
+    const tg__field_scratch* fs; /* the run's: its record (tg__field_record_below) */
     const tg__rec_window* rec;   /* recorded windows, by face through rec_start / rec_order */
     size_t* rec_start;           /* F + 1 */
     uint32_t* rec_order;
@@ -290,6 +293,14 @@ static bool face_traced(const tg_geodesic* g, uint32_t f)
     return !(g->fflags[f] & (TG__F_SKIP | TG__F_FLAT));
 }
 
+/* Is the distance below L over the whole of face f (the record's bound: the face's recorded
+ * windows are then incomplete for L, and the level does not meet the face, its sides or its
+ * corners)? */
+static bool face_below(const iso_state* st, uint32_t f, double L)
+{
+    return tg__field_record_below(st->fs, f, L); /* never for a face not traced: none recorded */
+}
+
 #define NOT_ON_LEVEL (TG_NONE - 1u)
 
 /* The crossing of vertex v when its distance is the level L (made once per level), else
@@ -357,8 +368,12 @@ static bool edge_crossings(iso_state* st, uint32_t e, double L)
     if (!push(st->alloc, &st->edges_done, &e)) return false;
     double len = g->frame[e].len;
     if (!(len > 0.0)) return true;
-    st->spans.count = 0;
     uint32_t o = e;
+    do { /* a face at the edge wholly below the level: the edge too, no crossing */
+        if (face_below(st, o / 3, L)) return true;
+        o = g->ring[o];
+    } while (o != e);
+    st->spans.count = 0;
     do {
         uint32_t f = o / 3;
         if (face_traced(g, f)) {
@@ -724,7 +739,7 @@ static bool trace_level(iso_state* st, double L)
     const tg_geodesic* g = st->g;
     st->cross.count = st->segs.count = st->pts.count = 0;
     for (uint32_t f = 0; f < g->face_count; ++f) {
-        if (!face_traced(g, f)) continue;
+        if (!face_traced(g, f) || face_below(st, f, L)) continue;
         face_geo fg;
         face_geo_of(g, f, &fg);
         if (!face_meets(st, f, L, fg.span)) continue;
@@ -950,6 +965,7 @@ static bool group_records(iso_state* st, const tg__field_scratch* fs)
 {
     const tg_geodesic* g = st->g;
     size_t nr = fs->rec.count, nf = g->face_count;
+    st->fs = fs;
     st->rec = fs->rec.data;
     st->rec_start = tg__calloc_array(st->alloc, nf + 2, sizeof(size_t));
     st->rec_order = tg__alloc_array(st->alloc, nr ? nr : 1, sizeof(uint32_t));

@@ -104,7 +104,9 @@ typedef struct tg__corner_hit {
     X(lm_win, tg__lm_rec)      /* log map runs: per window slot, its record (logmap.h) */         \
     X(lm_theta, double)        /* log map runs: per vertex lit by a window of the source, the    \
                                   angle its ray left at (valid where pred says so) */     \
-    X(rec, tg__rec_window)     /* the windows near the levels (runs that record, record.c) */
+    X(rec, tg__rec_window)     /* the windows near the levels (runs that record, record.c) */ \
+    X(rec_floor, double)       /* runs that record: per face, the least distance of the windows \
+                                  that crossed it (with record.c's margin), +inf if none */
 
 /* A window recorded while its list crossed face h / 3 (record.c, for isolines): its source image
  * (sx, sy) and interval [b0, b1] in the frame of h, its offset sigma; a point source inside the
@@ -301,6 +303,15 @@ void tg__field_queries_finish(tg__field_run* run, bool ok);
 
 /* ---- recording the windows near some levels (record.c) ---- */
 
+/* Empties the record for a new run (fs->rec; for a run that records, rec_floor set to +inf for
+ * every face). false when out of memory. */
+bool tg__field_record_setup(tg__field_run* run);
+/* After a run that recorded: is level (one of the run's) above every distance in face f by the
+ * record's own bound? Then D < level over the whole closed face (it does not meet it), and windows
+ * crossing f may be missing from the record for this level: f's recorded windows do not give its
+ * distance. Exactly the levels for which the filter below may have left a window of f out, by
+ * the same arithmetic. */
+bool tg__field_record_below(const tg__field_scratch* fs, uint32_t f, double level);
 /* The windows ids[0..n) of the list of h, trimmed, about to cross face h / 3: those whose least
  * distance over the face lies within the face's longest side below a level are appended to
  * fs->rec. false when out of memory. */

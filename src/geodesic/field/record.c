@@ -11,7 +11,14 @@
  * window's values over the face lie in [wmin, ...]). A window whose wmin has no level in
  * [wmin, wmin + delta] is therefore above every level that meets the face (it can neither carry
  * the level set nor hide it) and is not needed. Recording is off unless a run asks for it, so
- * plain fields pay one test per list. */
+ * plain fields pay one test per list.
+ *
+ * A window is left out for level L in two ways: L < wmin (harmless: above L it hides nothing), or
+ * L > wmin + delta, and then the level does not meet the face at all: D <= wmin + delta < L over
+ * the whole face, edges and corners included. The face's other windows are then incomplete for L
+ * (some were left out), so the isolines must know it: each face keeps the least wmin of the
+ * windows that crossed it (fs->rec_floor), and tg__field_record_below tells, by the same
+ * arithmetic as the filter, the levels for which a window of the face may be missing. */
 #include "geodesic/field/field.h"
 
 /* Is there a level in [lo, hi]? (levels ascending) */
@@ -36,6 +43,26 @@ static double face_span(const tg_geodesic* g, uint32_t f)
     return (m > c ? m : c) * (1.0 + 1e-9);
 }
 
+bool tg__field_record_setup(tg__field_run* run)
+{
+    tg__field_scratch* fs = run->fs;
+    size_t nf = run->g->face_count;
+    fs->rec.count = 0;
+    fs->rec_floor.count = 0;
+    if (!run->q->record_levels) return true;
+    if (!tg__field_grow(fs, &fs->rec_floor, nf)) return false;
+    double* least = fs->rec_floor.data;
+    for (size_t f = 0; f < nf; ++f) least[f] = INFINITY;
+    fs->rec_floor.count = nf;
+    return true;
+}
+
+bool tg__field_record_below(const tg__field_scratch* fs, uint32_t f, double level)
+{
+    const double* least = fs->rec_floor.data;
+    return level > least[f] + face_span(fs->g, f);
+}
+
 static bool append(tg__field_scratch* fs, const tg__rec_window* r)
 {
     if (!tg__field_grow(fs, &fs->rec, 1)) return false;
@@ -48,7 +75,7 @@ bool tg__field_record_cross(tg__field_run* run, uint32_t h, const tg__window* po
     const tg_geodesic* g = run->g;
     uint32_t f = h / 3;
     if (g->fflags[f] & (TG__F_SKIP | TG__F_FLAT)) return true;
-    double span = face_span(g, f);
+    double span = face_span(g, f), *least = (double*)run->fs->rec_floor.data + f;
     for (size_t i = 0; i < n; ++i) {
         const tg__window* w = &pool[ids[i]];
         if (!(w->b0 < w->b1)) continue;
@@ -57,6 +84,7 @@ bool tg__field_record_cross(tg__field_run* run, uint32_t h, const tg__window* po
         double wmin = (w->sx > w->b0 && w->sx < w->b1) ? w->sigma - w->sy
                                                        : fmin(tg__win_dist(w, w->b0), tg__win_dist(w, w->b1));
         double lo = wmin * (1.0 - 1e-12);
+        if (lo < *least) *least = lo;
         if (!level_within(run->q, lo, lo + span)) continue;
         tg__rec_window r = {h, w->sx, w->sy, w->sigma, w->b0, w->b1};
         if (!append(run->fs, &r)) return false;

@@ -58,9 +58,8 @@ tg_status tg__field_execute(tg__field_scratch* fs, const tg__field_query* q, tg_
     }
     run->referenced = reachable_vertices(fs->g, q->sources, q->source_count);
     tg__field_reset(fs);
-    fs->rec.count = 0;
     fs->peak_bytes = tg__field_scratch_bytes(fs); /* this run's peak, from what the scratch holds now */
-    tg_status st = tg__field_queries_setup(run);
+    tg_status st = tg__field_record_setup(run) ? tg__field_queries_setup(run) : TG_ERR_OUT_OF_MEMORY;
     for (size_t i = 0; st == TG_OK && i < q->source_count; ++i) st = tg__field_seed(run, &q->sources[i]);
     if (st == TG_OK) st = tg__field_propagate(run);
     tg__field_queries_finish(run, st == TG_OK); /* also clears the face marks */

@@ -3,7 +3,8 @@
  * mesh, two crossings on edges whose distance dips below the level between its ends (a holed
  * plate), one closed loop about a source on a closed surface, levels equal to vertex distances
  * (curves through vertices: all closed on closed surfaces), a level above a whole face whose
- * windows the record left out (no curve there), bad input. */
+ * windows the record left out (no curve there), curves with a corner just inside a face (closed
+ * through it), bad input. */
 #include "tg_test.h"
 #include "tg_test_geodesic.h"
 #include "tg_test_plate.h"
@@ -312,6 +313,39 @@ static void test_face_below_level(void)
     close_ctx(&c);
 }
 
+/* ---- a corner of the curve just inside a face ---- */
+
+/* cgal_cheese.off (a closed surface, genus 133) from v:2698 at the distance of v:2826
+ * (0.11163639570135368). Where the curve enters a face, two circles of one pseudo-source
+ * unfolded two ways (same offset, centres 0.0058 apart; the face's sides are 0.0232 to 0.129)
+ * cross 1e-6 of the face beyond the edge crossing: the circle ruling at the crossing no longer
+ * rules where the walk's start looks, the other does not pass through the crossing, and no walk
+ * started there (before: 4 of 11 polylines open). Every polyline closed, every point on its
+ * level. */
+static void test_corner_inside_face(void)
+{
+    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), "cgal_cheese.off");
+    if (!m) return;
+    ctx c = open_ctx_for(m);
+    CHECK(tg_mesh_get_report(m)->boundary_loops == 0);
+    tg_surface_point src = tg_surface_vertex(2698);
+    size_t nvv = tg_mesh_vertex_count(m);
+    double* vd = malloc(nvv * sizeof *vd);
+    CHECK_STATUS(tg_geodesic_field(c.geo, c.ws, &src, 1, NULL, vd, NULL), TG_OK);
+    double level = vd[2826];
+    CHECK_MSG(fabs(level - 0.11163639570135368) <= 1e-12, "level %.17g", level);
+    tg_isolines_view v;
+    tg_isolines* iso = iso_of(&c, &src, 1, &level, 1, &v);
+    size_t open = 0;
+    for (size_t p = 0; p < v.polyline_count; ++p) open += !v.polyline_closed[p];
+    CHECK_MSG(v.polyline_count > 0 && open == 0, "cheese: %zu of %zu polylines open on a closed surface", open,
+              v.polyline_count);
+    check_on_levels(&c, &src, 1, &v, 1e-9, "cheese, corner inside a face");
+    tg_isolines_destroy(iso);
+    free(vd);
+    close_ctx(&c);
+}
+
 /* ---- closed surface: a small level is one closed loop ---- */
 
 static void test_closed_loop(void)
@@ -412,6 +446,7 @@ int main(void)
     test_closed_loop();
     test_levels_at_vertices();
     test_face_below_level();
+    test_corner_inside_face();
     test_max_distance();
     test_corpus();
     return tg_test_finish();

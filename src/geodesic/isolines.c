@@ -566,13 +566,29 @@ static bool piece_rules(const face_geo* fg, const piece* pcs, size_t n, uint32_t
 static bool walk_on(iso_state* st, const face_geo* fg, uint32_t ci, const double start[2], int m0, int m1,
                     uint32_t j, double L);
 
+/* q lies a little along the arc (at the level) of a circle through p: does another piece take
+ * over between them? The piece ruling at q, below the level there, held p strictly above it: the
+ * two circles cross on the arc strictly beyond p (D is continuous). */
+static bool taken_over(const face_geo* fg, const piece* pcs, size_t n, const double p[2], const double q[2], double L,
+                       double tol)
+{
+    uint32_t k;
+    double dq = eval_at(fg, pcs, n, q, &k);
+    if (k == TG_NONE || !(dq < L) || !piece_holds(fg, &pcs[k], p)) return false;
+    double dx = p[0] - pcs[k].cx, dy = p[1] - pcs[k].cy;
+    return pcs[k].sigma + sqrt(dx * dx + dy * dy) > L + tol;
+}
+
 /* Starts the curve of level L into face fg from p, the crossing ci: on side m (at x from c[m]),
  * or at corner m, a vertex on the level (corner set). The curve leaves p along the circle of a
  * piece through p, counterclockwise (the nearer side on the left: the gradient of D is the unit
  * vector from that centre); where pieces of several circles tie at p (the curve has a corner
- * there) the one that rules just beyond p along its arc is taken. Its tangent must point into the
- * face: across side m, or inside the corner's angle (along side m counts: the arc bends to its
- * left, into the face; a curve through a vertex of a grid leaves along an edge). */
+ * there) the one that rules just beyond p along its arc is taken. When none does at an edge
+ * crossing, but another circle takes over from the one ruling at p strictly beyond p (their
+ * crossing, a corner of the curve, lies within that look beyond p), the curve runs along the
+ * first and walk_on switches at the corner. Its tangent must point into the face: across side m,
+ * or inside the corner's angle (along side m counts: the arc bends to its left, into the face; a
+ * curve through a vertex of a grid leaves along an edge). */
 static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, double x, bool corner, double L)
 {
     const piece* pcs = st->pieces.data;
@@ -582,7 +598,7 @@ static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, dou
     const double* u_in = fg->u[m];             /* along side m, away from c[m] */
     const double* u_back = fg->u[(m + 2) % 3]; /* side m - 1 arrives at c[m] */
     double tol = 1e-14 * (L + fg->span);
-    uint32_t first;
+    uint32_t first, taken = TG_NONE;
     eval_at(fg, pcs, n, p, &first);
     if (first == TG_NONE) return true;
     for (size_t t = 0; t <= n; ++t) {
@@ -608,10 +624,14 @@ static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, dou
         uint32_t k = TG_NONE;
         for (size_t i = 0; i < n && k == TG_NONE; ++i)
             if (pcs[i].circle == c && piece_holds(fg, &pcs[i], q)) k = (uint32_t)i;
-        if (k == TG_NONE || !inside_face(fg, q) || !piece_rules(fg, pcs, n, k, q, tol)) continue;
-        return walk_on(st, fg, ci, p, m, corner ? (m + 2) % 3 : -1, k, L);
+        if (k == TG_NONE || !inside_face(fg, q)) continue;
+        if (piece_rules(fg, pcs, n, k, q, tol)) return walk_on(st, fg, ci, p, m, corner ? (m + 2) % 3 : -1, k, L);
+        if (t == 0 && !corner && taken_over(fg, pcs, n, p, q, L, tol)) taken = k;
     }
-    return true;
+    /* none rules beyond p, but the circle holding p enters the face and another takes over
+     * before the point looked at (their crossing within 1e-6 of the face from an edge crossing):
+     * the curve runs along the first to it, and walk_on switches there */
+    return taken == TG_NONE || walk_on(st, fg, ci, p, m, -1, taken, L);
 }
 
 /* Walks from p (on the level, piece j ruling), which lies on side m0 (and m1 >= 0: on that side

@@ -3,7 +3,7 @@
  * mesh, two crossings on edges whose distance dips below the level between its ends (a holed
  * plate), one closed loop about a source on a closed surface, levels equal to vertex distances
  * (curves through vertices: all closed on closed surfaces), a level above a whole face whose
- * windows the record left out (no curve there), curves with a corner just inside a face (closed
+ * windows the record left out (no curve there), curves with a corner at an edge crossing (closed
  * through it), bad input. */
 #include "tg_test.h"
 #include "tg_test_geodesic.h"
@@ -313,37 +313,50 @@ static void test_face_below_level(void)
     close_ctx(&c);
 }
 
-/* ---- a corner of the curve just inside a face ---- */
+/* ---- where the walk starts: a corner of the curve at an edge crossing ---- */
 
-/* cgal_cheese.off (a closed surface, genus 133) from v:2698 at the distance of v:2826
- * (0.11163639570135368). Where the curve enters a face, two circles of one pseudo-source
- * unfolded two ways (same offset, centres 0.0058 apart; the face's sides are 0.0232 to 0.129)
- * cross 1e-6 of the face beyond the edge crossing: the circle ruling at the crossing no longer
- * rules where the walk's start looks, the other does not pass through the crossing, and no walk
- * started there (before: 4 of 11 polylines open). Every polyline closed, every point on its
- * level. */
-static void test_corner_inside_face(void)
+/* On a closed surface, from vertex src at the distance of vertex at (level, as a check): every
+ * polyline closed, every point on its level. */
+static void closed_at_vertex_level(const char* file, uint32_t src_v, uint32_t at, double level, const char* why)
 {
-    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), "cgal_cheese.off");
+    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), file);
     if (!m) return;
     ctx c = open_ctx_for(m);
     CHECK(tg_mesh_get_report(m)->boundary_loops == 0);
-    tg_surface_point src = tg_surface_vertex(2698);
+    tg_surface_point src = tg_surface_vertex(src_v);
     size_t nvv = tg_mesh_vertex_count(m);
     double* vd = malloc(nvv * sizeof *vd);
     CHECK_STATUS(tg_geodesic_field(c.geo, c.ws, &src, 1, NULL, vd, NULL), TG_OK);
-    double level = vd[2826];
-    CHECK_MSG(fabs(level - 0.11163639570135368) <= 1e-12, "level %.17g", level);
+    CHECK_MSG(fabs(vd[at] - level) <= 1e-12 * level, "%s: level %.17g", file, vd[at]);
     tg_isolines_view v;
-    tg_isolines* iso = iso_of(&c, &src, 1, &level, 1, &v);
+    tg_isolines* iso = iso_of(&c, &src, 1, &vd[at], 1, &v);
     size_t open = 0;
     for (size_t p = 0; p < v.polyline_count; ++p) open += !v.polyline_closed[p];
-    CHECK_MSG(v.polyline_count > 0 && open == 0, "cheese: %zu of %zu polylines open on a closed surface", open,
+    char what[256];
+    snprintf(what, sizeof what, "%s from v:%u at the distance of v:%u (%s)", file, src_v, at, why);
+    CHECK_MSG(v.polyline_count > 0 && open == 0, "%s: %zu of %zu polylines open on a closed surface", what, open,
               v.polyline_count);
-    check_on_levels(&c, &src, 1, &v, 1e-9, "cheese, corner inside a face");
+    check_on_levels(&c, &src, 1, &v, 1e-9, what);
     tg_isolines_destroy(iso);
     free(vd);
     close_ctx(&c);
+}
+
+/* Where the curve enters a face at an edge crossing p, the circle ruling at p may stop ruling
+ * within the 1e-6 of the face beyond p where the walk's start looks, while no other circle passes
+ * through p to the rounding of a vertex on the level: no walk started there, and the curve broke
+ * at both ends of the face. The circle ruling at the look-ahead point crosses the first one's arc
+ * between the two. cgal_cheese.off (genus 133): one pseudo-source unfolded two ways (same offset,
+ * centres 0.0058 apart, sides 0.0232 to 0.129), 2.7e-9 above the level at p, 3.6e-9 below it at
+ * the look-ahead point (before: 4 of 11 polylines open). c3d_horse.ply and igl_armadillo.obj: the
+ * wedge of the circle ruling at p ends before the look-ahead point, and there another unfolding
+ * of the source rules, 8.9e-12 (4.9e-11) above the level at p and 1.6e-12 (2.1e-10) below it
+ * there (before: 1 open polyline each). Distances in the solver's frame. */
+static void test_corner_at_crossing(void)
+{
+    closed_at_vertex_level("cgal_cheese.off", 2698, 2826, 0.11163639570135368, "two unfoldings crossing");
+    closed_at_vertex_level("c3d_horse.ply", 7661, 3471, 0.04765934766569687, "a wedge ending");
+    closed_at_vertex_level("igl_armadillo.obj", 2021, 26870, 0.48693607210549861, "a wedge ending");
 }
 
 /* ---- closed surface: a small level is one closed loop ---- */
@@ -446,7 +459,7 @@ int main(void)
     test_closed_loop();
     test_levels_at_vertices();
     test_face_below_level();
-    test_corner_inside_face();
+    test_corner_at_crossing();
     test_max_distance();
     test_corpus();
     return tg_test_finish();

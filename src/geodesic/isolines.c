@@ -566,15 +566,14 @@ static bool piece_rules(const face_geo* fg, const piece* pcs, size_t n, uint32_t
 static bool walk_on(iso_state* st, const face_geo* fg, uint32_t ci, const double start[2], int m0, int m1,
                     uint32_t j, double L);
 
-/* q lies a little along the arc (at the level) of a circle through p: does another piece take
- * over between them? The piece ruling at q, below the level there, held p strictly above it: the
- * two circles cross on the arc strictly beyond p (D is continuous). */
+/* q lies a little along the arc (at the level) of the circle ruling at p: does another piece
+ * take over between them? The piece ruling at q is below the level there and its circle above it
+ * at p: the two circles cross on the arc strictly between p and q. */
 static bool taken_over(const face_geo* fg, const piece* pcs, size_t n, const double p[2], const double q[2], double L,
                        double tol)
 {
     uint32_t k;
-    double dq = eval_at(fg, pcs, n, q, &k);
-    if (k == TG_NONE || !(dq < L) || !piece_holds(fg, &pcs[k], p)) return false;
+    if (!(eval_at(fg, pcs, n, q, &k) < L) || k == TG_NONE) return false;
     double dx = p[0] - pcs[k].cx, dy = p[1] - pcs[k].cy;
     return pcs[k].sigma + sqrt(dx * dx + dy * dy) > L + tol;
 }
@@ -624,9 +623,10 @@ static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, dou
         uint32_t k = TG_NONE;
         for (size_t i = 0; i < n && k == TG_NONE; ++i)
             if (pcs[i].circle == c && piece_holds(fg, &pcs[i], q)) k = (uint32_t)i;
-        if (k == TG_NONE || !inside_face(fg, q)) continue;
-        if (piece_rules(fg, pcs, n, k, q, tol)) return walk_on(st, fg, ci, p, m, corner ? (m + 2) % 3 : -1, k, L);
-        if (t == 0 && !corner && taken_over(fg, pcs, n, p, q, L, tol)) taken = k;
+        if (!inside_face(fg, q)) continue;
+        if (k != TG_NONE && piece_rules(fg, pcs, n, k, q, tol))
+            return walk_on(st, fg, ci, p, m, corner ? (m + 2) % 3 : -1, k, L);
+        if (t == 0 && !corner && taken_over(fg, pcs, n, p, q, L, tol)) taken = k != TG_NONE ? k : first;
     }
     /* none rules beyond p, but the circle holding p enters the face and another takes over
      * before the point looked at (their crossing within 1e-6 of the face from an edge crossing):

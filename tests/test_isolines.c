@@ -3,8 +3,8 @@
  * mesh, two crossings on edges whose distance dips below the level between its ends (a holed
  * plate), one closed loop about a source on a closed surface, levels equal to vertex distances
  * (curves through vertices: all closed on closed surfaces), a level above a whole face whose
- * windows the record left out (no curve there), curves with a corner at an edge crossing (closed
- * through it), bad input. */
+ * windows the record left out (no curve there), curves with a corner at an edge crossing and
+ * curves through zero-area faces (closed through them), bad input. */
 #include "tg_test.h"
 #include "tg_test_geodesic.h"
 #include "tg_test_plate.h"
@@ -359,6 +359,17 @@ static void test_corner_at_crossing(void)
     closed_at_vertex_level("igl_armadillo.obj", 2021, 26870, 0.48693607210549861, "a wedge ending");
 }
 
+/* Through zero-area faces (not walked: their sides lie on one segment), the curve goes on from a
+ * crossing of one side at the same place on another: before, it broke there. cgal_mpi.off (2
+ * zero-area faces; before: the one polyline open, its two ends at one point on two sides of mesh
+ * face 111); tbvh_legocar.obj (112 zero-area faces; before: 19 of 21 polylines open, most of
+ * them of 2 points around a thin cylinder, each ending where the next begins). */
+static void test_through_flat_faces(void)
+{
+    closed_at_vertex_level("cgal_mpi.off", 86, 51, 20.003188059374597, "through a zero-area face");
+    closed_at_vertex_level("tbvh_legocar.obj", 5824, 5459, 0.035049389382616356, "through zero-area faces");
+}
+
 /* ---- closed surface: a small level is one closed loop ---- */
 
 static void test_closed_loop(void)
@@ -460,6 +471,7 @@ int main(void)
     test_levels_at_vertices();
     test_face_below_level();
     test_corner_at_crossing();
+    test_through_flat_faces();
     test_max_distance();
     test_corpus();
     return tg_test_finish();

@@ -753,12 +753,60 @@ static bool face_meets(const iso_state* st, uint32_t f, double L, double span)
     return hi < INFINITY && L >= lo - m && L <= hi + m;
 }
 
+/* The position (solver frame) of an edge crossing. */
+static tg_vec3 crossing_pos(const tg_geodesic* g, const crossing* c)
+{
+    tg_vec3 a = tg__gpos(g, g->tri[c->e]), b = tg__gpos(g, g->tri[tg_halfedge_next(c->e)]);
+    return tg_v3_add(a, tg_v3_scale(tg_v3_sub(b, a), c->x / g->frame[c->e].len));
+}
+
+/* A zero-area face (not walked: its sides lie on one segment) carries the curve from a crossing
+ * of one side to the crossing at the same place on another: each such pair (within NEAR_REL of
+ * the faces at its sides, each crossing in one pair) becomes a segment of no points. */
+static bool link_flat(iso_state* st, uint32_t f, double L)
+{
+    const tg_geodesic* g = st->g;
+    enum { MAX_LINKED = 64 };
+    uint32_t ids[MAX_LINKED], side[MAX_LINKED];
+    tg_vec3 at[MAX_LINKED];
+    size_t n = 0;
+    double near = 0.0;
+    for (uint32_t m = 0; m < 3; ++m) {
+        uint32_t e = edge_name(g, 3 * f + m);
+        if (!edge_crossings(st, e, L)) return false;
+        near = fmax(near, near_dist(g, e));
+        for (uint32_t i = st->edge_first[e]; i < st->edge_first[e] + st->edge_count[e]; ++i) {
+            if (n == MAX_LINKED) return true; /* left open */
+            ids[n] = i, side[n] = m, at[n++] = crossing_pos(g, &((const crossing*)st->cross.data)[i]);
+        }
+    }
+    bool linked[MAX_LINKED] = {false};
+    const crossing* cs = st->cross.data;
+    for (size_t i = 0; i < n; ++i) {
+        size_t best = n;
+        double bd = near;
+        for (size_t j = i + 1; j < n && !linked[i]; ++j) {
+            double d = tg_v3_dist(at[i], at[j]);
+            if (!linked[j] && side[j] != side[i] && d <= bd) bd = d, best = j;
+        }
+        if (best == n || cs[ids[i]].rep == cs[ids[best]].rep) continue;
+        linked[i] = linked[best] = true;
+        segment sg = {cs[ids[i]].rep, cs[ids[best]].rep, f, 0, st->pts.count, st->pts.count};
+        if (!push(st->alloc, &st->segs, &sg)) return false;
+    }
+    return true;
+}
+
 /* Every segment of level L. */
 static bool trace_level(iso_state* st, double L)
 {
     const tg_geodesic* g = st->g;
     st->cross.count = st->segs.count = st->pts.count = 0;
     for (uint32_t f = 0; f < g->face_count; ++f) {
+        if ((g->fflags[f] & (TG__F_SKIP | TG__F_FLAT)) == TG__F_FLAT) {
+            if (!link_flat(st, f, L)) return false;
+            continue;
+        }
         if (!face_traced(g, f) || face_below(st, f, L)) continue;
         face_geo fg;
         face_geo_of(g, f, &fg);

@@ -363,10 +363,14 @@ static void test_corner_at_crossing(void)
  * crossing of one side at the same place on another: before, it broke there. cgal_mpi.off (2
  * zero-area faces; before: the one polyline open, its two ends at one point on two sides of mesh
  * face 111); tbvh_legocar.obj (112 zero-area faces; before: 19 of 21 polylines open, most of
- * them of 2 points around a thin cylinder, each ending where the next begins). */
+ * them of 2 points around a thin cylinder, each ending where the next begins). At the level of
+ * v:33 of cgal_mpi.off, the curve passes through v:33, the corner of a zero-area face inside its
+ * longest side, and on through that side (before: one polyline open, from v:33 to the point of
+ * that side at the same place). */
 static void test_through_flat_faces(void)
 {
     closed_at_vertex_level("cgal_mpi.off", 86, 51, 20.003188059374597, "through a zero-area face");
+    closed_at_vertex_level("cgal_mpi.off", 86, 33, 41.885878560018888, "through a zero-area face's middle corner");
     closed_at_vertex_level("tbvh_legocar.obj", 5824, 5459, 0.035049389382616356, "through zero-area faces");
 }
 

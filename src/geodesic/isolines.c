@@ -761,8 +761,9 @@ static tg_vec3 crossing_pos(const tg_geodesic* g, const crossing* c)
 }
 
 /* A zero-area face (not walked: its sides lie on one segment) carries the curve from a crossing
- * of one side to the crossing at the same place on another: each such pair (within NEAR_REL of
- * the faces at its sides, each crossing in one pair) becomes a segment of no points. */
+ * of one side to the crossing at the same place on another, or to the corner inside its longest
+ * side when that corner is on the level and there: each such pair (within NEAR_REL of the faces
+ * at its sides, each crossing in one pair) becomes a segment of no points. */
 static bool link_flat(iso_state* st, uint32_t f, double L)
 {
     const tg_geodesic* g = st->g;
@@ -779,6 +780,16 @@ static bool link_flat(iso_state* st, uint32_t f, double L)
             if (n == MAX_LINKED) return true; /* left open */
             ids[n] = i, side[n] = m, at[n++] = crossing_pos(g, &((const crossing*)st->cross.data)[i]);
         }
+    }
+    /* the corner inside the longest side, when on the level: a side of its own */
+    uint32_t lm = 0;
+    for (uint32_t m = 1; m < 3; ++m)
+        if (g->frame[3 * f + m].len > g->frame[3 * f + lm].len) lm = m;
+    uint32_t mid = g->tri[3 * f + (lm + 2) % 3], vc;
+    if (!vertex_crossing(st, mid, L, &vc)) return false;
+    if (vc != TG_NONE) {
+        if (n == MAX_LINKED) return true;
+        ids[n] = vc, side[n] = 3, at[n++] = tg__gpos(g, mid);
     }
     bool linked[MAX_LINKED] = {false};
     const crossing* cs = st->cross.data;

@@ -1540,8 +1540,10 @@ typedef struct tg_isolines tg_isolines;
  *  Not covered (documented limits): in faces thinner than about 1e-3 of their length (walls of
  *  thin plates) a curve passing within such a face's width of a vertex may still break into
  *  open polylines there; a closed curve inside one face that meets no edge is found only around
- *  a source in that face (not around a local maximum of the distance); curves in zero-area
- *  faces are not traced.
+ *  a source in that face (not around a local maximum of the distance). A zero-area face is not
+ *  walked: a curve crossing it goes on from its crossing of one side to the crossing (or the
+ *  corner on the level) at the same place on another, so the polyline holds that place twice in
+ *  a row, the second time with the zero-area face as its face.
  *
  *  workspace: one of this solver's, or NULL for a temporary one. sources, source_count: as
  *  tg_geodesic_field. levels: level_count >= 1 finite values >= 0 (any order, repeats allowed;

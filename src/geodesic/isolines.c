@@ -19,7 +19,9 @@
  * is the level is a crossing too: walks end there, and start there into each face where the
  * circle through it that rules beyond it enters the face. A face whose distance the record proves
  * below the level everywhere (field/record.c: some of its windows were then left out, so its
- * pieces do not give its distance) is not walked, and its sides have no crossing. */
+ * pieces do not give its distance) is not walked, and its sides have no crossing. Nor is a
+ * zero-area face (its sides lie on one segment): it joins the crossings at one place of two of
+ * its sides. */
 #include "geodesic/workspace.h"
 
 #include <stdlib.h>

@@ -3,8 +3,9 @@
  * mesh, two crossings on edges whose distance dips below the level between its ends (a holed
  * plate), one closed loop about a source on a closed surface, levels equal to vertex distances
  * (curves through vertices: all closed on closed surfaces), a level above a whole face whose
- * windows the record left out (no curve there), curves with a corner at an edge crossing and
- * curves through zero-area faces (closed through them), bad input. */
+ * windows the record left out (no curve there), curves with a corner at an edge crossing, curves
+ * entering a face on a circle a little off the level at the crossing and curves through zero-area
+ * faces (closed through them), bad input. */
 #include "tg_test.h"
 #include "tg_test_geodesic.h"
 #include "tg_test_plate.h"
@@ -359,6 +360,23 @@ static void test_corner_at_crossing(void)
     closed_at_vertex_level("igl_armadillo.obj", 2021, 26870, 0.48693607210549861, "a wedge ending");
 }
 
+/* Where the curve enters a face at an edge crossing p, the circle that rules beyond p may miss p
+ * by more than the rounding of a vertex on the level (1e-12 relative), by the windows' rounding:
+ * no walk started there, and the curve broke at both ends of the face. cgal_pinion.off: the
+ * crossing ends a vertex's circle (the vertex 0.0054 away), the wedge of a window ends at p and
+ * beyond it that window's circle rules, 1.0e-11 below the level at p (before: 1 of 2 polylines
+ * open); scivi_feline.obj: the other way round, a window's wedge ends 1e-5 from a vertex whose
+ * circle rules beyond, 2.5e-12 above the level at p (before: 1 of 4 open); fcpw_kitten.obj: one
+ * image unfolded two ways (centres 1e-12 apart), the one holding p gives way to the other 6e-9
+ * beyond p, 1.0e-12 below the level at p (before: its 1 polyline open). Now the walk starts on the
+ * circle ruling beyond p, at its point nearest p. Distances in the solver's frame. */
+static void test_start_off_level(void)
+{
+    closed_at_vertex_level("cgal_pinion.off", 146, 361, 1.3059822373484733, "a wedge ending at the crossing");
+    closed_at_vertex_level("scivi_feline.obj", 3688, 3704, 1.3814030022283268, "a vertex's circle beyond the crossing");
+    closed_at_vertex_level("fcpw_kitten.obj", 45706, 22189, 0.31356872980485739, "one image unfolded two ways");
+}
+
 /* Through zero-area faces (not walked: their sides lie on one segment), the curve goes on from a
  * crossing of one side at the same place on another: before, it broke there. cgal_mpi.off (2
  * zero-area faces; before: the one polyline open, its two ends at one point on two sides of mesh
@@ -475,6 +493,7 @@ int main(void)
     test_levels_at_vertices();
     test_face_below_level();
     test_corner_at_crossing();
+    test_start_off_level();
     test_through_flat_faces();
     test_max_distance();
     test_corpus();

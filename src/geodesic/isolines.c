@@ -70,6 +70,9 @@ typedef struct crossing {
 /* A walk leaves through a side it starts on only beyond this angle about its centre: a circle
  * tangent to the side there meets it twice within about the square root of the rounding. */
 #define START_ANGLE 1e-7
+/* A walk starts on a circle off the level at its crossing by at most this much of the face (the
+ * windows' rounding; walk_on snaps onto the next arc within it too). */
+#define START_SNAP 1e-9
 
 /* A walked piece of curve in one face: from crossing a to crossing b (indices of the level's
  * crossings; TG_NONE: the walk stopped there), through the face points [p0, p1) of `pts`; or a
@@ -580,28 +583,58 @@ static bool taken_over(const face_geo* fg, const piece* pcs, size_t n, const dou
     return pcs[k].sigma + sqrt(dx * dx + dy * dy) > L + tol;
 }
 
+/* Does the circle of piece c leave p (face frame, on it) into the face: across side m, or inside
+ * corner m's angle (along side m counts: the arc bends to its left, into the face; a curve through
+ * a vertex of a grid leaves along an edge)? Then q: a point a little along the arc (before it
+ * leaves the face: a curve may cross the corner of a sliver within far less), and *k: the piece
+ * of the circle that holds q (TG_NONE: none). False when the arc does not enter, or q is not in
+ * the face. */
+static bool look_along(const face_geo* fg, const piece* pcs, size_t n, uint32_t c, const double p[2], int m,
+                       bool corner, double q[2], uint32_t* k)
+{
+    const piece* pc = &pcs[c];
+    const double* u_in = fg->u[m];             /* along side m, away from c[m] */
+    const double* u_back = fg->u[(m + 2) % 3]; /* side m - 1 arrives at c[m] */
+    double gx = p[0] - pc->cx, gy = p[1] - pc->cy, r = sqrt(gx * gx + gy * gy);
+    double tx = -gy / r, ty = gx / r;
+    if (corner ? !(u_in[0] * ty - u_in[1] * tx > -1e-12) || !(tx * -u_back[1] - ty * -u_back[0] > 1e-12)
+               : !(u_in[0] * ty - u_in[1] * tx > 1e-12))
+        return false;
+    double amin[3] = {0.0, 0.0, 0.0}, ex;
+    int em;
+    amin[m] = START_ANGLE;
+    if (corner) amin[(m + 2) % 3] = START_ANGLE;
+    double centre[2] = {pc->cx, pc->cy}, a = 1e-6 * fg->span / r;
+    double ea = first_exit(fg, centre, p, amin, a, &em, &ex);
+    rotate_about(pc, p, ea < a ? 0.5 * ea : a, q);
+    *k = TG_NONE;
+    for (size_t i = 0; i < n && *k == TG_NONE; ++i)
+        if (pcs[i].circle == c && piece_holds(fg, &pcs[i], q)) *k = (uint32_t)i;
+    return inside_face(fg, q);
+}
+
 /* Starts the curve of level L into face fg from p, the crossing ci: on side m (at x from c[m]),
  * or at corner m, a vertex on the level (corner set). The curve leaves p along the circle of a
  * piece through p, counterclockwise (the nearer side on the left: the gradient of D is the unit
- * vector from that centre); where pieces of several circles tie at p (the curve has a corner
- * there) the one that rules just beyond p along its arc is taken. When none does at an edge
- * crossing, but another circle takes over from the one ruling at p strictly beyond p (their
- * crossing, a corner of the curve, lies within that look beyond p), the curve runs along the
- * first and walk_on switches at the corner. Its tangent must point into the face: across side m,
- * or inside the corner's angle (along side m counts: the arc bends to its left, into the face; a
- * curve through a vertex of a grid leaves along an edge). */
+ * vector from that centre), into the face (look_along); where pieces of several circles tie at p
+ * (the curve has a corner there) the one that rules just beyond p along its arc is taken. When
+ * none does at an edge crossing, but another circle takes over from the one ruling at p strictly
+ * beyond p (their crossing, a corner of the curve, lies within that look beyond p), the curve runs
+ * along the first and walk_on switches at the corner. When no circle within the rounding of the
+ * level at p does either, the one that rules beyond p may be off the level at p by the rounding of
+ * the windows (up to START_SNAP of the face: a window's wedge ending at p, next to a corner's
+ * circle; one image unfolded two ways): the curve starts on it, at its point nearest p. */
 static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, double x, bool corner, double L)
 {
     const piece* pcs = st->pieces.data;
     size_t n = st->pieces.count;
     double p[2] = {fg->c[m][0] + x * fg->u[m][0], fg->c[m][1] + x * fg->u[m][1]};
     if (corner) p[0] = fg->c[m][0], p[1] = fg->c[m][1];
-    const double* u_in = fg->u[m];             /* along side m, away from c[m] */
-    const double* u_back = fg->u[(m + 2) % 3]; /* side m - 1 arrives at c[m] */
     double tol = 1e-14 * (L + fg->span);
-    uint32_t first, taken = TG_NONE;
+    uint32_t first, taken = TG_NONE, k;
     eval_at(fg, pcs, n, p, &first);
     if (first == TG_NONE) return true;
+    double q[2];
     for (size_t t = 0; t <= n; ++t) {
         /* the circle of the piece that holds p first, then every other circle once */
         uint32_t c = t == 0 ? pcs[first].circle : (uint32_t)(t - 1);
@@ -609,23 +642,7 @@ static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, dou
         const piece* pc = &pcs[c];
         double gx = p[0] - pc->cx, gy = p[1] - pc->cy, r = sqrt(gx * gx + gy * gy);
         if (!(r > 1e-9 * fg->span) || !(fabs(pc->sigma + r - L) <= VERTEX_LEVEL_REL * L + tol)) continue;
-        double tx = -gy / r, ty = gx / r;
-        if (corner ? !(u_in[0] * ty - u_in[1] * tx > -1e-12) || !(tx * -u_back[1] - ty * -u_back[0] > 1e-12)
-                   : !(u_in[0] * ty - u_in[1] * tx > 1e-12))
-            continue;
-        /* the circle's piece that holds the point a little along the arc (before it leaves the
-         * face: a curve may cross the corner of a sliver within far less) rules there */
-        double amin[3] = {0.0, 0.0, 0.0}, q[2], ex;
-        int em;
-        amin[m] = START_ANGLE;
-        if (corner) amin[(m + 2) % 3] = START_ANGLE;
-        double centre[2] = {pc->cx, pc->cy}, a = 1e-6 * fg->span / r;
-        double ea = first_exit(fg, centre, p, amin, a, &em, &ex);
-        rotate_about(pc, p, ea < a ? 0.5 * ea : a, q);
-        uint32_t k = TG_NONE;
-        for (size_t i = 0; i < n && k == TG_NONE; ++i)
-            if (pcs[i].circle == c && piece_holds(fg, &pcs[i], q)) k = (uint32_t)i;
-        if (!inside_face(fg, q)) continue;
+        if (!look_along(fg, pcs, n, c, p, m, corner, q, &k)) continue;
         if (k != TG_NONE && piece_rules(fg, pcs, n, k, q, tol))
             return walk_on(st, fg, ci, p, m, corner ? (m + 2) % 3 : -1, k, L);
         if (t == 0 && !corner && taken_over(fg, pcs, n, p, q, L, tol)) taken = k != TG_NONE ? k : first;
@@ -633,7 +650,16 @@ static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, dou
     /* none rules beyond p, but the circle holding p enters the face and another takes over
      * before the point looked at (their crossing within 1e-6 of the face from an edge crossing):
      * the curve runs along the first to it, and walk_on switches there */
-    return taken == TG_NONE || walk_on(st, fg, ci, p, m, -1, taken, L);
+    if (taken != TG_NONE) return walk_on(st, fg, ci, p, m, -1, taken, L);
+    for (uint32_t c = 0; c < n && !corner; ++c) {
+        const piece* pc = &pcs[c];
+        double gx = p[0] - pc->cx, gy = p[1] - pc->cy, r = sqrt(gx * gx + gy * gy), s[2];
+        if (pc->circle != c || !(r > 1e-9 * fg->span) || !(fabs(pc->sigma + r - L) <= START_SNAP * fg->span)) continue;
+        s[0] = pc->cx + gx * (L - pc->sigma) / r, s[1] = pc->cy + gy * (L - pc->sigma) / r;
+        if (look_along(fg, pcs, n, c, s, m, false, q, &k) && k != TG_NONE && piece_rules(fg, pcs, n, k, q, tol))
+            return walk_on(st, fg, ci, s, m, -1, k, L);
+    }
+    return true;
 }
 
 /* Walks from p (on the level, piece j ruling), which lies on side m0 (and m1 >= 0: on that side
@@ -699,7 +725,7 @@ static bool walk_on(iso_state* st, const face_geo* fg, uint32_t ci, const double
         /* onto the next arc (D is continuous: it passes within rounding of xk) */
         double nx = xk[0] - pcs[next].cx, ny = xk[1] - pcs[next].cy, nr = sqrt(nx * nx + ny * ny);
         double want = L - pcs[next].sigma;
-        if (nr > 0.0 && fabs(nr - want) <= 1e-9 * fg->span) xk[0] = pcs[next].cx + nx * want / nr, xk[1] = pcs[next].cy + ny * want / nr;
+        if (nr > 0.0 && fabs(nr - want) <= START_SNAP * fg->span) xk[0] = pcs[next].cx + nx * want / nr, xk[1] = pcs[next].cy + ny * want / nr;
         if (lo > 0.0 && !add_point(st, fg, xk)) return false;
         p[0] = xk[0], p[1] = xk[1], j = next;
     }

@@ -571,6 +571,24 @@ static bool piece_rules(const face_geo* fg, const piece* pcs, size_t n, uint32_t
 static bool walk_on(iso_state* st, const face_geo* fg, uint32_t ci, const double start[2], int m0, int m1,
                     uint32_t j, double L);
 
+/* The crossing of the circles about a's centre (radius ra) and b's (radius rb) nearest x, into
+ * out, when within near of x; false when they do not cross there. */
+static bool arcs_cross(const piece* a, double ra, const piece* b, double rb, const double x[2], double near,
+                       double out[2])
+{
+    double dx = b->cx - a->cx, dy = b->cy - a->cy, d = sqrt(dx * dx + dy * dy);
+    if (!(d > 0.0)) return false;
+    double m = (d * d + ra * ra - rb * rb) / (2.0 * d), h2 = ra * ra - m * m;
+    if (!(h2 >= 0.0)) return false;
+    double h = sqrt(h2), mx = a->cx + m * dx / d, my = a->cy + m * dy / d, best = near;
+    bool found = false;
+    for (int s = -1; s <= 1; s += 2) {
+        double px = mx - s * h * dy / d, py = my + s * h * dx / d, e = hypot(px - x[0], py - x[1]);
+        if (e <= best) best = e, out[0] = px, out[1] = py, found = true;
+    }
+    return found;
+}
+
 /* q lies a little along the arc (at the level) of the circle ruling at p: does another piece
  * take over between them? The piece ruling at q is below the level there and its circle above it
  * at p: the two circles cross on the arc strictly between p and q. */
@@ -722,10 +740,13 @@ static bool walk_on(iso_state* st, const face_geo* fg, uint32_t ci, const double
         uint32_t next;
         eval_at(fg, pcs, n, beyond, &next);
         if (next == TG_NONE || next == j) break; /* nothing rules beyond: the walk stops */
-        /* onto the next arc (D is continuous: it passes within rounding of xk) */
+        /* onto the next arc (D is continuous: it passes within rounding of xk): at the two arcs'
+         * crossing nearest xk when that is within START_SNAP of the face (the corner of the curve,
+         * exact to rounding), else at the next circle's point nearest xk */
         double nx = xk[0] - pcs[next].cx, ny = xk[1] - pcs[next].cy, nr = sqrt(nx * nx + ny * ny);
-        double want = L - pcs[next].sigma;
-        if (nr > 0.0 && fabs(nr - want) <= START_SNAP * fg->span) xk[0] = pcs[next].cx + nx * want / nr, xk[1] = pcs[next].cy + ny * want / nr;
+        double want = L - pcs[next].sigma, cx[2];
+        if (arcs_cross(pc, r, &pcs[next], want, xk, START_SNAP * fg->span, cx)) xk[0] = cx[0], xk[1] = cx[1];
+        else if (nr > 0.0 && fabs(nr - want) <= START_SNAP * fg->span) xk[0] = pcs[next].cx + nx * want / nr, xk[1] = pcs[next].cy + ny * want / nr;
         if (lo > 0.0 && !add_point(st, fg, xk)) return false;
         p[0] = xk[0], p[1] = xk[1], j = next;
     }

@@ -393,6 +393,18 @@ static void test_corner_on_level(void)
     closed_at_level_within("cgal_pinion.off", 2, 244, 0.69613379009539789, 1e-12, "corners of the curve");
 }
 
+/* A walk's step along an arc (up to a sagitta of 1e-3 of the face) looked only at its end: a
+ * short stretch within the step where a nearer image rules was stepped over, and the curve went
+ * on along the far arc. tm_1002_tray_bottom.STL, face 3776 (mesh numbering may differ): a curve
+ * along a far source's circle (radius 0.86, the face's sides 0.03 to 0.05) passes over a small
+ * bump of nearer images; it ran straight to the crossing where the curve coming out of the bump
+ * leaves, three curves met there and the bump's curve broke (before: 1 of 2 polylines open).
+ * Now the step is looked at where it lies in another circle's disc too. */
+static void test_dip_within_step(void)
+{
+    closed_at_vertex_level("tm_1002_tray_bottom.STL", 1544, 938, 226.50446920863854, "a dip within a step");
+}
+
 /* Through zero-area faces (not walked: their sides lie on one segment), the curve goes on from a
  * crossing of one side at the same place on another: before, it broke there. cgal_mpi.off (2
  * zero-area faces; before: the one polyline open, its two ends at one point on two sides of mesh
@@ -511,6 +523,7 @@ int main(void)
     test_corner_at_crossing();
     test_start_off_level();
     test_corner_on_level();
+    test_dip_within_step();
     test_through_flat_faces();
     test_max_distance();
     test_corpus();

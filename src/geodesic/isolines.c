@@ -12,7 +12,8 @@
  * edge (every face's pieces are taken), and an interior minimum gives two crossings.
  * Faces: from each crossing where the curve enters a face, the curve is walked counterclockwise
  * about the active centre (the nearer side on the left: the gradient of D is the unit vector from
- * that centre), one arc step at a time, each point projected back on the level (Newton on D,
+ * that centre), one arc step at a time (looked at inside too where it passes over another circle's
+ * disc), each point projected back on the level (Newton on D,
  * exact in one step while the centre stays), the two circles' intersection inserted where the
  * centre changes, until the arc meets a side of the face: the exit snaps to the nearest crossing
  * of that side. The pieces are joined at their crossings into polylines. A vertex whose distance
@@ -589,6 +590,43 @@ static bool arcs_cross(const piece* a, double ra, const piece* b, double rb, con
     return found;
 }
 
+/* Does piece j stop ruling strictly inside the step (0, at] of its arc (at the level) from p,
+ * where the step's end alone does not show it (a short stretch where a nearer image rules, a
+ * small disc the step passes over)? The arc lies in the disc {sigma + |x - c| < L} of another
+ * circle between two angles: where the arc enters or leaves such a disc within the step, j is
+ * looked at in the middle of the stretch's part within the step (a disc the whole step lies in
+ * shows at the step's end), when the disc reaches deeper than START_SNAP of the face inside the
+ * circle (a shallower one moves the curve by less: one image unfolded two ways; the step's end
+ * still sees it). The first angle where j does not rule, else at. */
+static double first_dip(const face_geo* fg, const piece* pcs, size_t n, uint32_t j, const double p[2], double at,
+                        double L, double tol)
+{
+    const piece* pj = &pcs[j];
+    double vx = p[0] - pj->cx, vy = p[1] - pj->cy, r = sqrt(vx * vx + vy * vy), best = at;
+    double reach = r * at, shallow = START_SNAP * fg->span; /* the step lies within reach of p */
+    for (size_t i = 0; i < n; ++i) {
+        const piece* pc = &pcs[i];
+        double ri = L - pc->sigma, ex = pc->cx - p[0], ey = pc->cy - p[1];
+        if (pc->circle != i || pc->circle == pj->circle || !(ri > 0.0) ||
+            !(ex * ex + ey * ey < (ri + reach) * (ri + reach)))
+            continue;
+        double dx = pc->cx - pj->cx, dy = pc->cy - pj->cy, d = sqrt(dx * dx + dy * dy);
+        if (!(d < r + ri) || !(d > fabs(r - ri)) || !(ri - r + d > shallow)) continue;
+        double cs = (d * d + r * r - ri * ri) / (2.0 * d * r);
+        double half = acos(cs < -1.0 ? -1.0 : cs > 1.0 ? 1.0 : cs);
+        double lo = atan2(vx * dy - vy * dx, vx * dx + vy * dy) - half; /* from p, counterclockwise */
+        lo = fmod(lo + 4.0 * TG__PI, 2.0 * TG__PI);
+        double hi = lo + 2.0 * half, a, b; /* the part (a, b) of the stretch within the step */
+        if (lo < best) a = lo, b = fmin(hi, best);
+        else if (hi - 2.0 * TG__PI > 0.0 && hi - 2.0 * TG__PI < best) a = 0.0, b = hi - 2.0 * TG__PI;
+        else continue;
+        double t[2];
+        rotate_about(pj, p, 0.5 * (a + b), t);
+        if (!piece_rules(fg, pcs, n, j, t, tol)) best = 0.5 * (a + b);
+    }
+    return best;
+}
+
 /* q lies a little along the arc (at the level) of the circle ruling at p: does another piece
  * take over between them? The piece ruling at q is below the level there and its circle above it
  * at p: the two circles cross on the arc strictly between p and q. */
@@ -711,7 +749,12 @@ static bool walk_on(iso_state* st, const face_geo* fg, uint32_t ci, const double
         double ea = first_exit(fg, c, p, amin, da, &em, &ex);
         double at = ea <= da ? ea : da, q[2];
         rotate_about(pc, p, at, q);
-        if (piece_rules(fg, pcs, n, j, q, tol)) {
+        bool rules = piece_rules(fg, pcs, n, j, q, tol);
+        if (rules) { /* and nowhere in between it stops ruling */
+            double dip = first_dip(fg, pcs, n, j, p, at, L, tol);
+            if (dip < at) at = dip, rules = false, rotate_about(pc, p, at, q);
+        }
+        if (rules) {
             if (ea <= da) { /* the arc leaves the face: at a crossing of that side, or its end */
                 sg.b = nearest_crossing(st, fg, em, ex, L, &ok);
                 if (!ok) return false;

@@ -89,16 +89,19 @@ static void test_components(void)
 
 /* ---- zero-area faces in a flat sheet ---- */
 
-/* The face of the 6 x 6 sheet with edge w -> u (u = (0.5, 1/6), w = (0.5, 1/3)), its third corner
- * in *y; -1 when there is none. */
-static int sheet_face_wu(uint32_t u, uint32_t w, uint32_t* y)
+/* A 6 x 6 sheet, its vertices u = (0.5, 1/6) and w = (0.5, 1/3), and its face with edge w -> u
+ * (the index returned; -1 when there is none), whose third corner is *y. */
+static int sheet_face_wu(uint32_t* u, uint32_t* w, uint32_t* y)
 {
+    uint32_t base = grid(6, 0, 0, 1, 0, NULL);
+    *u = base + 1 * 7 + 3, *w = base + 2 * 7 + 3;
     for (size_t f = 0; f < nf; ++f)
         for (int k = 0; k < 3; ++k)
-            if (tri[3 * f + (size_t)k] == w && tri[3 * f + (size_t)(k + 1) % 3] == u) {
+            if (tri[3 * f + (size_t)k] == *w && tri[3 * f + (size_t)(k + 1) % 3] == *u) {
                 *y = tri[3 * f + (size_t)(k + 2) % 3];
                 return (int)f;
             }
+    CHECK_MSG(0, "the sheet has no face with edge w -> u");
     return -1;
 }
 
@@ -134,10 +137,8 @@ static void check_sheet_sources(const char* name, int degenerate, const uint32_t
 /* Edge (u, w) split by its midpoint m on one side: one zero-area face (w, u, m). */
 static void test_zero_area_face(void)
 {
-    uint32_t base = grid(6, 0, 0, 1, 0, NULL);
-    uint32_t u = base + 1 * 7 + 3, w = base + 2 * 7 + 3, y = 0;
-    int f2 = sheet_face_wu(u, w, &y);
-    CHECK(f2 >= 0);
+    uint32_t u, w, y;
+    int f2 = sheet_face_wu(&u, &w, &y);
     if (f2 < 0) return;
     uint32_t m = add_v(0.5, 0.25, 0.0);
     tri[3 * f2] = w, tri[3 * f2 + 1] = m, tri[3 * f2 + 2] = y;
@@ -153,10 +154,8 @@ static void test_zero_area_face(void)
  * by up to 15% here; openfoam_buildings.obj.gz had a vertex 0.23% long, proven). */
 static void test_stacked_zero_area_faces(void)
 {
-    uint32_t base = grid(6, 0, 0, 1, 0, NULL);
-    uint32_t u = base + 1 * 7 + 3, w = base + 2 * 7 + 3, y = 0;
-    int f2 = sheet_face_wu(u, w, &y);
-    CHECK(f2 >= 0);
+    uint32_t u, w, y;
+    int f2 = sheet_face_wu(&u, &w, &y);
     if (f2 < 0) return;
     uint32_t m1 = add_v(0.5, 0.30, 0.0), m2 = add_v(0.5, 0.32, 0.0);
     tri[3 * f2] = w, tri[3 * f2 + 1] = m2, tri[3 * f2 + 2] = y;

@@ -787,7 +787,7 @@ static bool walk_on(iso_state* st, const face_geo* fg, uint32_t ci, const double
          * crossing nearest xk when that is within START_SNAP of the face (the corner of the curve,
          * exact to rounding), else at the next circle's point nearest xk */
         double nx = xk[0] - pcs[next].cx, ny = xk[1] - pcs[next].cy, nr = sqrt(nx * nx + ny * ny);
-        double want = L - pcs[next].sigma, cx[2];
+        double want = L - pcs[next].sigma, cx[2] = {0.0, 0.0};
         if (arcs_cross(pc, r, &pcs[next], want, xk, START_SNAP * fg->span, cx)) xk[0] = cx[0], xk[1] = cx[1];
         else if (nr > 0.0 && fabs(nr - want) <= START_SNAP * fg->span) xk[0] = pcs[next].cx + nx * want / nr, xk[1] = pcs[next].cy + ny * want / nr;
         if (lo > 0.0 && !add_point(st, fg, xk)) return false;

@@ -968,6 +968,7 @@ tg_status tg_bvh_create(const tg_mesh* mesh, const tg_bvh_options* opts, tg_bvh*
     bvh->auto_method = auto_sign_method(mesh);
     bvh->simd = tg__simd_level_detect();
     choose_frame(bvh);
+    tg__bvh_set_margins(bvh);
     tg_status st = TG_OK;
     uint32_t n = (uint32_t)mesh->face_count;
     if (n > 0) {

@@ -119,6 +119,9 @@ struct tg_bvh {
     double origin[3]; /* local = (x - origin) * scale */
     double scale;     /* a power of two */
     double inv_scale; /* 1 / scale, exact */
+    /* a query's prune bounds from its best squared distance x: x * scale^2 * thr_a + thr_b in
+     * local units, x * world_a + world_b in world units (tg__bvh_set_margins, bvh_query.c) */
+    double thr_a, thr_b, world_a, world_b;
     tg__bvh_node* nodes; /* 64-byte aligned inside nodes_raw; node 0 is the root */
     void* nodes_raw;
     size_t nodes_raw_bytes;
@@ -229,6 +232,8 @@ typedef void (*tg__bvh_batch_fn)(const tg_bvh* bvh, tg_bvh_workspace* ws, const 
 tg_status tg__bvh_run_batch(const tg_bvh* bvh, const double* xyz, size_t count, int threads, tg__bvh_batch_fn fn,
                             void* ctx);
 tg_status tg__bvh_build_clusters(tg_bvh* bvh);
+/* Sets the prune margins of bvh from its scale (once, when it is built). */
+void tg__bvh_set_margins(tg_bvh* bvh);
 /* Generalized winding number at p (world coordinates), using ws's stack. */
 double tg__bvh_winding(const tg_bvh* bvh, tg_bvh_workspace* ws, const double* p);
 

@@ -44,7 +44,6 @@ typedef struct query {
     const double* best_v[3]; /* the best face's corners (leaf or mesh copies: the same doubles) */
     float thr;            /* prune bound for boxes, float local units (see set_threshold) */
     double thr_world;     /* the same bound in world units, double, for the faces' own boxes */
-    double thr_a, thr_b, world_a, world_b; /* thr = best * scale^2 * thr_a + thr_b (rounded), likewise */
 } query;
 
 /* Below this threshold (float local units, squared) the oriented boxes are not evaluated: their
@@ -70,18 +69,30 @@ static inline bool obb_wanted(const tg__bvh_node* n, const query* q)
  * longer than d + E); doubling that margin makes the prune sound for faces farther than best.
  * (d + E)^2 <= 2 d^2 + 2 E^2 spares a square root: with x = best in local units (the mesh
  * diagonal is at most 2 sqrt(3) < 3.5 there) the bound is x + 2^-44 (2 x + 2 * 3.5^2) + 2^-1060 s^2,
- * that is x * a + b with a and b set once per query (query_init). Float lower bounds carry a
+ * that is x * a + b with a and b set once per tree (tg__bvh_set_margins). Float lower bounds carry a
  * relative error below 6 * 2^-24 (one rounding per subtraction, square and sum of three
  * non-negative terms): a and b are inflated by 2^-17, which also covers the roundings of x * a + b
  * and of its conversion to float (2^-24); the threshold never drops below 2 * FLT_MIN, which
  * absorbs the absolute error of underflowing squares. */
 static void set_threshold(const tg_bvh* bvh, query* q, double best)
 {
-    double local = best * bvh->scale * bvh->scale * q->thr_a + q->thr_b;
+    double local = best * bvh->scale * bvh->scale * bvh->thr_a + bvh->thr_b;
     float f = (float)local;
     q->thr = f < 2.0f * FLT_MIN ? 2.0f * FLT_MIN : f;
     /* a double lower bound has a relative error of a few 2^-53, far inside the 2^-44 margin */
-    q->thr_world = best * q->world_a + q->world_b;
+    q->thr_world = best * bvh->world_a + bvh->world_b;
+}
+
+void tg__bvh_set_margins(tg_bvh* bvh)
+{
+    /* products left to right: scale^2 alone may overflow (scale is up to 2^1000). Set once: the
+     * terms of 2^-1060 are subnormal, and arithmetic on them in every query's set-up cost a few
+     * percent of a query on the surface. */
+    const double s = bvh->scale, inflate = 1.0 + 0x1p-17;
+    bvh->thr_a = (1.0 + 0x1p-43) * inflate;
+    bvh->thr_b = (0x1p-44 * (2.0 * 3.5 * 3.5) + 0x1p-1060 * s * s) * inflate;
+    bvh->world_a = 1.0 + 0x1p-42;
+    bvh->world_b = (0x1p-44 * (2.0 * 3.5 * 3.5) * bvh->inv_scale * bvh->inv_scale + 0x1p-1060) * (1.0 + 0x1p-40);
 }
 
 static void query_init(const tg_bvh* bvh, query* q, const double* p, double max_dist_sq)
@@ -102,14 +113,6 @@ static void query_init(const tg_bvh* bvh, query* q, const double* p, double max_
     q->best = max_dist_sq;
     q->best_face = TG_NONE;
     q->best_v[0] = q->best_v[1] = q->best_v[2] = NULL;
-    /* products left to right: scale^2 alone may overflow (scale is up to 2^1000) */
-    const double s = bvh->scale, inflate = 1.0 + 0x1p-17;
-    q->thr_a = (1.0 + 0x1p-43) * inflate;
-    q->thr_b = (0x1p-44 * (2.0 * 3.5 * 3.5) + 0x1p-1060 * s * s) * inflate;
-    q->world_a = 1.0 + 0x1p-42;
-    /* / s / s by exact multiplications (s is a power of two): a query is a few hundred cycles, two
-     * divisions were a tenth of its set-up */
-    q->world_b = (0x1p-44 * (2.0 * 3.5 * 3.5) * bvh->inv_scale * bvh->inv_scale + 0x1p-1060) * (1.0 + 0x1p-40);
     set_threshold(bvh, q, max_dist_sq);
 }
 

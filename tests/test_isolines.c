@@ -4,8 +4,9 @@
  * plate), one closed loop about a source on a closed surface, levels equal to vertex distances
  * (curves through vertices: all closed on closed surfaces), a level above a whole face whose
  * windows the record left out (no curve there), curves with a corner at an edge crossing, curves
- * entering a face on a circle a little off the level at the crossing, the curve's corners inside a
- * face on the level within 1e-12, curves through zero-area faces (closed through them), bad input. */
+ * entering a face on a circle a little off the level at the crossing, or on a window's circle whose
+ * wedge ends just beyond it, the curve's corners inside a face on the level within 1e-12, curves
+ * through zero-area faces (closed through them), bad input. */
 #include "tg_test.h"
 #include "tg_test_geodesic.h"
 #include "tg_test_plate.h"
@@ -316,8 +317,21 @@ static void test_face_below_level(void)
 
 /* ---- where the walk starts: a corner of the curve at an edge crossing ---- */
 
+/* The length of the mesh's bounding box diagonal. */
+static double mesh_diagonal(const tg_mesh* m)
+{
+    const double* x = tg_mesh_positions(m);
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, d2 = 0.0;
+    for (size_t i = 0; i < tg_mesh_vertex_count(m); ++i)
+        for (int k = 0; k < 3; ++k) lo[k] = fmin(lo[k], x[3 * i + k]), hi[k] = fmax(hi[k], x[3 * i + k]);
+    for (int k = 0; k < 3; ++k) d2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    return sqrt(d2);
+}
+
 /* On a closed surface, from vertex src at the distance of vertex at (level, as a check): every
- * polyline closed, every point on its level within rel. */
+ * polyline closed, every point on its level within rel, none shorter than 1e-7 of the mesh's
+ * size (no source in a face: a closed curve that small would pass within 1e-6 of the faces of a
+ * vertex, where crossings are one node; a walk started there draws a loop of rounding). */
 static void closed_at_level_within(const char* file, uint32_t src_v, uint32_t at, double level, double rel,
                                    const char* why)
 {
@@ -338,6 +352,16 @@ static void closed_at_level_within(const char* file, uint32_t src_v, uint32_t at
     snprintf(what, sizeof what, "%s from v:%u at the distance of v:%u (%s)", file, src_v, at, why);
     CHECK_MSG(v.polyline_count > 0 && open == 0, "%s: %zu of %zu polylines open on a closed surface", what, open,
               v.polyline_count);
+    double least = INFINITY, size = mesh_diagonal(m);
+    for (size_t p = 0; p < v.polyline_count; ++p) {
+        double len = 0.0;
+        for (size_t i = v.polyline_start[p]; i + 1 < v.polyline_start[p + 1]; ++i) {
+            const double *a = v.xyz + 3 * i, *b = a + 3;
+            len += sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]));
+        }
+        least = fmin(least, len);
+    }
+    CHECK_MSG(least >= 1e-7 * size, "%s: a polyline %.3g long (mesh %.3g)", what, least, size);
     check_on_levels(&c, &src, 1, &v, rel, what);
     tg_isolines_destroy(iso);
     free(vd);
@@ -381,6 +405,25 @@ static void test_start_off_level(void)
     closed_at_vertex_level("cgal_pinion.off", 146, 361, 1.3059822373484733, "a wedge ending at the crossing");
     closed_at_vertex_level("scivi_feline.obj", 3688, 3704, 1.3814030022283268, "a vertex's circle beyond the crossing");
     closed_at_vertex_level("fcpw_kitten.obj", 45706, 22189, 0.31356872980485739, "one image unfolded two ways");
+}
+
+/* Where the curve enters a face at an edge crossing p, the wedge of the window ruling at p may end
+ * nearer than the 1e-6 of the face that the walk's start looks along its arc: at the shadow's edge
+ * of a pseudo-source vertex whose circle lies inside the window's and touches it there (the curve
+ * is smooth). Beyond the wedge the arc looked along runs outside the vertex's circle: no circle is
+ * below the level at the point looked at and none rules there, so no walk started and the curve
+ * broke at both ends of the face. cgal_cheese.off from v:5085 at the distance of v:5728: the curve
+ * passes 1.4e-5 from a saddle vertex (sides up to 1.0); the window's arc from p to its wedge's end
+ * is 7.5e-7 long; the vertex's circle is 2.0e-8 above the level at p and 2.2e-9 above it at the
+ * point looked at (before: 1 polyline open; the field there equals the length of a valid exact
+ * path to 1e-16 and lies below the vertex's distance plus the segment, so it is right). Now the walk
+ * also looks half-way to the wedge's end, when that is beyond the angle a start may not leave by
+ * (START_ANGLE): from v:7293 at the distance of v:7001, a crossing 8.2e-9 from a vertex (one node
+ * with it) on a wedge ending 3.7e-8 radians on drew a loop 6e-10 long when looked along. */
+static void test_wedge_end_within_look(void)
+{
+    closed_at_vertex_level("cgal_cheese.off", 5085, 5728, 0.099988277877254658, "a wedge ending within the look");
+    closed_at_vertex_level("cgal_cheese.off", 7293, 7001, 0.07890964549936548, "a wedge ending at once");
 }
 
 /* Where the ruling circle changes inside a face, the walk finds the corner of the curve by
@@ -522,6 +565,7 @@ int main(void)
     test_face_below_level();
     test_corner_at_crossing();
     test_start_off_level();
+    test_wedge_end_within_look();
     test_corner_on_level();
     test_dip_within_step();
     test_through_flat_faces();

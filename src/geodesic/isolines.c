@@ -222,6 +222,18 @@ static bool piece_holds(const face_geo* fg, const piece* pc, const double p[2])
     return xs >= pc->b0 && xs <= pc->b1;
 }
 
+/* The angle counterclockwise about the piece's centre from p (in its wedge) to the end of its
+ * wedge: the ray from the image through the window's start b0 (rays through the edge turn from
+ * b1 towards b0 counterclockwise, the face on the edge's left); +inf for a corner or a source. */
+static double wedge_left(const face_geo* fg, const piece* pc, const double p[2])
+{
+    if (pc->k == 3) return INFINITY;
+    double q[2];
+    to_side(fg, (int)pc->k, p, q);
+    double vx = q[0] - pc->sx, vy = q[1] - pc->sy, dx = pc->b0 - pc->sx, dy = -pc->sy;
+    return atan2(vx * dy - vy * dx, vx * dx + vy * dy);
+}
+
 /* The distance at p (face frame) and its piece (*out_arg, TG_NONE when none holds p). */
 static double eval_at(const face_geo* fg, const piece* pcs, size_t n, const double p[2], uint32_t* out_arg)
 {
@@ -642,11 +654,11 @@ static bool taken_over(const face_geo* fg, const piece* pcs, size_t n, const dou
 /* Does the circle of piece c leave p (face frame, on it) into the face: across side m, or inside
  * corner m's angle (along side m counts: the arc bends to its left, into the face; a curve through
  * a vertex of a grid leaves along an edge)? Then q: a point a little along the arc (before it
- * leaves the face: a curve may cross the corner of a sliver within far less), and *k: the piece
- * of the circle that holds q (TG_NONE: none). False when the arc does not enter, or q is not in
- * the face. */
+ * leaves the face: a curve may cross the corner of a sliver within far less; at most the angle
+ * `most` about the centre), and *k: the piece of the circle that holds q (TG_NONE: none). False
+ * when the arc does not enter, or q is not in the face. */
 static bool look_along(const face_geo* fg, const piece* pcs, size_t n, uint32_t c, const double p[2], int m,
-                       bool corner, double q[2], uint32_t* k)
+                       bool corner, double most, double q[2], uint32_t* k)
 {
     const piece* pc = &pcs[c];
     const double* u_in = fg->u[m];             /* along side m, away from c[m] */
@@ -660,13 +672,21 @@ static bool look_along(const face_geo* fg, const piece* pcs, size_t n, uint32_t 
     int em;
     amin[m] = START_ANGLE;
     if (corner) amin[(m + 2) % 3] = START_ANGLE;
-    double centre[2] = {pc->cx, pc->cy}, a = 1e-6 * fg->span / r;
+    double centre[2] = {pc->cx, pc->cy}, a = fmin(1e-6 * fg->span / r, most);
     double ea = first_exit(fg, centre, p, amin, a, &em, &ex);
     rotate_about(pc, p, ea < a ? 0.5 * ea : a, q);
     *k = TG_NONE;
     for (size_t i = 0; i < n && *k == TG_NONE; ++i)
         if (pcs[i].circle == c && piece_holds(fg, &pcs[i], q)) *k = (uint32_t)i;
     return inside_face(fg, q);
+}
+
+/* Does the circle of piece pc pass through p (face frame) at the level, to the rounding of a vertex
+ * on it, p not its centre? */
+static bool through(const face_geo* fg, const piece* pc, const double p[2], double L, double tol)
+{
+    double gx = p[0] - pc->cx, gy = p[1] - pc->cy, r = sqrt(gx * gx + gy * gy);
+    return r > 1e-9 * fg->span && fabs(pc->sigma + r - L) <= VERTEX_LEVEL_REL * L + tol;
 }
 
 /* Starts the curve of level L into face fg from p, the crossing ci: on side m (at x from c[m]),
@@ -679,7 +699,9 @@ static bool look_along(const face_geo* fg, const piece* pcs, size_t n, uint32_t 
  * along the first and walk_on switches at the corner. When no circle within the rounding of the
  * level at p does either, the one that rules beyond p may be off the level at p by the rounding of
  * the windows (up to START_SNAP of the face: a window's wedge ending at p, next to a corner's
- * circle; one image unfolded two ways): the curve starts on it, at its point nearest p. */
+ * circle; one image unfolded two ways): the curve starts on it, at its point nearest p. Last, the
+ * wedge of the piece holding p may end before the point looked at, where a circle inside its own
+ * touches it: the curve starts along it when it rules half-way to that end. */
 static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, double x, bool corner, double L)
 {
     const piece* pcs = st->pieces.data;
@@ -695,10 +717,8 @@ static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, dou
         /* the circle of the piece that holds p first, then every other circle once */
         uint32_t c = t == 0 ? pcs[first].circle : (uint32_t)(t - 1);
         if (t > 0 && (pcs[c].circle != c || c == pcs[first].circle)) continue;
-        const piece* pc = &pcs[c];
-        double gx = p[0] - pc->cx, gy = p[1] - pc->cy, r = sqrt(gx * gx + gy * gy);
-        if (!(r > 1e-9 * fg->span) || !(fabs(pc->sigma + r - L) <= VERTEX_LEVEL_REL * L + tol)) continue;
-        if (!look_along(fg, pcs, n, c, p, m, corner, q, &k)) continue;
+        if (!through(fg, &pcs[c], p, L, tol)) continue;
+        if (!look_along(fg, pcs, n, c, p, m, corner, INFINITY, q, &k)) continue;
         if (k != TG_NONE && piece_rules(fg, pcs, n, k, q, tol))
             return walk_on(st, fg, ci, p, m, corner ? (m + 2) % 3 : -1, k, L);
         if (t == 0 && !corner && taken_over(fg, pcs, n, p, q, L, tol)) taken = k != TG_NONE ? k : first;
@@ -712,9 +732,22 @@ static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, dou
         double gx = p[0] - pc->cx, gy = p[1] - pc->cy, r = sqrt(gx * gx + gy * gy), s[2];
         if (pc->circle != c || !(r > 1e-9 * fg->span) || !(fabs(pc->sigma + r - L) <= START_SNAP * fg->span)) continue;
         s[0] = pc->cx + gx * (L - pc->sigma) / r, s[1] = pc->cy + gy * (L - pc->sigma) / r;
-        if (look_along(fg, pcs, n, c, s, m, false, q, &k) && k != TG_NONE && piece_rules(fg, pcs, n, k, q, tol))
+        if (look_along(fg, pcs, n, c, s, m, false, INFINITY, q, &k) && k != TG_NONE &&
+            piece_rules(fg, pcs, n, k, q, tol))
             return walk_on(st, fg, ci, s, m, -1, k, L);
     }
+    /* the wedge of the piece holding p may end nearer than the look: where a circle inside its
+     * own takes over, tangent to it (a pseudo-source vertex's, the curve passing close to it and
+     * into its shadow), the arc looked along runs outside that circle beyond the wedge, so no
+     * piece is below the level there and the tests above see nothing. The curve starts along it
+     * when it rules half-way to its wedge's end; walk_on switches at the end. Not when the end
+     * lies within twice START_ANGLE (a crossing that close to a wedge's end, below what a start
+     * resolves: looked along, a crossing 8e-9 from a vertex drew a loop of rounding there). */
+    double end = corner ? 0.0 : wedge_left(fg, &pcs[first], p);
+    if (end > 2.0 * START_ANGLE && end < INFINITY && through(fg, &pcs[first], p, L, tol) &&
+        look_along(fg, pcs, n, pcs[first].circle, p, m, false, 0.5 * end, q, &k) && k != TG_NONE &&
+        piece_rules(fg, pcs, n, k, q, tol))
+        return walk_on(st, fg, ci, p, m, -1, k, L);
     return true;
 }
 

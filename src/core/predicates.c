@@ -5,20 +5,17 @@
  *   elimination); §4.3 error bound of the floating-point determinant: |err| <= (3 + 16 eps) eps *
  *   permanent for orient2d, eps = 2^-53.
  *
- * The filter answers almost every query with the plain floating-point determinant. When the
- * determinant is within its error bound of zero, the determinant is recomputed exactly as a
- * non-overlapping expansion (non-adaptive: the whole exact sum at once, which is simple and only
- * runs on near-degenerate input). The expansion's largest component carries the exact sign. */
+ * The filter (predicates.h, inline) answers almost every query with the plain floating-point
+ * determinant. When the determinant is within its error bound of zero, the determinant is
+ * recomputed exactly as a non-overlapping expansion (non-adaptive: the whole exact sum at once,
+ * which is simple and only runs on near-degenerate input). The expansion's largest component
+ * carries the exact sign. */
 #include "core/predicates.h"
 
 #include <math.h>
 
-/* eps: half an ulp of 1.0, the relative rounding error of one operation (round to nearest). */
-#define PRED_EPS (1.0 / 9007199254740992.0) /* 2^-53 */
 /* Dekker's splitter 2^ceil(53/2) + 1: splits a double into two 26-bit halves (Theorem 17). */
 #define PRED_SPLITTER 134217729.0 /* 2^27 + 1 */
-/* Forward error bounds of the filtered determinants, relative to their permanents (§4.3). */
-#define PRED_ORIENT2D_BOUND ((3.0 + 16.0 * PRED_EPS) * PRED_EPS)
 
 /* ---- error-free transformations (§2.3-2.5) ---- */
 
@@ -149,31 +146,3 @@ double tg__orient2d_exact(const double a[2], const double b[2], const double c[2
     return expansion_most_significant(n, det);
 }
 
-double tg__orient2d(const double a[2], const double b[2], const double c[2])
-{
-    double detleft = (a[0] - c[0]) * (b[1] - c[1]);
-    double detright = (a[1] - c[1]) * (b[0] - c[0]);
-    double det = detleft - detright;
-    double detsum;
-    /* When the two products have opposite signs (or one is zero) the difference cannot cancel, so
-     * its sign is already right (§4.3). */
-    if (detleft > 0.0) {
-        if (detright <= 0.0) return det;
-        detsum = detleft + detright;
-    } else if (detleft < 0.0) {
-        if (detright >= 0.0) return det;
-        detsum = -detleft - detright;
-    } else {
-        if (detright == 0.0) return tg__orient2d_exact(a, b, c); /* fl says 0: confirm exactly */
-        return det;
-    }
-    double errbound = PRED_ORIENT2D_BOUND * detsum;
-    if (det >= errbound || -det >= errbound) return det;
-    return tg__orient2d_exact(a, b, c);
-}
-
-int tg__orient2d_sign(const double a[2], const double b[2], const double c[2])
-{
-    double d = tg__orient2d(a, b, c);
-    return (d > 0.0) - (d < 0.0);
-}

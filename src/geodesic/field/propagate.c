@@ -278,7 +278,7 @@ static TG__ALWAYS_INLINE bool push_window(tg__field_run* run, uint32_t h, double
     uint32_t id = win_alloc(fs);
     if (id == TG_NONE) return false;
     tg__window* w = &((tg__window*)fs->windows.data)[id];
-    w->b0 = c0, w->b1 = c1, w->sx = x, w->sy = y, w->sigma = sigma, w->tag = tag;
+    w->b0 = c0, w->b1 = c1, w->sx = x, w->sy = y, w->sigma = sigma, w->d0 = d0, w->d1 = d1, w->tag = tag;
     if (rec && !lm_store(fs, id, rec)) return false;
     if (!touch_halfedge(fs, h)) return false;
     w->next = fs->head[h];
@@ -596,7 +596,7 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
         tg__window* w = &pool[id];
         uint32_t next = w->next;
         bool keep = crossable && !(flat && TG__TAG_FLAT(w->tag) >= TG__FLAT_MAX);
-        if (keep && dominated(run, h, w->b0, w->b1, tg__win_dist(w, w->b0), tg__win_dist(w, w->b1))) keep = false;
+        if (keep && dominated(run, h, w->b0, w->b1, w->d0, w->d1)) keep = false;
         if (keep && !tg__field_grow(fs, &fs->list, 1)) return false;
         if (keep) {
             ((uint32_t*)fs->list.data)[fs->list.count++] = id;

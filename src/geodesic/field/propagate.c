@@ -458,18 +458,19 @@ static double ray_param(const double src[2], double b, const double o[2], const 
     return t <= 1.0 ? t : 1.0;
 }
 
-/* The child of w lit through [t_lo, t_hi] of the exit halfedge e, which runs from o to d in h's
- * frame: the source image in e's frame, then on into the faces beyond. */
+/* The child of w lit through [t_lo, t_hi] of the exit halfedge e, which runs from o along the unit
+ * direction u (tg__edge_dir) in h's frame: the source image in e's frame, then on into the faces
+ * beyond. */
 static TG__ALWAYS_INLINE bool push_child(tg__field_run* run, const tg__window* w, uint32_t e, const double o[2],
-                                         const double d[2], double t_lo, double t_hi, uint32_t via_flat,
+                                         const double u[2], double t_lo, double t_hi, uint32_t via_flat,
                                          const tg__lm_rec* rec)
 {
     const tg_geodesic* g = run->g;
     double len = g->frame[e].len, src[2] = {w->sx, w->sy}, xy[2];
-    tg__to_edge_frame(o, d, len, src, xy);
+    tg__to_edge_frame_u(o, u, src, xy);
     uint32_t tag = via_flat ? tg__tag_flat_more(w->tag) : TG__TAG_ORIGIN(w->tag);
     if (!rec) return push_plain(run, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag);
-    tg__lm_rec re = tg__lm_turn(*rec, (d[0] - o[0]) / len, (d[1] - o[1]) / len);
+    tg__lm_rec re = tg__lm_turn(*rec, u[0], u[1]);
     return push_recorded(run, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag, &re);
 }
 
@@ -513,9 +514,10 @@ static tg__corner_hit hit_corner(const tg__window* w, const tg__frame* fr)
 
 /* Propagates window w into the face of h: the part left of C lights edge CA, the part right of
  * C edge CB; covering windows that reach C less shortly than the edge side's best are cut where
- * their rays cross the best one's ray to C inside the face (one angle, one split). */
+ * their rays cross the best one's ray to C inside the face (one angle, one split). u: the unit
+ * directions of C -> A and B -> C in h's frame (the same for the whole list). */
 static TG__ALWAYS_INLINE bool cross_face(tg__field_run* run, uint32_t h, const tg__window* w, tg__corner_hit hc,
-                                         int flat, const tg__lm_rec* rec)
+                                         int flat, const double u[4], const tg__lm_rec* rec)
 {
     tg__field_scratch* fs = run->fs;
     const tg_geodesic* g = fs->g;
@@ -544,12 +546,12 @@ static TG__ALWAYS_INLINE bool cross_face(tg__field_run* run, uint32_t h, const t
     if (has_l) { /* exit C -> A is halfedge hp */
         double t_hi = lo_l == 0.0 ? 1.0 : ray_param(src, lo_l, c, a);
         double t_lo = l_at_c ? 0.0 : ray_param(src, hi_l, c, a);
-        if (!push_child(run, w, hp, c, a, t_lo, t_hi, (uint32_t)flat, rec)) return false;
+        if (!push_child(run, w, hp, c, u, t_lo, t_hi, (uint32_t)flat, rec)) return false;
     }
     if (has_r) { /* exit B -> C is halfedge hn */
         double t_lo = hi_r == len ? 0.0 : ray_param(src, hi_r, b, c);
         double t_hi = r_at_c ? 1.0 : ray_param(src, lo_r, b, c);
-        if (!push_child(run, w, hn, b, c, t_lo, t_hi, (uint32_t)flat, rec)) return false;
+        if (!push_child(run, w, hn, b, u + 2, t_lo, t_hi, (uint32_t)flat, rec)) return false;
     }
     return true;
 }
@@ -636,12 +638,18 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
             if (!relax_vertex(run, vc, hc.dc, ray)) return false;
         }
     }
+    /* the exit edges' directions, once for the list (crossable: both have a length) */
+    const double a[2] = {0.0, 0.0}, b[2] = {fr->len, 0.0}, c[2] = {fr->cx, fr->cy};
+    double u[4];
+    tg__edge_dir(c, a, g->frame[hp].len, u);
+    tg__edge_dir(b, c, g->frame[hn].len, u + 2);
     for (size_t i = 0; i < n; ++i) {
         tg__window w;
         if (!take_window(run, ids[i], &w)) continue;
         tg__lm_rec rec;
         const tg__lm_rec* rp = lm ? lm_of(run, ids[i], w.tag, &rec) : NULL;
-        if (!(rp ? cross_face(run, h, &w, hits[i], flat, rp) : cross_face(run, h, &w, hits[i], flat, NULL))) return false;
+        if (!(rp ? cross_face(run, h, &w, hits[i], flat, u, rp) : cross_face(run, h, &w, hits[i], flat, u, NULL)))
+            return false;
     }
     return true;
 }

@@ -136,6 +136,15 @@ r = run("help", "help")
 check(r.returncode == 0 and b"usage: trigeo help" in r.stdout, "trigeo help help: %r" % r.stdout[:80])
 r = run("help", "nonsense")
 check(r.returncode == 1 and b"unknown command" in r.stderr, "trigeo help nonsense is a usage error")
+# the command lists of 'help help' and 'help nonsense' name every command of the overview,
+# and point to 'trigeo help', not to 'trigeo help ' with nothing after it
+overview = run("--help").stdout.decode()
+names = sorted({l.split()[1] for l in overview.splitlines() if l.startswith("  trigeo ") and l.split()[1][0] != "-"})
+for args, stream in ((("help", "help"), "stdout"), (("help", "nonsense"), "stderr"), (("help", "--help"), "stdout")):
+    text = getattr(run(*args), stream).decode()
+    listed = text.split("ommands: ")[-1].split(")")[0].split(".")[0].replace("\n", " ")
+    check(sorted(n.strip() for n in listed.split(",")) == names, "trigeo %s lists %r, the overview %r" % (" ".join(args), listed, names))
+check(b"'trigeo help '" not in run("help", "nonsense").stderr, "trigeo help nonsense: no empty 'trigeo help '")
 spot_bytes = open(spot, "rb").read()
 want = run("info", spot, "--json").stdout.replace(spot.encode(), b"X")
 for args in (("info", "-", "--json", "--format", "obj"), ("info", "--format", "obj", "-", "--json"), ("info", "-", "--json")):

@@ -130,7 +130,8 @@ static void print_overview(FILE* f)
     for (size_t i = 0; i < COMMAND_COUNT; ++i) fprintf(f, "  trigeo %s\n", commands[i]->synopsis);
     fprintf(f, "  trigeo help [COMMAND]\n  trigeo --version\n\n");
     fprintf(f, "Meshes: OBJ, OFF, PLY (ascii, binary), STL (ascii, binary), optionally .gz; '-' reads the\n"
-               "mesh from standard input (uncompressed; the format from --format obj|off|ply|stl or the content).\n");
+               "mesh from standard input (gzip data is inflated; the format from --format obj|off|ply|stl or the\n"
+               "content).\n");
     fprintf(f, "Indices are 0-based in file order. Exit codes: 0 ok, 1 usage, 2 input/IO error, 130 interrupted\n"
                "(Ctrl-C or SIGTERM).\n");
     fprintf(f, "Outputs (-o) appear only when complete: written into a private temporary directory beside the\n"
@@ -143,6 +144,13 @@ static const cli_command* find_command(const char* name)
     for (size_t i = 0; i < COMMAND_COUNT; ++i)
         if (strcmp(commands[i]->name, name) == 0) return commands[i];
     return NULL;
+}
+
+/* The command names as the help lists them ("info, closest, ..., help"), from the table. */
+static void print_command_names(FILE* f)
+{
+    for (size_t i = 0; i < COMMAND_COUNT; ++i) fprintf(f, "%s, ", commands[i]->name);
+    fputs("help", f);
 }
 
 static int dispatch(int argc, char** argv);
@@ -181,13 +189,20 @@ static int dispatch(int argc, char** argv)
             print_overview(stdout);
             return CLI_OK;
         }
-        if (!strcmp(argv[2], "help")) {
+        if (!strcmp(argv[2], "help") || !strcmp(argv[2], "--help") || !strcmp(argv[2], "-h")) {
             printf("usage: trigeo help [COMMAND]\n\nWithout COMMAND: the list of commands. With one: its full help (the same as\n"
-                   "'trigeo COMMAND --help'). Commands: info, closest, path, field, sample, trace, render, help.\n");
+                   "'trigeo COMMAND --help'). Commands: ");
+            print_command_names(stdout);
+            printf(".\n");
             return CLI_OK;
         }
         const cli_command* c = find_command(argv[2]);
-        if (!c) return cli_usage(NULL, "unknown command '%s' (commands: info, closest, path, field, sample, trace, render, help)", argv[2]);
+        if (!c) {
+            fprintf(stderr, "trigeo: unknown command '%s' (commands: ", argv[2]);
+            print_command_names(stderr);
+            fputs(")\n(see 'trigeo help')\n", stderr);
+            return CLI_USAGE;
+        }
         printf("usage: trigeo %s\n\n%s", c->synopsis, c->help);
         return CLI_OK;
     }

@@ -128,7 +128,7 @@ err("trace", [flat, "--batch", batch, "--from", "v:1"], 1, "--batch")
 bad = os.path.join(tmp, "bad.txt")
 gone = os.path.join(tmp, "never.csv")
 for text, needle in (("v:1 1,0,0 1\nv:2 1,0 1\n", "bad.txt:2:"), ("v:1 1,0,0 -2\n", "bad.txt:1:"),
-                     ("v:1 1,0,0\n", "bad.txt:1:"), ("v:99999 1,0,0 1\n", "v:99999"),
+                     ("v:1 1,0,0\n", "bad.txt:1:"), ("v:1 1,0,0 1\n# c\nv:99999 1,0,0 1\n", "bad.txt:3: 'v:99999'"),
                      ("v:1 1,0,0 1\n\nf:3:0.2,0.3,0.5 0,0,2 1\n", "bad.txt:3: the direction is perpendicular")):
     with open(bad, "w") as f: f.write(text)
     err("trace", [flat, "--batch", bad, "-o", gone], 2, needle, out=gone)

@@ -201,7 +201,9 @@ static bool parse_trace_line(const char* name, unsigned long long line, char* s,
         cli_error(name, line, "bad length '%s' (a finite number >= 0)", tok[2]);
         return false;
     }
-    return cli_resolve_spec(name, mesh, bvh, tok[0], &sp, &out->start);
+    char where[4096]; /* the start's errors (a vertex out of range, ...) name the line too */
+    snprintf(where, sizeof where, "%s:%llu", name, line);
+    return cli_resolve_spec(where, mesh, bvh, tok[0], &sp, &out->start);
 }
 
 /* Reads every line of TRACES (a leading BOM, blank lines and '#' comments skipped) into *out and

@@ -1,6 +1,7 @@
 """Path methods: the default is the exact method (globally shortest, proven); straightening is
 asked for by name and is locally shortest, unproven unless certified."""
 import numpy as np
+import pytest
 
 import trigeo
 
@@ -64,3 +65,22 @@ def test_points_of_duplicate_faces():
         path = m.path(p, q)
         assert path.proven and abs(path.length - ab) <= 1e-9 * ab
         assert m.path(p, q, method="straighten").length >= ab * (1 - 1e-12)
+
+
+def test_mixed_endpoint_lists(spot):
+    """A list may mix the three kinds of endpoint (README: "a vertex index, a SurfacePoint or an
+    (x, y, z)"): the same answers as the list of the SurfacePoints they stand for. A list of
+    vertices and positions without a SurfacePoint once failed inside numpy (a ragged array)."""
+    xyz = (0.2, 0.1, 0.5)
+    sp = spot.locate(xyz)
+    fp = trigeo.SurfacePoint(10, (0.2, 0.3, 0.5))
+    mixed, same = [5, xyz, (0, 0, 0)], [trigeo.SurfacePoint.vertex(5), sp, spot.locate((0, 0, 0))]
+    assert np.array_equal(spot.field_at([0], mixed), spot.field_at([0], same))
+    assert np.array_equal(spot.distance_matrix([0, xyz], targets=mixed),
+                          spot.distance_matrix([trigeo.SurfacePoint.vertex(0), sp], targets=same))
+    assert np.array_equal(spot.path_lengths(froms=[0, xyz], tos=[100, fp]),
+                          spot.path_lengths(froms=[trigeo.SurfacePoint.vertex(0), sp], tos=[trigeo.SurfacePoint.vertex(100), fp]))
+    assert np.array_equal(spot.field([0, xyz]), spot.field([trigeo.SurfacePoint.vertex(0), sp]))
+    for bad in ([0, (1.0, 2.0)], [0, "v:1"], [0, None], [0, 99999]):
+        with pytest.raises(trigeo.InvalidArgumentError):
+            spot.field_at([0], bad)

@@ -927,8 +927,13 @@ class Mesh:
         if isinstance(xs, (SurfacePoint, int, np.integer)):
             xs = [xs]
         elif not isinstance(xs, (list, tuple)) or (xs and not any(isinstance(x, SurfacePoint) for x in xs)):
-            a = np.asarray(xs)
-            if a.dtype.kind in "iu" and a.ndim <= 1:
+            try:
+                a = np.asarray(xs)
+            except (TypeError, ValueError):  # ragged: vertex indices mixed with (x, y, z)
+                a = np.empty(0, dtype=object)
+            if a.dtype == object and isinstance(xs, (list, tuple)):
+                pass  # a mixed sequence: element by element, below
+            elif a.dtype.kind in "iu" and a.ndim <= 1:
                 xs = [int(i) for i in a.reshape(-1)]
                 if xs and (min(xs) < 0 or max(xs) >= self.vertex_count):
                     i = next(k for k, v in enumerate(xs) if not 0 <= v < self.vertex_count)
@@ -939,7 +944,7 @@ class Mesh:
                 for i in range(p.shape[0]):
                     out[i] = self._locate(p[i])
                 return out
-            elif a.size == 0:
+            elif a.size == 0 and a.dtype != object:
                 xs = []
             else:
                 raise _bad(f"{what}: cannot read {type(xs).__name__} of dtype {a.dtype} as surface points")

@@ -2,7 +2,8 @@
 # cli_install.sh: a staged install (cmake --install into a temporary prefix) is consumed as a C
 # user would: a tiny program built with `pkg-config --cflags --libs trigeo`, and the same program
 # built by a CMake project with find_package(trigeo) and the target trigeo::trigeo; both run
-# against the installed libtrigeo.so and compute a field on the installed header's API
+# against the installed libtrigeo.so and compute a field on the installed header's API; and the
+# README's C example, built the same way, prints what the CLI computes
 # Needs pkg-config and cmake (installed by the Makefile's deps).
 set -u
 trigeo=${TG_TRIGEO:?}
@@ -45,6 +46,17 @@ export PKG_CONFIG_PATH="$tmp/prefix/lib/pkgconfig"
 cc "$tmp/consumer.c" -o "$tmp/by_pkgconfig" $(pkg-config --cflags --libs trigeo) -Wl,-rpath,"$tmp/prefix/lib" 2>"$tmp/cc.log"
 out=$("$tmp/by_pkgconfig" "$meshes/nvd_spot.obj" 2>&1)
 ok '[ "$out" = "trigeo $("$trigeo" --version | cut -d" " -f2) $want" ]' "pkg-config consumer: '$out' (want $want) $(head -n 3 "$tmp/cc.log")"
+# the README's C example, as printed there, is a complete program: built strictly against the
+# installed package and run from the repository (it loads data/nvd_spot.obj), it prints the
+# vertex count and the same last-vertex distance as the CLI
+src=${TG_SOURCE_DIR:?}
+awk '/^```c$/ {on = 1; next} /^```$/ {on = 0} on' "$src/README.md" >"$tmp/readme.c"
+cc -std=c11 -Wall -Wextra -Werror -pedantic "$tmp/readme.c" -o "$tmp/readme" $(pkg-config --cflags --libs trigeo) \
+  -Wl,-rpath,"$tmp/prefix/lib" 2>"$tmp/readme.log"
+last=$("$trigeo" field "$src/data/nvd_spot.obj" --from v:0 --csv - | tail -n 1)
+out=$(cd "$src" && "$tmp/readme" 2>&1)
+ok '[ "$out" = "2930 vertices, genus 0
+distance to vertex ${last%%,*}: ${last#*,}" ]' "README's C example: '$out' (last vertex $last) $(head -n 5 "$tmp/readme.log")"
 mkdir -p "$tmp/cm"
 cat >"$tmp/cm/CMakeLists.txt" <<'CM'
 cmake_minimum_required(VERSION 3.16)

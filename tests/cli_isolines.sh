@@ -57,6 +57,15 @@ ls = [l for l in lines if l.startswith("l ")]
 check(len(groups) == 8 and len(ls) >= 8, "%d groups, %d polylines" % (len(groups), len(ls)))
 check(all(1 <= int(i) <= nv for l in ls for i in l.split()[1:]), "'l' indices in range")
 
+# a lone integer is a count of levels below the max, a number with a point one level (the help
+# and the README say so): "1" halves the largest distance, "1.0" is the level 1
+js = os.path.join(tmp, "one.json")
+got = {}
+for text in ("1", "1.0"):
+    r = run("field", mesh, "--from", "v:3", "--isolines", text, "-o", js, "--quiet")
+    got[text] = json.load(open(js))["levels"] if r.returncode == 0 else r.stderr
+check(got["1.0"] == [1.0] and len(got["1"]) == 1 and got["1"][0] != 1.0, "--isolines 1 and 1.0: %r" % got)
+
 # render draws the exact isolines of --from
 png = os.path.join(tmp, "iso.png")
 r = run("render", mesh, "--from", "v:3", "-o", png, "--size", "160x120")

@@ -173,7 +173,7 @@ expect_npy_error "unsupported format version 7.0"
 python3 -c "
 import struct; h=\"{'descr': '<f8', 'fortran_order': False, 'shape': (1, 3), }\"; h+=' '*((64-(len(h)+11)%64)%64)+'\n'
 open('$tmp/bad.npy','wb').write(b'\x93NUMPY\x01\x00'+struct.pack('<H',len(h))+h.encode()+struct.pack('<3d',0.0,float('nan'),0.0))"
-expect_npy_error "row 0, coordinate 2"
+expect_npy_error "row 0 (from 0), y is nan"
 # nor is a partial .npy written, nor anything to stdout without -o
 npy_file "$tmp/bad.npy" "'<f8'" False "(4, 3)" 90
 rm -f "$tmp/bad_out.npy"

@@ -510,7 +510,7 @@ size_t cli_read_npy_points(const char* name, const char* data, size_t size, doub
         for (int j = 0; j < 8; ++j) bits |= (uint64_t)b[8 * i + (size_t)j] << (8 * j);
         memcpy(&xyz[i], &bits, sizeof bits);
         if (!isfinite(xyz[i]) || fabs(xyz[i]) > 1e150) {
-            cli_error(name, 0, ".npy: row %zu, coordinate %d is %g: not finite or beyond +-1e150", i / 3, (int)(i % 3) + 1, xyz[i]);
+            cli_error(name, 0, ".npy: row %zu (from 0), %c is %g: not finite or beyond +-1e150", i / 3, "xyz"[i % 3], xyz[i]);
             free(xyz);
             return (size_t)-1;
         }

@@ -88,5 +88,9 @@ for args, code in [(["render", flat, "--labels", flat, "-o", os.path.join(tmp, "
     r = run(*args)
     check(r.returncode == code and r.stderr.startswith("trigeo: "), "%s: exit %d (%s)" % (args[1:], r.returncode, r.stderr.strip()))
 check(not any(f.startswith("bad") for f in os.listdir(tmp)), "no partial output")
+# more samples than vertices: the message says how many there are (the flat square's and the far
+# triangle's, every one used by a face)
+r = run("sample", flat, "--count", "100000")
+check(r.returncode == 2 and "has only %d vertices used by faces" % len(vs) in r.stderr, "--count 100000: %s" % r.stderr)
 cli_common.finish()
 PY

@@ -98,9 +98,10 @@ static int run_sample(const sample_args* sa)
         rc = 130;
         goto done;
     }
-    if (st == TG_ERR_INVALID_ARGUMENT) { /* the count or the start: the library checks both */
-        cli_error(sa->mesh_path, 0, "--count %llu: the mesh has fewer vertices used by faces, or the start is unused",
-                  sa->count);
+    if (st == TG_ERR_INVALID_ARGUMENT) { /* the count (the start was validated above) */
+        const tg_mesh_report* r = tg_mesh_get_report(mesh);
+        cli_error(sa->mesh_path, 0, "--count %llu: the mesh has only %llu vertices used by faces", sa->count,
+                  (unsigned long long)(r->vertices - r->unreferenced_vertices));
         goto done;
     }
     if (st != TG_OK) {

@@ -79,6 +79,15 @@ def test_bad_input(tmp_path):
             m.farthest_point_sampling(**bad)
     with pytest.raises(trigeo.InvalidArgumentError):
         m.voronoi([m.vertex_count])
+    # the messages name the one cause: too many samples (with the number of vertices there are),
+    # or a start no face uses (a mesh with a lone vertex)
+    with pytest.raises(trigeo.InvalidArgumentError, match=r"^count 2931 exceeds the 2930 vertices used by faces$"):
+        m.farthest_point_sampling(2931)
+    lone = trigeo.Mesh(np.vstack([m.vertices, [[9.0, 9.0, 9.0]]]), m.faces)
+    with pytest.raises(trigeo.InvalidArgumentError, match=r"^start 2930 is used by no face$"):
+        lone.farthest_point_sampling(5000, start=2930)
+    with pytest.raises(trigeo.InvalidArgumentError, match=r"^count 2931 exceeds the 2930 vertices used by faces$"):
+        lone.farthest_point_sampling(2931, start=0)
     out = tmp_path / "s.txt"
     r = run_cli("sample", SPOT, "--count", str(m.vertex_count + 1), "-o", str(out))
     assert r.returncode == 2 and "--count" in r.stderr and not out.exists()

@@ -1572,8 +1572,10 @@ class Mesh:
                                                             _ptr(samples, ctypes.c_uint32), _ptr(dist),
                                                             _ptr(labels, ctypes.c_uint32), None)
             if st == 1:  # TG_ERR_INVALID_ARGUMENT: the arguments were checked but these two
-                raise _bad(f"start {start!r} is used by no face" if start is not None and k <= n else
-                           f"count {k} exceeds the vertices used by faces (or start {start!r} is used by none)")
+                if start is not None and not np.any(self.faces == first):
+                    raise _bad(f"start {start!r} is used by no face")
+                used = self.report["vertices"] - self.report["unreferenced_vertices"]
+                raise _bad(f"count {k} exceeds the {used} vertices used by faces")
             call.finish(st, "farthest_point_sampling")
 
         self._run(work, progress)

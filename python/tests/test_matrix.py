@@ -135,6 +135,9 @@ def test_selected_points_equal_full_fields():
         mesh.distance_matrix([0], max_distance=float("nan"), sparse=True)
     with pytest.raises(trigeo.InvalidArgumentError):
         mesh.distance_matrix("some", max_distance=1.0, sparse=True)
+    # "all" without sparse=True is refused naming sparse=True (not as a string read as points)
+    with pytest.raises(trigeo.InvalidArgumentError, match="sparse=True"):
+        mesh.distance_matrix("all", max_distance=1.0)
 
 
 def test_cli_npz_csv_and_points(tmp_path):

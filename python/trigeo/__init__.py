@@ -1322,6 +1322,9 @@ class Mesh:
             return self._matrix_at(sources, targets, max_distance, threads, progress)
         if sparse:
             return self._local_matrix(sources, max_distance, threads, progress)
+        if isinstance(sources, str) and sources == "all":
+            raise _bad('sources="all" goes with sparse=True (and max_distance=D): the dense matrix of every '
+                       "vertex holds n x n doubles")
         threads = _threads(threads)
 
         def work(call: _Call) -> np.ndarray:

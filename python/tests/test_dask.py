@@ -141,3 +141,11 @@ def test_sparse_and_selected_matrices_equal_serial(client):
     targets = [7, trigeo.SurfacePoint.edge(30, 0.25)]
     assert np.array_equal(tgd.distance_matrix(client, SPOT, sources, targets=targets, chunk=2),
                           m.distance_matrix(sources, targets=targets))
+
+
+def test_all_without_sparse_is_refused_before_any_work():
+    # "all" is the sparse matrix's word: without sparse=True it was split into the sources
+    # 'a', 'l', 'l', each failing on a worker; now refused here, before the cluster is asked
+    for sources in ("all", "some"):
+        with pytest.raises(trigeo.InvalidArgumentError, match="sparse=True"):
+            tgd.distance_matrix(None, SPOT, sources)

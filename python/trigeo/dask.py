@@ -284,6 +284,9 @@ def distance_matrix(client: Any, mesh: Union[str, os.PathLike, trigeo.Mesh], sou
             mesh = trigeo.load(mesh)
         src: Any = np.arange(mesh.vertex_count)
     else:
+        if isinstance(sources, str):
+            raise trigeo.InvalidArgumentError(
+                f'sources={sources!r}: "all" goes with sparse=True (and max_distance=D); otherwise give surface points')
         if isinstance(sources, (int, np.integer, trigeo.SurfacePoint)):
             sources = [sources]
         src = list(sources) if not isinstance(sources, np.ndarray) else sources

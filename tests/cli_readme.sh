@@ -5,7 +5,8 @@
 # ("..." stands for any text; a "# N vertices, N faces, closed, genus G" comment is checked
 # against the report), and the straightened length the README quotes for the demo pair is the
 # one `path --method straighten` prints. The max angle defect is compared in the release build
-# only (the sanitizer build's compiler may round the last bits differently).
+# only (the sanitizer build's compiler may round the last bits differently). And the README's
+# table of src/geodesic lists exactly the files there.
 set -u
 trigeo=${TG_TRIGEO:?}
 exec /usr/bin/env python3 - "$trigeo" <<'PY'
@@ -70,6 +71,14 @@ if q and path_cmd:
     length = re.search(r"^length\s+(\S+)$", r.stdout, re.M)
     check(length is not None and length.group(1) == q.group(1),
           "README: straighten stops at %s, trigeo prints %s" % (q.group(1), length and length.group(1)))
+# the README's table of src/geodesic names every file there, and only those
+geo = os.path.join(src, "src", "geodesic")
+actual = sorted(os.path.relpath(os.path.join(d, f), geo) for d, _, fs in os.walk(geo) for f in fs)
+section = readme.split("`src/geodesic`, the solver core", 1)[-1].split("\n## ", 1)[0]
+listed = sorted(n for row in section.splitlines() if row.startswith("| `")
+                for n in re.findall(r"`([^`]+)`", row.split("|")[1]))
+check(listed == actual, "README's src/geodesic table: missing %s, not there %s"
+      % (sorted(set(actual) - set(listed)), sorted(set(listed) - set(actual))))
 shutil.rmtree(tmp)
 cli_common.finish()
 PY

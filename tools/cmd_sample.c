@@ -171,7 +171,7 @@ static int run(int argc, char** argv)
 
 const cli_command cli_cmd_sample = {
     "sample",
-    "sample MESH --count K [--start v:IDX | --seed N] [-o SAMPLES.txt|.csv] [--field FIELD.ply|.csv]",
+    "sample MESH --count K [--start v:IDX | --seed N] [-o SAMPLES.txt|.csv] [--field FIELD.ply|.csv] [--quiet]",
     "Farthest-point sampling in exact geodesic distance: the first sample is --start (or the vertex\n"
     "the seed picks, default seed 0), each next one the vertex farthest from all earlier ones (a\n"
     "component no sample reaches yet counts as farthest; ties to the lowest index). Each sample's\n"

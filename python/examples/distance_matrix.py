@@ -2,9 +2,9 @@
 
     PYTHONPATH=python python3 python/examples/distance_matrix.py [MESH] [K]
 
-Picks K sample vertices by farthest-point sampling (each new sample is the vertex farthest, in
-geodesic distance, from those chosen so far), then computes the K x K matrix of exact geodesic
-distances between them: once with Mesh.distance_matrix on this machine's cores, once on a
+Picks K sample vertices by farthest-point sampling (Mesh.farthest_point_sampling from vertex 0:
+each new sample is the vertex farthest, in geodesic distance, from those chosen so far), then
+computes the K x K matrix of exact geodesic distances between them: once with Mesh.distance_matrix on this machine's cores, once on a
 2-worker Dask LocalCluster (the same call runs on an SSH or HPC cluster: change the cluster).
 The cluster is started under `if __name__ == "__main__":` - without the guard Dask's worker
 processes would re-run this script and hang.
@@ -19,22 +19,12 @@ import trigeo
 import trigeo.dask
 
 
-def farthest_point_samples(mesh: trigeo.Mesh, k: int) -> list[int]:
-    samples = [0]
-    nearest = mesh.field(0)
-    for _ in range(k - 1):
-        far = int(np.argmax(np.where(np.isfinite(nearest), nearest, -1.0)))
-        samples.append(far)
-        nearest = np.minimum(nearest, mesh.field(far))
-    return samples
-
-
 def main() -> None:
     here = os.path.dirname(os.path.abspath(__file__))
     path = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "..", "data", "nvd_spot.obj")
     k = int(sys.argv[2]) if len(sys.argv) > 2 else 16
     mesh = trigeo.load(path)
-    samples = farthest_point_samples(mesh, k)
+    samples = [int(v) for v in mesh.farthest_point_sampling(k, start=0)[0]]  # exact FPS from vertex 0
 
     t0 = time.perf_counter()
     rows = mesh.distance_matrix(samples)             # (k, n): every vertex, one row per sample

@@ -1468,11 +1468,13 @@ typedef struct tg_voronoi_boundaries tg_voronoi_boundaries;
  *  out_vertex_distance: vertex_count doubles (the distance to the nearest source), or NULL. At
  *  out_boundaries: NULL, or where the boundaries go (a new object, or NULL on error): on every
  *  edge whose end vertices have different labels (both reached, the edge of non-zero length),
- *  the crossing point where the two sources' exact distances are equal within 1e-12 relative
- *  (far inside the 1e-9 the tests hold it to; found by regula falsi with the Illinois step on
- *  distances the engine evaluates at edge points, a round of runs bounded by the final field per
- *  step, about 10 rounds; each evaluation is exact where its source is nearest and never below
- *  the true distance elsewhere, so the bracket's signs are exact). Inside each face whose
+ *  the crossing point where the two sources' exact distances are equal within 1e-10 relative
+ *  (the search stops there, so crossings typically agree to just under 1e-10: 1.0e-10 at worst
+ *  on five corpus meshes; the tests hold them to 1e-9; found by regula falsi, with points
+ *  around the false position and the bracket's quarters evaluated together, on distances the
+ *  engine evaluates at edge points, one round of runs bounded by the final field per step, at
+ *  most 120 rounds; each evaluation is exact where its source is nearest and never below the
+ *  true distance elsewhere, so the bracket's signs are exact). Inside each face whose
  *  corners lie in two cells the two crossings are joined by a segment; a face of three cells gets
  *  a junction at the mean of its three crossings (a face point; not itself equidistant). Faces
  *  with an unreached corner have no segments. Segments are chained into polylines between

@@ -708,7 +708,7 @@ const cli_command cli_cmd_field = {
     "                         separate fields\n"
     "  --boundaries B         with --labels: the cells' boundaries as polylines; on every edge\n"
     "                         between two cells the point where the two sources' distances are\n"
-    "                         equal (1e-12 relative), joined inside faces (a face of three cells\n"
+    "                         equal (to 1e-10 relative), joined inside faces (a face of three cells\n"
     "                         gets a junction at the mean of its crossings); .obj: 'v' and 'l'\n"
     "                         records (a '# cells A B' comment before each 'l'; trigeo render\n"
     "                         --path draws them); .json: {\"polylines\": [{\"cells\": [A, B],\n"

@@ -1459,7 +1459,7 @@ class Mesh:
         distance (n,) float64, inf there). With boundaries=True also a list of the cells'
         boundary polylines, each a dict: "cells" (a, b) the labels on its two sides (a < b),
         "points" (k, 3) float64, "surface_points" k SurfacePoints (edge crossings, where the two
-        sources' exact distances are equal to 1e-12 relative, and junctions inside faces of
+        sources' exact distances are equal to 1e-10 relative, and junctions inside faces of
         three cells); closed loops repeat their first point."""
         n = self.vertex_count
         labels = np.empty(n, dtype=np.uint32)

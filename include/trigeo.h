@@ -56,7 +56,7 @@ extern "C" {
 /* ============================================================================================== */
 
 #define TG_VERSION_MAJOR 0
-#define TG_VERSION_MINOR 3
+#define TG_VERSION_MINOR 4
 #define TG_VERSION_PATCH 0
 /** Single integer for comparisons: major * 10000 + minor * 100 + patch. */
 #define TG_VERSION (TG_VERSION_MAJOR * 10000 + TG_VERSION_MINOR * 100 + TG_VERSION_PATCH)

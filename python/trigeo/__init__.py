@@ -51,7 +51,7 @@ __version__ = _L.tg_version().decode()
 
 
 def version() -> str:
-    """The version of the loaded libtrigeo.so, e.g. "0.3.0"."""
+    """The version of the loaded libtrigeo.so, e.g. "0.4.0"."""
     return _L.tg_version().decode()
 
 

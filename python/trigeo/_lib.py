@@ -14,7 +14,7 @@ from ctypes import POINTER, c_char, c_char_p, c_double, c_int, c_int64, c_size_t
 __all__ = ["lib", "lib_path"]
 
 _HERE = os.path.dirname(os.path.abspath(__file__))
-SONAME = "libtrigeo.so.0.3"  # CMakeLists.txt: SOVERSION major.minor while the version is 0.x
+SONAME = "libtrigeo.so.0.4"  # CMakeLists.txt: SOVERSION major.minor while the version is 0.x
 
 
 def _candidates() -> list[tuple[str, str]]:

@@ -463,6 +463,16 @@ static void test_through_flat_faces(void)
     closed_at_vertex_level("tbvh_legocar.obj", 5824, 5459, 0.035049389382616356, "through zero-area faces");
 }
 
+/* A point of the surface split into coincident vertices (zero-length edges, zero-area faces between
+ * them): the curve through that point enters it at one of them and leaves at another. Vertices on
+ * the level joined by edges within NEAR_REL of their faces are one node. tbvh_legocar.obj from
+ * v:5912 at the distance of v:5305: 16 coincident vertices (v:5213, v:5259, ..., v:5903) on the level
+ * (before: the curve through them open, its ends v:5305 and v:5673, at one place). */
+static void test_coincident_vertices(void)
+{
+    closed_at_vertex_level("tbvh_legocar.obj", 5912, 5305, 0.023660842068287499, "coincident vertices");
+}
+
 /* ---- closed surface: a small level is one closed loop ---- */
 
 static void test_closed_loop(void)
@@ -569,6 +579,7 @@ int main(void)
     test_corner_on_level();
     test_dip_within_step();
     test_through_flat_faces();
+    test_coincident_vertices();
     test_max_distance();
     test_corpus();
     return tg_test_finish();

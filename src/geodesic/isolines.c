@@ -18,7 +18,8 @@
  * centre changes, until the arc meets a side of the face: the exit snaps to the nearest crossing
  * of that side. The pieces are joined at their crossings into polylines. A vertex whose distance
  * is the level is a crossing too: walks end there, and start there into each face where the
- * circle through it that rules beyond it enters the face. A face whose distance the record proves
+ * circle through it that rules beyond it enters the face; such vertices joined by edges within
+ * NEAR_REL (coincident vertices) are one node. A face whose distance the record proves
  * below the level everywhere (field/record.c: some of its windows were then left out, so its
  * pieces do not give its distance) is not walked, and its sides have no crossing. Nor is a
  * zero-area face (its sides lie on one segment): it joins the crossings at one place of two of
@@ -321,25 +322,6 @@ static bool face_below(const iso_state* st, uint32_t f, double L)
 
 #define NOT_ON_LEVEL (TG_NONE - 1u)
 
-/* The crossing of vertex v when its distance is the level L (made once per level), else
- * TG_NONE; false when out of memory. */
-static bool vertex_crossing(iso_state* st, uint32_t v, double L, uint32_t* out)
-{
-    uint32_t* vn = &st->vertex_node[v];
-    if (*vn == TG_NONE) {
-        if (!push(st->alloc, &st->vertices_done, &v)) return false;
-        *vn = NOT_ON_LEVEL;
-        if (fabs(st->dist[v] - L) <= VERTEX_LEVEL_REL * L) {
-            uint32_t id = (uint32_t)st->cross.count;
-            crossing c = {TG_NONE, v, id, 0.0};
-            if (!push(st->alloc, &st->cross, &c)) return false;
-            *vn = id;
-        }
-    }
-    *out = *vn != NOT_ON_LEVEL && ((const crossing*)st->cross.data)[*vn].e == TG_NONE ? *vn : TG_NONE;
-    return true;
-}
-
 /* NEAR_REL times the longest side of the faces at the edge of h. */
 static double near_dist(const tg_geodesic* g, uint32_t h)
 {
@@ -350,6 +332,50 @@ static double near_dist(const tg_geodesic* g, uint32_t h)
         o = g->ring[o];
     } while (o != h);
     return NEAR_REL * span;
+}
+
+/* Looks at vertex v for level L (once per level): its own crossing when its distance is L, with
+ * rep as its node (TG_NONE: a node of its own). */
+static bool look_at_vertex(iso_state* st, uint32_t v, double L, uint32_t rep)
+{
+    if (!push(st->alloc, &st->vertices_done, &v)) return false;
+    st->vertex_node[v] = NOT_ON_LEVEL;
+    if (!(fabs(st->dist[v] - L) <= VERTEX_LEVEL_REL * L)) return true;
+    uint32_t id = (uint32_t)st->cross.count;
+    crossing c = {TG_NONE, v, rep != TG_NONE ? rep : id, 0.0};
+    st->vertex_node[v] = id;
+    return push(st->alloc, &st->cross, &c);
+}
+
+/* The crossing of vertex v when its distance is the level L (made once per level), else
+ * TG_NONE; false when out of memory. Vertices on the level joined by edges within NEAR_REL of
+ * their faces (zero-length edges: a mesh with one point split into several coincident vertices,
+ * zero-area faces between them) are one node, as the edge crossings that near a vertex are: the
+ * curve enters that point at one of them and leaves at another. */
+static bool vertex_crossing(iso_state* st, uint32_t v, double L, uint32_t* out)
+{
+    const tg_geodesic* g = st->g;
+    uint32_t* vn = &st->vertex_node[v];
+    if (*vn == TG_NONE) {
+        size_t i = st->vertices_done.count;
+        if (!look_at_vertex(st, v, L, TG_NONE)) return false;
+        uint32_t rep = *vn;
+        for (; rep != NOT_ON_LEVEL && i < st->vertices_done.count; ++i) { /* its node, breadth first */
+            uint32_t u = ((const uint32_t*)st->vertices_done.data)[i];
+            if (st->vertex_node[u] == NOT_ON_LEVEL) continue;
+            for (uint32_t j = g->corner_start[u]; j < g->corner_start[u + 1]; ++j) {
+                uint32_t h = g->corners[j], sides[2] = {h, 3 * (h / 3) + (h % 3 + 2) % 3};
+                for (int k = 0; k < 2; ++k) {
+                    uint32_t w = g->tri[k ? sides[1] : tg_halfedge_next(h)];
+                    if (st->vertex_node[w] == TG_NONE && g->frame[sides[k]].len <= near_dist(g, sides[k]) &&
+                        !look_at_vertex(st, w, L, rep))
+                        return false;
+                }
+            }
+        }
+    }
+    *out = *vn != NOT_ON_LEVEL && ((const crossing*)st->cross.data)[*vn].e == TG_NONE ? *vn : TG_NONE;
+    return true;
 }
 
 /* Adds the crossing at x on the edge named e (of length len; its crossings come in ascending x):

@@ -463,6 +463,22 @@ static void test_through_flat_faces(void)
     closed_at_vertex_level("tbvh_legocar.obj", 5824, 5459, 0.035049389382616356, "through zero-area faces");
 }
 
+/* Where a vertex on the level is one node with the crossings within NEAR_REL (1e-6) of the faces
+ * at it, the curve may enter a face at it on a circle that misses the vertex by up to that: no
+ * circle through the vertex entered the face, no walk started, and the curve broke at the vertex
+ * and at the face's other crossing. tbvh_legocar.obj from v:2304 (before: the one polyline open
+ * at each of the two levels): several unfoldings of the source tie at the vertex to 3.2e-8 of
+ * the face (sides 0.014 to 0.045); one passes through it and leaves into the faces beyond, another passes
+ * 3.2e-8 (1.8e-8) beside it, takes over within 5e-8 of it and crosses the face to its other
+ * crossing. Now the walk also starts where such a circle crosses a side at the vertex within that
+ * distance of it, when it enters the face and rules there (a walk back to the vertex's node, a
+ * loop within the node, is dropped). Distances in the solver's frame. */
+static void test_enter_beside_vertex(void)
+{
+    closed_at_vertex_level("tbvh_legocar.obj", 2304, 2336, 0.02399141276277527, "a circle beside the vertex");
+    closed_at_vertex_level("tbvh_legocar.obj", 2304, 2337, 0.022434542948994454, "a circle beside the vertex");
+}
+
 /* A point of the surface split into coincident vertices (zero-length edges, zero-area faces between
  * them): the curve through that point enters it at one of them and leaves at another. Vertices on
  * the level joined by edges within NEAR_REL of their faces are one node. tbvh_legocar.obj from
@@ -579,6 +595,7 @@ int main(void)
     test_corner_on_level();
     test_dip_within_step();
     test_through_flat_faces();
+    test_enter_beside_vertex();
     test_coincident_vertices();
     test_max_distance();
     test_corpus();

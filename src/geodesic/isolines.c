@@ -18,8 +18,9 @@
  * centre changes, until the arc meets a side of the face: the exit snaps to the nearest crossing
  * of that side. The pieces are joined at their crossings into polylines. A vertex whose distance
  * is the level is a crossing too: walks end there, and start there into each face where the
- * circle through it that rules beyond it enters the face; such vertices joined by edges within
- * NEAR_REL (coincident vertices) are one node. A face whose distance the record proves
+ * circle through it that rules beyond it enters the face (or one passing within NEAR_REL of it,
+ * where crossings are its node); such vertices joined by edges that short (coincident vertices)
+ * are one node. A face whose distance the record proves
  * below the level everywhere (field/record.c: some of its windows were then left out, so its
  * pieces do not give its distance) is not walked, and its sides have no crossing. Nor is a
  * zero-area face (its sides lie on one segment): it joins the crossings at one place of two of
@@ -715,6 +716,48 @@ static bool through(const face_geo* fg, const piece* pc, const double p[2], doub
     return r > 1e-9 * fg->span && fabs(pc->sigma + r - L) <= VERTEX_LEVEL_REL * L + tol;
 }
 
+/* At corner m, a vertex on the level (crossing ci) that no circle through it leaves into the face:
+ * the curve may still enter the face within NEAR_REL of the vertex (edge crossings that close
+ * are the vertex's node, none of their own) on a circle off the level at the vertex by up to that
+ * much (unfoldings of the source tying at the vertex to 3e-8 of the face: one passes through it
+ * into the faces beyond, another beside it takes over within 5e-8 of it and crosses this face).
+ * The curve starts where such a circle crosses a side at the corner within that distance of it,
+ * when it enters the face there and rules a little along its arc; a walk that comes back to the
+ * vertex's node (a piece of curve within the node) is dropped and the next one tried. */
+static bool walk_from_near(iso_state* st, const face_geo* fg, uint32_t ci, int m, double L, double tol)
+{
+    const piece* pcs = st->pieces.data;
+    size_t n = st->pieces.count;
+    for (int t = 0; t < 2; ++t) {
+        int s = t ? (m + 2) % 3 : m; /* side m leaves the corner at x = 0, side m - 1 arrives at len */
+        double near = near_dist(st->g, 3 * fg->f + (uint32_t)s), at = t ? fg->len[s] : 0.0;
+        for (uint32_t c = 0; c < n; ++c) {
+            const piece* pc = &pcs[c];
+            double r = L - pc->sigma;
+            if (pc->circle != c || !(r > 0.0) || through(fg, pc, fg->c[m], L, tol)) continue;
+            double qx = fg->c[s][0] - pc->cx, qy = fg->c[s][1] - pc->cy, ux = fg->u[s][0], uy = fg->u[s][1];
+            double a = -(qx * ux + qy * uy), b = fabs(ux * qy - uy * qx);
+            if (!(b <= r)) continue;
+            double w = sqrt((r - b) * (r + b));
+            for (int sg = -1; sg <= 1; sg += 2) {
+                double x = a + sg * w, p[2], q[2];
+                uint32_t k;
+                if (!(fabs(x - at) <= near) || !(x > 0.0 && x < fg->len[s])) continue;
+                p[0] = fg->c[s][0] + x * ux, p[1] = fg->c[s][1] + x * uy;
+                if (!look_along(fg, pcs, n, c, p, s, false, INFINITY, q, &k) || k == TG_NONE ||
+                    !piece_rules(fg, pcs, n, k, q, tol))
+                    continue;
+                size_t ns = st->segs.count, np = st->pts.count;
+                if (!walk_on(st, fg, ci, p, s, -1, k, L)) return false;
+                const segment* last = st->segs.count > ns ? &((const segment*)st->segs.data)[ns] : NULL;
+                if (last && last->a != last->b) return true;
+                st->segs.count = ns, st->pts.count = np; /* back at the vertex's node: within it */
+            }
+        }
+    }
+    return true;
+}
+
 /* Starts the curve of level L into face fg from p, the crossing ci: on side m (at x from c[m]),
  * or at corner m, a vertex on the level (corner set). The curve leaves p along the circle of a
  * piece through p, counterclockwise (the nearer side on the left: the gradient of D is the unit
@@ -727,7 +770,8 @@ static bool through(const face_geo* fg, const piece* pc, const double p[2], doub
  * the windows (up to START_SNAP of the face: a window's wedge ending at p, next to a corner's
  * circle; one image unfolded two ways): the curve starts on it, at its point nearest p. Last, the
  * wedge of the piece holding p may end before the point looked at, where a circle inside its own
- * touches it: the curve starts along it when it rules half-way to that end. */
+ * touches it: the curve starts along it when it rules half-way to that end. At a vertex, last, a
+ * circle passing beside it (walk_from_near). */
 static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, double x, bool corner, double L)
 {
     const piece* pcs = st->pieces.data;
@@ -774,7 +818,7 @@ static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, dou
         look_along(fg, pcs, n, pcs[first].circle, p, m, false, 0.5 * end, q, &k) && k != TG_NONE &&
         piece_rules(fg, pcs, n, k, q, tol))
         return walk_on(st, fg, ci, p, m, -1, k, L);
-    return true;
+    return corner ? walk_from_near(st, fg, ci, m, L, tol) : true;
 }
 
 /* Walks from p (on the level, piece j ruling), which lies on side m0 (and m1 >= 0: on that side

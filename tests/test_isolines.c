@@ -489,6 +489,21 @@ static void test_coincident_vertices(void)
     closed_at_vertex_level("tbvh_legocar.obj", 5912, 5305, 0.023660842068287499, "coincident vertices");
 }
 
+/* Where the curve passes a vertex far closer than the 1e-6 of the face that the walk's start looks
+ * along the arc, the look is a large angle about the vertex: the vertex's circle, ruling at the
+ * edge crossing, gives way within it to a window whose wedge's edge passes through the vertex and
+ * whose disc holds the vertex's circle, tangent to it on that edge (the curve is smooth there).
+ * Beyond, the vertex's arc lies inside the window's disc: below the level, and the window's circle
+ * is below the level at the crossing too, so no other start took it. tbvh_legocar.obj from v:5824
+ * at the distance of v:5588: the curve passes 1.7e-8 of the face from a vertex (sides up to 0.027):
+ * it crosses one side of the face 1.7e-8 from it (one node with the vertex) and another 4.7e-8
+ * from it; the look was 1.6 radians about the vertex (before: its one polyline open). Now the
+ * start also looks at halved angles, down to twice START_ANGLE. Distances in the solver's frame. */
+static void test_vertex_closer_than_look(void)
+{
+    closed_at_vertex_level("tbvh_legocar.obj", 5824, 5588, 0.025559371648092265, "a vertex closer than the look");
+}
+
 /* ---- closed surface: a small level is one closed loop ---- */
 
 static void test_closed_loop(void)
@@ -597,6 +612,7 @@ int main(void)
     test_through_flat_faces();
     test_enter_beside_vertex();
     test_coincident_vertices();
+    test_vertex_closer_than_look();
     test_max_distance();
     test_corpus();
     return tg_test_finish();

@@ -770,8 +770,9 @@ static bool walk_from_near(iso_state* st, const face_geo* fg, uint32_t ci, int m
  * the windows (up to START_SNAP of the face: a window's wedge ending at p, next to a corner's
  * circle; one image unfolded two ways): the curve starts on it, at its point nearest p. Last, the
  * wedge of the piece holding p may end before the point looked at, where a circle inside its own
- * touches it: the curve starts along it when it rules half-way to that end. At a vertex, last, a
- * circle passing beside it (walk_from_near). */
+ * touches it: the curve starts along it when it rules half-way to that end; or another's wedge
+ * may begin there (a vertex passed closer than the look): along it when it rules at a shorter
+ * look. At a vertex, last, a circle passing beside it (walk_from_near). */
 static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, double x, bool corner, double L)
 {
     const piece* pcs = st->pieces.data;
@@ -818,6 +819,18 @@ static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, dou
         look_along(fg, pcs, n, pcs[first].circle, p, m, false, 0.5 * end, q, &k) && k != TG_NONE &&
         piece_rules(fg, pcs, n, k, q, tol))
         return walk_on(st, fg, ci, p, m, -1, k, L);
+    /* the circle holding p may give way, beyond p, to a window's wedge whose disc holds it,
+     * tangent to it on that wedge's edge (the curve passing a vertex closer than the look, 1e-6
+     * of the face: a large angle about it; beyond the wedge's edge, the window's circle): the
+     * curve starts along it when it rules at a shorter look, halved down to twice START_ANGLE;
+     * walk_on switches at the wedge's edge */
+    if (!corner && through(fg, &pcs[first], p, L, tol)) {
+        double gx = p[0] - pcs[first].cx, gy = p[1] - pcs[first].cy, r = sqrt(gx * gx + gy * gy);
+        for (double most = 0.5e-6 * fg->span / r; most > 2.0 * START_ANGLE; most *= 0.5)
+            if (look_along(fg, pcs, n, pcs[first].circle, p, m, false, most, q, &k) && k != TG_NONE &&
+                piece_rules(fg, pcs, n, k, q, tol))
+                return walk_on(st, fg, ci, p, m, -1, k, L);
+    }
     return corner ? walk_from_near(st, fg, ci, m, L, tol) : true;
 }
 

@@ -96,19 +96,20 @@ static inline void tg__ring_interval(const tg_geodesic* g, uint32_t e, uint32_t 
     }
 }
 
-/* The point p (2D, in some frame) in the frame of the edge from o to d (2D points of that frame,
- * |d - o| = len > 0): its abscissa from o and its signed distance to the left of o -> d. */
+/* The unit direction of the edge from o to d (2D points of some frame, |d - o| = len > 0). */
 static inline void tg__edge_dir(const double o[2], const double d[2], double len, double u[2])
 {
     u[0] = (d[0] - o[0]) / len, u[1] = (d[1] - o[1]) / len;
 }
-/* The same with the edge's unit direction u from tg__edge_dir (one edge, many points). */
+/* The point p (2D, in that frame) in the frame of the edge from o along the unit direction u (from
+ * tg__edge_dir: one edge, many points): its abscissa from o and its signed distance to the left. */
 static inline void tg__to_edge_frame_u(const double o[2], const double u[2], const double p[2], double out[2])
 {
     double rx = p[0] - o[0], ry = p[1] - o[1];
     out[0] = rx * u[0] + ry * u[1];
     out[1] = u[0] * ry - u[1] * rx;
 }
+/* The same for the edge from o to d (|d - o| = len > 0). */
 static inline void tg__to_edge_frame(const double o[2], const double d[2], double len, const double p[2],
                                      double out[2])
 {

@@ -961,11 +961,12 @@ static bool face_meets(const iso_state* st, uint32_t f, double L, double span)
     return hi < INFINITY && L >= lo - m && L <= hi + m;
 }
 
-/* The position (solver frame) of an edge crossing. */
-static tg_vec3 crossing_pos(const tg_geodesic* g, const crossing* c)
+/* A crossing as a node: its vertex, or its point of the edge. */
+static tg__node crossing_node(const tg_geodesic* g, const crossing* c)
 {
-    tg_vec3 a = tg__gpos(g, g->tri[c->e]), b = tg__gpos(g, g->tri[tg_halfedge_next(c->e)]);
-    return tg_v3_add(a, tg_v3_scale(tg_v3_sub(b, a), c->x / g->frame[c->e].len));
+    if (c->e == TG_NONE) return tg__node_vertex(c->v);
+    double len = g->frame[c->e].len;
+    return tg__node_edge(c->e, c->x / len, (len - c->x) / len);
 }
 
 /* A zero-area face (not walked: its sides lie on one segment) carries the curve from a crossing
@@ -986,7 +987,8 @@ static bool link_flat(iso_state* st, uint32_t f, double L)
         near = fmax(near, near_dist(g, e));
         for (uint32_t i = st->edge_first[e]; i < st->edge_first[e] + st->edge_count[e]; ++i) {
             if (n == MAX_LINKED) return true; /* left open */
-            ids[n] = i, side[n] = m, at[n++] = crossing_pos(g, &((const crossing*)st->cross.data)[i]);
+            tg__node nd = crossing_node(g, &((const crossing*)st->cross.data)[i]);
+            ids[n] = i, side[n] = m, at[n++] = tg__node_pos(g, &nd);
         }
     }
     /* the corner inside the longest side, when on the level: a side of its own */
@@ -1065,13 +1067,7 @@ static bool out_node(iso_state* st, const tg__node* nd, uint32_t face)
 
 static bool out_crossing(iso_state* st, uint32_t ci, uint32_t face)
 {
-    const crossing* c = &((const crossing*)st->cross.data)[ci];
-    if (c->e == TG_NONE) {
-        tg__node nd = tg__node_vertex(c->v);
-        return out_node(st, &nd, face);
-    }
-    double len = st->g->frame[c->e].len;
-    tg__node nd = tg__node_edge(c->e, c->x / len, (len - c->x) / len);
+    tg__node nd = crossing_node(st->g, &((const crossing*)st->cross.data)[ci]);
     return out_node(st, &nd, face);
 }
 

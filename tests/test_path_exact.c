@@ -562,6 +562,15 @@ static void test_sweep_regressions(void)
          * Found by comparing each vertex's distance with tg_geodesic_field_at near it. */
         {"openfoam_buildings.obj.gz", {TG_SURFACE_VERTEX, 140592, 0.0, {0, 0, 0}},
          {TG_SURFACE_VERTEX, 148266, 0.0, {0, 0, 0}}, 2.4164755500673532},
+        /* a vertex (mesh 552) at the position of another (551) to 1 ulp, inside the edge of a
+         * face it is no corner of, emitting into that face through a zero-area face: the trace
+         * back from a point there reached the edge and found no face with that vertex as corner
+         * (TG_ERR_INTERNAL one way, the sweep, seed 91); the length is the validated straightened
+         * path's */
+        {"tm_capsule.obj",
+         {TG_SURFACE_FACE, 3964, 0.0, {0.32395916315178386, 0.29530977444729589, 0.38073106240092025}},
+         {TG_SURFACE_FACE, 63, 0.0, {0.21480686265348425, 0.50623157311067746, 0.27896156423583829}},
+         1.2664969585594597},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         ctx c;

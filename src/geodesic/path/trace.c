@@ -183,16 +183,26 @@ static bool through_corner(trace* t, uint32_t o, const double x[2], const double
 /* Appends vertex v, whose position lies inside halfedge h, the route's last node being the point of
  * h there: a segment of length 0 in the face at h with corner v (a zero-area face), or, where
  * such faces are stacked (field.h, TG__FLAT_MAX), through the points of the other edges of the
- * zero-area faces at h that hold that position, one face deeper each. False (the route as it
- * was) when no such chain reaches v. */
+ * zero-area faces at h that hold that position, one face deeper each. When v sits (to rounding)
+ * on an end vertex u of h, a second vertex at one position (tm_capsule.obj: v lies 1 ulp inside the
+ * edge from u's side), through u: two segments of length 0. False (the route as it was) when no
+ * such chain reaches v. */
 static bool to_vertex_on_edge(trace* t, uint32_t h, uint32_t v, uint32_t depth)
 {
     const tg_geodesic* g = t->g;
     for (uint32_t o = g->ring[h]; o != h; o = g->ring[o])
         if (!(g->fflags[o / 3] & TG__F_SKIP) && tg__corner_of(g, o / 3, v) >= 0)
             return add_node(t, tg__node_vertex(v), o / 3);
-    if (depth >= TG__FLAT_MAX) return false;
     tg_vec3 pos = tg__gpos(g, v);
+    const tg__node nv = tg__node_vertex(v);
+    for (int k = 0; k < 2; ++k) {
+        uint32_t u = g->tri[k ? tg_halfedge_next(h) : h];
+        tg__node nu = tg__node_vertex(u);
+        uint32_t f = tg__common_face(g, &nu, &nv, TG_NONE);
+        if (f != TG_NONE && tg_v3_dist(tg__gpos(g, u), pos) <= TG__GRAZING_REL * g->frame[h].len)
+            return add_node(t, nu, h / 3) && add_node(t, nv, f);
+    }
+    if (depth >= TG__FLAT_MAX) return false;
     for (uint32_t o = g->ring[h]; o != h; o = g->ring[o]) {
         uint32_t f = o / 3;
         if (!(g->fflags[f] & TG__F_FLAT)) continue;

@@ -95,6 +95,13 @@ bool cli_grow(void** p, size_t* cap, size_t need, size_t elem);
 /* The whole of a file (standard input for "-") as a NUL-terminated buffer of *out_size bytes;
  * NULL after printing why. */
 char* cli_read_all(const char* path, size_t* out_size);
+/* cli_read_all for a text file: a NUL byte is refused ("FILE:LINE: binary data (a NUL byte): not
+ * a WHAT"); *out_size (may be NULL) gets the size. NULL after printing why. */
+char* cli_read_text(const char* path, const char* what, size_t* out_size);
+/* The lines of a text read whole, of any length: the next line from *cursor, cut in place at its
+ * '\n' (and a '\r' before it), a UTF-8 byte-order mark removed from line 1; NULL after the
+ * last. *lineno (start it at 0) counts the lines returned. */
+char* cli_next_line(char** cursor, unsigned long long* lineno);
 
 /* ---- outputs, Ctrl-C and progress (cli_output.c) ---- */
 
@@ -112,21 +119,62 @@ typedef struct cli_output {
 } cli_output;
 /* Opens the temporary file (or stdout for "-"); prints the error and returns NULL on failure. */
 FILE* cli_output_open(cli_output* o, const char* path);
+/* Is path an existing character device or FIFO (written directly, its name picking no format)? */
+bool cli_output_is_direct(const char* path);
 /* Only makes the temporary name, for a library writer that takes a file name (o->tmp). */
 bool cli_output_reserve(cli_output* o, const char* path);
-/* Refuses an output that is the same file as an input (device and inode, through links and
- * hard links) and an output that is a directory, before any work: CLI_OK, or CLI_USAGE /
- * CLI_INPUT after printing why. inputs[i] (NULL or "-": skipped) is described as what[i]. */
-int cli_output_check_inputs(const char* out, const char* const* inputs, const char* const* what, size_t count);
+/* Closes the output (checking every write) without renaming it: the complete temporary stays for
+ * cli_output_set_commit. CLI_OK, or CLI_INPUT (error printed, temporary removed). */
+int cli_output_close(cli_output* o);
 /* Closes (checking every write) and renames into place; CLI_OK or CLI_INPUT (error printed,
  * temporary removed). */
 int cli_output_commit(cli_output* o);
 /* Closes and removes the temporary file. */
 void cli_output_abort(cli_output* o);
+/* After a library writer wrote o->tmp (cli_output_reserve) with status st: CLI_OK (the complete
+ * temporary stays, not renamed), or the error printed under the user's file name, the temporary
+ * removed and CLI_USAGE (invalid argument), CLI_INPUT, or 130 (TG_ERR_CANCELLED: interrupted). */
+int cli_output_library_done(cli_output* o, tg_status st, const tg_diag* d);
 /* After a library writer wrote o->tmp (cli_output_reserve) with status st: renames it into place,
  * or prints the error under the user's file name and removes it. CLI_OK, CLI_USAGE (invalid
  * argument), CLI_INPUT, or 130 (TG_ERR_CANCELLED: interrupted). */
 int cli_output_finish_library(cli_output* o, tg_status st, const tg_diag* d);
+
+/* A file every run checks before any work (cli_check_outputs): its path (NULL: the option was not
+ * given; "-": stdin or stdout) and what it is, for messages ("mesh", "--boundaries"). */
+typedef struct cli_file_role {
+    const char* path;
+    const char* what;
+} cli_file_role;
+/* The check every command makes before it reads or computes anything: each output is refused when
+ * it is the same file as an input (device and inode, through symbolic and hard links: CLI_USAGE)
+ * or as another output of the run (the same existing file, or the same name in the same folder,
+ * or both "-": CLI_USAGE), when it is a directory, a block device or a socket, or when its folder
+ * does not exist or cannot be written into (CLI_INPUT). CLI_OK, or the exit code after printing
+ * why. At most CLI_OUTPUT_SET_MAX outputs. */
+int cli_check_outputs(const cli_file_role* outputs, size_t output_count, const cli_file_role* inputs, size_t input_count);
+
+/* The outputs of one run as one transaction: each written to its temporary name (the set's
+ * open/reserve), then cli_output_set_commit renames them all into place only when every one was
+ * written completely and every temporary is still there, holding Ctrl-C back during the renames;
+ * on any failure none is renamed and every temporary is removed. Start from {0}. */
+#define CLI_OUTPUT_SET_MAX 4
+typedef struct cli_output_set {
+    cli_output item[CLI_OUTPUT_SET_MAX];
+    size_t count;
+} cli_output_set;
+/* A new member (NULL when the set is full). */
+cli_output* cli_output_set_add(cli_output_set* s);
+/* A new member opened for writing (cli_output_open); NULL after printing why. */
+FILE* cli_output_set_open(cli_output_set* s, const char* path);
+/* A new member with only its temporary name, for a library writer (cli_output_reserve, then
+ * cli_output_library_done); NULL after printing why. */
+cli_output* cli_output_set_reserve(cli_output_set* s, const char* path);
+/* Closes every member, checks it, and renames all into place: CLI_OK, or CLI_INPUT after printing
+ * why, nothing renamed (a failed rename, rare after the checks, is reported and the others kept). */
+int cli_output_set_commit(cli_output_set* s);
+/* Removes every member's temporary (after an error or Ctrl-C); the set is empty after. */
+void cli_output_set_abort(cli_output_set* s);
 /* Does `path` end with `ext` (".json", ".csv", ...; case-insensitive)? The CLI's -o picks the
  * output format by extension. */
 bool cli_ext_is(const char* path, const char* ext);
@@ -160,8 +208,10 @@ bool cli_write_npz_csr(FILE* f, const tg_sparse_matrix_view* v);
 /* Voronoi labels (trigeo field --labels, trigeo sample --field): per vertex the index of the nearest
  * source (-1 where none reaches) and its distance, as PLY vertex properties `label` and
  * `distance` (a .ply path) or CSV rows vertex,label,distance (anything else; '-' is stdout).
- * Written to a temporary name and renamed; CLI_OK or CLI_INPUT (error printed). */
-int cli_write_labels(const char* path, const tg_mesh* mesh, const uint32_t* label, const double* dist, size_t n);
+ * Written to a temporary name, a member of `set` (renamed by cli_output_set_commit); CLI_OK or
+ * CLI_INPUT (error printed; the caller aborts the set). */
+int cli_write_labels(cli_output_set* set, const char* path, const tg_mesh* mesh, const uint32_t* label, const double* dist,
+                     size_t n);
 
 /* ---- isolines (cli_isolines.c: trigeo field --isolines, trigeo render) ---- */
 

@@ -30,6 +30,9 @@
 static char temp_file[MAX_TEMPORARIES][4096], temp_dir[MAX_TEMPORARIES][4096];
 static volatile sig_atomic_t temp_used[MAX_TEMPORARIES];
 static volatile sig_atomic_t interrupted, polling;
+/* While the outputs of a run are renamed into place (cli_output_set_commit), a signal waits until
+ * they all are: held_signal, raised again after. */
+static volatile sig_atomic_t committing, held_signal;
 
 static void remove_temporaries(void)
 {
@@ -42,7 +45,10 @@ static void remove_temporaries(void)
 
 static void on_signal(int sig)
 {
-    (void)sig;
+    if (committing) {
+        held_signal = sig;
+        return;
+    }
     if (polling && !interrupted) { /* the work looks at the flag soon and ends cleanly */
         interrupted = 1;
         return;
@@ -145,6 +151,12 @@ static const char* special_kind(const struct stat* st)
                                    : NULL;
 }
 
+bool cli_output_is_direct(const char* path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode));
+}
+
 bool cli_output_reserve(cli_output* o, const char* path)
 {
     memset(o, 0, sizeof *o);
@@ -220,35 +232,43 @@ static void release(cli_output* o)
     o->dir = o->tmp = NULL;
 }
 
-int cli_output_commit(cli_output* o)
+int cli_output_close(cli_output* o)
+{
+    if (!o->f) return CLI_OK;
+    bool bad = ferror(o->f) != 0;
+    if (o->f == stdout)
+        bad = fflush(stdout) != 0 || bad;
+    else
+        bad = fclose(o->f) != 0 || bad;
+    o->f = NULL;
+    if (!bad) return CLI_OK;
+    cli_error(o->path, 0, "write failed: %s", strerror(errno));
+    cli_output_abort(o);
+    return CLI_INPUT;
+}
+
+/* Renames the complete temporary into place (nothing to do for stdout or a direct output). */
+static int rename_into_place(cli_output* o)
 {
     int rc = CLI_OK;
-    if (o->f) {
-        bool bad = ferror(o->f) != 0;
-        if (o->f == stdout)
-            bad = fflush(stdout) != 0 || bad;
-        else
-            bad = fclose(o->f) != 0 || bad;
-        o->f = NULL;
-        if (bad) {
-            cli_error(o->path, 0, "write failed: %s", strerror(errno));
-            rc = CLI_INPUT;
-        }
-    }
-    if (o->dir) { /* a temporary: into place, or away */
-        if (rc == CLI_OK && rename(o->tmp, o->path) != 0) {
-            cli_error(o->path, 0, "cannot rename the finished output into place: %s", strerror(errno));
-            rc = CLI_INPUT;
-        }
-        if (rc != CLI_OK) unlink(o->tmp);
+    if (o->dir && rename(o->tmp, o->path) != 0) {
+        cli_error(o->path, 0, "cannot rename the finished output into place: %s", strerror(errno));
+        unlink(o->tmp);
+        rc = CLI_INPUT;
     }
     release(o);
     return rc;
 }
 
-int cli_output_finish_library(cli_output* o, tg_status st, const tg_diag* d)
+int cli_output_commit(cli_output* o)
 {
-    if (st == TG_OK) return cli_output_commit(o);
+    int rc = cli_output_close(o);
+    return rc == CLI_OK ? rename_into_place(o) : rc;
+}
+
+int cli_output_library_done(cli_output* o, tg_status st, const tg_diag* d)
+{
+    if (st == TG_OK) return CLI_OK;
     if (st == TG_ERR_CANCELLED) {
         cli_error(o->path, 0, "interrupted: nothing written");
         cli_output_abort(o);
@@ -260,6 +280,12 @@ int cli_output_finish_library(cli_output* o, tg_status st, const tg_diag* d)
     return st == TG_ERR_INVALID_ARGUMENT ? CLI_USAGE : CLI_INPUT;
 }
 
+int cli_output_finish_library(cli_output* o, tg_status st, const tg_diag* d)
+{
+    int rc = cli_output_library_done(o, st, d);
+    return rc == CLI_OK ? cli_output_commit(o) : rc;
+}
+
 void cli_output_abort(cli_output* o)
 {
     if (o->f && o->f != stdout) fclose(o->f);
@@ -268,21 +294,159 @@ void cli_output_abort(cli_output* o)
     release(o);
 }
 
-int cli_output_check_inputs(const char* out, const char* const* inputs, const char* const* what, size_t count)
+/* ---- a run's outputs as one transaction ---- */
+
+cli_output* cli_output_set_add(cli_output_set* s)
 {
-    struct stat so, si;
-    if (!out || !strcmp(out, "-") || stat(out, &so) != 0) return CLI_OK; /* a new file clashes with nothing */
-    if (S_ISDIR(so.st_mode)) {
-        cli_error(out, 0, "is a directory: -o needs a file name");
+    if (s->count == CLI_OUTPUT_SET_MAX) return NULL; /* a command declares at most this many */
+    cli_output* o = &s->item[s->count++];
+    memset(o, 0, sizeof *o);
+    o->slot = -1;
+    return o;
+}
+
+FILE* cli_output_set_open(cli_output_set* s, const char* path)
+{
+    cli_output* o = cli_output_set_add(s);
+    return o ? cli_output_open(o, path) : NULL;
+}
+
+cli_output* cli_output_set_reserve(cli_output_set* s, const char* path)
+{
+    cli_output* o = cli_output_set_add(s);
+    return o && cli_output_reserve(o, path) ? o : NULL;
+}
+
+int cli_output_set_commit(cli_output_set* s)
+{
+    int rc = CLI_OK;
+    for (size_t i = 0; i < s->count && rc == CLI_OK; ++i) rc = cli_output_close(&s->item[i]);
+    /* every temporary complete and still there (a library writer wrote it by name), before any
+     * rename: otherwise none is renamed */
+    for (size_t i = 0; i < s->count && rc == CLI_OK; ++i) {
+        const cli_output* o = &s->item[i];
+        struct stat st;
+        if (o->dir && (lstat(o->tmp, &st) != 0 || !S_ISREG(st.st_mode))) {
+            cli_error(o->path, 0, "the finished output is missing from its temporary folder: nothing written");
+            rc = CLI_INPUT;
+        }
+    }
+    if (rc != CLI_OK) {
+        cli_output_set_abort(s);
+        return rc;
+    }
+    /* the renames, with a signal held back until they are all done (one rename cannot be
+     * undone, so all of them or none; they take microseconds) */
+    committing = 1;
+    atomic_signal_fence(memory_order_seq_cst);
+    for (size_t i = 0; i < s->count; ++i) {
+        int r = rename_into_place(&s->item[i]);
+        if (rc == CLI_OK) rc = r;
+    }
+    s->count = 0;
+    atomic_signal_fence(memory_order_seq_cst);
+    committing = 0;
+    int held = held_signal;
+    held_signal = 0;
+    if (held) raise(held); /* the outputs are complete; now the signal ends the run */
+    return rc;
+}
+
+void cli_output_set_abort(cli_output_set* s)
+{
+    for (size_t i = 0; i < s->count; ++i) cli_output_abort(&s->item[i]);
+    s->count = 0;
+}
+
+/* ---- outputs checked against the inputs and each other ---- */
+
+/* What an output path names: the existing file (following links), or for a new one its folder
+ * (device and inode) and its name in it. */
+typedef struct output_id {
+    bool exists, to_stdout;
+    struct stat st, dir;
+    const char* base;
+} output_id;
+
+/* Identifies an output; CLI_OK, or CLI_INPUT after printing why it cannot be written (a folder
+ * that does not exist or cannot be written into, a directory, a block device or socket). */
+static int identify_output(const char* path, const char* option, output_id* id)
+{
+    memset(id, 0, sizeof *id);
+    if (!strcmp(path, "-")) {
+        id->to_stdout = true;
+        return CLI_OK;
+    }
+    size_t n = strlen(path);
+    if (!n || path[n - 1] == '/') {
+        cli_error(path, 0, "%s needs a file name, not a folder", option);
         return CLI_INPUT;
     }
-    for (size_t i = 0; i < count; ++i) {
-        if (!inputs[i] || !strcmp(inputs[i], "-") || stat(inputs[i], &si) != 0) continue;
-        if (si.st_dev == so.st_dev && si.st_ino == so.st_ino) { /* the same file, by any name or link */
-            cli_error(out, 0, "is the same file as the %s %s: writing it would destroy the input; choose another "
-                              "output", what[i], inputs[i]);
-            return CLI_USAGE;
+    if (stat(path, &id->st) == 0) {
+        id->exists = true;
+        const char* kind = special_kind(&id->st);
+        if (kind && !S_ISCHR(id->st.st_mode) && !S_ISFIFO(id->st.st_mode)) {
+            cli_error(path, 0, "is %s: %s needs a file name (or a character device or FIFO, written directly)", kind, option);
+            return CLI_INPUT;
         }
+        if (kind) return CLI_OK; /* written directly: its folder does not matter */
+    }
+    const char* slash = strrchr(path, '/');
+    id->base = slash ? slash + 1 : path;
+    char* dir = slash ? strndup(path, slash == path ? 1 : (size_t)(slash - path)) : strdup(".");
+    if (!dir) {
+        cli_error(path, 0, "out of memory");
+        return CLI_INPUT;
+    }
+    int rc = CLI_OK;
+    if (stat(dir, &id->dir) != 0) {
+        cli_error(path, 0, "cannot write %s: the folder %s: %s; nothing written", option, dir, strerror(errno));
+        rc = CLI_INPUT;
+    } else if (!S_ISDIR(id->dir.st_mode)) {
+        cli_error(path, 0, "cannot write %s: %s is not a folder; nothing written", option, dir);
+        rc = CLI_INPUT;
+    } else if (access(dir, W_OK | X_OK) != 0) {
+        cli_error(path, 0, "cannot write %s into the folder %s: %s; nothing written", option, dir, strerror(errno));
+        rc = CLI_INPUT;
+    }
+    free(dir);
+    return rc;
+}
+
+static bool same_output(const output_id* a, const output_id* b)
+{
+    if (a->to_stdout || b->to_stdout) return a->to_stdout && b->to_stdout;
+    if (a->exists || b->exists) /* one new file is never an existing one */
+        return a->exists && b->exists && a->st.st_dev == b->st.st_dev && a->st.st_ino == b->st.st_ino;
+    return a->dir.st_dev == b->dir.st_dev && a->dir.st_ino == b->dir.st_ino && !strcmp(a->base, b->base);
+}
+
+int cli_check_outputs(const cli_file_role* outputs, size_t output_count, const cli_file_role* inputs, size_t input_count)
+{
+    output_id id[CLI_OUTPUT_SET_MAX];
+    if (output_count > CLI_OUTPUT_SET_MAX) output_count = CLI_OUTPUT_SET_MAX;
+    for (size_t k = 0; k < output_count; ++k) {
+        const char* out = outputs[k].path;
+        memset(&id[k], 0, sizeof id[k]);
+        if (!out) continue; /* an option not given */
+        int rc = identify_output(out, outputs[k].what, &id[k]);
+        if (rc != CLI_OK) return rc;
+        for (size_t i = 0; id[k].exists && i < input_count; ++i) {
+            struct stat si;
+            const char* in = inputs[i].path;
+            if (!in || !strcmp(in, "-") || stat(in, &si) != 0) continue; /* stdin, or a read error later */
+            if (si.st_dev == id[k].st.st_dev && si.st_ino == id[k].st.st_ino) { /* by any name or link */
+                cli_error(out, 0, "%s is the same file as the %s %s: writing it would destroy the input; choose "
+                                  "another output", outputs[k].what, inputs[i].what, in);
+                return CLI_USAGE;
+            }
+        }
+        for (size_t j = 0; j < k; ++j)
+            if (outputs[j].path && same_output(&id[j], &id[k])) {
+                cli_error(out, 0, "%s is the same file as %s %s: one run writes each output to its own file; choose "
+                                  "another name", outputs[k].what, outputs[j].what, outputs[j].path);
+                return CLI_USAGE;
+            }
     }
     return CLI_OK;
 }
@@ -565,6 +729,38 @@ char* cli_read_all(const char* path, size_t* out_size)
     return buf;
 }
 
+char* cli_read_text(const char* path, const char* what, size_t* out_size)
+{
+    size_t size = 0;
+    char* text = cli_read_all(path, &size);
+    const char* nul = text ? memchr(text, 0, size) : NULL;
+    if (nul) {
+        unsigned long long line = 1;
+        for (const char* p = text; p < nul; ++p) line += *p == '\n';
+        cli_error(path, line, "binary data (a NUL byte): not a %s", what);
+        free(text);
+        return NULL;
+    }
+    if (text && out_size) *out_size = size;
+    return text;
+}
+
+char* cli_next_line(char** cursor, unsigned long long* lineno)
+{
+    char* s = *cursor;
+    if (!s || !*s) return NULL;
+    char* end = strchr(s, '\n');
+    *cursor = end ? end + 1 : s + strlen(s);
+    if (end) {
+        if (end > s && end[-1] == '\r') end[-1] = '\0';
+        *end = '\0';
+    } else if (*cursor > s && (*cursor)[-1] == '\r') {
+        (*cursor)[-1] = '\0';
+    }
+    if (++*lineno == 1) s = cli_skip_bom(s);
+    return s;
+}
+
 bool cli_ext_is(const char* path, const char* ext)
 {
     size_t n = strlen(path), e = strlen(ext);
@@ -584,7 +780,8 @@ void cli_json_point(FILE* f, const tg_surface_point* p)
                 p->bary[1], p->bary[2]);
 }
 
-int cli_write_labels(const char* path, const tg_mesh* mesh, const uint32_t* label, const double* dist, size_t n)
+int cli_write_labels(cli_output_set* set, const char* path, const tg_mesh* mesh, const uint32_t* label, const double* dist,
+                     size_t n)
 {
     if (strcmp(path, "-") != 0 && cli_ext_is(path, ".ply")) {
         double* as_double = malloc((n ? n : 1) * sizeof *as_double);
@@ -596,25 +793,19 @@ int cli_write_labels(const char* path, const tg_mesh* mesh, const uint32_t* labe
         tg_vertex_scalar sc[2] = {{"label", as_double}, {"distance", dist}};
         tg_diag d;
         memset(&d, 0, sizeof d);
-        cli_output out;
-        int rc = CLI_INPUT;
-        if (cli_output_reserve(&out, path)) {
-            out.f = NULL;
-            rc = cli_output_finish_library(&out, tg_mesh_write_ply(mesh, out.tmp, sc, 2, &d), &d);
-        }
+        cli_output* out = cli_output_set_reserve(set, path);
+        int rc = out ? cli_output_library_done(out, tg_mesh_write_ply(mesh, out->tmp, sc, 2, &d), &d) : CLI_INPUT;
         free(as_double);
         return rc;
     }
-    cli_output out;
-    FILE* f = cli_output_open(&out, path);
+    FILE* f = cli_output_set_open(set, path);
     if (!f) return CLI_INPUT;
     bool ok = fprintf(f, "vertex,label,distance\n") > 0;
     for (size_t v = 0; ok && v < n; ++v)
         ok = fprintf(f, "%zu,%lld,%.17g\n", v, label[v] == TG_NONE ? -1LL : (long long)label[v], dist[v]) > 0;
     if (!ok) {
         cli_error(path, 0, "write failed: %s", strerror(errno));
-        cli_output_abort(&out);
         return CLI_INPUT;
     }
-    return cli_output_commit(&out);
+    return CLI_OK;
 }

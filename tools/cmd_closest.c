@@ -209,10 +209,12 @@ static int run(int argc, char** argv)
     }
     if (!mesh_path || !query_path) return cli_usage("closest", "missing %s", mesh_path ? "QUERIES" : "MESH");
 
-    const char* inputs[2] = {mesh_path, query_path};
-    static const char* const what[2] = {"mesh", "queries file"};
-    int rc = cli_output_check_inputs(out_path, inputs, what, 2);
+    const cli_file_role inputs[2] = {{mesh_path, "mesh"}, {query_path, "queries file"}};
+    const cli_file_role outputs[1] = {{out_path, "-o"}};
+    int rc = cli_check_outputs(outputs, 1, inputs, 2);
     if (rc != CLI_OK) return rc;
+    if (out_path && strcmp(out_path, "-") && !cli_ext_is(out_path, ".csv") && !cli_ext_is(out_path, ".npy"))
+        return cli_usage("closest", "-o %s: the extension must be .csv or .npy ('-': CSV on stdout)", out_path);
     if (!cli_threads_available((int)threads, "closest")) return CLI_INPUT;
     size_t size = 0;
     char* text = cli_read_all(query_path, &size);
@@ -290,7 +292,7 @@ const cli_command cli_cmd_closest = {
     "              winding number (>= 1/2 is inside); the choice is reported on stderr\n"
     "  --sign M    force the method: pseudonormal or winding (implies --signed)\n"
     "  --threads N worker threads, at most 256 (default 0 = all cores)\n"
-    "  -o OUT      write there instead of stdout; a name ending in .npy gets a NumPy structured\n"
+    "  -o OUT      write there instead of stdout: OUT.csv, or OUT.npy, a NumPy structured\n"
     "              array of shape (k,) with the CSV's columns as fields: face (uint32), sqdist, cx,\n"
     "              cy, cz, b0, b1, b2 (float64)[, sign (int8)] - numpy.load(OUT)[\"sqdist\"]\n\n"
     "Output: CSV with header i,face,sqdist,cx,cy,cz,b0,b1,b2[,sign]; each number is the shortest\n"

@@ -187,12 +187,11 @@ static int finished(const field_args* fa, tg_status st)
 
 /* --boundaries: OBJ (a `v` per point, an `l` per polyline, a comment naming its two cells) or JSON
  * ({"polylines": [{"cells": [a, b], "points": [[x, y, z], ...], "surface": ["e:H:t", ...]}]}). */
-static int write_boundaries(const char* path, const tg_voronoi_boundaries* b)
+static int write_boundaries(cli_output_set* set, const char* path, const tg_voronoi_boundaries* b)
 {
     tg_voronoi_boundaries_view v;
     tg_voronoi_boundaries_get_view(b, &v);
-    cli_output out;
-    FILE* f = cli_output_open(&out, path);
+    FILE* f = cli_output_set_open(set, path);
     if (!f) return CLI_INPUT;
     bool json = cli_ext_is(path, ".json"), ok = true;
     char spec[160];
@@ -224,10 +223,9 @@ static int write_boundaries(const char* path, const tg_voronoi_boundaries* b)
     }
     if (!ok) {
         cli_error(path, 0, "write failed: %s", strerror(errno));
-        cli_output_abort(&out);
         return CLI_INPUT;
     }
-    return cli_output_commit(&out);
+    return CLI_OK;
 }
 
 /* Resolves the spec texts items[0..count) (lines: from the sources file, named in errors).
@@ -358,9 +356,12 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
         rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
         goto done;
     }
-    if (fa->labels) {
-        rc = fa->out ? cli_write_labels(fa->out, mesh, label, dist, n) : CLI_OK;
-        if (rc == CLI_OK && fa->boundaries) rc = write_boundaries(fa->boundaries, bounds);
+    if (fa->labels) { /* the labels and the boundaries: both files or neither */
+        cli_output_set outs = {0};
+        rc = fa->out ? cli_write_labels(&outs, fa->out, mesh, label, dist, n) : CLI_OK;
+        if (rc == CLI_OK && fa->boundaries) rc = write_boundaries(&outs, fa->boundaries, bounds);
+        if (rc == CLI_OK) rc = cli_output_set_commit(&outs);
+        cli_output_set_abort(&outs);
         if (rc != CLI_OK) goto done;
         if (!fa->out || strcmp(fa->out, "-")) print_summary(count, false, "vertices", dist, rows, n, secs, &stats);
         rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
@@ -617,9 +618,12 @@ static int run(int argc, char** argv)
     if (threads && (!cli_parse_uint(threads, &nt) || nt > TG_MAX_THREADS))
         return cli_usage("field", "--threads needs a number in 0..%d (0 = all cores), not '%s'", TG_MAX_THREADS, threads);
     fa.threads = (int)nt;
-    const char* inputs[3] = {fa.mesh_path, fa.sources_path, fa.at_path};
-    static const char* const what[3] = {"mesh", "sources file", "points file (--at)"};
-    int check = cli_output_check_inputs(fa.out, inputs, what, 3);
+    const cli_file_role inputs[3] = {{fa.mesh_path, "mesh"},
+                                     {fa.sources_path && strcmp(fa.sources_path, "all") ? fa.sources_path : NULL,
+                                      "sources file (--sources)"},
+                                     {fa.at_path, at_opt && !strcmp(at_opt, "--to") ? "points file (--to)" : "points file (--at)"}};
+    const cli_file_role outputs[2] = {{fa.out, csv ? "--csv" : "-o"}, {fa.boundaries, "--boundaries"}};
+    int check = cli_check_outputs(outputs, 2, inputs, 3);
     if (check != CLI_OK) return check;
     if (fa.sources_path && !cli_threads_available(fa.threads, "field")) return CLI_INPUT;
     int rc;

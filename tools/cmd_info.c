@@ -75,9 +75,11 @@ static int run(int argc, char** argv)
             return cli_usage("info", "unexpected argument '%s'", argv[i]);
     }
     if (!path) return cli_usage("info", "missing MESH");
-    static const char* const what[1] = {"mesh"};
-    int check = cli_output_check_inputs(out_path, &path, what, 1);
+    const cli_file_role inputs[1] = {{path, "mesh"}}, outputs[1] = {{out_path, "-o"}};
+    int check = cli_check_outputs(outputs, 1, inputs, 1);
     if (check != CLI_OK) return check;
+    if (out_path && strcmp(out_path, "-") && !cli_ext_is(out_path, ".txt") && !cli_ext_is(out_path, ".json"))
+        return cli_usage("info", "-o %s: the extension must be .txt or .json ('-': stdout)", out_path);
     tg_mesh* mesh = cli_load_mesh(path);
     if (!mesh) return CLI_INPUT;
     const tg_mesh_report* r = tg_mesh_get_report(mesh);
@@ -103,6 +105,7 @@ const cli_command cli_cmd_info = {
     "edges, degenerate (zero-area) and duplicate faces, unreferenced vertices, the Euler\n"
     "characteristic, the genus when the mesh is a closed manifold, and the bounding box.\n\n"
     "  --json   machine-readable output; genus is null when not a closed manifold\n"
-    "  -o OUT   write the report to OUT (OUT.json: the JSON form), complete or not at all\n",
+    "  -o OUT   write the report to OUT.txt (OUT.json: the JSON form; other extensions are\n"
+    "           refused), complete or not at all\n",
     run,
 };

@@ -187,9 +187,8 @@ static int run(int argc, char** argv)
     cli_spec sp;
     if (!cli_parse_spec(la.from, &sp))
         return cli_usage("logmap", "bad --from '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", la.from);
-    const char* inputs[1] = {la.mesh_path};
-    const char* what[1] = {"the mesh"};
-    int check = cli_output_check_inputs(la.out, inputs, what, 1);
+    const cli_file_role inputs[1] = {{la.mesh_path, "mesh"}}, outputs[1] = {{la.out, "-o"}};
+    int check = cli_check_outputs(outputs, 1, inputs, 1);
     if (check != CLI_OK) return check;
     return run_logmap(&la, &sp);
 }

@@ -407,18 +407,21 @@ static int run(int argc, char** argv)
         return cli_usage("path", "--method must be exact, straighten, relax or edge, not '%s'", method);
     if (certify) o.certify = TG_PATH_CERTIFY_ON;
     if (!mesh_path) return cli_usage("path", "missing MESH");
-    const char* inputs[2] = {mesh_path, pairs};
-    static const char* const what[2] = {"mesh", "pairs file"};
+    const cli_file_role inputs[2] = {{mesh_path, "mesh"}, {pairs, "pairs file (--pairs)"}};
+    const cli_file_role outputs[1] = {{out_path, "-o"}};
     if (pairs) {
         if (from || to) return cli_usage("path", "--pairs excludes --from and --to");
         if (json) return cli_usage("path", "--json applies to a single path (--from/--to)");
-        int rc = cli_output_check_inputs(out_path, inputs, what, 2);
-        return rc != CLI_OK ? rc : run_pairs(mesh_path, pairs, out_path, &o);
+        int rc = cli_check_outputs(outputs, 1, inputs, 2);
+        if (rc != CLI_OK) return rc;
+        if (out_path && strcmp(out_path, "-") && !cli_ext_is(out_path, ".csv"))
+            return cli_usage("path", "--pairs writes CSV: -o OUT.csv ('-': stdout), not '%s'", out_path);
+        return run_pairs(mesh_path, pairs, out_path, &o);
     }
     if (!through && (!from || !to)) return cli_usage("path", "missing %s (or --pairs FILE)", from ? "--to" : "--from");
     if (out_path && !cli_ext_is(out_path, ".obj") && !cli_ext_is(out_path, ".json"))
         return cli_usage("path", "-o takes PATH.obj (the polyline) or PATH.json (the whole answer)");
-    int rc = cli_output_check_inputs(out_path, inputs, what, 1);
+    int rc = cli_check_outputs(outputs, 1, inputs, 1);
     if (rc != CLI_OK) return rc;
     if (!through) return run_single(mesh_path, from, to, NULL, out_path, json, method, &o);
     waypoints w = {{NULL, NULL, NULL, NULL, 0}, NULL, closed};
@@ -456,7 +459,7 @@ const cli_command cli_cmd_path = {
     "                           (face points; \"p\" with these nine fields is read the same) or\n"
     "                           \"p x0 y0 z0 x1 y1 z1\" (the surface points closest to two positions);\n"
     "                           CSV i,length,points,status,max_angle_defect,microseconds,global to\n"
-    "                           stdout or -o OUT.csv ('-' reads PAIRS from stdin)\n"
+    "                           stdout or -o OUT.csv (only .csv; '-' reads PAIRS from stdin)\n"
     "  --method M               exact (default: the globally shortest path, proven: an exact window\n"
     "                           propagation from the source ordered toward the target (A*) and\n"
     "                           bounded by the best distance to it found so far, traced back from\n"

@@ -188,10 +188,14 @@ static int run(int argc, char** argv)
             return prc;
         }
     }
-    const char* inputs[6] = {mesh_path, path_obj, field, labels, logmap, iso_obj};
-    static const char* const what[6] = {"mesh", "path file (--path)", "field file (--field)", "labels file (--labels)",
-                                        "log map file (--logmap)", "isolines (--isolines)"};
-    int check = cli_output_check_inputs(out, inputs, what, 6);
+    const cli_file_role inputs[7] = {{mesh_path, "mesh"}, {path_obj, "path file (--path)"},
+                                     {field, "field file (--field)"}, {labels, "labels file (--labels)"},
+                                     {logmap, "log map file (--logmap)"}, {iso_obj, "isolines file (--isolines)"},
+                                     {bounds, "boundaries file (--boundaries)"}};
+    const cli_file_role outputs[1] = {{out, "-o"}};
+    int check = cli_check_outputs(outputs, 1, inputs, 7);
+    if (check == CLI_OK && !cli_ext_is(out, ".png") && !cli_output_is_direct(out))
+        check = cli_usage("render", "-o %s: render writes PNG: the name must end in .png", out);
     tg_mesh* mesh = check == CLI_OK ? cli_load_mesh(mesh_path) : NULL;
     if (!mesh) {
         cli_spec_list_free(&srcs);
@@ -345,6 +349,8 @@ const cli_command cli_cmd_render = {
     "  --size WxH         image size in pixels, each side 16..8192 (default 960x720); the memory\n"
     "                     budget is 2 GiB (16 bytes per sample, 7 per pixel): 3x3 supersampling up\n"
     "                     to about 3770x3770, 2x2 up to 5500x5500, none beyond\n"
-    "The PNG appears only when complete; Ctrl-C stops the drawing (exit 130, no file written).\n",
+    "OUT must end in .png (or be a character device or FIFO, written directly); an OUT that is\n"
+    "one of the files read is refused. The PNG appears only when complete; Ctrl-C stops the\n"
+    "drawing (exit 130, no file written).\n",
     run,
 };

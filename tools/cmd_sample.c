@@ -20,10 +20,9 @@ static int on_progress(void* user, const tg_field_progress* p)
 
 /* The samples: .txt one `v:IDX` spec a line (a sources file for `trigeo field --sources`), .csv
  * rows i,vertex,x,y,z. */
-static int write_samples(const char* path, const tg_mesh* mesh, const uint32_t* s, size_t k)
+static int write_samples(cli_output_set* set, const char* path, const tg_mesh* mesh, const uint32_t* s, size_t k)
 {
-    cli_output out;
-    FILE* f = cli_output_open(&out, path);
+    FILE* f = cli_output_set_open(set, path);
     if (!f) return CLI_INPUT;
     bool csv = strcmp(path, "-") != 0 && cli_ext_is(path, ".csv");
     const double* xyz = tg_mesh_positions(mesh);
@@ -34,10 +33,9 @@ static int write_samples(const char* path, const tg_mesh* mesh, const uint32_t* 
     }
     if (!ok) {
         cli_error(path, 0, "write failed: %s", strerror(errno));
-        cli_output_abort(&out);
         return CLI_INPUT;
     }
-    return cli_output_commit(&out);
+    return CLI_OK;
 }
 
 
@@ -108,8 +106,13 @@ static int run_sample(const sample_args* sa)
         cli_error(sa->mesh_path, 0, "%s", tg_status_string(st));
         goto done;
     }
-    if (sa->out && (rc = write_samples(sa->out, mesh, samples, sa->count)) != CLI_OK) goto done;
-    if (sa->field_out && (rc = cli_write_labels(sa->field_out, mesh, label, dist, n)) != CLI_OK) goto done;
+    /* the samples and the field: both files or neither */
+    cli_output_set outs = {0};
+    rc = sa->out ? write_samples(&outs, sa->out, mesh, samples, sa->count) : CLI_OK;
+    if (rc == CLI_OK && sa->field_out) rc = cli_write_labels(&outs, sa->field_out, mesh, label, dist, n);
+    if (rc == CLI_OK) rc = cli_output_set_commit(&outs);
+    cli_output_set_abort(&outs);
+    if (rc != CLI_OK) goto done;
     if (!sa->out || strcmp(sa->out, "-")) {
         double far = 0;
         for (size_t v = 0; v < n; ++v)
@@ -166,7 +169,9 @@ static int run(int argc, char** argv)
         return cli_usage("sample", "-o %s: the extension must be .txt or .csv", sa.out);
     if (sa.field_out && !cli_ext_is(sa.field_out, ".ply") && !cli_ext_is(sa.field_out, ".csv"))
         return cli_usage("sample", "--field %s: the extension must be .ply or .csv", sa.field_out);
-    return run_sample(&sa);
+    const cli_file_role inputs[1] = {{sa.mesh_path, "mesh"}}, outputs[2] = {{sa.out, "-o"}, {sa.field_out, "--field"}};
+    int check = cli_check_outputs(outputs, 2, inputs, 1);
+    return check != CLI_OK ? check : run_sample(&sa);
 }
 
 const cli_command cli_cmd_sample = {

@@ -366,6 +366,10 @@ static int run(int argc, char** argv)
             return cli_usage("trace", "--threads needs a number in 0..1024, not '%s'", threads);
         ta.threads = (int)nt;
         if (ta.out_path && !cli_ext_is(ta.out_path, ".csv")) return cli_usage("trace", "--batch writes OUT.csv");
+        const cli_file_role inputs[2] = {{ta.mesh_path, "mesh"}, {ta.batch_path, "traces file (--batch)"}};
+        const cli_file_role outputs[1] = {{ta.out_path, "-o"}};
+        int check = cli_check_outputs(outputs, 1, inputs, 2);
+        if (check != CLI_OK) return check;
         if (!cli_threads_available(ta.threads, "trace")) return CLI_INPUT;
         return run_batch(&ta);
     }
@@ -385,7 +389,9 @@ static int run(int argc, char** argv)
         return cli_usage("trace", "bad --length '%s' (a finite number >= 0)", length);
     if (ta.out_path && !cli_ext_is(ta.out_path, ".obj") && !cli_ext_is(ta.out_path, ".json"))
         return cli_usage("trace", "-o takes OUT.obj (the polyline) or OUT.json (the whole answer)");
-    return run_trace(&ta);
+    const cli_file_role inputs[1] = {{ta.mesh_path, "mesh"}}, outputs[1] = {{ta.out_path, "-o"}};
+    int check = cli_check_outputs(outputs, 1, inputs, 1);
+    return check != CLI_OK ? check : run_trace(&ta);
 }
 
 const cli_command cli_cmd_trace = {

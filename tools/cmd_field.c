@@ -233,18 +233,19 @@ static int write_boundaries(cli_output_set* set, const char* path, const tg_voro
 /* "x y z" (three numbers separated by blanks or commas) as a p: spec. */
 static bool parse_xyz(const char* s, cli_spec* out)
 {
-    char buf[256];
-    size_t n = strlen(s);
-    if (n >= sizeof buf) return false;
-    memcpy(buf, s, n + 1);
+    char* buf = strdup(s); /* a line of any length (numbers may have many digits) */
+    if (!buf) return false;
     memset(out, 0, sizeof *out);
     out->kind = 'p';
     int k = 0;
-    for (char* tok = strtok(buf, " \t,"); tok; tok = strtok(NULL, " \t,")) {
-        if (k == 3 || !cli_parse_double(tok, &out->v[k])) return false;
+    bool ok = true;
+    char* save = NULL;
+    for (char* tok = strtok_r(buf, " \t,", &save); ok && tok; tok = strtok_r(NULL, " \t,", &save)) {
+        ok = k < 3 && cli_parse_double(tok, &out->v[k]);
         k++;
     }
-    return k == 3;
+    free(buf);
+    return ok && k == 3;
 }
 
 static int resolve_all(const field_args* fa, const char* file, bool allow_xyz, tg_mesh* mesh, tg_bvh** bvh, char** items,

@@ -172,39 +172,27 @@ typedef struct pair_in {
  * the count, or -1 after printing "PAIRS:LINE: message". */
 static long read_pairs(const char* pairs_path, tg_mesh* mesh, tg_bvh** bvh, pair_in** out)
 {
-    FILE* in = strcmp(pairs_path, "-") ? fopen(pairs_path, "r") : stdin;
-    if (!in) {
-        cli_error(pairs_path, 0, "cannot open: %s", strerror(errno));
-        return -1;
-    }
+    char* all = cli_read_text(pairs_path, "pairs file", NULL);
+    if (!all) return -1;
     size_t n = 0, cap = 256;
     pair_in* pairs = malloc(cap * sizeof *pairs);
-    char line[4096];
     unsigned long long lineno = 0;
     long result = -1;
-    while (pairs && fgets(line, sizeof line, in)) {
-        ++lineno;
-        if (!strchr(line, '\n') && !feof(in)) {
-            cli_error(pairs_path, lineno, "line too long");
-            goto done;
-        }
-        line[strcspn(line, "\n")] = '\0';
-        char* text = lineno == 1 ? cli_skip_bom(line) : line;
+    char* cursor = all;
+    bool oom = !pairs;
+    for (char* text; !oom && (text = cli_next_line(&cursor, &lineno));) {
         const char* p = text + strspn(text, " \t\r");
         if (!*p || *p == '#') continue;
-        if (!cli_grow((void**)&pairs, &cap, n + 1, sizeof *pairs)) break;
+        if ((oom = !cli_grow((void**)&pairs, &cap, n + 1, sizeof *pairs))) break;
         if (!parse_pair(pairs_path, lineno, text, mesh, bvh, &pairs[n].a, &pairs[n].b)) goto done;
         pairs[n++].line = lineno;
     }
-    if (!pairs || n == cap) {
+    if (oom) /* (a file of exactly 256, 512, ... pairs was once refused here too) */
         cli_error(pairs_path, lineno, "out of memory");
-    } else if (ferror(in)) {
-        cli_error(pairs_path, 0, "read error");
-    } else {
+    else
         result = (long)n;
-    }
 done:
-    if (in != stdin) fclose(in);
+    free(all);
     if (result < 0) free(pairs), pairs = NULL;
     *out = pairs;
     return result;

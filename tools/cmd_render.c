@@ -7,75 +7,112 @@
 #include <stdlib.h>
 #include <string.h>
 
+static bool is_blank(char c)
+{
+    return c == ' ' || c == '\t' || c == '\r';
+}
+
+/* A `v` record's numbers (p just past the `v`): x y z, then numbers only (w, a colour). false
+ * after printing "FILE:LINE: why". */
+static bool read_v_record(const char* path, unsigned long long lineno, const char* p, double out[3])
+{
+    for (int k = 0;; ++k) {
+        while (is_blank(*p)) p++;
+        if (!*p && k >= 3) return true;
+        char* q;
+        double x = strtod(p, &q);
+        if (q == p || (*q && !is_blank(*q)) || !isfinite(x)) {
+            cli_error(path, lineno, "a 'v' record needs 3 finite coordinates (and numbers only after them)");
+            return false;
+        }
+        if (k < 3) out[k] = x;
+        p = q;
+    }
+}
+
+/* Parses the indices of an `l` record (p just past the `l` of `line`): each "I" or "I/VT",
+ * 1-based or negative (from the end of the `v` records so far), appended to *order. false after
+ * printing "FILE:LINE: why". */
+static bool read_l_record(const char* path, unsigned long long lineno, const char* line, const char* p, size_t nv,
+                          size_t** order, size_t* nl, size_t* lcap)
+{
+    for (;;) {
+        while (is_blank(*p)) p++;
+        if (!*p) return true;
+        const char* tok = p;
+        char* e;
+        long long idx = strtoll(p, &e, 10);
+        p = e;
+        bool vt_ok = true;
+        if (e != tok && *p == '/') { /* the texture index of "I/VT": digits */
+            const char* vt = ++p;
+            while (*p >= '0' && *p <= '9') p++;
+            vt_ok = p > vt;
+        }
+        if (e == tok || !vt_ok || (*p && !is_blank(*p))) {
+            size_t len = strcspn(tok, " \t\r");
+            cli_error(path, lineno, "bad index '%.*s%s' in an 'l' record (column %zu): a vertex number expected",
+                      (int)(len > 40 ? 40 : len), tok, len > 40 ? "..." : "", (size_t)(tok - line) + 1);
+            return false;
+        }
+        long long k = idx > 0 ? idx - 1 : (long long)nv + idx;
+        if (idx == 0 || k < 0 || k >= (long long)nv) {
+            cli_error(path, lineno, "line index %lld out of range (%zu 'v' records before it)", idx, nv);
+            return false;
+        }
+        if (!cli_grow((void**)order, lcap, *nl + 1, sizeof **order)) {
+            cli_error(path, lineno, "out of memory");
+            return false;
+        }
+        (*order)[(*nl)++] = (size_t)k;
+    }
+}
+
 /* Reads the polyline of an OBJ file: its `v` records in the order its `l` records visit them
  * (all `l` records concatenated), or in file order when there are none. With out_starts, each
- * `l` record is a part: *out_starts gets *out_parts + 1 offsets (malloc'd). */
-static double* read_polyline(const char* path, size_t* out_count, size_t** out_starts, size_t* out_parts)
+ * `l` record is a part: *out_starts gets *out_parts + 1 offsets (malloc'd). Lines of any length
+ * (trigeo writes `l` records of hundreds of thousands of characters); every token of a `v` or `l`
+ * record is checked, so a cut or corrupt record is refused with its line, never drawn wrong. */
+static double* read_polyline(const char* path, const char* what, size_t* out_count, size_t** out_starts,
+                             size_t* out_parts)
 {
     size_t *starts = NULL, parts = 0, scap = 0;
-    FILE* f = fopen(path, "rb");
-    if (!f) {
-        cli_error(path, 0, "cannot open the path file");
-        return NULL;
-    }
+    char* text = cli_read_text(path, what, NULL);
+    if (!text) return NULL;
     size_t nv = 0, cap = 64, nl = 0, lcap = 64;
     double* v = malloc(cap * 3 * sizeof *v);
     size_t* order = malloc(lcap * sizeof *order);
-    char line[65536];
     unsigned long long lineno = 0;
     bool ok = v && order;
-    while (ok && fgets(line, sizeof line, f)) {
-        lineno++;
+    if (!ok) cli_error(path, 0, "out of memory");
+    char* cursor = text;
+    for (char* line; ok && (line = cli_next_line(&cursor, &lineno));) {
         char* p = line;
         while (*p == ' ' || *p == '\t') p++;
         if (p[0] == 'v' && (p[1] == ' ' || p[1] == '\t')) {
             if (!cli_grow((void**)&v, &cap, nv + 1, 3 * sizeof *v)) {
+                cli_error(path, lineno, "out of memory");
                 ok = false;
                 break;
             }
-            char* end = p + 1;
-            for (int k = 0; k < 3 && ok; ++k) {
-                char* q;
-                v[3 * nv + k] = strtod(end, &q);
-                if (q == end || !isfinite(v[3 * nv + k])) {
-                    cli_error(path, lineno, "a 'v' record needs 3 finite coordinates");
-                    ok = false;
-                }
-                end = q;
-            }
+            ok = read_v_record(path, lineno, p + 1, v + 3 * nv);
             nv++;
         } else if (p[0] == 'l' && (p[1] == ' ' || p[1] == '\t')) {
-            char* q = p + 1;
             if (out_starts && !cli_grow((void**)&starts, &scap, parts + 2, sizeof *starts)) {
+                cli_error(path, lineno, "out of memory");
                 ok = false;
                 break;
             }
             if (out_starts) starts[parts++] = nl;
-            for (;;) {
-                char* e;
-                long idx = strtol(q, &e, 10);
-                if (e == q) break;
-                q = e;
-                while (*q && *q != ' ' && *q != '\t' && *q != '\n' && *q != '\r') q++; /* skip /vt */
-                long k = idx > 0 ? idx - 1 : (long)nv + idx;
-                if (idx == 0 || k < 0 || k >= (long)nv) {
-                    cli_error(path, lineno, "line index %ld out of range", idx);
-                    ok = false;
-                    break;
-                }
-                if (!cli_grow((void**)&order, &lcap, nl + 1, sizeof *order)) {
-                    ok = false;
-                    break;
-                }
-                order[nl++] = (size_t)k;
-            }
+            ok = read_l_record(path, lineno, line, p + 1, nv, &order, &nl, &lcap);
         }
     }
-    fclose(f);
+    free(text);
     double* pts = NULL;
     size_t n = nl ? nl : nv;
-    if (ok && n < 2) cli_error(path, 0, "the path file holds fewer than 2 points");
-    if (ok && n >= 2 && (pts = malloc(3 * n * sizeof *pts)))
+    if (ok && n < 2) cli_error(path, 0, "the %s holds fewer than 2 points", what);
+    if (ok && n >= 2 && !(pts = malloc(3 * n * sizeof *pts))) cli_error(path, 0, "out of memory");
+    if (pts)
         for (size_t i = 0; i < n; ++i) memcpy(pts + 3 * i, v + 3 * (nl ? order[i] : i), 3 * sizeof *pts);
     free(v);
     free(order);
@@ -274,7 +311,7 @@ static int run(int argc, char** argv)
     double* iso_pts = NULL;
     size_t *iso_parts = NULL, iso_count = 0;
     if (rc == CLI_OK && iso_obj) { /* polylines of trigeo field --isolines: every 'l' record one */
-        iso_pts = read_polyline(iso_obj, &iso_count, &iso_parts, &o.isoline_parts);
+        iso_pts = read_polyline(iso_obj, "isolines file", &iso_count, &iso_parts, &o.isoline_parts);
         if (!iso_pts) rc = CLI_INPUT;
         o.isoline_xyz = iso_pts, o.isoline_start = iso_parts;
     } else if (rc == CLI_OK && from) {
@@ -284,7 +321,7 @@ static int run(int argc, char** argv)
         o.isoline_level = ex.level_of;
     }
     if (rc == CLI_OK && (path_obj || bounds)) {
-        poly = read_polyline(path_obj ? path_obj : bounds, &o.polyline_count, bounds ? &parts : NULL, &o.polyline_parts);
+        poly = read_polyline(path_obj ? path_obj : bounds, path_obj ? "path file" : "boundaries file", &o.polyline_count, bounds ? &parts : NULL, &o.polyline_parts);
         if (!poly) rc = CLI_INPUT;
         o.polyline = poly;
         o.polyline_start = parts;

@@ -210,40 +210,29 @@ static bool parse_trace_line(const char* name, unsigned long long line, char* s,
  * their line numbers into *out_lines; returns the count, or -1 after printing the error. */
 static long read_traces(const char* path, tg_mesh* mesh, tg_bvh** bvh, trace_in** out, unsigned long long** out_lines)
 {
-    FILE* in = strcmp(path, "-") ? fopen(path, "r") : stdin;
-    if (!in) {
-        cli_error(path, 0, "cannot open: %s", strerror(errno));
-        return -1;
-    }
+    char* all = cli_read_text(path, "traces file", NULL);
+    if (!all) return -1;
     size_t n = 0, cap = 256, lcap = 256;
     trace_in* items = malloc(cap * sizeof *items);
     unsigned long long* lines = malloc(lcap * sizeof *lines);
-    char line[4096];
     unsigned long long lineno = 0;
     long result = -1;
-    while (items && lines && fgets(line, sizeof line, in)) {
-        ++lineno;
-        if (!strchr(line, '\n') && !feof(in)) {
-            cli_error(path, lineno, "line too long");
-            goto done;
-        }
-        line[strcspn(line, "\n")] = '\0';
-        char* text = lineno == 1 ? cli_skip_bom(line) : line;
+    char* cursor = all;
+    bool oom = !items || !lines;
+    for (char* text; !oom && (text = cli_next_line(&cursor, &lineno));) {
         const char* p = text + strspn(text, " \t\r");
         if (!*p || *p == '#') continue;
-        if (!cli_grow((void**)&items, &cap, n + 1, sizeof *items) || !cli_grow((void**)&lines, &lcap, n + 1, sizeof *lines))
+        if ((oom = !cli_grow((void**)&items, &cap, n + 1, sizeof *items) || !cli_grow((void**)&lines, &lcap, n + 1, sizeof *lines)))
             break;
         if (!parse_trace_line(path, lineno, text, mesh, bvh, &items[n])) goto done;
         lines[n++] = lineno;
     }
-    if (!items || !lines || n == cap || n == lcap)
+    if (oom) /* (a file of exactly 256, 512, ... traces was once refused here too) */
         cli_error(path, lineno, "out of memory");
-    else if (ferror(in))
-        cli_error(path, 0, "read error");
     else
         result = (long)n;
 done:
-    if (in != stdin) fclose(in);
+    free(all);
     if (result < 0) free(items), free(lines), items = NULL, lines = NULL;
     *out = items;
     *out_lines = lines;

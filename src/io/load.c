@@ -14,20 +14,23 @@ static bool starts_with_ci(const char* p, const char* end, const char* word)
     return true;
 }
 
-/* The format a name's extension (before .gz) says; TG_FORMAT_AUTO when it says none. */
+/* Do the first n bytes of s end with the 4-character extension ext (".obj"), any case? */
+static bool ext_before(const char* s, size_t n, const char* ext)
+{
+    return n >= 4 && starts_with_ci(s + n - 4, s + n, ext);
+}
+
+/* The format a name's extension (before .gz) says; TG_FORMAT_AUTO when it says none. Names of
+ * any length (a copy into a fixed buffer once cut long names before their extension). */
 static tg_format format_from_name(const char* name)
 {
     if (name && *name) {
-        char base[1024];
         size_t n = strlen(name);
-        if (n >= sizeof base) n = sizeof base - 1;
-        memcpy(base, name, n);
-        base[n] = '\0';
-        if (tg__ends_with_ci(base, ".gz")) base[n - 3] = '\0';
-        if (tg__ends_with_ci(base, ".obj")) return TG_FORMAT_OBJ;
-        if (tg__ends_with_ci(base, ".off")) return TG_FORMAT_OFF;
-        if (tg__ends_with_ci(base, ".ply")) return TG_FORMAT_PLY;
-        if (tg__ends_with_ci(base, ".stl")) return TG_FORMAT_STL;
+        if (tg__ends_with_ci(name, ".gz")) n -= 3;
+        if (ext_before(name, n, ".obj")) return TG_FORMAT_OBJ;
+        if (ext_before(name, n, ".off")) return TG_FORMAT_OFF;
+        if (ext_before(name, n, ".ply")) return TG_FORMAT_PLY;
+        if (ext_before(name, n, ".stl")) return TG_FORMAT_STL;
     }
     return TG_FORMAT_AUTO;
 }

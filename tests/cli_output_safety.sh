@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # cli_output_safety.sh: no run of any command destroys a file it reads or writes two outputs into
 # one file, and the outputs of a run are one transaction.
-# 1. A table of every command and mode with every output option: each output is given as each
+# 1. A table of every command and mode (31 command lines) with every output option: each output is given as each
 #    input of the run (the file itself, a symbolic link to it, a hard link to it, and the input
 #    read through a link), and as another output of the run (the same name, the same name spelled
 #    differently, a link): refused (exit 1) before any work, every input byte-identical, no file or
@@ -59,11 +59,14 @@ rows = [
     "trace {mesh} --batch {in:traces.txt} -o {out:o.csv}",
     "logmap {mesh} --from v:0 -o {out:o.ply}",
     "logmap {mesh} --from v:0 -o {out:o.npy}",
+    "logmap {mesh} --from v:0 -o {out:o.csv}",
     "field {mesh} --from v:0 -o {out:o.ply}",
     "field {mesh} --from v:0 --csv {out:o.csv}",
     "field {mesh} --from v:0 --at {in:points.txt} -o {out:o.txt}",
     "field {mesh} --sources {in:sources.txt} -o {out:o.npy}",
     "field {mesh} --sources {in:sources.txt} --max-distance 0.2 -o {out:o.npz}",
+    "field {mesh} --sources {in:sources.txt} --sparse -o {out:o.csv}",
+    "field {mesh} --sources all --max-distance 0.05 -o {out:o.npz}",
     "field {mesh} --sources {in:sources.txt} --to {in:points.txt} -o {out:o.csv}",
     "field {mesh} --sources {in:sources.txt} --labels -o {out:o.ply} --boundaries {out:b.obj}",
     "field {mesh} --from v:0;v:400 --labels -o {out:o.csv} --boundaries {out:b.json}",

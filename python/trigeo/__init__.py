@@ -1,10 +1,10 @@
 """trigeo: exact distances and shortest paths on triangle meshes, with NumPy arrays in and out.
 
 A pure-Python package over the C library libtrigeo.so (ctypes; no compiled extension). The
-library is found through the TRIGEO_LIB environment variable if set, else the repository's
-build/libtrigeo.so (after `make`), else the library inside the package (`pip install .` puts it
-there), else the library installed beside the package (`make install` puts both under
-PREFIX/lib), else the system loader.
+library is found through the TRIGEO_LIB environment variable if set, else the checkout's
+build/libtrigeo.so (after `make`; only for the python/trigeo folder of a checkout), else the
+library inside the package (`pip install .` puts it there), else the library `make install` put
+beside the package (both under PREFIX/lib); nowhere else.
 
     import trigeo
     mesh = trigeo.load("data/nvd_spot.obj")          # OBJ, OFF, PLY, STL, optionally .gz

@@ -772,6 +772,13 @@ class Mesh:
         self._owner = _MeshHandle(handle)
         self._h = handle
         self._source = source
+        self._source_ids: tuple = ()  # (device, inode) of the file loaded: outputs never replace it
+        if source is not None:
+            try:
+                st = os.stat(source)
+                self._source_ids = ((st.st_dev, st.st_ino),)
+            except OSError:
+                pass
         self._lock = threading.Lock()
         self._bvh = None
         self._geo = None
@@ -1514,11 +1521,14 @@ class Mesh:
         --field`). Names: 1-64 letters, digits and '_', not x, y or z. The file appears only when
         complete (written into a private temporary directory beside it, then renamed over it: a
         full disk or Ctrl-C leaves the previous file as it was); a character device or FIFO is
-        written directly. Raises FileError when the file cannot be written."""
+        written directly. A path that is the mesh's own file (the same file through any name or
+        link) is refused (InvalidArgumentError), as any output that is an input. Raises FileError
+        when the file cannot be written."""
         p = _fs_path(path, "path")
         low = p.lower()
         if not (low.endswith(".obj") or low.endswith(".ply")):
             raise _bad(f"save writes .obj or .ply files, not {p!r}")
+        self._check_output(p, "path")
         if fields is not None and not isinstance(fields, dict):
             raise _bad(f"fields must be a dict of name -> (n,) array, not {_show(fields)}")
         fields = fields or {}
@@ -1686,7 +1696,8 @@ class Mesh:
         """Writes a PNG picture of the mesh (orthographic, shaded), with an optional path (a Path
         or a (k, 3) polyline, drawn as a red tube) and an optional per-vertex field (n values,
         coloured dark blue to yellow with isolines; non-finite values, e.g. inf, drawn grey).
-        width, height: 1 to 8192 pixels. view: the direction the camera looks
+        png_path: a name ending in .png (any case), never the mesh's own file (InvalidArgumentError,
+        before any work). width, height: 1 to 8192 pixels. view: the direction the camera looks
         along, e.g. (0, 0, -1) (finite, not all zero); None: a three-quarter view. isolines: the
         number of colour bands, 0 for none.
         Memory is bounded (the library's TG_RENDER_MAX_BYTES, 2 GiB: large pictures get less
@@ -1703,6 +1714,9 @@ class Mesh:
         instead of the colour bands. Every argument is checked before any drawing: a wrong type,
         shape, length or value raises InvalidArgumentError naming it."""
         png = _fs_path(png_path, "png_path")
+        if not png.lower().endswith(".png"):
+            raise _bad(f"render writes PNG files: png_path must end in .png, not {png!r}")
+        self._check_output(png, "png_path")
         o = _c.RenderOptions()
         for name, size in (("width", width), ("height", height)):
             if isinstance(size, (bool, np.bool_)) or not isinstance(size, (int, np.integer)) or not 1 <= size <= 8192:
@@ -1817,6 +1831,23 @@ class Mesh:
         pts = np.concatenate(parts) if parts else np.empty((0, 3))
         starts = np.cumsum([0] + [len(q) for q in parts]).astype(np.uintp)
         return np.ascontiguousarray(pts), starts, np.array(part_level, dtype=np.float64)
+
+    def _check_output(self, path: str, what: str) -> None:
+        """Refuses an output path that is an input of the call: the mesh's own file (the same
+        device and inode, through links; as loaded, and what its path names now)."""
+        try:
+            st = os.stat(path)
+        except OSError:
+            return  # nothing there (or unreachable): not an input
+        ids = set(self._source_ids)
+        if self._source:
+            try:
+                now = os.stat(self._source)
+                ids.add((now.st_dev, now.st_ino))
+            except OSError:
+                pass
+        if (st.st_dev, st.st_ino) in ids:
+            raise _bad(f"{what} {path!r} is the mesh's own file ({self._source}): an output never overwrites an input")
 
 
 def _labels(labels: np.ndarray) -> np.ndarray:

@@ -163,7 +163,7 @@ class SurfacePoint:
 
     def __init__(self, face: int, bary: Sequence[float] = (1 / 3, 1 / 3, 1 / 3), *, kind: str = "face",
                  t: float = 0.0):
-        if kind not in self._KINDS:
+        if not isinstance(kind, str) or kind not in self._KINDS:
             raise _bad(f"SurfacePoint kind must be one of {self._KINDS}, not {kind!r}")
         object.__setattr__(self, "kind", kind)
         object.__setattr__(self, "index", _index(face, "SurfacePoint index"))
@@ -307,6 +307,13 @@ def _check_values(a: np.ndarray, what: str, allowed: str) -> None:
         raise _bad(f"{what}[{index}] = {flat[i]!r} must be {words}")
 
 
+def _flag(x: Any, what: str) -> bool:
+    """A yes/no argument: a bool (or the integer 0 or 1), never an array whose truth is ambiguous."""
+    if isinstance(x, (bool, np.bool_)) or (isinstance(x, (int, np.integer)) and x in (0, 1)):
+        return bool(x)
+    raise _bad(f"{what} must be True or False, not {_show(x)}")
+
+
 def _choice(x: Any, what: str, table: dict) -> Any:
     """A keyword argument from a fixed set of names."""
     if not isinstance(x, str) or x not in table:
@@ -341,6 +348,14 @@ def _points(points: Any, what: str = "points") -> np.ndarray:
         raise _bad(f"{what}[{i}] = {a[i].tolist()} is beyond the supported range of +-1e150 "
                    "(squared distances would overflow)")
     return a
+
+
+def _shape(x: Any) -> Optional[tuple]:
+    """np.shape(x), or None for a ragged sequence (which has none)."""
+    try:
+        return np.shape(x)
+    except ValueError:
+        return None
 
 
 def _polyline(points: Any, what: str) -> np.ndarray:
@@ -583,7 +598,11 @@ atexit.register(_remove_temporaries)
 
 
 def _fs_path(path: Any, what: str) -> str:
-    p = os.fspath(path)
+    try:
+        p = os.fspath(path)
+    except TypeError:
+        raise _bad(f"{what} must be a file name (str, bytes or os.PathLike), not {type(path).__name__} "
+                   f"{_show(path)}") from None
     if isinstance(p, bytes):
         p = os.fsdecode(p)
     if "\0" in p:
@@ -1076,6 +1095,7 @@ class Mesh:
         Endpoints in different components give a Path with status "unreachable" and length inf.
         Ctrl-C interrupts it (KeyboardInterrupt within a few milliseconds of work)."""
         _choice(method, "method", _METHODS)
+        certify = _flag(certify, "certify")
 
         def work(call: _Call) -> "Path":
             spa = self._surface_point(a, "a")
@@ -1122,6 +1142,7 @@ class Mesh:
         out among that many threads, each with its own workspace. Returns (k,) float64, the same
         numbers as k calls of path(). Ctrl-C interrupts it."""
         _choice(method, "method", _METHODS)
+        certify = _flag(certify, "certify")
         threads = _threads(threads)
 
         def work(call: _Call) -> np.ndarray:
@@ -1176,6 +1197,7 @@ class Mesh:
         (x, y, z) positions), at least one. The Path's waypoint_points ((m,) int64, m = the number
         of points, + 1 when closed) gives the index in path.points of each waypoint in visiting
         order. Consecutive points in different components give status "unreachable", length inf."""
+        closed = _flag(closed, "closed")
         pts = self._surface_points(points, "points")
         if len(pts) == 0:
             raise _bad("path_through needs at least one point")
@@ -1201,6 +1223,7 @@ class Mesh:
     def _directions(directions: Any, k: int, angles: bool) -> ctypes.Array:
         """k directions: (k, 3) or one (3,) vector (TG_TRACE_VECTOR); with angles, k or one angle
         in radians (TG_TRACE_ANGLE)."""
+        angles = _flag(angles, "angles")
         a = _floats(directions, "direction", "angles in radians" if angles else "3D vectors")
         vectors = not angles
         if vectors and a.ndim in (1, 2) and a.shape[-1] == 3:
@@ -1256,7 +1279,7 @@ class Mesh:
         Returns a Trace (points, faces, surface points, the end and its direction, the status)."""
         sp = (_c.SurfacePointC * 1)(self._surface_point(start, "start"))
         is_angle = isinstance(direction, (int, float, np.integer, np.floating)) and not isinstance(direction, (bool, np.bool_))
-        if not is_angle and np.shape(direction) != (3,):
+        if not is_angle and _shape(direction) != (3,):
             raise _bad(f"direction must be a 3D vector or an angle in radians, not {direction!r}")
         d = self._directions(direction, 1, is_angle)
         lengths = self._lengths(length, 1)
@@ -1416,6 +1439,7 @@ class Mesh:
         each source to them, each field stopped as soon as its targets are settled (see
         _matrix_at). sparse=True: the local matrix, a scipy.sparse.csr_matrix of every vertex
         within max_distance of each source (see _local_matrix); sources may then be "all"."""
+        sparse = _flag(sparse, "sparse")
         if targets is not None:
             if sparse:
                 raise _bad("targets gives a dense (K, T) matrix: sparse=True does not apply")
@@ -1564,6 +1588,7 @@ class Mesh:
         "points" (k, 3) float64, "surface_points" k SurfacePoints (edge crossings, where the two
         sources' exact distances are equal to 1e-10 relative, and junctions inside faces of
         three cells); closed loops repeat their first point."""
+        boundaries = _flag(boundaries, "boundaries")
         n = self.vertex_count
         labels = np.empty(n, dtype=np.uint32)
         dist = np.empty(n)
@@ -1608,6 +1633,7 @@ class Mesh:
         polyline is a dict: "points" (k, 3), "closed" bool, "faces" (k,) int64 (a face holding
         each point), "surface_points" k SurfacePoints (edge points at crossings, face points
         inside faces). max_distance: as field() (levels beyond it give no polylines)."""
+        details = _flag(details, "details")
         lv = np.ascontiguousarray(np.atleast_1d(_floats(levels, "levels", "a level or a sequence")).ravel())
         if lv.size == 0:
             raise _bad(f"levels must be one or more finite numbers >= 0, not {_show(levels)}")

@@ -80,7 +80,8 @@ def test_installed_package_loads_its_own_library(planted, tmp_path, site):
     here = os.path.join(pkg, "libtrigeo.so")
     shutil.copyfile(_lib.lib_path, here)
     above = [os.path.normpath(os.path.join(pkg, "..", "..", "build", "libtrigeo.so")),
-             os.path.normpath(os.path.join(pkg, "..", "..", "..", "libtrigeo.so")), str(prefix / "lib" / "build" / "libtrigeo.so")]
+             os.path.normpath(os.path.join(pkg, "..", "..", "..", "libtrigeo.so")),
+             str(prefix / "lib" / "build" / "libtrigeo.so")]
     _plant(so, *above)
     r = _import(str(prefix / site), cwd=str(tmp_path))
     print(r.stdout, r.stderr[-1500:])

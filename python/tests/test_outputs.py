@@ -48,7 +48,8 @@ def test_render_onto_the_mesh_is_refused(mesh_file, tmp_path):
 def test_outputs_onto_the_mesh_through_any_name_are_refused(mesh_file, tmp_path, monkeypatch, how):
     before = mesh_file.read_bytes()
     m = trigeo.load(mesh_file)
-    for ext, call in ((".obj", lambda t: m.save(t)), (".ply", lambda t: m.save(t, fields={"d": np.zeros(m.vertex_count)})),
+    for ext, call in ((".obj", lambda t: m.save(t)),
+                      (".ply", lambda t: m.save(t, fields={"d": np.zeros(m.vertex_count)})),
                       (".png", lambda t: m.render(t, width=32, height=24))):
         if how == "same":
             if ext != ".obj":

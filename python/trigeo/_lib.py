@@ -23,7 +23,8 @@ def _checkout_root() -> str | None:
     root = os.path.dirname(os.path.dirname(_HERE))
     if os.path.basename(_HERE) != "trigeo" or os.path.basename(os.path.dirname(_HERE)) != "python":
         return None
-    if os.path.isfile(os.path.join(root, "CMakeLists.txt")) and os.path.isfile(os.path.join(root, "include", "trigeo.h")):
+    marks = (os.path.join(root, "CMakeLists.txt"), os.path.join(root, "include", "trigeo.h"))
+    if all(os.path.isfile(m) for m in marks):
         return root
     return None
 
@@ -37,7 +38,8 @@ def _candidates() -> list[tuple[str, str | None, str]]:
     package and no system search path: a libtrigeo.so someone else can put there is never run."""
     env = os.environ.get("TRIGEO_LIB")
     if env:
-        return [("TRIGEO_LIB", os.path.abspath(env), "")]  # an explicit choice is never silently replaced by another library
+        # an explicit choice is never silently replaced by another library
+        return [("TRIGEO_LIB", os.path.abspath(env), "")]
     out: list[tuple[str, str | None, str]] = []
     root = _checkout_root()
     if root is not None:
@@ -52,7 +54,8 @@ def _candidates() -> list[tuple[str, str | None, str]]:
         out.append(("the library installed with the package",
                     os.path.normpath(os.path.join(_HERE, "..", "..", "..", "libtrigeo.so")), ""))
     else:
-        out.append(("the library installed with the package", None, f"no {INSTALLED_MARK} in {_HERE} (not `make install`)"))
+        out.append(("the library installed with the package", None,
+                    f"no {INSTALLED_MARK} in {_HERE} (not `make install`)"))
     return out
 
 

@@ -118,11 +118,12 @@ def _number_refusal(err, name):
     return isinstance(err, trigeo.InvalidArgumentError) and name in str(err) and "must be" in str(err)
 
 
-@pytest.mark.parametrize("row", ROWS, ids=[r[0].replace(" ", "_") for r in ROWS])
+RANGED = [r for r in ROWS if r[1] is not None]  # the others the library judges against the mesh
+
+
+@pytest.mark.parametrize("row", RANGED, ids=[r[0].replace(" ", "_") for r in RANGED])
 def test_python_numbers_follow_the_rule(setup, tmp_path, row):
     name, allowed, _, _, arg = row
-    if allowed is None:
-        pytest.skip("the library judges these values against the mesh (compared with the CLI below)")
     env = _Env(setup, tmp_path)
     bad = []
     for x in VALUES:

@@ -1,10 +1,10 @@
 """trigeo: exact distances and shortest paths on triangle meshes, with NumPy arrays in and out.
 
 A pure-Python package over the C library libtrigeo.so (ctypes; no compiled extension). The
-library is found through the TRIGEO_LIB environment variable if set, else the repository's
-build/libtrigeo.so (after `make`), else the library inside the package (`pip install .` puts it
-there), else the library installed beside the package (`make install` puts both under
-PREFIX/lib), else the system loader.
+library is found through the TRIGEO_LIB environment variable if set, else the checkout's
+build/libtrigeo.so (after `make`; only for the python/trigeo folder of a checkout), else the
+library inside the package (`pip install .` puts it there), else the library `make install` put
+beside the package (both under PREFIX/lib); nowhere else.
 
     import trigeo
     mesh = trigeo.load("data/nvd_spot.obj")          # OBJ, OFF, PLY, STL, optionally .gz
@@ -163,12 +163,19 @@ class SurfacePoint:
 
     def __init__(self, face: int, bary: Sequence[float] = (1 / 3, 1 / 3, 1 / 3), *, kind: str = "face",
                  t: float = 0.0):
-        if kind not in self._KINDS:
+        if not isinstance(kind, str) or kind not in self._KINDS:
             raise _bad(f"SurfacePoint kind must be one of {self._KINDS}, not {kind!r}")
         object.__setattr__(self, "kind", kind)
         object.__setattr__(self, "index", _index(face, "SurfacePoint index"))
-        object.__setattr__(self, "t", float(t))
-        b = tuple(float(x) for x in bary) if kind == "face" else (0.0, 0.0, 0.0)
+        object.__setattr__(self, "t", _real(t, "SurfacePoint t"))
+        if kind == "face":
+            try:
+                items = list(bary)
+            except TypeError:
+                raise _bad(f"SurfacePoint needs 3 barycentric coordinates, not {_show(bary)}") from None
+            b = tuple(_real(x, "SurfacePoint barycentric coordinate") for x in items)
+        else:
+            b = (0.0, 0.0, 0.0)
         if len(b) != 3:
             raise _bad(f"SurfacePoint needs 3 barycentric coordinates, got {len(b)}")
         object.__setattr__(self, "bary", b)
@@ -227,8 +234,91 @@ def _index(x: Any, what: str) -> int:
         raise _bad(f"{what} must be an integer, not {type(x).__name__}")
     i = int(x)
     if not 0 <= i < 0xFFFFFFFF:
-        raise _bad(f"{what} {i} is out of range")
+        raise _bad(f"{what} {i} is out of range: an index from 0 to 4294967294")
     return i
+
+
+def _u64(x: Any, what: str) -> int:
+    """An integer in 0 .. 2**64 - 1 (a seed: the range `trigeo sample --seed` takes)."""
+    if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, np.integer)):
+        raise _bad(f"{what} must be an integer, not {type(x).__name__}")
+    i = int(x)
+    if not 0 <= i <= 0xFFFFFFFFFFFFFFFF:
+        raise _bad(f"{what} {i} is out of range: an integer from 0 to 2**64 - 1")
+    return i
+
+
+def _show(x: Any) -> str:
+    """x for a message: its repr, cut to 60 characters."""
+    r = repr(x)
+    return r if len(r) <= 60 else r[:57] + "..."
+
+
+# The ranges of numeric arguments; one rule with the CLI's numbers (tools/: a number is the double
+# it is, subnormals included, then checked against its argument's range).
+_RANGES = {"finite": ("a finite number", lambda v: math.isfinite(v)),
+           ">=0": ("a finite number >= 0", lambda v: math.isfinite(v) and v >= 0.0),
+           ">0": ("a finite number > 0", lambda v: math.isfinite(v) and v > 0.0)}
+
+
+def _real(x: Any, what: str) -> float:
+    """A Python or NumPy number (not a bool or a string) as the double it is, unchecked: for
+    values the library validates against the mesh (barycentric coordinates, edge parameters)."""
+    if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, float, np.integer, np.floating)):
+        raise _bad(f"{what} must be a number, not {type(x).__name__} {_show(x)}")
+    try:
+        return float(x)
+    except OverflowError:
+        raise _bad(f"{what} = {_show(x)} is beyond the range of a double") from None
+
+
+def _number(x: Any, what: str, allowed: str = "finite", hint: str = "") -> float:
+    """One numeric argument: the double it is (subnormals included), then its range: "finite",
+    ">=0" or ">0"."""
+    v = _real(x, what)
+    words, ok = _RANGES[allowed]
+    if not ok(v):
+        raise _bad(f"{what} must be {words}{hint}, not {_show(x)}")
+    return v
+
+
+def _floats(x: Any, what: str, shape: str) -> np.ndarray:
+    """An array of numbers (any integer or float dtype) as float64, unchecked in range; shape
+    names what is expected, for the message."""
+    try:
+        a = np.asarray(x)
+    except (TypeError, ValueError):  # ragged nesting
+        raise _bad(f"{what} must be {shape} of numbers, not {_show(x)}") from None
+    if a.dtype.kind not in "fiu":
+        raise _bad(f"{what} must be {shape} of numbers, not {_show(x)} (dtype {a.dtype})")
+    return a.astype(np.float64)
+
+
+def _check_values(a: np.ndarray, what: str, allowed: str) -> None:
+    """Every element of a (any shape) in the range of _number; the first outside is named."""
+    words, ok = _RANGES[allowed]
+    flat = a.reshape(-1)
+    good = np.isfinite(flat) if allowed == "finite" else (
+        np.isfinite(flat) & ((flat >= 0.0) if allowed == ">=0" else (flat > 0.0)))
+    if not good.all():
+        i = int(np.argmin(good))
+        where = np.unravel_index(i, a.shape) if a.ndim > 1 else (i,)
+        index = ", ".join(str(int(k)) for k in where)
+        raise _bad(f"{what}[{index}] = {flat[i]!r} must be {words}")
+
+
+def _flag(x: Any, what: str) -> bool:
+    """A yes/no argument: a bool (or the integer 0 or 1), never an array whose truth is ambiguous."""
+    if isinstance(x, (bool, np.bool_)) or (isinstance(x, (int, np.integer)) and x in (0, 1)):
+        return bool(x)
+    raise _bad(f"{what} must be True or False, not {_show(x)}")
+
+
+def _choice(x: Any, what: str, table: dict) -> Any:
+    """A keyword argument from a fixed set of names."""
+    if not isinstance(x, str) or x not in table:
+        raise _bad(f"{what} must be one of {sorted(table)}, not {_show(x)}")
+    return table[x]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -237,7 +327,10 @@ def _index(x: Any, what: str) -> int:
 
 def _points(points: Any, what: str = "points") -> np.ndarray:
     """(k, 3) C-contiguous float64, finite; a C-contiguous float64 input is returned as it is."""
-    a = np.asarray(points)
+    try:
+        a = np.asarray(points)
+    except (TypeError, ValueError):  # ragged nesting
+        raise _bad(f"{what} must be a (k, 3) array of numbers, not {_show(points)}") from None
     if a.dtype.kind not in "fiu" or a.dtype == np.float16:
         raise _bad(f"{what} must be numbers (float64 preferred), not dtype {a.dtype}")
     if a.ndim == 1 and a.shape[0] == 3:
@@ -255,6 +348,21 @@ def _points(points: Any, what: str = "points") -> np.ndarray:
         raise _bad(f"{what}[{i}] = {a[i].tolist()} is beyond the supported range of +-1e150 "
                    "(squared distances would overflow)")
     return a
+
+
+def _shape(x: Any) -> Optional[tuple]:
+    """np.shape(x), or None for a ragged sequence (which has none)."""
+    try:
+        return np.shape(x)
+    except ValueError:
+        return None
+
+
+def _polyline(points: Any, what: str) -> np.ndarray:
+    """A polyline: (k, 3) as _points, k >= 0 (an empty sequence is no point)."""
+    if isinstance(points, (list, tuple, np.ndarray)) and len(points) == 0:
+        return np.empty((0, 3))
+    return _points(points, what)
 
 
 MAX_THREADS = 256  # TG_MAX_THREADS of include/trigeo.h
@@ -490,7 +598,11 @@ atexit.register(_remove_temporaries)
 
 
 def _fs_path(path: Any, what: str) -> str:
-    p = os.fspath(path)
+    try:
+        p = os.fspath(path)
+    except TypeError:
+        raise _bad(f"{what} must be a file name (str, bytes or os.PathLike), not {type(path).__name__} "
+                   f"{_show(path)}") from None
     if isinstance(p, bytes):
         p = os.fsdecode(p)
     if "\0" in p:
@@ -592,8 +704,7 @@ def load(path: Union[str, os.PathLike], format: str = "auto") -> "Mesh":
     InvalidMeshError or UnsupportedError (InvalidArgumentError for a path with a NUL
     character); something the reader tolerated (padding after a binary STL) is a LoadWarning.
     Ctrl-C interrupts it."""
-    if format not in _FORMATS:
-        raise _bad(f"format must be one of {sorted(_FORMATS)}, not {format!r}")
+    fmt = _choice(format, "format", _FORMATS)
     name = _fs_path(path, "path")
     p = os.fsencode(name)
     call = _Call()
@@ -601,7 +712,7 @@ def load(path: Union[str, os.PathLike], format: str = "auto") -> "Mesh":
 
     def work() -> Optional[int]:
         h = ctypes.c_void_p()
-        st = _L.tg_mesh_load(p, _FORMATS[format], None, ctypes.byref(diag), ctypes.byref(h))
+        st = _L.tg_mesh_load(p, fmt, None, ctypes.byref(diag), ctypes.byref(h))
         if st == 0 and call.cancel:  # Ctrl-C came first: nobody will take this mesh
             _L.tg_mesh_destroy(h.value)
             return None
@@ -616,12 +727,15 @@ def load(path: Union[str, os.PathLike], format: str = "auto") -> "Mesh":
 def load_bytes(data: bytes, name: str = "", format: str = "auto") -> "Mesh":
     """A mesh from the bytes of a mesh file (gzip data is inflated); name is used in messages and,
     with format "auto", for its extension. Errors and warnings as load()."""
-    if format not in _FORMATS:
-        raise _bad(f"format must be one of {sorted(_FORMATS)}, not {format!r}")
+    fmt = _choice(format, "format", _FORMATS)
+    if not isinstance(data, (bytes, bytearray, memoryview)):
+        raise _bad(f"data must be bytes (a mesh file's content), not {type(data).__name__}")
+    if not isinstance(name, str):
+        raise _bad(f"name must be a str, not {type(name).__name__}")
     data = bytes(data)
     diag = _c.Diag()
     h = ctypes.c_void_p()
-    st = _L.tg_mesh_load_memory(data, len(data), os.fsencode(name), _FORMATS[format], None, ctypes.byref(diag),
+    st = _L.tg_mesh_load_memory(data, len(data), os.fsencode(name), fmt, None, ctypes.byref(diag),
                                 ctypes.byref(h))
     _check(st, name or "load_bytes", diag)
     _warn_diag(diag)
@@ -643,8 +757,11 @@ class Mesh:
     """
 
     def __init__(self, vertices: Any, faces: Any):
-        v = np.asarray(vertices)
-        f = np.asarray(faces)
+        try:
+            v = np.asarray(vertices)
+            f = np.asarray(faces)
+        except (TypeError, ValueError):  # ragged nesting
+            raise _bad("vertices and faces must be (n, 3) and (m, 3) arrays, not ragged sequences") from None
         if v.ndim != 2 or v.shape[1] != 3 or v.dtype.kind not in "fiu":
             raise _bad(f"vertices must be an (n, 3) array of numbers, not shape {v.shape} dtype {v.dtype}")
         if f.ndim != 2 or f.shape[1] != 3 or f.dtype.kind not in "iu":
@@ -674,6 +791,13 @@ class Mesh:
         self._owner = _MeshHandle(handle)
         self._h = handle
         self._source = source
+        self._source_ids: tuple = ()  # (device, inode) of the file loaded: outputs never replace it
+        if source is not None:
+            try:
+                st = os.stat(source)
+                self._source_ids = ((st.st_dev, st.st_ino),)
+            except OSError:
+                pass
         self._lock = threading.Lock()
         self._bvh = None
         self._geo = None
@@ -712,6 +836,8 @@ class Mesh:
     def _run(self, work: Callable[[_Call], Any], progress: Optional[Callable[[float], Any]] = None) -> Any:
         """A public call: the Mesh in use for its duration (close() waits), work(call) run so
         that Ctrl-C interrupts it (see _Call)."""
+        if progress is not None and not callable(progress):
+            raise _bad(f"progress must be a function of the settled fraction (or None), not {_show(progress)}")
         call = _Call(progress)
         with self._uses.use():
             return call.run(lambda: work(call), self._uses)
@@ -850,8 +976,7 @@ class Mesh:
         manifold without degenerate faces, else winding). The sign does not depend on the scale
         or position of the mesh. Returns (signed distance (k,), face (k,), closest point (k, 3));
         0 exactly on the surface. threads as closest(); Ctrl-C interrupts it."""
-        if method not in _SIGN:
-            raise _bad(f"method must be one of {sorted(_SIGN)}, not {method!r}")
+        sign = _choice(method, "method", _SIGN)
         p = _points(points)
         threads = _threads(threads)
         hits = np.empty(p.shape[0], dtype=_SIGNED)
@@ -859,7 +984,7 @@ class Mesh:
         def work(call: _Call) -> int:
             bvh = self._get_bvh(threads)
             return self._batch(call, p.shape[0], threads, lambda lo, hi: _L.tg_bvh_signed_distance_batch(
-                bvh, _ptr(p[lo:hi]), hi - lo, _SIGN[method], threads,
+                bvh, _ptr(p[lo:hi]), hi - lo, sign, threads,
                 hits[lo:hi].ctypes.data_as(ctypes.POINTER(_c.SignedHit))))
 
         _check(self._run(work), "signed_distance")
@@ -969,8 +1094,8 @@ class Mesh:
         comes out proven (redundant with "exact").
         Endpoints in different components give a Path with status "unreachable" and length inf.
         Ctrl-C interrupts it (KeyboardInterrupt within a few milliseconds of work)."""
-        if method not in _METHODS:
-            raise _bad(f"method must be one of {sorted(_METHODS)}, not {method!r}")
+        _choice(method, "method", _METHODS)
+        certify = _flag(certify, "certify")
 
         def work(call: _Call) -> "Path":
             spa = self._surface_point(a, "a")
@@ -997,7 +1122,10 @@ class Mesh:
             if len(a) != len(b):
                 raise _bad(f"froms and tos differ in length ({len(a)} and {len(b)})")
             return a, b
-        pa = np.asarray(pairs)
+        try:
+            pa = np.asarray(pairs)
+        except (TypeError, ValueError):  # ragged nesting
+            raise _bad(f"pairs must be a (k, 2) integer array of vertices, not {_show(pairs)}") from None
         if pa.ndim != 2 or pa.shape[1] != 2 or (pa.size and pa.dtype.kind not in "iu"):
             raise _bad(f"pairs must be a (k, 2) integer array of vertices, not shape {pa.shape} dtype {pa.dtype}")
         return (self._surface_points(pa[:, 0].astype(np.int64), "pairs[:, 0]"),
@@ -1013,8 +1141,8 @@ class Mesh:
         path() (default "exact": globally shortest). threads: 0 all cores; the pairs are shared
         out among that many threads, each with its own workspace. Returns (k,) float64, the same
         numbers as k calls of path(). Ctrl-C interrupts it."""
-        if method not in _METHODS:
-            raise _bad(f"method must be one of {sorted(_METHODS)}, not {method!r}")
+        _choice(method, "method", _METHODS)
+        certify = _flag(certify, "certify")
         threads = _threads(threads)
 
         def work(call: _Call) -> np.ndarray:
@@ -1069,6 +1197,7 @@ class Mesh:
         (x, y, z) positions), at least one. The Path's waypoint_points ((m,) int64, m = the number
         of points, + 1 when closed) gives the index in path.points of each waypoint in visiting
         order. Consecutive points in different components give status "unreachable", length inf."""
+        closed = _flag(closed, "closed")
         pts = self._surface_points(points, "points")
         if len(pts) == 0:
             raise _bad("path_through needs at least one point")
@@ -1094,10 +1223,8 @@ class Mesh:
     def _directions(directions: Any, k: int, angles: bool) -> ctypes.Array:
         """k directions: (k, 3) or one (3,) vector (TG_TRACE_VECTOR); with angles, k or one angle
         in radians (TG_TRACE_ANGLE)."""
-        try:
-            a = np.asarray(directions, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise _bad(f"direction must be a 3D vector or an angle in radians, not {directions!r}") from None
+        angles = _flag(angles, "angles")
+        a = _floats(directions, "direction", "angles in radians" if angles else "3D vectors")
         vectors = not angles
         if vectors and a.ndim in (1, 2) and a.shape[-1] == 3:
             a = a.reshape(-1, 3)
@@ -1123,12 +1250,10 @@ class Mesh:
 
     @staticmethod
     def _lengths(lengths: Any, k: int) -> np.ndarray:
-        a = np.asarray(lengths, dtype=np.float64).reshape(-1)
+        a = _floats(lengths, "length", "a length or lengths").reshape(-1)
         if a.shape[0] not in (1, k):
             raise _bad(f"{a.shape[0]} lengths for {k} starts")
-        if not np.all(np.isfinite(a) & (a >= 0)):
-            i = int(np.flatnonzero(~(np.isfinite(a) & (a >= 0)))[0])
-            raise _bad(f"length[{i}] = {a[i]!r} must be a finite number >= 0")
+        _check_values(a, "length", ">=0")
         return np.ascontiguousarray(np.broadcast_to(a, (k,)))
 
     def _refused(self, what: str, geo: int, starts, dirs, lengths, opts) -> None:
@@ -1154,7 +1279,7 @@ class Mesh:
         Returns a Trace (points, faces, surface points, the end and its direction, the status)."""
         sp = (_c.SurfacePointC * 1)(self._surface_point(start, "start"))
         is_angle = isinstance(direction, (int, float, np.integer, np.floating)) and not isinstance(direction, (bool, np.bool_))
-        if not is_angle and np.shape(direction) != (3,):
+        if not is_angle and _shape(direction) != (3,):
             raise _bad(f"direction must be a 3D vector or an angle in radians, not {direction!r}")
         d = self._directions(direction, 1, is_angle)
         lengths = self._lengths(length, 1)
@@ -1212,11 +1337,8 @@ class Mesh:
 
     def _field_options(self, max_distance: Optional[float], call: _Call) -> _c.FieldOptions:
         o = _c.FieldOptions()
-        if max_distance is not None and max_distance != math.inf:
-            md = float(max_distance)
-            if not md >= 0.0:
-                raise _bad(f"max_distance must be >= 0 (or None for no limit), not {max_distance!r}")
-            o.limit, o.max_distance = 1, md
+        if max_distance is not None:
+            o.limit, o.max_distance = 1, _number(max_distance, "max_distance", ">=0", " (None: no limit)")
         o.progress = call.field_fn
         return o
 
@@ -1227,7 +1349,8 @@ class Mesh:
 
         sources: a vertex index, a list or integer array of vertices, SurfacePoints (on faces or
         edges too), or (k, 3) positions snapped to the surface. max_distance: stop there (vertices
-        beyond get inf). progress: called with the settled fraction in [0, 1] every few ms; return
+        beyond get inf): a finite number >= 0 (subnormals included, as the CLI's --max-distance),
+        None for no limit. progress: called with the settled fraction in [0, 1] every few ms; return
         False to cancel (CancelledError). Ctrl-C stops the computation too. Returns (n,) float64;
         inf where no path reaches (other components, unused vertices). At least one source is
         needed (InvalidArgumentError otherwise)."""
@@ -1263,9 +1386,9 @@ class Mesh:
             sp = (_c.SurfacePointC * 1)(self._surface_point(source, "source"))
             rp = None
             if ref is not None:
-                rv = np.asarray(ref, dtype=np.float64)
+                rv = _floats(ref, "ref", "a 3D vector")
                 if rv.shape != (3,) or not np.all(np.isfinite(rv)) or not np.any(rv):
-                    raise _bad(f"ref must be a finite, non-zero 3D vector, not {ref!r}")
+                    raise _bad(f"ref must be a 3D vector of finite numbers, not all zero, not {_show(ref)}")
                 rv = np.ascontiguousarray(rv)
                 rp = _ptr(rv)
             o = self._field_options(max_distance, call)
@@ -1316,6 +1439,7 @@ class Mesh:
         each source to them, each field stopped as soon as its targets are settled (see
         _matrix_at). sparse=True: the local matrix, a scipy.sparse.csr_matrix of every vertex
         within max_distance of each source (see _local_matrix); sources may then be "all"."""
+        sparse = _flag(sparse, "sparse")
         if targets is not None:
             if sparse:
                 raise _bad("targets gives a dense (K, T) matrix: sparse=True does not apply")
@@ -1378,9 +1502,7 @@ class Mesh:
         way; SciPy drops the stored zeros of the diagonal, which M.setdiag(0) puts back)."""
         import scipy.sparse
 
-        radius = math.inf if max_distance is None else float(max_distance)
-        if not radius >= 0.0:
-            raise _bad(f"max_distance must be >= 0 (or None for no limit), not {max_distance!r}")
+        radius = math.inf if max_distance is None else _number(max_distance, "max_distance", ">=0", " (None: no limit)")
         everything = sources is None or (isinstance(sources, str) and sources == "all")
         if isinstance(sources, str) and not everything:
             raise _bad(f"sources must be surface points or \"all\", not {sources!r}")
@@ -1423,11 +1545,16 @@ class Mesh:
         --field`). Names: 1-64 letters, digits and '_', not x, y or z. The file appears only when
         complete (written into a private temporary directory beside it, then renamed over it: a
         full disk or Ctrl-C leaves the previous file as it was); a character device or FIFO is
-        written directly. Raises FileError when the file cannot be written."""
+        written directly. A path that is the mesh's own file (the same file through any name or
+        link) is refused (InvalidArgumentError), as any output that is an input. Raises FileError
+        when the file cannot be written."""
         p = _fs_path(path, "path")
         low = p.lower()
         if not (low.endswith(".obj") or low.endswith(".ply")):
             raise _bad(f"save writes .obj or .ply files, not {p!r}")
+        self._check_output(p, "path")
+        if fields is not None and not isinstance(fields, dict):
+            raise _bad(f"fields must be a dict of name -> (n,) array, not {_show(fields)}")
         fields = fields or {}
         if fields and not low.endswith(".ply"):
             raise _bad("per-vertex fields are written to PLY files (PATH.ply)")
@@ -1435,7 +1562,7 @@ class Mesh:
         for i, (name, values) in enumerate(fields.items()):
             if not isinstance(name, str):
                 raise _bad(f"field name {name!r} must be a string")  # its characters: the library checks
-            a = np.ascontiguousarray(values, dtype=np.float64)
+            a = np.ascontiguousarray(_floats(values, f"field {name!r}", "one value per vertex"))
             if a.shape != (self.vertex_count,):
                 raise _bad(f"field {name!r} must have one value per vertex ({self.vertex_count}), not shape {a.shape}")
             b = name.encode()
@@ -1461,6 +1588,7 @@ class Mesh:
         "points" (k, 3) float64, "surface_points" k SurfacePoints (edge crossings, where the two
         sources' exact distances are equal to 1e-10 relative, and junctions inside faces of
         three cells); closed loops repeat their first point."""
+        boundaries = _flag(boundaries, "boundaries")
         n = self.vertex_count
         labels = np.empty(n, dtype=np.uint32)
         dist = np.empty(n)
@@ -1505,10 +1633,11 @@ class Mesh:
         polyline is a dict: "points" (k, 3), "closed" bool, "faces" (k,) int64 (a face holding
         each point), "surface_points" k SurfacePoints (edge points at crossings, face points
         inside faces). max_distance: as field() (levels beyond it give no polylines)."""
-        lv = np.atleast_1d(np.asarray(levels, dtype=np.float64)).ravel()
-        if lv.size == 0 or not np.all(np.isfinite(lv)) or np.any(lv < 0):
-            raise _bad(f"levels must be one or more finite numbers >= 0, not {levels!r}")
-        lv = np.ascontiguousarray(lv)
+        details = _flag(details, "details")
+        lv = np.ascontiguousarray(np.atleast_1d(_floats(levels, "levels", "a level or a sequence")).ravel())
+        if lv.size == 0:
+            raise _bad(f"levels must be one or more finite numbers >= 0, not {_show(levels)}")
+        _check_values(lv, "levels", ">=0")
         handle = ctypes.c_void_p()
 
         def work(call: _Call) -> None:
@@ -1551,7 +1680,8 @@ class Mesh:
         """Farthest-point sampling in exact geodesic distance: sample 0 is `start` (a vertex used
         by a face), or, when None, the vertex `seed` picks (the same as `trigeo sample --seed`);
         each next sample is the vertex farthest from all earlier ones (a component no sample
-        reaches yet first; ties to the lowest index). Each new sample's field runs only where it
+        reaches yet first; ties to the lowest index); seed: any integer from 0 to 2**64 - 1, as the
+        CLI's, giving the CLI's samples. Each new sample's field runs only where it
         gets below the earlier ones. Returns (samples (count,) int64 in order, distance (n,)
         float64 to the nearest sample, labels (n,) int64: its position in samples, -1 where
         none reaches)."""
@@ -1561,7 +1691,7 @@ class Mesh:
         first = _c.NONE if start is None else _index(start, "start")
         if start is not None and first >= self.vertex_count:
             raise _bad(f"start {start!r} is not a vertex (the mesh has {self.vertex_count})")
-        sd = _index(seed, "seed")
+        sd = _u64(seed, "seed")
         n = self.vertex_count
         samples = np.empty(k, dtype=np.uint32)
         labels = np.empty(n, dtype=np.uint32)
@@ -1591,8 +1721,11 @@ class Mesh:
                boundaries: Any = None, logmap: Any = None, checker: float = 0.0, isoline_levels: Any = None) -> None:
         """Writes a PNG picture of the mesh (orthographic, shaded), with an optional path (a Path
         or a (k, 3) polyline, drawn as a red tube) and an optional per-vertex field (n values,
-        coloured dark blue to yellow with isolines; inf drawn grey). view: the direction the
-        camera looks along, e.g. (0, 0, -1); None: a three-quarter view. isolines: 0 for none.
+        coloured dark blue to yellow with isolines; non-finite values, e.g. inf, drawn grey).
+        png_path: a name ending in .png (any case), never the mesh's own file (InvalidArgumentError,
+        before any work). width, height: 1 to 8192 pixels. view: the direction the camera looks
+        along, e.g. (0, 0, -1) (finite, not all zero); None: a three-quarter view. isolines: the
+        number of colour bands, 0 for none.
         Memory is bounded (the library's TG_RENDER_MAX_BYTES, 2 GiB: large pictures get less
         supersampling). The file appears only when complete, as with save(); Ctrl-C interrupts
         the drawing and leaves no file.
@@ -1601,61 +1734,72 @@ class Mesh:
         (k, 3) arrays) drawn as dark tubes, instead of path.
         logmap: (n, 2) coordinates per vertex (log_map()'s uv), drawn as the checkerboard of
         squares of side `checker` (0: the bounding box diagonal / 40), instead of field and
-        labels; inf coordinates grey. isolines may also be the exact curves of isolines() (its list
-        of lists of (k, 3) arrays, one list per level; isoline_levels: the levels, for their
-        colours) drawn as thin lines instead of the colour bands."""
-        o = _c.RenderOptions()
+        labels; inf coordinates grey (NaN refused). isolines may also be the exact curves of
+        isolines() (its list of lists of (k, 3) arrays or dicts, one list per level;
+        isoline_levels: one finite level >= 0 per list, for their colours) drawn as thin lines
+        instead of the colour bands. Every argument is checked before any drawing: a wrong type,
+        shape, length or value raises InvalidArgumentError naming it."""
         png = _fs_path(png_path, "png_path")
-        if not (isinstance(width, (int, np.integer)) and isinstance(height, (int, np.integer))
-                and 1 <= width <= 8192 and 1 <= height <= 8192):
-            raise _bad(f"width and height must be integers in [1, 8192], not {width!r}, {height!r}")
+        if not png.lower().endswith(".png"):
+            raise _bad(f"render writes PNG files: png_path must end in .png, not {png!r}")
+        self._check_output(png, "png_path")
+        o = _c.RenderOptions()
+        for name, size in (("width", width), ("height", height)):
+            if isinstance(size, (bool, np.bool_)) or not isinstance(size, (int, np.integer)) or not 1 <= size <= 8192:
+                raise _bad(f"{name} must be an integer from 1 to 8192 (pixels), not {_show(size)}")
         o.width, o.height = int(width), int(height)
+        n = self.vertex_count
         keep = []
-        if isinstance(isolines, (int, np.integer)):
+        if isinstance(isolines, (int, np.integer)) and not isinstance(isolines, (bool, np.bool_)):
+            if not 0 <= isolines <= 0x7FFFFFFF:
+                raise _bad(f"isolines must be a number of bands from 0 (none) to 2147483647, not {isolines!r}")
             o.isolines = int(isolines) if isolines > 0 else -1
+            if isoline_levels is not None:
+                raise _bad("isoline_levels goes with isolines=the curves of isolines() (one list per level), "
+                           "not with a number of bands")
         else:  # exact curves: one list of polylines per level
-            parts, lv = [], []
-            for li, lines in enumerate(isolines):
-                for pl in lines:
-                    parts.append(_points(pl["points"] if isinstance(pl, dict) else pl, "isolines"))
-                    lv.append(float(isoline_levels[li]) if isoline_levels is not None else 0.0)
-            pts = np.concatenate(parts) if parts else np.empty((0, 3))
-            starts = np.cumsum([0] + [len(q) for q in parts]).astype(np.uintp)
-            levels_arr = np.array(lv, dtype=np.float64)
-            keep += [pts, starts, levels_arr]
-            o.isoline_xyz, o.isoline_start, o.isoline_parts = _ptr(pts), _ptr(starts, ctypes.c_size_t), len(parts)
+            curves = self._render_curves(isolines, isoline_levels)
+            keep.append(curves)
+            pts, starts, levels_arr = curves
+            o.isoline_xyz, o.isoline_start, o.isoline_parts = _ptr(pts), _ptr(starts, ctypes.c_size_t), len(starts) - 1
             if isoline_levels is not None:
                 o.isoline_level = _ptr(levels_arr)
         if view is not None:
-            v = _points(view, "view")[0]
-            if not np.any(v):
-                raise _bad("view must be a non-zero direction")
+            v = _floats(view, "view", "a 3D direction")
+            if v.shape != (3,) or not np.all(np.isfinite(v)) or not np.any(v):
+                raise _bad(f"view must be a 3D direction of finite numbers, not all zero, not {_show(view)}")
             o.view_dir = (ctypes.c_double * 3)(*v)
         if field is not None:
-            fa = np.ascontiguousarray(field, dtype=np.float64)
-            if fa.shape != (self.vertex_count,):
-                raise _bad(f"field must have one value per vertex ({self.vertex_count}), not shape {fa.shape}")
+            fa = np.ascontiguousarray(_floats(field, "field", "one value per vertex"))
+            if fa.shape != (n,):
+                raise _bad(f"field must have one value per vertex ({n}), not shape {fa.shape}")
             keep.append(fa)
             o.vertex_scalar = _ptr(fa)
         if labels is not None:
-            la = np.asarray(labels)
-            if la.shape != (self.vertex_count,) or la.dtype.kind not in "iu" or (la.size and la.min() < -1):
-                raise _bad(f"labels must be {self.vertex_count} integers (-1: no cell), not {la.dtype} {la.shape}")
+            try:
+                la = np.asarray(labels)
+            except (TypeError, ValueError):
+                la = np.empty(0, dtype=object)
+            if la.shape != (n,) or la.dtype.kind not in "iu" or (la.size and not -1 <= la.min() <= la.max() < _c.NONE):
+                raise _bad(f"labels must be {n} integers from -1 (no cell) to 4294967294, "
+                           f"not {_show(labels)} (dtype {la.dtype}, shape {la.shape})")
             cells = np.where(la < 0, _c.NONE, la).astype(np.uint32)
             keep.append(cells)
             o.vertex_label = _ptr(cells, ctypes.c_uint32)
         if logmap is not None:
-            uv = np.ascontiguousarray(logmap, dtype=np.float64)
-            if uv.shape != (self.vertex_count, 2):
-                raise _bad(f"logmap must be ({self.vertex_count}, 2) coordinates, not shape {uv.shape}")
-            if not (math.isfinite(checker) and checker >= 0.0):
-                raise _bad(f"checker must be a finite size >= 0, not {checker!r}")
+            uv = np.ascontiguousarray(_floats(logmap, "logmap", "(n, 2) coordinates"))
+            if uv.shape != (n, 2):
+                raise _bad(f"logmap must be ({n}, 2) coordinates, not shape {uv.shape}")
+            if np.isnan(uv).any():
+                i = int(np.argmax(np.isnan(uv).any(axis=1)))
+                raise _bad(f"logmap[{i}] = {uv[i].tolist()} is NaN (inf: a vertex not reached, drawn grey)")
             keep.append(uv)
-            o.vertex_uv, o.checker_size = _ptr(uv), float(checker)
+            o.vertex_uv = _ptr(uv)
+        o.checker_size = _number(checker, "checker", ">=0", " (0: the bounding box diagonal / 40)")
         if boundaries is not None:
             if path is not None:
                 raise _bad("render takes a path or boundaries, not both")
-            parts = [_points(b["points"] if isinstance(b, dict) else b, "boundaries") for b in boundaries]
+            parts = [_polyline(b, f"boundaries[{i}]") for i, b in enumerate(self._polylines(boundaries, "boundaries"))]
             pl = np.concatenate(parts) if parts else np.empty((0, 3))
             starts = np.cumsum([0] + [len(q) for q in parts]).astype(np.uintp)
             keep += [pl, starts]
@@ -1663,7 +1807,7 @@ class Mesh:
             o.polyline_start, o.polyline_parts = _ptr(starts, ctypes.c_size_t), len(parts)
         if path is not None:
             pts = path.points if isinstance(path, Path) else path
-            pl = _points(pts, "path") if len(pts) else np.empty((0, 3))
+            pl = _polyline(pts, "path")
             keep.append(pl)
             o.polyline, o.polyline_count = _ptr(pl), pl.shape[0]
         def work(call: _Call) -> None:
@@ -1672,6 +1816,64 @@ class Mesh:
                                                                         ctypes.byref(diag)))
 
         self._run(work)
+
+
+    @staticmethod
+    def _polylines(lines: Any, what: str) -> list:
+        """A sequence of polylines, each a (k, 3) array or a dict with "points" (voronoi(), isolines(
+        details=True)), as the list of their point arrays (not yet checked)."""
+        if isinstance(lines, (str, bytes, dict)) or not hasattr(lines, "__iter__"):
+            raise _bad(f"{what} must be a list of polylines ((k, 3) arrays or dicts with 'points'), not {_show(lines)}")
+        out = []
+        for i, pl in enumerate(lines):
+            if isinstance(pl, dict):
+                if "points" not in pl:
+                    raise _bad(f"{what}[{i}] is a dict without 'points'")
+                pl = pl["points"]
+            out.append(pl)
+        return out
+
+    def _render_curves(self, isolines: Any, levels: Any) -> tuple:
+        """render(isolines=the curves of isolines()): (points (P, 3), part offsets (parts + 1,),
+        each part's level (parts,)), checked: one list of polylines per level and, when levels is
+        given, one finite level >= 0 per list."""
+        what = "isolines"
+        if isinstance(isolines, (str, bytes, dict)) or not isinstance(isolines, (list, tuple)):
+            raise _bad(f"{what} must be a number of bands (an integer >= 0) or the curves isolines() returns "
+                       f"(a list per level of (k, 3) arrays), not {_show(isolines)}")
+        per_level = [self._polylines(lines, f"{what}[{li}]") for li, lines in enumerate(isolines)]
+        lv = np.zeros(len(per_level))
+        if levels is not None:
+            lv = np.atleast_1d(_floats(levels, "isoline_levels", "one level per list of isolines")).ravel()
+            if lv.shape[0] != len(per_level):
+                raise _bad(f"isoline_levels must give one level per list of curves in isolines ({len(per_level)}), "
+                           f"not {lv.shape[0]}")
+            _check_values(lv, "isoline_levels", ">=0")
+        parts, part_level = [], []
+        for li, lines in enumerate(per_level):
+            for pi, pl in enumerate(lines):
+                parts.append(_polyline(pl, f"{what}[{li}][{pi}]"))
+                part_level.append(lv[li])
+        pts = np.concatenate(parts) if parts else np.empty((0, 3))
+        starts = np.cumsum([0] + [len(q) for q in parts]).astype(np.uintp)
+        return np.ascontiguousarray(pts), starts, np.array(part_level, dtype=np.float64)
+
+    def _check_output(self, path: str, what: str) -> None:
+        """Refuses an output path that is an input of the call: the mesh's own file (the same
+        device and inode, through links; as loaded, and what its path names now)."""
+        try:
+            st = os.stat(path)
+        except OSError:
+            return  # nothing there (or unreachable): not an input
+        ids = set(self._source_ids)
+        if self._source:
+            try:
+                now = os.stat(self._source)
+                ids.add((now.st_dev, now.st_ino))
+            except OSError:
+                pass
+        if (st.st_dev, st.st_ino) in ids:
+            raise _bad(f"{what} {path!r} is the mesh's own file ({self._source}): an output never overwrites an input")
 
 
 def _labels(labels: np.ndarray) -> np.ndarray:

@@ -7,39 +7,65 @@ trigeo queries in parallel.
 from __future__ import annotations
 
 import ctypes
-import ctypes.util
 import os
 from ctypes import POINTER, c_char, c_char_p, c_double, c_int, c_int64, c_size_t, c_uint32, c_uint64, c_void_p
 
 __all__ = ["lib", "lib_path"]
 
-_HERE = os.path.dirname(os.path.abspath(__file__))
-SONAME = "libtrigeo.so.0.4"  # CMakeLists.txt: SOVERSION major.minor while the version is 0.x
+_HERE = os.path.dirname(os.path.realpath(__file__))  # the package's real folder, through links
+INSTALLED_MARK = "_installed_beside_lib"  # written by `make install` only (CMakeLists.txt)
 
 
-def _candidates() -> list[tuple[str, str]]:
-    """(description, path or soname) in the order they are tried."""
-    out = []
+def _checkout_root() -> str | None:
+    """The checkout this package is the python/trigeo folder of, or None: identified positively
+    (CMakeLists.txt and include/trigeo.h beside python/), so that an installed package never
+    takes a folder above it for a checkout."""
+    root = os.path.dirname(os.path.dirname(_HERE))
+    if os.path.basename(_HERE) != "trigeo" or os.path.basename(os.path.dirname(_HERE)) != "python":
+        return None
+    marks = (os.path.join(root, "CMakeLists.txt"), os.path.join(root, "include", "trigeo.h"))
+    if all(os.path.isfile(m) for m in marks):
+        return root
+    return None
+
+
+def _candidates() -> list[tuple[str, str | None, str]]:
+    """(description, path or None when not tried, why not) in the order they are tried. Only
+    three places: an explicit TRIGEO_LIB; the checkout's own build/ (when this package is the
+    python/trigeo of a checkout); the library shipped with the package: inside it (`pip install
+    .`) or, when `make install` marked the package so, PREFIX/LIBDIR/libtrigeo.so beside
+    PREFIX/LIBDIR/python3/dist-packages/trigeo. No folder above a checkout or an installed
+    package and no system search path: a libtrigeo.so someone else can put there is never run."""
     env = os.environ.get("TRIGEO_LIB")
     if env:
-        out.append(("TRIGEO_LIB", env))
-        return out  # an explicit choice is never silently replaced by another library
-    repo_build = os.path.normpath(os.path.join(_HERE, "..", "..", "build", "libtrigeo.so"))
-    out.append(("the repository's build", repo_build))
+        # an explicit choice is never silently replaced by another library
+        return [("TRIGEO_LIB", os.path.abspath(env), "")]
+    out: list[tuple[str, str | None, str]] = []
+    root = _checkout_root()
+    if root is not None:
+        out.append(("the checkout's build", os.path.join(root, "build", "libtrigeo.so"), ""))
+    else:
+        out.append(("the checkout's build", None,
+                    f"{_HERE} is not python/trigeo of a checkout (CMakeLists.txt and include/trigeo.h beside python/)"))
     # `pip install .`: setup.py puts the library inside the package
-    out.append(("the library inside the package", os.path.join(_HERE, "libtrigeo.so")))
+    out.append(("the library inside the package", os.path.join(_HERE, "libtrigeo.so"), ""))
     # `make install`: PREFIX/LIBDIR/python3/dist-packages/trigeo beside PREFIX/LIBDIR/libtrigeo.so
-    installed = os.path.normpath(os.path.join(_HERE, "..", "..", "..", "libtrigeo.so"))
-    out.append(("the installed library beside the package", installed))
-    found = ctypes.util.find_library("trigeo")
-    out.append(("the system loader", found or SONAME))
+    if os.path.isfile(os.path.join(_HERE, INSTALLED_MARK)):
+        out.append(("the library installed with the package",
+                    os.path.normpath(os.path.join(_HERE, "..", "..", "..", "libtrigeo.so")), ""))
+    else:
+        out.append(("the library installed with the package", None,
+                    f"no {INSTALLED_MARK} in {_HERE} (not `make install`)"))
     return out
 
 
 def _load() -> tuple[ctypes.CDLL, str]:
     tried = []
-    for what, path in _candidates():
-        if os.sep in path and not os.path.exists(path):
+    for what, path, why in _candidates():
+        if path is None:
+            tried.append(f"{what}: not tried ({why})")
+            continue
+        if not os.path.exists(path):
             tried.append(f"{what}: {path} (no such file)")
             continue
         try:
@@ -48,8 +74,8 @@ def _load() -> tuple[ctypes.CDLL, str]:
             tried.append(f"{what}: {path} ({e})")
     raise ImportError(
         "trigeo: cannot load libtrigeo.so; looked at\n  " + "\n  ".join(tried) +
-        "\nBuild it with `make` in the repository, install it (`make install`), or set TRIGEO_LIB "
-        "to the library's path.")
+        "\nBuild it with `make` in the checkout, install the package (`pip install .` or `make install`), or set "
+        "TRIGEO_LIB to the library's path.")
 
 
 lib, lib_path = _load()

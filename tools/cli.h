@@ -35,11 +35,6 @@ int cli_usage(const char* cmd, const char* fmt, ...)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
-/* Parses a non-negative integer / a double option value; false on junk. */
-bool cli_parse_uint(const char* s, unsigned long long* out);
-bool cli_parse_double(const char* s, double* out);
-/* Parses a comma-separated list of exactly n finite doubles ("X,Y,Z"); false on junk. */
-bool cli_parse_doubles(const char* s, int n, double* out);
 /* Seconds on the monotonic clock (for durations). */
 double cli_seconds(void);
 
@@ -147,12 +142,41 @@ size_t cli_read_npy_points(const char* name, const char* data, size_t size, doub
 
 /* ---- numbers (cli_number.c) ---- */
 
-/* The shortest decimal that reads back (strtod) to exactly x, '\0'-terminated; at most 25 bytes
- * with the terminator. Fixed notation for decimal exponents -4 to 15 (as Python's repr), else
- * d.ddde+XX / d.ddde-XX.
- * Returns the length. Thread-compatible: the first call fills static tables (call it once before
- * starting threads). */
+/* Reading, the CLI's one rule for numbers (README.md "Numbers", as Python's float()): a number is
+ * decimal text, [+-] digits [. digits] [(e|E) [+-] digits] (no hexadecimal, "inf" or "nan"), read
+ * as the double nearest to it (strtod's correctly rounded result), subnormals included: text that
+ * underflows is the subnormal or the 0 nearest to it, text beyond the largest double is refused
+ * as not finite. Then each option checks its range. Blanks around a number are allowed. */
+typedef enum cli_number_status {
+    CLI_NUMBER_OK = 0,
+    CLI_NUMBER_SYNTAX,   /* no decimal number at the start of the text */
+    CLI_NUMBER_INFINITE  /* beyond +-1.7976931348623157e+308: not finite */
+} cli_number_status;
+/* The number at the start of s (blanks skipped); *end past it on success (at the number's start,
+ * past the blanks, on a syntax error). */
+cli_number_status cli_scan_double(const char* s, double* out, const char** end);
+/* The whole of s is one number (blanks around allowed); false otherwise, *out untouched. */
+bool cli_parse_double(const char* s, double* out);
+/* The same, and >= 0 (an option's distance or length): -0, and negatives that underflow to it,
+ * are read as 0. */
+bool cli_parse_nonneg(const char* s, double* out);
+/* Exactly n (1..16) numbers separated by commas ("X,Y,Z"; blanks around each allowed). */
+bool cli_parse_doubles(const char* s, int n, double* out);
+/* A non-negative decimal integer (digits only, no sign; blanks around allowed) within 64 bits. */
+bool cli_parse_uint(const char* s, unsigned long long* out);
+
+/* Writing: every number the CLI prints (CSV, JSON, OBJ, summaries) is the shortest decimal that
+ * reads back (strtod) to exactly x, '\0'-terminated; at most 25 bytes with the terminator. Fixed
+ * notation for decimal exponents -4 to 15 (as Python's repr), else d.ddde+XX / d.ddde-XX; "inf",
+ * "-inf" and "nan" for the others. Returns the length. Thread-compatible: the first call fills
+ * static tables (call it once before starting threads). */
 int cli_format_double(double x, char* out);
+/* The same in a value whose buffer lives to the end of the full expression that calls it (C11
+ * 6.2.4p8), for printf: printf("%s,%s\n", cli_num(a).s, cli_num(b).s). */
+typedef struct cli_num_text {
+    char s[32];
+} cli_num_text;
+cli_num_text cli_num(double x);
 
 /* Writes a sparse matrix as the .npz archive scipy.sparse.load_npz reads (cli_npz.c). */
 bool cli_write_npz_csr(FILE* f, const tg_sparse_matrix_view* v);

@@ -45,7 +45,7 @@ int cli_parse_levels(const char* option, const char* text, double** out_levels, 
     for (;;) {
         char* comma = strchr(s, ',');
         if (comma) *comma = '\0';
-        if (!cli_parse_double(s, &lv[k]) || !(lv[k] >= 0.0 && lv[k] < INFINITY)) {
+        if (!cli_parse_nonneg(s, &lv[k])) {
             cli_error(NULL, 0, "%s: level %zu '%s' is not a finite number >= 0 (give LEVEL,LEVEL,... or a count N)",
                       option, k + 1, s);
             free(buf), free(lv);

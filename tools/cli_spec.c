@@ -9,23 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-bool cli_parse_doubles(const char* s, int n, double* out)
-{
-    for (int k = 0; k < n; ++k) {
-        char* end;
-        errno = 0;
-        out[k] = strtod(s, &end);
-        if (end == s || errno || !isfinite(out[k])) return false;
-        if (k + 1 < n) {
-            if (*end != ',') return false;
-            s = end + 1;
-        } else if (*end) {
-            return false;
-        }
-    }
-    return true;
-}
-
 void cli_print_spec(FILE* f, const tg_surface_point* p)
 {
     if (p->kind == TG_SURFACE_VERTEX)

@@ -32,15 +32,16 @@ static size_t parse_queries(const char* name, char* text, double** out)
         if (*p && *p != '#') {
             if (!cli_grow((void**)&xyz, &cap, count + 1, 3 * sizeof *xyz)) break;
             for (int k = 0; k < 3; ++k) {
-                char* after;
-                errno = 0;
-                double v = strtod(p, &after);
-                if (after == p || (*after && *after != ' ' && *after != '\t' && *after != '\r' && *after != '#')) {
+                const char* after;
+                double v = 0.0;
+                cli_number_status ns = cli_scan_double(p, &v, &after);
+                if (ns == CLI_NUMBER_SYNTAX ||
+                    (*after && *after != ' ' && *after != '\t' && *after != '\r' && *after != '#')) {
                     cli_error(name, line, "expected three numbers \"x y z\", got \"%.40s\"", skip_blanks(s));
                     free(xyz);
                     return (size_t)-1;
                 }
-                if (!isfinite(v)) { /* also strtod overflow, which returns HUGE_VAL */
+                if (ns == CLI_NUMBER_INFINITE) {
                     cli_error(name, line, "coordinate %d is not a finite number", k + 1);
                     free(xyz);
                     return (size_t)-1;

@@ -230,25 +230,23 @@ static int write_boundaries(const char* path, const tg_voronoi_boundaries* b)
     return cli_output_commit(&out);
 }
 
-/* Resolves the spec texts items[0..count) (lines: from the sources file, named in errors).
- * CLI_OK, CLI_USAGE (a --from spec that does not parse) or CLI_INPUT (error printed). */
-/* "x y z" (three numbers separated by blanks or commas) as a p: spec. */
+/* "x y z" (three numbers separated by blanks or by one comma) as a p: spec. */
 static bool parse_xyz(const char* s, cli_spec* out)
 {
-    char buf[256];
-    size_t n = strlen(s);
-    if (n >= sizeof buf) return false;
-    memcpy(buf, s, n + 1);
     memset(out, 0, sizeof *out);
     out->kind = 'p';
-    int k = 0;
-    for (char* tok = strtok(buf, " \t,"); tok; tok = strtok(NULL, " \t,")) {
-        if (k == 3 || !cli_parse_double(tok, &out->v[k])) return false;
-        k++;
+    for (int k = 0; k < 3; ++k) {
+        const char* end;
+        if (cli_scan_double(s, &out->v[k], &end) != CLI_NUMBER_OK) return false;
+        s = end + strspn(end, " \t");
+        if (k < 2 && *s == ',') s += 1 + strspn(s + 1, " \t");
+        else if (k < 2 && s == end) return false; /* "1-2 3": no separator */
     }
-    return k == 3;
+    return *s == '\0';
 }
 
+/* Resolves the spec texts items[0..count) (lines: from the sources file, named in errors).
+ * CLI_OK, CLI_USAGE (a --from spec that does not parse) or CLI_INPUT (error printed). */
 static int resolve_all(const field_args* fa, const char* file, bool allow_xyz, tg_mesh* mesh, tg_bvh** bvh, char** items,
                        const unsigned long long* lines, size_t count, tg_surface_point* pts)
 {
@@ -611,8 +609,8 @@ static int run(int argc, char** argv)
         return cli_usage("field", "the sparse matrix (--sources all, --sparse) is written as .npz or .csv, not .npy");
     if (fa.sparse && fa.at_path)
         return cli_usage("field", "--to writes the dense sources x points matrix: -o .npy or .csv, without --sparse");
-    if (maxd && (!cli_parse_double(maxd, &fa.max_dist) || !(fa.max_dist >= 0)))
-        return cli_usage("field", "--max-distance needs a non-negative number, not '%s'", maxd);
+    if (maxd && !cli_parse_nonneg(maxd, &fa.max_dist))
+        return cli_usage("field", "--max-distance needs a finite number >= 0, not '%s'", maxd);
     unsigned long long nt = 0;
     if (threads && (!cli_parse_uint(threads, &nt) || nt > TG_MAX_THREADS))
         return cli_usage("field", "--threads needs a number in 0..%d (0 = all cores), not '%s'", TG_MAX_THREADS, threads);

@@ -182,7 +182,7 @@ static int run(int argc, char** argv)
         if (!cli_parse_doubles(ref, 3, la.ref) || (la.ref[0] == 0.0 && la.ref[1] == 0.0 && la.ref[2] == 0.0))
             return cli_usage("logmap", "bad --ref '%s' (X,Y,Z: three finite numbers, not all zero)", ref);
     }
-    if (maxd && (!cli_parse_double(maxd, &la.max_dist) || !(la.max_dist >= 0.0)))
+    if (maxd && !cli_parse_nonneg(maxd, &la.max_dist))
         return cli_usage("logmap", "bad --max-distance '%s' (a finite number >= 0)", maxd);
     cli_spec sp;
     if (!cli_parse_spec(la.from, &sp))

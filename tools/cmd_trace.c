@@ -197,7 +197,7 @@ static bool parse_trace_line(const char* name, unsigned long long line, char* s,
             return false;
         }
     }
-    if (!cli_parse_double(tok[2], &out->length) || !(out->length >= 0.0)) {
+    if (!cli_parse_nonneg(tok[2], &out->length)) {
         cli_error(name, line, "bad length '%s' (a finite number >= 0)", tok[2]);
         return false;
     }
@@ -381,7 +381,7 @@ static int run(int argc, char** argv)
         if (!cli_parse_double(angle, &ta.dir.angle)) return cli_usage("trace", "bad --angle '%s' (finite radians)", angle);
     }
     if (!length) return cli_usage("trace", "missing --length L");
-    if (!cli_parse_double(length, &ta.length) || !(ta.length >= 0.0))
+    if (!cli_parse_nonneg(length, &ta.length))
         return cli_usage("trace", "bad --length '%s' (a finite number >= 0)", length);
     if (ta.out_path && !cli_ext_is(ta.out_path, ".obj") && !cli_ext_is(ta.out_path, ".json"))
         return cli_usage("trace", "-o takes OUT.obj (the polyline) or OUT.json (the whole answer)");

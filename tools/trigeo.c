@@ -101,28 +101,6 @@ int cli_usage(const char* cmd, const char* fmt, ...)
     return CLI_USAGE;
 }
 
-bool cli_parse_uint(const char* s, unsigned long long* out)
-{
-    if (!s || !*s || *s == '-' || *s == '+') return false;
-    char* end;
-    errno = 0;
-    unsigned long long v = strtoull(s, &end, 10);
-    if (errno || *end) return false;
-    *out = v;
-    return true;
-}
-
-bool cli_parse_double(const char* s, double* out)
-{
-    if (!s || !*s) return false;
-    char* end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (errno || *end || !isfinite(v)) return false;
-    *out = v;
-    return true;
-}
-
 static void print_overview(FILE* f)
 {
     fprintf(f, "trigeo %s - distances and shortest paths on triangle meshes\n\n", tg_version());

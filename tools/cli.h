@@ -44,10 +44,11 @@ typedef struct cli_spec {
     unsigned long long index;
     double v[3];
 } cli_spec;
-/* Parses v:IDX | f:FACE:b0,b1,b2 | e:HALFEDGE:t | p:x,y,z; false on a syntax error. */
+/* Parses v:IDX | f:FACE:b0,b1,b2 | e:HALFEDGE:t | p:x,y,z (blanks around it allowed); false on a
+ * syntax error. */
 bool cli_parse_spec(const char* s, cli_spec* out);
-/* Splits the ';'-separated list in place into items (at most cap); returns the count, or 0 for
- * an empty item or more than cap. */
+/* Splits the ';'-separated list in place into items (at most cap), blanks around each item
+ * removed ("v:0; v:5"); returns the count, or 0 for an empty item or more than cap. */
 size_t cli_split_list(char* list, char** items, size_t cap);
 /* A ';'-separated list of specs given to an option ("SPEC;SPEC;..."): its items, parsed, and
  * their surface points once resolved on a mesh. */

@@ -52,6 +52,7 @@ bool cli_locate(tg_mesh* mesh, tg_bvh** bvh, const double xyz[3], tg_surface_poi
 bool cli_parse_spec(const char* s, cli_spec* out)
 {
     memset(out, 0, sizeof *out);
+    s += strspn(s, " \t\r\n"); /* blanks around a spec are allowed (the numbers take trailing ones) */
     if (!s[0] || s[1] != ':') return false;
     out->kind = s[0];
     const char* rest = s + 2;
@@ -73,6 +74,9 @@ size_t cli_split_list(char* list, char** items, size_t cap)
     for (char* s = list;;) {
         char* semi = strchr(s, ';');
         if (semi) *semi = '\0';
+        s += strspn(s, " \t\r\n"); /* "v:0; v:5": blanks around an item are no part of it */
+        size_t len = strlen(s);
+        while (len && strchr(" \t\r\n", s[len - 1])) s[--len] = '\0';
         if (!*s || n == cap) return 0;
         items[n++] = s;
         if (!semi) return n;

@@ -654,7 +654,7 @@ static int run(int argc, char** argv)
     memcpy(list, from, len + 1);
     size_t count = cli_split_list(list, items, MAX_SOURCES);
     rc = count ? (fa.isolines ? run_isolines(&fa, items, NULL, count) : run_field(&fa, items, NULL, count))
-               : cli_usage("field", "bad --from list (SPEC[;SPEC...], at most %d)", MAX_SOURCES);
+               : cli_usage("field", "bad --from list \"%s\" (SPEC;SPEC;..., no empty item, at most %d)", from, MAX_SOURCES);
     free(list), free(items);
     free(at_text), free(fa.at_items), free(fa.at_lines);
     return rc;

@@ -112,8 +112,13 @@ static bool parse_pair(const char* name, unsigned long long line, char* s, tg_me
 {
     char* tok[9];
     int n = 0;
-    for (char* t = strtok(s, " \t\r"); t && n < 9; t = strtok(NULL, " \t\r")) tok[n++] = t;
-    bool extra = strtok(NULL, " \t\r") != NULL;
+    bool extra = false; /* a tenth field, counted (not dropped) */
+    for (char* t = strtok(s, " \t\r"); t && !extra; t = strtok(NULL, " \t\r")) {
+        if (n == 9)
+            extra = true;
+        else
+            tok[n++] = t;
+    }
     unsigned long long i0, i1;
     double c[6];
     /* the six numbers: tokens 2-4 and 6-8 of the face form, 1-6 of the position form */
@@ -148,7 +153,14 @@ static bool parse_pair(const char* name, unsigned long long line, char* s, tg_me
             return false;
         }
     } else {
-        cli_error(name, line, "expected \"v SRC TGT\", \"f F0 b0 b1 b2 F1 c0 c1 c2\" or \"p x0 y0 z0 x1 y1 z1\"");
+        /* the number of fields, when the form is known and they are too many or too few */
+        bool v = !strcmp(tok[0], "v"), f = !strcmp(tok[0], "f"), p = !strcmp(tok[0], "p");
+        if (extra || (v && n != 3) || (f && n != 9) || (p && n != 7 && n != 9))
+            cli_error(name, line, "%s%d fields, %s (\"v SRC TGT\", \"f F0 b0 b1 b2 F1 c0 c1 c2\" or \"p x0 y0 z0 x1 y1 z1\")",
+                      extra ? "more than " : "", n, v ? "a \"v\" line has 3" : f ? "an \"f\" line has 9" : p ? "a \"p\" line has 7 or 9"
+                      : "at most 9");
+        else
+            cli_error(name, line, "expected \"v SRC TGT\", \"f F0 b0 b1 b2 F1 c0 c1 c2\" or \"p x0 y0 z0 x1 y1 z1\"");
         return false;
     }
     tg_diag d;

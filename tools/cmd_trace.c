@@ -173,9 +173,17 @@ static bool parse_trace_line(const char* name, unsigned long long line, char* s,
 {
     char* tok[3];
     int n = 0;
-    for (char* t = strtok(s, " \t\r"); t && n < 3; t = strtok(NULL, " \t\r")) tok[n++] = t;
-    if (n != 3 || strtok(NULL, " \t\r")) {
-        cli_error(name, line, "expected \"SPEC X,Y,Z LENGTH\" or \"SPEC ANGLE LENGTH\" (three fields)");
+    /* every field counted: a fourth one is refused, not dropped */
+    for (char* t = strtok(s, " \t\r"); t; t = strtok(NULL, " \t\r")) {
+        if (n == 3) {
+            cli_error(name, line, "unexpected '%s' after the length (\"SPEC X,Y,Z LENGTH\" or \"SPEC ANGLE LENGTH\": three "
+                      "fields)", t);
+            return false;
+        }
+        tok[n++] = t;
+    }
+    if (n != 3) {
+        cli_error(name, line, "expected \"SPEC X,Y,Z LENGTH\" or \"SPEC ANGLE LENGTH\" (three fields, not %d)", n);
         return false;
     }
     cli_spec sp;

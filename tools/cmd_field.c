@@ -145,7 +145,7 @@ typedef struct field_args {
     int format;
     double max_dist;      /* < 0: no limit */
     int threads;
-    bool quiet;
+    bool quiet;           /* --quiet: no progress line, no summary */
     bool matrix;          /* --sources: one row per source */
     bool all;             /* --sources all: every vertex a row */
     bool sparse;          /* the matrix within the radius, sparse (.npz, or .csv triplets) */
@@ -352,7 +352,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
             }
         }
         if (rc != CLI_OK) goto done;
-        if (strcmp(path, "-")) print_summary(count, false, "vertices", dist, rows, n, secs, &stats);
+        if (!fa->quiet && strcmp(path, "-")) print_summary(count, false, "vertices", dist, rows, n, secs, &stats);
         rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
         goto done;
     }
@@ -360,7 +360,8 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
         rc = fa->out ? cli_write_labels(fa->out, mesh, label, dist, n) : CLI_OK;
         if (rc == CLI_OK && fa->boundaries) rc = write_boundaries(fa->boundaries, bounds);
         if (rc != CLI_OK) goto done;
-        if (!fa->out || strcmp(fa->out, "-")) print_summary(count, false, "vertices", dist, rows, n, secs, &stats);
+        if (!fa->quiet && (!fa->out || strcmp(fa->out, "-")))
+            print_summary(count, false, "vertices", dist, rows, n, secs, &stats);
         rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
         goto done;
     }
@@ -376,7 +377,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     } else if (fa->out && (rc = write_table(fa->out, fa->format, dist, rows, n, fa->matrix)) != CLI_OK) {
         goto done;
     }
-    if (!fa->out || strcmp(fa->out, "-"))
+    if (!fa->quiet && (!fa->out || strcmp(fa->out, "-")))
         print_summary(count, fa->matrix, fa->matrix && fa->at_count ? "points" : "vertices", dist, rows, n, secs, &stats);
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
@@ -424,7 +425,7 @@ static int run_isolines(const field_args* fa, char** items, const unsigned long 
         double secs = cli_seconds() - t0;
         cli_interrupt_polling(false);
         cli_progress_end(&prog);
-        if ((rc = finished(fa, st)) == CLI_OK && (rc = cli_write_isolines(fa->out, iso)) == CLI_OK &&
+        if ((rc = finished(fa, st)) == CLI_OK && (rc = cli_write_isolines(fa->out, iso)) == CLI_OK && !fa->quiet &&
             strcmp(fa->out, "-")) {
             tg_isolines_view v;
             tg_isolines_get_view(iso, &v);
@@ -506,7 +507,7 @@ static int run_sparse(const field_args* fa, char** items, const unsigned long lo
         goto done;
     }
     if ((rc = cli_output_commit(&out)) != CLI_OK) goto done;
-    if (strcmp(fa->out, "-")) {
+    if (!fa->quiet && strcmp(fa->out, "-")) {
         printf("sources            %zu (one field each%s)\n", count, fa->all ? ", every vertex" : "");
         printf("radius             %.17g\n", fa->max_dist >= 0 ? fa->max_dist : INFINITY);
         printf("entries            %zu (%.1f a row, %.1f MiB as CSR)\n", v.entry_count,
@@ -723,12 +724,13 @@ const cli_command cli_cmd_field = {
     "                         negative, NaN or missing levels: exit 2, no file\n"
     "  --max-distance D       stop at distance D (0 allowed): farther vertices get inf\n"
     "  --threads N            --sources: threads, at most 256 (default 0: all cores)\n"
-    "  --quiet                no progress line (drawn on stderr when it is a terminal and the\n"
-    "                         work passes about a second)\n\n"
+    "  --quiet                no progress line (else drawn on stderr when it is a terminal and\n"
+    "                         the work passes about a second) and no summary; errors are still\n"
+    "                         printed, and data sent to stdout (-o -, --at) still is\n\n"
     "Unreachable vertices (other components, unused vertices) get inf. Outputs are written into a\n"
     "private temporary directory beside the target and renamed when complete: an error or Ctrl-C\n"
     "(exit 130) leaves no partial file; an output that is one of the inputs is refused. Without\n"
-    "-o - a summary (vertices reached, largest distance, windows, seconds) goes to stdout. Quote\n"
-    "the --from list: ';' is special to the shell.\n",
+    "-o - and --quiet a summary (vertices reached, largest distance, windows, seconds) goes to\n"
+    "stdout. Quote the --from list: ';' is special to the shell.\n",
     run,
 };

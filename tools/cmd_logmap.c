@@ -129,7 +129,7 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
     }
     planar(r, a, n, u, v);
     if ((rc = write_output(la, mesh, r, a, u, v, n)) != CLI_OK) goto done;
-    if (strcmp(la->out, "-")) {
+    if (!la->quiet && strcmp(la->out, "-")) {
         size_t reached = 0;
         double far = 0.0;
         for (size_t i = 0; i < n; ++i)
@@ -210,12 +210,15 @@ const cli_command cli_cmd_logmap = {
     "                   .npy   a (vertices, 4) float64 array, columns r, theta, u, v\n"
     "                   .ply   the mesh as binary PLY with per-vertex double properties\n"
     "                          distance, angle, u, v (trigeo render MESH --logmap OUT.ply)\n"
-    "  --quiet          no progress line\n\n"
+    "  --quiet          no progress line and no summary (errors are still printed, -o - still\n"
+    "                   writes the CSV)\n\n"
     "Angles are counterclockwise about the reference face's normal (its file winding), in\n"
     "[0, 2 pi); at a vertex they are scaled so the turn around it is 2 pi (pi at a boundary\n"
     "vertex, angles in [0, pi]), as geometry-central's tangent spaces. `trigeo trace --from SPEC\n"
     "--angle theta --length r` walks back to the vertex wherever its shortest path is unique and\n"
     "passes no vertex. Where two paths are equally short (the cut locus) the angle is the one of\n"
-    "the path found first (deterministic). Vertices not reached: r inf, theta 0, u and v inf.\n",
+    "the path found first (deterministic). Vertices not reached: r inf, theta 0, u and v inf.\n"
+    "Without -o - and --quiet a summary (vertices reached, largest distance, windows, seconds) goes\n"
+    "to stdout.\n",
     run,
 };

@@ -110,7 +110,7 @@ static int run_sample(const sample_args* sa)
     }
     if (sa->out && (rc = write_samples(sa->out, mesh, samples, sa->count)) != CLI_OK) goto done;
     if (sa->field_out && (rc = cli_write_labels(sa->field_out, mesh, label, dist, n)) != CLI_OK) goto done;
-    if (!sa->out || strcmp(sa->out, "-")) {
+    if (!sa->quiet && (!sa->out || strcmp(sa->out, "-"))) {
         double far = 0;
         for (size_t v = 0; v < n; ++v)
             if (isfinite(dist[v]) && dist[v] > far) far = dist[v];
@@ -185,8 +185,9 @@ const cli_command cli_cmd_sample = {
     "  --field FIELD          per vertex the position of the nearest sample in the order (-1:\n"
     "                         none) and the distance to it: .ply properties 'label' and\n"
     "                         'distance' (trigeo render --labels), .csv rows vertex,label,distance\n"
-    "  --quiet                no progress line\n\n"
-    "Outputs are written to a temporary name and renamed when complete. Without -o - a summary\n"
-    "(covering radius: the largest distance to the nearest sample) goes to stdout.\n",
+    "  --quiet                no progress line and no summary (errors are still printed, -o -\n"
+    "                         still writes the samples)\n\n"
+    "Outputs are written to a temporary name and renamed when complete. Without -o - and --quiet a\n"
+    "summary (covering radius: the largest distance to the nearest sample) goes to stdout.\n",
     run,
 };

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# cli_messages.sh: what the CLI says besides its data. --quiet means one thing in every command
+# that has it (field in all its forms, logmap, sample): no progress line and no summary, while
+# errors are still printed and data sent to stdout still is.
+set -u
+trigeo=${TG_TRIGEO:?}
+exec /usr/bin/env python3 - "$trigeo" <<'PY'
+import os, shutil, subprocess, sys, tempfile
+trigeo = sys.argv[1]
+sys.dont_write_bytecode = True
+sys.path.insert(0, os.path.join(os.environ["TG_SOURCE_DIR"], "tests"))
+import cli_common
+from cli_common import check
+
+def run(cmd, *args):
+    return subprocess.run([trigeo, cmd, *args], capture_output=True, text=True)
+tmp = tempfile.mkdtemp()
+flat, vs, fs = cli_common.flat_square(tmp, 11, 8)
+def write(name, text):
+    p = os.path.join(tmp, name)
+    with open(p, "w") as f: f.write(text)
+    return p
+def o(name): return os.path.join(tmp, name)
+src, pts = write("s.txt", "v:0\nv:40\n"), write("a.txt", "0.5 0.5 0\nv:3\n")
+
+# ---- --quiet: nothing but the data ----
+runs = [("field", ["--from", "v:0", "-o", o("f.csv")]), ("field", ["--from", "v:0"]),
+        ("field", ["--from", "v:0", "-o", o("f.ply")]), ("field", ["--from", "v:0;v:40", "--labels", "-o", o("l.csv")]),
+        ("field", ["--sources", src, "--labels", "-o", o("l.ply"), "--boundaries", o("b.obj")]),
+        ("field", ["--from", "v:0", "--isolines", "3", "-o", o("i.obj")]),
+        ("field", ["--sources", src, "--max-distance", "0.3", "-o", o("m.npz")]),
+        ("field", ["--sources", src, "-o", o("m.npy")]), ("field", ["--sources", src, "--to", pts, "-o", o("t.csv")]),
+        ("field", ["--from", "v:0", "--at", pts, "-o", o("at.txt")]),
+        ("logmap", ["--from", "v:40", "-o", o("lm.csv")]), ("logmap", ["--from", "v:40", "-o", o("lm.npy")]),
+        ("sample", ["--count", "3", "-o", o("s3.txt")]), ("sample", ["--count", "3", "--field", o("sf.csv")]),
+        ("sample", ["--count", "3"])]
+for cmd, args in runs:
+    loud, quiet = run(cmd, flat, *args), run(cmd, flat, *args, "--quiet")
+    check(loud.returncode == 0 and loud.stdout.strip() != "", "%s %s: a summary without --quiet (exit %d, %r)"
+          % (cmd, args, loud.returncode, loud.stdout[:80]))
+    check(quiet.returncode == 0 and quiet.stdout == "" and quiet.stderr == "",
+          "%s %s --quiet: exit %d, stdout %r, stderr %r (want both empty)" % (cmd, args, quiet.returncode, quiet.stdout[:200],
+                                                                              quiet.stderr[:200]))
+# data sent to stdout is still written, and errors still printed
+for cmd, args in [("field", ["--from", "v:0", "-o", "-"]), ("field", ["--from", "v:0", "--at", pts]),
+                  ("logmap", ["--from", "v:40", "-o", "-"]), ("sample", ["--count", "3", "-o", "-"])]:
+    loud, quiet = run(cmd, flat, *args), run(cmd, flat, *args, "--quiet")
+    check(quiet.returncode == 0 and quiet.stdout != "" and quiet.stdout == loud.stdout and quiet.stderr == "",
+          "%s %s --quiet: the data %r, without --quiet %r" % (cmd, args, quiet.stdout[:60], loud.stdout[:60]))
+for cmd, args in [("field", ["--from", "v:9999"]), ("logmap", ["--from", "v:9999", "-o", o("x.csv")]),
+                  ("sample", ["--count", "999"])]:
+    r = run(cmd, flat, *args, "--quiet")
+    check(r.returncode == 2 and r.stderr.startswith("trigeo: "), "%s %s --quiet: the error (exit %d, %r)"
+          % (cmd, args, r.returncode, r.stderr))
+for cmd in ("field", "logmap", "sample"):
+    h = run(cmd, "--help").stdout
+    check("--quiet" in h and "no summary" in h, "%s --help: --quiet says 'no summary'" % cmd)
+
+shutil.rmtree(tmp)
+cli_common.finish()
+PY

@@ -5,10 +5,14 @@
 # refused as not finite, then the option's range. Options (--max-distance, --length, --angle,
 # --dir, --ref, --isolines levels), SPEC coordinates and barycentrics, and the batch, pairs,
 # sources, points and queries files. Known answers on the jittered flat square of cli_common.
+# And every number the CLI writes (CSV, JSON, OBJ, summaries, messages) is the shortest decimal
+# that reads back to the same double (Python's repr; integers without ".0"), checked on every
+# output of every command; only the fixed-precision displays (seconds, the summary's max angle
+# defect %.3g, MiB, microseconds) are rounded on purpose.
 set -u
 trigeo=${TG_TRIGEO:?}
 exec /usr/bin/env python3 - "$trigeo" <<'PY'
-import os, shutil, subprocess, sys, tempfile
+import os, re, shutil, subprocess, sys, tempfile
 trigeo = sys.argv[1]
 sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.join(os.environ["TG_SOURCE_DIR"], "tests"))
@@ -86,6 +90,62 @@ check(len(r.stdout.split()) == 3, "--at: 3 distances, got %r" % r.stdout)
 refused(["field", flat, "--from", "v:40", "--at", write("a.txt", "0 0 0\n1e999 0 0\n")], 2, "a.txt:2:", "--at 1e999")
 ok(["closest", flat, write("q.txt", "%s 0.5 %s\n" % (tiny, under))], "closest queries with subnormals")
 refused(["closest", flat, write("q.txt", "0 0 0\n0x1p-2 0 0\n")], 2, "q.txt:2:", "closest hexadecimal query")
+
+# ---- every number written is the shortest that reads back ----
+NUM = re.compile(r"(?<![\w.])-?\d+(?:\.\d+)?(?:e[+-]?\d+)?(?![\w.])")
+def shortest(t):
+    r = repr(float(t))
+    return t == r or t + ".0" == r
+def numbers_shortest(what, text, skip=("seconds ", "max angle defect ", "entries ")):
+    bad = []
+    for line in text.splitlines():
+        if line.startswith(skip): continue
+        bad += [t for t in NUM.findall(line) if not shortest(t)]
+    check(text.strip() != "" and not bad, "%s: %d numbers not the shortest that reads back, e.g. %s" % (what, len(bad), bad[:4]))
+def o(name): return os.path.join(tmp, name)
+def out_of(args, path=None):
+    r = run(*args)
+    check(r.returncode == 0, "%s: exit %d, %r" % (args, r.returncode, r.stderr.strip()))
+    return (open(path).read() if path and os.path.exists(path) else "") if path else r.stdout
+tri = write("tri.obj", "v 0.1 -0.331878 0.3\nv 1.1 0.2 0.3\nv 0.1 1.3 0.7\nf 1 2 3\n")
+srcs, pts = write("s.txt", "v:0\nf:10:0.2,0.3,0.5\n"), write("pt.txt", "0.3 0.7 0\nf:20:0.1,0.1,0.8\n")
+batch = write("b.txt", "v:40 1,0.3,0 0.7\nf:10:0.2,0.3,0.5 0.3 0.45\n")
+pairs = write("p.txt", "v 0 40\nf 10 0.2 0.3 0.5 20 0.1 0.1 0.8\np 0.1 0.2 0 0.7 0.6 0\nv 0 81\n")
+outputs = [
+    ("info", out_of(["info", tri])), ("info --json", out_of(["info", tri, "--json"])),
+    ("closest", out_of(["closest", flat, write("q.txt", "0.1 0.2 0.3\n0.7 0.1 -0.2\n"), "--signed"])),
+    ("path summary", out_of(["path", flat, "--from", "f:10:0.2,0.3,0.5", "--to", "f:20:0.1,0.1,0.8"])),
+    ("path --json", out_of(["path", flat, "--from", "f:10:0.2,0.3,0.5", "--to", "f:20:0.1,0.1,0.8", "--json"])),
+    ("path --through --json", out_of(["path", flat, "--through", "v:0;f:10:0.2,0.3,0.5;v:44", "--json"])),
+    ("path --pairs", "\n".join(",".join(c for k, c in enumerate(l.split(",")) if k != 5)
+                               for l in out_of(["path", flat, "--pairs", pairs, "--method", "straighten"]).splitlines())),
+    ("trace summary", out_of(["trace", flat, "--from", "v:40", "--dir", "1,0.3,0", "--length", "0.7"])),
+    ("trace --json", out_of(["trace", flat, "--from", "v:40", "--dir", "1,0.3,0", "--length", "0.7", "--json"])),
+    ("trace -o OBJ", out_of(["trace", flat, "--from", "v:40", "--dir", "1,0.3,0", "--length", "0.7", "-o", o("t.obj")], o("t.obj"))),
+    ("trace --batch", out_of(["trace", flat, "--batch", batch])),
+    ("field summary", out_of(["field", flat, "--from", "f:10:0.2,0.3,0.5"])),
+    ("field -o CSV", out_of(["field", flat, "--from", "f:10:0.2,0.3,0.5", "-o", "-"])),
+    ("field --at", out_of(["field", flat, "--from", "f:10:0.2,0.3,0.5", "--at", pts])),
+    ("field --sources CSV", out_of(["field", flat, "--sources", srcs, "-o", o("m.csv")], o("m.csv"))),
+    ("field --sources --to", out_of(["field", flat, "--sources", srcs, "--to", pts, "-o", o("t.csv")], o("t.csv"))),
+    ("field --sparse", out_of(["field", flat, "--sources", srcs, "--sparse", "--max-distance", "0.3", "-o", o("sp.csv")], o("sp.csv"))),
+    ("field --sparse summary", out_of(["field", flat, "--sources", srcs, "--max-distance", "0.3", "-o", o("sp.npz")])),
+    ("field --labels", out_of(["field", flat, "--sources", srcs, "--labels", "-o", o("l.csv"), "--boundaries", o("b.obj")], o("l.csv"))),
+    ("field --boundaries OBJ", open(o("b.obj")).read() if os.path.exists(o("b.obj")) else ""),
+    ("field --boundaries JSON", out_of(["field", flat, "--sources", srcs, "--labels", "--boundaries", o("b.json")], o("b.json"))),
+    ("field --isolines OBJ", out_of(["field", flat, "--from", "f:10:0.2,0.3,0.5", "--isolines", "0.3,0.55", "-o", o("i.obj")], o("i.obj"))),
+    ("field --isolines JSON", out_of(["field", flat, "--from", "f:10:0.2,0.3,0.5", "--isolines", "3", "-o", o("i.json")], o("i.json"))),
+    ("field --isolines summary", out_of(["field", flat, "--from", "f:10:0.2,0.3,0.5", "--isolines", "3", "-o", o("i.json")])),
+    ("logmap CSV", out_of(["logmap", flat, "--from", "f:10:0.2,0.3,0.5", "-o", "-"])),
+    ("logmap summary", out_of(["logmap", flat, "--from", "f:10:0.2,0.3,0.5", "-o", o("lm.npy")])),
+    ("sample -o CSV", out_of(["sample", flat, "--count", "4", "-o", o("s.csv")], o("s.csv"))),
+    ("sample --field", out_of(["sample", flat, "--count", "4", "--field", o("sf.csv")], o("sf.csv"))),
+    ("sample summary", out_of(["sample", flat, "--count", "4"])),
+]
+for what, text in outputs: numbers_shortest(what, text)
+# messages quote numbers the same way
+r = run("path", flat, "--pairs", write("p.txt", "v 0 1\np 0.1 0.2 0 0.7 0.6 1.0000000000000001e200\n"))
+check("1e+200" in r.stderr, "a coordinate quoted in a message: %r" % r.stderr.strip())
 
 shutil.rmtree(tmp)
 cli_common.finish()

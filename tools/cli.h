@@ -70,7 +70,8 @@ void cli_spec_list_free(cli_spec_list* l);
 /* Barycentric coordinates read from text that sum to 1 within this are rescaled to sum to 1
  * (the library itself accepts 1e-9); farther off, they are refused. */
 #define CLI_BARY_RENORMALIZE 1e-6
-/* Prints a surface point as a SPEC (v:IDX | e:HALFEDGE:t | f:FACE:b0,b1,b2, %.17g). */
+/* Prints a surface point as a SPEC (v:IDX | e:HALFEDGE:t | f:FACE:b0,b1,b2, the numbers as
+ * cli_format_double writes them). */
 void cli_print_spec(FILE* f, const tg_surface_point* p);
 /* A face point from barycentrics as read from text (renormalized within CLI_BARY_RENORMALIZE). */
 tg_surface_point cli_face_point(uint32_t face, const double b[3]);
@@ -204,7 +205,9 @@ void cli_auto_levels(const double* dist, size_t n, size_t count, double* out_lev
  * ...], "faces": [...], "surface": ["e:H:t" | "f:F:b0,b1,b2", ...]}]}). Written to a temporary
  * name and renamed; CLI_OK or CLI_INPUT (error printed). */
 int cli_write_isolines(const char* path, const tg_isolines* iso);
-/* A surface point as a spec (cli_spec.c's syntax: v:I, e:H:t, f:F:b0,b1,b2), %.17g. */
+/* A surface point as a spec (cli_spec.c's syntax: v:I, e:H:t, f:F:b0,b1,b2; numbers as
+ * cli_format_double writes them), at most CLI_SPEC_TEXT_MAX bytes with the terminator. */
+#define CLI_SPEC_TEXT_MAX 112
 void cli_spec_text(const tg_surface_point* p, char* buf, size_t cap);
 
 /* Can `threads` threads (0: one per core) be started? Prints why not (naming `what`): OpenMP's

@@ -578,10 +578,10 @@ void cli_json_point(FILE* f, const tg_surface_point* p)
     if (p->kind == TG_SURFACE_VERTEX)
         fprintf(f, "{\"kind\": \"vertex\", \"vertex\": %u}", p->index);
     else if (p->kind == TG_SURFACE_EDGE)
-        fprintf(f, "{\"kind\": \"edge\", \"halfedge\": %u, \"t\": %.17g}", p->index, p->t);
+        fprintf(f, "{\"kind\": \"edge\", \"halfedge\": %u, \"t\": %s}", p->index, cli_num(p->t).s);
     else
-        fprintf(f, "{\"kind\": \"face\", \"face\": %u, \"bary\": [%.17g, %.17g, %.17g]}", p->index, p->bary[0],
-                p->bary[1], p->bary[2]);
+        fprintf(f, "{\"kind\": \"face\", \"face\": %u, \"bary\": [%s, %s, %s]}", p->index, cli_num(p->bary[0]).s,
+                cli_num(p->bary[1]).s, cli_num(p->bary[2]).s);
 }
 
 int cli_write_labels(const char* path, const tg_mesh* mesh, const uint32_t* label, const double* dist, size_t n)
@@ -610,7 +610,7 @@ int cli_write_labels(const char* path, const tg_mesh* mesh, const uint32_t* labe
     if (!f) return CLI_INPUT;
     bool ok = fprintf(f, "vertex,label,distance\n") > 0;
     for (size_t v = 0; ok && v < n; ++v)
-        ok = fprintf(f, "%zu,%lld,%.17g\n", v, label[v] == TG_NONE ? -1LL : (long long)label[v], dist[v]) > 0;
+        ok = fprintf(f, "%zu,%lld,%s\n", v, label[v] == TG_NONE ? -1LL : (long long)label[v], cli_num(dist[v]).s) > 0;
     if (!ok) {
         cli_error(path, 0, "write failed: %s", strerror(errno));
         cli_output_abort(&out);

@@ -9,14 +9,21 @@
 #include <stdlib.h>
 #include <string.h>
 
+void cli_spec_text(const tg_surface_point* p, char* buf, size_t cap)
+{
+    if (p->kind == TG_SURFACE_EDGE)
+        snprintf(buf, cap, "e:%u:%s", p->index, cli_num(p->t).s);
+    else if (p->kind == TG_SURFACE_FACE)
+        snprintf(buf, cap, "f:%u:%s,%s,%s", p->index, cli_num(p->bary[0]).s, cli_num(p->bary[1]).s, cli_num(p->bary[2]).s);
+    else
+        snprintf(buf, cap, "v:%u", p->index);
+}
+
 void cli_print_spec(FILE* f, const tg_surface_point* p)
 {
-    if (p->kind == TG_SURFACE_VERTEX)
-        fprintf(f, "v:%u", p->index);
-    else if (p->kind == TG_SURFACE_EDGE)
-        fprintf(f, "e:%u:%.17g", p->index, p->t);
-    else
-        fprintf(f, "f:%u:%.17g,%.17g,%.17g", p->index, p->bary[0], p->bary[1], p->bary[2]);
+    char buf[CLI_SPEC_TEXT_MAX];
+    cli_spec_text(p, buf, sizeof buf);
+    fputs(buf, f);
 }
 
 tg_surface_point cli_face_point(uint32_t face, const double b[3])

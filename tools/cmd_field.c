@@ -42,10 +42,10 @@ static int write_table(const char* path, int format, const double* d, size_t row
         ok = cli_write_npy_f64(f, d, rows, n, matrix);
     } else if (!matrix) {
         ok = fprintf(f, "vertex,distance\n") > 0;
-        for (size_t v = 0; ok && v < n; ++v) ok = fprintf(f, "%zu,%.17g\n", v, d[v]) > 0;
+        for (size_t v = 0; ok && v < n; ++v) ok = fprintf(f, "%zu,%s\n", v, cli_num(d[v]).s) > 0;
     } else {
         for (size_t r = 0; ok && r < rows; ++r)
-            for (size_t v = 0; ok && v < n; ++v) ok = fprintf(f, v + 1 < n ? "%.17g," : "%.17g\n", d[r * n + v]) > 0;
+            for (size_t v = 0; ok && v < n; ++v) ok = fprintf(f, v + 1 < n ? "%s," : "%s\n", cli_num(d[r * n + v]).s) > 0;
     }
     if (!ok) {
         cli_error(path, 0, "write failed: %s", strerror(errno));
@@ -135,7 +135,7 @@ static void print_summary(size_t sources, bool matrix, const char* columns, cons
         printf("%-18s %zu (%zu of %zu matrix entries reached)\n", columns, n, reached, n * rows);
     else
         printf("%-18s %zu (%zu reached)\n", columns, n, reached);
-    printf("max distance       %.17g\n", far);
+    printf("max distance       %s\n", cli_num(far).s);
     print_stats(st, secs);
 }
 
@@ -195,11 +195,11 @@ static int write_boundaries(const char* path, const tg_voronoi_boundaries* b)
     FILE* f = cli_output_open(&out, path);
     if (!f) return CLI_INPUT;
     bool json = cli_ext_is(path, ".json"), ok = true;
-    char spec[160];
+    char spec[CLI_SPEC_TEXT_MAX];
     if (!json) {
         ok = fprintf(f, "# trigeo Voronoi boundaries: %zu polylines\n", v.polyline_count) > 0;
         for (size_t i = 0; ok && i < v.point_count; ++i)
-            ok = fprintf(f, "v %.17g %.17g %.17g\n", v.xyz[3 * i], v.xyz[3 * i + 1], v.xyz[3 * i + 2]) > 0;
+            ok = fprintf(f, "v %s %s %s\n", cli_num(v.xyz[3 * i]).s, cli_num(v.xyz[3 * i + 1]).s, cli_num(v.xyz[3 * i + 2]).s) > 0;
         for (size_t p = 0; ok && p < v.polyline_count; ++p) {
             ok = fprintf(f, "# cells %u %u\nl", v.polyline_cells[2 * p], v.polyline_cells[2 * p + 1]) > 0;
             for (size_t i = v.polyline_start[p]; ok && i < v.polyline_start[p + 1]; ++i) ok = fprintf(f, " %zu", i + 1) > 0;
@@ -211,8 +211,8 @@ static int write_boundaries(const char* path, const tg_voronoi_boundaries* b)
             ok = fprintf(f, "%s\n  {\"cells\": [%u, %u], \"points\": [", p ? "," : "", v.polyline_cells[2 * p],
                          v.polyline_cells[2 * p + 1]) > 0;
             for (size_t i = v.polyline_start[p]; ok && i < v.polyline_start[p + 1]; ++i)
-                ok = fprintf(f, "%s[%.17g, %.17g, %.17g]", i > v.polyline_start[p] ? ", " : "", v.xyz[3 * i],
-                             v.xyz[3 * i + 1], v.xyz[3 * i + 2]) > 0;
+                ok = fprintf(f, "%s[%s, %s, %s]", i > v.polyline_start[p] ? ", " : "", cli_num(v.xyz[3 * i]).s,
+                             cli_num(v.xyz[3 * i + 1]).s, cli_num(v.xyz[3 * i + 2]).s) > 0;
             ok = ok && fprintf(f, "], \"surface\": [") > 0;
             for (size_t i = v.polyline_start[p]; ok && i < v.polyline_start[p + 1]; ++i) {
                 cli_spec_text(&v.points[i], spec, sizeof spec);
@@ -340,7 +340,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
             cli_output out;
             FILE* f = cli_output_open(&out, path);
             bool ok = f != NULL;
-            for (size_t i = 0; ok && i < fa->at_count; ++i) ok = fprintf(f, "%.17g\n", at_d[i]) > 0;
+            for (size_t i = 0; ok && i < fa->at_count; ++i) ok = fprintf(f, "%s\n", cli_num(at_d[i]).s) > 0;
             if (!f) {
                 rc = CLI_INPUT;
             } else if (!ok) {
@@ -432,7 +432,7 @@ static int run_isolines(const field_args* fa, char** items, const unsigned long 
             size_t closed = 0;
             for (size_t p = 0; p < v.polyline_count; ++p) closed += v.polyline_closed[p];
             printf("sources            %zu\n", count);
-            printf("levels             %zu (%.17g .. %.17g)\n", nl, levels[0], levels[nl - 1]);
+            printf("levels             %zu (%s .. %s)\n", nl, cli_num(levels[0]).s, cli_num(levels[nl - 1]).s);
             printf("polylines          %zu (%zu closed), %zu points\n", v.polyline_count, closed, v.point_count);
             print_stats(&stats, secs);
             rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
@@ -453,7 +453,7 @@ static bool write_triplets(FILE* f, const tg_sparse_matrix_view* v)
     bool ok = fprintf(f, "i,j,d\n") > 0;
     for (size_t r = 0; ok && r < v->row_count; ++r)
         for (uint64_t e = v->row_start[r]; ok && e < v->row_start[r + 1]; ++e)
-            ok = fprintf(f, "%zu,%u,%.17g\n", r, (unsigned)v->col[e], v->value[e]) > 0;
+            ok = fprintf(f, "%zu,%u,%s\n", r, (unsigned)v->col[e], cli_num(v->value[e]).s) > 0;
     return ok;
 }
 
@@ -509,7 +509,7 @@ static int run_sparse(const field_args* fa, char** items, const unsigned long lo
     if ((rc = cli_output_commit(&out)) != CLI_OK) goto done;
     if (!fa->quiet && strcmp(fa->out, "-")) {
         printf("sources            %zu (one field each%s)\n", count, fa->all ? ", every vertex" : "");
-        printf("radius             %.17g\n", fa->max_dist >= 0 ? fa->max_dist : INFINITY);
+        printf("radius             %s\n", cli_num(fa->max_dist >= 0 ? fa->max_dist : INFINITY).s);
         printf("entries            %zu (%.1f a row, %.1f MiB as CSR)\n", v.entry_count,
                count ? (double)v.entry_count / (double)count : 0.0,
                (double)tg_sparse_matrix_memory_bytes(mat) / 1048576.0);
@@ -687,7 +687,7 @@ const cli_command cli_cmd_field = {
     "                           .ply  (--from) the mesh as binary PLY with a per-vertex double\n"
     "                                 property 'distance' (trigeo render MESH --field OUT.ply)\n"
     "                           .csv  --from: rows vertex,distance; --sources: one row of\n"
-    "                                 vertex_count distances per source, no header (%.17g)\n"
+    "                                 vertex_count distances per source, no header\n"
     "                           .npy  NumPy float64: shape (vertices,) or (sources, vertices)\n"
     "                           .npz  (--sources) the sparse matrix as scipy.sparse.load_npz reads\n"
     "                                 it (CSR: format, shape, indptr, indices, data)\n"
@@ -697,7 +697,7 @@ const cli_command cli_cmd_field = {
     "  --csv OUT              the same as -o with CSV whatever the extension\n"
     "  --at POINTS            with --from: the distance at these surface points instead of the\n"
     "                         vertices: POINTS has one SPEC or \"x y z\" a line (x y z: the closest\n"
-    "                         surface point); one distance a line (%.17g) to -o (.txt, .csv or\n"
+    "                         surface point); one distance a line to -o (.txt, .csv or\n"
     "                         .npy) or stdout\n"
     "  --labels               Voronoi cells of the sources (--from or --sources): per vertex the\n"
     "                         index of the nearest source (0-based, in the order given; ties to\n"

@@ -11,7 +11,7 @@
 #include <string.h>
 
 typedef struct logmap_args {
-    const char *mesh_path, *from, *out;
+    const char *mesh_path, *from, *out, *ref_text;
     double ref[3];
     bool has_ref, quiet;
     double max_dist; /* < 0: no limit */
@@ -117,8 +117,8 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
     }
     if (st == TG_ERR_INVALID_ARGUMENT && geo) {
         if (la->has_ref)
-            cli_error(la->mesh_path, 0, "--ref %.17g,%.17g,%.17g is perpendicular to the reference face at %s (or that "
-                      "face has zero area)", la->ref[0], la->ref[1], la->ref[2], la->from);
+            cli_error(la->mesh_path, 0, "--ref %s is perpendicular to the reference face at %s (or that face has zero "
+                      "area)", la->ref_text, la->from);
         else
             cli_error(la->mesh_path, 0, "the reference face at %s has zero area: give --ref X,Y,Z", la->from);
         goto done;
@@ -135,7 +135,7 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
         for (size_t i = 0; i < n; ++i)
             if (r[i] < INFINITY) reached++, far = r[i] > far ? r[i] : far;
         printf("vertices           %zu (%zu reached)\n", n, reached);
-        printf("largest distance   %.17g\n", far);
+        printf("largest distance   %s\n", cli_num(far).s);
         printf("windows            %llu created, %llu propagated\n", (unsigned long long)stats.windows_created,
                (unsigned long long)stats.windows_propagated);
         printf("seconds            %.3f\n", secs);
@@ -179,6 +179,7 @@ static int run(int argc, char** argv)
         return cli_usage("logmap", "-o %s: the extension must be .ply, .csv or .npy ('-': CSV on stdout)", la.out);
     if (ref) {
         la.has_ref = true;
+        la.ref_text = ref;
         if (!cli_parse_doubles(ref, 3, la.ref) || (la.ref[0] == 0.0 && la.ref[1] == 0.0 && la.ref[2] == 0.0))
             return cli_usage("logmap", "bad --ref '%s' (X,Y,Z: three finite numbers, not all zero)", ref);
     }

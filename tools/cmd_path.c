@@ -18,7 +18,7 @@
 static void json_number(FILE* f, double x)
 {
     if (isfinite(x))
-        fprintf(f, "%.17g", x);
+        fputs(cli_num(x).s, f);
     else
         fputs("null", f);
 }
@@ -41,15 +41,17 @@ static void print_json(FILE* f, const char* mesh_path, const char* method, const
     json_number(f, v->length);
     fprintf(f, ",\n  \"initial_length\": ");
     json_number(f, v->initial_length);
-    fprintf(f, ",\n  \"max_angle_defect\": %.17g,\n  \"iterations\": %u,\n  \"point_count\": %zu,\n  \"points\": [",
-            v->max_angle_defect, v->iterations, v->point_count);
+    fprintf(f, ",\n  \"max_angle_defect\": ");
+    json_number(f, v->max_angle_defect);
+    fprintf(f, ",\n  \"iterations\": %u,\n  \"point_count\": %zu,\n  \"points\": [", v->iterations, v->point_count);
     for (size_t i = 0; i < v->point_count; ++i) {
         fputs(i ? ",\n    " : "\n    ", f);
         cli_json_point(f, &v->points[i]);
     }
     fprintf(f, "%s],\n  \"xyz\": [", v->point_count ? "\n  " : "");
     for (size_t i = 0; i < v->point_count; ++i)
-        fprintf(f, "%s[%.17g, %.17g, %.17g]", i ? ",\n    " : "\n    ", v->xyz[3 * i], v->xyz[3 * i + 1], v->xyz[3 * i + 2]);
+        fprintf(f, "%s[%s, %s, %s]", i ? ",\n    " : "\n    ", cli_num(v->xyz[3 * i]).s, cli_num(v->xyz[3 * i + 1]).s,
+                cli_num(v->xyz[3 * i + 2]).s);
     fprintf(f, "%s],\n  \"faces\": [", v->point_count ? "\n  " : "");
     for (size_t i = 0; i + 1 < v->point_count; ++i) fprintf(f, "%s%u", i ? ", " : "", v->faces[i]);
     fprintf(f, "]");
@@ -73,12 +75,12 @@ static void print_summary(FILE* f, tg_path_method method, const tg_path_view* v,
             v->global == TG_PATH_PROVEN ? "proven shortest (exact check)"
             : method == TG_PATH_EXACT   ? "unproven (the exact method found no straight path here: see status)"
                                         : "unproven (locally shortest only; --certify or --method exact proves)");
-    fprintf(f, "length             %.17g\n", v->length);
+    fprintf(f, "length             %s\n", cli_num(v->length).s);
     /* the exact method traces its path through the field: no edge path (the view repeats length) */
     if (method == TG_PATH_EXACT && v->edge_path_vertices == 0 && v->initial_length == v->length)
         fprintf(f, "edge path length   none (the exact method computes no edge path)\n");
     else
-        fprintf(f, "edge path length   %.17g\n", v->initial_length);
+        fprintf(f, "edge path length   %s\n", cli_num(v->initial_length).s);
     fprintf(f, "points             %zu (%d edge crossings, %d vertex passages)\n", v->point_count, crossings, vertices);
     if (w && v->point_count)
         fprintf(f, "waypoints          %zu%s (the path bends there)\n", w->list.count, w->closed ? ", closed" : "");
@@ -143,8 +145,8 @@ static bool parse_pair(const char* name, unsigned long long line, char* s, tg_me
     } else if (n == 7 && nums && !strcmp(tok[0], "p")) {
         for (int k = 0; k < 6; ++k)
             if (fabs(c[k]) > 1e150) {
-                cli_error(name, line, "coordinate %g is beyond the supported range of +-1e150 (squared distances "
-                          "would overflow)", c[k]);
+                cli_error(name, line, "coordinate %s is beyond the supported range of +-1e150 (squared distances "
+                          "would overflow)", cli_num(c[k]).s);
                 return false;
             }
         const char* why = NULL;
@@ -265,8 +267,8 @@ static int run_pairs(const char* mesh_path, const char* pairs_path, const char* 
         }
         tg_path_view v;
         tg_path_get_view(path, &v);
-        fprintf(f, "%ld,%.17g,%zu,%s,%.17g,%.3f,%s\n", i, v.length, v.point_count, tg_path_status_name(v.status),
-                v.max_angle_defect, us, tg_path_global_name(v.global));
+        fprintf(f, "%ld,%s,%zu,%s,%s,%.3f,%s\n", i, cli_num(v.length).s, v.point_count, tg_path_status_name(v.status),
+                cli_num(v.max_angle_defect).s, us, tg_path_global_name(v.global));
     }
     cli_interrupt_polling(false);
     opened = false;

@@ -230,7 +230,7 @@ static int run(int argc, char** argv)
         }
         for (size_t v = 0; rc == CLI_OK && v < nv; ++v) {
             if (!(lv[v] == -1.0 || (lv[v] >= 0 && lv[v] < 4294967295.0 && lv[v] == floor(lv[v])))) {
-                cli_error(labels, 0, "vertex %zu: label %g is not -1 or a cell index", v, lv[v]);
+                cli_error(labels, 0, "vertex %zu: label %s is not -1 or a cell index", v, cli_num(lv[v]).s);
                 rc = CLI_INPUT;
             }
             cells[v] = lv[v] < 0 ? TG_NONE : (uint32_t)lv[v];

@@ -30,7 +30,8 @@ static int write_samples(const char* path, const tg_mesh* mesh, const uint32_t* 
     bool ok = !csv || fprintf(f, "i,vertex,x,y,z\n") > 0;
     for (size_t i = 0; ok && i < k; ++i) {
         const double* p = xyz + 3 * (size_t)s[i];
-        ok = csv ? fprintf(f, "%zu,%u,%.17g,%.17g,%.17g\n", i, s[i], p[0], p[1], p[2]) > 0 : fprintf(f, "v:%u\n", s[i]) > 0;
+        ok = csv ? fprintf(f, "%zu,%u,%s,%s,%s\n", i, s[i], cli_num(p[0]).s, cli_num(p[1]).s, cli_num(p[2]).s) > 0
+                 : fprintf(f, "v:%u\n", s[i]) > 0;
     }
     if (!ok) {
         cli_error(path, 0, "write failed: %s", strerror(errno));
@@ -116,7 +117,7 @@ static int run_sample(const sample_args* sa)
             if (isfinite(dist[v]) && dist[v] > far) far = dist[v];
         printf("samples            %llu (first v:%u)\n", sa->count, samples[0]);
         printf("vertices           %zu\n", n);
-        printf("covering radius    %.17g\n", far);
+        printf("covering radius    %s\n", cli_num(far).s);
         printf("windows            %llu propagated, %llu created\n", (unsigned long long)stats.windows_propagated,
                (unsigned long long)stats.windows_created);
         printf("seconds            %.3f\n", secs);

@@ -25,7 +25,7 @@ typedef struct trace_args {
 
 static void json_xyz(FILE* f, const double* p)
 {
-    fprintf(f, "[%.17g, %.17g, %.17g]", p[0], p[1], p[2]);
+    fprintf(f, "[%s, %s, %s]", cli_num(p[0]).s, cli_num(p[1]).s, cli_num(p[2]).s);
 }
 
 static void print_json(FILE* f, const trace_args* ta, const tg_trace_view* v)
@@ -33,8 +33,8 @@ static void print_json(FILE* f, const trace_args* ta, const tg_trace_view* v)
     const tg_trace_end* e = &v->end;
     fprintf(f, "{\n  \"mesh\": ");
     cli_json_string(f, ta->mesh_path);
-    fprintf(f, ",\n  \"status\": \"%s\",\n  \"length\": %.17g,\n  \"requested_length\": %.17g,\n  \"end\": {\"point\": ",
-            tg_trace_status_name(e->status), e->length, ta->length);
+    fprintf(f, ",\n  \"status\": \"%s\",\n  \"length\": %s,\n  \"requested_length\": %s,\n  \"end\": {\"point\": ",
+            tg_trace_status_name(e->status), cli_num(e->length).s, cli_num(ta->length).s);
     cli_json_point(f, &e->point);
     fprintf(f, ", \"xyz\": ");
     json_xyz(f, e->xyz);
@@ -60,9 +60,10 @@ static void print_json(FILE* f, const trace_args* ta, const tg_trace_view* v)
 
 static void print_obj(FILE* f, const tg_trace_view* v)
 {
-    fprintf(f, "# trigeo geodesic trace: %zu points, length %.17g, status %s\n", v->point_count, v->end.length,
+    fprintf(f, "# trigeo geodesic trace: %zu points, length %s, status %s\n", v->point_count, cli_num(v->end.length).s,
             tg_trace_status_name(v->end.status));
-    for (size_t i = 0; i < v->point_count; ++i) fprintf(f, "v %.17g %.17g %.17g\n", v->xyz[3 * i], v->xyz[3 * i + 1], v->xyz[3 * i + 2]);
+    for (size_t i = 0; i < v->point_count; ++i)
+        fprintf(f, "v %s %s %s\n", cli_num(v->xyz[3 * i]).s, cli_num(v->xyz[3 * i + 1]).s, cli_num(v->xyz[3 * i + 2]).s);
     fputs("l", f);
     for (size_t i = 0; i < v->point_count; ++i) fprintf(f, " %zu", i + 1);
     fputc('\n', f);
@@ -72,11 +73,12 @@ static void print_summary(FILE* f, const tg_trace_view* v)
 {
     const tg_trace_end* e = &v->end;
     fprintf(f, "status             %s\n", tg_trace_status_name(e->status));
-    fprintf(f, "length             %.17g\n", e->length);
+    fprintf(f, "length             %s\n", cli_num(e->length).s);
     fprintf(f, "end                ");
     cli_print_spec(f, &e->point);
-    fprintf(f, "\nend xyz            %.17g %.17g %.17g\n", e->xyz[0], e->xyz[1], e->xyz[2]);
-    fprintf(f, "end direction      %.17g %.17g %.17g\n", e->direction[0], e->direction[1], e->direction[2]);
+    fprintf(f, "\nend xyz            %s %s %s\n", cli_num(e->xyz[0]).s, cli_num(e->xyz[1]).s, cli_num(e->xyz[2]).s);
+    fprintf(f, "end direction      %s %s %s\n", cli_num(e->direction[0]).s, cli_num(e->direction[1]).s,
+            cli_num(e->direction[2]).s);
     fprintf(f, "end face           %u\n", e->face);
     fprintf(f, "points             %zu (%llu edge crossings, %u vertex passages)\n", v->point_count,
             (unsigned long long)e->crossings, e->vertices);
@@ -321,9 +323,10 @@ static int run_batch(const trace_args* ta)
     fprintf(f, "i,status,length,crossings,vertices,branches,face,x,y,z,dx,dy,dz,end\n");
     for (size_t i = 0; i < k; ++i) {
         const tg_trace_end* e = &ends[i];
-        fprintf(f, "%zu,%s,%.17g,%llu,%u,%u,%u,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,", i, tg_trace_status_name(e->status),
-                e->length, (unsigned long long)e->crossings, e->vertices, e->branches, e->face, e->xyz[0], e->xyz[1],
-                e->xyz[2], e->direction[0], e->direction[1], e->direction[2]);
+        fprintf(f, "%zu,%s,%s,%llu,%u,%u,%u,%s,%s,%s,%s,%s,%s,", i, tg_trace_status_name(e->status), cli_num(e->length).s,
+                (unsigned long long)e->crossings, e->vertices, e->branches, e->face, cli_num(e->xyz[0]).s,
+                cli_num(e->xyz[1]).s, cli_num(e->xyz[2]).s, cli_num(e->direction[0]).s, cli_num(e->direction[1]).s,
+                cli_num(e->direction[2]).s);
         csv_spec(f, &e->point);
         fputc('\n', f);
     }

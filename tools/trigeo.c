@@ -81,9 +81,9 @@ tg_mesh* cli_load_mesh_for_distances(const char* path)
     for (int k = 0; k < 3; ++k)
         if (tg_mesh_vertex_count(m) && !(r->bbox_min[k] >= -1e150 && r->bbox_max[k] <= 1e150)) {
             cli_error(path, 0,
-                      "coordinates reach %g, beyond the supported range of +-1e150 for distances (squared "
+                      "coordinates reach %s, beyond the supported range of +-1e150 for distances (squared "
                       "distances would overflow): rescale the mesh",
-                      fabs(r->bbox_min[k]) > fabs(r->bbox_max[k]) ? r->bbox_min[k] : r->bbox_max[k]);
+                      cli_num(fabs(r->bbox_min[k]) > fabs(r->bbox_max[k]) ? r->bbox_min[k] : r->bbox_max[k]).s);
             tg_mesh_destroy(m);
             return NULL;
         }

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # cli_messages.sh: what the CLI says besides its data. --quiet means one thing in every command
 # that has it (field in all its forms, logmap, sample): no progress line and no summary, while
-# errors are still printed and data sent to stdout still is.
+# errors are still printed and data sent to stdout still is. Every summary words the same thing
+# the same way: "largest distance", "windows N created, M propagated", labels in one column.
 set -u
 trigeo=${TG_TRIGEO:?}
 exec /usr/bin/env python3 - "$trigeo" <<'PY'
-import os, shutil, subprocess, sys, tempfile
+import os, re, shutil, subprocess, sys, tempfile
 trigeo = sys.argv[1]
 sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.join(os.environ["TG_SOURCE_DIR"], "tests"))
@@ -55,6 +56,24 @@ for cmd, args in [("field", ["--from", "v:9999"]), ("logmap", ["--from", "v:9999
 for cmd in ("field", "logmap", "sample"):
     h = run(cmd, "--help").stdout
     check("--quiet" in h and "no summary" in h, "%s --help: --quiet says 'no summary'" % cmd)
+
+# ---- one wording in every summary ----
+summaries = {}
+for cmd, args in runs:
+    r = run(cmd, flat, *args)
+    summaries["%s %s" % (cmd, " ".join(a for a in args if not a.startswith(tmp)))] = r.stdout
+for what, text in summaries.items():
+    lines = text.splitlines()
+    windows = [l for l in lines if l.startswith("windows")]
+    check(len(windows) == 1 and re.fullmatch(r"windows {12}\d+ created, \d+ propagated", windows[0]),
+          "%s: windows line %r (want 'windows            N created, M propagated')" % (what, windows))
+    check(not any(l.startswith(("max distance", "maximum distance", "farthest")) for l in lines),
+          "%s: the largest distance worded otherwise: %r" % (what, lines))
+    check(all(re.fullmatch(r"[a-z][a-z -]{0,17} {1,}\S.*", l) and l[18] == " " and l[19] != " " for l in lines),
+          "%s: labels not in one 19-column field: %r" % (what, lines))
+for what in ("field --from v:0 -o", "logmap --from v:40 -o"):
+    text = summaries.get(what, "")
+    check(any(l.startswith("largest distance   ") for l in text.splitlines()), "%s: 'largest distance' in %r" % (what, text))
 
 shutil.rmtree(tmp)
 cli_common.finish()

@@ -35,6 +35,9 @@ int cli_usage(const char* cmd, const char* fmt, ...)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
+/* The last lines of every field-based summary (field, logmap, sample), in one wording:
+ * "windows            N created, M propagated" and "seconds            S.SSS", on stdout. */
+void cli_print_work(const tg_field_stats* st, double secs);
 /* Seconds on the monotonic clock (for durations). */
 double cli_seconds(void);
 

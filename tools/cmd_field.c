@@ -116,13 +116,6 @@ static long read_lines(const char* path, const char* what, char** out_text, char
     return n;
 }
 
-static void print_stats(const tg_field_stats* st, double secs)
-{
-    printf("windows            %llu propagated, %llu created\n", (unsigned long long)st->windows_propagated,
-           (unsigned long long)st->windows_created);
-    printf("seconds            %.3f\n", secs);
-}
-
 static void print_summary(size_t sources, bool matrix, const char* columns, const double* d, size_t rows, size_t n,
                           double secs, const tg_field_stats* st)
 {
@@ -135,8 +128,8 @@ static void print_summary(size_t sources, bool matrix, const char* columns, cons
         printf("%-18s %zu (%zu of %zu matrix entries reached)\n", columns, n, reached, n * rows);
     else
         printf("%-18s %zu (%zu reached)\n", columns, n, reached);
-    printf("max distance       %s\n", cli_num(far).s);
-    print_stats(st, secs);
+    printf("largest distance   %s\n", cli_num(far).s);
+    cli_print_work(st, secs);
 }
 
 typedef struct field_args {
@@ -434,7 +427,7 @@ static int run_isolines(const field_args* fa, char** items, const unsigned long 
             printf("sources            %zu\n", count);
             printf("levels             %zu (%s .. %s)\n", nl, cli_num(levels[0]).s, cli_num(levels[nl - 1]).s);
             printf("polylines          %zu (%zu closed), %zu points\n", v.polyline_count, closed, v.point_count);
-            print_stats(&stats, secs);
+            cli_print_work(&stats, secs);
             rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
         }
     }
@@ -513,7 +506,7 @@ static int run_sparse(const field_args* fa, char** items, const unsigned long lo
         printf("entries            %zu (%.1f a row, %.1f MiB as CSR)\n", v.entry_count,
                count ? (double)v.entry_count / (double)count : 0.0,
                (double)tg_sparse_matrix_memory_bytes(mat) / 1048576.0);
-        print_stats(&stats, secs);
+        cli_print_work(&stats, secs);
     }
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:

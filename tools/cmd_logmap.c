@@ -136,9 +136,7 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
             if (r[i] < INFINITY) reached++, far = r[i] > far ? r[i] : far;
         printf("vertices           %zu (%zu reached)\n", n, reached);
         printf("largest distance   %s\n", cli_num(far).s);
-        printf("windows            %llu created, %llu propagated\n", (unsigned long long)stats.windows_created,
-               (unsigned long long)stats.windows_propagated);
-        printf("seconds            %.3f\n", secs);
+        cli_print_work(&stats, secs);
     }
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:

@@ -118,9 +118,7 @@ static int run_sample(const sample_args* sa)
         printf("samples            %llu (first v:%u)\n", sa->count, samples[0]);
         printf("vertices           %zu\n", n);
         printf("covering radius    %s\n", cli_num(far).s);
-        printf("windows            %llu propagated, %llu created\n", (unsigned long long)stats.windows_propagated,
-               (unsigned long long)stats.windows_created);
-        printf("seconds            %.3f\n", secs);
+        cli_print_work(&stats, secs);
     }
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:

@@ -101,6 +101,13 @@ int cli_usage(const char* cmd, const char* fmt, ...)
     return CLI_USAGE;
 }
 
+void cli_print_work(const tg_field_stats* st, double secs)
+{
+    printf("windows            %llu created, %llu propagated\n", (unsigned long long)st->windows_created,
+           (unsigned long long)st->windows_propagated);
+    printf("seconds            %.3f\n", secs);
+}
+
 static void print_overview(FILE* f)
 {
     fprintf(f, "trigeo %s - distances and shortest paths on triangle meshes\n\n", tg_version());

@@ -2,11 +2,13 @@
 # cli_messages.sh: what the CLI says besides its data. --quiet means one thing in every command
 # that has it (field in all its forms, logmap, sample): no progress line and no summary, while
 # errors are still printed and data sent to stdout still is. Every summary words the same thing
-# the same way: "largest distance", "windows N created, M propagated", labels in one column.
+# the same way: "largest distance", "windows N created, M propagated", labels in one column. A path
+# between components says that no path exists (summary; JSON and CSV: status unreachable, the CSV
+# columns unchanged), with every method and through waypoints.
 set -u
 trigeo=${TG_TRIGEO:?}
 exec /usr/bin/env python3 - "$trigeo" <<'PY'
-import os, re, shutil, subprocess, sys, tempfile
+import csv, io, json, os, re, shutil, subprocess, sys, tempfile
 trigeo = sys.argv[1]
 sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.join(os.environ["TG_SOURCE_DIR"], "tests"))
@@ -74,6 +76,27 @@ for what, text in summaries.items():
 for what in ("field --from v:0 -o", "logmap --from v:40 -o"):
     text = summaries.get(what, "")
     check(any(l.startswith("largest distance   ") for l in text.splitlines()), "%s: 'largest distance' in %r" % (what, text))
+
+# ---- no path between components ----
+far = "v:%d" % (len(vs) - 2)  # the lone far triangle
+for args in (["--from", "v:0", "--to", far], ["--from", "f:10:0.2,0.3,0.5", "--to", far, "--method", "straighten"],
+             ["--from", "v:0", "--to", far, "--method", "relax"], ["--from", "v:0", "--to", far, "--method", "edge"],
+             ["--from", "v:0", "--to", far, "--method", "straighten", "--certify"], ["--through", "v:0;v:40;%s" % far],
+             ["--through", "v:0;%s" % far, "--closed"]):
+    r = run("path", flat, *args)
+    glob = [l for l in r.stdout.splitlines() if l.startswith("global")]
+    check(r.returncode == 0 and "status             unreachable" in r.stdout and len(glob) == 1 and
+          "no path exists" in glob[0] and "different components" in glob[0] and "unproven" not in glob[0],
+          "path %s: the global line %r (want 'no path exists ... different components')" % (args, glob))
+    check("edge path length   none (no path exists)" in r.stdout, "path %s: edge path length line in %r" % (args, r.stdout))
+    j = json.loads(run("path", flat, *args, "--json").stdout or "null")
+    check(j and j["status"] == "unreachable" and j["length"] is None and j["points"] == [], "path %s --json: %s" % (args, j))
+pairs = write("pairs.txt", "v 0 40\nv 0 %s\n" % far[2:])
+for method in ("exact", "straighten"):
+    rows = list(csv.reader(io.StringIO(run("path", flat, "--pairs", pairs, "--method", method).stdout)))
+    check(rows and rows[0] == "i,length,points,status,max_angle_defect,microseconds,global".split(",") and len(rows) == 3
+          and rows[2][3] == "unreachable" and rows[2][1] == "inf" and rows[1][3] == "converged",
+          "--pairs %s: header and the unreachable row %s" % (method, rows))
 
 shutil.rmtree(tmp)
 cli_common.finish()

@@ -70,14 +70,21 @@ static void print_summary(FILE* f, tg_path_method method, const tg_path_view* v,
         crossings += v->points[i].kind == TG_SURFACE_EDGE;
         vertices += v->points[i].kind == TG_SURFACE_VERTEX;
     }
+    /* endpoints (or consecutive waypoints) in different components: there is no path at all, proven
+     * by the components, whatever the method (the view's global stays the library's "unproven") */
+    bool none = v->status == TG_PATH_UNREACHABLE;
     fprintf(f, "status             %s\n", tg_path_status_name(v->status));
     fprintf(f, "global             %s\n",
-            v->global == TG_PATH_PROVEN ? "proven shortest (exact check)"
-            : method == TG_PATH_EXACT   ? "unproven (the exact method found no straight path here: see status)"
-                                        : "unproven (locally shortest only; --certify or --method exact proves)");
+            none ? (w ? "no path exists (two consecutive waypoints lie in different components)"
+                      : "no path exists (the two points lie in different components)")
+            : v->global == TG_PATH_PROVEN ? "proven shortest (exact check)"
+            : method == TG_PATH_EXACT     ? "unproven (the exact method found no straight path here: see status)"
+                                          : "unproven (locally shortest only; --certify or --method exact proves)");
     fprintf(f, "length             %s\n", cli_num(v->length).s);
     /* the exact method traces its path through the field: no edge path (the view repeats length) */
-    if (method == TG_PATH_EXACT && v->edge_path_vertices == 0 && v->initial_length == v->length)
+    if (none)
+        fprintf(f, "edge path length   none (no path exists)\n");
+    else if (method == TG_PATH_EXACT && v->edge_path_vertices == 0 && v->initial_length == v->length)
         fprintf(f, "edge path length   none (the exact method computes no edge path)\n");
     else
         fprintf(f, "edge path length   %s\n", cli_num(v->initial_length).s);
@@ -484,8 +491,9 @@ const cli_command cli_cmd_path = {
     "global: proven when an exact computation showed no path shorter by 1e-9 relative exists\n"
     "(--method exact, the default, or --certify), else unproven (locally shortest, possibly not\n"
     "globally).\n"
-    "Status is converged, iteration_cap, unreachable (endpoints in different components: no\n"
-    "points, length inf) or stalled (straighten's certificate exceeds 1e-8 rad; never proven).\n"
+    "Status is converged, iteration_cap, unreachable (endpoints in different components: no path\n"
+    "exists, the summary says so; no points, length inf, JSON length null, global unproven) or\n"
+    "stalled (straighten's certificate exceeds 1e-8 rad; never proven).\n"
     "Timings of the methods: BENCHMARKS.md. The certificate (max angle\n"
     "defect, radians) is the largest deviation from straightness over edge crossings and vertex\n"
     "passages. Indices are 0-based in file order. Ctrl-C stops the computation (exit 130, no\n"

@@ -8,7 +8,9 @@
 # And every number the CLI writes (CSV, JSON, OBJ, summaries, messages) is the shortest decimal
 # that reads back to the same double (Python's repr; integers without ".0"), checked on every
 # output of every command; only the fixed-precision displays (seconds, the summary's max angle
-# defect %.3g, MiB, microseconds) are rounded on purpose.
+# defect %.3g, MiB, microseconds) are rounded on purpose. closest reads .npy queries written by
+# NumPy as float64 or float32, little- or big-endian, C or Fortran order, each converted exactly:
+# the answers are those of the same points as float64 C order, byte for byte.
 set -u
 trigeo=${TG_TRIGEO:?}
 exec /usr/bin/env python3 - "$trigeo" <<'PY'
@@ -146,6 +148,44 @@ for what, text in outputs: numbers_shortest(what, text)
 # messages quote numbers the same way
 r = run("path", flat, "--pairs", write("p.txt", "v 0 1\np 0.1 0.2 0 0.7 0.6 1.0000000000000001e200\n"))
 check("1e+200" in r.stderr, "a coordinate quoted in a message: %r" % r.stderr.strip())
+
+# ---- .npy queries in every float layout NumPy writes ----
+# NumPy writes them (np.save); an interpreter with NumPy: this one, else Debian's (make deps)
+writer = r"""
+import sys, numpy as np
+out = sys.argv[1]
+rng = np.random.default_rng(7)
+q = rng.uniform(-0.5, 1.5, (257, 3))
+q[:, 2] = rng.uniform(-0.2, 0.2, 257)
+q[0] = (1e-40, 0.5, 0)  # a float32 subnormal
+q32 = q.astype(np.float32)
+np.save(out + "/ref64.npy", q32.astype(np.float64))
+for name, a in [("le4", q32), ("be4", q32.astype(">f4")), ("f4F", np.asfortranarray(q32)),
+                ("be4F", np.asfortranarray(q32.astype(">f4"))), ("le8", q32.astype(np.float64)),
+                ("be8", q32.astype(">f8")), ("f8F", np.asfortranarray(q32.astype(np.float64))),
+                ("be8F", np.asfortranarray(q32.astype(">f8")))]:
+    np.save(out + "/" + name + ".npy", a)
+bad = q32.copy(); bad[5, 1] = np.nan
+np.save(out + "/nan4.npy", bad)
+"""
+pythons = [sys.executable, "/usr/bin/python3"]
+made = False
+for py in pythons:
+    if os.path.exists(py) and subprocess.run([py, "-c", writer, tmp], capture_output=True).returncode == 0:
+        made = True
+        break
+check(made, "no Python with NumPy to write .npy files (python3-numpy: make deps)")
+if made:
+    want = run("closest", flat, os.path.join(tmp, "ref64.npy"), "--signed")
+    check(want.returncode == 0 and len(want.stdout.splitlines()) == 258, "float64 reference: exit %d %r" % (want.returncode, want.stderr))
+    for name in ("le4", "be4", "f4F", "be4F", "le8", "be8", "f8F", "be8F"):
+        got = run("closest", flat, os.path.join(tmp, name + ".npy"), "--signed")
+        check(got.returncode == 0 and got.stdout == want.stdout,
+              "closest %s.npy: exit %d %r, %s" % (name, got.returncode, got.stderr.strip(),
+                                                   "same answers" if got.stdout == want.stdout else "answers differ from float64"))
+    r = run("closest", flat, os.path.join(tmp, "nan4.npy"), "-o", o("never.csv"))
+    check(r.returncode == 2 and "row 5 (from 0), y is nan" in r.stderr and not os.path.exists(o("never.csv")),
+          "float32 nan: exit %d %r" % (r.returncode, r.stderr.strip()))
 
 shutil.rmtree(tmp)
 cli_common.finish()

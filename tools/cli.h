@@ -139,9 +139,10 @@ bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bo
 bool cli_write_npy_header(FILE* f, const char* descr, size_t rows);
 /* Is this file content a NumPy .npy file (its magic string)? */
 bool cli_is_npy(const char* data, size_t size);
-/* The (k, 3) little-endian float64 C-order array of a .npy file's content, as k points; every
- * other dtype, shape or order, a bad header or truncated or excess data is refused with the file
- * name and the reason (printed). Returns the count, or (size_t)-1 after printing the error;
+/* The (k, 3) array of a .npy file's content, as k points: float64 or float32 (converted exactly),
+ * little- or big-endian ('<f8', '>f8', '<f4', '>f4'), C or Fortran order; every other dtype or
+ * shape, a bad header, truncated or excess data, a coordinate not finite or beyond +-1e150 is
+ * refused with the file name and the reason (printed). Returns the count, or (size_t)-1 after printing the error;
  * *out is malloc'd (at least one element). */
 size_t cli_read_npy_points(const char* name, const char* data, size_t size, double** out);
 

@@ -284,8 +284,9 @@ const cli_command cli_cmd_closest = {
     "closest point and its barycentric coordinates on that face. Ties go to the lowest face index;\n"
     "the answers equal a linear scan over all faces.\n\n"
     "  QUERIES     text, one \"x y z\" per line ('-' = stdin); blank lines and '#' comments allowed;\n"
-    "              or a NumPy .npy file (recognized by its content) holding a (k, 3) float64\n"
-    "              little-endian C-order array, e.g. numpy.save(\"q.npy\", points)\n"
+    "              or a NumPy .npy file (recognized by its content) holding a (k, 3) array of\n"
+    "              float64 or float32 (converted exactly), either byte order, C or Fortran\n"
+    "              order, e.g. numpy.save(\"q.npy\", points)\n"
     "  --signed    add a sign column: -1 inside, +1 outside, 0 on the surface. Angle-weighted\n"
     "              pseudonormals for closed, consistently oriented manifolds, else the generalized\n"
     "              winding number (>= 1/2 is inside); the choice is reported on stderr\n"
@@ -297,6 +298,6 @@ const cli_command cli_cmd_closest = {
     "Output: CSV with header i,face,sqdist,cx,cy,cz,b0,b1,b2[,sign]; each number is the shortest\n"
     "decimal that reads back to exactly the computed double.\n"
     "A malformed or non-finite query line is reported as QUERIES:LINE, a malformed .npy file with\n"
-    "the reason (dtype, shape, order, truncation), and nothing is written.\n",
+    "the reason (dtype, shape, truncation, a coordinate), and nothing is written.\n",
     run,
 };

@@ -4,7 +4,8 @@
 # errors are still printed and data sent to stdout still is. Every summary words the same thing
 # the same way: "largest distance", "windows N created, M propagated", labels in one column. A path
 # between components says that no path exists (summary; JSON and CSV: status unreachable, the CSV
-# columns unchanged), with every method and through waypoints.
+# columns unchanged), with every method and through waypoints. Messages name the option the user
+# gave (--to, not --at), print no doubled word ("the the mesh") and no "-0".
 set -u
 trigeo=${TG_TRIGEO:?}
 exec /usr/bin/env python3 - "$trigeo" <<'PY'
@@ -97,6 +98,33 @@ for method in ("exact", "straighten"):
     check(rows and rows[0] == "i,length,points,status,max_angle_defect,microseconds,global".split(",") and len(rows) == 3
           and rows[2][3] == "unreachable" and rows[2][1] == "inf" and rows[1][3] == "converged",
           "--pairs %s: header and the unreachable row %s" % (method, rows))
+
+# ---- messages ----
+def stderr_of(*args): return run(*args).stderr
+doubled = re.compile(r"\b([A-Za-z]+)\s+\1\b")
+m_csv = os.path.join(tmp, "m.csv")
+shutil.copy(flat, m_csv)
+p_csv = write("p.csv", "0.5 0.5 0\n")
+msgs = {"logmap -o MESH": stderr_of("logmap", m_csv, "--format", "obj", "--from", "v:0", "-o", m_csv),
+        "field --to -o POINTS": stderr_of("field", flat, "--sources", src, "--to", p_csv, "-o", p_csv),
+        "field --at -o POINTS": stderr_of("field", flat, "--from", "v:0", "--at", p_csv, "-o", p_csv),
+        "field --to empty": stderr_of("field", flat, "--sources", src, "--to", write("e.txt", "# none\n"), "-o", o("x.npy")),
+        "trace --threads 300": stderr_of("trace", flat, "--batch", write("t.txt", "v:0 1,0,0 0.1\n"), "--threads", "300")}
+for what, text in msgs.items():
+    check(text.startswith("trigeo: ") and not doubled.search(text), "%s: %r (a doubled word?)" % (what, text))
+check("the mesh " in msgs["logmap -o MESH"], "logmap -o MESH names the mesh: %r" % msgs["logmap -o MESH"])
+check("(--to)" in msgs["field --to -o POINTS"] and "--at" not in msgs["field --to -o POINTS"],
+      "field --to: the message names --to: %r" % msgs["field --to -o POINTS"])
+check("(--at)" in msgs["field --at -o POINTS"], "field --at: the message names --at: %r" % msgs["field --at -o POINTS"])
+check("x y z" in msgs["field --to empty"], "an empty points file: the forms it takes: %r" % msgs["field --to empty"])
+check("0..256" in msgs["trace --threads 300"], "trace --threads 300: %r" % msgs["trace --threads 300"])
+r = run("field", flat, "--sources", src, "--max-distance", "-0", "-o", o("m.npz"))
+check("radius             0\n" in r.stdout, "--max-distance -0: %r (want radius 0)" % r.stdout)
+r = run("trace", flat, "--from", "v:40", "--angle", "0", "--length", "-0", "--json")
+check('"requested_length": 0,' in r.stdout, "--length -0: %r" % r.stdout[:160])
+for cmd in ("info", "closest", "path", "field", "trace", "logmap", "sample", "render", "help"):
+    h = run("help", cmd).stdout
+    check(h and not doubled.search(h.replace("\n", " ")), "help %s: doubled word %r" % (cmd, doubled.search(h.replace("\n", " "))))
 
 shutil.rmtree(tmp)
 cli_common.finish()

@@ -108,7 +108,8 @@ static long read_lines(const char* path, const char* what, char** out_text, char
         if (!end) break;
     }
     if (n == 0) {
-        cli_error(path, 0, "no %s (one SPEC a line: v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", what);
+        cli_error(path, 0, "no %s (one SPEC a line: v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z%s)", what,
+                  strcmp(what, "points") ? "" : ", or x y z");
         free(text), free(items), free(at);
         return -1;
     }
@@ -610,7 +611,8 @@ static int run(int argc, char** argv)
         return cli_usage("field", "--threads needs a number in 0..%d (0 = all cores), not '%s'", TG_MAX_THREADS, threads);
     fa.threads = (int)nt;
     const char* inputs[3] = {fa.mesh_path, fa.sources_path, fa.at_path};
-    static const char* const what[3] = {"mesh", "sources file", "points file (--at)"};
+    /* the points file under the option that named it (--at or --to) */
+    const char* const what[3] = {"mesh", "sources file", at_opt && !strcmp(at_opt, "--to") ? "points file (--to)" : "points file (--at)"};
     int check = cli_output_check_inputs(fa.out, inputs, what, 3);
     if (check != CLI_OK) return check;
     if (fa.sources_path && !cli_threads_available(fa.threads, "field")) return CLI_INPUT;

@@ -187,7 +187,7 @@ static int run(int argc, char** argv)
     if (!cli_parse_spec(la.from, &sp))
         return cli_usage("logmap", "bad --from '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", la.from);
     const char* inputs[1] = {la.mesh_path};
-    const char* what[1] = {"the mesh"};
+    static const char* const what[1] = {"mesh"}; /* printed as "the mesh" */
     int check = cli_output_check_inputs(la.out, inputs, what, 1);
     if (check != CLI_OK) return check;
     return run_logmap(&la, &sp);

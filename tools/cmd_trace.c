@@ -373,8 +373,9 @@ static int run(int argc, char** argv)
     if (ta.batch_path) {
         if (ta.from || ta.dir_text || angle || length || ta.json)
             return cli_usage("trace", "--batch TRACES excludes --from, --dir, --angle, --length and --json");
-        if (threads && (!cli_parse_uint(threads, &nt) || nt > 1024))
-            return cli_usage("trace", "--threads needs a number in 0..1024, not '%s'", threads);
+        if (threads && (!cli_parse_uint(threads, &nt) || nt > TG_MAX_THREADS))
+            return cli_usage("trace", "--threads needs a number in 0..%d (0 = all cores), not '%s'", TG_MAX_THREADS,
+                             threads);
         ta.threads = (int)nt;
         if (ta.out_path && !cli_ext_is(ta.out_path, ".csv")) return cli_usage("trace", "--batch writes OUT.csv");
         if (!cli_threads_available(ta.threads, "trace")) return CLI_INPUT;
@@ -428,7 +429,7 @@ const cli_command cli_cmd_trace = {
     "                   walk; writes the CSV  i,status,length,crossings,vertices,branches,face,\n"
     "                   x,y,z,dx,dy,dz,end  (the end point and direction; end is its SPEC, quoted)\n"
     "                   to OUT.csv or stdout\n"
-    "  --threads N      with --batch: walk on N threads (0: one per core, the default)\n\n"
+    "  --threads N      with --batch: walk on N threads, at most 256 (0: one per core, the default)\n\n"
     "Status: complete, boundary (the walk reached a boundary edge or boundary vertex), singular (a\n"
     "vertex with no straightest continuation: non-manifold, pinched, next to a zero-length edge),\n"
     "step_limit or stalled (over 1000 zero-area faces in a row). At a non-manifold edge the walk\n"

@@ -3,7 +3,8 @@
 # FILE:LINE and the reason, exit 2 and no output: a field after the last one (a trace batch's
 # fourth, a pairs line's tenth, text after a source, a point or a query) was dropped silently by
 # the batch and pairs readers. And every ';' list (field/render --from, path --through) takes
-# blanks around its items: "v:0; v:5" is the list "v:0;v:5", the same output byte for byte.
+# blanks around its items: "v:0; v:5" is the list "v:0;v:5", the same output byte for byte. An
+# option's value is read whole too (render --size 100x100abc was 100x100).
 set -u
 trigeo=${TG_TRIGEO:?}
 exec /usr/bin/env python3 - "$trigeo" <<'PY'
@@ -71,6 +72,22 @@ for bad in ("v:0;;v:5", "v:0; ;v:5", "v:0;", " ; "):
     check(r.returncode == 1 and "--from" in r.stderr, "field --from %r: exit %d, %r" % (bad, r.returncode, r.stderr.strip()))
     r = run("path", flat, "--through", bad)
     check(r.returncode == 1 and "--through" in r.stderr, "path --through %r: exit %d, %r" % (bad, r.returncode, r.stderr.strip()))
+
+# ---- option values: the whole value or nothing ----
+png = os.path.join(tmp, "never.png")
+for opt, args in (("--size", ["render", flat, "--size", "100x100abc", "-o", png]),
+                  ("--size", ["render", flat, "--size", "64x48.5", "-o", png]),
+                  ("--size", ["render", flat, "--size", "16x16x16", "-o", png]),
+                  ("--threads", ["field", flat, "--sources", src, "--threads", "2x", "-o", out]),
+                  ("--count", ["sample", flat, "--count", "3x"]), ("--seed", ["sample", flat, "--count", "2", "--seed", " -5"]),
+                  ("--max-steps", ["trace", flat, "--from", "v:40", "--angle", "1", "--length", "0.1", "--max-steps", "1.5"])):
+    r = run(*args)
+    check(r.returncode == 1 and opt in r.stderr and not os.path.exists(png) and not os.path.exists(out),
+          "%s: exit %d (want 1), %r" % (args[2:], r.returncode, r.stderr.strip()))
+    for p in (png, out):
+        if os.path.exists(p): os.remove(p)
+r = run("render", flat, "--size", "32x24", "-o", png)
+check(r.returncode == 0 and os.path.exists(png), "--size 32x24: exit %d %r" % (r.returncode, r.stderr))
 
 shutil.rmtree(tmp)
 cli_common.finish()

@@ -117,6 +117,7 @@ outputs = [
     ("info", out_of(["info", tri])), ("info --json", out_of(["info", tri, "--json"])),
     ("closest", out_of(["closest", flat, write("q.txt", "0.1 0.2 0.3\n0.7 0.1 -0.2\n"), "--signed"])),
     ("path summary", out_of(["path", flat, "--from", "f:10:0.2,0.3,0.5", "--to", "f:20:0.1,0.1,0.8"])),
+    ("path -o OBJ", out_of(["path", flat, "--from", "f:10:0.2,0.3,0.5", "--to", "f:20:0.1,0.1,0.8", "-o", o("p.obj")], o("p.obj"))),
     ("path --json", out_of(["path", flat, "--from", "f:10:0.2,0.3,0.5", "--to", "f:20:0.1,0.1,0.8", "--json"])),
     ("path --through --json", out_of(["path", flat, "--through", "v:0;f:10:0.2,0.3,0.5;v:44", "--json"])),
     ("path --pairs", "\n".join(",".join(c for k, c in enumerate(l.split(",")) if k != 5)

@@ -63,6 +63,24 @@ static void print_json(FILE* f, const char* mesh_path, const char* method, const
     fprintf(f, "\n}\n");
 }
 
+/* The OBJ polyline in tg_path_write_obj's layout (a comment, v records, one l record; only the
+ * comment for an unreachable path), its numbers as the CLI writes every number (shortest that
+ * reads back; the certificate %.3g as in the summary). */
+static bool write_obj(FILE* f, const tg_path_view* v)
+{
+    bool ok = fprintf(f, "# trigeo geodesic path: %zu points, length %s, status %s, max angle defect %.3g rad\n",
+                      v->point_count, cli_num(v->length).s, tg_path_status_name(v->status), v->max_angle_defect) > 0;
+    for (size_t i = 0; ok && i < v->point_count; ++i)
+        ok = fprintf(f, "v %s %s %s\n", cli_num(v->xyz[3 * i]).s, cli_num(v->xyz[3 * i + 1]).s,
+                     cli_num(v->xyz[3 * i + 2]).s) > 0;
+    if (ok && v->point_count >= 2) {
+        ok = fputc('l', f) != EOF;
+        for (size_t i = 0; ok && i < v->point_count; ++i) ok = fprintf(f, " %zu", i + 1) > 0;
+        ok = ok && fputc('\n', f) != EOF;
+    }
+    return ok;
+}
+
 static void print_summary(FILE* f, tg_path_method method, const tg_path_view* v, const waypoints* w)
 {
     int crossings = 0, vertices = 0;
@@ -344,16 +362,15 @@ static int run_single(const char* mesh_path, const char* from, const char* to, w
         print_json(f, mesh_path, method_name, &v, through);
         if (cli_output_commit(&out) != CLI_OK) goto done;
     } else if (out_path) { /* the OBJ polyline, to a temporary name renamed when complete */
-        tg_diag d;
-        memset(&d, 0, sizeof d);
         cli_output out;
-        if (!cli_output_reserve(&out, out_path)) goto done;
-        out.f = NULL;
-        if ((rc = cli_output_finish_library(&out, tg_path_write_obj(path, out.tmp, &d), &d)) != CLI_OK) {
-            rc = rc == CLI_USAGE ? CLI_INPUT : rc;
+        FILE* f = cli_output_open(&out, out_path);
+        if (!f) goto done;
+        if (!write_obj(f, &v)) {
+            cli_error(out_path, 0, "write failed: %s", strerror(errno));
+            cli_output_abort(&out);
             goto done;
         }
-        rc = CLI_INPUT;
+        if (cli_output_commit(&out) != CLI_OK) goto done;
     }
     if (json)
         print_json(stdout, mesh_path, method_name, &v, through);

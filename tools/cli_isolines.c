@@ -73,7 +73,8 @@ static bool write_obj(FILE* f, const tg_isolines_view* v)
 {
     bool ok = fprintf(f, "# trigeo isolines: %zu levels, %zu polylines\n", v->level_count, v->polyline_count) > 0;
     for (size_t i = 0; ok && i < v->point_count; ++i)
-        ok = fprintf(f, "v %s %s %s\n", cli_num(v->xyz[3 * i]).s, cli_num(v->xyz[3 * i + 1]).s, cli_num(v->xyz[3 * i + 2]).s) > 0;
+        ok = fprintf(f, "v %s %s %s\n", cli_num(v->xyz[3 * i]).s, cli_num(v->xyz[3 * i + 1]).s,
+                     cli_num(v->xyz[3 * i + 2]).s) > 0;
     for (size_t l = 0; ok && l < v->level_count; ++l) {
         ok = fprintf(f, "g level_%zu\n# level %s\n", l, cli_num(v->levels[l]).s) > 0;
         for (size_t p = v->level_start[l]; ok && p < v->level_start[l + 1]; ++p) {
@@ -93,7 +94,8 @@ static bool write_json(FILE* f, const tg_isolines_view* v)
 {
     char spec[CLI_SPEC_TEXT_MAX];
     bool ok = fprintf(f, "{\"levels\": [") > 0;
-    for (size_t l = 0; ok && l < v->level_count; ++l) ok = fprintf(f, "%s%s", l ? ", " : "", cli_num(v->levels[l]).s) > 0;
+    for (size_t l = 0; ok && l < v->level_count; ++l)
+        ok = fprintf(f, "%s%s", l ? ", " : "", cli_num(v->levels[l]).s) > 0;
     ok = ok && fprintf(f, "],\n \"polylines\": [") > 0;
     size_t written = 0;
     for (size_t l = 0; ok && l < v->level_count; ++l)
@@ -102,8 +104,8 @@ static bool write_json(FILE* f, const tg_isolines_view* v)
             ok = fprintf(f, "%s\n  {\"level\": %zu, \"value\": %s, \"closed\": %s, \"points\": [", written++ ? "," : "",
                          l, cli_num(v->levels[l]).s, v->polyline_closed[p] ? "true" : "false") > 0;
             for (size_t i = a; ok && i < b; ++i)
-                ok = fprintf(f, "%s[%s, %s, %s]", i > a ? ", " : "", cli_num(v->xyz[3 * i]).s, cli_num(v->xyz[3 * i + 1]).s,
-                             cli_num(v->xyz[3 * i + 2]).s) > 0;
+                ok = fprintf(f, "%s[%s, %s, %s]", i > a ? ", " : "", cli_num(v->xyz[3 * i]).s,
+                             cli_num(v->xyz[3 * i + 1]).s, cli_num(v->xyz[3 * i + 2]).s) > 0;
             ok = ok && fprintf(f, "], \"faces\": [") > 0;
             for (size_t i = a; ok && i < b; ++i) ok = fprintf(f, "%s%u", i > a ? ", " : "", v->faces[i]) > 0;
             ok = ok && fprintf(f, "], \"surface\": [") > 0;

@@ -454,7 +454,9 @@ size_t cli_read_npy_points(const char* name, const char* data, size_t size, doub
     }
     /* float64 or float32, either byte order: converted exactly to double */
     bool big = descr[0] == '\'' && descr[1] == '>';
-    size_t item = !strncmp(descr + 1, big ? ">f8'" : "<f8'", 4) ? 8 : !strncmp(descr + 1, big ? ">f4'" : "<f4'", 4) ? 4 : 0;
+    size_t item = !strncmp(descr + 1, big ? ">f8'" : "<f8'", 4)   ? 8
+                  : !strncmp(descr + 1, big ? ">f4'" : "<f4'", 4) ? 4
+                                                                  : 0;
     if (!item) {
         const char* end = memchr(descr, ',', (size_t)(dict + hlen - descr));
         cli_error(name, 0, ".npy: dtype %.*s, expected float64 or float32 ('<f8', '>f8', '<f4' or '>f4')",

@@ -14,7 +14,8 @@ void cli_spec_text(const tg_surface_point* p, char* buf, size_t cap)
     if (p->kind == TG_SURFACE_EDGE)
         snprintf(buf, cap, "e:%u:%s", p->index, cli_num(p->t).s);
     else if (p->kind == TG_SURFACE_FACE)
-        snprintf(buf, cap, "f:%u:%s,%s,%s", p->index, cli_num(p->bary[0]).s, cli_num(p->bary[1]).s, cli_num(p->bary[2]).s);
+        snprintf(buf, cap, "f:%u:%s,%s,%s", p->index, cli_num(p->bary[0]).s, cli_num(p->bary[1]).s,
+                 cli_num(p->bary[2]).s);
     else
         snprintf(buf, cap, "v:%u", p->index);
 }

@@ -47,7 +47,8 @@ static size_t parse_queries(const char* name, char* text, double** out)
                     return (size_t)-1;
                 }
                 if (fabs(v) > 1e150) { /* the library's range: squared distances would overflow */
-                    cli_error(name, line, "coordinate %d is %s, beyond the supported range of +-1e150", k + 1, cli_num(v).s);
+                    cli_error(name, line, "coordinate %d is %s, beyond the supported range of +-1e150", k + 1,
+                              cli_num(v).s);
                     free(xyz);
                     return (size_t)-1;
                 }

@@ -45,7 +45,8 @@ static int write_table(const char* path, int format, const double* d, size_t row
         for (size_t v = 0; ok && v < n; ++v) ok = fprintf(f, "%zu,%s\n", v, cli_num(d[v]).s) > 0;
     } else {
         for (size_t r = 0; ok && r < rows; ++r)
-            for (size_t v = 0; ok && v < n; ++v) ok = fprintf(f, v + 1 < n ? "%s," : "%s\n", cli_num(d[r * n + v]).s) > 0;
+            for (size_t v = 0; ok && v < n; ++v)
+                ok = fprintf(f, v + 1 < n ? "%s," : "%s\n", cli_num(d[r * n + v]).s) > 0;
     }
     if (!ok) {
         cli_error(path, 0, "write failed: %s", strerror(errno));
@@ -193,7 +194,8 @@ static int write_boundaries(const char* path, const tg_voronoi_boundaries* b)
     if (!json) {
         ok = fprintf(f, "# trigeo Voronoi boundaries: %zu polylines\n", v.polyline_count) > 0;
         for (size_t i = 0; ok && i < v.point_count; ++i)
-            ok = fprintf(f, "v %s %s %s\n", cli_num(v.xyz[3 * i]).s, cli_num(v.xyz[3 * i + 1]).s, cli_num(v.xyz[3 * i + 2]).s) > 0;
+            ok = fprintf(f, "v %s %s %s\n", cli_num(v.xyz[3 * i]).s, cli_num(v.xyz[3 * i + 1]).s,
+                         cli_num(v.xyz[3 * i + 2]).s) > 0;
         for (size_t p = 0; ok && p < v.polyline_count; ++p) {
             ok = fprintf(f, "# cells %u %u\nl", v.polyline_cells[2 * p], v.polyline_cells[2 * p + 1]) > 0;
             for (size_t i = v.polyline_start[p]; ok && i < v.polyline_start[p + 1]; ++i) ok = fprintf(f, " %zu", i + 1) > 0;

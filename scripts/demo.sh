@@ -20,3 +20,7 @@ echo
 echo "== trigeo render $mesh --path $out/demo_path.obj --view -0.8,-0.3,-0.5 -o $out/demo_path.png"
 "$trigeo" render "$mesh" --path "$out/demo_path.obj" --view -0.8,-0.3,-0.5 -o "$out/demo_path.png"
 echo "wrote $out/demo_path.png"
+# The closest surface points of two query positions, with the sign (inside: -1), as CSV.
+echo
+echo "== printf '0 0 0\n0.2 0.1 0.5\n' | trigeo closest $mesh - --signed"
+printf '0 0 0\n0.2 0.1 0.5\n' | "$trigeo" closest "$mesh" - --signed

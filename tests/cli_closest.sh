@@ -151,11 +151,14 @@ check_bad_npy() { # $1 = expected words in the message, then npy_file arguments
     npy_file "$tmp/bad.npy" "$@"
     expect_npy_error ".*$want"
 }
-check_bad_npy "dtype '<f4'" "'<f4'" False "(4, 3)"
-check_bad_npy "dtype '>f8'" "'>f8'" False "(4, 3)"
+check_bad_npy "dtype '<i8'" "'<i8'" False "(4, 3)"
+check_bad_npy "dtype '<f2'" "'<f2'" False "(4, 3)"
+check_bad_npy "dtype \[('x'" "[('x', '<f8'), ('y', '<f8'), ('z', '<f8')]" False "(4,)"
 check_bad_npy "shape (6, 2)" "'<f8'" False "(6, 2)"
 check_bad_npy "shape (12,)" "'<f8'" False "(12,)"
-check_bad_npy "Fortran order" "'<f8'" True "(4, 3)"
+check_bad_npy "fortran_order is neither" "'<f8'" 1 "(4, 3)"
+check_bad_npy "48 bytes after the data" "'<f4'" False "(4, 3)"
+check_bad_npy "truncated data: 40 bytes" "'>f4'" True "(4, 3)" 40
 check_bad_npy "truncated data: 90 bytes" "'<f8'" False "(4, 3)" 90
 check_bad_npy "8 bytes after the data" "'<f8'" False "(4, 3)" 104
 check_bad_npy "truncated data" "'<f8'" False "(5, 3)"

@@ -6,11 +6,13 @@
 # against the report), and the straightened length the README quotes for the demo pair is the
 # one `path --method straighten` prints. The max angle defect is compared in the release build
 # only (the sanitizer build's compiler may round the last bits differently). And the README's
-# table of src/geodesic lists exactly the files there.
+# table of src/geodesic lists exactly the files there. scripts/demo.sh (make demo) runs the same
+# trigeo commands as that block, and the README says where the CLI is (build/trigeo) before its
+# first example.
 set -u
 trigeo=${TG_TRIGEO:?}
 exec /usr/bin/env python3 - "$trigeo" <<'PY'
-import os, re, shutil, subprocess, sys, tempfile
+import os, re, shlex, shutil, subprocess, sys, tempfile
 trigeo = sys.argv[1]
 src = os.environ["TG_SOURCE_DIR"]
 sanitized = os.environ.get("TG_SANITIZED", "0") not in ("0", "", "FALSE", "false")
@@ -20,7 +22,7 @@ import cli_common
 from cli_common import check
 
 readme = open(os.path.join(src, "README.md")).read()
-m = re.search(r"What `make demo` does, by hand:\n\n```\n(.*?)```", readme, re.S)
+m = re.search(r"What `make demo` does(?:(?!```).)*?by hand(?:(?!```).)*?:\n\n```\n(.*?)```", readme, re.S)
 check(m is not None, "README: the demo block")
 tmp = tempfile.mkdtemp()
 env = dict(os.environ, PATH=os.path.dirname(os.path.abspath(trigeo)) + os.pathsep + os.environ["PATH"])
@@ -61,6 +63,28 @@ for cmd, comment, want in blocks:
             w = "max angle defect ..."
         pattern = ".*".join(re.escape(part) for part in w.split("..."))
         check(re.fullmatch(pattern, g) is not None, "README demo '%s': README shows %r, trigeo prints %r" % (cmd, w, g))
+
+# the README's demo is what `make demo` runs: scripts/demo.sh through a trigeo that logs its
+# arguments runs the same trigeo commands in the same order (its files go beside the trigeo
+# binary, the README's build/)
+wrap = os.path.join(tmp, "wrap")
+os.makedirs(wrap)
+log = os.path.join(tmp, "demo.log")
+with open(os.path.join(wrap, "trigeo"), "w") as f:
+    f.write('#!/usr/bin/env bash\nfor a in "$@"; do printf "%%s\\t" "$a"; done >> %s\necho >> %s\nexec %s "$@"\n'
+            % (shlex.quote(log), shlex.quote(log), shlex.quote(os.path.abspath(trigeo))))
+os.chmod(os.path.join(wrap, "trigeo"), 0o755)
+r = subprocess.run(["bash", os.path.join(src, "scripts", "demo.sh"), os.path.join(wrap, "trigeo")], capture_output=True, text=True)
+check(r.returncode == 0, "scripts/demo.sh: exit %d %s" % (r.returncode, r.stderr))
+def normal(arg):
+    return arg.replace(os.path.join(src, "data") + "/", "data/").replace(wrap + "/", "build/")
+ran = [[normal(a) for a in l.rstrip("\n").split("\t")[:-1]] for l in open(log)] if os.path.exists(log) else []
+shown = [shlex.split(cmd.split("|")[-1])[1:] for cmd, _, _ in blocks]
+check(ran == shown, "README demo and scripts/demo.sh run different commands:\n  README: %s\n  demo.sh: %s" % (shown, ran))
+# the CLI's place after the build, said before the first example that calls it trigeo
+first_example = readme.find("\ntrigeo info MESH")  # the CLI tour's first line
+check("build/trigeo" in readme[:first_example] and "PATH" in readme[:first_example] and "make install" in readme[:first_example],
+      "README: where the CLI is (build/trigeo, PATH, make install) before the first `trigeo` example")
 
 # the straightened path of the demo pair, as the README's prose quotes it
 q = re.search(r"On the demo pair\s+above it stops at ([0-9.]+)", readme)

@@ -35,11 +35,9 @@ int cli_usage(const char* cmd, const char* fmt, ...)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
-/* Parses a non-negative integer / a double option value; false on junk. */
-bool cli_parse_uint(const char* s, unsigned long long* out);
-bool cli_parse_double(const char* s, double* out);
-/* Parses a comma-separated list of exactly n finite doubles ("X,Y,Z"); false on junk. */
-bool cli_parse_doubles(const char* s, int n, double* out);
+/* The last lines of every field-based summary (field, logmap, sample), in one wording:
+ * "windows            N created, M propagated" and "seconds            S.SSS", on stdout. */
+void cli_print_work(const tg_field_stats* st, double secs);
 /* Seconds on the monotonic clock (for durations). */
 double cli_seconds(void);
 
@@ -49,10 +47,11 @@ typedef struct cli_spec {
     unsigned long long index;
     double v[3];
 } cli_spec;
-/* Parses v:IDX | f:FACE:b0,b1,b2 | e:HALFEDGE:t | p:x,y,z; false on a syntax error. */
+/* Parses v:IDX | f:FACE:b0,b1,b2 | e:HALFEDGE:t | p:x,y,z (blanks around it allowed); false on a
+ * syntax error. */
 bool cli_parse_spec(const char* s, cli_spec* out);
-/* Splits the ';'-separated list in place into items (at most cap); returns the count, or 0 for
- * an empty item or more than cap. */
+/* Splits the ';'-separated list in place into items (at most cap), blanks around each item
+ * removed ("v:0; v:5"); returns the count, or 0 for an empty item or more than cap. */
 size_t cli_split_list(char* list, char** items, size_t cap);
 /* A ';'-separated list of specs given to an option ("SPEC;SPEC;..."): its items, parsed, and
  * their surface points once resolved on a mesh. */
@@ -74,7 +73,8 @@ void cli_spec_list_free(cli_spec_list* l);
 /* Barycentric coordinates read from text that sum to 1 within this are rescaled to sum to 1
  * (the library itself accepts 1e-9); farther off, they are refused. */
 #define CLI_BARY_RENORMALIZE 1e-6
-/* Prints a surface point as a SPEC (v:IDX | e:HALFEDGE:t | f:FACE:b0,b1,b2, %.17g). */
+/* Prints a surface point as a SPEC (v:IDX | e:HALFEDGE:t | f:FACE:b0,b1,b2, the numbers as
+ * cli_format_double writes them). */
 void cli_print_spec(FILE* f, const tg_surface_point* p);
 /* A face point from barycentrics as read from text (renormalized within CLI_BARY_RENORMALIZE). */
 tg_surface_point cli_face_point(uint32_t face, const double b[3]);
@@ -187,20 +187,50 @@ bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bo
 bool cli_write_npy_header(FILE* f, const char* descr, size_t rows);
 /* Is this file content a NumPy .npy file (its magic string)? */
 bool cli_is_npy(const char* data, size_t size);
-/* The (k, 3) little-endian float64 C-order array of a .npy file's content, as k points; every
- * other dtype, shape or order, a bad header or truncated or excess data is refused with the file
- * name and the reason (printed). Returns the count, or (size_t)-1 after printing the error;
+/* The (k, 3) array of a .npy file's content, as k points: float64 or float32 (converted exactly),
+ * little- or big-endian ('<f8', '>f8', '<f4', '>f4'), C or Fortran order; every other dtype or
+ * shape, a bad header, truncated or excess data, a coordinate not finite or beyond +-1e150 is
+ * refused with the file name and the reason (printed). Returns the count, or (size_t)-1 after printing the error;
  * *out is malloc'd (at least one element). */
 size_t cli_read_npy_points(const char* name, const char* data, size_t size, double** out);
 
 /* ---- numbers (cli_number.c) ---- */
 
-/* The shortest decimal that reads back (strtod) to exactly x, '\0'-terminated; at most 25 bytes
- * with the terminator. Fixed notation for decimal exponents -4 to 15 (as Python's repr), else
- * d.ddde+XX / d.ddde-XX.
- * Returns the length. Thread-compatible: the first call fills static tables (call it once before
- * starting threads). */
+/* Reading, the CLI's one rule for numbers (README.md "Numbers", as Python's float()): a number is
+ * decimal text, [+-] digits [. digits] [(e|E) [+-] digits] (no hexadecimal, "inf" or "nan"), read
+ * as the double nearest to it (strtod's correctly rounded result), subnormals included: text that
+ * underflows is the subnormal or the 0 nearest to it, text beyond the largest double is refused
+ * as not finite. Then each option checks its range. Blanks around a number are allowed. */
+typedef enum cli_number_status {
+    CLI_NUMBER_OK = 0,
+    CLI_NUMBER_SYNTAX,   /* no decimal number at the start of the text */
+    CLI_NUMBER_INFINITE  /* beyond +-1.7976931348623157e+308: not finite */
+} cli_number_status;
+/* The number at the start of s (blanks skipped); *end past it on success (at the number's start,
+ * past the blanks, on a syntax error). */
+cli_number_status cli_scan_double(const char* s, double* out, const char** end);
+/* The whole of s is one number (blanks around allowed); false otherwise, *out untouched. */
+bool cli_parse_double(const char* s, double* out);
+/* The same, and >= 0 (an option's distance or length): -0, and negatives that underflow to it,
+ * are read as 0. */
+bool cli_parse_nonneg(const char* s, double* out);
+/* Exactly n (1..16) numbers separated by commas ("X,Y,Z"; blanks around each allowed). */
+bool cli_parse_doubles(const char* s, int n, double* out);
+/* A non-negative decimal integer (digits only, no sign; blanks around allowed) within 64 bits. */
+bool cli_parse_uint(const char* s, unsigned long long* out);
+
+/* Writing: every number the CLI prints (CSV, JSON, OBJ, summaries) is the shortest decimal that
+ * reads back (strtod) to exactly x, '\0'-terminated; at most 25 bytes with the terminator. Fixed
+ * notation for decimal exponents -4 to 15 (as Python's repr), else d.ddde+XX / d.ddde-XX; "inf",
+ * "-inf" and "nan" for the others. Returns the length. Thread-compatible: the first call fills
+ * static tables (call it once before starting threads). */
 int cli_format_double(double x, char* out);
+/* The same in a value whose buffer lives to the end of the full expression that calls it (C11
+ * 6.2.4p8), for printf: printf("%s,%s\n", cli_num(a).s, cli_num(b).s). */
+typedef struct cli_num_text {
+    char s[32];
+} cli_num_text;
+cli_num_text cli_num(double x);
 
 /* Writes a sparse matrix as the .npz archive scipy.sparse.load_npz reads (cli_npz.c). */
 bool cli_write_npz_csr(FILE* f, const tg_sparse_matrix_view* v);
@@ -229,7 +259,9 @@ void cli_auto_levels(const double* dist, size_t n, size_t count, double* out_lev
  * ...], "faces": [...], "surface": ["e:H:t" | "f:F:b0,b1,b2", ...]}]}). Written to a temporary
  * name and renamed; CLI_OK or CLI_INPUT (error printed). */
 int cli_write_isolines(const char* path, const tg_isolines* iso);
-/* A surface point as a spec (cli_spec.c's syntax: v:I, e:H:t, f:F:b0,b1,b2), %.17g. */
+/* A surface point as a spec (cli_spec.c's syntax: v:I, e:H:t, f:F:b0,b1,b2; numbers as
+ * cli_format_double writes them), at most CLI_SPEC_TEXT_MAX bytes with the terminator. */
+#define CLI_SPEC_TEXT_MAX 112
 void cli_spec_text(const tg_surface_point* p, char* buf, size_t cap);
 
 /* Can `threads` threads (0: one per core) be started? Prints why not (naming `what`): OpenMP's

@@ -45,7 +45,7 @@ int cli_parse_levels(const char* option, const char* text, double** out_levels, 
     for (;;) {
         char* comma = strchr(s, ',');
         if (comma) *comma = '\0';
-        if (!cli_parse_double(s, &lv[k]) || !(lv[k] >= 0.0 && lv[k] < INFINITY)) {
+        if (!cli_parse_nonneg(s, &lv[k])) {
             cli_error(NULL, 0, "%s: level %zu '%s' is not a finite number >= 0 (give LEVEL,LEVEL,... or a count N)",
                       option, k + 1, s);
             free(buf), free(lv);
@@ -68,23 +68,15 @@ void cli_auto_levels(const double* dist, size_t n, size_t count, double* out_lev
     for (size_t k = 0; k < count; ++k) out_levels[k] = far * (double)(k + 1) / (double)(count + 1);
 }
 
-void cli_spec_text(const tg_surface_point* p, char* buf, size_t cap)
-{
-    if (p->kind == TG_SURFACE_EDGE)
-        snprintf(buf, cap, "e:%u:%.17g", p->index, p->t);
-    else if (p->kind == TG_SURFACE_FACE)
-        snprintf(buf, cap, "f:%u:%.17g,%.17g,%.17g", p->index, p->bary[0], p->bary[1], p->bary[2]);
-    else
-        snprintf(buf, cap, "v:%u", p->index);
-}
 
 static bool write_obj(FILE* f, const tg_isolines_view* v)
 {
     bool ok = fprintf(f, "# trigeo isolines: %zu levels, %zu polylines\n", v->level_count, v->polyline_count) > 0;
     for (size_t i = 0; ok && i < v->point_count; ++i)
-        ok = fprintf(f, "v %.17g %.17g %.17g\n", v->xyz[3 * i], v->xyz[3 * i + 1], v->xyz[3 * i + 2]) > 0;
+        ok = fprintf(f, "v %s %s %s\n", cli_num(v->xyz[3 * i]).s, cli_num(v->xyz[3 * i + 1]).s,
+                     cli_num(v->xyz[3 * i + 2]).s) > 0;
     for (size_t l = 0; ok && l < v->level_count; ++l) {
-        ok = fprintf(f, "g level_%zu\n# level %.17g\n", l, v->levels[l]) > 0;
+        ok = fprintf(f, "g level_%zu\n# level %s\n", l, cli_num(v->levels[l]).s) > 0;
         for (size_t p = v->level_start[l]; ok && p < v->level_start[l + 1]; ++p) {
             ok = fputc('l', f) != EOF;
             for (size_t i = v->polyline_start[p]; ok && i < v->polyline_start[p + 1]; ++i) {
@@ -100,19 +92,20 @@ static bool write_obj(FILE* f, const tg_isolines_view* v)
 
 static bool write_json(FILE* f, const tg_isolines_view* v)
 {
-    char spec[160];
+    char spec[CLI_SPEC_TEXT_MAX];
     bool ok = fprintf(f, "{\"levels\": [") > 0;
-    for (size_t l = 0; ok && l < v->level_count; ++l) ok = fprintf(f, "%s%.17g", l ? ", " : "", v->levels[l]) > 0;
+    for (size_t l = 0; ok && l < v->level_count; ++l)
+        ok = fprintf(f, "%s%s", l ? ", " : "", cli_num(v->levels[l]).s) > 0;
     ok = ok && fprintf(f, "],\n \"polylines\": [") > 0;
     size_t written = 0;
     for (size_t l = 0; ok && l < v->level_count; ++l)
         for (size_t p = v->level_start[l]; ok && p < v->level_start[l + 1]; ++p) {
             size_t a = v->polyline_start[p], b = v->polyline_start[p + 1];
-            ok = fprintf(f, "%s\n  {\"level\": %zu, \"value\": %.17g, \"closed\": %s, \"points\": [", written++ ? "," : "",
-                         l, v->levels[l], v->polyline_closed[p] ? "true" : "false") > 0;
+            ok = fprintf(f, "%s\n  {\"level\": %zu, \"value\": %s, \"closed\": %s, \"points\": [", written++ ? "," : "",
+                         l, cli_num(v->levels[l]).s, v->polyline_closed[p] ? "true" : "false") > 0;
             for (size_t i = a; ok && i < b; ++i)
-                ok = fprintf(f, "%s[%.17g, %.17g, %.17g]", i > a ? ", " : "", v->xyz[3 * i], v->xyz[3 * i + 1],
-                             v->xyz[3 * i + 2]) > 0;
+                ok = fprintf(f, "%s[%s, %s, %s]", i > a ? ", " : "", cli_num(v->xyz[3 * i]).s,
+                             cli_num(v->xyz[3 * i + 1]).s, cli_num(v->xyz[3 * i + 2]).s) > 0;
             ok = ok && fprintf(f, "], \"faces\": [") > 0;
             for (size_t i = a; ok && i < b; ++i) ok = fprintf(f, "%s%u", i > a ? ", " : "", v->faces[i]) > 0;
             ok = ok && fprintf(f, "], \"surface\": [") > 0;

@@ -1,20 +1,123 @@
-/* cli_number.c - the shortest decimal that reads back to the same double, for the CLI's CSV output.
- * Based on: Ulf Adams, "Ryu: fast float-to-string conversion", PLDI 2018: §2 (the interval of
- * decimals that round to the double: halfway to each neighbour, bounds included when the
- * significand is even, the lower one closer for powers of two), §3.3 (the three interval points
- * scaled by 10^-q, q one below the decimal length so that one extra digit remains, computed
- * exactly from 125-bit approximations of 2^k / 5^q and 5^i / 2^k: the paper's Theorem and its
- * table sizes), §3.4 (digits removed while the scaled interval still holds a shorter number; the
- * last removed digit rounds the result; trailing-zero tracking only where the scaled values can be
- * exact). The tables are computed here at first use with exact multi-word arithmetic (5^i by
- * repeated multiplication, 2^N / 5^q by repeated division), not stored. */
+/* cli_number.c - the CLI's numbers: read (the one rule of README.md "Numbers": decimal text, the
+ * nearest double, subnormals included, then the option's range) and written (the shortest decimal
+ * that reads back to the same double, for every number the CLI prints).
+ * Based on: ISO C11 7.22.1.3 (strtod: correctly rounded in glibc, ERANGE also for a subnormal or
+ * zero result of an underflow, which is not an error here); for the writer, Ulf Adams, "Ryu: fast
+ * float-to-string conversion", PLDI 2018: §2 (the interval of decimals that round to the double:
+ * halfway to each neighbour, bounds included when the significand is even, the lower one closer
+ * for powers of two), §3.3 (the three interval points scaled by 10^-q, q one below the decimal
+ * length so that one extra digit remains, computed exactly from 125-bit approximations of 2^k /
+ * 5^q and 5^i / 2^k: the paper's Theorem and its table sizes), §3.4 (digits removed while the
+ * scaled interval still holds a shorter number; the last removed digit rounds the result;
+ * trailing-zero tracking only where the scaled values can be exact). The tables are computed here
+ * at first use with exact multi-word arithmetic (5^i by repeated multiplication, 2^N / 5^q by
+ * repeated division), not stored. */
 #include "cli.h"
 
+#include <errno.h>
+#include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
-/* ---- the tables ---- */
+/* ---- reading ---- */
+
+static bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; }
+static bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+static const char* skip_blanks(const char* s)
+{
+    while (is_blank(*s)) ++s;
+    return s;
+}
+
+/* The length of the decimal number at s: [+-] digits [. [digits]] | [+-] . digits, then an
+ * optional exponent (e|E) [+-] digits; 0 when s holds none. */
+static size_t decimal_length(const char* s)
+{
+    size_t i = 0, digits = 0;
+    if (s[i] == '+' || s[i] == '-') ++i;
+    while (is_digit(s[i])) ++i, ++digits;
+    if (s[i] == '.')
+        for (++i; is_digit(s[i]); ++i) ++digits;
+    if (!digits) return 0;
+    if (s[i] == 'e' || s[i] == 'E') {
+        size_t j = i + 1;
+        if (s[j] == '+' || s[j] == '-') ++j;
+        if (is_digit(s[j])) { /* "1e" is the number 1 followed by 'e' */
+            while (is_digit(s[j])) ++j;
+            i = j;
+        }
+    }
+    return i;
+}
+
+cli_number_status cli_scan_double(const char* s, double* out, const char** end)
+{
+    s = skip_blanks(s);
+    *end = s;
+    size_t len = decimal_length(s);
+    if (!len) return CLI_NUMBER_SYNTAX;
+    char* after;
+    errno = 0;
+    double v = strtod(s, &after);
+    /* strtod also reads hexadecimal, "inf" and "nan", which are no decimal text: when it reads
+     * past the decimal, the text is not one */
+    if (after != s + len) return CLI_NUMBER_SYNTAX;
+    *end = after;
+    if (!isfinite(v)) return CLI_NUMBER_INFINITE; /* an overflow (ERANGE, HUGE_VAL) */
+    /* ERANGE with a finite result: an underflow, to a subnormal or to zero, the nearest double */
+    *out = v;
+    return CLI_NUMBER_OK;
+}
+
+bool cli_parse_double(const char* s, double* out)
+{
+    const char* end;
+    double v;
+    if (!s || cli_scan_double(s, &v, &end) != CLI_NUMBER_OK || *skip_blanks(end)) return false;
+    *out = v;
+    return true;
+}
+
+bool cli_parse_nonneg(const char* s, double* out)
+{
+    double v;
+    if (!cli_parse_double(s, &v) || !(v >= 0.0)) return false;
+    *out = v + 0.0; /* -0 (or a negative number that underflows to it) is 0 */
+    return true;
+}
+
+bool cli_parse_doubles(const char* s, int n, double* out)
+{
+    double v[16];
+    if (!s || n < 1 || n > 16) return false;
+    for (int k = 0; k < n; ++k) {
+        const char* end;
+        if (cli_scan_double(s, &v[k], &end) != CLI_NUMBER_OK) return false;
+        s = skip_blanks(end);
+        if (k + 1 < n && *s++ != ',') return false;
+    }
+    if (*s) return false;
+    memcpy(out, v, (size_t)n * sizeof *out);
+    return true;
+}
+
+bool cli_parse_uint(const char* s, unsigned long long* out)
+{
+    if (!s) return false;
+    s = skip_blanks(s);
+    if (!is_digit(*s)) return false; /* no sign: strtoull would negate "-5" silently */
+    char* end;
+    errno = 0;
+    unsigned long long v = strtoull(s, &end, 10);
+    if (errno || *skip_blanks(end)) return false;
+    *out = v;
+    return true;
+}
+
+/* ---- writing: the tables ---- */
 
 #define POW5_BITS 125         /* bits kept of 5^i and of 2^k / 5^q (Ryu §3.3 for doubles) */
 #define POW5_COUNT 326        /* 5^i for i <= 325: -e2 - q over all subnormal and normal doubles */
@@ -106,7 +209,7 @@ static void make_tables(void)
     tables_ready = true;
 }
 
-/* ---- the algorithm ---- */
+/* ---- writing: the algorithm ---- */
 
 /* floor(log10(2^e)) for 0 <= e <= 1650; floor(log10(5^e)) for 0 <= e <= 2620; bitlen(5^e). The
  * constants are the fixed-point logarithms, checked over those ranges by the test. */
@@ -274,4 +377,11 @@ int cli_format_double(double x, char* out)
     }
     *s = '\0';
     return (int)(s - out);
+}
+
+cli_num_text cli_num(double x)
+{
+    cli_num_text t;
+    cli_format_double(x, t.s);
+    return t;
 }

@@ -616,14 +616,20 @@ size_t cli_read_npy_points(const char* name, const char* data, size_t size, doub
         cli_error(name, 0, ".npy: the header lacks '%s'", !descr ? "descr" : !order ? "fortran_order" : "shape");
         return (size_t)-1;
     }
-    if (strncmp(descr, "'<f8'", 5)) {
+    /* float64 or float32, either byte order: converted exactly to double */
+    bool big = descr[0] == '\'' && descr[1] == '>';
+    size_t item = !strncmp(descr + 1, big ? ">f8'" : "<f8'", 4)   ? 8
+                  : !strncmp(descr + 1, big ? ">f4'" : "<f4'", 4) ? 4
+                                                                  : 0;
+    if (!item) {
         const char* end = memchr(descr, ',', (size_t)(dict + hlen - descr));
-        cli_error(name, 0, ".npy: dtype %.*s, expected little-endian float64 ('<f8')",
+        cli_error(name, 0, ".npy: dtype %.*s, expected float64 or float32 ('<f8', '>f8', '<f4' or '>f4')",
                   (int)(end ? end - descr : 20), descr);
         return (size_t)-1;
     }
-    if (strncmp(order, "False", 5)) {
-        cli_error(name, 0, ".npy: Fortran order; expected a C-order array (numpy.ascontiguousarray)");
+    bool fortran = !strncmp(order, "True", 4);
+    if (!fortran && strncmp(order, "False", 5)) {
+        cli_error(name, 0, ".npy: fortran_order is neither True nor False");
         return (size_t)-1;
     }
     /* shape: (k, 3) with k a non-negative integer */
@@ -655,12 +661,12 @@ size_t cli_read_npy_points(const char* name, const char* data, size_t size, doub
                   shape);
         return (size_t)-1;
     }
-    size_t body = size - start - hlen;
-    if (k > (size_t)-1 / 24 / 2 || body != 24 * (size_t)k) {
-        if (body < 24 * k)
-            cli_error(name, 0, ".npy: truncated data: %zu bytes for shape (%llu, 3), expected %llu", body, k, 24 * k);
+    size_t body = size - start - hlen, row = 3 * item;
+    if (k > (size_t)-1 / 24 / 2 || body != row * (size_t)k) {
+        if (body < row * k)
+            cli_error(name, 0, ".npy: truncated data: %zu bytes for shape (%llu, 3), expected %llu", body, k, row * k);
         else
-            cli_error(name, 0, ".npy: %zu bytes after the data of shape (%llu, 3)", body - 24 * (size_t)k, k);
+            cli_error(name, 0, ".npy: %zu bytes after the data of shape (%llu, 3)", body - row * (size_t)k, k);
         return (size_t)-1;
     }
     double* xyz = malloc(24 * (size_t)k + 8);
@@ -670,11 +676,21 @@ size_t cli_read_npy_points(const char* name, const char* data, size_t size, doub
     }
     const unsigned char* b = u + start + hlen;
     for (size_t i = 0; i < 3 * (size_t)k; ++i) {
+        /* point i / 3, coordinate i % 3: C order stores rows, Fortran order the three columns */
+        size_t at = fortran ? (i % 3) * (size_t)k + i / 3 : i;
         uint64_t bits = 0;
-        for (int j = 0; j < 8; ++j) bits |= (uint64_t)b[8 * i + (size_t)j] << (8 * j);
-        memcpy(&xyz[i], &bits, sizeof bits);
+        for (size_t j = 0; j < item; ++j) bits |= (uint64_t)b[item * at + (big ? item - 1 - j : j)] << (8 * j);
+        if (item == 8) {
+            memcpy(&xyz[i], &bits, sizeof bits);
+        } else {
+            uint32_t bits32 = (uint32_t)bits;
+            float x32;
+            memcpy(&x32, &bits32, sizeof x32);
+            xyz[i] = (double)x32; /* exact: every float is a double */
+        }
         if (!isfinite(xyz[i]) || fabs(xyz[i]) > 1e150) {
-            cli_error(name, 0, ".npy: row %zu (from 0), %c is %g: not finite or beyond +-1e150", i / 3, "xyz"[i % 3], xyz[i]);
+            cli_error(name, 0, ".npy: row %zu (from 0), %c is %s: not finite or beyond +-1e150", i / 3, "xyz"[i % 3],
+                      cli_num(xyz[i]).s);
             free(xyz);
             return (size_t)-1;
         }
@@ -774,10 +790,10 @@ void cli_json_point(FILE* f, const tg_surface_point* p)
     if (p->kind == TG_SURFACE_VERTEX)
         fprintf(f, "{\"kind\": \"vertex\", \"vertex\": %u}", p->index);
     else if (p->kind == TG_SURFACE_EDGE)
-        fprintf(f, "{\"kind\": \"edge\", \"halfedge\": %u, \"t\": %.17g}", p->index, p->t);
+        fprintf(f, "{\"kind\": \"edge\", \"halfedge\": %u, \"t\": %s}", p->index, cli_num(p->t).s);
     else
-        fprintf(f, "{\"kind\": \"face\", \"face\": %u, \"bary\": [%.17g, %.17g, %.17g]}", p->index, p->bary[0],
-                p->bary[1], p->bary[2]);
+        fprintf(f, "{\"kind\": \"face\", \"face\": %u, \"bary\": [%s, %s, %s]}", p->index, cli_num(p->bary[0]).s,
+                cli_num(p->bary[1]).s, cli_num(p->bary[2]).s);
 }
 
 int cli_write_labels(cli_output_set* set, const char* path, const tg_mesh* mesh, const uint32_t* label, const double* dist,
@@ -802,7 +818,7 @@ int cli_write_labels(cli_output_set* set, const char* path, const tg_mesh* mesh,
     if (!f) return CLI_INPUT;
     bool ok = fprintf(f, "vertex,label,distance\n") > 0;
     for (size_t v = 0; ok && v < n; ++v)
-        ok = fprintf(f, "%zu,%lld,%.17g\n", v, label[v] == TG_NONE ? -1LL : (long long)label[v], dist[v]) > 0;
+        ok = fprintf(f, "%zu,%lld,%s\n", v, label[v] == TG_NONE ? -1LL : (long long)label[v], cli_num(dist[v]).s) > 0;
     if (!ok) {
         cli_error(path, 0, "write failed: %s", strerror(errno));
         return CLI_INPUT;

@@ -9,31 +9,22 @@
 #include <stdlib.h>
 #include <string.h>
 
-bool cli_parse_doubles(const char* s, int n, double* out)
+void cli_spec_text(const tg_surface_point* p, char* buf, size_t cap)
 {
-    for (int k = 0; k < n; ++k) {
-        char* end;
-        errno = 0;
-        out[k] = strtod(s, &end);
-        if (end == s || errno || !isfinite(out[k])) return false;
-        if (k + 1 < n) {
-            if (*end != ',') return false;
-            s = end + 1;
-        } else if (*end) {
-            return false;
-        }
-    }
-    return true;
+    if (p->kind == TG_SURFACE_EDGE)
+        snprintf(buf, cap, "e:%u:%s", p->index, cli_num(p->t).s);
+    else if (p->kind == TG_SURFACE_FACE)
+        snprintf(buf, cap, "f:%u:%s,%s,%s", p->index, cli_num(p->bary[0]).s, cli_num(p->bary[1]).s,
+                 cli_num(p->bary[2]).s);
+    else
+        snprintf(buf, cap, "v:%u", p->index);
 }
 
 void cli_print_spec(FILE* f, const tg_surface_point* p)
 {
-    if (p->kind == TG_SURFACE_VERTEX)
-        fprintf(f, "v:%u", p->index);
-    else if (p->kind == TG_SURFACE_EDGE)
-        fprintf(f, "e:%u:%.17g", p->index, p->t);
-    else
-        fprintf(f, "f:%u:%.17g,%.17g,%.17g", p->index, p->bary[0], p->bary[1], p->bary[2]);
+    char buf[CLI_SPEC_TEXT_MAX];
+    cli_spec_text(p, buf, sizeof buf);
+    fputs(buf, f);
 }
 
 tg_surface_point cli_face_point(uint32_t face, const double b[3])
@@ -69,6 +60,7 @@ bool cli_locate(tg_mesh* mesh, tg_bvh** bvh, const double xyz[3], tg_surface_poi
 bool cli_parse_spec(const char* s, cli_spec* out)
 {
     memset(out, 0, sizeof *out);
+    s += strspn(s, " \t\r\n"); /* blanks around a spec are allowed (the numbers take trailing ones) */
     if (!s[0] || s[1] != ':') return false;
     out->kind = s[0];
     const char* rest = s + 2;
@@ -90,6 +82,9 @@ size_t cli_split_list(char* list, char** items, size_t cap)
     for (char* s = list;;) {
         char* semi = strchr(s, ';');
         if (semi) *semi = '\0';
+        s += strspn(s, " \t\r\n"); /* "v:0; v:5": blanks around an item are no part of it */
+        size_t len = strlen(s);
+        while (len && strchr(" \t\r\n", s[len - 1])) s[--len] = '\0';
         if (!*s || n == cap) return 0;
         items[n++] = s;
         if (!semi) return n;

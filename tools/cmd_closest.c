@@ -32,21 +32,23 @@ static size_t parse_queries(const char* name, char* text, double** out)
         if (*p && *p != '#') {
             if (!cli_grow((void**)&xyz, &cap, count + 1, 3 * sizeof *xyz)) break;
             for (int k = 0; k < 3; ++k) {
-                char* after;
-                errno = 0;
-                double v = strtod(p, &after);
-                if (after == p || (*after && *after != ' ' && *after != '\t' && *after != '\r' && *after != '#')) {
+                const char* after;
+                double v = 0.0;
+                cli_number_status ns = cli_scan_double(p, &v, &after);
+                if (ns == CLI_NUMBER_SYNTAX ||
+                    (*after && *after != ' ' && *after != '\t' && *after != '\r' && *after != '#')) {
                     cli_error(name, line, "expected three numbers \"x y z\", got \"%.40s\"", skip_blanks(s));
                     free(xyz);
                     return (size_t)-1;
                 }
-                if (!isfinite(v)) { /* also strtod overflow, which returns HUGE_VAL */
+                if (ns == CLI_NUMBER_INFINITE) {
                     cli_error(name, line, "coordinate %d is not a finite number", k + 1);
                     free(xyz);
                     return (size_t)-1;
                 }
                 if (fabs(v) > 1e150) { /* the library's range: squared distances would overflow */
-                    cli_error(name, line, "coordinate %d is %g, beyond the supported range of +-1e150", k + 1, v);
+                    cli_error(name, line, "coordinate %d is %s, beyond the supported range of +-1e150", k + 1,
+                              cli_num(v).s);
                     free(xyz);
                     return (size_t)-1;
                 }
@@ -285,8 +287,9 @@ const cli_command cli_cmd_closest = {
     "closest point and its barycentric coordinates on that face. Ties go to the lowest face index;\n"
     "the answers equal a linear scan over all faces.\n\n"
     "  QUERIES     text, one \"x y z\" per line ('-' = stdin); blank lines and '#' comments allowed;\n"
-    "              or a NumPy .npy file (recognized by its content) holding a (k, 3) float64\n"
-    "              little-endian C-order array, e.g. numpy.save(\"q.npy\", points)\n"
+    "              or a NumPy .npy file (recognized by its content) holding a (k, 3) array of\n"
+    "              float64 or float32 (converted exactly), either byte order, C or Fortran\n"
+    "              order, e.g. numpy.save(\"q.npy\", points)\n"
     "  --signed    add a sign column: -1 inside, +1 outside, 0 on the surface. Angle-weighted\n"
     "              pseudonormals for closed, consistently oriented manifolds, else the generalized\n"
     "              winding number (>= 1/2 is inside); the choice is reported on stderr\n"
@@ -298,6 +301,6 @@ const cli_command cli_cmd_closest = {
     "Output: CSV with header i,face,sqdist,cx,cy,cz,b0,b1,b2[,sign]; each number is the shortest\n"
     "decimal that reads back to exactly the computed double.\n"
     "A malformed or non-finite query line is reported as QUERIES:LINE, a malformed .npy file with\n"
-    "the reason (dtype, shape, order, truncation), and nothing is written.\n",
+    "the reason (dtype, shape, truncation, a coordinate), and nothing is written.\n",
     run,
 };

@@ -42,10 +42,11 @@ static int write_table(const char* path, int format, const double* d, size_t row
         ok = cli_write_npy_f64(f, d, rows, n, matrix);
     } else if (!matrix) {
         ok = fprintf(f, "vertex,distance\n") > 0;
-        for (size_t v = 0; ok && v < n; ++v) ok = fprintf(f, "%zu,%.17g\n", v, d[v]) > 0;
+        for (size_t v = 0; ok && v < n; ++v) ok = fprintf(f, "%zu,%s\n", v, cli_num(d[v]).s) > 0;
     } else {
         for (size_t r = 0; ok && r < rows; ++r)
-            for (size_t v = 0; ok && v < n; ++v) ok = fprintf(f, v + 1 < n ? "%.17g," : "%.17g\n", d[r * n + v]) > 0;
+            for (size_t v = 0; ok && v < n; ++v)
+                ok = fprintf(f, v + 1 < n ? "%s," : "%s\n", cli_num(d[r * n + v]).s) > 0;
     }
     if (!ok) {
         cli_error(path, 0, "write failed: %s", strerror(errno));
@@ -108,19 +109,13 @@ static long read_lines(const char* path, const char* what, char** out_text, char
         if (!end) break;
     }
     if (n == 0) {
-        cli_error(path, 0, "no %s (one SPEC a line: v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", what);
+        cli_error(path, 0, "no %s (one SPEC a line: v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z%s)", what,
+                  strcmp(what, "points") ? "" : ", or x y z");
         free(text), free(items), free(at);
         return -1;
     }
     *out_text = text, *out_items = items, *out_lines = at;
     return n;
-}
-
-static void print_stats(const tg_field_stats* st, double secs)
-{
-    printf("windows            %llu propagated, %llu created\n", (unsigned long long)st->windows_propagated,
-           (unsigned long long)st->windows_created);
-    printf("seconds            %.3f\n", secs);
 }
 
 static void print_summary(size_t sources, bool matrix, const char* columns, const double* d, size_t rows, size_t n,
@@ -135,8 +130,8 @@ static void print_summary(size_t sources, bool matrix, const char* columns, cons
         printf("%-18s %zu (%zu of %zu matrix entries reached)\n", columns, n, reached, n * rows);
     else
         printf("%-18s %zu (%zu reached)\n", columns, n, reached);
-    printf("max distance       %.17g\n", far);
-    print_stats(st, secs);
+    printf("largest distance   %s\n", cli_num(far).s);
+    cli_print_work(st, secs);
 }
 
 typedef struct field_args {
@@ -145,7 +140,7 @@ typedef struct field_args {
     int format;
     double max_dist;      /* < 0: no limit */
     int threads;
-    bool quiet;
+    bool quiet;           /* --quiet: no progress line, no summary */
     bool matrix;          /* --sources: one row per source */
     bool all;             /* --sources all: every vertex a row */
     bool sparse;          /* the matrix within the radius, sparse (.npz, or .csv triplets) */
@@ -194,11 +189,12 @@ static int write_boundaries(cli_output_set* set, const char* path, const tg_voro
     FILE* f = cli_output_set_open(set, path);
     if (!f) return CLI_INPUT;
     bool json = cli_ext_is(path, ".json"), ok = true;
-    char spec[160];
+    char spec[CLI_SPEC_TEXT_MAX];
     if (!json) {
         ok = fprintf(f, "# trigeo Voronoi boundaries: %zu polylines\n", v.polyline_count) > 0;
         for (size_t i = 0; ok && i < v.point_count; ++i)
-            ok = fprintf(f, "v %.17g %.17g %.17g\n", v.xyz[3 * i], v.xyz[3 * i + 1], v.xyz[3 * i + 2]) > 0;
+            ok = fprintf(f, "v %s %s %s\n", cli_num(v.xyz[3 * i]).s, cli_num(v.xyz[3 * i + 1]).s,
+                         cli_num(v.xyz[3 * i + 2]).s) > 0;
         for (size_t p = 0; ok && p < v.polyline_count; ++p) {
             ok = fprintf(f, "# cells %u %u\nl", v.polyline_cells[2 * p], v.polyline_cells[2 * p + 1]) > 0;
             for (size_t i = v.polyline_start[p]; ok && i < v.polyline_start[p + 1]; ++i) ok = fprintf(f, " %zu", i + 1) > 0;
@@ -210,8 +206,8 @@ static int write_boundaries(cli_output_set* set, const char* path, const tg_voro
             ok = fprintf(f, "%s\n  {\"cells\": [%u, %u], \"points\": [", p ? "," : "", v.polyline_cells[2 * p],
                          v.polyline_cells[2 * p + 1]) > 0;
             for (size_t i = v.polyline_start[p]; ok && i < v.polyline_start[p + 1]; ++i)
-                ok = fprintf(f, "%s[%.17g, %.17g, %.17g]", i > v.polyline_start[p] ? ", " : "", v.xyz[3 * i],
-                             v.xyz[3 * i + 1], v.xyz[3 * i + 2]) > 0;
+                ok = fprintf(f, "%s[%s, %s, %s]", i > v.polyline_start[p] ? ", " : "", cli_num(v.xyz[3 * i]).s,
+                             cli_num(v.xyz[3 * i + 1]).s, cli_num(v.xyz[3 * i + 2]).s) > 0;
             ok = ok && fprintf(f, "], \"surface\": [") > 0;
             for (size_t i = v.polyline_start[p]; ok && i < v.polyline_start[p + 1]; ++i) {
                 cli_spec_text(&v.points[i], spec, sizeof spec);
@@ -228,26 +224,23 @@ static int write_boundaries(cli_output_set* set, const char* path, const tg_voro
     return CLI_OK;
 }
 
-/* Resolves the spec texts items[0..count) (lines: from the sources file, named in errors).
- * CLI_OK, CLI_USAGE (a --from spec that does not parse) or CLI_INPUT (error printed). */
-/* "x y z" (three numbers separated by blanks or commas) as a p: spec. */
+/* "x y z" (three numbers separated by blanks or by one comma) as a p: spec. */
 static bool parse_xyz(const char* s, cli_spec* out)
 {
-    char* buf = strdup(s); /* a line of any length (numbers may have many digits) */
-    if (!buf) return false;
     memset(out, 0, sizeof *out);
     out->kind = 'p';
-    int k = 0;
-    bool ok = true;
-    char* save = NULL;
-    for (char* tok = strtok_r(buf, " \t,", &save); ok && tok; tok = strtok_r(NULL, " \t,", &save)) {
-        ok = k < 3 && cli_parse_double(tok, &out->v[k]);
-        k++;
+    for (int k = 0; k < 3; ++k) {
+        const char* end;
+        if (cli_scan_double(s, &out->v[k], &end) != CLI_NUMBER_OK) return false;
+        s = end + strspn(end, " \t");
+        if (k < 2 && *s == ',') s += 1 + strspn(s + 1, " \t");
+        else if (k < 2 && s == end) return false; /* "1-2 3": no separator */
     }
-    free(buf);
-    return ok && k == 3;
+    return *s == '\0';
 }
 
+/* Resolves the spec texts items[0..count) (lines: from the sources file, named in errors).
+ * CLI_OK, CLI_USAGE (a --from spec that does not parse) or CLI_INPUT (error printed). */
 static int resolve_all(const field_args* fa, const char* file, bool allow_xyz, tg_mesh* mesh, tg_bvh** bvh, char** items,
                        const unsigned long long* lines, size_t count, tg_surface_point* pts)
 {
@@ -341,7 +334,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
             cli_output out;
             FILE* f = cli_output_open(&out, path);
             bool ok = f != NULL;
-            for (size_t i = 0; ok && i < fa->at_count; ++i) ok = fprintf(f, "%.17g\n", at_d[i]) > 0;
+            for (size_t i = 0; ok && i < fa->at_count; ++i) ok = fprintf(f, "%s\n", cli_num(at_d[i]).s) > 0;
             if (!f) {
                 rc = CLI_INPUT;
             } else if (!ok) {
@@ -353,7 +346,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
             }
         }
         if (rc != CLI_OK) goto done;
-        if (strcmp(path, "-")) print_summary(count, false, "vertices", dist, rows, n, secs, &stats);
+        if (!fa->quiet && strcmp(path, "-")) print_summary(count, false, "vertices", dist, rows, n, secs, &stats);
         rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
         goto done;
     }
@@ -364,7 +357,8 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
         if (rc == CLI_OK) rc = cli_output_set_commit(&outs);
         cli_output_set_abort(&outs);
         if (rc != CLI_OK) goto done;
-        if (!fa->out || strcmp(fa->out, "-")) print_summary(count, false, "vertices", dist, rows, n, secs, &stats);
+        if (!fa->quiet && (!fa->out || strcmp(fa->out, "-")))
+            print_summary(count, false, "vertices", dist, rows, n, secs, &stats);
         rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
         goto done;
     }
@@ -380,7 +374,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     } else if (fa->out && (rc = write_table(fa->out, fa->format, dist, rows, n, fa->matrix)) != CLI_OK) {
         goto done;
     }
-    if (!fa->out || strcmp(fa->out, "-"))
+    if (!fa->quiet && (!fa->out || strcmp(fa->out, "-")))
         print_summary(count, fa->matrix, fa->matrix && fa->at_count ? "points" : "vertices", dist, rows, n, secs, &stats);
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
@@ -428,16 +422,16 @@ static int run_isolines(const field_args* fa, char** items, const unsigned long 
         double secs = cli_seconds() - t0;
         cli_interrupt_polling(false);
         cli_progress_end(&prog);
-        if ((rc = finished(fa, st)) == CLI_OK && (rc = cli_write_isolines(fa->out, iso)) == CLI_OK &&
+        if ((rc = finished(fa, st)) == CLI_OK && (rc = cli_write_isolines(fa->out, iso)) == CLI_OK && !fa->quiet &&
             strcmp(fa->out, "-")) {
             tg_isolines_view v;
             tg_isolines_get_view(iso, &v);
             size_t closed = 0;
             for (size_t p = 0; p < v.polyline_count; ++p) closed += v.polyline_closed[p];
             printf("sources            %zu\n", count);
-            printf("levels             %zu (%.17g .. %.17g)\n", nl, levels[0], levels[nl - 1]);
+            printf("levels             %zu (%s .. %s)\n", nl, cli_num(levels[0]).s, cli_num(levels[nl - 1]).s);
             printf("polylines          %zu (%zu closed), %zu points\n", v.polyline_count, closed, v.point_count);
-            print_stats(&stats, secs);
+            cli_print_work(&stats, secs);
             rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
         }
     }
@@ -456,7 +450,7 @@ static bool write_triplets(FILE* f, const tg_sparse_matrix_view* v)
     bool ok = fprintf(f, "i,j,d\n") > 0;
     for (size_t r = 0; ok && r < v->row_count; ++r)
         for (uint64_t e = v->row_start[r]; ok && e < v->row_start[r + 1]; ++e)
-            ok = fprintf(f, "%zu,%u,%.17g\n", r, (unsigned)v->col[e], v->value[e]) > 0;
+            ok = fprintf(f, "%zu,%u,%s\n", r, (unsigned)v->col[e], cli_num(v->value[e]).s) > 0;
     return ok;
 }
 
@@ -510,13 +504,13 @@ static int run_sparse(const field_args* fa, char** items, const unsigned long lo
         goto done;
     }
     if ((rc = cli_output_commit(&out)) != CLI_OK) goto done;
-    if (strcmp(fa->out, "-")) {
+    if (!fa->quiet && strcmp(fa->out, "-")) {
         printf("sources            %zu (one field each%s)\n", count, fa->all ? ", every vertex" : "");
-        printf("radius             %.17g\n", fa->max_dist >= 0 ? fa->max_dist : INFINITY);
+        printf("radius             %s\n", cli_num(fa->max_dist >= 0 ? fa->max_dist : INFINITY).s);
         printf("entries            %zu (%.1f a row, %.1f MiB as CSR)\n", v.entry_count,
                count ? (double)v.entry_count / (double)count : 0.0,
                (double)tg_sparse_matrix_memory_bytes(mat) / 1048576.0);
-        print_stats(&stats, secs);
+        cli_print_work(&stats, secs);
     }
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
@@ -613,8 +607,8 @@ static int run(int argc, char** argv)
         return cli_usage("field", "the sparse matrix (--sources all, --sparse) is written as .npz or .csv, not .npy");
     if (fa.sparse && fa.at_path)
         return cli_usage("field", "--to writes the dense sources x points matrix: -o .npy or .csv, without --sparse");
-    if (maxd && (!cli_parse_double(maxd, &fa.max_dist) || !(fa.max_dist >= 0)))
-        return cli_usage("field", "--max-distance needs a non-negative number, not '%s'", maxd);
+    if (maxd && !cli_parse_nonneg(maxd, &fa.max_dist))
+        return cli_usage("field", "--max-distance needs a finite number >= 0, not '%s'", maxd);
     unsigned long long nt = 0;
     if (threads && (!cli_parse_uint(threads, &nt) || nt > TG_MAX_THREADS))
         return cli_usage("field", "--threads needs a number in 0..%d (0 = all cores), not '%s'", TG_MAX_THREADS, threads);
@@ -661,7 +655,7 @@ static int run(int argc, char** argv)
     memcpy(list, from, len + 1);
     size_t count = cli_split_list(list, items, MAX_SOURCES);
     rc = count ? (fa.isolines ? run_isolines(&fa, items, NULL, count) : run_field(&fa, items, NULL, count))
-               : cli_usage("field", "bad --from list (SPEC[;SPEC...], at most %d)", MAX_SOURCES);
+               : cli_usage("field", "bad --from list \"%s\" (SPEC;SPEC;..., no empty item, at most %d)", from, MAX_SOURCES);
     free(list), free(items);
     free(at_text), free(fa.at_items), free(fa.at_lines);
     return rc;
@@ -693,7 +687,7 @@ const cli_command cli_cmd_field = {
     "                           .ply  (--from) the mesh as binary PLY with a per-vertex double\n"
     "                                 property 'distance' (trigeo render MESH --field OUT.ply)\n"
     "                           .csv  --from: rows vertex,distance; --sources: one row of\n"
-    "                                 vertex_count distances per source, no header (%.17g)\n"
+    "                                 vertex_count distances per source, no header\n"
     "                           .npy  NumPy float64: shape (vertices,) or (sources, vertices)\n"
     "                           .npz  (--sources) the sparse matrix as scipy.sparse.load_npz reads\n"
     "                                 it (CSR: format, shape, indptr, indices, data)\n"
@@ -703,7 +697,7 @@ const cli_command cli_cmd_field = {
     "  --csv OUT              the same as -o with CSV whatever the extension\n"
     "  --at POINTS            with --from: the distance at these surface points instead of the\n"
     "                         vertices: POINTS has one SPEC or \"x y z\" a line (x y z: the closest\n"
-    "                         surface point); one distance a line (%.17g) to -o (.txt, .csv or\n"
+    "                         surface point); one distance a line to -o (.txt, .csv or\n"
     "                         .npy) or stdout\n"
     "  --labels               Voronoi cells of the sources (--from or --sources): per vertex the\n"
     "                         index of the nearest source (0-based, in the order given; ties to\n"
@@ -730,12 +724,13 @@ const cli_command cli_cmd_field = {
     "                         negative, NaN or missing levels: exit 2, no file\n"
     "  --max-distance D       stop at distance D (0 allowed): farther vertices get inf\n"
     "  --threads N            --sources: threads, at most 256 (default 0: all cores)\n"
-    "  --quiet                no progress line (drawn on stderr when it is a terminal and the\n"
-    "                         work passes about a second)\n\n"
+    "  --quiet                no progress line (else drawn on stderr when it is a terminal and\n"
+    "                         the work passes about a second) and no summary; errors are still\n"
+    "                         printed, and data sent to stdout (-o -, --at) still is\n\n"
     "Unreachable vertices (other components, unused vertices) get inf. Outputs are written into a\n"
     "private temporary directory beside the target and renamed when complete: an error or Ctrl-C\n"
     "(exit 130) leaves no partial file; an output that is one of the inputs is refused. Without\n"
-    "-o - a summary (vertices reached, largest distance, windows, seconds) goes to stdout. Quote\n"
-    "the --from list: ';' is special to the shell.\n",
+    "-o - and --quiet a summary (vertices reached, largest distance, windows, seconds) goes to\n"
+    "stdout. Quote the --from list: ';' is special to the shell.\n",
     run,
 };

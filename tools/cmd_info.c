@@ -26,8 +26,10 @@ static void print_json(FILE* f, const char* path, const tg_mesh_report* r)
         fprintf(f, "  \"genus\": %lld,\n", (long long)r->genus);
     else
         fprintf(f, "  \"genus\": null,\n");
-    fprintf(f, "  \"bbox_min\": [%.17g, %.17g, %.17g],\n", r->bbox_min[0], r->bbox_min[1], r->bbox_min[2]);
-    fprintf(f, "  \"bbox_max\": [%.17g, %.17g, %.17g]\n}\n", r->bbox_max[0], r->bbox_max[1], r->bbox_max[2]);
+    fprintf(f, "  \"bbox_min\": [%s, %s, %s],\n", cli_num(r->bbox_min[0]).s, cli_num(r->bbox_min[1]).s,
+            cli_num(r->bbox_min[2]).s);
+    fprintf(f, "  \"bbox_max\": [%s, %s, %s]\n}\n", cli_num(r->bbox_max[0]).s, cli_num(r->bbox_max[1]).s,
+            cli_num(r->bbox_max[2]).s);
 }
 
 static void print_text(FILE* f, const char* path, const tg_mesh_report* r, size_t bytes)
@@ -50,8 +52,9 @@ static void print_text(FILE* f, const char* path, const tg_mesh_report* r, size_
         fprintf(f, "  genus                  %lld (closed manifold)\n", (long long)r->genus);
     else
         fprintf(f, "  genus                  n/a (%s)\n", r->closed_manifold ? "non-orientable" : "not a closed manifold");
-    fprintf(f, "  bounding box           [%.6g, %.6g, %.6g] - [%.6g, %.6g, %.6g]\n", r->bbox_min[0],
-           r->bbox_min[1], r->bbox_min[2], r->bbox_max[0], r->bbox_max[1], r->bbox_max[2]);
+    fprintf(f, "  bounding box           [%s, %s, %s] - [%s, %s, %s]\n", cli_num(r->bbox_min[0]).s,
+            cli_num(r->bbox_min[1]).s, cli_num(r->bbox_min[2]).s, cli_num(r->bbox_max[0]).s, cli_num(r->bbox_max[1]).s,
+            cli_num(r->bbox_max[2]).s);
     fprintf(f, "  memory                 %.1f MiB (%.1f bytes/face)\n", bytes / 1048576.0,
            r->faces ? (double)bytes / (double)r->faces : 0.0);
 }

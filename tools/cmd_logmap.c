@@ -11,7 +11,7 @@
 #include <string.h>
 
 typedef struct logmap_args {
-    const char *mesh_path, *from, *out;
+    const char *mesh_path, *from, *out, *ref_text;
     double ref[3];
     bool has_ref, quiet;
     double max_dist; /* < 0: no limit */
@@ -117,8 +117,8 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
     }
     if (st == TG_ERR_INVALID_ARGUMENT && geo) {
         if (la->has_ref)
-            cli_error(la->mesh_path, 0, "--ref %.17g,%.17g,%.17g is perpendicular to the reference face at %s (or that "
-                      "face has zero area)", la->ref[0], la->ref[1], la->ref[2], la->from);
+            cli_error(la->mesh_path, 0, "--ref %s is perpendicular to the reference face at %s (or that face has zero "
+                      "area)", la->ref_text, la->from);
         else
             cli_error(la->mesh_path, 0, "the reference face at %s has zero area: give --ref X,Y,Z", la->from);
         goto done;
@@ -129,16 +129,14 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
     }
     planar(r, a, n, u, v);
     if ((rc = write_output(la, mesh, r, a, u, v, n)) != CLI_OK) goto done;
-    if (strcmp(la->out, "-")) {
+    if (!la->quiet && strcmp(la->out, "-")) {
         size_t reached = 0;
         double far = 0.0;
         for (size_t i = 0; i < n; ++i)
             if (r[i] < INFINITY) reached++, far = r[i] > far ? r[i] : far;
         printf("vertices           %zu (%zu reached)\n", n, reached);
-        printf("largest distance   %.17g\n", far);
-        printf("windows            %llu created, %llu propagated\n", (unsigned long long)stats.windows_created,
-               (unsigned long long)stats.windows_propagated);
-        printf("seconds            %.3f\n", secs);
+        printf("largest distance   %s\n", cli_num(far).s);
+        cli_print_work(&stats, secs);
     }
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
@@ -179,10 +177,11 @@ static int run(int argc, char** argv)
         return cli_usage("logmap", "-o %s: the extension must be .ply, .csv or .npy ('-': CSV on stdout)", la.out);
     if (ref) {
         la.has_ref = true;
+        la.ref_text = ref;
         if (!cli_parse_doubles(ref, 3, la.ref) || (la.ref[0] == 0.0 && la.ref[1] == 0.0 && la.ref[2] == 0.0))
             return cli_usage("logmap", "bad --ref '%s' (X,Y,Z: three finite numbers, not all zero)", ref);
     }
-    if (maxd && (!cli_parse_double(maxd, &la.max_dist) || !(la.max_dist >= 0.0)))
+    if (maxd && !cli_parse_nonneg(maxd, &la.max_dist))
         return cli_usage("logmap", "bad --max-distance '%s' (a finite number >= 0)", maxd);
     cli_spec sp;
     if (!cli_parse_spec(la.from, &sp))
@@ -209,12 +208,15 @@ const cli_command cli_cmd_logmap = {
     "                   .npy   a (vertices, 4) float64 array, columns r, theta, u, v\n"
     "                   .ply   the mesh as binary PLY with per-vertex double properties\n"
     "                          distance, angle, u, v (trigeo render MESH --logmap OUT.ply)\n"
-    "  --quiet          no progress line\n\n"
+    "  --quiet          no progress line and no summary (errors are still printed, -o - still\n"
+    "                   writes the CSV)\n\n"
     "Angles are counterclockwise about the reference face's normal (its file winding), in\n"
     "[0, 2 pi); at a vertex they are scaled so the turn around it is 2 pi (pi at a boundary\n"
     "vertex, angles in [0, pi]), as geometry-central's tangent spaces. `trigeo trace --from SPEC\n"
     "--angle theta --length r` walks back to the vertex wherever its shortest path is unique and\n"
     "passes no vertex. Where two paths are equally short (the cut locus) the angle is the one of\n"
-    "the path found first (deterministic). Vertices not reached: r inf, theta 0, u and v inf.\n",
+    "the path found first (deterministic). Vertices not reached: r inf, theta 0, u and v inf.\n"
+    "Without -o - and --quiet a summary (vertices reached, largest distance, windows, seconds) goes\n"
+    "to stdout.\n",
     run,
 };

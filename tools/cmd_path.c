@@ -18,7 +18,7 @@
 static void json_number(FILE* f, double x)
 {
     if (isfinite(x))
-        fprintf(f, "%.17g", x);
+        fputs(cli_num(x).s, f);
     else
         fputs("null", f);
 }
@@ -41,15 +41,17 @@ static void print_json(FILE* f, const char* mesh_path, const char* method, const
     json_number(f, v->length);
     fprintf(f, ",\n  \"initial_length\": ");
     json_number(f, v->initial_length);
-    fprintf(f, ",\n  \"max_angle_defect\": %.17g,\n  \"iterations\": %u,\n  \"point_count\": %zu,\n  \"points\": [",
-            v->max_angle_defect, v->iterations, v->point_count);
+    fprintf(f, ",\n  \"max_angle_defect\": ");
+    json_number(f, v->max_angle_defect);
+    fprintf(f, ",\n  \"iterations\": %u,\n  \"point_count\": %zu,\n  \"points\": [", v->iterations, v->point_count);
     for (size_t i = 0; i < v->point_count; ++i) {
         fputs(i ? ",\n    " : "\n    ", f);
         cli_json_point(f, &v->points[i]);
     }
     fprintf(f, "%s],\n  \"xyz\": [", v->point_count ? "\n  " : "");
     for (size_t i = 0; i < v->point_count; ++i)
-        fprintf(f, "%s[%.17g, %.17g, %.17g]", i ? ",\n    " : "\n    ", v->xyz[3 * i], v->xyz[3 * i + 1], v->xyz[3 * i + 2]);
+        fprintf(f, "%s[%s, %s, %s]", i ? ",\n    " : "\n    ", cli_num(v->xyz[3 * i]).s, cli_num(v->xyz[3 * i + 1]).s,
+                cli_num(v->xyz[3 * i + 2]).s);
     fprintf(f, "%s],\n  \"faces\": [", v->point_count ? "\n  " : "");
     for (size_t i = 0; i + 1 < v->point_count; ++i) fprintf(f, "%s%u", i ? ", " : "", v->faces[i]);
     fprintf(f, "]");
@@ -61,6 +63,24 @@ static void print_json(FILE* f, const char* mesh_path, const char* method, const
     fprintf(f, "\n}\n");
 }
 
+/* The OBJ polyline in tg_path_write_obj's layout (a comment, v records, one l record; only the
+ * comment for an unreachable path), its numbers as the CLI writes every number (shortest that
+ * reads back; the certificate %.3g as in the summary). */
+static bool write_obj(FILE* f, const tg_path_view* v)
+{
+    bool ok = fprintf(f, "# trigeo geodesic path: %zu points, length %s, status %s, max angle defect %.3g rad\n",
+                      v->point_count, cli_num(v->length).s, tg_path_status_name(v->status), v->max_angle_defect) > 0;
+    for (size_t i = 0; ok && i < v->point_count; ++i)
+        ok = fprintf(f, "v %s %s %s\n", cli_num(v->xyz[3 * i]).s, cli_num(v->xyz[3 * i + 1]).s,
+                     cli_num(v->xyz[3 * i + 2]).s) > 0;
+    if (ok && v->point_count >= 2) {
+        ok = fputc('l', f) != EOF;
+        for (size_t i = 0; ok && i < v->point_count; ++i) ok = fprintf(f, " %zu", i + 1) > 0;
+        ok = ok && fputc('\n', f) != EOF;
+    }
+    return ok;
+}
+
 static void print_summary(FILE* f, tg_path_method method, const tg_path_view* v, const waypoints* w)
 {
     int crossings = 0, vertices = 0;
@@ -68,17 +88,24 @@ static void print_summary(FILE* f, tg_path_method method, const tg_path_view* v,
         crossings += v->points[i].kind == TG_SURFACE_EDGE;
         vertices += v->points[i].kind == TG_SURFACE_VERTEX;
     }
+    /* endpoints (or consecutive waypoints) in different components: there is no path at all, proven
+     * by the components, whatever the method (the view's global stays the library's "unproven") */
+    bool none = v->status == TG_PATH_UNREACHABLE;
     fprintf(f, "status             %s\n", tg_path_status_name(v->status));
     fprintf(f, "global             %s\n",
-            v->global == TG_PATH_PROVEN ? "proven shortest (exact check)"
-            : method == TG_PATH_EXACT   ? "unproven (the exact method found no straight path here: see status)"
-                                        : "unproven (locally shortest only; --certify or --method exact proves)");
-    fprintf(f, "length             %.17g\n", v->length);
+            none ? (w ? "no path exists (two consecutive waypoints lie in different components)"
+                      : "no path exists (the two points lie in different components)")
+            : v->global == TG_PATH_PROVEN ? "proven shortest (exact check)"
+            : method == TG_PATH_EXACT     ? "unproven (the exact method found no straight path here: see status)"
+                                          : "unproven (locally shortest only; --certify or --method exact proves)");
+    fprintf(f, "length             %s\n", cli_num(v->length).s);
     /* the exact method traces its path through the field: no edge path (the view repeats length) */
-    if (method == TG_PATH_EXACT && v->edge_path_vertices == 0 && v->initial_length == v->length)
+    if (none)
+        fprintf(f, "edge path length   none (no path exists)\n");
+    else if (method == TG_PATH_EXACT && v->edge_path_vertices == 0 && v->initial_length == v->length)
         fprintf(f, "edge path length   none (the exact method computes no edge path)\n");
     else
-        fprintf(f, "edge path length   %.17g\n", v->initial_length);
+        fprintf(f, "edge path length   %s\n", cli_num(v->initial_length).s);
     fprintf(f, "points             %zu (%d edge crossings, %d vertex passages)\n", v->point_count, crossings, vertices);
     if (w && v->point_count)
         fprintf(f, "waypoints          %zu%s (the path bends there)\n", w->list.count, w->closed ? ", closed" : "");
@@ -112,8 +139,13 @@ static bool parse_pair(const char* name, unsigned long long line, char* s, tg_me
 {
     char* tok[9];
     int n = 0;
-    for (char* t = strtok(s, " \t\r"); t && n < 9; t = strtok(NULL, " \t\r")) tok[n++] = t;
-    bool extra = strtok(NULL, " \t\r") != NULL;
+    bool extra = false; /* a tenth field, counted (not dropped) */
+    for (char* t = strtok(s, " \t\r"); t && !extra; t = strtok(NULL, " \t\r")) {
+        if (n == 9)
+            extra = true;
+        else
+            tok[n++] = t;
+    }
     unsigned long long i0, i1;
     double c[6];
     /* the six numbers: tokens 2-4 and 6-8 of the face form, 1-6 of the position form */
@@ -138,8 +170,8 @@ static bool parse_pair(const char* name, unsigned long long line, char* s, tg_me
     } else if (n == 7 && nums && !strcmp(tok[0], "p")) {
         for (int k = 0; k < 6; ++k)
             if (fabs(c[k]) > 1e150) {
-                cli_error(name, line, "coordinate %g is beyond the supported range of +-1e150 (squared distances "
-                          "would overflow)", c[k]);
+                cli_error(name, line, "coordinate %s is beyond the supported range of +-1e150 (squared distances "
+                          "would overflow)", cli_num(c[k]).s);
                 return false;
             }
         const char* why = NULL;
@@ -148,7 +180,14 @@ static bool parse_pair(const char* name, unsigned long long line, char* s, tg_me
             return false;
         }
     } else {
-        cli_error(name, line, "expected \"v SRC TGT\", \"f F0 b0 b1 b2 F1 c0 c1 c2\" or \"p x0 y0 z0 x1 y1 z1\"");
+        /* the number of fields, when the form is known and they are too many or too few */
+        bool v = !strcmp(tok[0], "v"), f = !strcmp(tok[0], "f"), p = !strcmp(tok[0], "p");
+        if (extra || (v && n != 3) || (f && n != 9) || (p && n != 7 && n != 9))
+            cli_error(name, line, "%s%d fields, %s (\"v SRC TGT\", \"f F0 b0 b1 b2 F1 c0 c1 c2\" or \"p x0 y0 z0 x1 y1 z1\")",
+                      extra ? "more than " : "", n, v ? "a \"v\" line has 3" : f ? "an \"f\" line has 9" : p ? "a \"p\" line has 7 or 9"
+                      : "at most 9");
+        else
+            cli_error(name, line, "expected \"v SRC TGT\", \"f F0 b0 b1 b2 F1 c0 c1 c2\" or \"p x0 y0 z0 x1 y1 z1\"");
         return false;
     }
     tg_diag d;
@@ -241,8 +280,8 @@ static int run_pairs(const char* mesh_path, const char* pairs_path, const char* 
         }
         tg_path_view v;
         tg_path_get_view(path, &v);
-        fprintf(f, "%ld,%.17g,%zu,%s,%.17g,%.3f,%s\n", i, v.length, v.point_count, tg_path_status_name(v.status),
-                v.max_angle_defect, us, tg_path_global_name(v.global));
+        fprintf(f, "%ld,%s,%zu,%s,%s,%.3f,%s\n", i, cli_num(v.length).s, v.point_count, tg_path_status_name(v.status),
+                cli_num(v.max_angle_defect).s, us, tg_path_global_name(v.global));
     }
     cli_interrupt_polling(false);
     opened = false;
@@ -311,16 +350,15 @@ static int run_single(const char* mesh_path, const char* from, const char* to, w
         print_json(f, mesh_path, method_name, &v, through);
         if (cli_output_commit(&out) != CLI_OK) goto done;
     } else if (out_path) { /* the OBJ polyline, to a temporary name renamed when complete */
-        tg_diag d;
-        memset(&d, 0, sizeof d);
         cli_output out;
-        if (!cli_output_reserve(&out, out_path)) goto done;
-        out.f = NULL;
-        if ((rc = cli_output_finish_library(&out, tg_path_write_obj(path, out.tmp, &d), &d)) != CLI_OK) {
-            rc = rc == CLI_USAGE ? CLI_INPUT : rc;
+        FILE* f = cli_output_open(&out, out_path);
+        if (!f) goto done;
+        if (!write_obj(f, &v)) {
+            cli_error(out_path, 0, "write failed: %s", strerror(errno));
+            cli_output_abort(&out);
             goto done;
         }
-        rc = CLI_INPUT;
+        if (cli_output_commit(&out) != CLI_OK) goto done;
     }
     if (json)
         print_json(stdout, mesh_path, method_name, &v, through);
@@ -461,8 +499,9 @@ const cli_command cli_cmd_path = {
     "global: proven when an exact computation showed no path shorter by 1e-9 relative exists\n"
     "(--method exact, the default, or --certify), else unproven (locally shortest, possibly not\n"
     "globally).\n"
-    "Status is converged, iteration_cap, unreachable (endpoints in different components: no\n"
-    "points, length inf) or stalled (straighten's certificate exceeds 1e-8 rad; never proven).\n"
+    "Status is converged, iteration_cap, unreachable (endpoints in different components: no path\n"
+    "exists, the summary says so; no points, length inf, JSON length null, global unproven) or\n"
+    "stalled (straighten's certificate exceeds 1e-8 rad; never proven).\n"
     "Timings of the methods: BENCHMARKS.md. The certificate (max angle\n"
     "defect, radians) is the largest deviation from straightness over edge crossings and vertex\n"
     "passages. Indices are 0-based in file order. Ctrl-C stops the computation (exit 130, no\n"

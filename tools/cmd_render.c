@@ -201,9 +201,20 @@ static int run(int argc, char** argv)
         } else if (!strcmp(a, "--up") && has_value) {
             if (!cli_parse_doubles(argv[++i], 3, o.up)) return cli_usage("render", "--up needs X,Y,Z");
         } else if (!strcmp(a, "--size") && has_value) {
-            if (sscanf(argv[++i], "%dx%d", &o.width, &o.height) != 2 || o.width < 16 || o.height < 16 ||
-                o.width > 8192 || o.height > 8192)
-                return cli_usage("render", "--size needs WxH, each 16..8192");
+            /* W x H, two integers and nothing else ("64x48.5" and "100x100abc" were read by sscanf) */
+            const char* v = argv[++i];
+            const char* x = strchr(v, 'x');
+            char w_text[24];
+            unsigned long long w = 0, h = 0;
+            bool ok = x && (size_t)(x - v) < sizeof w_text;
+            if (ok) {
+                memcpy(w_text, v, (size_t)(x - v));
+                w_text[x - v] = '\0';
+                ok = cli_parse_uint(w_text, &w) && cli_parse_uint(x + 1, &h);
+            }
+            if (!ok || w < 16 || h < 16 || w > 8192 || h > 8192)
+                return cli_usage("render", "--size needs WxH, each 16..8192, not '%s'", v);
+            o.width = (int)w, o.height = (int)h;
         } else if (a[0] == '-' && a[1]) return cli_usage("render", "unknown option or missing value: '%s'", a);
         else if (!mesh_path) mesh_path = a;
         else return cli_usage("render", "unexpected argument '%s'", a);
@@ -271,7 +282,7 @@ static int run(int argc, char** argv)
         }
         for (size_t v = 0; rc == CLI_OK && v < nv; ++v) {
             if (!(lv[v] == -1.0 || (lv[v] >= 0 && lv[v] < 4294967295.0 && lv[v] == floor(lv[v])))) {
-                cli_error(labels, 0, "vertex %zu: label %g is not -1 or a cell index", v, lv[v]);
+                cli_error(labels, 0, "vertex %zu: label %s is not -1 or a cell index", v, cli_num(lv[v]).s);
                 rc = CLI_INPUT;
             }
             cells[v] = lv[v] < 0 ? TG_NONE : (uint32_t)lv[v];

@@ -29,7 +29,8 @@ static int write_samples(cli_output_set* set, const char* path, const tg_mesh* m
     bool ok = !csv || fprintf(f, "i,vertex,x,y,z\n") > 0;
     for (size_t i = 0; ok && i < k; ++i) {
         const double* p = xyz + 3 * (size_t)s[i];
-        ok = csv ? fprintf(f, "%zu,%u,%.17g,%.17g,%.17g\n", i, s[i], p[0], p[1], p[2]) > 0 : fprintf(f, "v:%u\n", s[i]) > 0;
+        ok = csv ? fprintf(f, "%zu,%u,%s,%s,%s\n", i, s[i], cli_num(p[0]).s, cli_num(p[1]).s, cli_num(p[2]).s) > 0
+                 : fprintf(f, "v:%u\n", s[i]) > 0;
     }
     if (!ok) {
         cli_error(path, 0, "write failed: %s", strerror(errno));
@@ -113,16 +114,14 @@ static int run_sample(const sample_args* sa)
     if (rc == CLI_OK) rc = cli_output_set_commit(&outs);
     cli_output_set_abort(&outs);
     if (rc != CLI_OK) goto done;
-    if (!sa->out || strcmp(sa->out, "-")) {
+    if (!sa->quiet && (!sa->out || strcmp(sa->out, "-"))) {
         double far = 0;
         for (size_t v = 0; v < n; ++v)
             if (isfinite(dist[v]) && dist[v] > far) far = dist[v];
         printf("samples            %llu (first v:%u)\n", sa->count, samples[0]);
         printf("vertices           %zu\n", n);
-        printf("covering radius    %.17g\n", far);
-        printf("windows            %llu propagated, %llu created\n", (unsigned long long)stats.windows_propagated,
-               (unsigned long long)stats.windows_created);
-        printf("seconds            %.3f\n", secs);
+        printf("covering radius    %s\n", cli_num(far).s);
+        cli_print_work(&stats, secs);
     }
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
@@ -190,8 +189,9 @@ const cli_command cli_cmd_sample = {
     "  --field FIELD          per vertex the position of the nearest sample in the order (-1:\n"
     "                         none) and the distance to it: .ply properties 'label' and\n"
     "                         'distance' (trigeo render --labels), .csv rows vertex,label,distance\n"
-    "  --quiet                no progress line\n\n"
-    "Outputs are written to a temporary name and renamed when complete. Without -o - a summary\n"
-    "(covering radius: the largest distance to the nearest sample) goes to stdout.\n",
+    "  --quiet                no progress line and no summary (errors are still printed, -o -\n"
+    "                         still writes the samples)\n\n"
+    "Outputs are written to a temporary name and renamed when complete. Without -o - and --quiet a\n"
+    "summary (covering radius: the largest distance to the nearest sample) goes to stdout.\n",
     run,
 };

@@ -25,7 +25,7 @@ typedef struct trace_args {
 
 static void json_xyz(FILE* f, const double* p)
 {
-    fprintf(f, "[%.17g, %.17g, %.17g]", p[0], p[1], p[2]);
+    fprintf(f, "[%s, %s, %s]", cli_num(p[0]).s, cli_num(p[1]).s, cli_num(p[2]).s);
 }
 
 static void print_json(FILE* f, const trace_args* ta, const tg_trace_view* v)
@@ -33,8 +33,8 @@ static void print_json(FILE* f, const trace_args* ta, const tg_trace_view* v)
     const tg_trace_end* e = &v->end;
     fprintf(f, "{\n  \"mesh\": ");
     cli_json_string(f, ta->mesh_path);
-    fprintf(f, ",\n  \"status\": \"%s\",\n  \"length\": %.17g,\n  \"requested_length\": %.17g,\n  \"end\": {\"point\": ",
-            tg_trace_status_name(e->status), e->length, ta->length);
+    fprintf(f, ",\n  \"status\": \"%s\",\n  \"length\": %s,\n  \"requested_length\": %s,\n  \"end\": {\"point\": ",
+            tg_trace_status_name(e->status), cli_num(e->length).s, cli_num(ta->length).s);
     cli_json_point(f, &e->point);
     fprintf(f, ", \"xyz\": ");
     json_xyz(f, e->xyz);
@@ -60,9 +60,10 @@ static void print_json(FILE* f, const trace_args* ta, const tg_trace_view* v)
 
 static void print_obj(FILE* f, const tg_trace_view* v)
 {
-    fprintf(f, "# trigeo geodesic trace: %zu points, length %.17g, status %s\n", v->point_count, v->end.length,
+    fprintf(f, "# trigeo geodesic trace: %zu points, length %s, status %s\n", v->point_count, cli_num(v->end.length).s,
             tg_trace_status_name(v->end.status));
-    for (size_t i = 0; i < v->point_count; ++i) fprintf(f, "v %.17g %.17g %.17g\n", v->xyz[3 * i], v->xyz[3 * i + 1], v->xyz[3 * i + 2]);
+    for (size_t i = 0; i < v->point_count; ++i)
+        fprintf(f, "v %s %s %s\n", cli_num(v->xyz[3 * i]).s, cli_num(v->xyz[3 * i + 1]).s, cli_num(v->xyz[3 * i + 2]).s);
     fputs("l", f);
     for (size_t i = 0; i < v->point_count; ++i) fprintf(f, " %zu", i + 1);
     fputc('\n', f);
@@ -72,11 +73,12 @@ static void print_summary(FILE* f, const tg_trace_view* v)
 {
     const tg_trace_end* e = &v->end;
     fprintf(f, "status             %s\n", tg_trace_status_name(e->status));
-    fprintf(f, "length             %.17g\n", e->length);
+    fprintf(f, "length             %s\n", cli_num(e->length).s);
     fprintf(f, "end                ");
     cli_print_spec(f, &e->point);
-    fprintf(f, "\nend xyz            %.17g %.17g %.17g\n", e->xyz[0], e->xyz[1], e->xyz[2]);
-    fprintf(f, "end direction      %.17g %.17g %.17g\n", e->direction[0], e->direction[1], e->direction[2]);
+    fprintf(f, "\nend xyz            %s %s %s\n", cli_num(e->xyz[0]).s, cli_num(e->xyz[1]).s, cli_num(e->xyz[2]).s);
+    fprintf(f, "end direction      %s %s %s\n", cli_num(e->direction[0]).s, cli_num(e->direction[1]).s,
+            cli_num(e->direction[2]).s);
     fprintf(f, "end face           %u\n", e->face);
     fprintf(f, "points             %zu (%llu edge crossings, %u vertex passages)\n", v->point_count,
             (unsigned long long)e->crossings, e->vertices);
@@ -173,9 +175,17 @@ static bool parse_trace_line(const char* name, unsigned long long line, char* s,
 {
     char* tok[3];
     int n = 0;
-    for (char* t = strtok(s, " \t\r"); t && n < 3; t = strtok(NULL, " \t\r")) tok[n++] = t;
-    if (n != 3 || strtok(NULL, " \t\r")) {
-        cli_error(name, line, "expected \"SPEC X,Y,Z LENGTH\" or \"SPEC ANGLE LENGTH\" (three fields)");
+    /* every field counted: a fourth one is refused, not dropped */
+    for (char* t = strtok(s, " \t\r"); t; t = strtok(NULL, " \t\r")) {
+        if (n == 3) {
+            cli_error(name, line, "unexpected '%s' after the length (\"SPEC X,Y,Z LENGTH\" or \"SPEC ANGLE LENGTH\": three "
+                      "fields)", t);
+            return false;
+        }
+        tok[n++] = t;
+    }
+    if (n != 3) {
+        cli_error(name, line, "expected \"SPEC X,Y,Z LENGTH\" or \"SPEC ANGLE LENGTH\" (three fields, not %d)", n);
         return false;
     }
     cli_spec sp;
@@ -197,7 +207,7 @@ static bool parse_trace_line(const char* name, unsigned long long line, char* s,
             return false;
         }
     }
-    if (!cli_parse_double(tok[2], &out->length) || !(out->length >= 0.0)) {
+    if (!cli_parse_nonneg(tok[2], &out->length)) {
         cli_error(name, line, "bad length '%s' (a finite number >= 0)", tok[2]);
         return false;
     }
@@ -302,9 +312,10 @@ static int run_batch(const trace_args* ta)
     fprintf(f, "i,status,length,crossings,vertices,branches,face,x,y,z,dx,dy,dz,end\n");
     for (size_t i = 0; i < k; ++i) {
         const tg_trace_end* e = &ends[i];
-        fprintf(f, "%zu,%s,%.17g,%llu,%u,%u,%u,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,", i, tg_trace_status_name(e->status),
-                e->length, (unsigned long long)e->crossings, e->vertices, e->branches, e->face, e->xyz[0], e->xyz[1],
-                e->xyz[2], e->direction[0], e->direction[1], e->direction[2]);
+        fprintf(f, "%zu,%s,%s,%llu,%u,%u,%u,%s,%s,%s,%s,%s,%s,", i, tg_trace_status_name(e->status), cli_num(e->length).s,
+                (unsigned long long)e->crossings, e->vertices, e->branches, e->face, cli_num(e->xyz[0]).s,
+                cli_num(e->xyz[1]).s, cli_num(e->xyz[2]).s, cli_num(e->direction[0]).s, cli_num(e->direction[1]).s,
+                cli_num(e->direction[2]).s);
         csv_spec(f, &e->point);
         fputc('\n', f);
     }
@@ -351,8 +362,9 @@ static int run(int argc, char** argv)
     if (ta.batch_path) {
         if (ta.from || ta.dir_text || angle || length || ta.json)
             return cli_usage("trace", "--batch TRACES excludes --from, --dir, --angle, --length and --json");
-        if (threads && (!cli_parse_uint(threads, &nt) || nt > 1024))
-            return cli_usage("trace", "--threads needs a number in 0..1024, not '%s'", threads);
+        if (threads && (!cli_parse_uint(threads, &nt) || nt > TG_MAX_THREADS))
+            return cli_usage("trace", "--threads needs a number in 0..%d (0 = all cores), not '%s'", TG_MAX_THREADS,
+                             threads);
         ta.threads = (int)nt;
         if (ta.out_path && !cli_ext_is(ta.out_path, ".csv")) return cli_usage("trace", "--batch writes OUT.csv");
         const cli_file_role inputs[2] = {{ta.mesh_path, "mesh"}, {ta.batch_path, "traces file (--batch)"}};
@@ -374,7 +386,7 @@ static int run(int argc, char** argv)
         if (!cli_parse_double(angle, &ta.dir.angle)) return cli_usage("trace", "bad --angle '%s' (finite radians)", angle);
     }
     if (!length) return cli_usage("trace", "missing --length L");
-    if (!cli_parse_double(length, &ta.length) || !(ta.length >= 0.0))
+    if (!cli_parse_nonneg(length, &ta.length))
         return cli_usage("trace", "bad --length '%s' (a finite number >= 0)", length);
     if (ta.out_path && !cli_ext_is(ta.out_path, ".obj") && !cli_ext_is(ta.out_path, ".json"))
         return cli_usage("trace", "-o takes OUT.obj (the polyline) or OUT.json (the whole answer)");
@@ -412,7 +424,7 @@ const cli_command cli_cmd_trace = {
     "                   walk; writes the CSV  i,status,length,crossings,vertices,branches,face,\n"
     "                   x,y,z,dx,dy,dz,end  (the end point and direction; end is its SPEC, quoted)\n"
     "                   to OUT.csv or stdout\n"
-    "  --threads N      with --batch: walk on N threads (0: one per core, the default)\n\n"
+    "  --threads N      with --batch: walk on N threads, at most 256 (0: one per core, the default)\n\n"
     "Status: complete, boundary (the walk reached a boundary edge or boundary vertex), singular (a\n"
     "vertex with no straightest continuation: non-manifold, pinched, next to a zero-length edge),\n"
     "step_limit or stalled (over 1000 zero-area faces in a row). At a non-manifold edge the walk\n"

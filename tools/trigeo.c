@@ -81,9 +81,9 @@ tg_mesh* cli_load_mesh_for_distances(const char* path)
     for (int k = 0; k < 3; ++k)
         if (tg_mesh_vertex_count(m) && !(r->bbox_min[k] >= -1e150 && r->bbox_max[k] <= 1e150)) {
             cli_error(path, 0,
-                      "coordinates reach %g, beyond the supported range of +-1e150 for distances (squared "
+                      "coordinates reach %s, beyond the supported range of +-1e150 for distances (squared "
                       "distances would overflow): rescale the mesh",
-                      fabs(r->bbox_min[k]) > fabs(r->bbox_max[k]) ? r->bbox_min[k] : r->bbox_max[k]);
+                      cli_num(fabs(r->bbox_min[k]) > fabs(r->bbox_max[k]) ? r->bbox_min[k] : r->bbox_max[k]).s);
             tg_mesh_destroy(m);
             return NULL;
         }
@@ -101,26 +101,11 @@ int cli_usage(const char* cmd, const char* fmt, ...)
     return CLI_USAGE;
 }
 
-bool cli_parse_uint(const char* s, unsigned long long* out)
+void cli_print_work(const tg_field_stats* st, double secs)
 {
-    if (!s || !*s || *s == '-' || *s == '+') return false;
-    char* end;
-    errno = 0;
-    unsigned long long v = strtoull(s, &end, 10);
-    if (errno || *end) return false;
-    *out = v;
-    return true;
-}
-
-bool cli_parse_double(const char* s, double* out)
-{
-    if (!s || !*s) return false;
-    char* end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (errno || *end || !isfinite(v)) return false;
-    *out = v;
-    return true;
+    printf("windows            %llu created, %llu propagated\n", (unsigned long long)st->windows_created,
+           (unsigned long long)st->windows_propagated);
+    printf("seconds            %.3f\n", secs);
 }
 
 static void print_overview(FILE* f)

@@ -1714,7 +1714,9 @@ typedef struct tg_render_options {
 /** Renders the mesh (software rasterizer, z-buffer, smooth two-sided headlight shading) with the
  *  optional scalar field and polyline, and writes an 8-bit RGB PNG (libpng) to png_path.
  *  Degenerate faces are skipped; an empty mesh gives a background-only image. Deterministic: the
- *  same inputs give the same bytes. Errors: TG_ERR_INVALID_ARGUMENT (NULL mesh/path, size out of
+ *  same inputs give the same bytes, and a mesh (with its polyline and isolines) scaled by a power
+ *  of two gives the same bytes (depths and normals are measured scale-free; at other scales the
+ *  same picture to rounding). Errors: TG_ERR_INVALID_ARGUMENT (NULL mesh/path, size out of
  *  range, over TG_RENDER_MAX_BYTES (diag says how much it would need), polyline_count > 0 with NULL
  *  polyline, polyline_parts > 0 with NULL or out-of-order polyline_start, isoline_parts > 0 with NULL or out-of-order
  *  arrays or a non-finite point), TG_ERR_OUT_OF_MEMORY, TG_ERR_IO (cannot write), TG_ERR_CANCELLED (progress said

@@ -1026,8 +1026,8 @@ typedef enum tg_trace_direction_kind {
      *    when that projection is at most 1e-9 of the vector's length;
      *  - at a vertex or at a point of an edge: its projection onto the point's tangent plane.
      *    The plane's normal is the mean of the unit normals of the faces of non-zero area at the
-     *    point (in the solver's consistent winding), each weighted by its angle at the point
-     *    (Thürmer & Wüthrich 1998; the two faces of an edge weigh the same). Each face's corner
+     *    point (oriented alike around it, whatever the file's winding), each weighted by its
+     *    angle at the point (Thürmer & Wüthrich 1998; the two faces of an edge weigh the same). Each face's corner
      *    at the vertex (its half-plane at the edge) projects along the normal onto a wedge of the
      *    tangent plane; among the faces whose wedge holds the projection (sides included), each
      *    has one direction whose projection runs along the vector's, and the trace takes the one
@@ -1035,8 +1035,11 @@ typedef enum tg_trace_direction_kind {
      *    where the fan folds over its tangent plane), the face of lowest index on exact ties. So
      *    a vector lying in a face of the fan is taken as it is (to rounding), the direction taken
      *    always has a positive cosine with the projection, and it turns continuously with the
-     *    vector wherever the fan does not fold. Refused only when the vector is parallel to the
-     *    normal: its projection at most 1e-9 of its length (within about 1e-9 radians).
+     *    vector wherever the fan does not fold. Where the fan's projection goes round the point
+     *    (at the closed-fan vertices of 21 corpus meshes, all but one where a face folds back
+     *    over its neighbours), a wedge holds every projection: the vector is refused only when
+     *    it is parallel to the normal, its projection at most 1e-9 of its length (within about
+     *    1e-9 radians).
      *    Where no wedge holds the projection (off the open fan of a boundary vertex, or a fan
      *    whose projection does not go round), the direction of the faces nearest to the
      *    projection is taken (largest cosine: a corner's nearer side when the projection is

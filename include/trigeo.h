@@ -1018,12 +1018,35 @@ TG_API tg_status tg_geodesic_path_through(const tg_geodesic* geodesic, tg_geodes
 
 /** How the direction of a trace is given. */
 typedef enum tg_trace_direction_kind {
-    /** A 3D vector (any length > 0), taken as the direction of the surface at the start point
-     *  nearest to it: its projection onto the start face's plane for a point inside a face; at a
-     *  point of an edge or at a vertex, the direction closest to the vector (largest cosine) among
-     *  those of the faces around the point that lead into the face or along its sides (the face
-     *  of lowest index on ties). Refused (TG_ERR_INVALID_ARGUMENT) when that cosine is at most
-     *  1e-9: a vector perpendicular to the start face (or to every face around the point). */
+    /** A 3D vector, finite and not zero, of any length: the vector and the vector times any
+     *  power of two (subnormal components included) give the same trace bit for bit, and its
+     *  length never overflows or underflows anything. It is taken as a direction of the surface
+     *  at the start point:
+     *  - inside a face: its projection onto the face's plane; refused (TG_ERR_INVALID_ARGUMENT)
+     *    when that projection is at most 1e-9 of the vector's length;
+     *  - at a vertex or at a point of an edge: its projection onto the point's tangent plane.
+     *    The plane's normal is the mean of the unit normals of the faces of non-zero area at the
+     *    point (oriented alike around it, whatever the file's winding), each weighted by its
+     *    angle at the point (Thürmer & Wüthrich 1998; the two faces of an edge weigh the same). Each face's corner
+     *    at the vertex (its half-plane at the edge) projects along the normal onto a wedge of the
+     *    tangent plane; among the faces whose wedge holds the projection (sides included), each
+     *    has one direction whose projection runs along the vector's, and the trace takes the one
+     *    of these nearest to the vector in space (largest dot product; several faces qualify only
+     *    where the fan folds over its tangent plane), the face of lowest index on exact ties. So
+     *    a vector lying in a face of the fan is taken as it is (to rounding), the direction taken
+     *    always has a positive cosine with the projection, and it turns continuously with the
+     *    vector wherever the fan does not fold. Where the fan's projection goes round the point
+     *    (at the closed-fan vertices of 21 corpus meshes, all but one where a face folds back
+     *    over its neighbours), a wedge holds every projection: the vector is refused only when
+     *    it is parallel to the normal, its projection at most 1e-9 of its length (within about
+     *    1e-9 radians).
+     *    Where no wedge holds the projection (off the open fan of a boundary vertex, or a fan
+     *    whose projection does not go round), the direction of the faces nearest to the
+     *    projection is taken (largest cosine: a corner's nearer side when the projection is
+     *    outside it, along the edge when it points out of a face at an edge), refused when that
+     *    cosine is at most 1e-9. Where the point has no tangent plane (an edge of more than two
+     *    faces, or normals that cancel to within 1e-9 of their weights, as at a pinch of two
+     *    opposite cones), the same nearest direction to the vector itself. */
     TG_TRACE_VECTOR = 0,
     /** An angle in radians from a reference direction, counterclockwise about the normal of the
      *  reference face (its corners 0, 1, 2 in the file's order are counterclockwise), measured as
@@ -1035,12 +1058,13 @@ typedef enum tg_trace_direction_kind {
      *    its face and on around v, with the vertex's angle sum scaled to 2 pi (to pi where the
      *    fan of faces around v is not closed: a boundary vertex), as geometry-central's vertex
      *    tangent spaces: 0.5 pi is a quarter of the way round whatever the cone angle.
-     *  The reference face must have a non-zero area. */
+     *  The reference face must have a non-zero area (its normal and side are measured with
+     *  their vectors scaled by powers of two first: at any scale of the mesh). */
     TG_TRACE_ANGLE = 1
 } tg_trace_direction_kind;
 
-/** The direction of a trace: kind, then vector (TG_TRACE_VECTOR, 3 finite doubles, the same unit
- *  as the coordinates or any other) or angle (TG_TRACE_ANGLE, finite radians; any value, taken
+/** The direction of a trace: kind, then vector (TG_TRACE_VECTOR, 3 finite doubles, not all zero,
+ *  in any unit and of any length) or angle (TG_TRACE_ANGLE, finite radians; any value, taken
  *  modulo 2 pi where the fan is closed). The unused member is ignored. */
 typedef struct tg_trace_direction {
     tg_trace_direction_kind kind;
@@ -1155,7 +1179,7 @@ TG_API void tg_trace_get_view(const tg_trace* trace, tg_trace_view* out_view);
  *  options: NULL for defaults. trace: the result.
  *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic, start, direction or trace; an invalid start
  *  point; a negative, NaN or infinite length; a zero, NaN or infinite vector, or one
- *  perpendicular to the surface at the start (see TG_TRACE_VECTOR); a NaN or infinite angle, or
+ *  perpendicular to the surface at the start (along the normal: see TG_TRACE_VECTOR); a NaN or infinite angle, or
  *  one measured in a zero-area reference face; an unknown direction kind), TG_ERR_OUT_OF_MEMORY;
  *  on error the trace is empty (no points).
  *  Complexity: O(k) in the k faces crossed, a small constant per face (figures in
@@ -1303,10 +1327,15 @@ TG_API tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspac
  *  faces around it is not closed (a boundary vertex: angles in [0, pi] from the boundary side;
  *  at a vertex where several fans meet, a pinch or non-manifold vertex, only the reference fan is
  *  scaled: directions into the other fans measure from their corners' sides, not meaningfully).
- *  reference: NULL, or a 3D vector (finite, not zero) whose projection onto the plane of the
- *  reference face (the face of the side angle 0 runs along) becomes angle 0: every angle is
- *  then the one above minus the projection's angle (scaled at a vertex), taken into [0, 2 pi)
- *  except around a boundary vertex.
+ *  reference: NULL, or a 3D vector (finite, not zero, of any length: times any power of two it
+ *  gives the same angles bit for bit) taken as the direction of the surface at the source by
+ *  the rule of TG_TRACE_VECTOR (a face point: its projection onto the face's plane; a vertex or
+ *  an edge point: the direction of the faces there whose projection onto the tangent plane runs
+ *  along the vector's), which becomes angle 0: every angle is then the one above minus that
+ *  direction's angle (measured as above), taken into [0, 2 pi) except around a boundary vertex.
+ *  So a trace from the source with the reference as its TG_TRACE_VECTOR leaves along the log
+ *  map's angle 0, and the log map's angle a is TG_TRACE_ANGLE's a + alpha, alpha the angle of
+ *  the reference's direction (at a vertex, on the scaled turn).
  *  Ties: where two paths are equally long to the last bit (the cut locus), the angle is the one
  *  of the path the propagation found first; the result is deterministic (the same for the same
  *  input, on any thread count).
@@ -1317,8 +1346,9 @@ TG_API tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspac
  *  tg_geodesic_field's (limit, allocator, progress). out_distance, out_angle: vertex_count
  *  doubles each. out_stats: may be NULL.
  *  Errors: TG_ERR_INVALID_ARGUMENT (NULL g, source or outputs; an invalid source; bad options;
- *  a reference vector that is zero, NaN or infinite, or perpendicular to the reference face
- *  (its projection at most 1e-9 of its length); a reference face of zero area),
+ *  a reference vector that is zero, NaN or infinite, or that TG_TRACE_VECTOR refuses at the
+ *  source (parallel to the normal there: its projection at most 1e-9 of its length); a
+ *  reference face of zero area),
  *  TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED. On error the outputs are untouched.
  *  Complexity: the field's, plus O(V) for the angles (BENCHMARKS.md: within 1.2x of the
  *  field's time); memory: the field's plus 24 bytes per window slot and about 40 bytes per
@@ -1687,7 +1717,9 @@ typedef struct tg_render_options {
 /** Renders the mesh (software rasterizer, z-buffer, smooth two-sided headlight shading) with the
  *  optional scalar field and polyline, and writes an 8-bit RGB PNG (libpng) to png_path.
  *  Degenerate faces are skipped; an empty mesh gives a background-only image. Deterministic: the
- *  same inputs give the same bytes. Errors: TG_ERR_INVALID_ARGUMENT (NULL mesh/path, size out of
+ *  same inputs give the same bytes, and a mesh (with its polyline and isolines) scaled by a power
+ *  of two gives the same bytes (depths and normals are measured scale-free; at other scales the
+ *  same picture to rounding). Errors: TG_ERR_INVALID_ARGUMENT (NULL mesh/path, size out of
  *  range, over TG_RENDER_MAX_BYTES (diag says how much it would need), polyline_count > 0 with NULL
  *  polyline, polyline_parts > 0 with NULL or out-of-order polyline_start, isoline_parts > 0 with NULL or out-of-order
  *  arrays or a non-finite point), TG_ERR_OUT_OF_MEMORY, TG_ERR_IO (cannot write), TG_ERR_CANCELLED (progress said

@@ -117,5 +117,27 @@ for name, srcv in [("nvd_spot.obj", 11), ("igl_decimated-knight.off", 40), ("cga
               (name, srcv, k, row["theta"], row["r"], math.dist(got, want) / d if got else float("inf")))
         checked += 1
 check(checked >= 15, "traced %d straight log map directions on the corpus (want >= 15)" % checked)
+
+# issue 30: spot scaled by 1e100 and 1e-100 (refused before: "zero area"), --ref of any length
+spot_lines = open(os.path.join(os.environ["TG_MESHES_DIR"], "oded_spot_low_resolution.obj")).read().splitlines()
+base = {}
+for scale in (1.0, 1e100, 1e-100):
+    path = os.path.join(tmp, "spot_%g.obj" % scale)
+    with open(path, "w") as f:
+        for l in spot_lines:
+            f.write("v " + " ".join(repr(float(x) * scale) for x in l.split()[1:4]) + "\n" if l.startswith("v ") else l + "\n")
+    for start in ("v:0", "e:301:0.37", "f:77:0.2,0.3,0.5"):
+        for ref in ([], ["--ref", "1,0,0"], ["--ref", "1e200,0,0"], ["--ref", "1e-200,0,0"]):
+            out = os.path.join(tmp, "s.csv")
+            r = run("logmap", path, "--from", start, *ref, "-o", out, "--quiet")
+            rows = [(float(row["r"]) / scale, float(row["theta"])) for row in csv.DictReader(open(out))] if r.returncode == 0 else None
+            key = (start, "none" if not ref else "x")  # every --ref is (1, 0, 0) times something
+            if scale == 1.0 and ref[1:] in ([], ["1,0,0"]): base[key] = rows
+            want = base.get(key)
+            worst = max((abs(a[0] - b[0]) / max(b[0], 1e-300) + min(abs(a[1] - b[1]), 2 * math.pi - abs(a[1] - b[1]))
+                         for a, b in zip(rows, want) if b[0] != math.inf), default=0.0) if rows and want else math.inf
+            check(rows is not None and want is not None and len(rows) == len(want) and worst <= 1e-9,
+                  "spot x%g logmap --from %s %s: %s, %.3g from the unscaled map (%s)" %
+                  (scale, start, " ".join(ref), "exit %d" % r.returncode, worst, r.stderr.strip()))
 cli_common.finish()
 PY

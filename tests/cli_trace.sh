@@ -145,5 +145,32 @@ outs = [run("trace", spot, "--batch", "-", "--threads", t, stdin=lines) for t in
 check(all(o.returncode == 0 for o in outs) and outs[0].stdout == outs[1].stdout and len(outs[0].stdout.splitlines()) == 41,
       "spot batch, 1 and 2 threads: %s" % [o.stderr for o in outs])
 
+# issue 30: a --dir of any length, the tangent plane at a vertex, any scale of the mesh
+r = run("trace", os.path.join(meshes, "cgal_mpi.off"), "--from", "v:81", "--dir", "1.387,-1.317,-2.283", "--length", "0.1")
+check(r.returncode == 0 and "status             complete" in r.stdout,
+      "cgal_mpi v:81 --dir 1.387,-1.317,-2.283 (92-107 degrees from the surface there): %d %s" % (r.returncode, r.stderr))
+ends = {}
+for dd in ("1,0,0", "1e-165,0,0", "1e-160,0,0", "1e160,0,0", "1e300,0,0"):
+    r = run("trace", flat, "--from", "v:40", "--dir", dd, "--length", "0.3", "--json")
+    ends[dd] = jload(r.stdout)["end"]["xyz"] if r.returncode == 0 else None
+    check(ends[dd] is not None and ends["1,0,0"] is not None and dist(ends[dd], ends["1,0,0"]) <= 1e-12,
+          "flat v:40 --dir %s: end %s, --dir 1,0,0: %s (%s)" % (dd, ends[dd], ends["1,0,0"], r.stderr.strip()))
+spot_lines = open(os.path.join(meshes, "oded_spot_low_resolution.obj")).read().splitlines()
+base = {}
+for scale in (1.0, 1e100, 1e-100):
+    path = os.path.join(tmp, "spot_%g.obj" % scale)
+    with open(path, "w") as f:
+        for l in spot_lines:
+            f.write("v " + " ".join(repr(float(x) * scale) for x in l.split()[1:4]) + "\n" if l.startswith("v ") else l + "\n")
+    for how in (["--angle", "1"], ["--dir", "0.3,-1,0.5"]):
+        for start in ("v:0", "e:301:0.37", "f:77:0.2,0.3,0.5"):
+            r = run("trace", path, "--from", start, *how, "--length", repr(0.5 * scale), "--json")
+            end = [x / scale for x in jload(r.stdout)["end"]["xyz"]] if r.returncode == 0 else None
+            key = (how[0], start)
+            if scale == 1.0: base[key] = end
+            check(end is not None and base[key] is not None and dist(end, base[key]) <= 1e-12,
+                  "spot x%g --from %s %s: end %s (/ scale), unscaled %s (%s)" % (scale, start, " ".join(how), end, base[key],
+                                                                                r.stderr.strip()))
+
 cli_common.finish()
 PY

@@ -8,7 +8,9 @@
  * label, and no path is `proven` unless its length is the field's distance. (Paths of the
  * straightener and the relaxation on the plate, where equally long edge paths abound, may end in
  * another geodesic: see compare.) Beyond +-1e150 the
- * solver is refused (TG_ERR_UNSUPPORTED), never answers. */
+ * solver is refused (TG_ERR_UNSUPPORTED), never answers. Then sampling, Voronoi cells, isolines,
+ * routes through waypoints and distance matrices on spot scaled by 2^+-330, 2^+-490 and 1e+-100
+ * (test_more_commands). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -266,6 +268,135 @@ static void run_scene(scene* sc)
     free(a.field_v), free(a.field_f), free(sc->ref.field_v), free(sc->ref.field_f);
 }
 
+/* ---- the other commands' computations at any scale (issue 30's table: commands x scale) ---- */
+
+/* Everything but the field and the paths above, about spot (oded_spot_low_resolution) and the
+ * same mesh scaled: farthest-point sampling (samples, distances, labels), Voronoi cells (labels,
+ * distances, boundary points), isolines (points, faces, positions), a route through waypoints
+ * and the distance matrix. On the mesh scaled by 2^k (k = +-330, +-490) they are the unscaled
+ * results, lengths and positions times 2^k, bit for bit; at 1e100 and 1e-100 the same indices
+ * and the same numbers within 1e-12 relative (positions: 1e-9 or 1e-7 of the diagonal, below).
+ * These computations were scale-free before issue 30: this test guards them (it passes on the
+ * code before the issue-30 fixes too) and is the table's entry for sample, field --labels,
+ * field --isolines, path --through and field --sources. */
+typedef struct more {
+    uint32_t samples[12], *fps_label, *vor_label;
+    double *fps_dist, *vor_dist, *matrix, through;
+    size_t bpoints, ipoints, ipolylines;
+    double *bxyz, *ixyz;
+    tg_surface_point *ipts;
+    uint32_t* ifaces;
+} more;
+
+static void more_compute(const tg_mesh* m, double s, more* r)
+{
+    size_t n = tg_mesh_vertex_count(m);
+    tg_geodesic* g = NULL;
+    CHECK_STATUS(tg_geodesic_create(m, NULL, &g), TG_OK);
+    r->fps_label = malloc(n * sizeof *r->fps_label), r->vor_label = malloc(n * sizeof *r->vor_label);
+    r->fps_dist = malloc(n * sizeof *r->fps_dist), r->vor_dist = malloc(n * sizeof *r->vor_dist);
+    r->matrix = malloc(3 * n * sizeof *r->matrix);
+    CHECK_STATUS(tg_geodesic_farthest_point_sampling(g, NULL, 0, 0, 12, NULL, r->samples, r->fps_dist, r->fps_label,
+                                                     NULL), TG_OK);
+    const tg_surface_point src[4] = {tg_surface_vertex(0), tg_surface_vertex(300), tg_surface_face(77, 0.2, 0.3, 0.5),
+                                     tg_surface_edge(301, 0.37)};
+    tg_voronoi_boundaries* b = NULL;
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, src, 4, NULL, r->vor_label, r->vor_dist, &b, NULL), TG_OK);
+    tg_voronoi_boundaries_view bv;
+    tg_voronoi_boundaries_get_view(b, &bv);
+    r->bpoints = bv.point_count;
+    r->bxyz = malloc(3 * (bv.point_count + 1) * sizeof *r->bxyz);
+    memcpy(r->bxyz, bv.xyz, 3 * bv.point_count * sizeof *r->bxyz);
+    tg_voronoi_boundaries_destroy(b);
+    const double levels[3] = {0.1 * s, 0.35 * s, 0.6 * s};
+    tg_isolines* iso = NULL;
+    CHECK_STATUS(tg_geodesic_isolines(g, NULL, src, 1, levels, 3, NULL, &iso, NULL, NULL), TG_OK);
+    tg_isolines_view iv;
+    tg_isolines_get_view(iso, &iv);
+    r->ipoints = iv.point_count, r->ipolylines = iv.polyline_count;
+    r->ixyz = malloc(3 * (iv.point_count + 1) * sizeof *r->ixyz);
+    r->ipts = malloc((iv.point_count + 1) * sizeof *r->ipts);
+    r->ifaces = malloc((iv.point_count + 1) * sizeof *r->ifaces);
+    if (iv.point_count) {
+        memcpy(r->ixyz, iv.xyz, 3 * iv.point_count * sizeof *r->ixyz);
+        memcpy(r->ipts, iv.points, iv.point_count * sizeof *r->ipts);
+        memcpy(r->ifaces, iv.faces, iv.point_count * sizeof *r->ifaces);
+    }
+    tg_isolines_destroy(iso);
+    tg_path* p = NULL;
+    CHECK_STATUS(tg_path_create(NULL, &p), TG_OK);
+    CHECK_STATUS(tg_geodesic_path_through(g, NULL, src, 3, TG_PATH_OPEN, p, NULL), TG_OK);
+    tg_path_view pv;
+    tg_path_get_view(p, &pv);
+    r->through = pv.length;
+    tg_path_destroy(p);
+    CHECK_STATUS(tg_geodesic_distance_matrix(g, src, 3, NULL, 1, r->matrix, NULL), TG_OK);
+    tg_geodesic_destroy(g);
+}
+
+static void more_free(more* r)
+{
+    free(r->fps_label), free(r->vor_label), free(r->fps_dist), free(r->vor_dist), free(r->matrix);
+    free(r->bxyz), free(r->ixyz), free(r->ipts), free(r->ifaces);
+}
+
+/* got / s against want: bit for bit when exact, else within rel (of `unit` for positions). */
+static int more_off(const double* got, const double* want, size_t n, double s, bool exact, double rel, double unit)
+{
+    int off = 0;
+    for (size_t i = 0; i < n; ++i) {
+        if (exact) off += !(got[i] == want[i] * s) && !(isinf(got[i]) && got[i] == want[i]);
+        else off += !(fabs(got[i] / s - want[i]) <= rel * (unit > 0.0 ? unit : fabs(want[i]))) && !(isinf(got[i]) && got[i] == want[i]);
+    }
+    return off;
+}
+
+static void test_more_commands(void)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/oded_spot_low_resolution.obj", tg_test_meshes_dir());
+    tg_mesh* m = NULL;
+    CHECK_STATUS(tg_mesh_load(path, TG_FORMAT_AUTO, NULL, NULL, &m), TG_OK);
+    if (!m) return;
+    size_t n = tg_mesh_vertex_count(m);
+    const tg_mesh_report* rep = tg_mesh_get_report(m);
+    double diag = 0.0;
+    for (int k = 0; k < 3; ++k) diag += (rep->bbox_max[k] - rep->bbox_min[k]) * (rep->bbox_max[k] - rep->bbox_min[k]);
+    diag = sqrt(diag);
+    more ref;
+    more_compute(m, 1.0, &ref);
+    const double scales[] = {ldexp(1.0, -490), ldexp(1.0, -330), ldexp(1.0, 330), ldexp(1.0, 490), 1e100, 1e-100};
+    for (int i = 0; i < 6; ++i) {
+        double s = scales[i];
+        bool exact = i < 4;
+        tg_mesh* ms = transformed(m, s, 0.0);
+        more r;
+        more_compute(ms, s, &r);
+        int idx = memcmp(r.samples, ref.samples, sizeof r.samples) != 0;
+        idx += memcmp(r.fps_label, ref.fps_label, n * sizeof *r.fps_label) != 0;
+        idx += memcmp(r.vor_label, ref.vor_label, n * sizeof *r.vor_label) != 0;
+        idx += r.bpoints != ref.bpoints || r.ipoints != ref.ipoints || r.ipolylines != ref.ipolylines;
+        if (exact && !idx && r.ipoints)
+            idx += memcmp(r.ipts, ref.ipts, r.ipoints * sizeof *r.ipts) != 0 || memcmp(r.ifaces, ref.ifaces, r.ipoints * sizeof *r.ifaces) != 0;
+        int num = more_off(r.fps_dist, ref.fps_dist, n, s, exact, 1e-12, 0.0) + more_off(r.vor_dist, ref.vor_dist, n, s, exact, 1e-12, 0.0) +
+                  more_off(r.matrix, ref.matrix, 3 * n, s, exact, 1e-12, 0.0) + more_off(&r.through, &ref.through, 1, s, exact, 1e-12, 0.0);
+        /* boundary crossings are found to 1e-10 (tg_geodesic_voronoi): held to 1e-9; isoline points
+         * move by up to 3.3e-8 of the diagonal when the mesh is scaled by 1 + 2^-50 or by 3 (a
+         * rounding of the input: points where two circles meet nearly tangentially are known to
+         * about the square root of the rounding), as at 1e+-100: held to 1e-7 there */
+        if (!idx)
+            num += more_off(r.bxyz, ref.bxyz, 3 * r.bpoints, s, exact, 1e-9, diag) +
+                   more_off(r.ixyz, ref.ixyz, 3 * r.ipoints, s, exact, 1e-7, diag);
+        printf("other commands at x%g: %d index arrays and %d numbers differ (%zu samples/labels, %zu boundary and %zu "
+               "isoline points, a route, a 3-row matrix)\n", s, idx, num, 12 + 2 * n, r.bpoints, r.ipoints);
+        CHECK_MSG(idx == 0 && num == 0, "x%g: %d index arrays and %d numbers differ from the unscaled ones", s, idx, num);
+        more_free(&r);
+        tg_mesh_destroy(ms);
+    }
+    more_free(&ref);
+    tg_mesh_destroy(m);
+}
+
 int main(void)
 {
     char path[4096];
@@ -286,5 +417,6 @@ int main(void)
     }
     tg_mesh_destroy(spot);
     tg_mesh_destroy(holed);
+    test_more_commands();
     return tg_test_finish();
 }

@@ -1,6 +1,7 @@
 /* test_render.c - tg_render_png: the PNG decodes to the requested size; background where no face
  * projects, shaded mesh where one does; a polyline adds red pixels; a scalar field colours the
- * low and high ends differently; identical inputs give identical bytes; bad arguments fail. */
+ * low and high ends differently; identical inputs give identical bytes; bad arguments fail; a mesh
+ * scaled by 2^k gives the same bytes (1e+-100: the same pixels to rounding). */
 #include "tg_test.h"
 
 #include <png.h>
@@ -43,6 +44,57 @@ static long file_bytes(const char* path, unsigned char** out)
     if (fread(*out, 1, (size_t)n, f) != (size_t)n) n = -1;
     fclose(f);
     return n;
+}
+
+/* Issue 30 (scale): a float depth buffer held the world depths and the normals were normalised
+ * from squares of unscaled cross products, so that a mesh scaled by 1e100 (or 2^330) overflowed
+ * (the depth test kept the wrong faces: the far side drawn over the near one) and by 1e-100 lost
+ * its shading. An octahedron seen obliquely, coloured by a scalar field, with a polyline over it,
+ * scaled by 2^k: the same bytes as unscaled; by 1e100 and 1e-100: the same pixels but for
+ * rounding (at most 0.1% of them). */
+static void test_scale(const char* a, const char* b)
+{
+    const double x[] = {1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1};
+    const uint32_t t[] = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
+    const double field[] = {0, 1, 2, 3, 4, 5};
+    const double line[] = {1, 0, 0, 0.5, 0.5, 0, 0, 1, 0, 0, 0.5, 0.5, 0, 0, 1};
+    const double scales[] = {ldexp(1.0, -490), ldexp(1.0, -330), ldexp(1.0, 330), ldexp(1.0, 490), 1e100, 1e-100};
+    unsigned char *ref = NULL, *got = NULL;
+    int w = 0, h = 0, rw = 0, rh = 0;
+    for (int i = -1; i < 6; ++i) {
+        double s = i < 0 ? 1.0 : scales[i], xs[18], ls[15];
+        for (int k = 0; k < 18; ++k) xs[k] = x[k] * s;
+        for (int k = 0; k < 15; ++k) ls[k] = line[k] * s;
+        tg_mesh* m = NULL;
+        CHECK_STATUS(tg_mesh_create(xs, 6, t, 8, NULL, NULL, &m), TG_OK);
+        if (!m) return;
+        tg_render_options o;
+        memset(&o, 0, sizeof o);
+        o.width = 160, o.height = 120, o.view_dir[0] = 0.3, o.view_dir[1] = -0.5, o.view_dir[2] = -1.0;
+        o.vertex_scalar = field, o.polyline = ls, o.polyline_count = 5;
+        CHECK_STATUS(tg_render_png(m, &o, i < 0 ? a : b, NULL), TG_OK);
+        tg_mesh_destroy(m);
+        if (i < 0) {
+            ref = decode(a, &rw, &rh);
+            CHECK(ref != NULL);
+            continue;
+        }
+        unsigned char *ba = NULL, *bb = NULL;
+        long na = file_bytes(a, &ba), nb = file_bytes(b, &bb);
+        bool same = na > 0 && na == nb && memcmp(ba, bb, (size_t)na) == 0;
+        free(ba), free(bb);
+        got = decode(b, &w, &h);
+        int differ = 0;
+        for (int k = 0; got && ref && w == rw && h == rh && k < w * h; ++k) differ += memcmp(got + 3 * k, ref + 3 * k, 3) != 0;
+        if (i < 4)
+            CHECK_MSG(same, "octahedron x 2^%d: the PNG differs from the unscaled one (%d of %d pixels)",
+                      (int)ilogb(s), differ, w * h);
+        else
+            CHECK_MSG(got && w == rw && h == rh && differ <= w * h / 1000, "octahedron x %g: %d of %d pixels differ", s,
+                      differ, w * h);
+        free(got);
+    }
+    free(ref);
 }
 
 int main(void)
@@ -169,6 +221,7 @@ int main(void)
     CHECK_STATUS(tg_render_png(m, &o, "/nonexistent-dir/x.png", &d), TG_ERR_IO);
     CHECK(strlen(d.message) > 0);
     CHECK_STATUS(tg_render_png(NULL, &o, a, NULL), TG_ERR_INVALID_ARGUMENT);
+    test_scale(a, b);
     remove(a);
     remove(b);
     tg_mesh_destroy(m);

@@ -617,6 +617,380 @@ static void test_scale(void)
     tg_mesh_destroy(odd);
 }
 
+/* ---- any scale, any length of the direction, the tangent plane (issue 30) ---- */
+
+/* Trace b, on the mesh scaled by s (a power of two), is trace a scaled, bit for bit: the same
+ * points, faces, status and end direction; the positions and the length times s. */
+static bool same_scaled(const tg_trace_view* a, const tg_trace_view* b, double s)
+{
+    bool ok = a->point_count == b->point_count && a->point_count >= 2 && a->end.status == b->end.status &&
+              b->end.length == a->end.length * s && !memcmp(a->end.direction, b->end.direction, sizeof a->end.direction) &&
+              !memcmp(a->points, b->points, a->point_count * sizeof *a->points) &&
+              !memcmp(a->faces, b->faces, (a->point_count - 1) * sizeof *a->faces);
+    for (size_t k = 0; ok && k < 3 * a->point_count; ++k) ok = b->xyz[k] == a->xyz[k] * s;
+    return ok;
+}
+
+/* The angle reference's normal was computed from the mesh's coordinates unscaled: its square
+ * overflowed or underflowed beyond about 1e+-78, and spot scaled by 1e100 or 1e-100 refused every
+ * angle ("zero area"). Traces from vertices, edge points and face points, by angle and by vector,
+ * on spot scaled by 2^k (k = +-330, +-490: within the solver's 1e150) are the unscaled ones bit
+ * for bit, and at 1e100 and 1e-100 the same to rounding. */
+static void test_any_scale(void)
+{
+    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), "oded_spot_low_resolution.obj");
+    if (!m) return;
+    tg_geodesic* g = NULL;
+    CHECK_STATUS(tg_geodesic_create(m, NULL, &g), TG_OK);
+    tg_trace *t = NULL, *ts = NULL;
+    CHECK_STATUS(tg_trace_create(NULL, &t), TG_OK);
+    CHECK_STATUS(tg_trace_create(NULL, &ts), TG_OK);
+    double centre[3], diag = tg_test_mesh_box(m, centre);
+    const double scales[] = {ldexp(1.0, -490), ldexp(1.0, -330), ldexp(1.0, 330), ldexp(1.0, 490), 1e100, 1e-100};
+    const int exponents[] = {-490, -330, 330, 490, 0, 0};
+    for (size_t si = 0; si < sizeof scales / sizeof scales[0]; ++si) {
+        double s = scales[si];
+        tg_mesh* ms = transformed(m, s, 0, 0, 0);
+        tg_geodesic* gs = NULL;
+        CHECK_STATUS(tg_geodesic_create(ms, NULL, &gs), TG_OK);
+        tg_rng r = {30};
+        int n = TG_TEST_WORK(300, 60), same = 0, refused = 0, angles = 0;
+        double worst = 0.0;
+        for (int i = 0; i < n; ++i) {
+            tg_surface_point p = tg_test_random_surface_point(&r, m, NULL);
+            tg_trace_direction d = i % 2 ? vec(tg_rng_range(&r, -1, 1), tg_rng_range(&r, -1, 1), tg_rng_range(&r, -1, 1))
+                                         : ang(tg_rng_range(&r, -7, 7));
+            double len = tg_rng_range(&r, 0.0, 0.3) * diag;
+            angles += d.kind == TG_TRACE_ANGLE;
+            CHECK_STATUS(tg_geodesic_trace(g, &p, &d, len, NULL, t), TG_OK);
+            if (tg_geodesic_trace(gs, &p, &d, len * s, NULL, ts) != TG_OK) {
+                refused++;
+                continue;
+            }
+            tg_trace_view a, b;
+            tg_trace_get_view(t, &a);
+            tg_trace_get_view(ts, &b);
+            if (exponents[si] != 0) {
+                same += same_scaled(&a, &b, s);
+                continue;
+            }
+            double e[3] = {b.end.xyz[0] / s, b.end.xyz[1] / s, b.end.xyz[2] / s};
+            double err = tg_test_dist3(e, a.end.xyz) / diag;
+            if (err > worst) worst = err;
+            same += err <= 1e-9 && a.end.status == b.end.status;
+        }
+        char what[64];
+        if (exponents[si] != 0) snprintf(what, sizeof what, "x2^%d, bit for bit", exponents[si]);
+        else snprintf(what, sizeof what, "x%g, worst end %.3g of the diagonal", s, worst);
+        printf("scale: spot %s: %d of %d traces (%d by angle) the same, %d refused\n", what, same, n, angles, refused);
+        CHECK_MSG(refused == 0 && same == n, "spot %s: %d of %d traces refused, %d of %d the same", what, refused, n,
+                  same, n);
+        tg_geodesic_destroy(gs);
+        tg_mesh_destroy(ms);
+    }
+    tg_trace_destroy(t);
+    tg_trace_destroy(ts);
+    tg_geodesic_destroy(g);
+    tg_mesh_destroy(m);
+}
+
+/* The direction's length was squared: --dir 1e-165,0,0 turned by -26.6 degrees at vertices of a
+ * jittered grid (its square underflowed to 0, every cosine became infinite and the lowest face
+ * won) and 1e160,0,0 was refused as perpendicular. A direction with integer components times
+ * 2^k, for k from -1074 (subnormal components) to 1013, gives the same end bit for bit, from
+ * every vertex, from edge points and from face points; on a flat mesh, a vector out of the plane
+ * gives the end of its projection onto the plane, bit for bit. */
+static void direction_powers(const char* name, tg_mesh* m, bool flat)
+{
+    ctx c = open_ctx_for(m);
+    tg_trace* t = NULL;
+    CHECK_STATUS(tg_trace_create(NULL, &t), TG_OK);
+    double centre[3], diag = tg_test_mesh_box(m, centre);
+    size_t nvert = tg_mesh_vertex_count(m), nface = tg_mesh_face_count(m);
+    tg_rng r = {1074};
+    int starts = 0, compared = 0, differ = 0, projected = 0;
+    for (size_t i = 0; i < nvert + 200; ++i) {
+        tg_surface_point p = i < nvert         ? tg_surface_vertex((uint32_t)i)
+                             : i < nvert + 100 ? tg_surface_edge((uint32_t)(tg_rng_next(&r) % (3 * nface)), tg_rng_unit(&r))
+                                               : random_face_point(&r, nface);
+        double d[3];
+        for (int k = 0; k < 3; ++k) d[k] = (double)(int)(tg_rng_next(&r) % 2001) - 1000.0;
+        if (tg_surface_point_validate(m, &p, NULL) != TG_OK || (d[0] == 0.0 && d[1] == 0.0 && d[2] == 0.0)) continue;
+        double len = 0.1 * diag;
+        tg_trace_direction d0 = vec(d[0], d[1], d[2]);
+        tg_status st = tg_geodesic_trace(c.geo, &p, &d0, len, NULL, t);
+        if (st == TG_ERR_INVALID_ARGUMENT) continue; /* off an open fan */
+        CHECK_STATUS(st, TG_OK);
+        tg_trace_view v;
+        tg_trace_get_view(t, &v);
+        tg_trace_end e0 = v.end;
+        starts++;
+        for (int k = -1074;; k += 29) {
+            if (k > 1013) k = 1013;
+            tg_trace_direction dk = vec(ldexp(d[0], k), ldexp(d[1], k), ldexp(d[2], k));
+            st = tg_geodesic_trace(c.geo, &p, &dk, len, NULL, t);
+            tg_trace_get_view(t, &v);
+            compared++;
+            if (st != TG_OK || memcmp(&v.end, &e0, sizeof e0) != 0) {
+                CHECK_MSG(differ > 0, "%s: from point %zu, (%.17g, %.17g, %.17g) x 2^%d: %s, end (%.17g, %.17g, %.17g); "
+                          "x 1: (%.17g, %.17g, %.17g)", name, i, d[0], d[1], d[2], k, tg_status_name(st),
+                          v.end.xyz[0], v.end.xyz[1], v.end.xyz[2], e0.xyz[0], e0.xyz[1], e0.xyz[2]);
+                differ++;
+            }
+            if (k == 1013) break;
+        }
+        if (flat && (d[0] != 0.0 || d[1] != 0.0)) { /* the projection onto the plane z = 0 */
+            tg_trace_direction dp = vec(d[0], d[1], 0.0);
+            st = tg_geodesic_trace(c.geo, &p, &dp, len, NULL, t);
+            tg_trace_get_view(t, &v);
+            projected++;
+            CHECK_MSG(st == TG_OK && memcmp(&v.end, &e0, sizeof e0) == 0,
+                      "%s: from point %zu, (%.17g, %.17g, 0): %s, end (%.17g, %.17g); with z = %.17g: (%.17g, %.17g)",
+                      name, i, d[0], d[1], tg_status_name(st), v.end.xyz[0], v.end.xyz[1], d[2], e0.xyz[0], e0.xyz[1]);
+        }
+    }
+    printf("direction length: %s: %d starts x 73 powers of two: %d of %d ends differ; %d projections onto the plane\n",
+           name, starts, differ, compared, projected);
+    CHECK_EQ_INT(differ, 0);
+    CHECK(starts > (int)nvert / 2);
+    /* the issue's vectors (not powers of two of each other): the same end as (1, 0, 0), to
+     * rounding, from every vertex */
+    const double xs[] = {1e-320, 4.9e-324, 1e-165, 1e-160, 1e160, 1e300, DBL_MAX};
+    int agree = 0, tried = 0;
+    for (uint32_t i = 0; i < nvert; ++i) {
+        tg_surface_point p = tg_surface_vertex(i);
+        tg_trace_direction d1 = vec(1, 0, 0);
+        if (tg_geodesic_trace(c.geo, &p, &d1, 0.1 * diag, NULL, t) != TG_OK) continue;
+        tg_trace_view v;
+        tg_trace_get_view(t, &v);
+        tg_trace_end e1 = v.end;
+        for (size_t j = 0; j < sizeof xs / sizeof xs[0]; ++j) {
+            tg_trace_direction dx = vec(xs[j], 0, 0);
+            tg_status st = tg_geodesic_trace(c.geo, &p, &dx, 0.1 * diag, NULL, t);
+            tg_trace_get_view(t, &v);
+            tried++;
+            bool ok = st == TG_OK && v.end.status == e1.status && tg_test_dist3(v.end.xyz, e1.xyz) <= 1e-12 * diag;
+            CHECK_MSG(ok || agree < tried - 1, "%s: from v%u, (%.17g, 0, 0): %s, end (%.17g, %.17g, %.17g); (1, 0, 0): "
+                      "(%.17g, %.17g, %.17g)", name, i, xs[j], tg_status_name(st), v.end.xyz[0], v.end.xyz[1],
+                      v.end.xyz[2], e1.xyz[0], e1.xyz[1], e1.xyz[2]);
+            agree += ok;
+        }
+    }
+    printf("direction length: %s: %d of %d traces along (x, 0, 0), x from 4.9e-324 to DBL_MAX, end where (1, 0, 0) "
+           "does\n", name, agree, tried);
+    CHECK_EQ_INT(agree, tried);
+    tg_trace_destroy(t);
+    close_ctx(&c);
+}
+
+static void test_direction_length(void)
+{
+    direction_powers("flat jittered grid", flat_square(10, 165), true);
+    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), "oded_spot_low_resolution.obj");
+    if (m) direction_powers("spot", m, false);
+}
+
+/* The angle-weighted normal of every vertex, by the file's winding (Thürmer & Wüthrich 1998,
+ * computed here on the mesh's coordinates), into n (3 per vertex; zero where a face at the vertex
+ * has zero area); closed[v]: its faces make one fan, closed by edges of two faces each. */
+static void vertex_normals(const tg_mesh* m, double* n, bool* closed)
+{
+    size_t nvert = tg_mesh_vertex_count(m), nface = tg_mesh_face_count(m);
+    const double* x = tg_mesh_positions(m);
+    const uint32_t* tr = tg_mesh_triangles(m);
+    const uint32_t* op = tg_mesh_opposites(m);
+    const uint32_t* vh = tg_mesh_vertex_halfedges(m);
+    uint32_t* count = calloc(nvert, sizeof *count);
+    bool* degenerate = calloc(nvert, sizeof *degenerate);
+    memset(n, 0, 3 * nvert * sizeof *n);
+    for (size_t f = 0; f < nface; ++f)
+        for (int k = 0; k < 3; ++k) {
+            uint32_t v = tr[3 * f + (size_t)k], a = tr[3 * f + (size_t)(k + 1) % 3], b = tr[3 * f + (size_t)(k + 2) % 3];
+            double e1[3], e2[3], cr[3];
+            for (int j = 0; j < 3; ++j) e1[j] = x[3 * a + j] - x[3 * v + j], e2[j] = x[3 * b + j] - x[3 * v + j];
+            cr[0] = e1[1] * e2[2] - e1[2] * e2[1], cr[1] = e1[2] * e2[0] - e1[0] * e2[2], cr[2] = e1[0] * e2[1] - e1[1] * e2[0];
+            double cl = sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
+            double l1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]), l2 = sqrt(e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]);
+            count[v]++;
+            if (!(cl > 1e-9 * l1 * l2)) {
+                degenerate[v] = true;
+                continue;
+            }
+            double ang = atan2(cl, e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2]);
+            for (int j = 0; j < 3; ++j) n[3 * v + j] += ang * cr[j] / cl;
+        }
+    for (size_t v = 0; v < nvert; ++v) {
+        double l = sqrt(n[3 * v] * n[3 * v] + n[3 * v + 1] * n[3 * v + 1] + n[3 * v + 2] * n[3 * v + 2]);
+        if (degenerate[v] || !(l > 1e-6)) l = INFINITY;
+        for (int j = 0; j < 3; ++j) n[3 * v + j] /= l;
+        /* once round the fan: from an outgoing halfedge, across the edge coming in */
+        uint32_t h = vh[v], steps = 0;
+        closed[v] = h != TG_NONE && l < INFINITY;
+        while (closed[v]) {
+            uint32_t in = h - h % 3 + (h % 3 + 2) % 3, o = op[in];
+            if (o == TG_NONE || tg_mesh_halfedge_from(m, o) != v) closed[v] = false;
+            else if (++steps, h = o, h == vh[v]) break;
+            if (steps > count[v]) closed[v] = false;
+        }
+        if (closed[v] && steps != count[v]) closed[v] = false; /* a pinch: more than one fan */
+    }
+    free(count);
+    free(degenerate);
+}
+
+static double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* A vector at a vertex was refused as perpendicular when no face of its fan had a direction within
+ * a right angle of it: on cgal_mpi.off, v:81 refused (1.387, -1.317, -2.283), 92-107 degrees
+ * from every direction of the surface there, and about 6% of random vectors at its vertices.
+ * Now its projection onto the tangent plane counts: at every vertex whose fan closes, random
+ * vectors are never refused and the direction taken has a positive cosine with the projection;
+ * the normal itself is refused, the normal tilted by 1e-7 radians is not. At edge points of two
+ * faces the same with the faces' mean normal. */
+static void tangent_case(const char* file, int per_vertex)
+{
+    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), file);
+    if (!m) return;
+    ctx c = open_ctx_for(m);
+    tg_trace* t = NULL;
+    CHECK_STATUS(tg_trace_create(NULL, &t), TG_OK);
+    size_t nvert = tg_mesh_vertex_count(m), nface = tg_mesh_face_count(m);
+    double* nrm = malloc(3 * nvert * sizeof *nrm);
+    bool* closed = malloc(nvert * sizeof *closed);
+    vertex_normals(m, nrm, closed);
+    tg_rng r = {81};
+    int vertices = 0, tried = 0, refused = 0, backwards = 0, normal_kept = 0, tilted_refused = 0;
+    for (uint32_t i = 0; i < nvert; ++i) {
+        if (!closed[i]) continue;
+        const double* n = nrm + 3 * i;
+        vertices++;
+        tg_surface_point p = tg_surface_vertex(i);
+        for (int k = 0; k < per_vertex; ++k) {
+            double d[3], l;
+            do {
+                for (int j = 0; j < 3; ++j) d[j] = tg_rng_range(&r, -1, 1);
+                l = dot3(d, d);
+            } while (l > 1.0 || l < 1e-6);
+            tg_trace_direction dv = vec(d[0], d[1], d[2]);
+            tried++;
+            if (tg_geodesic_trace(c.geo, &p, &dv, 0.0, NULL, t) != TG_OK) {
+                CHECK_MSG(refused > 0, "%s: v%u refused (%.17g, %.17g, %.17g), %.3g rad from the normal", file, i, d[0],
+                          d[1], d[2], acos(fabs(dot3(d, n)) / sqrt(l)));
+                refused++;
+                continue;
+            }
+            tg_trace_view v;
+            tg_trace_get_view(t, &v);
+            double dn = dot3(d, n), vt[3] = {d[0] - dn * n[0], d[1] - dn * n[1], d[2] - dn * n[2]};
+            if (!(dot3(v.end.direction, vt) > 0.0)) {
+                CHECK_MSG(backwards > 0, "%s: v%u, (%.17g, %.17g, %.17g): the direction taken (%.17g, %.17g, %.17g) is "
+                          "not within a right angle of its projection", file, i, d[0], d[1], d[2], v.end.direction[0],
+                          v.end.direction[1], v.end.direction[2]);
+                backwards++;
+            }
+        }
+        /* the normal: refused; tilted by 1e-7 towards a tangent t: taken, on t's side */
+        tg_trace_direction dn = vec(n[0], n[1], n[2]);
+        if (tg_geodesic_trace(c.geo, &p, &dn, 0.0, NULL, t) != TG_ERR_INVALID_ARGUMENT) normal_kept++;
+        double a[3] = {fabs(n[0]) < 0.5 ? 1.0 : 0.0, fabs(n[0]) < 0.5 ? 0.0 : 1.0, 0.0}, tt[3];
+        tt[0] = n[1] * a[2] - n[2] * a[1], tt[1] = n[2] * a[0] - n[0] * a[2], tt[2] = n[0] * a[1] - n[1] * a[0];
+        double tl = sqrt(dot3(tt, tt));
+        tg_trace_direction dt = vec(n[0] + 1e-7 * tt[0] / tl, n[1] + 1e-7 * tt[1] / tl, n[2] + 1e-7 * tt[2] / tl);
+        tg_trace_view v;
+        if (tg_geodesic_trace(c.geo, &p, &dt, 0.0, NULL, t) != TG_OK) tilted_refused++;
+        else if (tg_trace_get_view(t, &v), !(dot3(v.end.direction, tt) > 0.0)) backwards++;
+    }
+    /* edge points of two faces: the tangent plane of the faces' mean normal */
+    const double* x = tg_mesh_positions(m);
+    const uint32_t* tr = tg_mesh_triangles(m);
+    const uint32_t* op = tg_mesh_opposites(m);
+    int edges = 0, edge_refused = 0, edge_normal_kept = 0, edge_tilted_refused = 0;
+    for (int k = 0; k < 20 * per_vertex && nface; ++k) {
+        uint32_t h = (uint32_t)(tg_rng_next(&r) % (3 * nface)), o = op[h];
+        if (o == TG_NONE) continue;
+        double en[3] = {0, 0, 0};
+        bool ok = true;
+        for (int s = 0; s < 2; ++s) {
+            uint32_t f = (s ? o : h) / 3;
+            const double *a = x + 3 * tr[3 * f], *b = x + 3 * tr[3 * f + 1], *cc = x + 3 * tr[3 * f + 2];
+            double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]};
+            double cr[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+            double cl = sqrt(dot3(cr, cr));
+            ok = ok && cl > 1e-9 * dot3(e1, e1) + 1e-9 * dot3(e2, e2);
+            for (int j = 0; j < 3 && ok; ++j) en[j] += cr[j] / cl;
+        }
+        /* where the faces fold back onto each other (cgal_mpi.off has fins: normals 3e-5 from
+         * opposite), their mean normal is known only to the rounding of a face's normal over its
+         * length, beyond 1e-9: such edges are left out */
+        double el = sqrt(dot3(en, en));
+        if (!ok || !(el > 1e-3)) continue;
+        tg_surface_point p = tg_surface_edge(h, tg_rng_range(&r, 0.05, 0.95));
+        double d[3] = {tg_rng_range(&r, -1, 1), tg_rng_range(&r, -1, 1), tg_rng_range(&r, -1, 1)};
+        tg_trace_direction dv = vec(d[0], d[1], d[2]);
+        edges++;
+        if (tg_geodesic_trace(c.geo, &p, &dv, 0.0, NULL, t) != TG_OK) {
+            CHECK_MSG(edge_refused > 0, "%s: e:%u refused (%.17g, %.17g, %.17g)", file, h, d[0], d[1], d[2]);
+            edge_refused++;
+            continue;
+        }
+        tg_trace_view v;
+        tg_trace_get_view(t, &v);
+        double dn = dot3(d, en) / (el * el), vt[3] = {d[0] - dn * en[0], d[1] - dn * en[1], d[2] - dn * en[2]};
+        if (!(dot3(v.end.direction, vt) > 0.0)) backwards++;
+        /* the normal, and the normal tilted by 1e-7 across the edge (off both faces at a ridge) */
+        double u[3], ux[3], n1[3] = {en[0] / el, en[1] / el, en[2] / el};
+        const double *ea = x + 3 * tr[h], *eb = x + 3 * tg_mesh_halfedge_to(m, h);
+        for (int j = 0; j < 3; ++j) u[j] = eb[j] - ea[j];
+        ux[0] = n1[1] * u[2] - n1[2] * u[1], ux[1] = n1[2] * u[0] - n1[0] * u[2], ux[2] = n1[0] * u[1] - n1[1] * u[0];
+        double ul = sqrt(dot3(ux, ux));
+        tg_trace_direction dnn = vec(n1[0], n1[1], n1[2]);
+        if (tg_geodesic_trace(c.geo, &p, &dnn, 0.0, NULL, t) != TG_ERR_INVALID_ARGUMENT) edge_normal_kept++;
+        for (int side = -1; side <= 1; side += 2) {
+            double tilt = side * 1e-7 / ul;
+            tg_trace_direction dt = vec(n1[0] + tilt * ux[0], n1[1] + tilt * ux[1], n1[2] + tilt * ux[2]);
+            if (tg_geodesic_trace(c.geo, &p, &dt, 0.0, NULL, t) != TG_OK) edge_tilted_refused++;
+            else if (tg_trace_get_view(t, &v), !(side * dot3(v.end.direction, ux) > 0.0)) backwards++;
+        }
+    }
+    printf("tangent plane: %-18s %5d closed fans: %d of %d random vectors refused, normal refused at %d, tilted by "
+           "1e-7 taken at %d; at %d edge points: %d random vectors refused, normal refused at %d, tilted by 1e-7 "
+           "either way taken %d times; %d directions taken not within a right angle of the projection\n", file,
+           vertices, refused, tried, vertices - normal_kept, vertices - tilted_refused, edges, edge_refused,
+           edges - edge_normal_kept, 2 * edges - edge_tilted_refused, backwards);
+    CHECK_EQ_INT(refused, 0);
+    CHECK_EQ_INT(edge_refused, 0);
+    CHECK_EQ_INT(edge_normal_kept, 0);
+    CHECK_EQ_INT(edge_tilted_refused, 0);
+    CHECK_EQ_INT(backwards, 0);
+    CHECK_EQ_INT(normal_kept, 0);
+    CHECK_EQ_INT(tilted_refused, 0);
+    CHECK(vertices > (int)nvert / 2 && edges > 10 * per_vertex);
+    free(nrm);
+    free(closed);
+    tg_trace_destroy(t);
+    close_ctx(&c);
+}
+
+static void test_tangent_plane(void)
+{
+    /* the issue's case */
+    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), "cgal_mpi.off");
+    if (m) {
+        ctx c = open_ctx_for(m);
+        tg_trace* t = NULL;
+        CHECK_STATUS(tg_trace_create(NULL, &t), TG_OK);
+        tg_surface_point p = tg_surface_vertex(81);
+        tg_trace_view v = trace_view(c.geo, t, p, vec(1.387, -1.317, -2.283), 0.1);
+        check_trace("cgal_mpi v:81", c.mesh, &v, &p);
+        CHECK_EQ_INT(v.end.status, TG_TRACE_COMPLETE);
+        tg_trace_destroy(t);
+        close_ctx(&c);
+    }
+    tangent_case("cgal_mpi.off", TG_TEST_WORK(200, 20));
+    tangent_case("cgal_pinion.off", TG_TEST_WORK(40, 4));
+    tangent_case("fcpw_kitten.obj", TG_TEST_WORK(2, 1));
+}
+
 static void test_limits_and_errors(void)
 {
     nv = nf = 0;
@@ -834,6 +1208,9 @@ int main(void)
     test_zero_area();
     test_book();
     test_scale();
+    test_any_scale();
+    test_direction_length();
+    test_tangent_plane();
     test_limits_and_errors();
     test_corpus();
     return tg_test_finish();

@@ -117,8 +117,8 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
     }
     if (st == TG_ERR_INVALID_ARGUMENT && geo) {
         if (la->has_ref)
-            cli_error(la->mesh_path, 0, "--ref %s is perpendicular to the reference face at %s (or that face has zero "
-                      "area)", la->ref_text, la->from);
+            cli_error(la->mesh_path, 0, "--ref %s is perpendicular to the surface at %s (within 1e-9 radians of the "
+                      "normal there; or the reference face has zero area)", la->ref_text, la->from);
         else
             cli_error(la->mesh_path, 0, "the reference face at %s has zero area: give --ref X,Y,Z", la->from);
         goto done;
@@ -199,8 +199,9 @@ const cli_command cli_cmd_logmap = {
     "distance r (the same as trigeo field's, bit for bit), the angle theta at which its shortest\n"
     "path leaves the point, and the 2D coordinates u = r cos theta, v = r sin theta.\n\n"
     "  --from SPEC      the centre: v:IDX | f:FACE:b0,b1,b2 | e:HALFEDGE:t | p:x,y,z\n"
-    "  --ref X,Y,Z      angle 0 along this vector's projection onto the reference face (below);\n"
-    "                   refused when perpendicular to it. Default: as trigeo trace --angle,\n"
+    "  --ref X,Y,Z      angle 0 along the direction trigeo trace --dir X,Y,Z takes from the\n"
+    "                   centre (any length; at f: the projection onto the face); refused when\n"
+    "                   perpendicular to the surface there. Default: as trigeo trace --angle,\n"
     "                   from corner 0 towards corner 1 of the face of f:, along the halfedge of\n"
     "                   e:, or along the vertex's first halfedge for v:\n"
     "  --max-distance D only within D (beyond: r inf)\n"

@@ -91,8 +91,8 @@ static void print_summary(FILE* f, const tg_trace_view* v)
 static int refused(const trace_args* ta)
 {
     if (ta->dir.kind == TG_TRACE_VECTOR)
-        return cli_usage("trace", "--dir %s is perpendicular to the surface at --from %s (no direction of the surface "
-                                  "there is within 1e-9 of a right angle to it)", ta->dir_text, ta->from);
+        return cli_usage("trace", "--dir %s is perpendicular to the surface at --from %s (within 1e-9 radians of the "
+                                  "normal there, or pointing off the surface at its boundary)", ta->dir_text, ta->from);
     return cli_usage("trace", "--angle is measured in the start point's reference face, which has zero area here: give "
                               "--dir X,Y,Z instead");
 }
@@ -408,9 +408,10 @@ const cli_command cli_cmd_trace = {
     "                                                of summing to 1 they are rescaled)\n"
     "                               e:HALFEDGE:t     a point of an edge (halfedge 3*face+corner)\n"
     "                               p:x,y,z          the surface point closest to x,y,z\n"
-    "  --dir X,Y,Z      the direction as a 3D vector: its projection onto the start face (at an\n"
-    "                   edge or vertex, the surface's direction nearest to it); refused when it is\n"
-    "                   perpendicular to the surface there\n"
+    "  --dir X,Y,Z      the direction as a 3D vector of any length: its projection onto the start\n"
+    "                   face, or at an edge or vertex onto the tangent plane there (the faces'\n"
+    "                   angle-weighted normal), taken in the face it projects from; refused when\n"
+    "                   it is perpendicular to the surface (within 1e-9 radians of the normal)\n"
     "  --angle A        or as an angle in radians, counterclockwise (in the face's winding) from\n"
     "                   corner 0 towards corner 1 of the face of f:, along the halfedge of e:, or\n"
     "                   from the vertex's first halfedge for v: (its angle sum scaled to 2 pi)\n"

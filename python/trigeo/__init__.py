@@ -1271,9 +1271,9 @@ class Mesh:
         `length`, across the faces as they unfold, through a vertex as the straightest geodesic
         (Polthier and Schmies), stopping at the boundary (status "boundary").
 
-        start: a vertex index, SurfacePoint or (x, y, z) (snapped). direction: a 3D vector (its
-        projection onto the start face; at an edge or vertex the nearest direction of the surface)
-        or an angle in radians from the start's reference direction (include/trigeo.h,
+        start: a vertex index, SurfacePoint or (x, y, z) (snapped). direction: a 3D vector of any
+        length (its projection onto the start face; at an edge or vertex onto the tangent plane
+        there, include/trigeo.h TG_TRACE_VECTOR) or an angle in radians from the start's reference direction (include/trigeo.h,
         TG_TRACE_ANGLE). length: finite, >= 0. max_steps: the most faces to enter (0: default).
         Zero, NaN or perpendicular directions and negative lengths raise InvalidArgumentError.
         Returns a Trace (points, faces, surface points, the end and its direction, the status)."""
@@ -1374,9 +1374,9 @@ class Mesh:
         distance r (bit for bit field()'s), the angle theta in radians at which its shortest path
         leaves the source, and the 2D coordinates (r cos theta, r sin theta).
 
-        source: a vertex index, SurfacePoint or (x, y, z) (snapped). ref: None, or a 3D vector
-        whose projection onto the reference face is angle 0 (zero, NaN or perpendicular vectors
-        raise InvalidArgumentError). Angles are counterclockwise in [0, 2 pi), measured as
+        source: a vertex index, SurfacePoint or (x, y, z) (snapped). ref: None, or a 3D vector of
+        any length whose direction on the surface, as trace() takes it, is angle 0 (zero, NaN or
+        perpendicular vectors raise InvalidArgumentError). Angles are counterclockwise in [0, 2 pi), measured as
         trace()'s angles: from corner 0 towards corner 1 of a face point's face, along an edge
         point's halfedge, from a vertex's first halfedge with the turn around it scaled to 2 pi
         (pi at a boundary vertex, angles in [0, pi]); so trace(source, theta[v], r[v]) ends at v
@@ -1397,8 +1397,8 @@ class Mesh:
             with self._geo_ws.take() as ws:
                 st = _L.tg_geodesic_log_map(geo, ws, sp, rp, ctypes.byref(o), _ptr(r), _ptr(theta), None)
             if st == 1:
-                raise _bad("log_map: the reference vector is perpendicular to the reference face at the source "
-                           "(or that face has zero area)" if ref is not None else
+                raise _bad("log_map: the reference vector is perpendicular to the surface at the source (or the "
+                           "reference face has zero area)" if ref is not None else
                            "log_map: the reference face at the source has zero area: give ref")
             call.finish(st, "log_map")
             far = ~(r < math.inf)

@@ -23,6 +23,19 @@ static inline double tg_v3_len_sq(tg_vec3 a) { return tg_v3_dot(a, a); }
 static inline double tg_v3_len(tg_vec3 a) { return sqrt(tg_v3_dot(a, a)); }
 static inline double tg_v3_dist(tg_vec3 a, tg_vec3 b) { return tg_v3_len(tg_v3_sub(a, b)); }
 static inline double tg_v3_dist_sq(tg_vec3 a, tg_vec3 b) { return tg_v3_len_sq(tg_v3_sub(a, b)); }
+/* a times the power of two that brings its largest |component| into [0.5, 1) (a itself when it is
+ * zero or not finite): exact unless a component falls below the normal range (then it is below
+ * 2^-1022 of the largest and rounds as any subnormal does), so that a vector and the same vector
+ * times any power of two give the same bits, and products of the result neither overflow nor
+ * underflow. Directions given by callers pass through it before any product. */
+static inline tg_vec3 tg_v3_pow2_unit(tg_vec3 a)
+{
+    double m = fmax(fabs(a.x), fmax(fabs(a.y), fabs(a.z)));
+    if (!(m > 0.0) || !isfinite(m)) return a;
+    int e;
+    (void)frexp(m, &e);
+    return tg_v3(ldexp(a.x, -e), ldexp(a.y, -e), ldexp(a.z, -e));
+}
 /* a + t (b - a) */
 static inline tg_vec3 tg_v3_lerp(tg_vec3 a, tg_vec3 b, double t)
 {

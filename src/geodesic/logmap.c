@@ -17,14 +17,12 @@
  *   - along an edge from the source vertex: the edge's direction around the vertex;
  *   - through another vertex w (along an edge, inside a face, or by a window whose origin is w,
  *     a pseudo-source): w's angle, since the path leaves the source as w's does. */
+#include "geodesic/tangent.h"
 #include "geodesic/workspace.h"
 
 #include <string.h>
 
 #define TWO_PI (2.0 * TG__PI)
-/* A reference vector is refused when its projection onto the reference face's plane is at most
- * this share of its length (as tg_geodesic_trace refuses a direction vector: walk.c PERP_COS). */
-#define PERP_COS 1e-9
 
 /* ---- records of the source's frames (field/logmap.h) ---- */
 
@@ -176,6 +174,46 @@ static double final_angle(const lm_source* s, double x)
     return x;
 }
 
+/* The halfedge of face f on the edge of halfedge e, or TG_NONE. */
+static uint32_t halfedge_on(const tg_geodesic* g, uint32_t f, uint32_t e)
+{
+    uint32_t a = g->tri[e], b = g->tri[tg_halfedge_next(e)];
+    for (uint32_t k = 0; k < 3; ++k) {
+        uint32_t h = 3 * f + k, ha = g->tri[h], hb = g->tri[tg_halfedge_next(h)];
+        if ((ha == a && hb == b) || (ha == b && hb == a)) return h;
+    }
+    return TG_NONE;
+}
+
+/* A vertex or edge source: the reference vector r as the direction of the surface a trace takes
+ * for it (TG_TRACE_VECTOR, tangent.c), whose angle is then s->alpha. TG__DIR_NONE when the
+ * source's faces have no such direction (left to the reference face's plane). */
+static int surface_alpha(lm_source* s, tg_vec3 r)
+{
+    const tg_geodesic* g = s->lm.g;
+    tg__surface_dir sd;
+    int st = tg__surface_direction(g, &s->node, r, &sd);
+    if (st != TG__DIR_OK) return st;
+    if (s->vertex != TG_NONE) { /* the fan angle of the direction, then as every vertex's angle */
+        uint32_t i = corner_index(g, s->vertex, sd.h);
+        uint32_t n = g->corner_start[s->vertex + 1] - g->corner_start[s->vertex];
+        double x = (i < n ? s->lm.fan[i] : 0.0) + atan2(sd.d[1], sd.d[0]);
+        s->alpha = (s->forward ? x - s->a0 : s->a0 - x) * s->scale;
+        return TG__DIR_OK;
+    }
+    /* an edge point: in the reference face's frame on the edge, beyond the edge (unfolded) when
+     * the direction is in the other face; then its angle about the reference face's normal */
+    uint32_t h0 = halfedge_on(g, s->lm.face0, s->node.id);
+    if (h0 == TG_NONE) return TG__DIR_NONE; /* (never: the reference face holds the source's edge) */
+    double d[2] = {sd.d[0], sd.d[1]};
+    if (sd.h != h0) d[0] = g->tri[sd.h] == g->tri[h0] ? d[0] : -d[0], d[1] = -d[1];
+    tg_vec3 u, w;
+    tg__frame_axes(g, h0, &u, &w);
+    tg_vec3 dir = tg_v3_add(tg_v3_scale(u, d[0]), tg_v3_scale(w, d[1]));
+    s->alpha = atan2(tg_v3_dot(dir, s->lm.ref_y), tg_v3_dot(dir, s->lm.ref_x));
+    return TG__DIR_OK;
+}
+
 /* Sets up the source's frames; TG_ERR_INVALID_ARGUMENT for a zero-area reference face or a
  * reference vector perpendicular to it. */
 static tg_status source_setup(const tg_geodesic* g, const tg_surface_point* source, const double* reference,
@@ -205,10 +243,15 @@ static tg_status source_setup(const tg_geodesic* g, const tg_surface_point* sour
         rscale = s->scale;
     }
     if (reference) {
-        tg_vec3 r = tg_v3(reference[0], reference[1], reference[2]);
-        double px = tg_v3_dot(r, s->lm.ref_x), py = tg_v3_dot(r, s->lm.ref_y);
-        if (!(hypot(px, py) > PERP_COS * tg_v3_len(r))) return TG_ERR_INVALID_ARGUMENT;
-        s->alpha = atan2(py, px) * rscale;
+        /* exact: the reference's length never matters, at any magnitude */
+        tg_vec3 r = tg_v3_pow2_unit(tg_v3(reference[0], reference[1], reference[2]));
+        int st = s->node.kind == TG__NODE_FACE ? TG__DIR_NONE : surface_alpha(s, r);
+        if (st == TG__DIR_REFUSED) return TG_ERR_INVALID_ARGUMENT;
+        if (st == TG__DIR_NONE) { /* a face point: the projection onto the face's plane */
+            double px = tg_v3_dot(r, s->lm.ref_x), py = tg_v3_dot(r, s->lm.ref_y);
+            if (!(hypot(px, py) > TG__PERP_COS * tg_v3_len(r))) return TG_ERR_INVALID_ARGUMENT;
+            s->alpha = atan2(py, px) * rscale;
+        }
     }
     return TG_OK;
 }

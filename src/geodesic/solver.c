@@ -389,6 +389,16 @@ uint32_t tg__kept_face(const tg_geodesic* g, uint32_t f)
     return TG_NONE;
 }
 
+/* The position of mesh vertex b minus that of a (the mesh's coordinates); half of it when the
+ * difference overflows (directions only: a power of two does not change one). */
+static tg_vec3 coordinate_difference(const tg_mesh* m, uint32_t a, uint32_t b)
+{
+    tg_vec3 pa = tg_v3_load(m->xyz + 3 * (size_t)a), pb = tg_v3_load(m->xyz + 3 * (size_t)b);
+    tg_vec3 d = tg_v3_sub(pb, pa);
+    if (isfinite(d.x) && isfinite(d.y) && isfinite(d.z)) return d;
+    return tg_v3_sub(tg_v3_scale(pb, 0.5), tg_v3_scale(pa, 0.5));
+}
+
 bool tg__angle_reference(const tg_geodesic* g, const tg_surface_point* caller, uint32_t* out_face,
                          uint32_t* out_from, uint32_t* out_to, tg_vec3* out_n, tg_vec3* out_r)
 {
@@ -402,12 +412,13 @@ bool tg__angle_reference(const tg_geodesic* g, const tg_surface_point* caller, u
     } else {
         mf = caller->index, from = m->tri[3 * (size_t)mf], to = m->tri[3 * (size_t)mf + 1];
     }
-    /* the face's normal by its file winding, the reference side's direction */
+    /* the face's normal by its file winding, the reference side's direction; each vector scaled
+     * by a power of two before any product, so that no square or cross product overflows or
+     * underflows at any scale and a mesh scaled by 2^k gives the same bits */
     const uint32_t* t = m->tri + 3 * (size_t)mf;
-    tg_vec3 a = tg_v3_load(m->xyz + 3 * (size_t)t[0]), b = tg_v3_load(m->xyz + 3 * (size_t)t[1]);
-    tg_vec3 c = tg_v3_load(m->xyz + 3 * (size_t)t[2]);
-    tg_vec3 nn = tg_v3_cross(tg_v3_sub(b, a), tg_v3_sub(c, a));
-    tg_vec3 rr = tg_v3_sub(tg_v3_load(m->xyz + 3 * (size_t)to), tg_v3_load(m->xyz + 3 * (size_t)from));
+    tg_vec3 ab = coordinate_difference(m, t[0], t[1]), ac = coordinate_difference(m, t[0], t[2]);
+    tg_vec3 nn = tg_v3_pow2_unit(tg_v3_cross(tg_v3_pow2_unit(ab), tg_v3_pow2_unit(ac)));
+    tg_vec3 rr = tg_v3_pow2_unit(coordinate_difference(m, from, to));
     double nl = tg_v3_len(nn), rl = tg_v3_len(rr);
     if (!(nl > 0.0) || !(rl > 0.0) || !isfinite(nl) || !isfinite(rl)) return false;
     uint32_t f = tg__kept_face(g, g->solver_face[mf]);

@@ -18,7 +18,7 @@
  * length inside is in the solver's frame (solver.h: scaled by a power of two), so the walk is the
  * same, bit for bit, for a mesh scaled by a power of two. */
 #include "core/predicates.h"
-#include "geodesic/frame.h"
+#include "geodesic/tangent.h"
 
 #include <string.h>
 #ifdef TG_HAVE_OPENMP
@@ -29,10 +29,6 @@
  * the unfoldings are exact to about 1e-15 per face, so on which side of the vertex a ray passes
  * is rounding noise below this (as THROUGH_REL of the exact path's trace back, path/trace.c). */
 #define SNAP_REL 1e-11
-/* A direction vector is refused when the nearest direction of the surface at the start makes an
- * angle with it whose cosine is at most this: its projection is then shorter than 1e-9 of the
- * vector, and its direction would be rounding noise beyond about 1e-7 radians. */
-#define PERP_COS 1e-9
 /* More faces than this in a row without advancing beyond rounding (zero-area faces around one
  * point) stop the walk: no real walk enters that many zero-area faces at one point. */
 #define STALL_STEPS 1000
@@ -570,66 +566,16 @@ static void start_in_face(const tg_geodesic* g, const tg__node* n, uint32_t f, t
     if (dl > 0.0) out->r.d[0] /= dl, out->r.d[1] /= dl;
 }
 
-/* ---- directions given as vectors: the nearest direction of the surface ---- */
+/* ---- directions given as vectors (tangent.c) ---- */
 
-typedef struct candidate {
-    double cos; /* cosine between the vector and the direction (-inf: none yet) */
-    uint32_t mesh_face;
-    ray r;
-} candidate;
-
-static void consider(candidate* best, double cs, uint32_t f, const tg_geodesic* g, const ray* r)
+/* The ray from the point (t, s) of the edge of halfedge e (t from tri[e]), in the frame of h,
+ * a halfedge of the same edge, with the unit direction d of h's frame. */
+static ray edge_ray(const tg_geodesic* g, uint32_t e, double t, double s, uint32_t h, const double d[2])
 {
-    uint32_t mf = g->mesh_face[f];
-    if (cs > best->cos || (cs == best->cos && mf < best->mesh_face)) {
-        best->cos = cs, best->mesh_face = mf;
-        best->r = *r;
-    }
-}
-
-/* In the corner k of face f at a vertex: the direction of the corner's sector nearest to v
- * (unit vector of length vl), with its cosine. */
-static void corner_candidate(const tg_geodesic* g, uint32_t f, int k, tg_vec3 v, double vl, candidate* best)
-{
-    uint32_t h = 3 * f + (uint32_t)k;
-    if (!(g->frame[h].cy > 0.0)) return; /* a zero-area face holds no direction */
-    double p[2];
-    tg__frame_vector(g, h, v, p);
-    double c = tg__corner_angle(g, f, k), phi = atan2(p[1], p[0]);
-    if (!(phi >= 0.0 && phi <= c)) { /* outside the sector: its nearer side */
-        double to0 = fabs(phi), toc = fabs(phi - c);
-        if (toc > TG__PI) toc = TWO_PI - toc;
-        phi = to0 <= toc ? 0.0 : c;
-    }
-    ray r = {h, AT_CORNER, {0.0, 0.0}, {cos(phi), sin(phi)}, 0.0, 1.0};
-    consider(best, (p[0] * r.d[0] + p[1] * r.d[1]) / vl, f, g, &r);
-}
-
-/* At a point of the edge of halfedge e (t from tri[e]): in each face at the edge, the direction
- * of its half-plane nearest to v. */
-static void edge_candidates(const tg_geodesic* g, uint32_t e, double t, double s, tg_vec3 v, double vl,
-                            candidate* best)
-{
-    uint32_t a = g->tri[e], b = g->tri[tg_halfedge_next(e)];
-    for (uint32_t i = g->corner_start[a]; i < g->corner_start[a + 1]; ++i) {
-        uint32_t f = g->corners[i] / 3;
-        int ka = (int)(g->corners[i] % 3), kb = tg__corner_of(g, f, b);
-        if ((g->fflags[f] & TG__F_SKIP) || kb < 0 || kb == ka) continue;
-        uint32_t h = 3 * f + (uint32_t)((ka + 1) % 3 == kb ? ka : kb); /* f's halfedge on the edge */
-        if (!(g->frame[h].cy > 0.0) || !(g->frame[h].len > 0.0)) continue;
-        bool same = g->tri[h] == a;
-        double th = same ? t : s, sh = same ? s : t, len = g->frame[h].len, p[2];
-        tg__frame_vector(g, h, v, p);
-        ray r = {h, AT_EDGE, {th <= sh ? th * len : len - sh * len, 0.0}, {0.0, 0.0}, th, sh};
-        double pl = hypot(p[0], p[1]);
-        if (p[1] >= 0.0 && pl > 0.0) { /* into the face (or along the edge) */
-            r.d[0] = p[0] / pl, r.d[1] = p[1] / pl;
-            consider(best, pl / vl, f, g, &r);
-        } else { /* out of the face: along the edge is its nearest direction */
-            r.d[0] = p[0] >= 0.0 ? 1.0 : -1.0;
-            consider(best, fabs(p[0]) / vl, f, g, &r);
-        }
-    }
+    bool same = g->tri[h] == g->tri[e];
+    double th = same ? t : s, sh = same ? s : t, len = g->frame[h].len;
+    ray r = {h, AT_EDGE, {th <= sh ? th * len : len - sh * len, 0.0}, {d[0], d[1]}, th, sh};
+    return r;
 }
 
 /* The longest side of face f (the one whose frame measures its area best). */
@@ -641,53 +587,65 @@ static uint32_t longest_halfedge(const tg_geodesic* g, uint32_t f)
     return h;
 }
 
-/* The start for a direction vector v (finite, non-zero) at node n. */
+/* A face point in face f of zero area: a point of the segment it spans, and so of each of its
+ * sides that covers the point (a cap's two short sides, or a slit's two long ones): the nearest
+ * direction to v among the faces at those sides (out->via: the side's point). */
+static int start_zero_area(const tg_geodesic* g, const tg__node* n, tg_vec3 v, tg__surface_dir* best, start_ray* out)
+{
+    double b[3], xy[2], vl = tg_v3_len(v);
+    tg__node_bary(g, n, n->id, b);
+    for (uint32_t k = 0; k < 3; ++k) {
+        uint32_t e = 3 * n->id + k;
+        if (!(g->frame[e].len > 0.0)) continue;
+        tg__frame_bary(&g->frame[e], k, b, xy);
+        double t = xy[0] / g->frame[e].len;
+        if (!(t >= 0.0 && t <= 1.0)) continue;
+        tg__surface_dir before = *best;
+        tg__edge_nearest(g, e, v, vl, best);
+        if (best->cos != before.cos || best->h != before.h)
+            out->has_via = true, out->via = tg__node_edge(e, t, 1.0 - t), out->via_face = n->id;
+    }
+    if (best->h == TG_NONE) return TG__DIR_NONE;
+    return best->cos > TG__PERP_COS ? TG__DIR_OK : TG__DIR_REFUSED;
+}
+
+/* The start for a direction vector v (finite, non-zero) at node n: inside a face, its projection
+ * onto the face's plane; at a vertex or an edge point, the direction of the surface tangent.c
+ * finds for it (TG_TRACE_VECTOR). */
 static tg_status start_vector(const tg_geodesic* g, const tg__node* n, tg_vec3 v, start_ray* out)
 {
-    double vl = tg_v3_len(v);
-    candidate best = {-INFINITY, TG_NONE, {0, 0, {0.0, 0.0}, {0.0, 0.0}, 0.0, 0.0}};
     memset(out, 0, sizeof *out);
-    if (n->kind == TG__NODE_VERTEX) {
-        for (uint32_t i = g->corner_start[n->id]; i < g->corner_start[n->id + 1]; ++i) {
-            uint32_t f = g->corners[i] / 3;
-            if (!(g->fflags[f] & TG__F_SKIP)) corner_candidate(g, f, (int)(g->corners[i] % 3), v, vl, &best);
-        }
-    } else if (n->kind == TG__NODE_EDGE) {
-        edge_candidates(g, n->id, n->t, n->s, v, vl, &best);
-    } else {
+    v = tg_v3_pow2_unit(v); /* exact: the vector's length never matters, at any magnitude */
+    tg__surface_dir best;
+    tg__surface_dir_init(&best);
+    int st;
+    if (n->kind == TG__NODE_FACE) {
         uint32_t h = longest_halfedge(g, n->id);
         if (g->frame[h].cy > 0.0) {
             double p[2];
             tg__frame_vector(g, h, v, p);
-            best.cos = hypot(p[0], p[1]) / vl; /* the projection onto the face's plane */
-            if (best.cos > PERP_COS) start_in_face(g, n, n->id, v, out);
-            best.r = out->r;
-        } else { /* a zero-area face: a point of the segment it spans, and so of each of its sides
-                    that covers the point (a cap's two short sides, or a slit's two long ones) */
-            double b[3], xy[2];
-            tg__node_bary(g, n, n->id, b);
-            for (uint32_t k = 0; k < 3; ++k) {
-                uint32_t e = 3 * n->id + k;
-                if (!(g->frame[e].len > 0.0)) continue;
-                tg__frame_bary(&g->frame[e], k, b, xy);
-                double t = xy[0] / g->frame[e].len;
-                if (!(t >= 0.0 && t <= 1.0)) continue;
-                candidate before = best;
-                edge_candidates(g, e, t, 1.0 - t, v, vl, &best);
-                if (best.cos != before.cos || best.r.h != before.r.h) {
-                    out->has_via = true, out->via = tg__node_edge(e, t, 1.0 - t), out->via_face = n->id;
-                }
-            }
+            if (!(hypot(p[0], p[1]) / tg_v3_len(v) > TG__PERP_COS)) return TG_ERR_INVALID_ARGUMENT;
+            start_in_face(g, n, n->id, v, out);
+            return TG_OK;
         }
+        st = start_zero_area(g, n, v, &best, out);
+    } else {
+        st = tg__surface_direction(g, n, v, &best);
     }
-    if (best.cos == -INFINITY) { /* only zero-area faces at the start */
+    if (st == TG__DIR_NONE) { /* only zero-area faces at the start */
         out->has_via = false;
         out->stopped = true;
         out->status = TG_TRACE_SINGULAR;
         return TG_OK;
     }
-    if (!(best.cos > PERP_COS)) return TG_ERR_INVALID_ARGUMENT;
-    out->r = best.r;
+    if (st != TG__DIR_OK) return TG_ERR_INVALID_ARGUMENT;
+    if (n->kind == TG__NODE_VERTEX) {
+        ray r = {best.h, AT_CORNER, {0.0, 0.0}, {best.d[0], best.d[1]}, 0.0, 1.0};
+        out->r = r;
+    } else {
+        const tg__node* at = n->kind == TG__NODE_EDGE ? n : &out->via;
+        out->r = edge_ray(g, at->id, at->t, at->s, best.h, best.d);
+    }
     return TG_OK;
 }
 

@@ -29,7 +29,11 @@
 typedef struct camera {
     tg_vec3 right, up, fwd; /* orthonormal; fwd points into the screen */
     double scale, off_x, off_y; /* screen = (x * scale + off_x, off_y - y * scale) */
-    double depth_bias;          /* lift of the polyline toward the camera (world units) */
+    /* depth = world depth times zscale, a power of two bringing the largest |depth| into
+     * [0.5, 1): exact, so a float holds the depths of a mesh at any scale (1e100 overflowed a
+     * float, 1e-100 underflowed to 0) and a mesh scaled by 2^k draws the same picture */
+    double zscale;
+    double depth_bias;          /* lift of the polyline toward the camera (in depth units) */
 } camera;
 
 typedef struct canvas {
@@ -38,8 +42,11 @@ typedef struct canvas {
     float* rgb;    /* 3 * w * h, linear-ish 0..1 */
 } canvas;
 
+/* v's direction; scaled by a power of two first (exact), so that no square overflows or
+ * underflows at any scale of the mesh */
 static tg_vec3 normalize_or(tg_vec3 v, tg_vec3 fallback)
 {
+    v = tg_v3_pow2_unit(v);
     double len = tg_v3_len(v);
     return len > 0.0 && isfinite(len) ? tg_v3_scale(v, 1.0 / len) : fallback;
 }
@@ -58,7 +65,7 @@ static void camera_basis(const tg_render_options* o, camera* cam)
 static tg_vec3 project(const camera* c, tg_vec3 p)
 {
     double x = tg_v3_dot(p, c->right), y = tg_v3_dot(p, c->up), z = tg_v3_dot(p, c->fwd);
-    return tg_v3(x * c->scale + c->off_x, c->off_y - y * c->scale, z);
+    return tg_v3(x * c->scale + c->off_x, c->off_y - y * c->scale, z * c->zscale);
 }
 
 /* Fits the referenced vertices and the polyline into the canvas with a 6% margin. */
@@ -88,7 +95,11 @@ static void camera_fit(const tg_mesh* m, const tg_render_options* o, const canva
     c->off_y = 0.5 * cv->h + 0.5 * (lo[1] + hi[1]) * c->scale;
     /* the tube sits on the surface: lift it by a little more than a pixel's worth of depth and
      * 0.2% of the depth range so it wins the depth test against the faces it lies on */
-    c->depth_bias = 3.0 / c->scale + 0.002 * (hi[2] - lo[2]);
+    double zmax = fmax(fabs(lo[2]), fabs(hi[2]));
+    int e = 0;
+    if (zmax > 0.0 && isfinite(zmax)) (void)frexp(zmax, &e);
+    c->zscale = ldexp(1.0, -e);
+    c->depth_bias = (3.0 / c->scale + 0.002 * (hi[2] - lo[2])) * c->zscale;
 }
 
 /* A perceptual dark-blue -> teal -> green -> yellow ramp (control points chosen for monotone
@@ -210,12 +221,20 @@ static void draw_isolines(const tg_render_options* o, const shade_ctx* sc, const
 
 static bool vertex_normals(const tg_mesh* m, tg_vec3* vn)
 {
+    /* sides scaled by one power of two (the bounding box's): exact, and their cross products
+     * neither overflow nor underflow at any scale of the mesh */
+    const double *lo = m->report.bbox_min, *hi = m->report.bbox_max;
+    double ext = 0.0;
+    for (int k = 0; k < 3; ++k) ext = fmax(ext, fmax(fabs(lo[k]), fabs(hi[k])));
+    int e = 0;
+    if (ext > 0.0 && isfinite(ext)) (void)frexp(ext, &e);
+    double s = ldexp(1.0, -e);
     for (size_t v = 0; v < m->vertex_count; ++v) vn[v] = tg_v3(0, 0, 0);
     for (size_t f = 0; f < m->face_count; ++f) {
         const uint32_t* t = m->tri + 3 * f;
         tg_vec3 a = tg_v3_load(m->xyz + 3 * (size_t)t[0]), b = tg_v3_load(m->xyz + 3 * (size_t)t[1]);
         tg_vec3 c = tg_v3_load(m->xyz + 3 * (size_t)t[2]);
-        tg_vec3 n = tg_v3_cross(tg_v3_sub(b, a), tg_v3_sub(c, a)); /* |n| = 2 area: area weighting */
+        tg_vec3 n = tg_v3_cross(tg_v3_scale(tg_v3_sub(b, a), s), tg_v3_scale(tg_v3_sub(c, a), s)); /* 2 area: weights */
         for (int k = 0; k < 3; ++k) vn[t[k]] = tg_v3_add(vn[t[k]], n);
     }
     for (size_t v = 0; v < m->vertex_count; ++v) vn[v] = normalize_or(vn[v], tg_v3(0, 0, 0));

@@ -51,7 +51,7 @@ __version__ = _L.tg_version().decode()
 
 
 def version() -> str:
-    """The version of the loaded libtrigeo.so, e.g. "0.4.0"."""
+    """The version of the loaded libtrigeo.so, e.g. "0.5.0"."""
     return _L.tg_version().decode()
 
 
@@ -1076,7 +1076,7 @@ class Mesh:
         at = (ctypes.c_size_t * m)()
         geo = self._get_geo()
         with self._geo_ws.take() as ws, self._paths.take() as ph:
-            _check(_L.tg_geodesic_path_through(geo, ws, pts, len(pts), 1 if closed else 0, ph, at), "path_through")
+            _check(_L.tg_geodesic_path_through(geo, ws, pts, len(pts), 1 if closed else 0, None, ph, at), "path_through")
             view = _c.PathView()
             _L.tg_path_get_view(ph, ctypes.byref(view))
             p = Path._from_view(view)

@@ -377,7 +377,11 @@ class _Call:
 
         def target():
             try:
-                box["result"] = work()
+                if uses is not None:
+                    with uses.inside():  # nested calls on the Mesh are part of this one
+                        box["result"] = work()
+                else:
+                    box["result"] = work()
             except BaseException as e:
                 box["error"] = e
             finally:
@@ -414,7 +418,8 @@ class _Call:
 class _Uses:
     """The calls running on a Mesh, so that close() frees nothing while one of them uses it:
     close() waits for them (and refuses from inside one: a progress callback); calls started
-    after close() are refused."""
+    after close() are refused, but not a call made inside a running one (a running call reading
+    .vertex_count, a progress callback asking for .faces), which close() is waiting for anyway."""
 
     def __init__(self):
         self._cond = threading.Condition()
@@ -422,10 +427,11 @@ class _Uses:
         self._closed = False
         self._waiting = False  # close() is waiting for the calls to end
         self._free: Optional[Callable[[], None]] = None
+        self._depth = threading.local()  # .n: running calls of this Mesh on this thread
 
     def enter(self) -> None:
         with self._cond:
-            if self._closed:
+            if self._closed and not getattr(self._depth, "n", 0):
                 raise _bad("this Mesh was closed")
             self._count += 1
 
@@ -445,10 +451,20 @@ class _Uses:
             free()
 
     @contextmanager
+    def inside(self) -> Iterator[None]:
+        """This thread runs a call of the Mesh (counted elsewhere: enter() or hold())."""
+        self._depth.n = getattr(self._depth, "n", 0) + 1
+        try:
+            yield
+        finally:
+            self._depth.n -= 1
+
+    @contextmanager
     def use(self) -> Iterator[None]:
         self.enter()
         try:
-            yield
+            with self.inside():
+                yield
         finally:
             self.release()
 

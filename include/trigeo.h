@@ -69,8 +69,9 @@ extern "C" {
  *  - Every call that takes a progress callback calls it about every 5 ms of work however the work
  *    is divided: the matrices also between rows (rows shorter than 5 ms never reported, so a batch
  *    of them could not be stopped), tg_geodesic_isolines while it traces the levels after the
- *    propagation, tg_geodesic_voronoi while it finds the boundaries. A callback that asked to stop
- *    always gives TG_ERR_CANCELLED, even when the work had just finished. */
+ *    propagation, tg_geodesic_voronoi while it finds the boundaries, tg_render_png once more after
+ *    its PNG encoding. A callback that asked to stop always gives TG_ERR_CANCELLED, even when the
+ *    work had just finished. */
 
 /** The library's version as "MAJOR.MINOR.PATCH". Static storage; never NULL; thread-safe. */
 TG_API const char* tg_version(void);
@@ -1687,8 +1688,9 @@ typedef struct tg_render_options {
     size_t polyline_count;
     int supersample;              /**< samples per pixel side for anti-aliasing, 1..8; 0: 3, or
                                        fewer where TG_RENDER_MAX_BYTES needs; 1: none */
-    /** Called every few thousand faces and picture rows from the rendering thread (NULL: none);
-     *  non-zero stops the call with TG_ERR_CANCELLED, before the file is opened. (New in 0.3.) */
+    /** Called every few thousand faces and picture rows from the rendering thread (NULL: none),
+     *  and once more after the PNG encoding (which does not report; since 0.5); non-zero stops
+     *  the call with TG_ERR_CANCELLED, before the file is opened. (New in 0.3.) */
     tg_render_progress_fn progress;
     void* progress_user;
     /** optional: one cell label per vertex (tg_geodesic_voronoi): each face is painted piecewise

@@ -2,7 +2,7 @@
  * (issue 30, "Ctrl-C ignored"): the matrices of many short rows (each shorter than the 5 ms
  * progress period, which never reported before), paths through waypoints and traces (no
  * callback before 0.5), the isolines' tracing of levels after the propagation, the Voronoi
- * boundaries' rounds and farthest-point sampling. Each call is stopped at the first report of the
+ * boundaries' rounds and farthest-point sampling, and a picture's PNG encoding. Each call is stopped at the first report of the
  * stage under test and must return TG_ERR_CANCELLED with its outputs as the header says for
  * errors (nothing returned, or complete rows / entries only); a callback that never stops must
  * change nothing (bit-identical results). The work is chosen to last well beyond one period
@@ -278,6 +278,33 @@ static void test_isolines_and_cells(const tg_geodesic* g, size_t n)
     free(label), free(samples);
 }
 
+/* A picture quicker than the progress period never reported from its loops: the call after the
+ * PNG encoding (which does not report) hears the stop, before the file is opened. */
+static int stop_render(void* user, double fraction)
+{
+    (void)fraction;
+    ++*(int*)user;
+    return 1;
+}
+
+static void test_render(const tg_mesh* mesh)
+{
+    char path[4096];
+    const char* dir = getenv("TG_BUILD_DIR");
+    snprintf(path, sizeof path, "%s/test_cancel_never.png", dir ? dir : ".");
+    remove(path);
+    int calls = 0;
+    tg_render_options o;
+    memset(&o, 0, sizeof o);
+    o.width = 64, o.height = 48;
+    o.progress = stop_render, o.progress_user = &calls;
+    CHECK_STATUS(tg_render_png(mesh, &o, path, NULL), TG_ERR_CANCELLED);
+    FILE* f = fopen(path, "rb");
+    CHECK_MSG(f == NULL, "render: %s was written after the callback asked to stop", path);
+    if (f) fclose(f);
+    CHECK(calls == 1);
+}
+
 int main(void)
 {
     char path[4096];
@@ -293,6 +320,7 @@ int main(void)
     test_path_through(g, n);
     test_traces(g, n);
     test_isolines_and_cells(g, n);
+    test_render(mesh);
     tg_geodesic_destroy(g);
     tg_mesh_destroy(mesh);
     return tg_test_finish();

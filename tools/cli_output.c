@@ -223,6 +223,11 @@ static void release(cli_output* o)
 int cli_output_commit(cli_output* o)
 {
     int rc = CLI_OK;
+    if (interrupted) { /* Ctrl-C while polling, during work that finished without looking: honoured here */
+        cli_error(o->path, 0, "interrupted: nothing written");
+        cli_output_abort(o);
+        return 130;
+    }
     if (o->f) {
         bool bad = ferror(o->f) != 0;
         if (o->f == stdout)
@@ -248,6 +253,7 @@ int cli_output_commit(cli_output* o)
 
 int cli_output_finish_library(cli_output* o, tg_status st, const tg_diag* d)
 {
+    if (st == TG_OK && interrupted) st = TG_ERR_CANCELLED; /* the library finished without looking */
     if (st == TG_OK) return cli_output_commit(o);
     if (st == TG_ERR_CANCELLED) {
         cli_error(o->path, 0, "interrupted: nothing written");

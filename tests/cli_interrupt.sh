@@ -7,7 +7,8 @@
 # same. Before 0.5 the sparse and dense matrices of short rows, the matrix at points, the
 # isolines' levels, the Voronoi boundaries and paths through waypoints ran to their end (exit 0,
 # the file written), and trace, trace --batch, sample and closest were killed by the signal
-# handler ("trigeo: interrupted") instead of stopping their work.
+# handler ("trigeo: interrupted") instead of stopping their work, as was render --from while it
+# computed its field.
 # Under the sanitizers (TG_SANITIZED=1) the work runs 5-10x slower: the signal comes later, so
 # that it still finds the work running, and the allowance is 3 s (the instrumented work between
 # two looks at the flag and the instrumented exit, freeing every buffer, take longer too).
@@ -123,6 +124,7 @@ cases = [
     ("trace --batch", ["trace", arm, "--batch", batch, "--threads", "1", "-o", o("b.csv")], 1.0, 3.0),
     ("sample", ["sample", arm, "--count", "43000", "-o", o("s.txt")], 1.0),
     ("logmap", ["logmap", ico, "--from", "v:0", "-o", o("lm.npy")], 1.0),
+    ("render --from (its field)", ["render", ico, "--from", "v:0", "-o", o("rf.png")], 1.0),
     ("render", ["render", arm, "--from", "v:0", "--size", "4000x4000", "-o", o("r.png")], 1.0, 3.0),
     ("closest --signed", ["closest", ico, queries, "--signed", "--sign", "winding", "--threads", "1", "-o", o("c.csv")], 1.0),
 ]

@@ -56,10 +56,22 @@ extern "C" {
 /* ============================================================================================== */
 
 #define TG_VERSION_MAJOR 0
-#define TG_VERSION_MINOR 4
+#define TG_VERSION_MINOR 5
 #define TG_VERSION_PATCH 0
 /** Single integer for comparisons: major * 10000 + minor * 100 + patch. */
 #define TG_VERSION (TG_VERSION_MAJOR * 10000 + TG_VERSION_MINOR * 100 + TG_VERSION_PATCH)
+
+/* Changes in 0.5 (ABI: soname libtrigeo.so.0.5; programs built against 0.4 must be rebuilt):
+ *  - tg_geodesic_path_through takes a const tg_path_options* (before the path): its progress
+ *    callback can stop a route (TG_ERR_CANCELLED); the method must be TG_PATH_EXACT.
+ *  - tg_trace_options gained progress / progress_user at its end: tg_geodesic_trace and
+ *    tg_geodesic_trace_batch can be stopped (TG_ERR_CANCELLED).
+ *  - Every call that takes a progress callback calls it about every 5 ms of work however the work
+ *    is divided: the matrices also between rows (rows shorter than 5 ms never reported, so a batch
+ *    of them could not be stopped), tg_geodesic_isolines while it traces the levels after the
+ *    propagation, tg_geodesic_voronoi while it finds the boundaries, tg_render_png once more after
+ *    its PNG encoding. A callback that asked to stop always gives TG_ERR_CANCELLED, even when the
+ *    work had just finished. */
 
 /** The library's version as "MAJOR.MINOR.PATCH". Static storage; never NULL; thread-safe. */
 TG_API const char* tg_version(void);
@@ -856,8 +868,11 @@ typedef struct tg_field_progress {
 } tg_field_progress;
 
 /** Progress callback: called every few milliseconds of work (about every 5 ms, from the thread
- *  doing the work; in a batch, from one thread at a time). Return 0 to go on, anything else to
- *  cancel: the call then returns TG_ERR_CANCELLED with the outputs untouched. */
+ *  doing the work; in a batch, from one thread at a time), however the work is divided (a batch
+ *  of pieces each shorter than that reports between them too), so that a caller can stop any
+ *  call that takes one within a few milliseconds (Ctrl-C). Return 0 to go on, anything else to
+ *  cancel: the call then returns TG_ERR_CANCELLED (even when its work had just finished), with
+ *  the outputs as its documentation says for errors. */
 typedef int (*tg_field_progress_fn)(void* user, const tg_field_progress* progress);
 
 /** Query options. NULL or all-zero means defaults. */
@@ -993,6 +1008,11 @@ typedef enum tg_path_closure {
  *  empty segment. initial_length equals length, iterations and edge_path_vertices are 0.
  *  points: point_count >= 1 valid surface points (one point: the path from it to itself, two
  *  equal points and length 0). closure: TG_PATH_OPEN or TG_PATH_CLOSED.
+ *  options: NULL for the defaults, or tg_geodesic_path's options with method TG_PATH_EXACT (the
+ *  others are refused); each piece is computed with them, and their progress callback is told
+ *  the pieces finished (rows_done of row_count = the pieces; settled_fraction the route's share
+ *  done), from inside each piece's propagation and between pieces, about every 5 ms. Returning
+ *  non-zero stops the route: TG_ERR_CANCELLED. (New in 0.5.)
  *  workspace: one of this solver's, or NULL for a temporary one. path: the result (its
  *  allocator also serves the pieces' scratch path).
  *  out_waypoint_points: NULL, or point_count (+ 1 when closed) entries receiving the index in
@@ -1002,14 +1022,16 @@ typedef enum tg_path_closure {
  *  path is empty with status TG_PATH_UNREACHABLE and length +inf, out_waypoint_points is
  *  untouched, and the call returns TG_OK.
  *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic, points or path, point_count 0, an invalid
- *  point, an unknown closure, a workspace of another solver), TG_ERR_OUT_OF_MEMORY,
- *  TG_ERR_INTERNAL (as tg_geodesic_path); on error the path is empty and out_waypoint_points
- *  untouched. Every point is validated before any path is computed.
+ *  point, an unknown closure, a method other than TG_PATH_EXACT or options tg_geodesic_path
+ *  refuses, a workspace of another solver), TG_ERR_OUT_OF_MEMORY, TG_ERR_INTERNAL (as
+ *  tg_geodesic_path), TG_ERR_CANCELLED (the progress callback asked to stop); on error the path
+ *  is empty and out_waypoint_points untouched. Every point is validated before any path is
+ *  computed.
  *  Complexity: the sum of the pieces' tg_geodesic_path calls. Thread-safe for distinct
  *  workspaces and paths. */
 TG_API tg_status tg_geodesic_path_through(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                                    const tg_surface_point* points, size_t point_count, tg_path_closure closure,
-                                   tg_path* path, size_t* out_waypoint_points);
+                                   const tg_path_options* options, tg_path* path, size_t* out_waypoint_points);
 
 
 /* ============================================================================================== */
@@ -1099,6 +1121,14 @@ typedef struct tg_trace_options {
      *  counts one); 0: 16 times the face count plus 65536. A walk that reaches it stops with
      *  TG_TRACE_STEP_LIMIT: raise it for walks many times around a mesh. */
     uint64_t max_steps;
+    /** Called while the walks work, so that a caller can stop them (Ctrl-C), about every 5 ms
+     *  (the flag and the clock are looked at every 4096 faces of a walk and after each trace of a
+     *  batch), from a walking thread (in a batch from one thread at a time): front_distance the
+     *  length the current walk has gone (after a trace of a batch: its whole length), rows_done the traces of a batch finished of row_count (0 of 1 for tg_geodesic_trace),
+     *  settled_fraction the share done. Returning non-zero stops the call: TG_ERR_CANCELLED.
+     *  NULL: none. (New in 0.5.) */
+    tg_field_progress_fn progress;
+    void* progress_user; /**< passed to progress */
 } tg_trace_options;
 
 /** Where a trace ended, and how. */
@@ -1180,8 +1210,8 @@ TG_API void tg_trace_get_view(const tg_trace* trace, tg_trace_view* out_view);
  *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic, start, direction or trace; an invalid start
  *  point; a negative, NaN or infinite length; a zero, NaN or infinite vector, or one
  *  perpendicular to the surface at the start (along the normal: see TG_TRACE_VECTOR); a NaN or infinite angle, or
- *  one measured in a zero-area reference face; an unknown direction kind), TG_ERR_OUT_OF_MEMORY;
- *  on error the trace is empty (no points).
+ *  one measured in a zero-area reference face; an unknown direction kind), TG_ERR_OUT_OF_MEMORY,
+ *  TG_ERR_CANCELLED (options->progress asked to stop); on error the trace is empty (no points).
  *  Complexity: O(k) in the k faces crossed, a small constant per face (figures in
  *  BENCHMARKS.md), plus the vertices' fans at vertex passages; no allocation once the trace's
  *  buffers hold k points. Thread-safe for distinct trace objects. */
@@ -1197,7 +1227,9 @@ TG_API tg_status tg_geodesic_trace(const tg_geodesic* geodesic, const tg_surface
  *  starts, directions, lengths: count entries each (NULL allowed when count is 0); every entry is
  *  validated before any walk, as tg_geodesic_trace does. out_ends: count entries.
  *  Errors: TG_ERR_INVALID_ARGUMENT (as tg_geodesic_trace for any entry, NULL arrays with a
- *  non-zero count, a negative thread count); out_ends is then untouched.
+ *  non-zero count, a negative thread count); out_ends is then untouched. TG_ERR_CANCELLED
+ *  (options->progress asked to stop): every walk ends at its next look, out_ends holds the
+ *  entries of the traces finished before (each complete) and leaves the others untouched.
  *  Complexity: the sum of the walks', divided among the threads. Thread-safe. */
 TG_API tg_status tg_geodesic_trace_batch(const tg_geodesic* geodesic, const tg_surface_point* starts,
                                   const tg_trace_direction* directions, const double* lengths, size_t count,
@@ -1365,7 +1397,7 @@ TG_API tg_status tg_geodesic_log_map(const tg_geodesic* g, tg_geodesic_workspace
  *  are computed in parallel with OpenMP on `threads` threads (0: the OpenMP default; 1: this
  *  thread only), each with the exact engine's scratch of a workspace, made and freed by the call;
  *  the limit, allocator and progress apply to every row (progress is called from one thread at a
- *  time with rows_done / row_count). out_stats (may be NULL): counters summed over the rows,
+ *  time with rows_done / row_count, inside long rows and between rows, about every 5 ms). out_stats (may be NULL): counters summed over the rows,
  *  peak_bytes the largest of one thread's scratch.
  *  Errors: as tg_geodesic_field (every source is validated before any work), and
  *  TG_ERR_INVALID_ARGUMENT for a negative thread count or a matrix size that overflows. Each row
@@ -1384,7 +1416,7 @@ TG_API tg_status tg_geodesic_distance_matrix(const tg_geodesic* g, const tg_surf
  *  FILE` in the CLI and Mesh.distance_matrix(sources, targets=...) in Python.
  *  Rows run in parallel as in tg_geodesic_distance_matrix (threads: 0 the OpenMP default, 1 this
  *  thread only; one exact-engine scratch per thread, made and freed by the call); options (limit,
- *  allocator, progress) apply to every row. Each row's field stops as soon as its targets are
+ *  allocator, progress) apply to every row (progress as tg_geodesic_distance_matrix's). Each row's field stops as soon as its targets are
  *  settled: once every target has a finite upper bound (a window reaching it, or a reached
  *  vertex of its face plus the segment to it), the row's limit drops to the largest bound, so
  *  near targets cost a disc around the source, not the mesh (a target in another component
@@ -1449,7 +1481,8 @@ TG_API void tg_sparse_matrix_destroy(tg_sparse_matrix* matrix);
  *  unreferenced vertex, which is not on the surface, gets an empty row).
  *  max_distance: the radius, >= 0 (0 keeps only distance-0 entries), in the unit of the
  *  coordinates; +inf keeps every reachable vertex (the full matrix, stored sparse).
- *  options: allocator (also of the result) and progress as for tg_geodesic_distance_matrix; its
+ *  options: allocator (also of the result) and progress as for tg_geodesic_distance_matrix (inside
+ *  long rows and between rows, so a matrix of many small discs stops within milliseconds); its
  *  limit and max_distance are not used (the radius is the max_distance argument).
  *  threads: rows run in parallel with OpenMP (0: the OpenMP default, 1: this thread only), each
  *  thread with an exact-engine scratch made and freed by the call; rows are assembled in
@@ -1510,6 +1543,8 @@ typedef struct tg_voronoi_boundaries tg_voronoi_boundaries;
  *  with an unreached corner have no segments. Segments are chained into polylines between
  *  junctions and ends (the mesh boundary); closed loops repeat their first point at the end.
  *  At least one of the three outputs. out_stats (may be NULL): counters summed over the runs.
+ *  While the boundaries are found progress is called inside the runs and between them (about
+ *  every 5 ms), with rows_done = row_count = source_count.
  *  Errors: as tg_geodesic_field, and TG_ERR_INVALID_ARGUMENT when all outputs are NULL or
  *  source_count exceeds 0xFFFFFFFE; on error the outputs are untouched. Complexity: one run per
  *  source over about its cell and its boundary, plus O(vertex_count) memory for the running
@@ -1580,7 +1615,10 @@ typedef struct tg_isolines tg_isolines;
  *  workspace: one of this solver's, or NULL for a temporary one. sources, source_count: as
  *  tg_geodesic_field. levels: level_count >= 1 finite values >= 0 (any order, repeats allowed;
  *  the same unit as the coordinates); levels beyond the options' max_distance give no polylines.
- *  options: as tg_geodesic_field (the allocator also makes the result). out_isolines: receives
+ *  options: as tg_geodesic_field (the allocator also makes the result); progress is called during
+ *  the propagation as for a field, then while the levels are traced (between faces and levels,
+ *  about every 5 ms) with front_distance the level, rows_done the levels traced of row_count =
+ *  level_count and settled_fraction their share. out_isolines: receives
  *  the result (NULL on error). out_vertex_distance: NULL or vertex_count doubles, the field as
  *  tg_geodesic_field returns it (bit-identical). out_stats: may be NULL.
  *  Errors: as tg_geodesic_field, and TG_ERR_INVALID_ARGUMENT for NULL levels or out_isolines, a
@@ -1680,8 +1718,9 @@ typedef struct tg_render_options {
     size_t polyline_count;
     int supersample;              /**< samples per pixel side for anti-aliasing, 1..8; 0: 3, or
                                        fewer where TG_RENDER_MAX_BYTES needs; 1: none */
-    /** Called every few thousand faces and picture rows from the rendering thread (NULL: none);
-     *  non-zero stops the call with TG_ERR_CANCELLED, before the file is opened. (New in 0.3.) */
+    /** Called every few thousand faces and picture rows from the rendering thread (NULL: none),
+     *  and once more after the PNG encoding (which does not report; since 0.5); non-zero stops
+     *  the call with TG_ERR_CANCELLED, before the file is opened. (New in 0.3.) */
     tg_render_progress_fn progress;
     void* progress_user;
     /** optional: one cell label per vertex (tg_geodesic_voronoi): each face is painted piecewise

@@ -11,7 +11,7 @@ static void check_route(const char* name, ctx* c, const tg_surface_point* pts, s
 {
     size_t marks[16];
     memset(marks, 0xFF, sizeof marks);
-    CHECK_STATUS(tg_geodesic_path_through(c->geo, c->ws, pts, n, closure, c->path, marks), TG_OK);
+    CHECK_STATUS(tg_geodesic_path_through(c->geo, c->ws, pts, n, closure, NULL, c->path, marks), TG_OK);
     tg_path_view v;
     tg_path_get_view(c->path, &v);
     char what[160];
@@ -79,13 +79,13 @@ static void test_special(void)
     size_t marks[4] = {7, 7, 7, 7};
     /* one point: the path from it to itself */
     tg_surface_point one = tg_surface_face(10, 0.2, 0.3, 0.5);
-    CHECK_STATUS(tg_geodesic_path_through(c.geo, c.ws, &one, 1, TG_PATH_OPEN, c.path, marks), TG_OK);
+    CHECK_STATUS(tg_geodesic_path_through(c.geo, c.ws, &one, 1, TG_PATH_OPEN, NULL, c.path, marks), TG_OK);
     tg_path_view v;
     tg_path_get_view(c.path, &v);
     CHECK_EQ_INT(v.point_count, 2);
     CHECK(v.length == 0.0 && v.global == TG_PATH_PROVEN);
     CHECK(marks[0] == 0 && marks[1] == 7);
-    CHECK_STATUS(tg_geodesic_path_through(c.geo, NULL, &one, 1, TG_PATH_CLOSED, c.path, marks), TG_OK);
+    CHECK_STATUS(tg_geodesic_path_through(c.geo, NULL, &one, 1, TG_PATH_CLOSED, NULL, c.path, marks), TG_OK);
     CHECK(marks[0] == 0 && marks[1] == 1 && marks[2] == 7);
     /* waypoints in two components: no route, and the marks untouched */
     const uint32_t* comp = tg_mesh_face_components(m);
@@ -93,22 +93,22 @@ static void test_special(void)
     while (other < tg_mesh_face_count(m) && comp[other] == comp[10]) other++;
     tg_surface_point pts[3] = {one, tg_surface_face(11, 0.3, 0.3, 0.4), tg_surface_face(other, 0.3, 0.3, 0.4)};
     memset(marks, 0x5A, sizeof marks);
-    CHECK_STATUS(tg_geodesic_path_through(c.geo, c.ws, pts, 3, TG_PATH_OPEN, c.path, marks), TG_OK);
+    CHECK_STATUS(tg_geodesic_path_through(c.geo, c.ws, pts, 3, TG_PATH_OPEN, NULL, c.path, marks), TG_OK);
     tg_path_get_view(c.path, &v);
     CHECK_EQ_INT(v.status, TG_PATH_UNREACHABLE);
     CHECK(v.point_count == 0 && isinf(v.length));
     CHECK(marks[0] == 0x5A5A5A5A5A5A5A5Aull);
     /* errors: the path is empty */
-    CHECK_STATUS(tg_geodesic_path_through(c.geo, c.ws, pts, 2, TG_PATH_OPEN, c.path, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_path_through(c.geo, c.ws, pts, 2, TG_PATH_OPEN, NULL, c.path, NULL), TG_OK);
     tg_surface_point bad[2] = {one, tg_surface_vertex(1u << 30)};
-    CHECK_STATUS(tg_geodesic_path_through(c.geo, c.ws, bad, 2, TG_PATH_OPEN, c.path, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_path_through(c.geo, c.ws, bad, 2, TG_PATH_OPEN, NULL, c.path, NULL), TG_ERR_INVALID_ARGUMENT);
     tg_path_get_view(c.path, &v);
     CHECK_EQ_INT(v.point_count, 0);
-    CHECK_STATUS(tg_geodesic_path_through(c.geo, c.ws, pts, 0, TG_PATH_OPEN, c.path, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_path_through(c.geo, c.ws, NULL, 2, TG_PATH_OPEN, c.path, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_path_through(c.geo, c.ws, pts, 2, (tg_path_closure)2, c.path, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_path_through(NULL, c.ws, pts, 2, TG_PATH_OPEN, c.path, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_path_through(c.geo, c.ws, pts, 2, TG_PATH_OPEN, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_path_through(c.geo, c.ws, pts, 0, TG_PATH_OPEN, NULL, c.path, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_path_through(c.geo, c.ws, NULL, 2, TG_PATH_OPEN, NULL, c.path, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_path_through(c.geo, c.ws, pts, 2, (tg_path_closure)2, NULL, c.path, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_path_through(NULL, c.ws, pts, 2, TG_PATH_OPEN, NULL, c.path, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_path_through(c.geo, c.ws, pts, 2, TG_PATH_OPEN, NULL, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
     close_ctx(&c);
 }
 

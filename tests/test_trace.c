@@ -1001,7 +1001,7 @@ static void test_limits_and_errors(void)
     tg_surface_point s = locate(c.mesh, 0.1, 0.13, 0.0), bad;
     tg_trace_direction d = vec(1, 0.3, 0), dz = vec(0, 0, 1);
     /* the step limit: the walk stops after entering that many faces */
-    tg_trace_options o = {5};
+    tg_trace_options o = {5, NULL, NULL};
     CHECK_STATUS(tg_geodesic_trace(c.geo, &s, &d, 0.8, &o, t), TG_OK);
     tg_trace_view v;
     tg_trace_get_view(t, &v);

@@ -127,7 +127,8 @@ bool cli_output_reserve(cli_output* o, const char* path);
  * cli_output_set_commit. CLI_OK, or CLI_INPUT (error printed, temporary removed). */
 int cli_output_close(cli_output* o);
 /* Closes (checking every write) and renames into place; CLI_OK or CLI_INPUT (error printed,
- * temporary removed). */
+ * temporary removed), or 130 when Ctrl-C came while polling and the work ended without looking
+ * (the output is then removed, not renamed). */
 int cli_output_commit(cli_output* o);
 /* Closes and removes the temporary file. */
 void cli_output_abort(cli_output* o);

@@ -262,12 +262,18 @@ static int rename_into_place(cli_output* o)
 
 int cli_output_commit(cli_output* o)
 {
+    if (interrupted) { /* Ctrl-C while polling, during work that finished without looking: honoured here */
+        cli_error(o->path, 0, "interrupted: nothing written");
+        cli_output_abort(o);
+        return 130;
+    }
     int rc = cli_output_close(o);
     return rc == CLI_OK ? rename_into_place(o) : rc;
 }
 
 int cli_output_library_done(cli_output* o, tg_status st, const tg_diag* d)
 {
+    if (st == TG_OK && interrupted) st = TG_ERR_CANCELLED; /* the library finished without looking */
     if (st == TG_OK) return CLI_OK;
     if (st == TG_ERR_CANCELLED) {
         cli_error(o->path, 0, "interrupted: nothing written");
@@ -319,6 +325,11 @@ cli_output* cli_output_set_reserve(cli_output_set* s, const char* path)
 
 int cli_output_set_commit(cli_output_set* s)
 {
+    if (interrupted) { /* Ctrl-C while polling, during work that finished without looking */
+        cli_error(s->count ? s->item[0].path : NULL, 0, "interrupted: nothing written");
+        cli_output_set_abort(s);
+        return 130;
+    }
     int rc = CLI_OK;
     for (size_t i = 0; i < s->count && rc == CLI_OK; ++i) rc = cli_output_close(&s->item[i]);
     /* every temporary complete and still there (a library writer wrote it by name), before any

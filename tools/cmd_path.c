@@ -327,7 +327,7 @@ static int run_single(const char* mesh_path, const char* from, const char* to, w
     if (st == TG_OK && through) {
         size_t n = through->list.count;
         st = tg_geodesic_path_through(geo, ws, through->list.point, n, through->closed ? TG_PATH_CLOSED : TG_PATH_OPEN,
-                                      path, through->at);
+                                      &oi, path, through->at);
     } else if (st == TG_OK) {
         st = tg_geodesic_path(geo, ws, &a, &b, &oi, path);
     }

@@ -132,6 +132,13 @@ static int on_progress(void* user, double fraction)
     return cli_interrupted();
 }
 
+/* Ctrl-C while the field of --from and its isolines are computed (polling mode). */
+static int on_field_progress(void* user, const tg_field_progress* p)
+{
+    (void)user, (void)p;
+    return cli_interrupted();
+}
+
 /* --from: the field of the sources and its exact isolines at 16 levels max * k / 17 (where the
  * colour bands were), each polyline's level for its colour. */
 typedef struct exact_isolines {
@@ -152,11 +159,16 @@ static int isolines_of_sources(const char* mesh_path, tg_mesh* mesh, cli_spec_li
     double levels[16];
     ex->dist = malloc((nv ? nv : 1) * sizeof *ex->dist);
     tg_status st = ex->dist ? tg_geodesic_create(mesh, NULL, &geo) : TG_ERR_OUT_OF_MEMORY;
-    if (st == TG_OK) st = tg_geodesic_field(geo, NULL, srcs->point, srcs->count, NULL, ex->dist, NULL);
+    tg_field_options o;
+    memset(&o, 0, sizeof o);
+    o.progress = on_field_progress;
+    cli_interrupt_polling(true);
+    if (st == TG_OK) st = tg_geodesic_field(geo, NULL, srcs->point, srcs->count, &o, ex->dist, NULL);
     if (st == TG_OK) {
         cli_auto_levels(ex->dist, nv, 16, levels);
-        st = tg_geodesic_isolines(geo, NULL, srcs->point, srcs->count, levels, 16, NULL, &ex->iso, NULL, NULL);
+        st = tg_geodesic_isolines(geo, NULL, srcs->point, srcs->count, levels, 16, &o, &ex->iso, NULL, NULL);
     }
+    cli_interrupt_polling(false);
     if (st == TG_OK) {
         tg_isolines_view v;
         tg_isolines_get_view(ex->iso, &v);
@@ -167,6 +179,10 @@ static int isolines_of_sources(const char* mesh_path, tg_mesh* mesh, cli_spec_li
     }
     tg_geodesic_destroy(geo);
     tg_bvh_destroy(bvh);
+    if (st == TG_ERR_CANCELLED) {
+        cli_error(mesh_path, 0, "interrupted: nothing written");
+        return 130;
+    }
     if (st != TG_OK) {
         cli_error(mesh_path, 0, "%s", tg_status_string(st));
         return CLI_INPUT;

@@ -85,12 +85,13 @@ static int run_sample(const sample_args* sa)
     cli_progress_start(&prog, "sample", sa->quiet);
     o.progress = on_progress;
     o.progress_user = &prog;
-    cli_interrupt_install();
+    cli_interrupt_polling(true); /* the progress callback looks at the flag */
     tg_field_stats stats;
     double t0 = cli_seconds();
     tg_status st = tg_geodesic_farthest_point_sampling(geo, NULL, start, sa->seed, sa->count, &o, samples, dist, label,
                                                        &stats);
     double secs = cli_seconds() - t0;
+    cli_interrupt_polling(false);
     cli_progress_end(&prog);
     if (st == TG_ERR_CANCELLED) {
         cli_error(sa->mesh_path, 0, "interrupted: nothing written");

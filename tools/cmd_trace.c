@@ -21,6 +21,32 @@ typedef struct trace_args {
     bool json;
 } trace_args;
 
+/* Ctrl-C while traces are walked: the walk's progress callback stops it (polling mode). */
+static int on_progress(void* user, const tg_field_progress* p)
+{
+    (void)user, (void)p;
+    return cli_interrupted();
+}
+
+/* The options with Ctrl-C as cancellation, and polling on for the walks (interrupted() ends it). */
+static tg_trace_options interruptible(const trace_args* ta)
+{
+    tg_trace_options o = ta->options;
+    o.progress = on_progress;
+    o.progress_user = NULL;
+    cli_interrupt_polling(true);
+    return o;
+}
+
+/* Polling off; true (after saying so) when the walks were interrupted. */
+static bool interrupted(const trace_args* ta, tg_status st)
+{
+    cli_interrupt_polling(false);
+    if (st != TG_ERR_CANCELLED) return false;
+    cli_error(ta->mesh_path, 0, "interrupted: nothing written");
+    return true;
+}
+
 /* ---- output ---- */
 
 static void json_xyz(FILE* f, const double* p)
@@ -128,7 +154,12 @@ static int run_trace(const trace_args* ta)
     if (!cli_resolve_spec(ta->mesh_path, mesh, &bvh, ta->from, &sp, &start)) goto done;
     tg_status st = tg_geodesic_create(mesh, NULL, &geo);
     if (st == TG_OK) st = tg_trace_create(NULL, &trace);
-    if (st == TG_OK) st = tg_geodesic_trace(geo, &start, &ta->dir, ta->length, &ta->options, trace);
+    tg_trace_options o = interruptible(ta);
+    if (st == TG_OK) st = tg_geodesic_trace(geo, &start, &ta->dir, ta->length, &o, trace);
+    if (interrupted(ta, st)) {
+        rc = 130;
+        goto done;
+    }
     if (st == TG_ERR_INVALID_ARGUMENT) {
         rc = refused(ta);
         goto done;
@@ -297,7 +328,12 @@ static int run_batch(const trace_args* ta)
     }
     for (size_t i = 0; i < k; ++i) starts[i] = items[i].start, dirs[i] = items[i].dir, lengths[i] = items[i].length;
     tg_status st = tg_geodesic_create(mesh, NULL, &geo);
-    if (st == TG_OK) st = tg_geodesic_trace_batch(geo, starts, dirs, lengths, k, &ta->options, ta->threads, ends);
+    tg_trace_options o = interruptible(ta);
+    if (st == TG_OK) st = tg_geodesic_trace_batch(geo, starts, dirs, lengths, k, &o, ta->threads, ends);
+    if (interrupted(ta, st)) {
+        rc = 130;
+        goto done;
+    }
     if (st == TG_ERR_INVALID_ARGUMENT && geo) {
         name_refused_line(geo, ta->batch_path, items, lines, n);
         goto done;

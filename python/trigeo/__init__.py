@@ -51,7 +51,7 @@ __version__ = _L.tg_version().decode()
 
 
 def version() -> str:
-    """The version of the loaded libtrigeo.so, e.g. "0.4.0"."""
+    """The version of the loaded libtrigeo.so, e.g. "0.5.0"."""
     return _L.tg_version().decode()
 
 
@@ -485,7 +485,11 @@ class _Call:
 
         def target():
             try:
-                box["result"] = work()
+                if uses is not None:
+                    with uses.inside():  # nested calls on the Mesh are part of this one
+                        box["result"] = work()
+                else:
+                    box["result"] = work()
             except BaseException as e:
                 box["error"] = e
             finally:
@@ -522,7 +526,8 @@ class _Call:
 class _Uses:
     """The calls running on a Mesh, so that close() frees nothing while one of them uses it:
     close() waits for them (and refuses from inside one: a progress callback); calls started
-    after close() are refused."""
+    after close() are refused, but not a call made inside a running one (a running call reading
+    .vertex_count, a progress callback asking for .faces), which close() is waiting for anyway."""
 
     def __init__(self):
         self._cond = threading.Condition()
@@ -530,10 +535,11 @@ class _Uses:
         self._closed = False
         self._waiting = False  # close() is waiting for the calls to end
         self._free: Optional[Callable[[], None]] = None
+        self._depth = threading.local()  # .n: running calls of this Mesh on this thread
 
     def enter(self) -> None:
         with self._cond:
-            if self._closed:
+            if self._closed and not getattr(self._depth, "n", 0):
                 raise _bad("this Mesh was closed")
             self._count += 1
 
@@ -553,10 +559,20 @@ class _Uses:
             free()
 
     @contextmanager
+    def inside(self) -> Iterator[None]:
+        """This thread runs a call of the Mesh (counted elsewhere: enter() or hold())."""
+        self._depth.n = getattr(self._depth, "n", 0) + 1
+        try:
+            yield
+        finally:
+            self._depth.n -= 1
+
+    @contextmanager
     def use(self) -> Iterator[None]:
         self.enter()
         try:
-            yield
+            with self.inside():
+                yield
         finally:
             self.release()
 
@@ -1196,28 +1212,36 @@ class Mesh:
         points: a sequence of surface points as path() takes them (vertex indices, SurfacePoints,
         (x, y, z) positions), at least one. The Path's waypoint_points ((m,) int64, m = the number
         of points, + 1 when closed) gives the index in path.points of each waypoint in visiting
-        order. Consecutive points in different components give status "unreachable", length inf."""
+        order. Consecutive points in different components give status "unreachable", length inf.
+        Ctrl-C interrupts it."""
         closed = _flag(closed, "closed")
-        pts = self._surface_points(points, "points")
-        if len(pts) == 0:
-            raise _bad("path_through needs at least one point")
-        m = len(pts) + (1 if closed else 0)
-        at = (ctypes.c_size_t * m)()
-        geo = self._get_geo()
-        with self._geo_ws.take() as ws, self._paths.take() as ph:
-            _check(_L.tg_geodesic_path_through(geo, ws, pts, len(pts), 1 if closed else 0, ph, at), "path_through")
-            view = _c.PathView()
-            _L.tg_path_get_view(ph, ctypes.byref(view))
-            p = Path._from_view(view)
-        p.waypoint_points = np.array(at[:], dtype=np.int64) if view.point_count else np.empty(0, np.int64)
-        return p
+
+        def work(call: _Call) -> "Path":
+            pts = self._surface_points(points, "points")
+            if len(pts) == 0:
+                raise _bad("path_through needs at least one point")
+            m = len(pts) + (1 if closed else 0)
+            at = (ctypes.c_size_t * m)()
+            opts = _c.PathOptions(0, 0, 0.0, None, 0, call.field_fn, None)  # exact, Ctrl-C as cancellation
+            geo = self._get_geo()
+            with self._geo_ws.take() as ws, self._paths.take() as ph:
+                st = _L.tg_geodesic_path_through(geo, ws, pts, len(pts), 1 if closed else 0, ctypes.byref(opts), ph, at)
+                call.finish(st, "path_through")
+                view = _c.PathView()
+                _L.tg_path_get_view(ph, ctypes.byref(view))
+                p = Path._from_view(view)
+            p.waypoint_points = np.array(at[:], dtype=np.int64) if view.point_count else np.empty(0, np.int64)
+            return p
+
+        return self._run(work)
 
     # -- tracing ------------------------------------------------------------------------------
 
     @staticmethod
-    def _trace_options(max_steps: int) -> _c.TraceOptions:
+    def _trace_options(max_steps: int, call: Optional[_Call] = None) -> _c.TraceOptions:
+        """The walk's options; with a call, its cancel flag as the progress callback (Ctrl-C)."""
         ms = _index(max_steps, "max_steps")
-        return _c.TraceOptions(ms)
+        return _c.TraceOptions(ms, call.field_fn if call is not None else _c.PROGRESS_FN(), None)
 
     @staticmethod
     def _directions(directions: Any, k: int, angles: bool) -> ctypes.Array:
@@ -1261,7 +1285,7 @@ class Mesh:
         for i in range(len(starts)):
             end = _c.TraceEnd()
             if _L.tg_geodesic_trace_batch(geo, ctypes.byref(starts[i]), ctypes.byref(dirs[i]),
-                                          _ptr(lengths[i:i + 1]), 1, ctypes.byref(opts), 1, ctypes.byref(end)):
+                                          _ptr(lengths[i:i + 1]), 1, ctypes.byref(opts), 1, ctypes.byref(end)) == 1:
                 why = ("is perpendicular to the surface at the start" if dirs[i].kind == 0 else
                        "is measured in the start's reference face, which has zero area (give a 3D vector)")
                 raise _bad(f"{what}: direction[{i}] {why}")
@@ -1276,23 +1300,28 @@ class Mesh:
         there, include/trigeo.h TG_TRACE_VECTOR) or an angle in radians from the start's reference direction (include/trigeo.h,
         TG_TRACE_ANGLE). length: finite, >= 0. max_steps: the most faces to enter (0: default).
         Zero, NaN or perpendicular directions and negative lengths raise InvalidArgumentError.
-        Returns a Trace (points, faces, surface points, the end and its direction, the status)."""
-        sp = (_c.SurfacePointC * 1)(self._surface_point(start, "start"))
+        Returns a Trace (points, faces, surface points, the end and its direction, the status).
+        Ctrl-C interrupts it."""
         is_angle = isinstance(direction, (int, float, np.integer, np.floating)) and not isinstance(direction, (bool, np.bool_))
         if not is_angle and _shape(direction) != (3,):
             raise _bad(f"direction must be a 3D vector or an angle in radians, not {direction!r}")
         d = self._directions(direction, 1, is_angle)
         lengths = self._lengths(length, 1)
-        opts = self._trace_options(max_steps)
-        geo = self._get_geo()
-        with self._traces.take() as th:
-            st = _L.tg_geodesic_trace(geo, sp, d, float(lengths[0]), ctypes.byref(opts), th)
-            if st == 1:
-                self._refused("trace", geo, sp, d, lengths, opts)
-            _check(st, "trace")
-            view = _c.TraceView()
-            _L.tg_trace_get_view(th, ctypes.byref(view))
-            return Trace._from_view(view)
+
+        def work(call: _Call) -> "Trace":
+            sp = (_c.SurfacePointC * 1)(self._surface_point(start, "start"))
+            opts = self._trace_options(max_steps, call)
+            geo = self._get_geo()
+            with self._traces.take() as th:
+                st = _L.tg_geodesic_trace(geo, sp, d, float(lengths[0]), ctypes.byref(opts), th)
+                if st == 1:
+                    self._refused("trace", geo, sp, d, lengths, opts)
+                call.finish(st, "trace")
+                view = _c.TraceView()
+                _L.tg_trace_get_view(th, ctypes.byref(view))
+                return Trace._from_view(view)
+
+        return self._run(work)
 
     def trace_batch(self, starts: Any, directions: Any, lengths: Any, threads: int = 0,
                     max_steps: int = 0, angles: bool = False) -> dict:
@@ -1305,19 +1334,24 @@ class Mesh:
         Returns a dict of arrays: "xyz" (k, 3) end positions, "direction" (k, 3) unit end
         directions, "face" (k,) the last segment's face, "length" (k,) the length walked,
         "status" (k,) str ("complete", "boundary", "singular", "step_limit", "stalled"),
-        "crossings" (k,) edges crossed, "points" the k end SurfacePoints."""
+        "crossings" (k,) edges crossed, "points" the k end SurfacePoints. Ctrl-C interrupts it."""
         threads = _threads(threads)
-        sps = self._surface_points(starts, "starts")
-        k = len(sps)
-        dirs = self._directions(directions, k, angles) if k else (_c.TraceDirection * 0)()
-        lens = self._lengths(lengths, k) if k else np.empty(0)
-        opts = self._trace_options(max_steps)
-        ends = (_c.TraceEnd * k)()
-        geo = self._get_geo()
-        st = _L.tg_geodesic_trace_batch(geo, sps, dirs, _ptr(lens), k, ctypes.byref(opts), threads, ends)
-        if st == 1:
-            self._refused("trace_batch", geo, sps, dirs, lens, opts)
-        _check(st, "trace_batch")
+
+        def work(call: _Call) -> tuple:
+            sps = self._surface_points(starts, "starts")
+            k = len(sps)
+            dirs = self._directions(directions, k, angles) if k else (_c.TraceDirection * 0)()
+            lens = self._lengths(lengths, k) if k else np.empty(0)
+            opts = self._trace_options(max_steps, call)
+            ends = (_c.TraceEnd * k)()
+            geo = self._get_geo()
+            st = _L.tg_geodesic_trace_batch(geo, sps, dirs, _ptr(lens), k, ctypes.byref(opts), threads, ends)
+            if st == 1:
+                self._refused("trace_batch", geo, sps, dirs, lens, opts)
+            call.finish(st, "trace_batch")
+            return k, ends
+
+        k, ends = self._run(work)
         names = {}
         status = np.empty(k, dtype=object)
         for i in range(k):
@@ -1506,11 +1540,11 @@ class Mesh:
         everything = sources is None or (isinstance(sources, str) and sources == "all")
         if isinstance(sources, str) and not everything:
             raise _bad(f"sources must be surface points or \"all\", not {sources!r}")
-        src = None if everything else self._surface_points(sources, "sources")
-        rows = self.vertex_count if everything else len(src)
         threads = _threads(threads)
 
         def work(call: _Call) -> ctypes.c_void_p:
+            src = None if everything else self._surface_points(sources, "sources")
+            rows = self.vertex_count if everything else len(src)
             o = self._field_options(None, call)
             geo = self._get_geo()
             mat = ctypes.c_void_p()

@@ -134,8 +134,6 @@ class TraceDirection(ctypes.Structure):
     _fields_ = [("kind", c_int), ("vector", c_double * 3), ("angle", c_double)]
 
 
-class TraceOptions(ctypes.Structure):
-    _fields_ = [("max_steps", c_uint64)]
 
 
 class TraceEnd(ctypes.Structure):
@@ -160,6 +158,10 @@ class FieldProgress(ctypes.Structure):
 
 
 PROGRESS_FN = ctypes.CFUNCTYPE(c_int, c_void_p, POINTER(FieldProgress))
+
+
+class TraceOptions(ctypes.Structure):
+    _fields_ = [("max_steps", c_uint64), ("progress", PROGRESS_FN), ("progress_user", c_void_p)]
 
 
 class PathOptions(ctypes.Structure):
@@ -254,7 +256,8 @@ _SIGNATURES = {
     "tg_path_global_name": (c_char_p, [c_int]),
     "tg_geodesic_path": (c_int, [_vp, _vp, _psp, _psp, POINTER(PathOptions), _vp]),
     "tg_path_write_obj": (c_int, [_vp, c_char_p, _pdiag]),
-    "tg_geodesic_path_through": (c_int, [_vp, _vp, _psp, c_size_t, c_int, _vp, POINTER(c_size_t)]),
+    "tg_geodesic_path_through": (c_int, [_vp, _vp, _psp, c_size_t, c_int, POINTER(PathOptions), _vp,
+                                         POINTER(c_size_t)]),
     "tg_trace_create": (c_int, [_vp, _pvp]),
     "tg_trace_destroy": (None, [_vp]),
     "tg_trace_get_view": (None, [_vp, POINTER(TraceView)]),

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #if defined(LC_ALL_MASK) && !defined(TG_NO_USELOCALE)
 #define TG_HAVE_USELOCALE 1
@@ -197,6 +198,13 @@ double tg__strtod_c(const char* s, char** end)
     double v = strtod(s, end);
     tg__c_locale_leave(l);
     return v;
+}
+
+double tg__seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
 int tg__cmp_double(const void* x, const void* y)

@@ -72,6 +72,23 @@ double tg__strtod_c(const char* s, char** end);
 /* qsort's comparison of doubles, ascending (no NaN expected). */
 int tg__cmp_double(const void* x, const void* y);
 
+/* Seconds on the monotonic clock (CLOCK_MONOTONIC): for progress periods, never for results. */
+double tg__seconds(void);
+/* Seconds between two calls of a caller's progress callback (about 5 ms). */
+#define TG__PROGRESS_PERIOD_S 0.005
+/* Is a progress report due? True once TG__PROGRESS_PERIOD_S has passed since the last true
+ * (*next_s holds when; 0 before the first: due at once). Called between short pieces of work
+ * (rows, sources, levels, traces, paths), each shorter than the period alone, so that a long
+ * sequence of them still reports, and a caller asking to stop is heard, every few milliseconds:
+ * one clock read per piece. */
+static inline bool tg__progress_due(double* next_s)
+{
+    double t = tg__seconds();
+    if (t < *next_s) return false;
+    *next_s = t + TG__PROGRESS_PERIOD_S;
+    return true;
+}
+
 size_t tg__grow_capacity(size_t cap, size_t need, size_t first);
 
 /* The library's one growable buffer (amortised doubling, checked sizes): readers' data, BVH

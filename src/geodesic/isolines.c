@@ -113,7 +113,26 @@ typedef struct iso_state {
     tg__vec out_pstart;          /* size_t */
     tg__vec out_closed;          /* uint8_t */
     tg__vec adj_start, adj, used; /* chaining: uint32_t */
+    /* progress while the levels are traced (the caller's options, NULL: none) */
+    const tg_field_options* options;
+    double next_report_s;
+    double level;                /* the level being traced (solver frame) */
+    size_t levels_done, level_count;
+    bool cancelled;              /* the callback asked to stop: the false returned is not memory */
 } iso_state;
+
+/* Between faces and levels: the caller's callback once per progress period (tracing 1000 levels
+ * on igl_armadillo takes about 10 s after a propagation of 0.1 s), told front_distance the level,
+ * rows_done the levels traced of row_count. False when it asks to stop (st->cancelled). */
+static bool keep_tracing(iso_state* st)
+{
+    const tg_field_options* o = st->options;
+    if (!o || !o->progress || !tg__progress_due(&st->next_report_s)) return true;
+    tg_field_progress p = {st->level * st->g->unscale, (double)st->levels_done / (double)st->level_count,
+                           st->levels_done, st->level_count};
+    st->cancelled = o->progress(o->progress_user, &p) != 0;
+    return !st->cancelled;
+}
 
 static void face_geo_of(const tg_geodesic* g, uint32_t f, face_geo* fg)
 {
@@ -1023,7 +1042,9 @@ static bool trace_level(iso_state* st, double L)
 {
     const tg_geodesic* g = st->g;
     st->cross.count = st->segs.count = st->pts.count = 0;
+    st->level = L;
     for (uint32_t f = 0; f < g->face_count; ++f) {
+        if ((f & 1023u) == 0 && !keep_tracing(st)) return false; /* a level can take long too */
         if ((g->fflags[f] & (TG__F_SKIP | TG__F_FLAT)) == TG__F_FLAT) {
             if (!link_flat(st, f, L)) return false;
             continue;
@@ -1307,11 +1328,13 @@ static tg_status isolines_of(const tg_geodesic* g, tg__field_scratch* fs, const 
         for (size_t h = 0; status == TG_OK && h < nh; ++h) st.edge_first[h] = TG_NONE;
         for (size_t v = 0; status == TG_OK && v < g->vertex_count; ++v) st.vertex_node[v] = TG_NONE;
     }
-    for (size_t li = 0; status == TG_OK && li < nl; ++li) {
+    st.options = options, st.level_count = nl;
+    st.next_report_s = tg__seconds() + TG__PROGRESS_PERIOD_S;
+    for (size_t li = 0; status == TG_OK && li < nl; ++li, st.levels_done = li) {
         level_start[li] = st.out_closed.count;
         double L = levels[li] * g->scale;
         if (!(L <= limit)) continue;
-        if (!trace_level(&st, L) || !chain_level(&st)) status = TG_ERR_OUT_OF_MEMORY;
+        if (!trace_level(&st, L) || !chain_level(&st)) status = st.cancelled ? TG_ERR_CANCELLED : TG_ERR_OUT_OF_MEMORY;
     }
     if (status == TG_OK) {
         level_start[nl] = st.out_closed.count;

@@ -153,6 +153,8 @@ struct batch {
     tg_allocator alloc;
     size_t rows, done;
     volatile int stop; /* set on cancellation or failure: the other threads stop too */
+    int cancelled;     /* the progress callback asked to stop (under the lock) */
+    double next_report_s; /* when the next report between rows is due (tg__progress_due) */
 #ifdef TG_HAVE_OPENMP
     omp_lock_t lock;   /* one thread at a time in the callback, the counters and the assembly (a
                           lock, not a named critical section: those are exported symbols) */
@@ -194,10 +196,22 @@ static int report_row(void* user, const tg__field_run* run)
         tg_field_progress p;
         tg__field_progress_rows(run, b->done, b->rows, &p);
         stop = b->opt->progress(b->opt->progress_user, &p) != 0;
-        if (stop) b->stop = 1;
+        if (stop) b->stop = 1, b->cancelled = 1;
     }
     batch_unlock(b);
     return stop;
+}
+
+/* A row is done: counted, and between rows the progress callback is called once per period.
+ * A row shorter than the period never reports from inside its run (propagate.c reports at most
+ * every period from a run's start), so without this a batch of short rows (a local matrix of
+ * small discs) would not hear a caller asking to stop until its end. Under the lock. */
+static void row_done(batch* b)
+{
+    b->done++;
+    if (!b->opt || !b->opt->progress || b->stop || !tg__progress_due(&b->next_report_s)) return;
+    tg_field_progress p = {0.0, (double)b->done / (double)b->rows, b->done, b->rows};
+    if (b->opt->progress(b->opt->progress_user, &p) != 0) b->stop = 1, b->cancelled = 1;
 }
 
 /* The question of one row: its one source, the targets, the limit, the batch's progress and
@@ -252,7 +266,7 @@ static tg_status batch_run(batch* b, int threads, tg_field_stats* out_sum)
                 continue;
             }
             batch_lock(b);
-            b->done++;
+            row_done(b);
             batch_unlock(b);
         }
         batch_lock(b);
@@ -268,7 +282,8 @@ static tg_status batch_run(batch* b, int threads, tg_field_stats* out_sum)
     omp_destroy_lock(&b->lock);
 #endif
     (void)threads, (void)nthreads;
-    if (first_error == TG_OK && b->done != b->rows) first_error = TG_ERR_CANCELLED;
+    /* asked to stop: cancelled, even when the last rows were finished by then */
+    if (first_error == TG_OK && (b->done != b->rows || b->cancelled)) first_error = TG_ERR_CANCELLED;
     if (first_error == TG_OK) *out_sum = sum;
     return first_error;
 }
@@ -323,6 +338,7 @@ static bool batch_init(batch* b, const tg_geodesic* g, const tg_field_options* o
     b->opt = options;
     b->alloc = options && options->allocator ? *options->allocator : g->allocator;
     b->rows = rows;
+    b->next_report_s = tg__seconds() + TG__PROGRESS_PERIOD_S;
     return row_order(b);
 }
 

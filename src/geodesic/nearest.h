@@ -19,6 +19,7 @@ typedef struct tg__nearest {
     /* progress: the caller's options (NULL or no callback: none) and the number of rows */
     const tg_field_options* options;
     size_t rows;
+    double next_report_s; /* the next report between runs (tg__nearest_poll) */
 } tg__nearest;
 
 /* Makes the running field (every vertex +inf, TG_NONE) with allocator a; false when out of memory
@@ -29,6 +30,13 @@ void tg__nearest_free(tg__nearest* nf);
  * shortly takes its distance and the label nf->added. Errors: TG_ERR_OUT_OF_MEMORY,
  * TG_ERR_CANCELLED (nf unchanged then, except the stats). */
 tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* src);
+/* The progress hook of a run of nf (progress_user: nf): the caller's callback, told the sources
+ * (rows) added so far. */
+int tg__nearest_report(void* user, const struct tg__field_run* run);
+/* Between short runs (the boundaries' rounds): the caller's callback once per progress period,
+ * told every source done (rows_done = row_count = nf->rows, fraction 1). TG_OK, or
+ * TG_ERR_CANCELLED when it asks to stop. */
+tg_status tg__nearest_poll(tg__nearest* nf);
 /* The running field in the mesh's numbering and units: distances (+inf beyond the limit) and
  * labels, each output may be NULL. */
 void tg__nearest_copy_out(const tg__nearest* nf, double* out_dist, uint32_t* out_label);

@@ -14,6 +14,7 @@ bool tg__nearest_init(tg__nearest* nf, const tg_geodesic* g, const tg_allocator*
     nf->g = g;
     nf->allocator = *a;
     nf->max_dist = max_dist;
+    nf->next_report_s = tg__seconds() + TG__PROGRESS_PERIOD_S;
     size_t nv = g->vertex_count ? g->vertex_count : 1;
     nf->dist = tg__alloc_array(a, nv, sizeof(double));
     nf->label = tg__alloc_array(a, nv, sizeof(uint32_t));
@@ -33,7 +34,7 @@ void tg__nearest_free(tg__nearest* nf)
 }
 
 /* The progress hook: the caller's callback, told sources done of all. */
-static int report(void* user, const tg__field_run* run)
+int tg__nearest_report(void* user, const tg__field_run* run)
 {
     const tg__nearest* nf = user;
     tg_field_progress p;
@@ -45,7 +46,7 @@ tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surfa
 {
     bool progress = nf->options && nf->options->progress;
     /* the first source alone is a plain field; later ones only where they beat the earlier */
-    tg__field_query q = {src,  1,    NULL,  0,    nf->max_dist, progress ? report : NULL, nf, NULL, false, NULL, false,
+    tg__field_query q = {src,  1,    NULL,  0,    nf->max_dist, progress ? tg__nearest_report : NULL, nf, NULL, false, NULL, false,
                          nf->added ? nf->dist : NULL, NULL, NULL, 0};
     tg__field_run run;
     tg_status st = tg__field_execute(fs, &q, &run);
@@ -66,6 +67,13 @@ tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surfa
         if (nf->options->progress(nf->options->progress_user, &p)) return TG_ERR_CANCELLED;
     }
     return TG_OK;
+}
+
+tg_status tg__nearest_poll(tg__nearest* nf)
+{
+    if (!nf->options || !nf->options->progress || !tg__progress_due(&nf->next_report_s)) return TG_OK;
+    tg_field_progress p = {0.0, 1.0, nf->rows, nf->rows};
+    return nf->options->progress(nf->options->progress_user, &p) ? TG_ERR_CANCELLED : TG_OK;
 }
 
 void tg__nearest_copy_out(const tg__nearest* nf, double* out_dist, uint32_t* out_label)

@@ -76,6 +76,23 @@ typedef struct ray {
     double t, s;
 } ray;
 
+/* The caller's progress callback and stop flag, shared by the walks of one call (a batch's
+ * threads take turns under the lock). */
+typedef struct trace_poll {
+    const tg_trace_options* o; /* o->progress is set */
+    size_t done, count;        /* traces finished of count (a single trace: 0 of 1) */
+    double next_report_s;
+    volatile int stop;         /* the callback asked to stop: every walk ends at its next look */
+#ifdef TG_HAVE_OPENMP
+    bool threaded;             /* a batch: the lock is made */
+    omp_lock_t lock;           /* a lock, not a named critical section (those are exported symbols) */
+#endif
+} trace_poll;
+
+/* Faces entered between two looks at the stop flag and the clock: a look costs about a face
+ * step, and a walk crosses some 10^7 faces a second. */
+#define POLL_STEPS 4096u
+
 typedef struct walk {
     const tg_geodesic* g;
     tg_trace* rec;      /* the polyline's recorder; NULL in batches (only the end is kept) */
@@ -90,8 +107,53 @@ typedef struct walk {
     uint32_t dir_h;     /* the last frame of non-zero area the ray was in, and its direction there */
     double dir_d[2];
     bool done, out_of_memory;
+    bool cancelled;     /* stopped by the caller's progress callback (no status) */
+    trace_poll* poll;   /* NULL: no progress callback */
     tg_trace_end end;
 } walk;
+
+static void poll_init(trace_poll* tp, const tg_trace_options* o, size_t count)
+{
+    memset(tp, 0, sizeof *tp);
+    tp->o = o;
+    tp->count = count;
+    tp->next_report_s = tg__seconds() + TG__PROGRESS_PERIOD_S;
+}
+
+static void poll_lock(trace_poll* tp)
+{
+#ifdef TG_HAVE_OPENMP
+    if (tp->threaded) omp_set_lock(&tp->lock);
+#else
+    (void)tp;
+#endif
+}
+
+static void poll_unlock(trace_poll* tp)
+{
+#ifdef TG_HAVE_OPENMP
+    if (tp->threaded) omp_unset_lock(&tp->lock);
+#else
+    (void)tp;
+#endif
+}
+
+/* Calls the callback once its period has passed, told front_distance (the current walk's length
+ * walked, mesh units) and the share done; false once it has asked to stop. finished: a trace of
+ * the batch ended (counted first). */
+static bool poll_go_on(trace_poll* tp, double front, double walk_share, bool finished)
+{
+    if (tp->stop) return false;
+    poll_lock(tp);
+    if (finished) tp->done++;
+    if (!tp->stop && tg__progress_due(&tp->next_report_s)) {
+        double share = ((double)tp->done + (finished ? 0.0 : walk_share)) / (double)tp->count;
+        tg_field_progress p = {front, share > 1.0 ? 1.0 : share, tp->done, tp->count};
+        if (tp->o->progress(tp->o->progress_user, &p)) tp->stop = 1;
+    }
+    poll_unlock(tp);
+    return !tp->stop;
+}
 
 /* ---- frames in 3D ---- */
 
@@ -175,6 +237,13 @@ static bool enter_face(walk* w, bool advanced)
         return false;
     }
     w->steps++;
+    if (w->poll && (w->steps % POLL_STEPS) == 0) { /* a long walk (up to max_steps faces) hears a stop too */
+        double total = w->walked + w->rem;
+        if (!poll_go_on(w->poll, w->walked * w->g->unscale, total > 0.0 ? w->walked / total : 0.0, false)) {
+            w->cancelled = w->done = true;
+            return false;
+        }
+    }
     return true;
 }
 
@@ -783,6 +852,7 @@ static tg_status run(walk* w, const tg_surface_point* start, const tg_trace_dire
     }
     while (!w->done) step(w);
     if (w->out_of_memory) return TG_ERR_OUT_OF_MEMORY;
+    if (w->cancelled) return TG_ERR_CANCELLED;
     /* the end is a point of its own unless the walk stopped on its last crossing or vertex */
     if (w->rec && w->rec->route.nodes.count == 1 && !emit(w, n, w->start_face)) return TG_ERR_OUT_OF_MEMORY;
     finish_end(w, length);
@@ -886,6 +956,9 @@ tg_status tg_geodesic_trace(const tg_geodesic* g, const tg_surface_point* start,
     if (!g || !arguments_valid(g, start, direction, length)) return TG_ERR_INVALID_ARGUMENT;
     walk w;
     walk_init(&w, g, trace);
+    trace_poll tp;
+    poll_init(&tp, options, 1);
+    if (options && options->progress) w.poll = &tp;
     tg_status st = run(&w, start, direction, length, options);
     if (st == TG_OK && !trace_fill(g, trace)) st = TG_ERR_OUT_OF_MEMORY;
     if (st != TG_OK) {
@@ -912,18 +985,32 @@ tg_status tg_geodesic_trace_batch(const tg_geodesic* g, const tg_surface_point* 
         tg_status st = start_of(g, &starts[i], &directions[i], &n, &s);
         if (st != TG_OK) return st;
     }
+    trace_poll tp;
+    poll_init(&tp, options, count);
+    trace_poll* poll = options && options->progress ? &tp : NULL;
     int nthreads = 1;
 #ifdef TG_HAVE_OPENMP
     nthreads = threads > 0 ? threads : omp_get_max_threads();
     if ((size_t)nthreads > count) nthreads = (int)count;
+    tp.threaded = poll != NULL;
+    if (tp.threaded) omp_init_lock(&tp.lock);
 #pragma omp parallel for num_threads(nthreads) schedule(dynamic, 16)
 #endif
     for (long long i = 0; i < (long long)count; ++i) {
+        if (poll && poll->stop) continue; /* asked to stop: the other walks end too */
         walk w;
         walk_init(&w, g, NULL);
-        /* cannot fail: the arguments and starts were checked, and nothing is recorded */
-        if (run(&w, &starts[i], &directions[i], lengths[i], options) == TG_OK) out_ends[i] = w.end;
+        w.poll = poll;
+        /* fails only when cancelled: the arguments and starts were checked, nothing is recorded */
+        if (run(&w, &starts[i], &directions[i], lengths[i], options) == TG_OK) {
+            out_ends[i] = w.end;
+            /* between traces too: a batch of short walks (each shorter than POLL_STEPS faces) */
+            if (poll) poll_go_on(poll, w.end.length, 1.0, true);
+        }
     }
+#ifdef TG_HAVE_OPENMP
+    if (tp.threaded) omp_destroy_lock(&tp.lock);
+#endif
     (void)nthreads;
-    return TG_OK;
+    return tp.stop ? TG_ERR_CANCELLED : TG_OK;
 }

@@ -325,7 +325,7 @@ static void more_compute(const tg_mesh* m, double s, more* r)
     tg_isolines_destroy(iso);
     tg_path* p = NULL;
     CHECK_STATUS(tg_path_create(NULL, &p), TG_OK);
-    CHECK_STATUS(tg_geodesic_path_through(g, NULL, src, 3, TG_PATH_OPEN, p, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_path_through(g, NULL, src, 3, TG_PATH_OPEN, NULL, p, NULL), TG_OK);
     tg_path_view pv;
     tg_path_get_view(p, &pv);
     r->through = pv.length;

@@ -17,6 +17,17 @@ import trigeo  # noqa: E402
 SPOT = os.path.join(REPO, "data", "nvd_spot.obj")
 
 
+def pytest_configure(config):
+    # CTest runs `-m "not cluster"` in the fast suite (python_tests) and `-m cluster` in the full
+    # one (python_cluster, make check)
+    config.addinivalue_line("markers", "cluster: needs a local Dask cluster (the full suite only)")
+
+
+def full() -> bool:
+    """make check sets TG_FULL=1: thinned tests take their full samples (tests/tg_test.h)."""
+    return os.environ.get("TG_FULL", "0") not in ("", "0")
+
+
 def cli_path() -> str:
     return os.environ.get("TG_TRIGEO", os.path.join(REPO, "build", "trigeo"))
 

@@ -10,6 +10,7 @@ import trigeo.dask as tgd
 from conftest import SPOT, corpus
 
 distributed = pytest.importorskip("distributed")
+pytestmark = pytest.mark.cluster
 
 
 @pytest.fixture(scope="module")

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# cli_reliability.sh: the CLI side of issue 20 (reliability v2): signs at any scale; thread counts
+# cli_reliability.sh: the CLI at the edges of its input and its run: signs at any scale; thread counts
 # above TG_MAX_THREADS refused; Ctrl-C stops path (single and --pairs), render and field with
 # exit 130 and no file, final or temporary; -o never destroys data (a device or FIFO is written
 # directly, an output that is one of the inputs is refused by device and inode, a link planted

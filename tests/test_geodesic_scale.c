@@ -1,5 +1,5 @@
 /* test_geodesic_scale.c - geodesic results do not depend on the unit or the position of the
- * coordinates (issue 20 item 1: a square at 1e80 gave a `proven` path 41% long, spot at 1e60
+ * coordinates (once a square at 1e80 gave a `proven` path 41% long, spot at 1e60
  * asymmetric `proven` paths, fields 3.5% off from 1e55 up and 1e-60 down, all zeros at 1e-300).
  * The corpus's spot and a closed holed plate, scaled by 10^e for e in -150..150 and by 2^k, and
  * translated about a thousand diameters from the origin: fields (from a vertex and from a face

@@ -1,6 +1,6 @@
-/* test_oom_sweep.c - allocation failures through every public entry point that allocates (issue
- * 12 item 8): mesh creation, every reader (OBJ, OFF, binary and ASCII PLY, binary and ASCII STL,
- * gzip) from files and memory, the writers, the BVH build, workspaces and batch queries, the
+/* test_oom_sweep.c - allocation failures through every public entry point that allocates: mesh
+ * creation, every reader (OBJ, OFF, binary and ASCII PLY, binary and ASCII STL, gzip) from files
+ * and memory, the writers, the BVH build, workspaces and batch queries, the
  * geodesic solver, paths by every method with and without the certificate, exact fields (single,
  * at points, batch on 1 and 2 threads, with and without a distance limit), Voronoi labels,
  * farthest-point sampling and the renderer.

@@ -1,5 +1,5 @@
-"""Issue 20 (reliability v2) in Python: thread counts refused above MAX_THREADS (threads=100000
-crashed); close() while other threads run calls waits for them (it crashed); Ctrl-C interrupts
+"""The package at the edges of its input and its run: thread counts refused above MAX_THREADS
+(threads=100000 crashed); close() while other threads run calls waits for them (it crashed); Ctrl-C interrupts
 paths, path_lengths, point batches and renders within about a second (a path ran on for 26 s);
 save() and render() never leave a cut file on a full disk; the probe's unclear errors name their
 real causes (NUL in a path, no sources, coordinates beyond 1e150, lying counts)."""

@@ -25,7 +25,7 @@ slow = 6 if asan else 1  # AddressSanitizer runs 5-10x slower
 def leftovers(d):
     return [f for f in os.listdir(d) if f.startswith(".trigeo-") or ".tmp-" in f]
 
-# ---- item 2: signs at 1e110 (the probe: the origin, inside spot, was called outside) ----
+# ---- signs at 1e110 (the origin, inside spot, was once called outside) ----
 lines = open(spot).read().splitlines()
 def scaled(s, name):
     out = []
@@ -47,14 +47,14 @@ for s in (1e110, 1e-120, 1e140):
         signs = [row.split(",")[-1] for row in rows]
         check(r.returncode == 0 and signs == ["-1", "1"], "scale %g %s: signs %s (want -1, 1) %r" % (s, extra, signs, r.stderr[-200:]))
 
-# ---- item 4/5: thread counts ----
+# ---- thread counts ----
 for args in (["closest", spot, "-", "--threads", "1024"], ["field", spot, "--sources", "-", "-o", os.path.join(tmp, "t.npy"), "--threads", "1024"]):
     r = run(*args, stdin=b"v:0\n" if args[0] == "field" else b"0 0 0\n")
     check(r.returncode == 1 and b"256" in r.stderr, "%s --threads 1024: exit %d %r" % (args[0], r.returncode, r.stderr))
 r = run("closest", spot, "-", "--threads", "256", stdin=b"0 0 0\n")
 check(r.returncode in (0, 2) and b"Thread creation failed" not in r.stderr, "--threads 256: %d %r" % (r.returncode, r.stderr))
 
-# ---- item 4: Ctrl-C ----
+# ---- Ctrl-C ----
 # an icosphere subdivided 7 times (328k faces): the exact path between antipodes sweeps it all
 # (about 7 s; the probe's 1.3M-face one took 26 s)
 def icosphere(level, path):
@@ -134,7 +134,7 @@ p.send_signal(signal.SIGTERM)
 p.communicate(timeout=60)
 check(p.returncode == 130 and not os.listdir(cdir), "SIGTERM: exit %s, left %s" % (p.returncode, os.listdir(cdir)))
 
-# ---- item 5: outputs never destroy data ----
+# ---- outputs never destroy data ----
 d = os.path.join(tmp, "out")
 os.mkdir(d)
 m = os.path.join(d, "spot.obj")

@@ -23,11 +23,6 @@ def pytest_configure(config):
     config.addinivalue_line("markers", "cluster: needs a local Dask cluster (the full suite only)")
 
 
-def full() -> bool:
-    """make check sets TG_FULL=1: thinned tests take their full samples (tests/tg_test.h)."""
-    return os.environ.get("TG_FULL", "0") not in ("", "0")
-
-
 def cli_path() -> str:
     return os.environ.get("TG_TRIGEO", os.path.join(REPO, "build", "trigeo"))
 

@@ -2,8 +2,12 @@
 # they install the missing Debian packages with apt-get first.
 #
 #   make demo    build, then run the main job on the bundled default mesh (data/nvd_spot.obj)
-#   make test    build with gcc and run every test; build with clang + ASan/UBSan (+ fuzz smoke)
-#                and run every test again
+#   make test    the fast suite: build with gcc and run the tests labelled fast (corpus loops on a
+#                fixed subset, sweeps at coarse steps); build with clang + ASan/UBSan and run them
+#                again (about 3 minutes on 2 cores from a fresh clone)
+#   make check   the full suite: both builds (the sanitizer one with the fuzz targets), every test
+#                with TG_FULL=1 (every corpus sample, sweeps, OOM sweeps, install and cluster
+#                tests, fuzz smoke runs); about 8 minutes on 2 cores after make test
 #   make bench   benchmarks against the peers (Embree, CGAL), tables on stdout
 #   make fuzz    libFuzzer targets for a bounded time each (FUZZ_SECONDS, default 60)
 #   make build   release build only (build/)
@@ -22,7 +26,8 @@ DEPS := cmake make gcc g++ clang libclang-rt-14-dev libomp-dev zlib1g-dev libpng
         python3-venv
 BENCH_DEPS := libembree-dev libcgal-dev libeigen3-dev time
 
-.PHONY: all deps bench-deps build demo test test-release test-asan bench fuzz clean large install
+.PHONY: all deps bench-deps build build-asan demo test test-release test-asan check check-release check-asan \
+        bench fuzz clean large install
 
 PREFIX ?= /usr/local
 
@@ -45,18 +50,35 @@ install: build
 demo: build
 	@bash scripts/demo.sh $(BUILD)/trigeo
 
-test-release: build
-	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
-
-test-asan: deps
+# The sanitizer tree: FUZZ=ON (make check, make fuzz) adds the libFuzzer targets, which build a
+# second, coverage-instrumented copy of the library; make test leaves them out.
+FUZZ ?= OFF
+SAN_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+build-asan: deps
 	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-	      -DTG_SANITIZE=ON -DTG_FUZZ=ON $(CMAKE_FLAGS) >/dev/null
+	      -DTG_SANITIZE=ON -DTG_FUZZ=$(FUZZ) $(CMAKE_FLAGS) >/dev/null
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
-	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	      ctest --output-on-failure -j $(JOBS)
+
+# fast suite: every test but those labelled `full` (tests/CMakeLists.txt), each in its fast form
+test-release: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -LE full
+
+test-asan: build-asan
+	cd $(ASAN_BUILD) && $(SAN_ENV) ctest --output-on-failure -j $(JOBS) -LE full
 
 test: test-release test-asan
-	@echo "make test: gcc release suite and clang ASan+UBSan suite both passed"
+	@echo "make test: the fast suite passed, gcc release and clang ASan+UBSan (make check runs the full one)"
+
+# full suite: every test, TG_FULL=1
+check-release: build
+	cd $(BUILD) && TG_FULL=1 ctest --output-on-failure -j $(JOBS)
+
+check-asan:
+	$(MAKE) build-asan FUZZ=ON
+	cd $(ASAN_BUILD) && TG_FULL=1 $(SAN_ENV) ctest --output-on-failure -j $(JOBS)
+
+check: check-release check-asan
+	@echo "make check: the full suite passed, gcc release and clang ASan+UBSan"
 
 large:
 	@bash ../shared/tools/make_large_meshes.sh $(BUILD)/large
@@ -67,10 +89,8 @@ bench: bench-deps large
 	cmake --build $(BENCH_BUILD) -j $(JOBS)
 	@bash bench/run.sh $(BENCH_BUILD) $(abspath $(BUILD))/large
 
-fuzz: deps
-	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-	      -DTG_SANITIZE=ON -DTG_FUZZ=ON $(CMAKE_FLAGS) >/dev/null
-	cmake --build $(ASAN_BUILD) -j $(JOBS)
+fuzz:
+	$(MAKE) build-asan FUZZ=ON
 	@bash fuzz/run.sh $(ASAN_BUILD) $(FUZZ_SECONDS)
 
 clean:

@@ -1306,5 +1306,9 @@ int main(int argc, char** argv)
     fclose(fail_out);
     for (size_t k = 0; k < count; ++k) free(list[k]);
     free(list);
+#ifdef _OPENMP
+    /* join the workers before the exit-time leak check of a sanitizer build (tests/tg_test.h) */
+    (void)omp_pause_resource_all(omp_pause_hard);
+#endif
     return tot.failing_pairs ? 1 : 0;
 }

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# cli_reliability.sh: the CLI side of issue 20 (reliability v2): signs at any scale; thread counts
+# cli_reliability.sh: the CLI at the edges of its input and its run: signs at any scale; thread counts
 # above TG_MAX_THREADS refused; Ctrl-C stops path (single and --pairs), render and field with
 # exit 130 and no file, final or temporary; -o never destroys data (a device or FIFO is written
 # directly, an output that is one of the inputs is refused by device and inode, a link planted
@@ -21,11 +21,15 @@ tmp = tempfile.mkdtemp()
 spot = os.path.join(meshes, "nvd_spot.obj")
 asan = b"__asan_init" in subprocess.run(["nm", trigeo], capture_output=True).stdout
 slow = 6 if asan else 1  # AddressSanitizer runs 5-10x slower
+# Ctrl-C and SIGTERM come this long after the start: within the work (the icosphere loads in
+# 0.07 s under ASan; the shortest interrupted call, the 5000x5000 render, takes 4.7 s released and
+# 6.5 s under ASan, where a 6 s wait let it finish first now and then)
+start = 1.5 if asan else 1.0
 
 def leftovers(d):
     return [f for f in os.listdir(d) if f.startswith(".trigeo-") or ".tmp-" in f]
 
-# ---- item 2: signs at 1e110 (the probe: the origin, inside spot, was called outside) ----
+# ---- signs at 1e110 (the origin, inside spot, was once called outside) ----
 lines = open(spot).read().splitlines()
 def scaled(s, name):
     out = []
@@ -47,14 +51,14 @@ for s in (1e110, 1e-120, 1e140):
         signs = [row.split(",")[-1] for row in rows]
         check(r.returncode == 0 and signs == ["-1", "1"], "scale %g %s: signs %s (want -1, 1) %r" % (s, extra, signs, r.stderr[-200:]))
 
-# ---- item 4/5: thread counts ----
+# ---- thread counts ----
 for args in (["closest", spot, "-", "--threads", "1024"], ["field", spot, "--sources", "-", "-o", os.path.join(tmp, "t.npy"), "--threads", "1024"]):
     r = run(*args, stdin=b"v:0\n" if args[0] == "field" else b"0 0 0\n")
     check(r.returncode == 1 and b"256" in r.stderr, "%s --threads 1024: exit %d %r" % (args[0], r.returncode, r.stderr))
 r = run("closest", spot, "-", "--threads", "256", stdin=b"0 0 0\n")
 check(r.returncode in (0, 2) and b"Thread creation failed" not in r.stderr, "--threads 256: %d %r" % (r.returncode, r.stderr))
 
-# ---- item 4: Ctrl-C ----
+# ---- Ctrl-C ----
 # an icosphere subdivided 7 times (328k faces): the exact path between antipodes sweeps it all
 # (about 7 s; the probe's 1.3M-face one took 26 s)
 def icosphere(level, path):
@@ -123,18 +127,18 @@ cases = [
 ]
 open(pairs.replace("antipodes", "srcs"), "w").write("".join("v:%d\n" % (i * 997) for i in range(30)))
 for what, args, needle in cases:
-    rc, after, err = interrupted(args, 1.0 * slow, what)
+    rc, after, err = interrupted(args, start, what)
     check(rc == 130 and after < 2.0 * slow and needle in err,  # ~0.05 s; slack for a loaded machine
           "Ctrl-C %s: exit %s after %.2f s, stderr %r" % (what, rc, after, err[-200:]))
 check(not os.listdir(cdir), "Ctrl-C: nothing left behind: %s" % os.listdir(cdir))
 # SIGTERM is handled the same way
 p = subprocess.Popen([trigeo, "path", ico, "--pairs", pairs, "-o", os.path.join(cdir, "q.csv")], stderr=subprocess.PIPE)
-time.sleep(1.0 * slow)
+time.sleep(start)
 p.send_signal(signal.SIGTERM)
 p.communicate(timeout=60)
 check(p.returncode == 130 and not os.listdir(cdir), "SIGTERM: exit %s, left %s" % (p.returncode, os.listdir(cdir)))
 
-# ---- item 5: outputs never destroy data ----
+# ---- outputs never destroy data ----
 d = os.path.join(tmp, "out")
 os.mkdir(d)
 m = os.path.join(d, "spot.obj")

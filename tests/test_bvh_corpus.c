@@ -13,8 +13,9 @@
  * face boxes are read from cache. For the first PURE_COUNT queries of each mesh the plain scan
  * (kernel on every face) runs as well and must give the same answers, which checks the argument.
  *
- * QUERY_COUNT is 10^4; under AddressSanitizer (5-10x slower) it is 5000, and the environment
- * variable TG_CORPUS_QUERIES overrides both.
+ * The full suite (TG_FULL=1) checks every mesh of the manifest with 10^4 queries (5000 under
+ * AddressSanitizer, 5-10x slower); the fast suite the meshes of tests/corpus_fast.txt with 2000
+ * (500). The environment variable TG_CORPUS_QUERIES overrides the count.
  *
  * Helper modes for tests/cli_closest.sh:
  *   test_bvh_corpus --queries MESH N SEED   prints N mixed query points, "x y z" per line (%.17g)
@@ -29,11 +30,7 @@
 #include "spatial/bvh_internal.h"
 #include "spatial/simd4.h"
 
-#ifdef TG_UNDER_ASAN
-#define QUERY_COUNT 5000
-#else
-#define QUERY_COUNT 10000
-#endif
+#define QUERY_COUNT TG_TEST_DEPTH(TG_TEST_WORK(10000, 5000), TG_TEST_WORK(2000, 500))
 #define PURE_COUNT 20
 
 typedef struct ref_mesh {

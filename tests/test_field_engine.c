@@ -499,7 +499,8 @@ int main(void)
     test_workspace_and_progress();
     test_batch_and_limit();
     test_points_api();
-    int rounds = TG_TEST_WORK(6, 2);
+    /* rounds of 8 points: 6 in the full suite (2 under the sanitizers), 2 (1) in the fast one */
+    int rounds = TG_TEST_DEPTH(TG_TEST_WORK(6, 2), TG_TEST_WORK(2, 1));
     test_points_symmetry("nvd_spot.obj", rounds);
     test_points_symmetry("cgal_fandisk.off", rounds);
     test_points_symmetry("c3d_suzanne.obj", rounds); /* 3 components, boundaries */

@@ -1,7 +1,7 @@
-/* test_io_counts.c - readers trust no count, and every refusal names its real cause (issue 20
- * item 6): a binary STL declaring fewer facets than it holds, an OFF declaring fewer faces or
- * vertices than it holds, a PLY with records after its declared ones or a value too many on a
- * line, an OBJ 'f' or 'v' with nothing after it are errors naming both numbers; padding after
+/* test_io_counts.c - readers trust no count, and every refusal names its real cause: a binary
+ * STL declaring fewer facets than it holds, an OFF declaring fewer faces or vertices than it
+ * holds, a PLY with records after its declared ones or a value too many on a line, an OBJ 'f' or
+ * 'v' with nothing after it are errors naming both numbers; padding after
  * a binary STL or PLY loads with a warning in diag; gzip data in memory is inflated (a .gz piped
  * in), truncated gzip says so; devices are refused, /proc files and pipes are read to their end,
  * and data that is no mesh says so; a vertex only a repeated-index face uses is named as such. */

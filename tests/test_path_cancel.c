@@ -1,4 +1,4 @@
-/* test_path_cancel.c - tg_path_options.progress (issue 20 item 4): a path query can be stopped.
+/* test_path_cancel.c - tg_path_options.progress: a path query can be stopped.
  * On an icosphere (the mesh where an antipodal exact path takes longest) the exact method calls
  * the callback during its propagation and stops with TG_ERR_CANCELLED and an empty path when it
  * returns non-zero; a callback that never stops changes nothing (bit-identical path); the

@@ -1,4 +1,4 @@
-/* test_render_limits.c - tg_render_png's bounded resources and cancellation (issue 20 items 4, 7):
+/* test_render_limits.c - tg_render_png's bounded resources and cancellation:
  * a size whose samples would exceed TG_RENDER_MAX_BYTES is refused before anything is allocated,
  * with a message saying how much it needs; the default supersampling is lowered to fit (seen
  * through the first buffer it asks the allocator for); the progress callback is called with

@@ -1,6 +1,6 @@
 /* test_sign_scale.c - signed distances and winding numbers do not depend on the mesh's scale or
- * position (issue 20 item 2: spot scaled by 1e110 called the origin outside, with NaN winding
- * numbers). The corpus's spot, scaled by 10^e for e in -150..150 and by 2^k for k in -490..490,
+ * position (spot scaled by 1e110 once called the origin outside, with NaN winding numbers:
+ * squared face normals overflowed). The corpus's spot, scaled by 10^e for e in -150..150 and by 2^k for k in -490..490,
  * and translated: every query point's sign (both methods, every winding-data choice) equals the
  * unscaled one; the winding number stays finite and equal to the unscaled one (bit for bit under
  * powers of two, within rounding otherwise). */

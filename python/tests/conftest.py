@@ -17,6 +17,12 @@ import trigeo  # noqa: E402
 SPOT = os.path.join(REPO, "data", "nvd_spot.obj")
 
 
+def pytest_configure(config):
+    # CTest runs `-m "not cluster"` in the fast suite (python_tests) and `-m cluster` in the full
+    # one (python_cluster, make check)
+    config.addinivalue_line("markers", "cluster: needs a local Dask cluster (the full suite only)")
+
+
 def cli_path() -> str:
     return os.environ.get("TG_TRIGEO", os.path.join(REPO, "build", "trigeo"))
 

@@ -10,6 +10,7 @@ import trigeo.dask as tgd
 from conftest import SPOT, corpus
 
 distributed = pytest.importorskip("distributed")
+pytestmark = pytest.mark.cluster
 
 
 @pytest.fixture(scope="module")
@@ -84,8 +85,8 @@ def _spot_variant(path, scale):
 
 
 def test_the_mesh_given_not_the_files_newer_content(client, tmp_path):
-    """Issue 20 item 3: after m = trigeo.load(f) and a rewrite of f, distance_matrix(client, m)
-    used the new file."""
+    """The workers compute on the mesh given, not on its file read again: after m = trigeo.load(f)
+    and a rewrite of f, distance_matrix(client, m) once used the new file."""
     f = str(tmp_path / "spot.obj")
     _spot_variant(f, 1.0)
     m = trigeo.load(f)

@@ -9,7 +9,8 @@
  * bvh_winding.c).
  * Scale: a sign must not depend on the unit of the coordinates, but a face normal is a product
  * of two lengths whose square overflows beyond ~1e77 (and underflows below ~1e-77), which made
- * every normal zero and the sign fall to a NaN winding number (issue 20: spot scaled by 1e110).
+ * every normal zero and the sign fall to a NaN winding number (spot scaled by 1e110 called the
+ * origin outside; tests/test_sign_scale.c guards it).
  * Every vector below is scaled by a power of two before it is multiplied (exact, and directions,
  * angles and signs do not change), so the sign is the same at any scale within +-1e150. */
 #include "core/vec3.h"

@@ -118,7 +118,7 @@ for name, srcv in [("nvd_spot.obj", 11), ("igl_decimated-knight.off", 40), ("cga
         checked += 1
 check(checked >= 15, "traced %d straight log map directions on the corpus (want >= 15)" % checked)
 
-# issue 30: spot scaled by 1e100 and 1e-100 (refused before: "zero area"), --ref of any length
+# spot scaled by 1e100 and 1e-100 (refused before: "zero area"), --ref of any length
 spot_lines = open(os.path.join(os.environ["TG_MESHES_DIR"], "oded_spot_low_resolution.obj")).read().splitlines()
 base = {}
 for scale in (1.0, 1e100, 1e-100):

@@ -145,7 +145,7 @@ outs = [run("trace", spot, "--batch", "-", "--threads", t, stdin=lines) for t in
 check(all(o.returncode == 0 for o in outs) and outs[0].stdout == outs[1].stdout and len(outs[0].stdout.splitlines()) == 41,
       "spot batch, 1 and 2 threads: %s" % [o.stderr for o in outs])
 
-# issue 30: a --dir of any length, the tangent plane at a vertex, any scale of the mesh
+# a --dir of any length, the tangent plane at a vertex, any scale of the mesh
 r = run("trace", os.path.join(meshes, "cgal_mpi.off"), "--from", "v:81", "--dir", "1.387,-1.317,-2.283", "--length", "0.1")
 check(r.returncode == 0 and "status             complete" in r.stdout,
       "cgal_mpi v:81 --dir 1.387,-1.317,-2.283 (92-107 degrees from the surface there): %d %s" % (r.returncode, r.stderr))

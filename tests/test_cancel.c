@@ -1,5 +1,5 @@
-/* test_cancel.c - every long-running geodesic entry point stops when its progress callback asks
- * (issue 30, "Ctrl-C ignored"): the matrices of many short rows (each shorter than the 5 ms
+/* test_cancel.c - every long-running geodesic entry point stops when its progress callback asks:
+ * the matrices of many short rows (each shorter than the 5 ms
  * progress period, which never reported before), paths through waypoints and traces (no
  * callback before 0.5), the isolines' tracing of levels after the propagation, the Voronoi
  * boundaries' rounds and farthest-point sampling, and a picture's PNG encoding. Each call is stopped at the first report of the

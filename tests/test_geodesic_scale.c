@@ -270,7 +270,7 @@ static void run_scene(scene* sc)
     free(a.field_v), free(a.field_f), free(sc->ref.field_v), free(sc->ref.field_f);
 }
 
-/* ---- the other commands' computations at any scale (issue 30's table: commands x scale) ---- */
+/* ---- the other commands' computations at any scale ---- */
 
 /* Everything but the field and the paths above, about spot (oded_spot_low_resolution) and the
  * same mesh scaled: farthest-point sampling (samples, distances, labels), Voronoi cells (labels,
@@ -278,8 +278,8 @@ static void run_scene(scene* sc)
  * and the distance matrix. On the mesh scaled by 2^k (k = +-330, +-490) they are the unscaled
  * results, lengths and positions times 2^k, bit for bit; at 1e100 and 1e-100 the same indices
  * and the same numbers within 1e-12 relative (positions: 1e-9 or 1e-7 of the diagonal, below).
- * These computations were scale-free before issue 30: this test guards them (it passes on the
- * code before the issue-30 fixes too) and is the table's entry for sample, field --labels,
+ * These computations were scale-free before 0.5: this test guards them (it passes on the
+ * code of 0.4 too) and is the table's entry for sample, field --labels,
  * field --isolines, path --through and field --sources. */
 typedef struct more {
     uint32_t samples[12], *fps_label, *vor_label;

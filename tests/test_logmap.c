@@ -268,7 +268,7 @@ static void test_corpus(void)
     }
 }
 
-/* ---- any scale, any length of the reference, the tangent plane (issue 30) ---- */
+/* ---- any scale, any length of the reference, the tangent plane ---- */
 
 /* The mesh's vertices times s. */
 static tg_mesh* scaled(const tg_mesh* m, double s)

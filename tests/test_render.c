@@ -46,7 +46,7 @@ static long file_bytes(const char* path, unsigned char** out)
     return n;
 }
 
-/* Issue 30 (scale): a float depth buffer held the world depths and the normals were normalised
+/* Scale: a float depth buffer held the world depths and the normals were normalised
  * from squares of unscaled cross products, so that a mesh scaled by 1e100 (or 2^330) overflowed
  * (the depth test kept the wrong faces: the far side drawn over the near one) and by 1e-100 lost
  * its shading. An octahedron seen obliquely, coloured by a scalar field, with a polyline over it,

@@ -617,7 +617,7 @@ static void test_scale(void)
     tg_mesh_destroy(odd);
 }
 
-/* ---- any scale, any length of the direction, the tangent plane (issue 30) ---- */
+/* ---- any scale, any length of the direction, the tangent plane ---- */
 
 /* Trace b, on the mesh scaled by s (a power of two), is trace a scaled, bit for bit: the same
  * points, faces, status and end direction; the positions and the length times s. */

@@ -1,4 +1,4 @@
-"""Issue 30 in Python: Ctrl-C stops the C work, and close() waits for every call.
+"""Ctrl-C in Python: Ctrl-C stops the C work, and close() waits for every call.
 
 KeyboardInterrupt used to reach the caller while the C work went on in the background (a matrix
 of short rows, isolines' levels, Voronoi boundaries), or only once the C call had returned

@@ -51,6 +51,24 @@ for s in (1e110, 1e-120, 1e140):
         signs = [row.split(",")[-1] for row in rows]
         check(r.returncode == 0 and signs == ["-1", "1"], "scale %g %s: signs %s (want -1, 1) %r" % (s, extra, signs, r.stderr[-200:]))
 
+# ---- info at any scale: the same report (counts, degenerate faces, genus), the bounding box times
+# the factor (exactly for powers of two) ----
+def report(path):
+    r = run("info", path, "--json")
+    j = json.loads(r.stdout.decode()) if r.returncode == 0 else {}
+    box = (j.pop("bbox_min", None), j.pop("bbox_max", None))
+    for k in ("file", "path"):
+        j.pop(k, None)
+    return r.returncode, j, box
+rc0, base, box0 = report(spot)
+for s in (2.0 ** 330, 2.0 ** -490, 1e100, 1e-100):
+    rc, rep, box = report(scaled(s, "spot_info_%g.obj" % s))
+    diff = sorted(k for k in set(rep) | set(base) if rep.get(k) != base.get(k))
+    check(rc0 == 0 and rc == 0 and not diff, "info at scale %g: exit %d, fields differing %s" % (s, rc, diff))
+    if math.frexp(s)[0] == 0.5:
+        want = [[c * s for c in v] for v in box0]
+        check(list(box) == want, "info at scale %g: bounding box %s, want %s" % (s, box, want))
+
 # ---- thread counts ----
 for args in (["closest", spot, "-", "--threads", "1024"], ["field", spot, "--sources", "-", "-o", os.path.join(tmp, "t.npy"), "--threads", "1024"]):
     r = run(*args, stdin=b"v:0\n" if args[0] == "field" else b"0 0 0\n")
@@ -131,6 +149,20 @@ for what, args, needle in cases:
     check(rc == 130 and after < 2.0 * slow and needle in err,  # ~0.05 s; slack for a loaded machine
           "Ctrl-C %s: exit %s after %.2f s, stderr %r" % (what, rc, after, err[-200:]))
 check(not os.listdir(cdir), "Ctrl-C: nothing left behind: %s" % os.listdir(cdir))
+# info only loads: a signal while it reads (here a pipe that delivers half of the mesh) ends it at
+# once, exit 130, its -o never written
+p = subprocess.Popen([trigeo, "info", "-", "--json", "-o", os.path.join(cdir, "i.json")], stdin=subprocess.PIPE,
+                     stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+body = open(spot, "rb").read()
+p.stdin.write(body[: len(body) // 2])
+p.stdin.flush()
+time.sleep(start)
+t0 = time.time()
+p.send_signal(signal.SIGINT)
+err = p.communicate(timeout=60)[1]
+after = time.time() - t0
+check(p.returncode == 130 and after < 1.0 * slow and b"interrupted" in err and not os.listdir(cdir),
+      "Ctrl-C info while loading: exit %s after %.2f s, left %s, stderr %r" % (p.returncode, after, os.listdir(cdir), err[-200:]))
 # SIGTERM is handled the same way
 p = subprocess.Popen([trigeo, "path", ico, "--pairs", pairs, "-o", os.path.join(cdir, "q.csv")], stderr=subprocess.PIPE)
 time.sleep(start)

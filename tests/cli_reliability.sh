@@ -79,35 +79,7 @@ check(r.returncode in (0, 2) and b"Thread creation failed" not in r.stderr, "--t
 # ---- Ctrl-C ----
 # an icosphere subdivided 7 times (328k faces): the exact path between antipodes sweeps it all
 # (about 7 s; the probe's 1.3M-face one took 26 s)
-def icosphere(level, path):
-    t = (1 + 5 ** 0.5) / 2
-    V = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t), (0, -1, -t), (0, 1, -t),
-         (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
-    V = [tuple(c / math.sqrt(sum(x * x for x in v)) for c in v) for v in V]
-    F = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2), (10, 7, 6),
-         (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10),
-         (8, 6, 7), (9, 8, 1)]
-    for _ in range(level):
-        mid, nf = {}, []
-        def m(a, b):
-            k = (a, b) if a < b else (b, a)
-            if k not in mid:
-                p = [V[a][i] + V[b][i] for i in range(3)]
-                n = math.sqrt(sum(x * x for x in p))
-                V.append(tuple(x / n for x in p))
-                mid[k] = len(V) - 1
-            return mid[k]
-        for a, b, c in F:
-            ab, bc, ca = m(a, b), m(b, c), m(c, a)
-            nf += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
-        F = nf
-    import struct
-    with open(path, "wb") as f:
-        f.write(("ply\nformat binary_little_endian 1.0\nelement vertex %d\nproperty double x\nproperty double y\n"
-                 "property double z\nelement face %d\nproperty list uchar int vertex_indices\nend_header\n"
-                 % (len(V), len(F))).encode())
-        f.write(b"".join(struct.pack("<3d", *v) for v in V))
-        f.write(b"".join(struct.pack("<B3i", 3, *t) for t in F))
+icosphere = cli_common.icosphere
 ico = os.path.join(tmp, "ico7.ply")
 icosphere(7, ico)
 

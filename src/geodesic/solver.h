@@ -106,6 +106,14 @@ static inline int tg__corner_of(const tg_geodesic* g, uint32_t f, uint32_t v)
     return t[0] == v ? 0 : t[1] == v ? 1 : t[2] == v ? 2 : -1;
 }
 
+/* The index of corner c among v's corners (their count when it is not one). */
+static inline uint32_t tg__corner_index(const tg_geodesic* g, uint32_t v, uint32_t c)
+{
+    uint32_t c0 = g->corner_start[v], n = g->corner_start[v + 1] - c0, i = 0;
+    while (i < n && g->corners[c0 + i] != c) ++i;
+    return i;
+}
+
 /* The interior angle of face f at corner k, in [0, pi], from its halfedge frame (0 for a
  * zero-length side): atan2 is accurate at every angle, unlike acos of a normalised dot. */
 static inline double tg__corner_angle(const tg_geodesic* g, uint32_t f, int k)

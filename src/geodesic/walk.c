@@ -27,7 +27,7 @@
 
 /* A ray passing a vertex within this share of the face's longest edge goes through the vertex:
  * the unfoldings are exact to about 1e-15 per face, so on which side of the vertex a ray passes
- * is rounding noise below this (as THROUGH_REL of the exact path's trace back, path/trace.c). */
+ * is rounding noise below this (as THROUGH_REL of the exact path's backtrack, path/backtrack.c). */
 #define SNAP_REL 1e-11
 /* More faces than this in a row without advancing beyond rounding (zero-area faces around one
  * point) stop the walk: no real walk enters that many zero-area faces at one point. */

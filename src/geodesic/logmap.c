@@ -39,38 +39,37 @@ typedef struct lm_source {
 } lm_source;
 
 /* The fan angles of the corners around v from the reference corner (f, k), walking both ways as
- * the fan unfolds; corners of other fans (a pinched or non-manifold vertex) start at 0. Returns
- * the total angle of the reference corner's fan; *closed when it closes. */
-static double fan_angles(const tg_geodesic* g, uint32_t v, uint32_t f, int k, double* fan, bool* closed)
+ * the fan unfolds; corners of other fans (a pinched or non-manifold vertex) start at 0. (The
+ * fan's total, which scales them, is tg__fan_total's.) */
+static void fan_angles(const tg_geodesic* g, uint32_t v, uint32_t f, int k, double* fan)
 {
     uint32_t c0 = g->corner_start[v], n = g->corner_start[v + 1] - c0;
     for (uint32_t i = 0; i < n; ++i) fan[i] = NAN;
-    double total = 0.0, at = 0.0;
+    double at = 0.0;
     uint32_t ff = f;
     int kk = k;
-    *closed = false;
+    bool closed = false;
     for (uint32_t step = 0; step <= n; ++step) { /* the + sense: each corner starts where the last ends */
         uint32_t i = tg__corner_index(g, v, 3 * ff + (uint32_t)kk);
         if (i == n) break;
         if (fan[i] == fan[i]) {
-            *closed = ff == f && kk == k;
+            closed = ff == f && kk == k;
             break;
         }
         double ang = tg__corner_angle(g, ff, kk);
-        fan[i] = at, at += ang, total += ang;
+        fan[i] = at, at += ang;
         if (tg__fan_step(g, v, &ff, &kk, 0) == TG_NONE) break;
     }
     ff = f, kk = k, at = 0.0;
-    for (uint32_t step = 0; !*closed && step <= n; ++step) { /* the - sense, from the reference */
+    for (uint32_t step = 0; !closed && step <= n; ++step) { /* the - sense, from the reference */
         if (tg__fan_step(g, v, &ff, &kk, 1) == TG_NONE) break;
         uint32_t i = tg__corner_index(g, v, 3 * ff + (uint32_t)kk);
         if (i == n || fan[i] == fan[i]) break;
         double ang = tg__corner_angle(g, ff, kk);
-        at -= ang, fan[i] = at, total += ang;
+        at -= ang, fan[i] = at;
     }
     for (uint32_t i = 0; i < n; ++i)
         if (fan[i] != fan[i]) fan[i] = 0.0;
-    return total;
 }
 
 /* The angle, by TG_TRACE_ANGLE's convention, of the fan angle (or the point source's angle) x. */
@@ -150,7 +149,8 @@ static tg_status source_setup(const tg_geodesic* g, const tg_surface_point* sour
         s->vertex = v, s->lm.origin = v, s->lm.fan = fan;
         s->forward = g->tri[3 * f + (uint32_t)(k + 1) % 3] == to;
         s->a0 = s->forward ? 0.0 : tg__corner_angle(g, f, k);
-        double total = fan_angles(g, v, f, k, fan, &s->closed);
+        fan_angles(g, v, f, k, fan);
+        double total = tg__fan_total(g, v, f, k, &s->closed);
         s->scale = total > 0.0 ? (s->closed ? TWO_PI : TG__PI) / total : 1.0;
         rscale = s->scale;
     }

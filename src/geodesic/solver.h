@@ -148,6 +148,14 @@ static inline uint32_t tg__slit_exit(const tg_geodesic* g, uint32_t h)
  * itself), into the face beyond. Returns the halfedge crossed (in the face left) and updates
  * *f, *k, or TG_NONE at an edge that cannot be crossed (tg__cross_opp). */
 uint32_t tg__fan_step(const tg_geodesic* g, uint32_t v, uint32_t* f, int* k, int side);
+/* The one vertex angle convention (TG_TRACE_ANGLE, the log map; geometry-central's vertex tangent
+ * spaces): angles around v are fan angles from the reference side scaled so the turn is 2 pi when
+ * the fan through corner k of face f closes, pi when it is open. tg__fan_total is that fan's total
+ * angle (summed from (f, k) in the + sense, then, open, in the - sense), *closed whether it closes;
+ * tg__fan_closed_total walks the + sense only: true and *theta when it comes back to f, false with
+ * the halfedge where it met an edge it cannot cross (*wall; TG_NONE when it did not come back). */
+double tg__fan_total(const tg_geodesic* g, uint32_t v, uint32_t f, int k, bool* closed);
+bool tg__fan_closed_total(const tg_geodesic* g, uint32_t v, uint32_t f, int k, double* theta, uint32_t* wall);
 
 /* A kept face (not a duplicate, TG__F_SKIP) with the same three vertices as face f: f itself
  * unless it is a duplicate; TG_NONE for a face with a repeated vertex index. */

@@ -3,7 +3,7 @@
  * Based on: Chen & Han, SoCG 1990, and Mitchell, Mount & Papadimitriou, SIAM J. Comput. 16(4),
  *   1987, §3 (a window holds the unfolded image of its source, so the shortest path to any point
  *   it lights is the straight segment from that image, and its direction at the source is the
- *   segment's direction carried back through the unfolding: field/logmap.h); the field engine
+ *   segment's direction carried back through the unfolding: field/logmap_record.h); the field engine
  *   (field.h, after Qin et al. 2016) runs unchanged, with one record per window of the source;
  *   N. Sharp, Y. Soliman and K. Crane, "The vector heat method", ACM TOG 38(3), 2019, §5.3 and
  *   geometry-central's vertex tangent spaces (angles at a vertex scaled so the turn is 2 pi, pi
@@ -24,94 +24,6 @@
 
 #define TWO_PI (2.0 * TG__PI)
 
-/* ---- records of the source's frames (field/logmap.h) ---- */
-
-/* The unit direction of the edge of halfedge h in the frame of halfedge `base` of the same face
- * (+x for a zero-length edge). */
-static void edge_dir_in(const tg_geodesic* g, uint32_t base, uint32_t h, double u[2])
-{
-    double c[3][2];
-    tg__frame_corners(&g->frame[base], c);
-    int i = (int)((h % 3 + 3 - base % 3) % 3), j = (i + 1) % 3;
-    double len = g->frame[h].len;
-    u[0] = 1.0, u[1] = 0.0;
-    if (len > 0.0) u[0] = (c[j][0] - c[i][0]) / len, u[1] = (c[j][1] - c[i][1]) / len;
-}
-
-/* The record of halfedge h's frame from the record r of the frame of `base`, in the same face. */
-static tg__lm_rec rec_in_face(const tg_geodesic* g, uint32_t base, uint32_t h, tg__lm_rec r)
-{
-    if (h == base) return r;
-    double u[2];
-    edge_dir_in(g, base, h, u);
-    return tg__lm_turn(r, u[0], u[1]);
-}
-
-/* A point source: the record of h's frame from the reference frame in space, for a face whose
- * plane holds the reference (a rotation, or a reflection when the solver re-wound the face). */
-static tg__lm_rec rec_from_space(const tg__logmap* lm, uint32_t h)
-{
-    tg_vec3 u, w;
-    tg__frame_axes(lm->g, h, &u, &w);
-    double m00 = tg_v3_dot(u, lm->ref_x), m10 = tg_v3_dot(u, lm->ref_y);
-    double m01 = tg_v3_dot(w, lm->ref_x), m11 = tg_v3_dot(w, lm->ref_y);
-    double l = hypot(m00, m10);
-    tg__lm_rec r = {1.0, 0.0, 0.0};
-    if (!(l > 0.0)) return r;
-    if (m00 * m11 - m01 * m10 >= 0.0) { /* a rotation: the source's (x, y) = (c + i s) z */
-        r.c = m00 / l, r.s = m10 / l;
-    } else { /* a reflection: (x, y) = conj((c + i s) z), kept at length 2 (logmap.h) */
-        r.c = 2.0 * m00 / l, r.s = -2.0 * m10 / l;
-    }
-    return r;
-}
-
-/* A point source in face f (other than the reference face): f shares with the reference face the
- * edge the source lies on, across which it unfolds. */
-static tg__lm_rec rec_point(const tg__logmap* lm, uint32_t h)
-{
-    const tg_geodesic* g = lm->g;
-    uint32_t f = h / 3, f0 = lm->face0;
-    if (f == f0) return rec_from_space(lm, h);
-    for (uint32_t k0 = 0; k0 < 3; ++k0) {
-        uint32_t h0 = 3 * f0 + k0, a = g->tri[h0], b = g->tri[tg_halfedge_next(h0)];
-        for (uint32_t k = 0; k < 3; ++k) {
-            uint32_t o = 3 * f + k, oa = g->tri[o], ob = g->tri[tg_halfedge_next(o)];
-            if (!((oa == a && ob == b) || (oa == b && ob == a))) continue;
-            return rec_in_face(g, o, h, tg__lm_ring(g, h0, o, rec_from_space(lm, h0)));
-        }
-    }
-    return rec_from_space(lm, h); /* (never: every face holding the source meets the reference face) */
-}
-
-/* The index of corner c among v's corners (their count when it is not one). */
-static uint32_t corner_index(const tg_geodesic* g, uint32_t v, uint32_t c)
-{
-    uint32_t c0 = g->corner_start[v], n = g->corner_start[v + 1] - c0, i = 0;
-    while (i < n && g->corners[c0 + i] != c) ++i;
-    return i;
-}
-
-/* The source vertex v: in face f at corner c (tri[c] == v), the record of the bisector of the
- * corner, with base its angle around v; then in h's frame. */
-static tg__lm_rec rec_vertex(const tg__logmap* lm, uint32_t h)
-{
-    const tg_geodesic* g = lm->g;
-    uint32_t v = lm->origin, f = h / 3;
-    int k = tg__corner_of(g, f, v);
-    tg__lm_rec r = {1.0, 0.0, 0.0};
-    if (k < 0) return r; /* a zero-area face across v's edge: its rays leave along that edge */
-    uint32_t c = 3 * f + (uint32_t)k;
-    double half = 0.5 * tg__corner_angle(g, f, k);
-    r.c = cos(half), r.s = -sin(half), r.base = lm->fan[corner_index(g, v, c)] + half;
-    return rec_in_face(g, c, h, r);
-}
-
-tg__lm_rec tg__lm_face_rec(const tg__logmap* lm, uint32_t h)
-{
-    return lm->origin == TG__ORIGIN_SOURCE ? rec_point(lm, h) : rec_vertex(lm, h);
-}
-
 /* ---- the source ---- */
 
 /* How the angles of one log map are measured (TG_TRACE_ANGLE of the source's canonical form). */
@@ -127,38 +39,37 @@ typedef struct lm_source {
 } lm_source;
 
 /* The fan angles of the corners around v from the reference corner (f, k), walking both ways as
- * the fan unfolds; corners of other fans (a pinched or non-manifold vertex) start at 0. Returns
- * the total angle of the reference corner's fan; *closed when it closes. */
-static double fan_angles(const tg_geodesic* g, uint32_t v, uint32_t f, int k, double* fan, bool* closed)
+ * the fan unfolds; corners of other fans (a pinched or non-manifold vertex) start at 0. (The
+ * fan's total, which scales them, is tg__fan_total's.) */
+static void fan_angles(const tg_geodesic* g, uint32_t v, uint32_t f, int k, double* fan)
 {
     uint32_t c0 = g->corner_start[v], n = g->corner_start[v + 1] - c0;
     for (uint32_t i = 0; i < n; ++i) fan[i] = NAN;
-    double total = 0.0, at = 0.0;
+    double at = 0.0;
     uint32_t ff = f;
     int kk = k;
-    *closed = false;
+    bool closed = false;
     for (uint32_t step = 0; step <= n; ++step) { /* the + sense: each corner starts where the last ends */
-        uint32_t i = corner_index(g, v, 3 * ff + (uint32_t)kk);
+        uint32_t i = tg__corner_index(g, v, 3 * ff + (uint32_t)kk);
         if (i == n) break;
         if (fan[i] == fan[i]) {
-            *closed = ff == f && kk == k;
+            closed = ff == f && kk == k;
             break;
         }
         double ang = tg__corner_angle(g, ff, kk);
-        fan[i] = at, at += ang, total += ang;
+        fan[i] = at, at += ang;
         if (tg__fan_step(g, v, &ff, &kk, 0) == TG_NONE) break;
     }
     ff = f, kk = k, at = 0.0;
-    for (uint32_t step = 0; !*closed && step <= n; ++step) { /* the - sense, from the reference */
+    for (uint32_t step = 0; !closed && step <= n; ++step) { /* the - sense, from the reference */
         if (tg__fan_step(g, v, &ff, &kk, 1) == TG_NONE) break;
-        uint32_t i = corner_index(g, v, 3 * ff + (uint32_t)kk);
+        uint32_t i = tg__corner_index(g, v, 3 * ff + (uint32_t)kk);
         if (i == n || fan[i] == fan[i]) break;
         double ang = tg__corner_angle(g, ff, kk);
-        at -= ang, fan[i] = at, total += ang;
+        at -= ang, fan[i] = at;
     }
     for (uint32_t i = 0; i < n; ++i)
         if (fan[i] != fan[i]) fan[i] = 0.0;
-    return total;
 }
 
 /* The angle, by TG_TRACE_ANGLE's convention, of the fan angle (or the point source's angle) x. */
@@ -195,7 +106,7 @@ static int surface_alpha(lm_source* s, tg_vec3 r)
     int st = tg__surface_direction(g, &s->node, r, &sd);
     if (st != TG__DIR_OK) return st;
     if (s->vertex != TG_NONE) { /* the fan angle of the direction, then as every vertex's angle */
-        uint32_t i = corner_index(g, s->vertex, sd.h);
+        uint32_t i = tg__corner_index(g, s->vertex, sd.h);
         uint32_t n = g->corner_start[s->vertex + 1] - g->corner_start[s->vertex];
         double x = (i < n ? s->lm.fan[i] : 0.0) + atan2(sd.d[1], sd.d[0]);
         s->alpha = (s->forward ? x - s->a0 : s->a0 - x) * s->scale;
@@ -238,7 +149,8 @@ static tg_status source_setup(const tg_geodesic* g, const tg_surface_point* sour
         s->vertex = v, s->lm.origin = v, s->lm.fan = fan;
         s->forward = g->tri[3 * f + (uint32_t)(k + 1) % 3] == to;
         s->a0 = s->forward ? 0.0 : tg__corner_angle(g, f, k);
-        double total = fan_angles(g, v, f, k, fan, &s->closed);
+        fan_angles(g, v, f, k, fan);
+        double total = tg__fan_total(g, v, f, k, &s->closed);
         s->scale = total > 0.0 ? (s->closed ? TWO_PI : TG__PI) / total : 1.0;
         rscale = s->scale;
     }

@@ -441,6 +441,54 @@ uint32_t tg__fan_step(const tg_geodesic* g, uint32_t v, uint32_t* f, int* k, int
     return h;
 }
 
+/* The total angle of the fan of faces around v through face f (corner k), walking the + sense
+ * until it comes back to f: true and *theta when it closes, false with the halfedge where it
+ * met an edge it cannot cross (*wall; TG_NONE when the walk did not come back). */
+bool tg__fan_closed_total(const tg_geodesic* g, uint32_t v, uint32_t f, int k, double* theta, uint32_t* wall)
+{
+    uint32_t limit = g->corner_start[v + 1] - g->corner_start[v] + 1, ff = f;
+    int kk = k;
+    double sum = 0.0;
+    *wall = TG_NONE;
+    for (uint32_t n = 0; n < limit; ++n) {
+        sum += tg__corner_angle(g, ff, kk);
+        uint32_t tried = 3 * ff + (uint32_t)(kk + 2) % 3;
+        if (tg__fan_step(g, v, &ff, &kk, 0) == TG_NONE) {
+            *wall = tried;
+            return false;
+        }
+        if (ff == f && kk == k) {
+            *theta = sum;
+            return true;
+        }
+    }
+    return false;
+}
+
+/* The total angle of an open fan around v through face f (corner k): both ways until walls. */
+static double fan_open_total(const tg_geodesic* g, uint32_t v, uint32_t f, int k)
+{
+    uint32_t limit = g->corner_start[v + 1] - g->corner_start[v] + 1;
+    double sum = tg__corner_angle(g, f, k);
+    for (int side = 0; side < 2; ++side) {
+        uint32_t ff = f;
+        int kk = k;
+        for (uint32_t n = 0; n < limit && tg__fan_step(g, v, &ff, &kk, side) != TG_NONE; ++n) {
+            if (ff == f) break;
+            sum += tg__corner_angle(g, ff, kk);
+        }
+    }
+    return sum;
+}
+
+double tg__fan_total(const tg_geodesic* g, uint32_t v, uint32_t f, int k, bool* closed)
+{
+    double theta;
+    uint32_t wall;
+    *closed = tg__fan_closed_total(g, v, f, k, &theta, &wall);
+    return *closed ? theta : fan_open_total(g, v, f, k);
+}
+
 /* Pseudo-source vertices: not a single closed fan of crossable edges (boundary, non-manifold,
  * pinched, a non-orientable seam), touching a flat or skipped face, or a total angle beyond
  * 2 pi by more than the flat margin. */

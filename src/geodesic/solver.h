@@ -106,6 +106,14 @@ static inline int tg__corner_of(const tg_geodesic* g, uint32_t f, uint32_t v)
     return t[0] == v ? 0 : t[1] == v ? 1 : t[2] == v ? 2 : -1;
 }
 
+/* The index of corner c among v's corners (their count when it is not one). */
+static inline uint32_t tg__corner_index(const tg_geodesic* g, uint32_t v, uint32_t c)
+{
+    uint32_t c0 = g->corner_start[v], n = g->corner_start[v + 1] - c0, i = 0;
+    while (i < n && g->corners[c0 + i] != c) ++i;
+    return i;
+}
+
 /* The interior angle of face f at corner k, in [0, pi], from its halfedge frame (0 for a
  * zero-length side): atan2 is accurate at every angle, unlike acos of a normalised dot. */
 static inline double tg__corner_angle(const tg_geodesic* g, uint32_t f, int k)
@@ -140,6 +148,14 @@ static inline uint32_t tg__slit_exit(const tg_geodesic* g, uint32_t h)
  * itself), into the face beyond. Returns the halfedge crossed (in the face left) and updates
  * *f, *k, or TG_NONE at an edge that cannot be crossed (tg__cross_opp). */
 uint32_t tg__fan_step(const tg_geodesic* g, uint32_t v, uint32_t* f, int* k, int side);
+/* The one vertex angle convention (TG_TRACE_ANGLE, the log map; geometry-central's vertex tangent
+ * spaces): angles around v are fan angles from the reference side scaled so the turn is 2 pi when
+ * the fan through corner k of face f closes, pi when it is open. tg__fan_total is that fan's total
+ * angle (summed from (f, k) in the + sense, then, open, in the - sense), *closed whether it closes;
+ * tg__fan_closed_total walks the + sense only: true and *theta when it comes back to f, false with
+ * the halfedge where it met an edge it cannot cross (*wall; TG_NONE when it did not come back). */
+double tg__fan_total(const tg_geodesic* g, uint32_t v, uint32_t f, int k, bool* closed);
+bool tg__fan_closed_total(const tg_geodesic* g, uint32_t v, uint32_t f, int k, double* theta, uint32_t* wall);
 
 /* A kept face (not a duplicate, TG__F_SKIP) with the same three vertices as face f: f itself
  * unless it is a duplicate; TG_NONE for a face with a repeated vertex index. */

@@ -27,7 +27,7 @@
 
 /* A ray passing a vertex within this share of the face's longest edge goes through the vertex:
  * the unfoldings are exact to about 1e-15 per face, so on which side of the vertex a ray passes
- * is rounding noise below this (as THROUGH_REL of the exact path's trace back, path/trace.c). */
+ * is rounding noise below this (as THROUGH_REL of the exact path's backtrack, path/backtrack.c). */
 #define SNAP_REL 1e-11
 /* More faces than this in a row without advancing beyond rounding (zero-area faces around one
  * point) stop the walk: no real walk enters that many zero-area faces at one point. */
@@ -285,46 +285,6 @@ static uint32_t corner_count(const tg_geodesic* g, uint32_t v)
     return g->corner_start[v + 1] - g->corner_start[v];
 }
 
-/* The total angle of the fan of faces around v through face f (corner k), walking the + sense
- * until it comes back to f: true and *theta when it closes, false with the halfedge where it
- * met an edge it cannot cross (*wall; TG_NONE when the walk did not come back). */
-static bool fan_total(const tg_geodesic* g, uint32_t v, uint32_t f, int k, double* theta, uint32_t* wall)
-{
-    uint32_t limit = corner_count(g, v) + 1, ff = f;
-    int kk = k;
-    double sum = 0.0;
-    *wall = TG_NONE;
-    for (uint32_t n = 0; n < limit; ++n) {
-        sum += tg__corner_angle(g, ff, kk);
-        uint32_t tried = 3 * ff + (uint32_t)(kk + 2) % 3;
-        if (tg__fan_step(g, v, &ff, &kk, 0) == TG_NONE) {
-            *wall = tried;
-            return false;
-        }
-        if (ff == f && kk == k) {
-            *theta = sum;
-            return true;
-        }
-    }
-    return false;
-}
-
-/* The total angle of an open fan around v through face f (corner k): both ways until walls. */
-static double fan_open_total(const tg_geodesic* g, uint32_t v, uint32_t f, int k)
-{
-    uint32_t limit = corner_count(g, v) + 1;
-    double sum = tg__corner_angle(g, f, k);
-    for (int side = 0; side < 2; ++side) {
-        uint32_t ff = f;
-        int kk = k;
-        for (uint32_t n = 0; n < limit && tg__fan_step(g, v, &ff, &kk, side) != TG_NONE; ++n) {
-            if (ff == f) break;
-            sum += tg__corner_angle(g, ff, kk);
-        }
-    }
-    return sum;
-}
-
 /* Turns around v from face *f (corner *k) to the face holding the direction at angle *phi from
  * the side k -> k + 1 of *f's corner (counterclockwise positive, as the fan unfolds): updates *f,
  * *k and *phi (then in [0, the corner's angle]). false at an edge it cannot cross (*wall). */
@@ -392,7 +352,7 @@ static void pass_vertex(walk* w, uint32_t v, int j)
     double beta = atan2(ex * by - ey * bx, ex * bx + ey * by);
     double theta;
     uint32_t wall;
-    if (!fan_total(g, v, f, k, &theta, &wall) || !(theta > 0.0)) {
+    if (!tg__fan_closed_total(g, v, f, k, &theta, &wall) || !(theta > 0.0)) {
         stop_at_wall(w, wall);
         return;
     }
@@ -729,14 +689,16 @@ static void start_vertex_angle(const tg_geodesic* g, uint32_t v, uint32_t f, uin
     /* the reference side is f's side k -> k + 1 (the angle grows as the solver's winding) or, in a
      * face the solver re-wound, k -> k + 2 (it shrinks) */
     bool forward = g->tri[3 * f + (uint32_t)(k + 1) % 3] == to;
-    double theta, a0 = forward ? 0.0 : tg__corner_angle(g, f, k), phi;
+    double a0 = forward ? 0.0 : tg__corner_angle(g, f, k), phi;
     uint32_t wall;
-    if (fan_total(g, v, f, k, &theta, &wall)) {
+    bool closed;
+    double theta = tg__fan_total(g, v, f, k, &closed);
+    if (closed) {
         double a = fmod(angle, TWO_PI);
         if (a < 0.0) a += TWO_PI;
         phi = a * (theta / TWO_PI);
     } else if (angle >= 0.0 && angle <= TG__PI) {
-        phi = angle * (fan_open_total(g, v, f, k) / TG__PI);
+        phi = angle * (theta / TG__PI);
     } else { /* off the surface */
         out->stopped = true, out->status = TG_TRACE_BOUNDARY;
         out->r.h = 3 * f + (uint32_t)k, out->r.d[0] = 1.0;

@@ -17,7 +17,7 @@
 #define TG_GEODESIC_FIELD_H
 
 #include "core/heap.h"
-#include "geodesic/field/logmap.h"
+#include "geodesic/field/logmap_record.h"
 #include "geodesic/frame.h"
 
 /* A window: the interval [b0, b1] (distances from tri[h]) of the edge of halfedge h, lit from
@@ -103,7 +103,7 @@ typedef struct tg__corner_hit {
     X(qbound, tg__query_bound) /* the vertices bounding each query point (runs that stop early) */ \
     X(touched_v, uint32_t)     /* vertices a run wrote (reset only those) */                      \
     X(touched_h, uint32_t)     /* halfedges a run wrote */                                        \
-    X(lm_win, tg__lm_rec)      /* log map runs: per window slot, its record (logmap.h) */         \
+    X(lm_win, tg__lm_rec)      /* log map runs: per window slot, its record (logmap_record.h) */ \
     X(lm_theta, double)        /* log map runs: per vertex lit by a window of the source, the    \
                                   angle its ray left at (valid where pred says so) */     \
     X(rec, tg__rec_window)     /* the windows near the levels (runs that record, record.c) */ \

@@ -98,26 +98,8 @@ static bool take_window(tg__field_run* run, uint32_t id, tg__window* w)
     return true;
 }
 
-/* ---- log map records (logmap.h): only in log map runs, only on the source's windows ---- */
-
-/* The record a window that `origin` emits into the face of h gets in h's frame; NULL when the
- * run makes no log map or the origin is not its source. */
-static const tg__lm_rec* lm_seed(const tg__field_run* run, uint32_t origin, uint32_t h, tg__lm_rec* out)
-{
-    const tg__logmap* lm = run->q->logmap;
-    if (!lm || origin != lm->origin) return NULL;
-    *out = tg__lm_face_rec(lm, h);
-    return out;
-}
-
-/* A copy of the record of window `id` (tag: its tag) when it carries one, else NULL. */
-static const tg__lm_rec* lm_of(const tg__field_run* run, uint32_t id, uint32_t tag, tg__lm_rec* out)
-{
-    const tg__logmap* lm = run->q->logmap;
-    if (!lm || TG__TAG_ORIGIN(tag) != lm->origin) return NULL;
-    *out = ((const tg__lm_rec*)run->fs->lm_win.data)[id];
-    return out;
-}
+/* ---- log map records (logmap_record.h: tg__lm_seed, tg__lm_of): only in log map runs, only on the
+ * source's windows; each kept at its window's slot ---- */
 
 static bool lm_store(tg__field_scratch* fs, uint32_t id, const tg__lm_rec* r)
 {
@@ -344,7 +326,8 @@ static bool emit_vertex(tg__field_run* run, uint32_t v)
         tg__lm_rec rec;
         if (g->fflags[f] & TG__F_FLAT) { /* v may lie on the opposite edge: emit across it too */
             if (!emit_face_point(run, g->xyz + 3 * (size_t)v, sigma, f, TG_NONE, v, 0)) return false;
-        } else if (!push_through(run, e, 0.0, fr->len, fr->cx, fr->cy, sigma, v, lm_seed(run, v, e, &rec))) {
+        } else if (!push_through(run, e, 0.0, fr->len, fr->cx, fr->cy, sigma, v,
+                                 tg__lm_seed(run->q->logmap, v, e, &rec))) {
             return false;
         }
     }
@@ -411,7 +394,8 @@ static bool emit_face_point(tg__field_run* run, const double p[3], double sigma,
             continue;
         }
         tg__lm_rec rec;
-        if (!push_through(run, h, 0.0, len, x, y, sigma, origin, lm_seed(run, origin, h, &rec))) return false;
+        if (!push_through(run, h, 0.0, len, x, y, sigma, origin, tg__lm_seed(run->q->logmap, origin, h, &rec)))
+            return false;
     }
     return true;
 }
@@ -566,7 +550,8 @@ static bool cross_slit(tg__field_run* run, uint32_t h, uint32_t exit, const uint
         tg__window w;
         if (!take_window(run, ids[i], &w)) continue;
         tg__lm_rec rec;
-        const tg__lm_rec* rp = lm_of(run, ids[i], w.tag, &rec);
+        const tg__lm_rec* rp = tg__lm_of(run->q->logmap, TG__TAG_ORIGIN(w.tag), run->fs->lm_win.data, ids[i],
+                                         &rec);
         if (rp) rec = tg__lm_half_turn(rec);
         if (!push_through(run, exit, len - w.b1, len - w.b0, len - w.sx, -w.sy, w.sigma, tg__tag_flat_more(w.tag), rp))
             return false;
@@ -633,7 +618,8 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
             }
             tg__pred ray = {h, TG__TAG_ORIGIN(w->tag), w->sx, w->sy};
             tg__lm_rec rec;
-            if (lm && hc.dc < fs->dist[vc] && lm_of(run, ids[i], w->tag, &rec)) /* the angle of the ray to C */
+            /* the angle of the ray to C */
+            if (lm && hc.dc < fs->dist[vc] && tg__lm_of(lm, TG__TAG_ORIGIN(w->tag), fs->lm_win.data, ids[i], &rec))
                 ((double*)fs->lm_theta.data)[vc] = tg__lm_angle(&rec, fr->cx - w->sx, fr->cy - w->sy);
             if (!relax_vertex(run, vc, hc.dc, ray)) return false;
         }
@@ -647,7 +633,7 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
         tg__window w;
         if (!take_window(run, ids[i], &w)) continue;
         tg__lm_rec rec;
-        const tg__lm_rec* rp = lm ? lm_of(run, ids[i], w.tag, &rec) : NULL;
+        const tg__lm_rec* rp = lm ? tg__lm_of(lm, TG__TAG_ORIGIN(w.tag), fs->lm_win.data, ids[i], &rec) : NULL;
         if (!(rp ? cross_face(run, h, &w, hits[i], flat, u, rp) : cross_face(run, h, &w, hits[i], flat, u, NULL)))
             return false;
     }

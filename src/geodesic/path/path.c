@@ -1,5 +1,5 @@
 /* path.c - tg_geodesic_path: the query as a sequence of stages. The exact method (the default):
- * endpoints, the exact propagation toward the target, the trace back. The others: endpoints,
+ * endpoints, the exact propagation toward the target, the backtrack. The others: endpoints,
  * the initial edge path, its shortening, and the exact check when asked.
  * Based on: seed 002 §5 (endpoints, initial edge path, shortening); J. S. B. Mitchell, D. M. Mount
  *   and C. H. Papadimitriou, "The discrete geodesic problem", 1987, §6 (the exact distance and
@@ -83,14 +83,14 @@ static tg_status exact_propagation(tg_geodesic_workspace* ws, const request* rq,
 }
 
 /* The exact distance from `from` to `to` within `limit` (+inf beyond) into *out_distance, and the
- * path traced back into `route` (*out_traced false, and no nodes, when the trace found no way). */
+ * path followed back into `route` (*out_found false, and no nodes, when the backtrack found no way). */
 static tg_status exact_route(tg_geodesic_workspace* ws, const request* rq, const tg_surface_point* from,
                              const tg_surface_point* to, double limit, tg__route* route, double* out_distance,
-                             bool* out_traced)
+                             bool* out_found)
 {
     const tg_geodesic* g = ws->geo;
     route->nodes.count = route->faces.count = 0;
-    *out_traced = false;
+    *out_found = false;
     tg__field_run run;
     tg_status st = exact_propagation(ws, rq, from, to, limit, &run);
     *out_distance = st == TG_OK ? run.qdist[0] : INFINITY;
@@ -98,23 +98,23 @@ static tg_status exact_route(tg_geodesic_workspace* ws, const request* rq, const
     tg_surface_point ss = tg__surface_in(g, from), ts = tg__surface_in(g, to);
     tg__node source = tg__node_from_surface(&ss), target = tg__node_from_surface(&ts);
     bool oom = false;
-    *out_traced = tg__trace(g, &ws->allocator, &run, &source, &target, route, &oom);
+    *out_found = tg__path_backtrack(g, &ws->allocator, &run, &source, &target, route, &oom);
     return oom ? TG_ERR_OUT_OF_MEMORY : TG_OK;
 }
 
-/* Whether a traced route is the exact path: its length is the exact distance d (within the
+/* Whether a backtracked route is the exact path: its length is the exact distance d (within the
  * margin), and d is not 0 between two distinct points (on a mesh whose scale makes squared
- * lengths underflow, a trace can match a distance of 0 while bending by pi). */
-static bool traced_exact(const tg_geodesic* g, const tg__route* r, double d)
+ * lengths underflow, a backtrack can match a distance of 0 while bending by pi). */
+static bool backtrack_exact(const tg_geodesic* g, const tg__route* r, double d)
 {
     size_t n = r->nodes.count;
     const tg__node* nodes = tg__route_nodes(r);
     const uint32_t* faces = tg__route_faces(r);
     if (n <= 1) return n == 1 && d == 0.0;
-    double traced = 0.0;
-    for (size_t i = 0; i + 1 < n; ++i) traced += tg__node_dist(g, &nodes[i], &nodes[i + 1], faces[i]);
-    if (!(fabs(traced - d) <= PROVEN_REL * d)) return false;
-    /* a trace of length 0 joins its ends only if they coincide: the same node, or two vertices
+    double length = 0.0;
+    for (size_t i = 0; i + 1 < n; ++i) length += tg__node_dist(g, &nodes[i], &nodes[i + 1], faces[i]);
+    if (!(fabs(length - d) <= PROVEN_REL * d)) return false;
+    /* a backtrack of length 0 joins its ends only if they coincide: the same node, or two vertices
      * at one position (duplicated vertices, a zero-length edge; tbvh_legocar.obj v:5763 and
      * v:5625 once gave TG_ERR_INTERNAL) */
     return d > 0.0 || tg__node_same(g, &nodes[0], &nodes[n - 1]) ||
@@ -173,7 +173,7 @@ static tg_status fill_path(const tg_geodesic* g, const tg_allocator* a, tg__rout
     return TG_OK;
 }
 
-/* The caller's path from the traced exact route: proven (its length is the exact distance). */
+/* The caller's path from the backtracked exact route: proven (its length is the exact distance). */
 static tg_status fill_exact(const tg_geodesic* g, const tg_allocator* a, tg__route* route, tg_path* path)
 {
     tg_status st = fill_path(g, a, route, path);
@@ -187,16 +187,16 @@ static tg_status fill_exact(const tg_geodesic* g, const tg_allocator* a, tg__rou
 /* ---- the methods ---- */
 
 /* TG_PATH_EXACT: the exact propagation toward `to`, unbounded but for the best distance to it
- * found so far, then the trace back. A trace that finds no way back is a bug of the library
+ * found so far, then the backtrack. A backtrack that finds no way back is a bug of the library
  * (TG_ERR_INTERNAL): it would be a window with no chain of faces behind it. */
 static tg_status exact_path(tg_geodesic_workspace* ws, const request* rq, const tg_surface_point* from,
                             const tg_surface_point* to, tg_path* path)
 {
     double d;
-    bool traced;
-    tg_status st = exact_route(ws, rq, from, to, INFINITY, &ws->route, &d, &traced);
+    bool found;
+    tg_status st = exact_route(ws, rq, from, to, INFINITY, &ws->route, &d, &found);
     if (st != TG_OK || !(d < INFINITY)) return st;
-    if (!traced || !traced_exact(ws->geo, &ws->route, d)) return TG_ERR_INTERNAL;
+    if (!found || !backtrack_exact(ws->geo, &ws->route, d)) return TG_ERR_INTERNAL;
     st = fill_exact(ws->geo, &ws->allocator, &ws->route, path);
     path->initial_length = path->length; /* no edge path is computed */
     path->edge_path_vertices = 0;
@@ -205,17 +205,17 @@ static tg_status exact_path(tg_geodesic_workspace* ws, const request* rq, const 
 
 /* The exact check of a shortened path: the exact distance within its length (plus the margin).
  * A converged path within the margin of it is proven globally shortest; a longer one is replaced
- * by the path traced back, when that is the exact path. */
+ * by the path followed back, when that is the exact path. */
 static tg_status certify(tg_geodesic_workspace* ws, const request* rq, const tg_surface_point* from,
                          const tg_surface_point* to, tg_path* path)
 {
     double d;
-    bool traced;
+    bool found;
     double length = path->length * ws->geo->scale; /* in the solver's frame (exact) */
-    tg_status st = exact_route(ws, rq, from, to, length * (1.0 + PROVEN_REL), &ws->route, &d, &traced);
+    tg_status st = exact_route(ws, rq, from, to, length * (1.0 + PROVEN_REL), &ws->route, &d, &found);
     if (st != TG_OK) return st;
     bool shortest = length <= d * (1.0 + PROVEN_REL) && path->status != TG_PATH_STALLED;
-    if (!shortest && traced && traced_exact(ws->geo, &ws->route, d)) {
+    if (!shortest && found && backtrack_exact(ws->geo, &ws->route, d)) {
         double initial = path->initial_length;
         uint32_t vertices = path->edge_path_vertices;
         st = fill_exact(ws->geo, &ws->allocator, &ws->route, path);

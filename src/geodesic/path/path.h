@@ -6,7 +6,7 @@
  *   fan.c        vertex passages: the two sides of a path at a vertex, the portals of a side
  *   straighten.c the fast shortening (funnels over sleeves, passages re-routed)
  *   relax.c      the seed's relaxation (two-triangle and fan kernels)
- *   trace.c      the exact path traced back through a field's windows
+ *   backtrack.c  the exact path followed back through a field's windows
  *   certificate.c the straightness certificate
  *   path.c       tg_geodesic_path: the sequence of these stages
  *   result.c     tg_path, the caller's result object
@@ -195,13 +195,13 @@ tg_status tg__relax(const tg_geodesic* g, const tg_allocator* a, tg__relax_scrat
                     uint32_t max_passes, double rel_tol, const tg_geodesic_kernel_options* kernel,
                     const tg__path_progress* progress, tg__shorten_result* out);
 
-/* ---- the exact trace (trace.c) ---- */
+/* ---- the exact path's backtrack (backtrack.c) ---- */
 
-/* The shortest path from source to target (solver nodes) traced back through a field run that
+/* The shortest path from source to target (solver nodes) followed back through a field run that
  * recorded how every vertex and the target (its one query point) got its distance: into *out,
  * source first. false when the walk found no way back (no nodes then), or *out_of_memory. */
-bool tg__trace(const tg_geodesic* g, const tg_allocator* a, const tg__field_run* field, const tg__node* source,
-               const tg__node* target, tg__route* out, bool* out_of_memory);
+bool tg__path_backtrack(const tg_geodesic* g, const tg_allocator* a, const tg__field_run* field,
+                        const tg__node* source, const tg__node* target, tg__route* out, bool* out_of_memory);
 
 /* ---- the result object (result.c) ---- */
 

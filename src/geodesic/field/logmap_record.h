@@ -1,5 +1,6 @@
-/* logmap.h - what the field engine carries for the exact log map (logmap.c): per window of the
- * source, the rotation that takes directions of the window's frame to the source's frame.
+/* logmap_record.h - what the field engine carries for the exact log map (../logmap.c): per window
+ * of the source, the rotation that takes directions of the window's frame to the source's frame;
+ * the records of the source's own frames are made in logmap_record.c.
  * Based on: the unfolding of a triangle strip (Mitchell, Mount & Papadimitriou 1987, §3): every
  *   change of frame along an unfolding is a rigid motion of the plane, so the direction in which a
  *   straight ray from the source image leaves the source is the ray's direction in the window's
@@ -11,8 +12,8 @@
  * source's frame mirrored: then the angle is base - arg(...). That one bit is kept in the length
  * of (c, s): 1 as unfolded properly, 2 mirrored (rotations keep lengths to rounding, ~1e-16 a
  * face, so the two never meet). Only windows whose origin is the log map's source carry one. */
-#ifndef TG_GEODESIC_FIELD_LOGMAP_H
-#define TG_GEODESIC_FIELD_LOGMAP_H
+#ifndef TG_GEODESIC_FIELD_LOGMAP_RECORD_H
+#define TG_GEODESIC_FIELD_LOGMAP_RECORD_H
 
 #include "geodesic/frame.h"
 
@@ -57,7 +58,7 @@ static inline tg__lm_rec tg__lm_ring(const tg_geodesic* g, uint32_t e, uint32_t 
     return g->tri[o] == g->tri[e] ? tg__lm_mirror(r) : tg__lm_half_turn(r);
 }
 
-/* The log map's part of a field run (logmap.c fills it before the run). */
+/* The log map's part of a field run (../logmap.c fills it before the run). */
 typedef struct tg__logmap {
     const tg_geodesic* g;
     /* the window origin whose windows carry records: TG__ORIGIN_SOURCE for a point source, the
@@ -73,7 +74,29 @@ typedef struct tg__logmap {
 } tg__logmap;
 
 /* The record of the frame of halfedge h for the windows a source emits into face h / 3: from the
- * point source (origin TG__ORIGIN_SOURCE, face h / 3 holding it) or from the source vertex. */
+ * point source (origin TG__ORIGIN_SOURCE, face h / 3 holding it) or from the source vertex
+ * (logmap_record.c). */
 tg__lm_rec tg__lm_face_rec(const tg__logmap* lm, uint32_t h);
+
+/* The engine's side (propagate.c): inlined, so that a run with no log map (lm NULL) tests one
+ * pointer and carries nothing. */
+
+/* The record a window that `origin` emits into the face of h gets in h's frame, into *out; NULL
+ * when the run makes no log map or the origin is not its source. */
+static inline const tg__lm_rec* tg__lm_seed(const tg__logmap* lm, uint32_t origin, uint32_t h, tg__lm_rec* out)
+{
+    if (!lm || origin != lm->origin) return NULL;
+    *out = tg__lm_face_rec(lm, h);
+    return out;
+}
+/* A copy of the record of window `id` (recs: the run's records per window slot) into *out when
+ * the window carries one (its origin is the log map's source), else NULL. */
+static inline const tg__lm_rec* tg__lm_of(const tg__logmap* lm, uint32_t origin, const tg__lm_rec* recs, uint32_t id,
+                                          tg__lm_rec* out)
+{
+    if (!lm || origin != lm->origin) return NULL;
+    *out = recs[id];
+    return out;
+}
 
 #endif

@@ -1,5 +1,5 @@
-/* trace.c - the exact shortest path traced back through a field run that recorded how each vertex
- * and the target got its distance (field.h, tg__pred): from the target
+/* backtrack.c - the exact shortest path followed back through a field run that recorded how each
+ * vertex and the target got its distance (field.h, tg__pred): from the target
  * along the ray of the window that reached it, through the faces it crossed, to the
  * pseudo-source vertex that window came from, and so on to the source.
  * Based on: J. S. B. Mitchell, D. M. Mount and C. H. Papadimitriou, "The discrete geodesic
@@ -18,20 +18,20 @@
 
 #include <string.h>
 
-/* The trace ends on its origin when the unfolded image lies within this share of the local
+/* The backtrack ends on its origin when the unfolded image lies within this share of the local
  * scale of the origin's position (the unfoldings are exact to ~1e-15 per face). */
 #define LAND_REL 1e-9
 
-typedef struct trace {
+typedef struct backtrack {
     const tg_geodesic* g;
     const tg_allocator* a;
     const tg__field_run* field; /* its vertex distances and predecessors */
     tg__route* route;           /* the nodes so far (target first); segment i lies in face faces[i] */
     size_t n;
     bool out_of_memory;         /* a buffer could not grow: the walk stopped for that, not a dead end */
-} trace;
+} backtrack;
 
-static bool add_node(trace* t, tg__node node, uint32_t face_before)
+static bool add_node(backtrack* t, tg__node node, uint32_t face_before)
 {
     if (!tg__route_fit(t->a, t->route, t->n + 1)) {
         t->out_of_memory = true;
@@ -66,7 +66,7 @@ static bool edge_twin(const tg_geodesic* g, const tg__node* p, uint32_t f, tg__n
  * source) of another face that lies on an edge it shares with f (a point of an edge given as a
  * face point: windows reach it through the faces at that edge) is joined through its twin on that
  * edge, by a segment of length 0 in its own face. */
-static bool add_node_in(trace* t, tg__node node, uint32_t f)
+static bool add_node_in(backtrack* t, tg__node node, uint32_t f)
 {
     const tg_geodesic* g = t->g;
     tg__node last = tg__route_nodes(t->route)[t->n - 1], twin;
@@ -152,7 +152,7 @@ typedef struct branch {
  * origin, while the field's distance at the vertex continues the path exactly. The corner may
  * also lie at the image itself: a copy of the origin at the same position (a pole or seam of
  * coincident vertices), where the path goes on from the copy. */
-static bool through_corner(trace* t, uint32_t o, const double x[2], const double sp[2], const double c[3][2],
+static bool through_corner(backtrack* t, uint32_t o, const double x[2], const double sp[2], const double c[3][2],
                            double sigma, tg__node* out)
 {
     const tg_geodesic* g = t->g;
@@ -187,7 +187,7 @@ static bool through_corner(trace* t, uint32_t o, const double x[2], const double
  * on an end vertex u of h, a second vertex at one position (tm_capsule.obj: v lies 1 ulp inside the
  * edge from u's side), through u: two segments of length 0. False (the route as it was) when no
  * such chain reaches v. */
-static bool to_vertex_on_edge(trace* t, uint32_t h, uint32_t v, uint32_t depth)
+static bool to_vertex_on_edge(backtrack* t, uint32_t h, uint32_t v, uint32_t depth)
 {
     const tg_geodesic* g = t->g;
     for (uint32_t o = g->ring[h]; o != h; o = g->ring[o])
@@ -224,7 +224,7 @@ static bool to_vertex_on_edge(trace* t, uint32_t h, uint32_t v, uint32_t depth)
  * (or of one stacked on it)? Such a vertex is a corner of no face the ray enters (polygons split
  * with collinear corners: a CAD quad whose one triangle is a sliver), so the walk ends on the
  * edge there: the crossing, then the vertex through the zero-area faces (segments of length 0). */
-static bool on_flat_apex(trace* t, uint32_t xh, const double ns[2], double len, uint32_t origin, const tg__node* source,
+static bool on_flat_apex(backtrack* t, uint32_t xh, const double ns[2], double len, uint32_t origin, const tg__node* source,
                          tg__node* out)
 {
     uint32_t v = origin != TG__ORIGIN_SOURCE ? origin : source->kind == TG__NODE_VERTEX ? source->id : TG_NONE;
@@ -245,7 +245,7 @@ static bool on_flat_apex(trace* t, uint32_t xh, const double ns[2], double len, 
 /* Walks from the crossing xe of halfedge e (image s beyond it, in e's frame) through the faces
  * beyond, appending each edge crossing, until the origin; then appends the origin's node. At an
  * edge with several faces beyond it (non-manifold) each is tried in turn, depth first. */
-static bool walk(trace* t, uint32_t e, double xe, const double s_in[2], uint32_t origin, const tg__node* source,
+static bool walk(backtrack* t, uint32_t e, double xe, const double s_in[2], uint32_t origin, const tg__node* source,
                  tg__node* out_origin)
 {
     const tg_geodesic* g = t->g;
@@ -333,7 +333,7 @@ static bool walk(trace* t, uint32_t e, double xe, const double s_in[2], uint32_t
 }
 
 /* Follows the predecessors from node `cur` (reached as `how`) back to the source. */
-static bool trace_back(trace* t, tg__node cur, tg__pred how, const tg__node* source)
+static bool follow_back(backtrack* t, tg__node cur, tg__pred how, const tg__node* source)
 {
     const tg_geodesic* g = t->g;
     const tg__pred* pred = t->field->vertex_pred;
@@ -385,16 +385,16 @@ static bool trace_back(trace* t, tg__node cur, tg__pred how, const tg__node* sou
     return false;
 }
 
-bool tg__trace(const tg_geodesic* g, const tg_allocator* a, const tg__field_run* field, const tg__node* source,
-               const tg__node* target, tg__route* out, bool* out_of_memory)
+bool tg__path_backtrack(const tg_geodesic* g, const tg_allocator* a, const tg__field_run* field,
+                        const tg__node* source, const tg__node* target, tg__route* out, bool* out_of_memory)
 {
-    trace t = {g, a, field, out, 0, false};
+    backtrack t = {g, a, field, out, 0, false};
     out->nodes.count = out->faces.count = 0;
     *out_of_memory = false;
     tg__pred how = field->qpred[0];
     if (target->kind == TG__NODE_VERTEX) how = field->vertex_pred[target->id];
     bool ok = add_node(&t, *target, TG_NONE) &&
-              (tg__node_same(g, target, source) || trace_back(&t, *target, how, source));
+              (tg__node_same(g, target, source) || follow_back(&t, *target, how, source));
     *out_of_memory = t.out_of_memory;
     if (!ok) return false;
     /* target-first -> source-first */

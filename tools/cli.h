@@ -176,6 +176,12 @@ cli_output* cli_output_set_reserve(cli_output_set* s, const char* path);
 int cli_output_set_commit(cli_output_set* s);
 /* Removes every member's temporary (after an error or Ctrl-C); the set is empty after. */
 void cli_output_set_abort(cli_output_set* s);
+/* OBJ polylines (path, trace, isolines, Voronoi boundaries): `v` records of count points (xyz:
+ * 3 * count doubles, shortest decimals); an `l` record of the points first .. first + count - 1
+ * (1-based in the file), the last replaced by the first when closed (a closed polyline ends on
+ * its first vertex). false on a write error. */
+bool cli_obj_vertices(FILE* f, const double* xyz, size_t count);
+bool cli_obj_line(FILE* f, size_t first, size_t count, bool closed);
 /* Does `path` end with `ext` (".json", ".csv", ...; case-insensitive)? The CLI's -o picks the
  * output format by extension. */
 bool cli_ext_is(const char* path, const char* ext);

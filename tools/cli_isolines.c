@@ -72,20 +72,12 @@ void cli_auto_levels(const double* dist, size_t n, size_t count, double* out_lev
 static bool write_obj(FILE* f, const tg_isolines_view* v)
 {
     bool ok = fprintf(f, "# trigeo isolines: %zu levels, %zu polylines\n", v->level_count, v->polyline_count) > 0;
-    for (size_t i = 0; ok && i < v->point_count; ++i)
-        ok = fprintf(f, "v %s %s %s\n", cli_num(v->xyz[3 * i]).s, cli_num(v->xyz[3 * i + 1]).s,
-                     cli_num(v->xyz[3 * i + 2]).s) > 0;
+    ok = ok && cli_obj_vertices(f, v->xyz, v->point_count);
     for (size_t l = 0; ok && l < v->level_count; ++l) {
         ok = fprintf(f, "g level_%zu\n# level %s\n", l, cli_num(v->levels[l]).s) > 0;
-        for (size_t p = v->level_start[l]; ok && p < v->level_start[l + 1]; ++p) {
-            ok = fputc('l', f) != EOF;
-            for (size_t i = v->polyline_start[p]; ok && i < v->polyline_start[p + 1]; ++i) {
-                /* a closed polyline ends on its first vertex (the repeated point is not written twice) */
-                size_t idx = v->polyline_closed[p] && i + 1 == v->polyline_start[p + 1] ? v->polyline_start[p] : i;
-                ok = fprintf(f, " %zu", idx + 1) > 0;
-            }
-            ok = ok && fputc('\n', f) != EOF;
-        }
+        for (size_t p = v->level_start[l]; ok && p < v->level_start[l + 1]; ++p)
+            ok = cli_obj_line(f, v->polyline_start[p], v->polyline_start[p + 1] - v->polyline_start[p],
+                              v->polyline_closed[p]);
     }
     return ok;
 }

@@ -836,3 +836,19 @@ int cli_write_labels(cli_output_set* set, const char* path, const tg_mesh* mesh,
     }
     return CLI_OK;
 }
+
+bool cli_obj_vertices(FILE* f, const double* xyz, size_t count)
+{
+    bool ok = true;
+    for (size_t i = 0; ok && i < count; ++i)
+        ok = fprintf(f, "v %s %s %s\n", cli_num(xyz[3 * i]).s, cli_num(xyz[3 * i + 1]).s, cli_num(xyz[3 * i + 2]).s) > 0;
+    return ok;
+}
+
+bool cli_obj_line(FILE* f, size_t first, size_t count, bool closed)
+{
+    bool ok = fputc('l', f) != EOF;
+    for (size_t i = 0; ok && i < count; ++i)
+        ok = fprintf(f, " %zu", (closed && i + 1 == count ? first : first + i) + 1) > 0;
+    return ok && fputc('\n', f) != EOF;
+}

@@ -192,14 +192,10 @@ static int write_boundaries(cli_output_set* set, const char* path, const tg_voro
     char spec[CLI_SPEC_TEXT_MAX];
     if (!json) {
         ok = fprintf(f, "# trigeo Voronoi boundaries: %zu polylines\n", v.polyline_count) > 0;
-        for (size_t i = 0; ok && i < v.point_count; ++i)
-            ok = fprintf(f, "v %s %s %s\n", cli_num(v.xyz[3 * i]).s, cli_num(v.xyz[3 * i + 1]).s,
-                         cli_num(v.xyz[3 * i + 2]).s) > 0;
-        for (size_t p = 0; ok && p < v.polyline_count; ++p) {
-            ok = fprintf(f, "# cells %u %u\nl", v.polyline_cells[2 * p], v.polyline_cells[2 * p + 1]) > 0;
-            for (size_t i = v.polyline_start[p]; ok && i < v.polyline_start[p + 1]; ++i) ok = fprintf(f, " %zu", i + 1) > 0;
-            ok = ok && fputc('\n', f) != EOF;
-        }
+        ok = ok && cli_obj_vertices(f, v.xyz, v.point_count);
+        for (size_t p = 0; ok && p < v.polyline_count; ++p)
+            ok = fprintf(f, "# cells %u %u\n", v.polyline_cells[2 * p], v.polyline_cells[2 * p + 1]) > 0 &&
+                 cli_obj_line(f, v.polyline_start[p], v.polyline_start[p + 1] - v.polyline_start[p], false);
     } else {
         ok = fprintf(f, "{\"polylines\": [") > 0;
         for (size_t p = 0; ok && p < v.polyline_count; ++p) {

@@ -70,15 +70,8 @@ static bool write_obj(FILE* f, const tg_path_view* v)
 {
     bool ok = fprintf(f, "# trigeo geodesic path: %zu points, length %s, status %s, max angle defect %.3g rad\n",
                       v->point_count, cli_num(v->length).s, tg_path_status_name(v->status), v->max_angle_defect) > 0;
-    for (size_t i = 0; ok && i < v->point_count; ++i)
-        ok = fprintf(f, "v %s %s %s\n", cli_num(v->xyz[3 * i]).s, cli_num(v->xyz[3 * i + 1]).s,
-                     cli_num(v->xyz[3 * i + 2]).s) > 0;
-    if (ok && v->point_count >= 2) {
-        ok = fputc('l', f) != EOF;
-        for (size_t i = 0; ok && i < v->point_count; ++i) ok = fprintf(f, " %zu", i + 1) > 0;
-        ok = ok && fputc('\n', f) != EOF;
-    }
-    return ok;
+    ok = ok && cli_obj_vertices(f, v->xyz, v->point_count);
+    return ok && (v->point_count < 2 || cli_obj_line(f, 0, v->point_count, false));
 }
 
 static void print_summary(FILE* f, tg_path_method method, const tg_path_view* v, const waypoints* w)

@@ -88,11 +88,8 @@ static void print_obj(FILE* f, const tg_trace_view* v)
 {
     fprintf(f, "# trigeo geodesic trace: %zu points, length %s, status %s\n", v->point_count, cli_num(v->end.length).s,
             tg_trace_status_name(v->end.status));
-    for (size_t i = 0; i < v->point_count; ++i)
-        fprintf(f, "v %s %s %s\n", cli_num(v->xyz[3 * i]).s, cli_num(v->xyz[3 * i + 1]).s, cli_num(v->xyz[3 * i + 2]).s);
-    fputs("l", f);
-    for (size_t i = 0; i < v->point_count; ++i) fprintf(f, " %zu", i + 1);
-    fputc('\n', f);
+    cli_obj_vertices(f, v->xyz, v->point_count); /* write errors: checked when the output is committed */
+    cli_obj_line(f, 0, v->point_count, false);
 }
 
 static void print_summary(FILE* f, const tg_trace_view* v)

@@ -309,8 +309,8 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     double t0 = cli_seconds();
     if (st == TG_OK && fa->labels) {
         label = malloc((n ? n : 1) * sizeof *label);
-        st = label ? tg_geodesic_voronoi(geo, NULL, pts, count, &o, label, dist,
-                                                    fa->boundaries ? &bounds : NULL, &stats) : TG_ERR_OUT_OF_MEMORY;
+        st = !label ? TG_ERR_OUT_OF_MEMORY : fa->boundaries ? tg_voronoi_boundaries_create(NULL, &bounds) : TG_OK;
+        if (st == TG_OK) st = tg_geodesic_voronoi(geo, NULL, pts, count, &o, bounds, dist, label, &stats);
     } else if (st == TG_OK && fa->matrix && fa->at_count)
         st = tg_geodesic_distance_matrix_at(geo, pts, count, at_pts, fa->at_count, &o, fa->threads, dist, &stats);
     else if (st == TG_OK && fa->matrix)
@@ -414,7 +414,8 @@ static int run_isolines(const field_args* fa, char** items, const unsigned long 
             st = tg_geodesic_field(geo, NULL, pts, count, &o, dist, NULL);
             if (st == TG_OK) cli_auto_levels(dist, nv, nl, levels);
         }
-        if (st == TG_OK) st = tg_geodesic_isolines(geo, NULL, pts, count, levels, nl, &o, &iso, dist, &stats);
+        if (st == TG_OK) st = tg_isolines_create(NULL, &iso);
+        if (st == TG_OK) st = tg_geodesic_isolines(geo, NULL, pts, count, levels, nl, &o, iso, dist, &stats);
         double secs = cli_seconds() - t0;
         cli_interrupt_polling(false);
         cli_progress_end(&prog);
@@ -480,10 +481,12 @@ static int run_sparse(const field_args* fa, char** items, const unsigned long lo
     cli_progress prog;
     tg_field_stats stats;
     start_work(fa, &o, &prog, &stats);
+    o.limit = TG_FIELD_UNLIMITED; /* the radius is the call's own argument */
     double t0 = cli_seconds();
+    if (st == TG_OK) st = tg_sparse_matrix_create(NULL, &mat);
     if (st == TG_OK)
         st = tg_geodesic_local_matrix(geo, pts, count, fa->max_dist >= 0 ? fa->max_dist : INFINITY, &o, fa->threads,
-                                      &mat, &stats);
+                                      mat, &stats);
     double secs = cli_seconds() - t0;
     cli_interrupt_polling(false);
     cli_progress_end(&prog);

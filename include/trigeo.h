@@ -1154,7 +1154,7 @@ typedef enum tg_trace_status {
 } tg_trace_status;
 
 /** "complete", "boundary", "singular", "step_limit", "stalled"; "unknown" for other values.
- *  Never NULL. */
+ *  Never NULL. (New in 0.4.) */
 TG_API const char* tg_trace_status_name(tg_trace_status status);
 
 /** Options of tg_geodesic_trace and tg_geodesic_trace_batch. NULL or all-zero means defaults. */
@@ -1216,13 +1216,14 @@ typedef struct tg_trace_view {
 } tg_trace_view;
 
 /** Creates an empty trace object. allocator may be NULL (libc). Errors:
- *  TG_ERR_INVALID_ARGUMENT, TG_ERR_OUT_OF_MEMORY. */
+ *  TG_ERR_INVALID_ARGUMENT, TG_ERR_OUT_OF_MEMORY. (New in 0.4.) */
 TG_API tg_status tg_trace_create(const tg_allocator* allocator, tg_trace** out_trace);
 
-/** Frees a trace object. NULL is a no-op. */
+/** Frees a trace object. NULL is a no-op. (New in 0.4.) */
 TG_API void tg_trace_destroy(tg_trace* trace);
 
-/** Fills *out_view with the trace's current content (no points before the first call). O(1). */
+/** Fills *out_view with the trace's current content (no points before the first call). O(1).
+ *  (New in 0.4.) */
 TG_API void tg_trace_get_view(const tg_trace* trace, tg_trace_view* out_view);
 
 /** The exponential map: walks from `start` in `direction` straight across the faces for `length`
@@ -1256,7 +1257,7 @@ TG_API void tg_trace_get_view(const tg_trace* trace, tg_trace_view* out_view);
  *  TG_ERR_CANCELLED (options->progress asked to stop); on error the trace is empty (no points).
  *  Complexity: O(k) in the k faces crossed, a small constant per face (figures in
  *  BENCHMARKS.md), plus the vertices' fans at vertex passages; no allocation once the trace's
- *  buffers hold k points. Thread-safe for distinct trace objects. */
+ *  buffers hold k points. Thread-safe for distinct trace objects. (New in 0.4.) */
 TG_API tg_status tg_geodesic_trace(const tg_geodesic* geodesic, const tg_surface_point* start,
                             const tg_trace_direction* direction, double length, const tg_trace_options* options,
                             tg_trace* trace);
@@ -1272,7 +1273,7 @@ TG_API tg_status tg_geodesic_trace(const tg_geodesic* geodesic, const tg_surface
  *  non-zero count, a negative thread count); out_ends is then untouched. TG_ERR_CANCELLED
  *  (options->progress asked to stop): every walk ends at its next look, out_ends holds the
  *  entries of the traces finished before (each complete) and leaves the others untouched.
- *  Complexity: the sum of the walks', divided among the threads. Thread-safe. */
+ *  Complexity: the sum of the walks', divided among the threads. Thread-safe. (New in 0.4.) */
 TG_API tg_status tg_geodesic_trace_batch(const tg_geodesic* geodesic, const tg_surface_point* starts,
                                   const tg_trace_direction* directions, const double* lengths, size_t count,
                                   const tg_trace_options* options, int threads, tg_trace_end* out_ends);
@@ -1441,7 +1442,7 @@ TG_API tg_status tg_geodesic_field_at(const tg_geodesic* geodesic, tg_geodesic_w
  *  Complexity: the field's, plus O(V) for the angles (BENCHMARKS.md: within 1.2x of the
  *  field's time); memory: the field's plus 24 bytes per window slot and about 40 bytes per
  *  vertex (how each got its distance, the angles, a stack).
- *  Thread-safe as tg_geodesic_field. */
+ *  Thread-safe as tg_geodesic_field. (New in 0.4.) */
 TG_API tg_status tg_geodesic_log_map(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                               const tg_surface_point* source, const double* reference,
                               const tg_field_options* options, double* out_vertex_distance,
@@ -1485,7 +1486,7 @@ TG_API tg_status tg_geodesic_distance_matrix(const tg_geodesic* geodesic, const 
  *  counters summed over the rows) is filled only on success.
  *  Complexity: source_count fields, each only as far as its farthest target, plus the targets'
  *  evaluation, divided among the threads; memory: one workspace's engine scratch per thread. Thread-safe as
- *  tg_geodesic_field. */
+ *  tg_geodesic_field. (New in 0.4.) */
 TG_API tg_status tg_geodesic_distance_matrix_at(const tg_geodesic* geodesic, const tg_surface_point* sources,
                                          size_t source_count, const tg_surface_point* targets, size_t target_count,
                                          const tg_field_options* options, int threads, double* out_matrix,
@@ -1517,13 +1518,15 @@ typedef struct tg_sparse_matrix_view {
     const double* value;       /**< entry_count values (NULL when entry_count is 0) */
 } tg_sparse_matrix_view;
 
-/** Fills *out_view with the matrix's arrays (all zero for a NULL matrix). O(1). Thread-safe. */
+/** Fills *out_view with the matrix's arrays (all zero for a NULL matrix). O(1). Thread-safe.
+ *  (New in 0.4.) */
 TG_API void tg_sparse_matrix_get_view(const tg_sparse_matrix* matrix, tg_sparse_matrix_view* out_view);
 
-/** Bytes owned by the matrix: 8 per row plus 12 per entry, and a header. NULL gives 0. */
+/** Bytes owned by the matrix: 8 per row plus 12 per entry, and a header. NULL gives 0.
+ *  (New in 0.4.) */
 TG_API size_t tg_sparse_matrix_memory_bytes(const tg_sparse_matrix* matrix);
 
-/** Frees a matrix (with the allocator it was made with). NULL is a no-op. */
+/** Frees a matrix (with the allocator it was created with). NULL is a no-op. (New in 0.4.) */
 TG_API void tg_sparse_matrix_destroy(tg_sparse_matrix* matrix);
 
 /** The local distance matrix: row i lists every vertex within max_distance of sources[i] (the
@@ -1562,7 +1565,7 @@ TG_API void tg_sparse_matrix_destroy(tg_sparse_matrix* matrix);
  *  over all vertices per row). Memory: the result (8 bytes per row, 12 per entry), the rows
  *  finished out of order and waiting for earlier ones, and one workspace's engine scratch per
  *  thread; the entries are gathered in blocks and copied into the final arrays block by block,
- *  each block freed once copied. Thread-safe as tg_geodesic_field. */
+ *  each block freed once copied. Thread-safe as tg_geodesic_field. (New in 0.4.) */
 TG_API tg_status tg_geodesic_local_matrix(const tg_geodesic* geodesic, const tg_surface_point* sources, size_t source_count,
                                    double max_distance, const tg_field_options* options, int threads,
                                    tg_sparse_matrix* matrix, tg_field_stats* out_stats);
@@ -1646,10 +1649,10 @@ typedef struct tg_voronoi_boundaries_view {
 
 /** Fills *out_view with the boundaries' current content (all zero for NULL, and no polylines before
  *  the first tg_geodesic_voronoi that asked for them); the view's arrays stay valid until the
- *  object is filled again or destroyed. O(1). Thread-safe. */
+ *  object is filled again or destroyed. O(1). Thread-safe. (New in 0.4.) */
 TG_API void tg_voronoi_boundaries_get_view(const tg_voronoi_boundaries* boundaries,
                                            tg_voronoi_boundaries_view* out_view);
-/** Frees the object (with the allocator it was created with). NULL is a no-op. */
+/** Frees the object (with the allocator it was created with). NULL is a no-op. (New in 0.4.) */
 TG_API void tg_voronoi_boundaries_destroy(tg_voronoi_boundaries* boundaries);
 
 /** Isolines of an exact field: a result object (see "Conventions"), created empty by
@@ -1712,7 +1715,7 @@ TG_API tg_status tg_isolines_create(const tg_allocator* allocator, tg_isolines**
  *  level_count of 0, a negative, NaN or infinite level. On error the isolines object is empty (no
  *  levels), out_vertex_distance and out_stats are untouched, nothing leaks. Complexity: the field's propagation plus, per level, the faces it meets times the
  *  windows recorded there (a run without levels records nothing: plain fields are not slowed).
- *  Thread-safe as tg_geodesic_field. */
+ *  Thread-safe as tg_geodesic_field. (New in 0.4.) */
 TG_API tg_status tg_geodesic_isolines(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                                       const tg_surface_point* sources, size_t source_count, const double* levels,
                                       size_t level_count, const tg_field_options* options,
@@ -1735,9 +1738,9 @@ typedef struct tg_isolines_view {
     const double* xyz;               /**< 3 per point */
 } tg_isolines_view;
 
-/** Fills *out_view (all zero for NULL). O(1). Thread-safe. */
+/** Fills *out_view (all zero for NULL). O(1). Thread-safe. (New in 0.4.) */
 TG_API void tg_isolines_get_view(const tg_isolines* isolines, tg_isolines_view* out_view);
-/** Frees the object (with the allocator it was created with). NULL is a no-op. */
+/** Frees the object (with the allocator it was created with). NULL is a no-op. (New in 0.4.) */
 TG_API void tg_isolines_destroy(tg_isolines* isolines);
 
 /** Farthest-point sampling in exact geodesic distance: sample 0 is start_vertex, and each next
@@ -1764,7 +1767,7 @@ TG_API void tg_isolines_destroy(tg_isolines* isolines);
  *  referenced vertices, start_vertex out of range or unreferenced, a limit, a workspace of
  *  another solver), TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED; on error the outputs are untouched.
  *  Complexity: one run per sample over about its cell, plus O(vertex_count) per sample for the
- *  scan. Thread-safe as tg_geodesic_field. */
+ *  scan. Thread-safe as tg_geodesic_field. (New in 0.4.) */
 TG_API tg_status tg_geodesic_farthest_point_sampling(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                                                      uint32_t start_vertex, uint64_t seed, size_t sample_count,
                                                      const tg_field_options* options, uint32_t* out_samples,

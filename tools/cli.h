@@ -16,6 +16,8 @@ typedef struct cli_command {
     int (*run)(int argc, char** argv); /* argv[0] is the command name */
 } cli_command;
 
+/* ---- messages (cli_report.c) ---- */
+
 /* "trigeo: FILE:LINE: message" (FILE/LINE omitted when unknown) on stderr. */
 void cli_error(const char* file, unsigned long long line, const char* fmt, ...)
 #if defined(__GNUC__)
@@ -24,11 +26,6 @@ void cli_error(const char* file, unsigned long long line, const char* fmt, ...)
     ;
 /* Prints a tg_diag in the CLI error format. */
 void cli_error_diag(const tg_diag* d, tg_status st);
-/* Loads a mesh, printing the error and returning NULL on failure. */
-tg_mesh* cli_load_mesh(const char* path);
-/* The same for commands that compute distances: also refuses coordinates beyond +-1e150, where
- * squared distances overflow double, naming the limit. */
-tg_mesh* cli_load_mesh_for_distances(const char* path);
 /* Usage error: message plus "see trigeo help CMD"; returns CLI_USAGE. */
 int cli_usage(const char* cmd, const char* fmt, ...)
 #if defined(__GNUC__)
@@ -38,8 +35,19 @@ int cli_usage(const char* cmd, const char* fmt, ...)
 /* The last lines of every field-based summary (field, logmap, sample), in one wording:
  * "windows            N created, M propagated" and "seconds            S.SSS", on stdout. */
 void cli_print_work(const tg_field_stats* st, double secs);
-/* Seconds on the monotonic clock (for durations). */
-double cli_seconds(void);
+
+/* ---- the mesh (cli_mesh.c) ---- */
+
+/* The format every later cli_load_mesh reads (--format of the command line; TG_FORMAT_AUTO, the
+ * default: from the file's extension, or the content for standard input). */
+void cli_set_mesh_format(tg_format format);
+/* Loads a mesh, printing the error and returning NULL on failure. */
+tg_mesh* cli_load_mesh(const char* path);
+/* The same for commands that compute distances: also refuses coordinates beyond +-1e150, where
+ * squared distances overflow double, naming the limit. */
+tg_mesh* cli_load_mesh_for_distances(const char* path);
+
+/* ---- surface points (cli_spec.c) ---- */
 
 /* A surface point as written on the command line (cli_spec.c). */
 typedef struct cli_spec {
@@ -290,6 +298,8 @@ void cli_interrupt_install(void);
 void cli_interrupt_polling(bool on);
 bool cli_interrupted(void);
 
+/* Seconds on the monotonic clock (for durations). */
+double cli_seconds(void);
 /* A progress line on stderr, drawn only when it is a terminal, not quiet, and the work has
  * passed about a second. */
 typedef struct cli_progress {

@@ -91,7 +91,9 @@ cases = [
     ("field --from --at", ["field", ico, "--from", "v:0", "--at", at_pts, "-o", o("at.txt")], 1.0),
     ("path --through", ["path", arm, "--through", through, "-o", o("th.obj")], 1.0),
     ("path --from --to", ["path", ico, "--from", "v:0", "--to", "v:3", "-o", o("p.obj")], 1.0),
-    ("path --pairs", ["path", spot, "--pairs", pairs, "-o", o("pairs.csv")], 1.0),
+    ("path --pairs", ["path", spot, "--pairs", pairs, "--threads", "1", "-o", o("pairs.csv")], 1.0),
+    # the pairs shared out among threads: every thread's path hears the signal
+    ("path --pairs --threads 2", ["path", spot, "--pairs", pairs, "--threads", "2", "-o", o("pairs2.csv")], 1.0),
     ("trace", ["trace", arm, "--from", "v:0", "--angle", "0.5", "--length", "1e300", "--max-steps", "1000000000",
                "-o", o("t.obj")], 1.0),
     ("trace --batch", ["trace", arm, "--batch", batch, "--threads", "1", "-o", o("b.csv")], 1.0, 3.0),

@@ -70,11 +70,14 @@ for s in (2.0 ** 330, 2.0 ** -490, 1e100, 1e-100):
         check(list(box) == want, "info at scale %g: bounding box %s, want %s" % (s, box, want))
 
 # ---- thread counts ----
-for args in (["closest", spot, "-", "--threads", "1024"], ["field", spot, "--sources", "-", "-o", os.path.join(tmp, "t.npy"), "--threads", "1024"]):
-    r = run(*args, stdin=b"v:0\n" if args[0] == "field" else b"0 0 0\n")
+for args in (["closest", spot, "-", "--threads", "1024"], ["field", spot, "--sources", "-", "-o", os.path.join(tmp, "t.npy"), "--threads", "1024"],
+             ["path", spot, "--pairs", "-", "--threads", "1024"]):
+    r = run(*args, stdin={"field": b"v:0\n", "path": b"v 0 1\n"}.get(args[0], b"0 0 0\n"))
     check(r.returncode == 1 and b"256" in r.stderr, "%s --threads 1024: exit %d %r" % (args[0], r.returncode, r.stderr))
 r = run("closest", spot, "-", "--threads", "256", stdin=b"0 0 0\n")
 check(r.returncode in (0, 2) and b"Thread creation failed" not in r.stderr, "--threads 256: %d %r" % (r.returncode, r.stderr))
+r = run("path", spot, "--pairs", "-", "--threads", "256", stdin=b"v 0 1\nv 1 2\nv 2 3\n")
+check(r.returncode in (0, 2) and b"Thread creation failed" not in r.stderr, "path --pairs --threads 256: %d %r" % (r.returncode, r.stderr))
 
 # ---- Ctrl-C ----
 # an icosphere subdivided 7 times (328k faces): the exact path between antipodes sweeps it all

@@ -16,6 +16,8 @@ typedef struct cli_command {
     int (*run)(int argc, char** argv); /* argv[0] is the command name */
 } cli_command;
 
+/* ---- messages (cli_report.c) ---- */
+
 /* "trigeo: FILE:LINE: message" (FILE/LINE omitted when unknown) on stderr. */
 void cli_error(const char* file, unsigned long long line, const char* fmt, ...)
 #if defined(__GNUC__)
@@ -24,11 +26,6 @@ void cli_error(const char* file, unsigned long long line, const char* fmt, ...)
     ;
 /* Prints a tg_diag in the CLI error format. */
 void cli_error_diag(const tg_diag* d, tg_status st);
-/* Loads a mesh, printing the error and returning NULL on failure. */
-tg_mesh* cli_load_mesh(const char* path);
-/* The same for commands that compute distances: also refuses coordinates beyond +-1e150, where
- * squared distances overflow double, naming the limit. */
-tg_mesh* cli_load_mesh_for_distances(const char* path);
 /* Usage error: message plus "see trigeo help CMD"; returns CLI_USAGE. */
 int cli_usage(const char* cmd, const char* fmt, ...)
 #if defined(__GNUC__)
@@ -38,8 +35,19 @@ int cli_usage(const char* cmd, const char* fmt, ...)
 /* The last lines of every field-based summary (field, logmap, sample), in one wording:
  * "windows            N created, M propagated" and "seconds            S.SSS", on stdout. */
 void cli_print_work(const tg_field_stats* st, double secs);
-/* Seconds on the monotonic clock (for durations). */
-double cli_seconds(void);
+
+/* ---- the mesh (cli_mesh.c) ---- */
+
+/* The format every later cli_load_mesh reads (--format of the command line; TG_FORMAT_AUTO, the
+ * default: from the file's extension, or the content for standard input). */
+void cli_set_mesh_format(tg_format format);
+/* Loads a mesh, printing the error and returning NULL on failure. */
+tg_mesh* cli_load_mesh(const char* path);
+/* The same for commands that compute distances: also refuses coordinates beyond +-1e150, where
+ * squared distances overflow double, naming the limit. */
+tg_mesh* cli_load_mesh_for_distances(const char* path);
+
+/* ---- surface points (cli_spec.c) ---- */
 
 /* A surface point as written on the command line (cli_spec.c). */
 typedef struct cli_spec {
@@ -187,19 +195,49 @@ bool cli_obj_line(FILE* f, size_t first, size_t count, bool closed);
 bool cli_ext_is(const char* path, const char* ext);
 /* A surface point as JSON: {"kind": ..., ...} (strings: cli_json_string below). */
 void cli_json_point(FILE* f, const tg_surface_point* p);
+
+/* ---- NumPy .npy and .npz (cli_npy.c, cli_npz.c) ---- */
+
+/* The longest .npy header cli_npy_write_header writes, and the most dimensions of a shape. */
+#define CLI_NPY_HEADER_MAX 1024
+#define CLI_NPY_DIMS_MAX 4
+/* The .npy header of an array into out[0..cap): format version 1.0 (magic, version, header
+ * length), the dict {'descr': DESCR, 'fortran_order': False, 'shape': (d0, d1, ...), } padded with
+ * blanks and a newline so that the data starts at a multiple of 64 bytes. descr is a NumPy descr
+ * literal ('<f8', or [('face', '<u4'), ...]); the shape is dims[0..ndim), ndim 0..CLI_NPY_DIMS_MAX
+ * (written as NumPy writes a tuple: (), (n,), (a, b)). Returns the header's length, or 0 when it
+ * does not fit in cap bytes. */
+size_t cli_npy_header(char* out, size_t cap, const char* descr, int ndim, const unsigned long long* dims);
+/* The same header written to f (at most CLI_NPY_HEADER_MAX bytes); false on a write error. */
+bool cli_npy_write_header(FILE* f, const char* descr, int ndim, const unsigned long long* dims);
 /* Writes a float64 array as NumPy .npy: (rows, cols) when matrix, else (cols,). */
 bool cli_write_npy_f64(FILE* f, const double* data, size_t rows, size_t cols, bool matrix);
-/* Writes a .npy header (version 1.0, C order, data aligned to 64 bytes) for `rows` records of the
- * dtype `descr` (a NumPy descr literal: '<f8' or [('face', '<u4'), ...]); shape (rows,). */
-bool cli_write_npy_header(FILE* f, const char* descr, size_t rows);
 /* Is this file content a NumPy .npy file (its magic string)? */
 bool cli_is_npy(const char* data, size_t size);
+/* The header of .npy content, as read by cli_npy_read_header (pointers into the content). */
+typedef struct cli_npy_info {
+    const char* dict;  /* the header dict's text ... */
+    size_t dict_len;   /* ... of this many bytes */
+    size_t data_offset; /* where the data starts */
+    const char* descr; /* the value of 'descr' as written ('<f8', [(...)], ...), in dict */
+    bool fortran_order;
+    const char* shape; /* the value of 'shape' as written, in dict ... */
+    size_t shape_len;  /* ... through its ')' (0 when there is none) */
+    int ndim;          /* the shape's length, -1 when it is not a tuple of at most CLI_NPY_DIMS_MAX integers */
+    unsigned long long dims[CLI_NPY_DIMS_MAX];
+} cli_npy_info;
+/* Reads the framing of .npy content (format version 1.0, 2.0 or 3.0): the magic, the header length
+ * within the content, a dict holding 'descr', 'fortran_order' (True or False) and 'shape'. What the
+ * dtype and shape must be is the caller's to check. false after printing why ("NAME: .npy: ..."). */
+bool cli_npy_read_header(const char* name, const char* data, size_t size, cli_npy_info* out);
 /* The (k, 3) array of a .npy file's content, as k points: float64 or float32 (converted exactly),
  * little- or big-endian ('<f8', '>f8', '<f4', '>f4'), C or Fortran order; every other dtype or
  * shape, a bad header, truncated or excess data, a coordinate not finite or beyond +-1e150 is
- * refused with the file name and the reason (printed). Returns the count, or (size_t)-1 after printing the error;
- * *out is malloc'd (at least one element). */
+ * refused with the file name and the reason (printed). Returns the count, or (size_t)-1 after
+ * printing the error; *out is malloc'd (at least one element). */
 size_t cli_read_npy_points(const char* name, const char* data, size_t size, double** out);
+/* Writes a sparse matrix as the .npz archive scipy.sparse.load_npz reads (cli_npz.c). */
+bool cli_write_npz_csr(FILE* f, const tg_sparse_matrix_view* v);
 
 /* ---- numbers (cli_number.c) ---- */
 
@@ -238,9 +276,6 @@ typedef struct cli_num_text {
     char s[32];
 } cli_num_text;
 cli_num_text cli_num(double x);
-
-/* Writes a sparse matrix as the .npz archive scipy.sparse.load_npz reads (cli_npz.c). */
-bool cli_write_npz_csr(FILE* f, const tg_sparse_matrix_view* v);
 
 /* Voronoi labels (trigeo field --labels, trigeo sample --field): per vertex the index of the nearest
  * source (-1 where none reaches) and its distance, as PLY vertex properties `label` and
@@ -292,6 +327,8 @@ void cli_interrupt_install(void);
 void cli_interrupt_polling(bool on);
 bool cli_interrupted(void);
 
+/* Seconds on the monotonic clock (for durations). */
+double cli_seconds(void);
 /* A progress line on stderr, drawn only when it is a terminal, not quiet, and the work has
  * passed about a second. */
 typedef struct cli_progress {

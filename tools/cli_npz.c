@@ -1,8 +1,9 @@
 /* cli_npz.c - a sparse matrix as the .npz file scipy.sparse.load_npz reads: a zip archive of five
- * NumPy arrays (format 'csr', shape, indptr, indices, data), stored without compression.
+ * NumPy arrays (format 'csr', shape, indptr, indices, data), stored without compression; each
+ * array's .npy header from cli_npy.c.
  * Based on: the .ZIP File Format Specification (PKWARE APPNOTE 6.3.x: local headers, central
- *   directory, Zip64 extra fields and end records, §4.3-4.5); the NPY format version 1.0 (NumPy
- *   Enhancement Proposal 1); SciPy's save_npz layout (the names and dtypes of the five arrays). */
+ *   directory, Zip64 extra fields and end records, §4.3-4.5); SciPy's save_npz layout (the names
+ *   and dtypes of the five arrays). */
 #include "cli.h"
 
 #include <stdint.h>
@@ -80,18 +81,11 @@ static bool entry_stream(npz_entry* e, FILE* f)
     return true;
 }
 
-/* The .npy header (magic, version 1.0, length, dict padded to 64 bytes) of an array. */
-static void npy_header(npz_entry* e, const char* descr, const char* shape)
+/* The entry's .npy header (cli_npy_header) for `ndim` dimensions dims. */
+static bool npy_header(npz_entry* e, const char* descr, int ndim, const unsigned long long* dims)
 {
-    char dict[160];
-    snprintf(dict, sizeof dict, "{'descr': '%s', 'fortran_order': False, 'shape': %s, }", descr, shape);
-    size_t len = strlen(dict), total = 10 + len + 1, pad = (64 - total % 64) % 64, hlen = len + pad + 1;
-    unsigned char pre[10] = {0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0, (unsigned char)(hlen & 0xFF), (unsigned char)(hlen >> 8)};
-    memcpy(e->header, pre, 10);
-    memcpy(e->header + 10, dict, len);
-    memset(e->header + 10 + len, ' ', pad);
-    e->header[10 + len + pad] = '\n';
-    e->header_len = 10 + len + pad + 1;
+    e->header_len = cli_npy_header(e->header, sizeof e->header, descr, ndim, dims);
+    return e->header_len != 0;
 }
 
 /* Every size and offset goes in Zip64 fields (the 32-bit ones say 0xFFFFFFFF), so one layout
@@ -157,10 +151,7 @@ bool cli_write_npz_csr(FILE* f, const tg_sparse_matrix_view* v)
     static const char format[3] = {'c', 's', 'r'};
     uint64_t shape[2] = {v->row_count, v->col_count};
     bool wide = v->col_count > INT32_MAX; /* columns that int32 cannot hold */
-    char shape1[32], shape_rows[32], shape_entries[32];
-    snprintf(shape1, sizeof shape1, "(2,)");
-    snprintf(shape_rows, sizeof shape_rows, "(%llu,)", (unsigned long long)v->row_count + 1);
-    snprintf(shape_entries, sizeof shape_entries, "(%llu,)", (unsigned long long)v->entry_count);
+    const unsigned long long two = 2, rows1 = (unsigned long long)v->row_count + 1, entries = v->entry_count;
     npz_entry e[5] = {
         {"format.npy", {0}, 0, format, 3, 1, put_bytes, 0, 0},
         {"shape.npy", {0}, 0, shape, 2, 8, put_u64, 0, 0},
@@ -168,11 +159,10 @@ bool cli_write_npz_csr(FILE* f, const tg_sparse_matrix_view* v)
         {"indices.npy", {0}, 0, v->col, v->entry_count, wide ? 8 : 4, wide ? put_u32_as_i64 : put_u32_as_i32, 0, 0},
         {"data.npy", {0}, 0, v->value, v->entry_count, 8, put_f64, 0, 0},
     };
-    npy_header(&e[0], "|S3", "()"); /* one 3-byte string, written as 3 single bytes */
-    npy_header(&e[1], "<i8", shape1);
-    npy_header(&e[2], "<i8", shape_rows);
-    npy_header(&e[3], wide ? "<i8" : "<i4", shape_entries);
-    npy_header(&e[4], "<f8", shape_entries);
+    if (!npy_header(&e[0], "'|S3'", 0, NULL) /* one 3-byte string, written as 3 single bytes */
+        || !npy_header(&e[1], "'<i8'", 1, &two) || !npy_header(&e[2], "'<i8'", 1, &rows1)
+        || !npy_header(&e[3], wide ? "'<i8'" : "'<i4'", 1, &entries) || !npy_header(&e[4], "'<f8'", 1, &entries))
+        return false;
     uint64_t at = 0;
     for (int i = 0; i < 5; ++i) {
         if (!entry_stream(&e[i], NULL)) return false; /* the CRC first: it precedes the data */

@@ -135,7 +135,8 @@ static int write_npy(FILE* f, size_t n, const tg_closest_hit* hits, const tg_sig
                                       "('b0', '<f8'), ('b1', '<f8'), ('b2', '<f8'), ('sign', 'i1')]"
                                     : "[('face', '<u4'), ('sqdist', '<f8'), ('cx', '<f8'), ('cy', '<f8'), ('cz', '<f8'), "
                                       "('b0', '<f8'), ('b1', '<f8'), ('b2', '<f8')]";
-    if (!cli_write_npy_header(f, descr, n)) return -1;
+    const unsigned long long rows = n;
+    if (!cli_npy_write_header(f, descr, 1, &rows)) return -1;
     enum { REC_MAX = 4 + 7 * 8 + 1, PER_BLOCK = 4096 };
     const size_t rec = signed_hits ? REC_MAX : REC_MAX - 1;
     unsigned char* buf = malloc(PER_BLOCK * REC_MAX);

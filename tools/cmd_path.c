@@ -1,16 +1,20 @@
 /* cmd_path.c - `trigeo path MESH --from SPEC --to SPEC [-o PATH.obj] [--json] [--method M]`,
  * `trigeo path MESH --through "SPEC;SPEC;..." [--closed]` and
- * `trigeo path MESH --pairs PAIRS [-o OUT.csv] [--method M]`: geodesic paths between surface
- * points (one, or one through waypoints, written as an OBJ polyline or JSON; or a batch, as CSV
- * with timings). */
+ * `trigeo path MESH --pairs PAIRS [-o OUT.csv] [--threads N] [--method M]`: geodesic paths between
+ * surface points (one, or one through waypoints, written as an OBJ polyline or JSON; or a batch,
+ * shared out among threads, as CSV with timings). */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include "cli.h"
 
 #include <errno.h>
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 /* ---- output ---- */
 
@@ -127,7 +131,7 @@ static tg_path_options interruptible(const tg_path_options* o)
 /* Parses one PAIRS line into two surface points: "v SRC TGT" (vertices), "f F0 b0 b1 b2 F1 c0 c1
  * c2" (face points; the older "p" with these nine fields is read the same), "p x0 y0 z0 x1 y1 z1"
  * (positions, located on the surface); false after printing "PAIRS:LINE: message". */
-static bool parse_pair(const char* name, unsigned long long line, char* s, tg_mesh* mesh, tg_bvh** bvh,
+static bool parse_pair(const char* name, unsigned long long line, char* s, tg_mesh* mesh, tg_bvh** bvh, int threads,
                        tg_surface_point* a, tg_surface_point* b)
 {
     char* tok[9];
@@ -168,7 +172,13 @@ static bool parse_pair(const char* name, unsigned long long line, char* s, tg_me
                 return false;
             }
         const char* why = NULL;
-        if (!cli_locate(mesh, bvh, c, a, &why) || !cli_locate(mesh, bvh, c + 3, b, &why)) {
+        /* the BVH on the command's threads, as the paths (--threads 1: this thread only) */
+        tg_bvh_options bo;
+        memset(&bo, 0, sizeof bo);
+        bo.threads = threads;
+        tg_status st = *bvh || tg_mesh_face_count(mesh) == 0 ? TG_OK : tg_bvh_create(mesh, &bo, bvh);
+        if (st != TG_OK) why = tg_status_string(st);
+        if (st != TG_OK || !cli_locate(mesh, bvh, c, a, &why) || !cli_locate(mesh, bvh, c + 3, b, &why)) {
             cli_error(name, line, "cannot locate the positions on the surface: %s", why);
             return false;
         }
@@ -200,9 +210,10 @@ typedef struct pair_in {
     unsigned long long line;
 } pair_in;
 
-/* Reads and validates every pair (a leading BOM, blank lines and '#' comments skipped); returns
- * the count, or -1 after printing "PAIRS:LINE: message". */
-static long read_pairs(const char* pairs_path, tg_mesh* mesh, tg_bvh** bvh, pair_in** out)
+/* Reads and validates every pair (a leading BOM, blank lines and '#' comments skipped; the BVH
+ * that locates positions built on the first "p" pair, on `threads` threads); returns the count,
+ * or -1 after printing "PAIRS:LINE: message". */
+static long read_pairs(const char* pairs_path, tg_mesh* mesh, tg_bvh** bvh, int threads, pair_in** out)
 {
     char* all = cli_read_text(pairs_path, "pairs file", NULL);
     if (!all) return -1;
@@ -216,7 +227,7 @@ static long read_pairs(const char* pairs_path, tg_mesh* mesh, tg_bvh** bvh, pair
         const char* p = text + strspn(text, " \t\r");
         if (!*p || *p == '#') continue;
         if ((oom = !cli_grow((void**)&pairs, &cap, n + 1, sizeof *pairs))) break;
-        if (!parse_pair(pairs_path, lineno, text, mesh, bvh, &pairs[n].a, &pairs[n].b)) goto done;
+        if (!parse_pair(pairs_path, lineno, text, mesh, bvh, threads, &pairs[n].a, &pairs[n].b)) goto done;
         pairs[n++].line = lineno;
     }
     if (oom) /* (a file of exactly 256, 512, ... pairs was once refused here too) */
@@ -230,24 +241,104 @@ done:
     return result;
 }
 
-static int run_pairs(const char* mesh_path, const char* pairs_path, const char* out_path, const tg_path_options* o)
+/* One pair's row of the CSV, kept until the rows before it are written (the pairs finish in any
+ * order on several threads; the rows go out in input order). */
+typedef struct pair_out {
+    double length, max_angle_defect, microseconds;
+    size_t point_count;
+    tg_path_status status;
+    tg_path_global global;
+    bool done;
+} pair_out;
+
+/* The batch shared by the threads: the pairs, their rows, the output, and the first pair that
+ * failed (n when none): pairs after it are skipped, the ones before it still computed and
+ * written, so that the rows written and the pair named by the error are the serial run's. */
+typedef struct pairs_batch {
+    const tg_geodesic* geo;
+    const pair_in* pairs;
+    long n;
+    tg_path_options options;
+    pair_out* out;
+    FILE* f;
+    long written;      /* rows written, in input order (under the lock) */
+    atomic_long stop;  /* the lowest failing pair, n when none */
+    tg_status* status; /* per pair, the error of a failing one */
+#ifdef _OPENMP
+    omp_lock_t lock; /* held while a row is stored and the rows ready are written */
+#endif
+} pairs_batch;
+
+/* Writes the rows finished in a row from b->written on (called under b->lock). */
+static void write_ready_rows(pairs_batch* b)
+{
+    long stop = atomic_load(&b->stop);
+    for (; b->written < stop && b->out[b->written].done; ++b->written) {
+        const pair_out* r = &b->out[b->written];
+        fprintf(b->f, "%ld,%s,%zu,%s,%s,%.3f,%s\n", b->written, cli_num(r->length).s, r->point_count,
+                tg_path_status_name(r->status), cli_num(r->max_angle_defect).s, r->microseconds,
+                tg_path_global_name(r->global));
+    }
+}
+
+/* Pair i on the calling thread's workspace and path; a failure lowers b->stop to i. */
+static void compute_pair(pairs_batch* b, long i, tg_geodesic_workspace* ws, tg_path* path)
+{
+    double t0 = cli_seconds();
+    tg_status st = cli_interrupted() ? TG_ERR_CANCELLED
+                                     : tg_geodesic_path(b->geo, ws, &b->pairs[i].a, &b->pairs[i].b, &b->options, path);
+    double us = 1e6 * (cli_seconds() - t0);
+    if (st != TG_OK) {
+        b->status[i] = st;
+        for (long s = atomic_load(&b->stop); i < s && !atomic_compare_exchange_weak(&b->stop, &s, i);) {
+        }
+        return;
+    }
+    tg_path_view v;
+    tg_path_get_view(path, &v);
+#ifdef _OPENMP
+    omp_set_lock(&b->lock);
+#endif
+    b->out[i] = (pair_out){v.length, v.max_angle_defect, us, v.point_count, v.status, v.global, true};
+    write_ready_rows(b);
+#ifdef _OPENMP
+    omp_unset_lock(&b->lock);
+#endif
+}
+
+static int run_pairs(const char* mesh_path, const char* pairs_path, const char* out_path, const tg_path_options* o,
+                     int threads)
 {
     int rc = CLI_INPUT;
     tg_geodesic* geo = NULL;
-    tg_geodesic_workspace* ws = NULL;
-    tg_path* path = NULL;
+    tg_geodesic_workspace** ws = NULL;
+    tg_path** path = NULL;
     pair_in* pairs = NULL;
+    pairs_batch b;
+    memset(&b, 0, sizeof b);
     tg_bvh* bvh = NULL; /* for "p" position pairs, built on first use */
     cli_output out;
     bool opened = false;
+    int nt = 1; /* threads: --threads, 0 the OpenMP default (one per core), at most one per pair */
+#ifdef _OPENMP
+    nt = threads > 0 ? threads : omp_get_max_threads();
+#endif
     tg_mesh* mesh = cli_load_mesh_for_distances(mesh_path);
     if (!mesh) goto done;
     /* every pair is checked before any output exists */
-    long n = read_pairs(pairs_path, mesh, &bvh, &pairs);
+    long n = read_pairs(pairs_path, mesh, &bvh, threads, &pairs);
     if (n < 0) goto done;
-    tg_status st = tg_geodesic_create(mesh, NULL, &geo);
-    if (st == TG_OK) st = tg_geodesic_workspace_create(geo, &ws);
-    if (st == TG_OK) st = tg_path_create(NULL, &path);
+    if (nt > n) nt = n > 0 ? (int)n : 1;
+    b.out = calloc((size_t)(n ? n : 1), sizeof *b.out); /* none done */
+    b.status = malloc((size_t)(n ? n : 1) * sizeof *b.status);
+    ws = calloc((size_t)nt, sizeof *ws);
+    path = calloc((size_t)nt, sizeof *path);
+    tg_status st = b.out && b.status && ws && path ? TG_OK : TG_ERR_OUT_OF_MEMORY;
+    if (st == TG_OK) st = tg_geodesic_create(mesh, NULL, &geo);
+    for (int t = 0; t < nt && st == TG_OK; ++t) {
+        st = tg_geodesic_workspace_create(geo, &ws[t]);
+        if (st == TG_OK) st = tg_path_create(NULL, &path[t]);
+    }
     if (st != TG_OK) {
         cli_error(mesh_path, 0, "%s", tg_status_string(st));
         goto done;
@@ -256,25 +347,34 @@ static int run_pairs(const char* mesh_path, const char* pairs_path, const char* 
     if (!f) goto done;
     opened = true;
     fprintf(f, "i,length,points,status,max_angle_defect,microseconds,global\n");
-    tg_path_options oi = interruptible(o);
+    b.geo = geo, b.pairs = pairs, b.n = n, b.options = interruptible(o), b.f = f;
+    atomic_init(&b.stop, n);
     cli_interrupt_polling(true);
-    for (long i = 0; i < n; ++i) {
-        double t0 = cli_seconds();
-        st = cli_interrupted() ? TG_ERR_CANCELLED : tg_geodesic_path(geo, ws, &pairs[i].a, &pairs[i].b, &oi, path);
-        double us = 1e6 * (cli_seconds() - t0);
-        if (st == TG_ERR_CANCELLED) {
-            cli_error(pairs_path, pairs[i].line, "interrupted: nothing written");
-            rc = 130;
-            goto done;
-        }
-        if (st != TG_OK) {
-            cli_error(pairs_path, pairs[i].line, "%s", tg_status_string(st));
-            goto done;
-        }
-        tg_path_view v;
-        tg_path_get_view(path, &v);
-        fprintf(f, "%ld,%s,%zu,%s,%s,%.3f,%s\n", i, cli_num(v.length).s, v.point_count, tg_path_status_name(v.status),
-                cli_num(v.max_angle_defect).s, us, tg_path_global_name(v.global));
+#ifdef _OPENMP
+    omp_init_lock(&b.lock);
+#pragma omp parallel num_threads(nt)
+#endif
+    {
+        int t = 0;
+#ifdef _OPENMP
+        t = omp_get_thread_num();
+#pragma omp for schedule(dynamic, 1)
+#endif
+        for (long i = 0; i < n; ++i)
+            if (i < atomic_load(&b.stop)) compute_pair(&b, i, ws[t], path[t]);
+    }
+#ifdef _OPENMP
+    omp_destroy_lock(&b.lock);
+#endif
+    long stop = atomic_load(&b.stop);
+    if (stop < n && b.status[stop] == TG_ERR_CANCELLED) {
+        cli_error(pairs_path, pairs[stop].line, "interrupted: nothing written");
+        rc = 130;
+        goto done;
+    }
+    if (stop < n) {
+        cli_error(pairs_path, pairs[stop].line, "%s", tg_status_string(b.status[stop]));
+        goto done;
     }
     cli_interrupt_polling(false);
     opened = false;
@@ -283,9 +383,13 @@ done:
     cli_interrupt_polling(false);
     if (opened) cli_output_abort(&out);
     free(pairs);
+    free(b.out);
+    free(b.status);
     tg_bvh_destroy(bvh);
-    tg_path_destroy(path);
-    tg_geodesic_workspace_destroy(ws);
+    for (int t = 0; path && t < nt; ++t) tg_path_destroy(path[t]);
+    for (int t = 0; ws && t < nt; ++t) tg_geodesic_workspace_destroy(ws[t]);
+    free(path);
+    free(ws);
     tg_geodesic_destroy(geo);
     tg_mesh_destroy(mesh);
     return rc;
@@ -370,14 +474,14 @@ done:
 static int run(int argc, char** argv)
 {
     const char *mesh_path = NULL, *from = NULL, *to = NULL, *pairs = NULL, *out_path = NULL, *method = NULL;
-    const char* through = NULL;
+    const char *through = NULL, *threads = NULL;
     bool json = false, certify = false, closed = false;
     tg_path_options o;
     memset(&o, 0, sizeof o);
     for (int i = 1; i < argc; ++i) {
         const char* a = argv[i];
         if (!strcmp(a, "--from") || !strcmp(a, "--to") || !strcmp(a, "--pairs") || !strcmp(a, "-o") ||
-            !strcmp(a, "--method") || !strcmp(a, "--through")) {
+            !strcmp(a, "--method") || !strcmp(a, "--through") || !strcmp(a, "--threads")) {
             if (i + 1 >= argc) return cli_usage("path", "%s needs a value", a);
             const char* val = argv[++i];
             if (!strcmp(a, "--from"))
@@ -390,6 +494,8 @@ static int run(int argc, char** argv)
                 out_path = val;
             else if (!strcmp(a, "--through"))
                 through = val;
+            else if (!strcmp(a, "--threads"))
+                threads = val;
             else
                 method = val;
         } else if (!strcmp(a, "--json")) {
@@ -431,12 +537,17 @@ static int run(int argc, char** argv)
     if (pairs) {
         if (from || to) return cli_usage("path", "--pairs excludes --from and --to");
         if (json) return cli_usage("path", "--json applies to a single path (--from/--to)");
+        unsigned long long nt = 0;
+        if (threads && (!cli_parse_uint(threads, &nt) || nt > TG_MAX_THREADS))
+            return cli_usage("path", "--threads needs a number in 0..%d (0 = all cores), not '%s'", TG_MAX_THREADS, threads);
         int rc = cli_check_outputs(outputs, 1, inputs, 2);
         if (rc != CLI_OK) return rc;
         if (out_path && strcmp(out_path, "-") && !cli_ext_is(out_path, ".csv"))
             return cli_usage("path", "--pairs writes CSV: -o OUT.csv ('-': stdout), not '%s'", out_path);
-        return run_pairs(mesh_path, pairs, out_path, &o);
+        if (!cli_threads_available((int)nt, "path")) return CLI_INPUT;
+        return run_pairs(mesh_path, pairs, out_path, &o, (int)nt);
     }
+    if (threads) return cli_usage("path", "--threads applies to --pairs");
     if (!through && (!from || !to)) return cli_usage("path", "missing %s (or --pairs FILE)", from ? "--to" : "--from");
     if (out_path && !cli_ext_is(out_path, ".obj") && !cli_ext_is(out_path, ".json"))
         return cli_usage("path", "-o takes PATH.obj (the polyline) or PATH.json (the whole answer)");
@@ -458,7 +569,7 @@ static int run(int argc, char** argv)
 const cli_command cli_cmd_path = {
     "path",
     "path MESH ((--from SPEC --to SPEC | --through \"SPEC;SPEC;...\" [--closed]) [-o PATH.obj|.json] [--json] |\n"
-    "       --pairs PAIRS [-o OUT.csv]) [--method M] [--certify]",
+    "       --pairs PAIRS [-o OUT.csv] [--threads N]) [--method M] [--certify]",
     "Geodesic paths on the surface between any two surface points (never snapped to a vertex): by\n"
     "default the globally shortest path, proven by an exact window propagation; or, faster, the\n"
     "shortest edge path (A*) with the endpoints inserted virtually, then shortened.\n\n"
@@ -479,6 +590,9 @@ const cli_command cli_cmd_path = {
     "                           \"p x0 y0 z0 x1 y1 z1\" (the surface points closest to two positions);\n"
     "                           CSV i,length,points,status,max_angle_defect,microseconds,global to\n"
     "                           stdout or -o OUT.csv (only .csv; '-' reads PAIRS from stdin)\n"
+    "  --threads N              with --pairs: the pairs shared out among N threads, at most 256 (0:\n"
+    "                           one per core, the default); the rows in input order, each the same\n"
+    "                           for any N (but its microseconds)\n"
     "  --method M               exact (default: the globally shortest path, proven: an exact window\n"
     "                           propagation from the source ordered toward the target (A*) and\n"
     "                           bounded by the best distance to it found so far, traced back from\n"

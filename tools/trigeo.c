@@ -1,11 +1,8 @@
-/* trigeo.c - the trigeo command-line tool: dispatch, help, shared helpers.
+/* trigeo.c - the trigeo command-line tool: the command table, help and dispatch; main.
  * Based on: the CLI contract of the project's DESIGN.md (commands, exit codes, error format). */
 #include "cli.h"
 
 #include <errno.h>
-#include <math.h>
-#include <stdarg.h>
-#include <stdlib.h>
 #include <string.h>
 #ifdef _OPENMP
 #include <omp.h>
@@ -22,94 +19,6 @@ static const cli_command* const commands[] = {
     &cli_cmd_sample,
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
-
-void cli_error(const char* file, unsigned long long line, const char* fmt, ...)
-{
-    va_list ap;
-    fputs("trigeo: ", stderr);
-    if (file && *file) {
-        if (line)
-            fprintf(stderr, "%s:%llu: ", file, line);
-        else
-            fprintf(stderr, "%s: ", file);
-    }
-    va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
-    va_end(ap);
-    fputc('\n', stderr);
-}
-
-void cli_error_diag(const tg_diag* d, tg_status st)
-{
-    if (d->message[0]) {
-        if (!d->line && d->byte_offset)
-            cli_error(d->file, 0, "byte %llu: %s", (unsigned long long)d->byte_offset, d->message);
-        else
-            cli_error(d->file, d->line, "%s", d->message);
-    } else {
-        cli_error(d->file, d->line, "%s", tg_status_string(st));
-    }
-}
-
-/* --format of the command line (any command): the mesh's format instead of its extension. */
-static tg_format mesh_format = TG_FORMAT_AUTO;
-
-tg_mesh* cli_load_mesh(const char* path)
-{
-    tg_diag diag;
-    tg_mesh* mesh = NULL;
-    tg_status st;
-    if (!strcmp(path, "-")) {
-        size_t n = 0;
-        char* data = cli_read_all("-", &n);
-        if (!data) return NULL;
-        st = tg_mesh_load_memory(data, n, "-", mesh_format, NULL, &diag, &mesh);
-        free(data);
-    } else {
-        st = tg_mesh_load(path, mesh_format, NULL, &diag, &mesh);
-    }
-    if (st != TG_OK) {
-        cli_error_diag(&diag, st);
-        return NULL;
-    }
-    if (diag.message[0]) cli_error_diag(&diag, st); /* a warning: something the reader tolerated */
-    return mesh;
-}
-
-tg_mesh* cli_load_mesh_for_distances(const char* path)
-{
-    tg_mesh* m = cli_load_mesh(path);
-    if (!m) return NULL;
-    const tg_mesh_report* r = tg_mesh_get_report(m);
-    for (int k = 0; k < 3; ++k)
-        if (tg_mesh_vertex_count(m) && !(r->bbox_min[k] >= -1e150 && r->bbox_max[k] <= 1e150)) {
-            cli_error(path, 0,
-                      "coordinates reach %s, beyond the supported range of +-1e150 for distances (squared "
-                      "distances would overflow): rescale the mesh",
-                      cli_num(fabs(r->bbox_min[k]) > fabs(r->bbox_max[k]) ? r->bbox_min[k] : r->bbox_max[k]).s);
-            tg_mesh_destroy(m);
-            return NULL;
-        }
-    return m;
-}
-
-int cli_usage(const char* cmd, const char* fmt, ...)
-{
-    va_list ap;
-    fputs("trigeo: ", stderr);
-    va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
-    va_end(ap);
-    fprintf(stderr, "\n(see 'trigeo help %s')\n", cmd ? cmd : "");
-    return CLI_USAGE;
-}
-
-void cli_print_work(const tg_field_stats* st, double secs)
-{
-    printf("windows            %llu created, %llu propagated\n", (unsigned long long)st->windows_created,
-           (unsigned long long)st->windows_propagated);
-    printf("seconds            %.3f\n", secs);
-}
 
 static void print_overview(FILE* f)
 {
@@ -143,8 +52,6 @@ static void print_command_names(FILE* f)
 
 static int dispatch(int argc, char** argv);
 
-/* Every exit goes through here: output that could not be written (a full disk, /dev/full, a
- * closed pipe) is an error, exit 2, never a silent success. */
 /* Ends the OpenMP runtime's worker threads (the batch commands start them) before main returns:
  * the runtime joins them only in its library destructor, after the exit-time leak check of a
  * sanitizer build, whose tracer crashed now and then on a worker still parked in the runtime
@@ -156,6 +63,8 @@ static void release_threads(void)
 #endif
 }
 
+/* Every exit goes through here: output that could not be written (a full disk, /dev/full, a
+ * closed pipe) is an error, exit 2, never a silent success. */
 int main(int argc, char** argv)
 {
     int rc = dispatch(argc, argv);
@@ -219,7 +128,7 @@ static int dispatch(int argc, char** argv)
         int k = 0;
         while (i + 1 < argc && k < 4 && strcmp(argv[i + 1], names[k])) ++k;
         if (i + 1 >= argc || k == 4) return cli_usage(cmd, "--format takes obj, off, ply or stl");
-        mesh_format = formats[k];
+        cli_set_mesh_format(formats[k]);
         for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
         argc -= 2;
         --i;

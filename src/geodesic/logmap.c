@@ -4,7 +4,7 @@
  *   1987, §3 (a window holds the unfolded image of its source, so the shortest path to any point
  *   it lights is the straight segment from that image, and its direction at the source is the
  *   segment's direction carried back through the unfolding: field/logmap_record.h); the field engine
- *   (field.h, after Qin et al. 2016) runs unchanged, with one record per window of the source;
+ *   (field/engine.h, after Qin et al. 2016) runs unchanged, with one record per window of the source;
  *   N. Sharp, Y. Soliman and K. Crane, "The vector heat method", ACM TOG 38(3), 2019, §5.3 and
  *   geometry-central's vertex tangent spaces (angles at a vertex scaled so the turn is 2 pi, pi
  *   at a boundary vertex), the conventions of TG_TRACE_ANGLE (walk.c).
@@ -17,6 +17,8 @@
  *   - along an edge from the source vertex: the edge's direction around the vertex;
  *   - through another vertex w (along an edge, inside a face, or by a window whose origin is w,
  *     a pseudo-source): w's angle, since the path leaves the source as w's does. */
+#include "geodesic/field/logmap_record.h"
+#include "geodesic/field/scratch.h"
 #include "geodesic/tangent.h"
 #include "geodesic/workspace.h"
 

@@ -2,12 +2,13 @@
  * dense matrix (sources x vertices), the sparse local matrix (every vertex within a radius of each
  * source, compressed sparse rows) and the matrix between sources and selected surface points
  * (each row's field stopped once its points are settled).
- * Based on: the exact engine of field.h (Qin et al. 2016), whose run bounded by a distance
+ * Based on: the exact engine of field/engine.h (Qin et al. 2016), whose run bounded by a distance
  *   explores only the disc within it and notes every vertex it wrote, so a row of the local
  *   matrix costs its disc, not the mesh; compressed sparse rows (W. F. Tinney and J. W. Walker,
  *   "Direct solutions of sparse network equations by optimally ordered triangular
  *   factorization", Proc. IEEE 55(11), 1967; the layout SciPy's csr_matrix reads). */
-#include "geodesic/field/field.h"
+#include "geodesic/field.h"
+#include "geodesic/field/scratch.h"
 
 #include <stdlib.h>
 #include <string.h>

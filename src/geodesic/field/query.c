@@ -1,4 +1,4 @@
-/* field_query.c - queries on an exact field: the geodesic distance at arbitrary surface points
+/* query.c - queries on an exact field: the geodesic distance at arbitrary surface points
  * (inside faces, on edges), evaluated while the windows cross the faces that hold them.
  * Based on: J. S. B. Mitchell, D. M. Mount and C. H. Papadimitriou, "The discrete geodesic
  *   problem", SIAM J. Comput. 16(4), 1987, §4 (the distance at a point of a face is the least over
@@ -10,7 +10,9 @@
  * window only where another path is shorter at x, and the window that is shortest at x survives
  * them, so it is evaluated at P when its list crosses f. Windows are evaluated before the cuts of
  * one angle, one split (which concern points beyond f). */
-#include "geodesic/field/field.h"
+#include "geodesic/field/query.h"
+
+#include "geodesic/field/scratch.h"
 
 #include <stdlib.h>
 #include <string.h>

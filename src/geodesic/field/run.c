@@ -4,7 +4,12 @@
  *   triangle-oriented wavefront propagation", ACM TOG 35(4), 2016; P. E. Hart, N. J. Nilsson and
  *   B. Raphael, "A formal basis for the heuristic determination of minimum cost paths", 1968 (the
  *   front ordered by distance plus an admissible bound of the rest, toward one point). */
-#include "geodesic/field/field.h"
+#include "geodesic/field/run.h"
+
+#include "geodesic/field/propagate.h"
+#include "geodesic/field/query.h"
+#include "geodesic/field/record.h"
+#include "geodesic/field/scratch.h"
 
 #include <string.h>
 

@@ -119,8 +119,9 @@ static tg_status evaluate_round(tg__nearest* nf, tg__field_scratch* fs, const tg
         /* the caller's progress inside long runs and between short ones: a round of many
          * sources' short runs can take seconds (5000 sources on igl_armadillo: about 1 s) */
         bool progress = nf->options && nf->options->progress;
-        tg__field_query q = {&sources[s], 1, pts, m, INFINITY, progress ? tg__nearest_report : NULL, nf, NULL, false,
-                             NULL, false, bound, NULL, NULL, 0};
+        tg__field_query q = {.sources = &sources[s], .source_count = 1, .points = pts, .point_count = m,
+                             .max_distance = INFINITY, .progress = progress ? tg__nearest_report : NULL,
+                             .progress_user = nf, .bound = bound};
         tg__field_run run;
         tg_status st = tg__field_execute(fs, &q, &run);
         if (st == TG_OK) st = tg__nearest_poll(nf);

@@ -85,10 +85,12 @@ tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* ws, 
     tg_geodesic_workspace* own;
     st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
     if (st != TG_OK) return st;
-    tg__field_query q = {sources, source_count, points, point_count, tg__field_limit(g, options),
-                         options && options->progress ? tg__field_report_single : NULL, (void*)options, NULL, false, NULL,
+    tg__field_query q = {.sources = sources, .source_count = source_count, .points = points,
+                         .point_count = point_count, .max_distance = tg__field_limit(g, options),
+                         .progress = options && options->progress ? tg__field_report_single : NULL,
+                         .progress_user = (void*)options,
                          /* only the points wanted: the run stops once they are settled */
-                         point_count > 0 && !out_vertex_distance, NULL, NULL, NULL, 0};
+                         .stop_at_points = point_count > 0 && !out_vertex_distance};
     tg__field_run run;
     st = tg__field_execute(&ws->field, &q, &run);
     if (st == TG_OK) {

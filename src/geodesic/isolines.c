@@ -1313,8 +1313,9 @@ static tg_status isolines_of(const tg_geodesic* g, tg__field_scratch* fs, const 
         for (size_t i = 0; i < nl; ++i) sorted[i] = levels[i] * g->scale;
         qsort(sorted, nl, sizeof *sorted, tg__cmp_double);
         bool progress = options && options->progress;
-        tg__field_query q = {sources, source_count, NULL, 0, limit, progress ? tg__field_report_single : NULL, (void*)options,
-                             NULL, false, NULL, false, NULL, NULL, sorted, nl};
+        tg__field_query q = {.sources = sources, .source_count = source_count, .max_distance = limit,
+                             .progress = progress ? tg__field_report_single : NULL, .progress_user = (void*)options,
+                             .record_levels = sorted, .record_level_count = nl};
         status = tg__field_execute(fs, &q, &run);
     }
     if (status == TG_OK) {

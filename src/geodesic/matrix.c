@@ -220,17 +220,10 @@ static void row_done(batch* b)
  * every row (such as stopping once the targets are settled) is set here and nowhere else. */
 static tg__field_query row_query(batch* b, worker* w, const tg_surface_point* source)
 {
-    tg__field_query q;
-    memset(&q, 0, sizeof q);
-    q.sources = source;
-    q.source_count = 1;
-    q.points = b->targets;
-    q.point_count = b->target_count;
-    q.max_distance = b->limit;
-    q.progress = b->opt && b->opt->progress ? report_row : NULL;
-    q.progress_user = w;
-    q.cancel = &b->stop;
-    q.stop_at_points = b->target_count > 0;
+    tg__field_query q = {.sources = source, .source_count = 1, .points = b->targets,
+                         .point_count = b->target_count, .max_distance = b->limit,
+                         .progress = b->opt && b->opt->progress ? report_row : NULL, .progress_user = w,
+                         .cancel = &b->stop, .stop_at_points = b->target_count > 0};
     return q;
 }
 

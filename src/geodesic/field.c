@@ -71,6 +71,29 @@ void tg__field_stats_add(tg_field_stats* sum, const tg_field_stats* s)
     if (s->peak_bytes > sum->peak_bytes) sum->peak_bytes = s->peak_bytes;
 }
 
+/* ---- the caller's points in the solver's form ---- */
+
+void tg__field_points_in(const tg_geodesic* g, const tg_surface_point* points, size_t n, tg_surface_point* out)
+{
+    for (size_t i = 0; i < n; ++i) out[i] = tg__surface_in(g, &points[i]);
+}
+
+bool tg__field_points_in_workspace(tg_geodesic_workspace* ws, const tg_surface_point* sources, size_t source_count,
+                                   const tg_surface_point* points, size_t point_count,
+                                   const tg_surface_point** out_sources, const tg_surface_point** out_points)
+{
+    *out_sources = *out_points = NULL;
+    size_t n = source_count + point_count; /* two arrays the caller holds: no overflow */
+    if (!n) return true;
+    if (!tg__vec_fit(&ws->allocator, &ws->field_points, n)) return false;
+    tg_surface_point* in = ws->field_points.data;
+    tg__field_points_in(ws->geo, sources, source_count, in);
+    tg__field_points_in(ws->geo, points, point_count, in + source_count);
+    *out_sources = source_count ? in : NULL;
+    *out_points = point_count ? in + source_count : NULL;
+    return true;
+}
+
 /* ---- the entry points ---- */
 
 tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
@@ -85,7 +108,12 @@ tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* ws, 
     tg_geodesic_workspace* own;
     st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
     if (st != TG_OK) return st;
-    tg__field_query q = {.sources = sources, .source_count = source_count, .points = points,
+    const tg_surface_point *in_sources, *in_points;
+    if (!tg__field_points_in_workspace(ws, sources, source_count, points, point_count, &in_sources, &in_points)) {
+        tg__workspace_release(own);
+        return TG_ERR_OUT_OF_MEMORY;
+    }
+    tg__field_query q = {.sources = in_sources, .source_count = source_count, .points = in_points,
                          .point_count = point_count, .max_distance = tg__field_limit(g, options),
                          .progress = options && options->progress ? tg__field_report_single : NULL,
                          .progress_user = (void*)options,

@@ -17,6 +17,19 @@ tg_status tg__field_check(const tg_geodesic* g, const tg_surface_point* points, 
 /* The options' distance limit in the solver's frame (solver.h: distances enter times scale). */
 double tg__field_limit(const tg_geodesic* g, const tg_field_options* opt);
 
+/* ---- the caller's points in the solver's form ---- */
+
+/* The solver's form (tg__surface_in: canonical, the solver's numbering and winding) of n valid
+ * points of the caller, into out[0 .. n): the one conversion of a query's points, made where
+ * they enter (a tg__field_query carries no other form). */
+void tg__field_points_in(const tg_geodesic* g, const tg_surface_point* points, size_t n, tg_surface_point* out);
+/* The same for one query's sources and points, into the workspace's buffer (it grows to the
+ * largest query and is kept, so a call given a workspace allocates nothing after its first):
+ * *out_sources, *out_points (NULL for none). false when out of memory. */
+bool tg__field_points_in_workspace(tg_geodesic_workspace* ws, const tg_surface_point* sources, size_t source_count,
+                                   const tg_surface_point* points, size_t point_count,
+                                   const tg_surface_point** out_sources, const tg_surface_point** out_points);
+
 /* ---- the public figures ---- */
 
 /* A run's progress as tg_field_progress tells it for a single field: the front in the mesh's

@@ -278,7 +278,7 @@ tg_status tg_geodesic_log_map(const tg_geodesic* g, tg_geodesic_workspace* ws, c
     if (st == TG_OK) st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
     if (st == TG_OK && !tg__field_grow(&ws->field, &ws->field.lm_theta, nv)) st = TG_ERR_OUT_OF_MEMORY;
     if (st == TG_OK) {
-        tg__field_query q = {.sources = source, .source_count = 1, .max_distance = tg__field_limit(g, options),
+        tg__field_query q = {.sources = &sp, .source_count = 1, .max_distance = tg__field_limit(g, options),
                              .progress = options && options->progress ? tg__field_report_single : NULL,
                              .progress_user = (void*)options, .trace = true, .logmap = &s.lm};
         tg__field_run run;

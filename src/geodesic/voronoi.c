@@ -46,7 +46,8 @@ tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surfa
 {
     bool progress = nf->options && nf->options->progress;
     /* the first source alone is a plain field; later ones only where they beat the earlier */
-    tg__field_query q = {.sources = src, .source_count = 1, .max_distance = nf->max_dist,
+    tg_surface_point in = tg__surface_in(nf->g, src); /* the solver's form, once (field.h) */
+    tg__field_query q = {.sources = &in, .source_count = 1, .max_distance = nf->max_dist,
                          .progress = progress ? tg__nearest_report : NULL, .progress_user = nf,
                          .bound = nf->added ? nf->dist : NULL};
     tg__field_run run;

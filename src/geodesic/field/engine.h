@@ -165,7 +165,10 @@ struct tg__field_run;
 
 /* One run's question: everything a run is told, validated by the caller. */
 typedef struct tg__field_query {
-    const tg_surface_point* sources; /* valid points, the caller's numbering */
+    /* sources and points in the solver's form (tg__surface_in: canonical, the solver's numbering
+     * and winding), converted once where the caller's points enter (../field.h,
+     * tg__field_points_in); the engine never sees the caller's form */
+    const tg_surface_point* sources; /* valid points */
     size_t source_count;
     const tg_surface_point* points; /* the distance is wanted at these too (none: point_count 0) */
     size_t point_count;

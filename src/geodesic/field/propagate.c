@@ -409,8 +409,7 @@ tg_status tg__field_seed(tg__field_run* run, const tg_surface_point* sp)
 {
     tg__field_scratch* fs = run->fs;
     const tg_geodesic* g = fs->g;
-    tg_surface_point cp = tg__surface_in(g, sp);
-    tg__node node = tg__node_from_surface(&cp);
+    tg__node node = tg__node_from_surface(sp);
     double p[3];
     tg_v3_store(tg__node_pos(g, &node), p);
     bool ok = true;

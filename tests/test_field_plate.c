@@ -12,7 +12,7 @@
 #include <string.h>
 #include <trigeo.h>
 
-#include "geodesic/field/field.h"
+#include "geodesic/field/window.h"
 #include "tg_test.h"
 #include "tg_test_plate.h"
 

@@ -81,11 +81,14 @@ static void probe_points(cross* c)
     qsort(c->at, PROBES, sizeof c->at[0], tg__cmp_double);
 }
 
-/* The caller's form of the point at t along halfedge h (solver numbering). */
+/* The point at t along halfedge h (solver numbering) as a query point, in the solver's form: that
+ * of its caller's form (named from the edge's nearer end), so that it is evaluated as a caller's
+ * point at the same place would be. */
 static tg_surface_point edge_point(const tg_geodesic* g, uint32_t h, double t)
 {
     tg__node n = tg__node_edge(h, t, 1.0 - t);
-    return tg__surface_out(g, &n);
+    tg_surface_point p = tg__surface_out(g, &n);
+    return tg__surface_in(g, &p);
 }
 
 /* One round: every open crossing's points evaluated by each of its two sources, each source's
@@ -119,8 +122,10 @@ static tg_status evaluate_round(tg__nearest* nf, tg__field_scratch* fs, const tg
         /* the caller's progress inside long runs and between short ones: a round of many
          * sources' short runs can take seconds (5000 sources on igl_armadillo: about 1 s) */
         bool progress = nf->options && nf->options->progress;
-        tg__field_query q = {&sources[s], 1, pts, m, INFINITY, progress ? tg__nearest_report : NULL, nf, NULL, false,
-                             NULL, false, bound, NULL, NULL, 0};
+        tg_surface_point src = tg__surface_in(g, &sources[s]); /* the solver's form, once (field.h) */
+        tg__field_query q = {.sources = &src, .source_count = 1, .points = pts, .point_count = m,
+                             .max_distance = INFINITY, .progress = progress ? tg__nearest_report : NULL,
+                             .progress_user = nf, .bound = bound};
         tg__field_run run;
         tg_status st = tg__field_execute(fs, &q, &run);
         if (st == TG_OK) st = tg__nearest_poll(nf);

@@ -1314,7 +1314,8 @@ static void vec_init(iso_state* st)
     st->adj_start.elem = st->adj.elem = st->used.elem = sizeof(uint32_t);
 }
 
-/* The run, then every level traced and chained (solver frame: levels times scale). */
+/* The run from the sources (the solver's form, field.h), then every level traced and chained
+ * (solver frame: levels times scale). */
 static tg_status isolines_of(const tg_geodesic* g, tg__field_scratch* fs, const tg_surface_point* sources,
                              size_t source_count, const double* levels, size_t nl, const tg_field_options* options,
                              const tg_allocator* a, tg_isolines* out, double* out_vertex_distance,
@@ -1333,8 +1334,9 @@ static tg_status isolines_of(const tg_geodesic* g, tg__field_scratch* fs, const 
         for (size_t i = 0; i < nl; ++i) sorted[i] = levels[i] * g->scale;
         qsort(sorted, nl, sizeof *sorted, tg__cmp_double);
         bool progress = options && options->progress;
-        tg__field_query q = {sources, source_count, NULL, 0, limit, progress ? tg__field_report_single : NULL, (void*)options,
-                             NULL, false, NULL, false, NULL, NULL, sorted, nl};
+        tg__field_query q = {.sources = sources, .source_count = source_count, .max_distance = limit,
+                             .progress = progress ? tg__field_report_single : NULL, .progress_user = (void*)options,
+                             .record_levels = sorted, .record_level_count = nl};
         status = tg__field_execute(fs, &q, &run);
     }
     if (status == TG_OK) {
@@ -1384,8 +1386,12 @@ tg_status tg_geodesic_isolines(const tg_geodesic* g, tg_geodesic_workspace* ws, 
     if (st == TG_OK) st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
     if (st == TG_OK) {
         const tg_allocator* a = options && options->allocator ? options->allocator : &g->allocator;
-        st = isolines_of(g, &ws->field, sources, source_count, levels, level_count, options, a, isolines,
-                         out_vertex_distance, out_stats);
+        const tg_surface_point *in_sources, *in_points;
+        if (!tg__field_points_in_workspace(ws, sources, source_count, NULL, 0, &in_sources, &in_points))
+            st = TG_ERR_OUT_OF_MEMORY;
+        else
+            st = isolines_of(g, &ws->field, in_sources, source_count, levels, level_count, options, a, isolines,
+                             out_vertex_distance, out_stats);
         tg__workspace_release(own);
     }
     if (st != TG_OK) isolines_clear(isolines);

@@ -4,7 +4,7 @@
  *   1987, §3 (a window holds the unfolded image of its source, so the shortest path to any point
  *   it lights is the straight segment from that image, and its direction at the source is the
  *   segment's direction carried back through the unfolding: field/logmap_record.h); the field engine
- *   (field.h, after Qin et al. 2016) runs unchanged, with one record per window of the source;
+ *   (field/engine.h, after Qin et al. 2016) runs unchanged, with one record per window of the source;
  *   N. Sharp, Y. Soliman and K. Crane, "The vector heat method", ACM TOG 38(3), 2019, §5.3 and
  *   geometry-central's vertex tangent spaces (angles at a vertex scaled so the turn is 2 pi, pi
  *   at a boundary vertex), the conventions of TG_TRACE_ANGLE (walk.c).
@@ -17,6 +17,8 @@
  *   - along an edge from the source vertex: the edge's direction around the vertex;
  *   - through another vertex w (along an edge, inside a face, or by a window whose origin is w,
  *     a pseudo-source): w's angle, since the path leaves the source as w's does. */
+#include "geodesic/field/logmap_record.h"
+#include "geodesic/field/scratch.h"
 #include "geodesic/tangent.h"
 #include "geodesic/workspace.h"
 
@@ -276,8 +278,9 @@ tg_status tg_geodesic_log_map(const tg_geodesic* g, tg_geodesic_workspace* ws, c
     if (st == TG_OK) st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
     if (st == TG_OK && !tg__field_grow(&ws->field, &ws->field.lm_theta, nv)) st = TG_ERR_OUT_OF_MEMORY;
     if (st == TG_OK) {
-        tg__field_query q = {source, 1, NULL, 0, tg__field_limit(g, options), options && options->progress ? tg__field_report_single : NULL, (void*)options, NULL, true, NULL,
-                             false, NULL, &s.lm, NULL, 0};
+        tg__field_query q = {.sources = &sp, .source_count = 1, .max_distance = tg__field_limit(g, options),
+                             .progress = options && options->progress ? tg__field_report_single : NULL,
+                             .progress_user = (void*)options, .trace = true, .logmap = &s.lm};
         tg__field_run run;
         st = tg__field_execute(&ws->field, &q, &run);
         if (st == TG_OK) {

@@ -2,12 +2,13 @@
  * dense matrix (sources x vertices), the sparse local matrix (every vertex within a radius of each
  * source, compressed sparse rows) and the matrix between sources and selected surface points
  * (each row's field stopped once its points are settled).
- * Based on: the exact engine of field.h (Qin et al. 2016), whose run bounded by a distance
+ * Based on: the exact engine of field/engine.h (Qin et al. 2016), whose run bounded by a distance
  *   explores only the disc within it and notes every vertex it wrote, so a row of the local
  *   matrix costs its disc, not the mesh; compressed sparse rows (W. F. Tinney and J. W. Walker,
  *   "Direct solutions of sparse network equations by optimally ordered triangular
  *   factorization", Proc. IEEE 55(11), 1967; the layout SciPy's csr_matrix reads). */
-#include "geodesic/field/field.h"
+#include "geodesic/field.h"
+#include "geodesic/field/scratch.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -172,8 +173,9 @@ struct batch {
 #endif
     tg_status (*row)(worker* w, size_t i);
     uint32_t* order;                 /* the rows in the order they are run (see row_order) */
-    const tg_surface_point* sources; /* NULL: row i is vertex i (local matrix) */
-    const tg_surface_point* targets; /* the columns of the matrix at points */
+    const tg_surface_point* sources; /* the caller's; NULL: row i is vertex i (local matrix) */
+    tg_surface_point* targets;       /* the columns of the matrix at points, in the solver's form
+                                        (field.h), converted once for every row */
     size_t target_count;
     double limit;                    /* in the solver's frame; +inf: none */
     double* dense;                   /* rows x target_count, or rows x vertices without targets */
@@ -225,22 +227,15 @@ static void row_done(batch* b)
     if (b->opt->progress(b->opt->progress_user, &p) != 0) b->stop = 1, b->cancelled = 1;
 }
 
-/* The question of one row: its one source, the targets, the limit, the batch's progress and
- * cancellation. Every row of both matrices is asked here, so an engine option that applies to
+/* The question of one row: its one source (the solver's form), the targets, the limit, the
+ * batch's progress and cancellation. Every row of both matrices is asked here, so an engine option that applies to
  * every row (such as stopping once the targets are settled) is set here and nowhere else. */
 static tg__field_query row_query(batch* b, worker* w, const tg_surface_point* source)
 {
-    tg__field_query q;
-    memset(&q, 0, sizeof q);
-    q.sources = source;
-    q.source_count = 1;
-    q.points = b->targets;
-    q.point_count = b->target_count;
-    q.max_distance = b->limit;
-    q.progress = b->opt && b->opt->progress ? report_row : NULL;
-    q.progress_user = w;
-    q.cancel = &b->stop;
-    q.stop_at_points = b->target_count > 0;
+    tg__field_query q = {.sources = source, .source_count = 1, .points = b->targets,
+                         .point_count = b->target_count, .max_distance = b->limit,
+                         .progress = b->opt && b->opt->progress ? report_row : NULL, .progress_user = w,
+                         .cancel = &b->stop, .stop_at_points = b->target_count > 0};
     return q;
 }
 
@@ -338,10 +333,12 @@ static bool row_order(batch* b)
     return true;
 }
 
-/* Sets up the batch (sources NULL: row i is vertex i) and its row order; false: out of memory
- * (batch_free then frees it). */
+/* Sets up the batch (sources NULL: row i is vertex i; targets: the columns at points, if any,
+ * converted here to the solver's form, once for every row) and its row order; false: out of
+ * memory (batch_free then frees it). */
 static bool batch_init(batch* b, const tg_geodesic* g, const tg_field_options* options,
-                       const tg_surface_point* sources, size_t rows)
+                       const tg_surface_point* sources, size_t rows, const tg_surface_point* targets,
+                       size_t target_count)
 {
     memset(b, 0, sizeof *b);
     b->g = g;
@@ -349,14 +346,21 @@ static bool batch_init(batch* b, const tg_geodesic* g, const tg_field_options* o
     b->opt = options;
     b->alloc = options && options->allocator ? *options->allocator : g->allocator;
     b->rows = rows;
+    b->target_count = target_count;
     b->next_report_s = tg__seconds() + TG__PROGRESS_PERIOD_S;
+    if (target_count) {
+        b->targets = tg__alloc_array(&b->alloc, target_count, sizeof *b->targets);
+        if (!b->targets) return false;
+        tg__field_points_in(g, targets, target_count, b->targets);
+    }
     return row_order(b);
 }
 
 static void batch_free(batch* b)
 {
     tg__free(&b->alloc, b->order);
-    b->order = NULL;
+    tg__free(&b->alloc, b->targets);
+    b->order = NULL, b->targets = NULL;
 }
 
 /* ---- dense rows: sources x vertices, or sources x selected points ---- */
@@ -364,7 +368,8 @@ static void batch_free(batch* b)
 static tg_status dense_row(worker* w, size_t i)
 {
     batch* b = w->b;
-    tg__field_query q = row_query(b, w, &b->sources[i]);
+    tg_surface_point src = tg__surface_in(b->g, &b->sources[i]); /* the solver's form, once (field.h) */
+    tg__field_query q = row_query(b, w, &src);
     tg__field_run run;
     tg_status st = tg__field_execute(&w->fs, &q, &run);
     if (st != TG_OK) return st;
@@ -396,13 +401,11 @@ static tg_status dense_matrix(const tg_geodesic* g, const tg_surface_point* sour
     memset(&sum, 0, sizeof sum);
     if (cells > 0) {
         batch b;
-        if (!batch_init(&b, g, options, sources, source_count)) {
+        if (!batch_init(&b, g, options, sources, source_count, targets, at_points ? columns : 0)) {
             batch_free(&b);
             return TG_ERR_OUT_OF_MEMORY;
         }
         b.row = dense_row;
-        b.targets = targets;
-        b.target_count = at_points ? columns : 0;
         b.limit = tg__field_limit(g, options);
         b.dense = out_matrix;
         st = batch_run(&b, threads, &sum);
@@ -513,10 +516,13 @@ static bool deposit_row(worker* w, size_t i)
 static tg_status local_row(worker* w, size_t i)
 {
     batch* b = w->b;
-    tg_surface_point src = b->sources ? b->sources[i] : tg_surface_vertex((uint32_t)i);
+    tg_surface_point vertex = tg_surface_vertex((uint32_t)i);
     w->cols.count = w->values.count = 0;
     /* every vertex: one that no face uses is not on the surface, and its row is empty */
-    if (b->sources || tg_surface_point_validate(b->g->mesh, &src, NULL) == TG_OK) {
+    if (b->sources || tg_surface_point_validate(b->g->mesh, &vertex, NULL) == TG_OK) {
+        /* the solver's form, once (field.h; a vertex's is its solver index) */
+        tg_surface_point src =
+            b->sources ? tg__surface_in(b->g, &b->sources[i]) : tg_surface_vertex(b->g->solver_vertex[i]);
         tg__field_query q = row_query(b, w, &src);
         tg__field_run run;
         tg_status st = tg__field_execute(&w->fs, &q, &run);
@@ -568,7 +574,7 @@ tg_status tg_geodesic_local_matrix(const tg_geodesic* g, const tg_surface_point*
         return st;
     }
     batch b;
-    bool ordered = batch_init(&b, g, options, sources, source_count);
+    bool ordered = batch_init(&b, g, options, sources, source_count, NULL, 0);
     b.row = local_row;
     b.limit = max_distance * g->scale;
     const tg_allocator* a = &b.alloc;

@@ -557,12 +557,14 @@ static tg_surface_point to_kept_twin(const tg_geodesic* g, tg_surface_point p)
         int c[3] = {tg__corner_of(g, q, t[0]), tg__corner_of(g, q, t[1]), tg__corner_of(g, q, t[2])};
         if (c[0] < 0 || c[1] < 0 || c[2] < 0) continue;
         if (p.kind == TG_SURFACE_FACE) {
-            double b[3];
-            for (int k = 0; k < 3; ++k) b[c[k]] = p.bary[k];
-            return tg_surface_face(q, b[0], b[1], b[2]);
+            tg_surface_point o = {TG_SURFACE_FACE, q, 0.0, {0.0, 0.0, 0.0}};
+            for (int k = 0; k < 3; ++k) o.bary[c[k]] = p.bary[k];
+            return o;
         }
         uint32_t k = p.index % 3, cu = (uint32_t)c[k], cw = (uint32_t)c[(k + 1) % 3];
-        return (cu + 1) % 3 == cw ? tg_surface_edge(3 * q + cu, p.t) : tg_surface_edge(3 * q + cw, 1.0 - p.t);
+        tg_surface_point o = {TG_SURFACE_EDGE, 3 * q + cu, p.t, {0.0, 0.0, 0.0}};
+        if ((cu + 1) % 3 != cw) o.index = 3 * q + cw, o.t = 1.0 - p.t;
+        return o;
     }
     return p;
 }
@@ -579,10 +581,12 @@ tg_surface_point tg__surface_to_solver(const tg_geodesic* g, tg_surface_point p)
         }
     } else if (p.kind == TG_SURFACE_EDGE) {
         uint32_t f = g->solver_face[p.index / 3], k = p.index % 3;
-        if (g->fflags[f] & TG__F_FLIPPED)
-            p = tg_surface_edge(3 * f + (2 - k), 1.0 - p.t);
-        else
+        if (g->fflags[f] & TG__F_FLIPPED) {
+            tg_surface_point o = {TG_SURFACE_EDGE, 3 * f + (2 - k), 1.0 - p.t, {0.0, 0.0, 0.0}};
+            p = o;
+        } else {
             p.index = 3 * f + k;
+        }
     }
     return p.kind == TG_SURFACE_VERTEX ? p : to_kept_twin(g, p);
 }

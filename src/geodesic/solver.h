@@ -54,7 +54,7 @@ enum {
  * of an edge, query.c, CORNER_SNAP_REL) cover a shadow this thin near the vertex. */
 #define TG__FLAT_ANGLE_REL 1e-13
 /* Vertices a solver takes: the window engine names a pseudo-source vertex in 29 bits of a
- * window's tag, the all-ones value meaning the sources (field/field.h). */
+ * window's tag, the all-ones value meaning the sources (field/engine.h). */
 #define TG__MAX_VERTICES 0x1FFFFFFFu
 
 struct tg_geodesic {

@@ -46,8 +46,10 @@ tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surfa
 {
     bool progress = nf->options && nf->options->progress;
     /* the first source alone is a plain field; later ones only where they beat the earlier */
-    tg__field_query q = {src,  1,    NULL,  0,    nf->max_dist, progress ? tg__nearest_report : NULL, nf, NULL, false, NULL, false,
-                         nf->added ? nf->dist : NULL, NULL, NULL, 0};
+    tg_surface_point in = tg__surface_in(nf->g, src); /* the solver's form, once (field.h) */
+    tg__field_query q = {.sources = &in, .source_count = 1, .max_distance = nf->max_dist,
+                         .progress = progress ? tg__nearest_report : NULL, .progress_user = nf,
+                         .bound = nf->added ? nf->dist : NULL};
     tg__field_run run;
     tg_status st = tg__field_execute(fs, &q, &run);
     tg__field_stats_add(&nf->stats, &run.stats);

@@ -2,6 +2,8 @@
  * vertex or halfedge, so that its memory is known up front and queries do not allocate them. */
 #include "geodesic/workspace.h"
 
+#include "geodesic/field/scratch.h"
+
 #include <string.h>
 
 void tg_geodesic_workspace_destroy(tg_geodesic_workspace* ws)

@@ -1,5 +1,5 @@
 /* workspace.h - tg_geodesic_workspace: one per thread, for paths and fields alike. Each stage's
- * scratch is a struct of its own (path.h, field.h); the tables sized for the mesh are made with
+ * scratch is a struct of its own (path/path.h, field/engine.h); the tables sized for the mesh are made with
  * the workspace, the buffers grow to the largest query seen and are kept.
  * Based on: per-query scratch in a caller-owned workspace (the house style, after Embree's and
  *   Detour's query objects). */
@@ -19,6 +19,8 @@ struct tg_geodesic_workspace {
     tg__sleeve_scratch sleeve;
     tg__relax_scratch relax;
     tg__field_scratch field;          /* exact propagation: fields, and exact paths */
+    tg__vec field_points;             /* tg_surface_point: a field's sources and points in the
+                                         solver's form (../field.c, tg__field_points_in_workspace) */
 };
 
 /* Every growable buffer of the workspace outside the field scratch (which lists its own), written
@@ -34,7 +36,8 @@ struct tg_geodesic_workspace {
     X(sleeve.portal_left, uint32_t) X(sleeve.portal_right, uint32_t) X(sleeve.faces, uint32_t)      \
     X(sleeve.face_corners, uint32_t) X(sleeve.deque, uint32_t) X(sleeve.apices, uint32_t)           \
     X(sleeve.determinants, double) X(relax.fan_portals, uint32_t) X(relax.spokes, double)           \
-    X(relax.t_values, double) X(relax.pass.nodes, tg__node) X(relax.pass.faces, uint32_t)
+    X(relax.t_values, double) X(relax.pass.nodes, tg__node) X(relax.pass.faces, uint32_t)           \
+    X(field_points, tg_surface_point)
 
 /* A temporary workspace when the caller passes none: *io_ws is left alone when it is not NULL
  * (it must belong to g), else a new one made with `allocator` (NULL: g's) goes to *io_ws and

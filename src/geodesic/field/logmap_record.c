@@ -4,7 +4,9 @@
  * tg__lm_seed) and the log map (../logmap.c) turns the direction of a segment inside a source
  * face into an angle.
  * Based on: Mitchell, Mount & Papadimitriou, SIAM J. Comput. 16(4), 1987, §3 (logmap_record.h). */
-#include "geodesic/field/field.h"
+#include "geodesic/field/logmap_record.h"
+
+#include "geodesic/field/engine.h" /* TG__ORIGIN_SOURCE */
 
 /* The unit direction of the edge of halfedge h in the frame of halfedge `base` of the same face
  * (+x for a zero-length edge). */

@@ -1,4 +1,4 @@
-/* field_propagate.c - the exact field engine's wavefront: sources, window lists crossing faces,
+/* propagate.c - the exact field engine's wavefront: sources, window lists crossing faces,
  * the front of vertices ordered by distance, progress and cancellation.
  * Based on: Y. Qin, X. Han, H. Yu, Y. Yu and J. Zhang, "Fast and exact discrete geodesic
  *   computation based on triangle-oriented wavefront propagation", ACM TOG 35(4), 2016 (the
@@ -12,11 +12,16 @@
  * Every distance recorded is the length of a real path on the surface (straight in an unfolded
  * chain of faces, bending only at vertices), so the result never falls below the geodesic
  * distance beyond rounding; windows are dropped or cut only where another real path is shorter
- * (by the margins of field_internal.h and field_window.c), so no geodesic is lost. The work ends
+ * (by the margins of engine.h and window.c), so no geodesic is lost. The work ends
  * when no list holds a window and the front is empty. */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include "core/predicates.h"
-#include "geodesic/field/field.h"
+#include "geodesic/field/propagate.h"
+#include "geodesic/field/logmap_record.h"
+#include "geodesic/field/query.h"
+#include "geodesic/field/record.h"
+#include "geodesic/field/scratch.h"
+#include "geodesic/field/window.h"
 
 #include <string.h>
 #include <time.h>
@@ -366,7 +371,7 @@ static bool stacked_on(const tg_geodesic* g, uint32_t f, double x, double len, u
  * and each edge of f not containing p is lit from p into the faces beyond. When p lies inside an
  * edge of f (an edge point, or a point of a zero-area face), it also lies in the other faces at
  * that edge and emits there (`from`: the halfedge just crossed, or TG_NONE); in a zero-area face
- * it may lie inside a second edge, and so on through a stack of them (field.h, TG__FLAT_MAX:
+ * it may lie inside a second edge, and so on through a stack of them (engine.h, TG__FLAT_MAX:
  * `depth` faces deep at most). */
 static bool emit_face_point(tg__field_run* run, const double p[3], double sigma, uint32_t f, uint32_t from,
                             uint32_t origin, uint32_t depth)
@@ -404,8 +409,7 @@ tg_status tg__field_seed(tg__field_run* run, const tg_surface_point* sp)
 {
     tg__field_scratch* fs = run->fs;
     const tg_geodesic* g = fs->g;
-    tg_surface_point cp = tg__surface_in(g, sp);
-    tg__node node = tg__node_from_surface(&cp);
+    tg__node node = tg__node_from_surface(sp);
     double p[3];
     tg_v3_store(tg__node_pos(g, &node), p);
     bool ok = true;

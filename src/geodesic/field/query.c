@@ -1,4 +1,4 @@
-/* field_query.c - queries on an exact field: the geodesic distance at arbitrary surface points
+/* query.c - queries on an exact field: the geodesic distance at arbitrary surface points
  * (inside faces, on edges), evaluated while the windows cross the faces that hold them.
  * Based on: J. S. B. Mitchell, D. M. Mount and C. H. Papadimitriou, "The discrete geodesic
  *   problem", SIAM J. Comput. 16(4), 1987, §4 (the distance at a point of a face is the least over
@@ -10,7 +10,9 @@
  * window only where another path is shorter at x, and the window that is shortest at x survives
  * them, so it is evaluated at P when its list crosses f. Windows are evaluated before the cuts of
  * one angle, one split (which concern points beyond f). */
-#include "geodesic/field/field.h"
+#include "geodesic/field/query.h"
+
+#include "geodesic/field/scratch.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -128,7 +130,7 @@ tg_status tg__field_queries_setup(tg__field_run* run)
     }
     for (size_t i = 0; i < count; ++i) {
         out[i] = INFINITY;
-        tg_surface_point p = tg__surface_in(g, &run->q->points[i]);
+        tg_surface_point p = run->q->points[i];
         if (bound) bound_of(g, &p, &bound[i]);
         if (p.kind == TG_SURFACE_FACE) {
             if (!pair_add(fs, p.index, (uint32_t)i, p.bary)) return TG_ERR_OUT_OF_MEMORY;
@@ -252,8 +254,8 @@ void tg__field_queries_finish(tg__field_run* run, bool ok)
         fs->qface[q[j].face] = 0;
     }
     for (size_t i = 0; i < run->q->point_count; ++i) {
-        tg_surface_point p = tg_surface_point_canonical(g->mesh, &run->q->points[i]);
-        if (p.kind == TG_SURFACE_VERTEX) run->qdist[i] = fs->dist[g->solver_vertex[p.index]];
+        const tg_surface_point* p = &run->q->points[i];
+        if (p->kind == TG_SURFACE_VERTEX) run->qdist[i] = fs->dist[p->index];
         if (!(run->qdist[i] <= run->max_dist)) run->qdist[i] = INFINITY;
     }
     fs->qpairs.count = 0;

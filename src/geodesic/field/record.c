@@ -19,7 +19,9 @@
  * (some were left out), so the isolines must know it: each face keeps the least wmin of the
  * windows that crossed it (fs->rec_floor), and tg__field_record_below tells, by the same
  * arithmetic as the filter, the levels for which a window of the face may be missing. */
-#include "geodesic/field/field.h"
+#include "geodesic/field/record.h"
+
+#include "geodesic/field/scratch.h"
 
 /* Is there a level in [lo, hi]? (levels ascending) */
 static bool level_within(const tg__field_query* q, double lo, double hi)

@@ -4,7 +4,12 @@
  *   triangle-oriented wavefront propagation", ACM TOG 35(4), 2016; P. E. Hart, N. J. Nilsson and
  *   B. Raphael, "A formal basis for the heuristic determination of minimum cost paths", 1968 (the
  *   front ordered by distance plus an admissible bound of the rest, toward one point). */
-#include "geodesic/field/field.h"
+#include "geodesic/field/run.h"
+
+#include "geodesic/field/propagate.h"
+#include "geodesic/field/query.h"
+#include "geodesic/field/record.h"
+#include "geodesic/field/scratch.h"
 
 #include <string.h>
 
@@ -17,8 +22,7 @@ static size_t reachable_vertices(const tg_geodesic* g, const tg_surface_point* s
     uint32_t comps[8];
     size_t nc = 0, n = 0;
     for (size_t i = 0; i < source_count; ++i) {
-        tg_surface_point p = tg__surface_in(g, &sources[i]);
-        uint32_t f = tg__surface_face(g, &p);
+        uint32_t f = tg__surface_face(g, &sources[i]);
         if (f == TG_NONE) continue;
         bool seen = false;
         for (size_t k = 0; k < nc; ++k) seen |= comps[k] == g->comp[f];
@@ -32,15 +36,15 @@ static size_t reachable_vertices(const tg_geodesic* g, const tg_surface_point* s
 static void target_corners(tg__field_run* run)
 {
     const tg_geodesic* g = run->g;
-    tg_surface_point p = tg__surface_in(g, run->q->points);
+    const tg_surface_point* p = run->q->points;
     const uint32_t* t = g->tri;
-    if (p.kind == TG_SURFACE_VERTEX) {
-        run->tcorner[run->tcorners++] = p.index;
-    } else if (p.kind == TG_SURFACE_EDGE) {
-        run->tcorner[run->tcorners++] = t[p.index];
-        run->tcorner[run->tcorners++] = t[tg_halfedge_next(p.index)];
+    if (p->kind == TG_SURFACE_VERTEX) {
+        run->tcorner[run->tcorners++] = p->index;
+    } else if (p->kind == TG_SURFACE_EDGE) {
+        run->tcorner[run->tcorners++] = t[p->index];
+        run->tcorner[run->tcorners++] = t[tg_halfedge_next(p->index)];
     } else {
-        for (int k = 0; k < 3; ++k) run->tcorner[run->tcorners++] = t[3 * (size_t)p.index + (size_t)k];
+        for (int k = 0; k < 3; ++k) run->tcorner[run->tcorners++] = t[3 * (size_t)p->index + (size_t)k];
     }
 }
 

@@ -1,7 +1,9 @@
 /* scratch.c - the exact field engine's scratch: its tables and buffers (listed once in
  * TG__FIELD_BUFFERS), their growth and their memory. Apart from the run (run.c), which calls the
  * propagation and the queries that grow these buffers. */
-#include "geodesic/field/field.h"
+#include "geodesic/field/scratch.h"
+
+#include "geodesic/field/logmap_record.h" /* the size of a record, one of the buffers */
 
 #include <string.h>
 

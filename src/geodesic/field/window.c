@@ -1,4 +1,4 @@
-/* field_window.c - window geometry for the exact field engine: trimming windows of one edge
+/* window.c - window geometry for the exact field engine: trimming windows of one edge
  * side against each other, and the children of a window across its face.
  * Based on: J. S. B. Mitchell, D. M. Mount and C. H. Papadimitriou, "The discrete geodesic
  *   problem", SIAM J. Comput. 16(4), 1987, §4 (where two windows on an edge overlap, each point
@@ -12,7 +12,7 @@
  * Why trimming is exact: if window i reaches the edge point X more shortly than window j, every
  * point q that j's ray through X reaches is reached at least as shortly by i's path to X followed
  * by the same straight segment X -> q (a real path on the surface), so j may drop X. */
-#include "geodesic/field/field.h"
+#include "geodesic/field/window.h"
 
 
 /* Two windows tie where they differ by less than this relative margin (rounding of distances

@@ -73,12 +73,13 @@ static int report_propagation(void* user, const tg__field_run* run)
 static tg_status exact_propagation(tg_geodesic_workspace* ws, const request* rq, const tg_surface_point* from,
                                    const tg_surface_point* to, double limit, tg__field_run* out_run)
 {
-    tg_surface_point t = tg__surface_in(ws->geo, to);
+    tg_surface_point s = tg__surface_in(ws->geo, from), t = tg__surface_in(ws->geo, to);
     tg__node tn = tg__node_from_surface(&t);
     double toward[3];
     tg_v3_store(tg__node_pos(ws->geo, &tn), toward);
-    tg__field_query q = {from, 1, to, 1, limit, rq->progress.fn ? report_propagation : NULL,
-                         (void*)&rq->progress, NULL, true, toward, false, NULL, NULL, NULL, 0};
+    tg__field_query q = {.sources = &s, .source_count = 1, .points = &t, .point_count = 1, .max_distance = limit,
+                         .progress = rq->progress.fn ? report_propagation : NULL,
+                         .progress_user = (void*)&rq->progress, .trace = true, .toward = toward};
     return tg__field_execute(&ws->field, &q, out_run);
 }
 

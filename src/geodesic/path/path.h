@@ -16,7 +16,7 @@
 #ifndef TG_GEODESIC_PATH_H
 #define TG_GEODESIC_PATH_H
 
-#include "geodesic/field/field.h"
+#include "geodesic/field.h"
 
 /* ---- endpoints (endpoints.c) ---- */
 

@@ -1,14 +1,17 @@
-/* field.c - exact geodesic distance fields: the public entry points of one field (at the
- * vertices, at surface points). The engine is described in field.h; many fields (the matrices)
- * are matrix.c's.
+/* field.c - exact geodesic distance fields, the door of the engine (field/engine.h): the public
+ * entry points of one field (at the vertices, at surface points), and what every client of the
+ * engine shares (field.h): the checks of the arguments, the progress figures, the counters. Many
+ * fields (the matrices) are matrix.c's.
  * Based on: Y. Qin et al., "Fast and exact discrete geodesic computation based on
  *   triangle-oriented wavefront propagation", ACM TOG 35(4), 2016; S.-Q. Xin and G.-J. Wang,
- *   ACM TOG 28(4), 2009 (see propagate.c). */
+ *   ACM TOG 28(4), 2009 (see field/propagate.c). */
+#include "geodesic/field.h"
+
 #include "geodesic/workspace.h"
 
 #include <string.h>
 
-/* ---- one field ---- */
+/* ---- the checks every client shares ---- */
 
 tg_status tg__field_check(const tg_geodesic* g, const tg_surface_point* points, size_t count,
                           const tg_field_options* opt)
@@ -54,6 +57,45 @@ int tg__field_report_single(void* user, const tg__field_run* run)
     return opt->progress(opt->progress_user, &p);
 }
 
+/* Adds the counters of one run to a sum (largest values for the peaks). */
+void tg__field_stats_add(tg_field_stats* sum, const tg_field_stats* s)
+{
+    sum->windows_created += s->windows_created;
+    sum->windows_propagated += s->windows_propagated;
+    sum->windows_filtered += s->windows_filtered;
+    sum->pseudo_source_events += s->pseudo_source_events;
+    /* a property of the mesh, the same in every row; a thread that ran no row adds a zero */
+    if (s->pseudo_source_vertices > sum->pseudo_source_vertices) sum->pseudo_source_vertices = s->pseudo_source_vertices;
+    if (s->max_queue > sum->max_queue) sum->max_queue = s->max_queue;
+    if (s->peak_windows > sum->peak_windows) sum->peak_windows = s->peak_windows;
+    if (s->peak_bytes > sum->peak_bytes) sum->peak_bytes = s->peak_bytes;
+}
+
+/* ---- the caller's points in the solver's form ---- */
+
+void tg__field_points_in(const tg_geodesic* g, const tg_surface_point* points, size_t n, tg_surface_point* out)
+{
+    for (size_t i = 0; i < n; ++i) out[i] = tg__surface_in(g, &points[i]);
+}
+
+bool tg__field_points_in_workspace(tg_geodesic_workspace* ws, const tg_surface_point* sources, size_t source_count,
+                                   const tg_surface_point* points, size_t point_count,
+                                   const tg_surface_point** out_sources, const tg_surface_point** out_points)
+{
+    *out_sources = *out_points = NULL;
+    size_t n = source_count + point_count; /* two arrays the caller holds: no overflow */
+    if (!n) return true;
+    if (!tg__vec_fit(&ws->allocator, &ws->field_points, n)) return false;
+    tg_surface_point* in = ws->field_points.data;
+    tg__field_points_in(ws->geo, sources, source_count, in);
+    tg__field_points_in(ws->geo, points, point_count, in + source_count);
+    *out_sources = source_count ? in : NULL;
+    *out_points = point_count ? in + source_count : NULL;
+    return true;
+}
+
+/* ---- the entry points ---- */
+
 tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
                                size_t source_count, const tg_surface_point* points, size_t point_count,
                                const tg_field_options* options, double* out_point_distance,
@@ -66,10 +108,17 @@ tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* ws, 
     tg_geodesic_workspace* own;
     st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
     if (st != TG_OK) return st;
-    tg__field_query q = {sources, source_count, points, point_count, tg__field_limit(g, options),
-                         options && options->progress ? tg__field_report_single : NULL, (void*)options, NULL, false, NULL,
+    const tg_surface_point *in_sources, *in_points;
+    if (!tg__field_points_in_workspace(ws, sources, source_count, points, point_count, &in_sources, &in_points)) {
+        tg__workspace_release(own);
+        return TG_ERR_OUT_OF_MEMORY;
+    }
+    tg__field_query q = {.sources = in_sources, .source_count = source_count, .points = in_points,
+                         .point_count = point_count, .max_distance = tg__field_limit(g, options),
+                         .progress = options && options->progress ? tg__field_report_single : NULL,
+                         .progress_user = (void*)options,
                          /* only the points wanted: the run stops once they are settled */
-                         point_count > 0 && !out_vertex_distance, NULL, NULL, NULL, 0};
+                         .stop_at_points = point_count > 0 && !out_vertex_distance};
     tg__field_run run;
     st = tg__field_execute(&ws->field, &q, &run);
     if (st == TG_OK) {
@@ -87,18 +136,4 @@ tg_status tg_geodesic_field(const tg_geodesic* g, tg_geodesic_workspace* ws, con
 {
     if (!out_vertex_distance) return TG_ERR_INVALID_ARGUMENT;
     return tg_geodesic_field_at(g, ws, sources, source_count, NULL, 0, options, NULL, out_vertex_distance, out_stats);
-}
-
-/* Adds the counters of one run to a sum (largest values for the peaks). */
-void tg__field_stats_add(tg_field_stats* sum, const tg_field_stats* s)
-{
-    sum->windows_created += s->windows_created;
-    sum->windows_propagated += s->windows_propagated;
-    sum->windows_filtered += s->windows_filtered;
-    sum->pseudo_source_events += s->pseudo_source_events;
-    /* a property of the mesh, the same in every row; a thread that ran no row adds a zero */
-    if (s->pseudo_source_vertices > sum->pseudo_source_vertices) sum->pseudo_source_vertices = s->pseudo_source_vertices;
-    if (s->max_queue > sum->max_queue) sum->max_queue = s->max_queue;
-    if (s->peak_windows > sum->peak_windows) sum->peak_windows = s->peak_windows;
-    if (s->peak_bytes > sum->peak_bytes) sum->peak_bytes = s->peak_bytes;
 }

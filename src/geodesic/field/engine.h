@@ -1,23 +1,28 @@
-/* field.h - internal types of the exact distance field engine: windows and their lists, the
- * engine's scratch (part of tg_geodesic_workspace), one run's query and results.
+/* engine.h - the exact distance field engine's own types, shared by its stages: windows and
+ * their lists, the engine's scratch (part of tg_geodesic_workspace), one run's query and results.
+ * Types and arithmetic on them only: every function declared or inlined here calls nothing
+ * outside this header, so including it ties a file to no stage.
  * Based on: J. Chen and Y. Han, "Shortest paths on a polyhedron", SoCG 1990 (windows);
  *   Y. Qin, X. Han, H. Yu, Y. Yu and J. Zhang, "Fast and exact discrete geodesic computation based
  *   on triangle-oriented wavefront propagation", ACM TOG 35(4), 2016 (window lists per edge side,
  *   moved across one face at a time in FIFO order behind a front of vertices ordered by distance).
  *
- * Layout of the engine (src/geodesic/field/):
- *   window.c     window geometry: trimming the windows of one list against each other
- *   propagate.c  the wavefront: seeding, list propagation, the vertex front, progress
- *   query.c      distances at arbitrary surface points, evaluated while lists cross their faces
- *   record.c     the windows crossing faces near given levels, kept for isolines (../isolines.c)
- *   run.c        one run: the scratch's reset, the query, the results
- *   field.c      the public entry points (one field, points, the distance matrix)
- * The per-mesh tables the engine reads (frames, rings, flags) are the solver's (solver.h). */
-#ifndef TG_GEODESIC_FIELD_H
-#define TG_GEODESIC_FIELD_H
+ * Layout of the engine (src/geodesic/field/), each stage's calls in the header of its name; a
+ * stage calls only the stages below it:
+ *   run.c            one run: the scratch's reset, the query, the results (the clients' call)
+ *   propagate.c      the wavefront: seeding, list propagation, the vertex front, progress
+ *   query.c          distances at arbitrary surface points, evaluated while lists cross their faces
+ *   record.c         the windows crossing faces near given levels, kept for isolines (../isolines.c)
+ *   window.c         window geometry: trimming the windows of one list against each other
+ *   logmap_record.c  the log map's per-window records of the source's frames (logmap_record.h)
+ *   scratch.c        the scratch's tables and buffers, their growth and memory
+ * Above them, ../field.c is the door: the public entry points of one field and the checks every
+ * client of the engine shares (../field.h). The per-mesh tables the engine reads (frames, rings,
+ * flags) are the solver's (solver.h). */
+#ifndef TG_GEODESIC_FIELD_ENGINE_H
+#define TG_GEODESIC_FIELD_ENGINE_H
 
 #include "core/heap.h"
-#include "geodesic/field/logmap_record.h"
 #include "geodesic/frame.h"
 
 /* A window: the interval [b0, b1] (distances from tri[h]) of the edge of halfedge h, lit from
@@ -156,26 +161,14 @@ typedef struct tg__field_scratch {
     size_t peak_bytes;
 } tg__field_scratch;
 
-/* Makes the scratch for g (its tables allocated now); false when out of memory (then
- * tg__field_scratch_free cleans up). */
-bool tg__field_scratch_init(tg__field_scratch* fs, const tg_geodesic* g, const tg_allocator* a);
-void tg__field_scratch_free(tg__field_scratch* fs);
-/* Makes room for `extra` more elements of v, one of the scratch's buffers (noting the peak of
- * the scratch's memory); false on overflow or allocation failure. */
-bool tg__field_grow_slow(tg__field_scratch* fs, tg__vec* v, size_t extra);
-static inline bool tg__field_grow(tg__field_scratch* fs, tg__vec* v, size_t extra)
-{
-    return extra <= v->capacity - v->count || tg__field_grow_slow(fs, v, extra);
-}
-/* The bytes its fixed tables take, and all it holds now. */
-size_t tg__field_scratch_fixed_bytes(const tg_geodesic* g);
-size_t tg__field_scratch_bytes(const tg__field_scratch* fs);
-
 struct tg__field_run;
 
 /* One run's question: everything a run is told, validated by the caller. */
 typedef struct tg__field_query {
-    const tg_surface_point* sources; /* valid points, the caller's numbering */
+    /* sources and points in the solver's form (tg__surface_in: canonical, the solver's numbering
+     * and winding), converted once where the caller's points enter (../field.h,
+     * tg__field_points_in); the engine never sees the caller's form */
+    const tg_surface_point* sources; /* valid points */
     size_t source_count;
     const tg_surface_point* points; /* the distance is wanted at these too (none: point_count 0) */
     size_t point_count;
@@ -194,8 +187,9 @@ typedef struct tg__field_query {
                                         distance of a real path from other sources: the run only
                                         finds where it can get below (nearest-source fields,
                                         voronoi.c); elsewhere its distances may stay too large */
-    tg__logmap* logmap;              /* NULL, or a log map (logmap.c): the source's windows carry
-                                        records (q->trace must be set, single source) */
+    struct tg__logmap* logmap;       /* NULL, or a log map (logmap.c, logmap_record.h): the
+                                        source's windows carry records (q->trace must be
+                                        set, single source) */
     const double* record_levels;     /* NULL, or record_level_count ascending levels (solver
                                         frame): every window crossing a face is recorded (fs->rec)
                                         when a level lies within the face's size above its least
@@ -236,30 +230,7 @@ static inline void tg__field_tighten(tg__field_run* run, double d)
     double b = d * (1.0 + TG__TIGHT_REL);
     if (run->astar && b < run->max_dist) run->max_dist = b;
 }
-
-/* Adds the counters of one run to a sum (largest values for the peaks). */
-void tg__field_stats_add(tg_field_stats* sum, const tg_field_stats* s);
-
-/* ---- one run (run.c) ---- */
-
-/* Runs the query on the scratch; the results stay in *run (and the scratch) until its next run.
- * Errors: TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED. */
-tg_status tg__field_execute(tg__field_scratch* fs, const tg__field_query* q, tg__field_run* run);
-
-/* ---- the public calls' common checks (field.c) ---- */
-
-/* TG_OK when g is set, points[0 .. count) are valid (points may be NULL when count is 0) and the
- * options (NULL: defaults) are; else TG_ERR_INVALID_ARGUMENT. */
-tg_status tg__field_check(const tg_geodesic* g, const tg_surface_point* points, size_t count,
-                          const tg_field_options* opt);
-/* The options' distance limit in the solver's frame (solver.h: distances enter times scale). */
-double tg__field_limit(const tg_geodesic* g, const tg_field_options* opt);
-
-/* The run's vertex distances in the mesh's numbering and units (out: vertex_count), +inf beyond
- * the limit. */
-void tg__field_copy_out(const tg__field_run* run, double* out);
-
-/* ---- window geometry (window.c) ---- */
+/* ---- window distances ---- */
 
 /* A ray through the edge of a window's halfedge within this distance beyond the window's interval
  * still counts as the window's when a point is evaluated (query.c, ../isolines.c): the window's
@@ -279,68 +250,5 @@ static inline double tg__win_dist(const tg__window* w, double x)
     double dx = x - w->sx;
     return w->sigma + sqrt(dx * dx + w->sy * w->sy);
 }
-
-/* Trims the windows of one list against each other (ids[0..n), sorted here by b0; keys: scratch
- * for n entries; len: the edge's length): touching windows of one source image are merged; where
- * one window is shorter than another by the relative margin over a part of their common interval
- * that touches an end of the other, that part is cut from the other; windows left empty get
- * b1 <= b0. Returns the number of pairs compared. */
-uint64_t tg__windows_trim(tg__window* pool, uint32_t* ids, tg__win_key* keys, size_t n, double len);
-
-/* ---- queries on the field (query.c) ---- */
-
-/* Registers the run's query points: their distances start at +inf in run->qdist. */
-tg_status tg__field_queries_setup(tg__field_run* run);
-/* The windows ids[0..n) of the list of h, trimmed, about to cross face h / 3: evaluated at the
- * query points in that face that their rays reach. */
-void tg__field_queries_cross(tg__field_run* run, uint32_t h, const tg__window* pool, const uint32_t* ids, size_t n);
-/* A point source (or a point a zero-area face carries) at distance sigma inside face f. */
-void tg__field_queries_source(tg__field_run* run, const double src[3], double sigma, uint32_t f, uint32_t origin);
-/* q->stop_at_points: lowers the limit to the largest upper bound of the points' distances (times
- * 1 + TG__TIGHT_REL) once every point has a finite one; then every point is settled within it. */
-void tg__field_queries_bound(tg__field_run* run);
-/* After the propagation (ok) the corners' paths, vertex queries and the distance limit; in any
- * case the face marks are cleared for the next run. */
-void tg__field_queries_finish(tg__field_run* run, bool ok);
-
-/* ---- recording the windows near some levels (record.c) ---- */
-
-/* Empties the record for a new run (fs->rec; for a run that records, rec_floor set to +inf for
- * every face). false when out of memory. */
-bool tg__field_record_setup(tg__field_run* run);
-/* After a run that recorded: is level (one of the run's) above every distance in face f by the
- * record's own bound? Then D < level over the whole closed face (it does not meet it), and windows
- * crossing f may be missing from the record for this level: f's recorded windows do not give its
- * distance. Exactly the levels for which the filter below may have left a window of f out, by
- * the same arithmetic. */
-bool tg__field_record_below(const tg__field_scratch* fs, uint32_t f, double level);
-/* The windows ids[0..n) of the list of h, trimmed, about to cross face h / 3: those whose least
- * distance over the face lies within the face's longest side below a level are appended to
- * fs->rec. false when out of memory. */
-bool tg__field_record_cross(tg__field_run* run, uint32_t h, const tg__window* pool, const uint32_t* ids, size_t n);
-/* A point source (or a point a zero-area face carries) at distance sigma inside face f. */
-bool tg__field_record_source(tg__field_run* run, const double src[3], double sigma, uint32_t f);
-
-/* ---- propagation (propagate.c) ---- */
-
-/* Resets the scratch for a new run (only what the last run wrote). */
-void tg__field_reset(tg__field_scratch* fs);
-/* Seeds one source (distance 0), a valid point in the caller's numbering. */
-tg_status tg__field_seed(tg__field_run* run, const tg_surface_point* src);
-/* Runs the wavefront to the end (or past max_dist). TG_ERR_CANCELLED when progress says stop. */
-tg_status tg__field_propagate(tg__field_run* run);
-
-/* ---- the public figures (field.c) ---- */
-
-/* The progress hook of a single field (progress_user: the caller's tg_field_options): the
- * caller's callback with this run's figures. */
-int tg__field_report_single(void* user, const tg__field_run* run);
-
-/* A run's progress as tg_field_progress tells it for a single field: the front in the mesh's
- * units, the settled share of the referenced vertices (at most 1), one row. */
-void tg__field_progress_of(const tg__field_run* run, tg_field_progress* out);
-/* The same for row rows_done of `rows` (batches, sources added one at a time): the settled share
- * counts the rows done as whole. */
-void tg__field_progress_rows(const tg__field_run* run, size_t rows_done, size_t rows, tg_field_progress* out);
 
 #endif

@@ -1,0 +1,48 @@
+/* field.h - the exact distance field's door (field.c): what every client of the engine shares
+ * besides one run (field/run.h): the checks of the public calls' arguments, the progress figures
+ * and the counters; and the record a run leaves for the isolines (field/record.h). The engine
+ * itself: field/engine.h. */
+#ifndef TG_GEODESIC_FIELD_H
+#define TG_GEODESIC_FIELD_H
+
+#include "geodesic/field/record.h"
+#include "geodesic/field/run.h"
+
+/* ---- the public calls' common checks ---- */
+
+/* TG_OK when g is set, points[0 .. count) are valid (points may be NULL when count is 0) and the
+ * options (NULL: defaults) are; else TG_ERR_INVALID_ARGUMENT. */
+tg_status tg__field_check(const tg_geodesic* g, const tg_surface_point* points, size_t count,
+                          const tg_field_options* opt);
+/* The options' distance limit in the solver's frame (solver.h: distances enter times scale). */
+double tg__field_limit(const tg_geodesic* g, const tg_field_options* opt);
+
+/* ---- the caller's points in the solver's form ---- */
+
+/* The solver's form (tg__surface_in: canonical, the solver's numbering and winding) of n valid
+ * points of the caller, into out[0 .. n): the one conversion of a query's points, made where
+ * they enter (a tg__field_query carries no other form). */
+void tg__field_points_in(const tg_geodesic* g, const tg_surface_point* points, size_t n, tg_surface_point* out);
+/* The same for one query's sources and points, into the workspace's buffer (it grows to the
+ * largest query and is kept, so a call given a workspace allocates nothing after its first):
+ * *out_sources, *out_points (NULL for none). false when out of memory. */
+bool tg__field_points_in_workspace(tg_geodesic_workspace* ws, const tg_surface_point* sources, size_t source_count,
+                                   const tg_surface_point* points, size_t point_count,
+                                   const tg_surface_point** out_sources, const tg_surface_point** out_points);
+
+/* ---- the public figures ---- */
+
+/* A run's progress as tg_field_progress tells it for a single field: the front in the mesh's
+ * units, the settled share of the referenced vertices (at most 1), one row. */
+void tg__field_progress_of(const tg__field_run* run, tg_field_progress* out);
+/* The same for row rows_done of `rows` (batches, sources added one at a time): the settled share
+ * counts the rows done as whole. */
+void tg__field_progress_rows(const tg__field_run* run, size_t rows_done, size_t rows, tg_field_progress* out);
+/* The progress hook of a single field (progress_user: the caller's tg_field_options): the
+ * caller's callback with this run's figures. */
+int tg__field_report_single(void* user, const tg__field_run* run);
+
+/* Adds the counters of one run to a sum (largest values for the peaks). */
+void tg__field_stats_add(tg_field_stats* sum, const tg_field_stats* s);
+
+#endif

@@ -5,7 +5,7 @@
  *   Minimum Cost Paths" (1968): A* with a consistent heuristic (the Euclidean distance to the
  *   target, a lower bound on every edge path by the triangle inequality) stops once the target is
  *   settled. Graph ids are the solver's vertex ids, then V and V + 1 for virtual endpoints. */
-#include "geodesic/path/path.h"
+#include "geodesic/path/stages.h"
 
 #include <string.h>
 

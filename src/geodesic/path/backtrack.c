@@ -14,7 +14,7 @@
  * from the target towards the source image, face by face, crosses exactly those faces and ends
  * on the origin. */
 #include "core/predicates.h"
-#include "geodesic/path/path.h"
+#include "geodesic/path/stages.h"
 
 #include <string.h>
 

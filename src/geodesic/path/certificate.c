@@ -4,7 +4,7 @@
  *   polyline is a shortest geodesic across an edge iff it is straight in the unfolding of the two
  *   faces; at a vertex iff both angles are at least pi); Mitchell, Mount & Papadimitriou (1987),
  *   Lemma 3.4; seed 002 §2 (the two-triangle configuration of an edge point). */
-#include "geodesic/path/path.h"
+#include "geodesic/path/stages.h"
 
 /* A neighbour closer to the crossing than this is merged with it and the angle is taken between
  * the nearest points beyond, through the unfolding of the faces in between. A crossing is stored

@@ -2,7 +2,7 @@
  * to the face's corners (a face split 1 -> 3), an edge point to the corners of every face at its
  * edge (2 -> 4 on a manifold edge, more on a non-manifold one). The mesh is not modified.
  * Based on: seed 002 §5 (insert Q0 and Q1 as vertices, then search the edge graph). */
-#include "geodesic/path/path.h"
+#include "geodesic/path/stages.h"
 
 #include <string.h>
 

@@ -6,7 +6,7 @@
  *   passes through a vertex only if both angles it makes there are at least pi; Polthier &
  *   Schmies, "Straightest Geodesics on Polyhedral Surfaces" (1998), §3: angles at a vertex are
  *   sums of the incident corner angles. */
-#include "geodesic/path/path.h"
+#include "geodesic/path/stages.h"
 
 /* Angle of node p seen from corner k of face f, measured from side k -> k+1 towards k -> k+2,
  * and the corner's angle; false when p is not in f or coincides with the corner (a zero-length

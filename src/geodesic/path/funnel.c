@@ -8,7 +8,7 @@
  *   Mitchell, Mount & Papadimitriou (1987), §3 (unfolding a face sequence into the plane keeps
  *   lengths; a straight line in the unfolding is a geodesic inside the sleeve). */
 #include "core/predicates.h"
-#include "geodesic/path/path.h"
+#include "geodesic/path/stages.h"
 
 #include <string.h>
 

@@ -6,7 +6,7 @@
  *   tg_fan_path_minimize (§3-4).
  * One addition to §5, documented at relax_run: a run of edge points converging onto one vertex is
  * re-solved as that vertex's fan, since coordinate-wise moves cannot carry it past the vertex. */
-#include "geodesic/path/path.h"
+#include "geodesic/path/stages.h"
 #include "kernels/fan_path.h"
 
 #include <string.h>

@@ -2,7 +2,7 @@
  * read-only view, names of its status and global flag, and the OBJ polyline writer.
  * Based on: the project's DESIGN.md (tg_path: points with every crossing and vertex passage, faces,
  *   length, status, certificate). */
-#include "geodesic/path/path.h"
+#include "geodesic/path/stages.h"
 
 #include <errno.h>
 #include <stdio.h>

@@ -7,7 +7,7 @@
  *   faces to the sequence; the length decreases strictly, so the loop ends at a locally exact
  *   geodesic); seed 002 §5 and Figure 5.1 (the two fans at a path vertex); Mitchell, Mount &
  *   Papadimitriou (1987), Lemma 3.4 (the vertex condition: both angles >= pi). */
-#include "geodesic/path/path.h"
+#include "geodesic/path/stages.h"
 
 #include <string.h>
 

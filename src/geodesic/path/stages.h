@@ -1,4 +1,5 @@
-/* path.h - internal types and stages of geodesic path queries (src/geodesic/path/):
+/* stages.h - the stages of geodesic path queries (src/geodesic/path/): their types, scratch and
+ * calls, shared by the stages and by the query that runs them (../path.c):
  *
  *   endpoints.c  the query's endpoints, inserted virtually (seed 002 §5)
  *   astar.c      the initial edge path: A* over the edge graph plus the endpoints' virtual edges
@@ -8,13 +9,14 @@
  *   relax.c      the seed's relaxation (two-triangle and fan kernels)
  *   backtrack.c  the exact path followed back through a field's windows
  *   certificate.c the straightness certificate
- *   path.c       tg_geodesic_path: the sequence of these stages
  *   result.c     tg_path, the caller's result object
  *
- * Stages hand each other routes (tg__route) as arguments; each stage's scratch lives in its own
- * struct of the workspace (workspace.h). */
-#ifndef TG_GEODESIC_PATH_H
-#define TG_GEODESIC_PATH_H
+ * One level up, ../path.c is tg_geodesic_path: the sequence of these stages. The stages call
+ * only each other and the layers below, never the query. Stages hand each other routes
+ * (tg__route) as arguments; each stage's scratch lives in its own struct of the workspace
+ * (workspace.h). */
+#ifndef TG_GEODESIC_PATH_STAGES_H
+#define TG_GEODESIC_PATH_STAGES_H
 
 #include "geodesic/field.h"
 

@@ -1,7 +1,6 @@
 /* workspace.h - tg_geodesic_workspace: one per thread, for paths and fields alike. Each stage's
  * scratch is a struct of its own (path/stages.h, field/engine.h); the tables sized for the mesh are
- * made with
- * the workspace, the buffers grow to the largest query seen and are kept.
+ * made with the workspace, the buffers grow to the largest query seen and are kept.
  * Based on: per-query scratch in a caller-owned workspace (the house style, after Embree's and
  *   Detour's query objects). */
 #ifndef TG_GEODESIC_WORKSPACE_H

@@ -120,7 +120,7 @@ static tg_status evaluate_round(tg__nearest* nf, tg__field_scratch* fs, const tg
          * sources' short runs can take seconds (5000 sources on igl_armadillo: about 1 s) */
         bool progress = nf->options && nf->options->progress;
         tg__field_query q = {&sources[s], 1, pts, m, INFINITY, progress ? tg__nearest_report : NULL, nf, NULL, false,
-                             NULL, false, bound, NULL, NULL, 0};
+                             NULL, false, bound, NULL, NULL, 0, 1};
         tg__field_run run;
         tg_status st = tg__field_execute(fs, &q, &run);
         if (st == TG_OK) st = tg__nearest_poll(nf);

@@ -1314,7 +1314,7 @@ static tg_status isolines_of(const tg_geodesic* g, tg__field_scratch* fs, const 
         qsort(sorted, nl, sizeof *sorted, tg__cmp_double);
         bool progress = options && options->progress;
         tg__field_query q = {sources, source_count, NULL, 0, limit, progress ? tg__field_report_single : NULL, (void*)options,
-                             NULL, false, NULL, false, NULL, NULL, sorted, nl};
+                             NULL, false, NULL, false, NULL, NULL, sorted, nl, 1};
         status = tg__field_execute(fs, &q, &run);
     }
     if (status == TG_OK) {

@@ -277,7 +277,7 @@ tg_status tg_geodesic_log_map(const tg_geodesic* g, tg_geodesic_workspace* ws, c
     if (st == TG_OK && !tg__field_grow(&ws->field, &ws->field.lm_theta, nv)) st = TG_ERR_OUT_OF_MEMORY;
     if (st == TG_OK) {
         tg__field_query q = {source, 1, NULL, 0, tg__field_limit(g, options), options && options->progress ? tg__field_report_single : NULL, (void*)options, NULL, true, NULL,
-                             false, NULL, &s.lm, NULL, 0};
+                             false, NULL, &s.lm, NULL, 0, 1};
         tg__field_run run;
         st = tg__field_execute(&ws->field, &q, &run);
         if (st == TG_OK) {

@@ -47,7 +47,7 @@ tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surfa
     bool progress = nf->options && nf->options->progress;
     /* the first source alone is a plain field; later ones only where they beat the earlier */
     tg__field_query q = {src,  1,    NULL,  0,    nf->max_dist, progress ? tg__nearest_report : NULL, nf, NULL, false, NULL, false,
-                         nf->added ? nf->dist : NULL, NULL, NULL, 0};
+                         nf->added ? nf->dist : NULL, NULL, NULL, 0, 1};
     tg__field_run run;
     tg_status st = tg__field_execute(fs, &q, &run);
     tg__field_stats_add(&nf->stats, &run.stats);

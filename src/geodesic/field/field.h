@@ -108,7 +108,9 @@ typedef struct tg__corner_hit {
                                   angle its ray left at (valid where pred says so) */     \
     X(rec, tg__rec_window)     /* the windows near the levels (runs that record, record.c) */ \
     X(rec_floor, double)       /* runs that record: per face, the least distance of the windows \
-                                  that crossed it (with record.c's margin), +inf if none */
+                                  that crossed it (with record.c's margin), +inf if none */       \
+    X(wave, uint32_t)          /* several threads: the halfedges whose lists cross in one round */ \
+    X(tasks, tg__lane_task)    /* several threads: where each list's results lie in the lanes */
 
 /* A window recorded while its list crossed face h / 3 (record.c, for isolines): its source image
  * (sx, sy) and interval [b0, b1] in the frame of h, its offset sigma; a point source inside the
@@ -131,6 +133,40 @@ typedef struct tg__query_bound {
     double len[3];
 } tg__query_bound;
 
+/* ---- several threads (propagate.c): the lists of one round cross their faces at once, each on
+ * some thread's lane, which keeps what the crossing would write to shared state (children,
+ * corner distances, released slots); the lanes are then merged in the round's order, so the
+ * result does not depend on the number of threads or on which thread took which list. ---- */
+
+/* A child window for halfedge h's list, shaped and not dominated when its list crossed: the
+ * arguments of store_window. */
+typedef struct tg__lane_child {
+    uint32_t h, tag;
+    double c0, c1, x, y, sigma, d0, d1;
+} tg__lane_child;
+
+/* A corner distance found while a list crossed (relax_vertex's arguments). */
+typedef struct tg__lane_relax {
+    uint32_t v;
+    double d;
+    tg__pred how;
+} tg__lane_relax;
+
+/* One thread's buffers: the results of the lists it crossed, and its own copies of the list
+ * scratch (list, keys, hits). */
+typedef struct tg__field_lane {
+    tg__vec child, relax, freed, list, keys, hits;
+    tg_field_stats stats;
+    int failed;    /* a buffer could not grow */
+    char pad[128]; /* lanes are written by different threads: no cache line shared */
+} tg__field_lane;
+
+/* Where the results of one list of a round lie: its lane, and the ranges in the lane's buffers. */
+typedef struct tg__lane_task {
+    uint32_t lane;
+    uint32_t child0, child1, relax0, relax1, freed0, freed1;
+} tg__lane_task;
+
 /* The engine's scratch: tables sized for the mesh once, buffers that grow to the largest run
  * and are kept. A run writes only what it reaches and notes it (touched_v, touched_h), so the
  * next run resets only that and a run bounded to a small region costs nothing per vertex. */
@@ -152,6 +188,8 @@ typedef struct tg__field_scratch {
     TG__FIELD_BUFFERS(TG__FIELD_VEC_)
 #undef TG__FIELD_VEC_
     size_t fifo_head;
+    tg__field_lane* lanes; /* several threads: one lane per thread, made on first use */
+    int lane_count;
     int touched_all; /* reset everything before the next run (first run, or a list could not grow) */
     size_t peak_bytes;
 } tg__field_scratch;
@@ -163,6 +201,8 @@ void tg__field_scratch_free(tg__field_scratch* fs);
 /* Makes room for `extra` more elements of v, one of the scratch's buffers (noting the peak of
  * the scratch's memory); false on overflow or allocation failure. */
 bool tg__field_grow_slow(tg__field_scratch* fs, tg__vec* v, size_t extra);
+/* Makes sure the scratch has n lanes (several threads); false when out of memory. */
+bool tg__field_lanes(tg__field_scratch* fs, int n);
 static inline bool tg__field_grow(tg__field_scratch* fs, tg__vec* v, size_t extra)
 {
     return extra <= v->capacity - v->count || tg__field_grow_slow(fs, v, extra);
@@ -201,6 +241,9 @@ typedef struct tg__field_query {
                                         when a level lies within the face's size above its least
                                         distance (record.c), and so is every point source */
     size_t record_level_count;
+    int threads;                     /* 0 or 1: the serial engine; more: the rounds of
+                                        propagate.c on that many threads (plain runs only: no
+                                        points, toward, log map or recorded levels) */
 } tg__field_query;
 
 /* One run: its state while it propagates, then its results. */
@@ -253,6 +296,9 @@ tg_status tg__field_execute(tg__field_scratch* fs, const tg__field_query* q, tg_
 tg_status tg__field_check(const tg_geodesic* g, const tg_surface_point* points, size_t count,
                           const tg_field_options* opt);
 /* The options' distance limit in the solver's frame (solver.h: distances enter times scale). */
+/* The options' thread count: 1 for the serial engine (threads 0 or 1, or no options), the cores
+ * for TG_THREADS_ALL, -1 for a count below it (refused). */
+int tg__field_threads(const tg_field_options* opt);
 double tg__field_limit(const tg_geodesic* g, const tg_field_options* opt);
 
 /* The run's vertex distances in the mesh's numbering and units (out: vertex_count), +inf beyond

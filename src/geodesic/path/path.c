@@ -78,7 +78,7 @@ static tg_status exact_propagation(tg_geodesic_workspace* ws, const request* rq,
     double toward[3];
     tg_v3_store(tg__node_pos(ws->geo, &tn), toward);
     tg__field_query q = {from, 1, to, 1, limit, rq->progress.fn ? report_propagation : NULL,
-                         (void*)&rq->progress, NULL, true, toward, false, NULL, NULL, NULL, 0};
+                         (void*)&rq->progress, NULL, true, toward, false, NULL, NULL, NULL, 0, 1};
     return tg__field_execute(&ws->field, &q, out_run);
 }
 

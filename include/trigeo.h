@@ -8,7 +8,9 @@
  *    leaks and the caller's state is unchanged.
  *  - Built objects (tg_mesh, tg_bvh, ...) are opaque and immutable after creation; queries on them
  *    are thread-safe. tg_x_destroy(NULL) is a no-op.
- *  - Options structs: a NULL pointer or a zero-initialised struct means "defaults".
+ *  - Options structs: a NULL pointer or a zero-initialised struct means "defaults". Every member
+ *    is either honoured or refused by every call taking the struct (the table at
+ *    tg_field_options).
  *  - Indices are 0-based uint32_t in file order; TG_NONE (0xFFFFFFFF) means "no such element".
  *  - Coordinates and lengths are double. The library never prints, exits, aborts or keeps mutable
  *    globals.
@@ -21,6 +23,30 @@
  *    scaled by any factor and moved anywhere in range gives the same results times the factor,
  *    to rounding (bit for bit under powers of two), down to coordinate differences of normal
  *    doubles (about 1e-307; subnormal ones have fewer digits).
+ *
+ * One convention for every query (0.6):
+ *    what                 rule
+ *    parameter order      the built object (mesh, bvh, geodesic), the workspace, the inputs, the
+ *                         options, `int threads` (batch calls only), the result object or the
+ *                         main output array, the other outputs, out_stats last
+ *    the solver           named `geodesic` in every prototype (`mesh`, `bvh` likewise)
+ *    result objects       paths, traces, sparse matrices, Voronoi boundaries and isolines are all
+ *                         created empty by tg_x_create(allocator, &x), filled by the query (which
+ *                         replaces their content, reusing nothing the caller holds a view of),
+ *                         read by tg_x_get_view and freed by tg_x_destroy; on error they are
+ *                         left empty. No query returns a fresh object through `**out`.
+ *    per-vertex outputs   out_vertex_distance, then out_vertex_label / out_vertex_angle; the
+ *                         per-point ones out_point_distance; arrays the caller sizes; NULL where
+ *                         the call says an output is optional
+ *    single queries       take a workspace (NULL: a temporary one); tracing needs none (a walk's
+ *                         state is a few locals, its polyline lives in the trace object)
+ *    batch queries        (matrices, tg_geodesic_trace_batch, tg_bvh_*_batch) take `int threads`
+ *                         after the options (0: the OpenMP default, 1: the calling thread only)
+ *                         and make one scratch per thread themselves; no workspace
+ *    empty inputs         a source list may be empty wherever sources are taken: no vertex is
+ *                         reached (distance +inf, label TG_NONE, no isolines, a 0-row matrix)
+ *    progress             every long call takes a progress callback in its options and stops
+ *                         with TG_ERR_CANCELLED when it returns non-zero
  *
  * Compiles as C11 and as C++ (extern "C").
  */
@@ -56,10 +82,26 @@ extern "C" {
 /* ============================================================================================== */
 
 #define TG_VERSION_MAJOR 0
-#define TG_VERSION_MINOR 5
+#define TG_VERSION_MINOR 6
 #define TG_VERSION_PATCH 0
 /** Single integer for comparisons: major * 10000 + minor * 100 + patch. */
 #define TG_VERSION (TG_VERSION_MAJOR * 10000 + TG_VERSION_MINOR * 100 + TG_VERSION_PATCH)
+
+/* Changes in 0.6 (ABI: soname libtrigeo.so.0.6; programs built against 0.5 must be rebuilt), one
+ * convention for every query (the table above):
+ *  - tg_geodesic_local_matrix, tg_geodesic_voronoi and tg_geodesic_isolines fill a result object
+ *    the caller created (tg_sparse_matrix_create, tg_voronoi_boundaries_create,
+ *    tg_isolines_create) and may reuse, as paths and traces are, instead of returning a fresh one
+ *    through `**out`; on error the object is empty.
+ *  - tg_geodesic_voronoi's outputs come in the common order: boundaries, out_vertex_distance,
+ *    out_vertex_label (it was label, distance, boundaries).
+ *  - tg_geodesic_local_matrix refuses options->limit = TG_FIELD_MAX_DISTANCE (it used to ignore
+ *    it: the radius is its max_distance argument).
+ *  - Every prototype names the solver `geodesic`; the log map's outputs are out_vertex_distance
+ *    and out_vertex_angle (names only).
+ *  - Python and the CLI follow: one rule for isolines (a number is always a level; a count of
+ *    evenly spaced levels is asked for by name) and for empty source lists (accepted, nothing
+ *    reached). */
 
 /* Changes in 0.5 (ABI: soname libtrigeo.so.0.5; programs built against 0.4 must be rebuilt):
  *  - tg_geodesic_path_through takes a const tg_path_options* (before the path): its progress
@@ -1112,7 +1154,7 @@ typedef enum tg_trace_status {
 } tg_trace_status;
 
 /** "complete", "boundary", "singular", "step_limit", "stalled"; "unknown" for other values.
- *  Never NULL. */
+ *  Never NULL. (New in 0.4.) */
 TG_API const char* tg_trace_status_name(tg_trace_status status);
 
 /** Options of tg_geodesic_trace and tg_geodesic_trace_batch. NULL or all-zero means defaults. */
@@ -1174,13 +1216,14 @@ typedef struct tg_trace_view {
 } tg_trace_view;
 
 /** Creates an empty trace object. allocator may be NULL (libc). Errors:
- *  TG_ERR_INVALID_ARGUMENT, TG_ERR_OUT_OF_MEMORY. */
+ *  TG_ERR_INVALID_ARGUMENT, TG_ERR_OUT_OF_MEMORY. (New in 0.4.) */
 TG_API tg_status tg_trace_create(const tg_allocator* allocator, tg_trace** out_trace);
 
-/** Frees a trace object. NULL is a no-op. */
+/** Frees a trace object. NULL is a no-op. (New in 0.4.) */
 TG_API void tg_trace_destroy(tg_trace* trace);
 
-/** Fills *out_view with the trace's current content (no points before the first call). O(1). */
+/** Fills *out_view with the trace's current content (no points before the first call). O(1).
+ *  (New in 0.4.) */
 TG_API void tg_trace_get_view(const tg_trace* trace, tg_trace_view* out_view);
 
 /** The exponential map: walks from `start` in `direction` straight across the faces for `length`
@@ -1214,7 +1257,7 @@ TG_API void tg_trace_get_view(const tg_trace* trace, tg_trace_view* out_view);
  *  TG_ERR_CANCELLED (options->progress asked to stop); on error the trace is empty (no points).
  *  Complexity: O(k) in the k faces crossed, a small constant per face (figures in
  *  BENCHMARKS.md), plus the vertices' fans at vertex passages; no allocation once the trace's
- *  buffers hold k points. Thread-safe for distinct trace objects. */
+ *  buffers hold k points. Thread-safe for distinct trace objects. (New in 0.4.) */
 TG_API tg_status tg_geodesic_trace(const tg_geodesic* geodesic, const tg_surface_point* start,
                             const tg_trace_direction* direction, double length, const tg_trace_options* options,
                             tg_trace* trace);
@@ -1230,7 +1273,7 @@ TG_API tg_status tg_geodesic_trace(const tg_geodesic* geodesic, const tg_surface
  *  non-zero count, a negative thread count); out_ends is then untouched. TG_ERR_CANCELLED
  *  (options->progress asked to stop): every walk ends at its next look, out_ends holds the
  *  entries of the traces finished before (each complete) and leaves the others untouched.
- *  Complexity: the sum of the walks', divided among the threads. Thread-safe. */
+ *  Complexity: the sum of the walks', divided among the threads. Thread-safe. (New in 0.4.) */
 TG_API tg_status tg_geodesic_trace_batch(const tg_geodesic* geodesic, const tg_surface_point* starts,
                                   const tg_trace_direction* directions, const double* lengths, size_t count,
                                   const tg_trace_options* options, int threads, tg_trace_end* out_ends);
@@ -1246,8 +1289,22 @@ typedef enum tg_field_limit {
     TG_FIELD_MAX_DISTANCE = 1 /**< stop at max_distance (0 is allowed and means distance 0) */
 } tg_field_limit;
 
-/** Options of the field calls (tg_geodesic_field, tg_geodesic_field_at,
- *  tg_geodesic_distance_matrix). NULL or all-zero means defaults. */
+/** Options of the field calls. NULL or all-zero means defaults. Every call that takes them
+ *  honours each member or refuses it (TG_ERR_INVALID_ARGUMENT); none ignores one:
+ *
+ *    call                                   allocator  limit / max_distance      progress
+ *    tg_geodesic_field, _field_at           honoured   honoured                  honoured
+ *    tg_geodesic_log_map                    honoured   honoured                  honoured
+ *    tg_geodesic_distance_matrix, _at       honoured   honoured (every row)      honoured
+ *    tg_geodesic_local_matrix               honoured   refused: the radius is    honoured
+ *                                                      its max_distance argument
+ *    tg_geodesic_voronoi                    honoured   honoured                  honoured
+ *    tg_geodesic_isolines                   honoured   honoured                  honoured
+ *    tg_geodesic_farthest_point_sampling    honoured   refused (samples need     honoured
+ *                                                      the whole field)
+ *
+ *  The allocator serves the call's scratch (a temporary workspace, per-thread scratch); result
+ *  objects use their own allocator, given when they were created. */
 typedef struct tg_field_options {
     /** the memory of a temporary workspace (and of the distance matrix's per-thread scratch);
      *  NULL: the solver's allocator */
@@ -1317,15 +1374,15 @@ typedef struct tg_field_stats {
  *  reaches (another component, unreferenced vertices, beyond max_distance) get +inf; never NaN.
  *  out_stats: may be NULL; filled on success.
  *
- *  Errors: TG_ERR_INVALID_ARGUMENT (NULL g or out_vertex_distance, NULL sources with a non-zero
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic or out_vertex_distance, NULL sources with a non-zero
  *  count, an invalid source point, a negative or NaN max_distance with TG_FIELD_MAX_DISTANCE, an
  *  unknown limit, a workspace of another solver), TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED (the
  *  progress callback returned non-zero). On any error out_vertex_distance and out_stats are
  *  untouched and nothing leaks.
  *  Complexity: typically a small multiple of n^1.5 window crossings for n vertices (O(n^2 log n)
- *  worst case); memory: the workspace plus about 56 bytes per live window. Thread-safe: g is only
+ *  worst case); memory: the workspace plus about 56 bytes per live window. Thread-safe: geodesic is only
  *  read; concurrent calls need distinct workspaces and output arrays. */
-TG_API tg_status tg_geodesic_field(const tg_geodesic* g, tg_geodesic_workspace* workspace,
+TG_API tg_status tg_geodesic_field(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                             const tg_surface_point* sources, size_t source_count,
                             const tg_field_options* options, double* out_vertex_distance, tg_field_stats* out_stats);
 
@@ -1342,14 +1399,14 @@ TG_API tg_status tg_geodesic_field(const tg_geodesic* g, tg_geodesic_workspace* 
  *  TG_ERR_INVALID_ARGUMENT for an invalid point or NULL points / out_point_distance with a
  *  non-zero point_count; on error the outputs are untouched. Cost: the field's, plus the windows
  *  crossing the points' faces times the points in them. */
-TG_API tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* workspace,
+TG_API tg_status tg_geodesic_field_at(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                                const tg_surface_point* sources, size_t source_count,
                                const tg_surface_point* points, size_t point_count, const tg_field_options* options,
                                double* out_point_distance, double* out_vertex_distance, tg_field_stats* out_stats);
 
 /** The exact logarithmic map (polar coordinates about a point): for every vertex its exact
- *  geodesic distance from `source` (out_distance, bit-identical to tg_geodesic_field's for this
- *  source) and the angle at which its shortest path leaves the source (out_angle, radians).
+ *  geodesic distance from `source` (out_vertex_distance, bit-identical to tg_geodesic_field's for this
+ *  source) and the angle at which its shortest path leaves the source (out_vertex_angle, radians).
  *  The 2D coordinates of the map are (r cos a, r sin a).
  *
  *  Method: the field's window propagation, in which every window lit by the source carries the
@@ -1362,7 +1419,7 @@ TG_API tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspac
  *
  *  Angles: counterclockwise, measured as TG_TRACE_ANGLE measures them at the source's canonical
  *  form (tg_surface_point_canonical), so that tg_geodesic_trace from the source along angle
- *  out_angle[v] for length out_distance[v] ends at v wherever its shortest path is unique and
+ *  out_vertex_angle[v] for length out_vertex_distance[v] ends at v wherever its shortest path is unique and
  *  meets no vertex on the way: at a face point from its face's corner 0 towards corner 1, in
  *  [0, 2 pi); at an edge point from its halfedge's start towards its end, in [0, pi] in the
  *  halfedge's face and (pi, 2 pi) beyond the edge; at a vertex from tg_mesh_vertex_halfedges'
@@ -1386,9 +1443,9 @@ TG_API tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspac
  *  +inf and angle 0 (never NaN). The source vertex itself: distance 0, angle 0.
  *
  *  workspace: NULL or one of this solver's. source: a valid surface point. options: as
- *  tg_geodesic_field's (limit, allocator, progress). out_distance, out_angle: vertex_count
+ *  tg_geodesic_field's (limit, allocator, progress). out_vertex_distance, out_vertex_angle: vertex_count
  *  doubles each. out_stats: may be NULL.
- *  Errors: TG_ERR_INVALID_ARGUMENT (NULL g, source or outputs; an invalid source; bad options;
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic, source or outputs; an invalid source; bad options;
  *  a reference vector that is zero, NaN or infinite, or that TG_TRACE_VECTOR refuses at the
  *  source (parallel to the normal there: its projection at most 1e-9 of its length); a
  *  reference face of zero area),
@@ -1396,11 +1453,11 @@ TG_API tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspac
  *  Complexity: the field's, plus O(V) for the angles (BENCHMARKS.md: within 1.2x of the
  *  field's time); memory: the field's plus 24 bytes per window slot and about 40 bytes per
  *  vertex (how each got its distance, the angles, a stack).
- *  Thread-safe as tg_geodesic_field. */
-TG_API tg_status tg_geodesic_log_map(const tg_geodesic* g, tg_geodesic_workspace* workspace,
+ *  Thread-safe as tg_geodesic_field. (New in 0.4.) */
+TG_API tg_status tg_geodesic_log_map(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                               const tg_surface_point* source, const double* reference,
-                              const tg_field_options* options, double* out_distance, double* out_angle,
-                              tg_field_stats* out_stats);
+                              const tg_field_options* options, double* out_vertex_distance,
+                              double* out_vertex_angle, tg_field_stats* out_stats);
 
 /** The distance matrix: row i of out_matrix (row-major, source_count x vertex_count doubles) is
  *  the field of sources[i] alone, exactly as tg_geodesic_field computes it (bit-identical). The
@@ -1415,7 +1472,7 @@ TG_API tg_status tg_geodesic_log_map(const tg_geodesic* g, tg_geodesic_workspace
  *  is written only once complete, so on error (or cancellation) out_matrix holds some complete
  *  rows and leaves the others untouched, never a partial row; out_stats is untouched.
  *  Thread-safe as tg_geodesic_field. */
-TG_API tg_status tg_geodesic_distance_matrix(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+TG_API tg_status tg_geodesic_distance_matrix(const tg_geodesic* geodesic, const tg_surface_point* sources, size_t source_count,
                                   const tg_field_options* options, int threads, double* out_matrix,
                                   tg_field_stats* out_stats);
 
@@ -1432,7 +1489,7 @@ TG_API tg_status tg_geodesic_distance_matrix(const tg_geodesic* g, const tg_surf
  *  vertex of its face plus the segment to it), the row's limit drops to the largest bound, so
  *  near targets cost a disc around the source, not the mesh (a target in another component
  *  keeps the whole component running). The entries are still those of the whole field.
- *  Errors: TG_ERR_INVALID_ARGUMENT (NULL g or out_matrix with a non-zero size, NULL sources or
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic or out_matrix with a non-zero size, NULL sources or
  *  targets with a non-zero count, an invalid source or target point, bad options, a negative
  *  thread count, a matrix size that overflows); every point is validated before any work.
  *  TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED. Each row is written only once complete, so on error
@@ -1440,17 +1497,24 @@ TG_API tg_status tg_geodesic_distance_matrix(const tg_geodesic* g, const tg_surf
  *  counters summed over the rows) is filled only on success.
  *  Complexity: source_count fields, each only as far as its farthest target, plus the targets'
  *  evaluation, divided among the threads; memory: one workspace's engine scratch per thread. Thread-safe as
- *  tg_geodesic_field. */
-TG_API tg_status tg_geodesic_distance_matrix_at(const tg_geodesic* g, const tg_surface_point* sources,
+ *  tg_geodesic_field. (New in 0.4.) */
+TG_API tg_status tg_geodesic_distance_matrix_at(const tg_geodesic* geodesic, const tg_surface_point* sources,
                                          size_t source_count, const tg_surface_point* targets, size_t target_count,
                                          const tg_field_options* options, int threads, double* out_matrix,
                                          tg_field_stats* out_stats);
 
-/** A sparse matrix in compressed sparse row form (CSR), made by tg_geodesic_local_matrix and
- *  read through tg_sparse_matrix_get_view. Immutable; freed by tg_sparse_matrix_destroy. */
+/** A sparse matrix in compressed sparse row form (CSR): a result object (see "Conventions"),
+ *  created empty by tg_sparse_matrix_create, filled by tg_geodesic_local_matrix (each call
+ *  replaces its content), read through tg_sparse_matrix_get_view, freed by
+ *  tg_sparse_matrix_destroy. */
 typedef struct tg_sparse_matrix tg_sparse_matrix;
 
-/** Read-only view of a sparse matrix, valid until tg_sparse_matrix_destroy. Row r holds the
+/** Creates an empty matrix (no rows). allocator: the memory of its arrays (NULL: libc); it must
+ *  outlive the matrix. Errors: TG_ERR_INVALID_ARGUMENT (NULL out_matrix), TG_ERR_OUT_OF_MEMORY
+ *  (*out_matrix NULL). (New in 0.6.) */
+TG_API tg_status tg_sparse_matrix_create(const tg_allocator* allocator, tg_sparse_matrix** out_matrix);
+
+/** Read-only view of a sparse matrix, valid until the matrix is filled again or destroyed. Row r holds the
  *  entries row_start[r] .. row_start[r + 1] - 1: column col[k] has the value value[k]; columns
  *  ascend strictly within a row. Absent entries are not zeros: in a local distance matrix they are
  *  the pairs farther apart than the radius (or unreachable); a stored 0.0 is a distance of 0 (the
@@ -1465,13 +1529,15 @@ typedef struct tg_sparse_matrix_view {
     const double* value;       /**< entry_count values (NULL when entry_count is 0) */
 } tg_sparse_matrix_view;
 
-/** Fills *out_view with the matrix's arrays (all zero for a NULL matrix). O(1). Thread-safe. */
+/** Fills *out_view with the matrix's arrays (all zero for a NULL matrix). O(1). Thread-safe.
+ *  (New in 0.4.) */
 TG_API void tg_sparse_matrix_get_view(const tg_sparse_matrix* matrix, tg_sparse_matrix_view* out_view);
 
-/** Bytes owned by the matrix: 8 per row plus 12 per entry, and a header. NULL gives 0. */
+/** Bytes owned by the matrix: 8 per row plus 12 per entry, and a header. NULL gives 0.
+ *  (New in 0.4.) */
 TG_API size_t tg_sparse_matrix_memory_bytes(const tg_sparse_matrix* matrix);
 
-/** Frees a matrix (with the allocator it was made with). NULL is a no-op. */
+/** Frees a matrix (with the allocator it was created with). NULL is a no-op. (New in 0.4.) */
 TG_API void tg_sparse_matrix_destroy(tg_sparse_matrix* matrix);
 
 /** The local distance matrix: row i lists every vertex within max_distance of sources[i] (the
@@ -1492,31 +1558,40 @@ TG_API void tg_sparse_matrix_destroy(tg_sparse_matrix* matrix);
  *  unreferenced vertex, which is not on the surface, gets an empty row).
  *  max_distance: the radius, >= 0 (0 keeps only distance-0 entries), in the unit of the
  *  coordinates; +inf keeps every reachable vertex (the full matrix, stored sparse).
- *  options: allocator (also of the result) and progress as for tg_geodesic_distance_matrix (inside
- *  long rows and between rows, so a matrix of many small discs stops within milliseconds); its
- *  limit and max_distance are not used (the radius is the max_distance argument).
+ *  options: allocator (of the call's scratch) and progress as for tg_geodesic_distance_matrix
+ *  (inside long rows and between rows, so a matrix of many small discs stops within
+ *  milliseconds); the radius is the max_distance argument, so options->limit must be
+ *  TG_FIELD_UNLIMITED (TG_FIELD_MAX_DISTANCE is refused rather than ignored).
  *  threads: rows run in parallel with OpenMP (0: the OpenMP default, 1: this thread only), each
  *  thread with an exact-engine scratch made and freed by the call; rows are assembled in
  *  order, so the result is the same whatever the thread count.
- *  out_matrix: receives the matrix (NULL on error); out_stats: may be NULL, counters summed over
- *  the rows, filled on success.
- *  Errors: TG_ERR_INVALID_ARGUMENT (NULL g or out_matrix, NULL sources with a count other than the
- *  vertex count, an invalid source, a negative or NaN max_distance, a negative thread count),
- *  TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED (the progress callback asked to stop). On error nothing
- *  is returned and nothing leaks.
+ *  matrix: the result (tg_sparse_matrix_create; its old content is replaced, its arrays are made
+ *  with its allocator); out_stats: may be NULL, counters summed over the rows, filled on success.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic or matrix, NULL sources with a count other than
+ *  the vertex count, an invalid source, a negative or NaN max_distance, options->limit set, a
+ *  negative thread count), TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED (the progress callback asked to
+ *  stop). On error the matrix is empty (no rows; as a path is) and nothing leaks.
  *  Complexity: one field bounded to the radius per row, divided among the threads; each row
  *  costs time in the windows of its disc and reads only the vertices its run reached (no pass
  *  over all vertices per row). Memory: the result (8 bytes per row, 12 per entry), the rows
  *  finished out of order and waiting for earlier ones, and one workspace's engine scratch per
  *  thread; the entries are gathered in blocks and copied into the final arrays block by block,
- *  each block freed once copied. Thread-safe as tg_geodesic_field. */
-TG_API tg_status tg_geodesic_local_matrix(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+ *  each block freed once copied. Thread-safe as tg_geodesic_field. (New in 0.4.) */
+TG_API tg_status tg_geodesic_local_matrix(const tg_geodesic* geodesic, const tg_surface_point* sources, size_t source_count,
                                    double max_distance, const tg_field_options* options, int threads,
-                                   tg_sparse_matrix** out_matrix, tg_field_stats* out_stats);
+                                   tg_sparse_matrix* matrix, tg_field_stats* out_stats);
 
 
-/** The boundaries of geodesic Voronoi cells (tg_geodesic_voronoi), an object of its own. */
+/** The boundaries of geodesic Voronoi cells: a result object (see "Conventions"), created empty
+ *  by tg_voronoi_boundaries_create, filled by tg_geodesic_voronoi, read through
+ *  tg_voronoi_boundaries_get_view, freed by tg_voronoi_boundaries_destroy. */
 typedef struct tg_voronoi_boundaries tg_voronoi_boundaries;
+
+/** Creates an empty boundaries object (no polylines). allocator: the memory of its arrays (NULL:
+ *  libc); it must outlive the object. Errors: TG_ERR_INVALID_ARGUMENT (NULL out_boundaries),
+ *  TG_ERR_OUT_OF_MEMORY (*out_boundaries NULL). (New in 0.6.) */
+TG_API tg_status tg_voronoi_boundaries_create(const tg_allocator* allocator,
+                                              tg_voronoi_boundaries** out_boundaries);
 
 /** Geodesic Voronoi labels: for every vertex, the index of its nearest source in exact geodesic
  *  distance, and that distance; optionally the cells' boundaries as polylines on the surface.
@@ -1536,11 +1611,10 @@ typedef struct tg_voronoi_boundaries tg_voronoi_boundaries;
  *  workspace: one of this solver's, or NULL for a temporary one. sources: source_count valid
  *  surface points (any kind; repeated points are allowed: the later one's cell is empty).
  *  options: NULL for defaults; with TG_FIELD_MAX_DISTANCE vertices farther than max_distance
- *  from every source get +inf and TG_NONE; progress (called while fields run and after each source) is told rows_done = sources done, row_count
- *  = source_count. out_vertex_label: vertex_count labels (source indices; TG_NONE where no source
- *  reaches: other components, unreferenced vertices, beyond the limit), or NULL.
- *  out_vertex_distance: vertex_count doubles (the distance to the nearest source), or NULL. At
- *  out_boundaries: NULL, or where the boundaries go (a new object, or NULL on error): on every
+ *  from every source get +inf and TG_NONE; progress (called while fields run and after each
+ *  source) is told rows_done = sources done, row_count = source_count.
+ *  boundaries: NULL, or a boundaries object (tg_voronoi_boundaries_create) that receives the
+ *  cells' boundaries (its old content replaced, its arrays made with its allocator): on every
  *  edge whose end vertices have different labels (both reached, the edge of non-zero length),
  *  the crossing point where the two sources' exact distances are equal within 1e-10 relative
  *  (the search stops there, so crossings typically agree to just under 1e-10: 1.0e-10 at worst
@@ -1553,18 +1627,23 @@ typedef struct tg_voronoi_boundaries tg_voronoi_boundaries;
  *  a junction at the mean of its three crossings (a face point; not itself equidistant). Faces
  *  with an unreached corner have no segments. Segments are chained into polylines between
  *  junctions and ends (the mesh boundary); closed loops repeat their first point at the end.
- *  At least one of the three outputs. out_stats (may be NULL): counters summed over the runs.
  *  While the boundaries are found progress is called inside the runs and between them (about
  *  every 5 ms), with rows_done = row_count = source_count.
+ *  out_vertex_distance: vertex_count doubles (the distance to the nearest source), or NULL.
+ *  out_vertex_label: vertex_count labels (source indices; TG_NONE where no source reaches: other
+ *  components, unreferenced vertices, beyond the limit), or NULL.
+ *  At least one of the three outputs. out_stats (may be NULL): counters summed over the runs.
  *  Errors: as tg_geodesic_field, and TG_ERR_INVALID_ARGUMENT when all outputs are NULL or
- *  source_count exceeds 0xFFFFFFFE; on error the outputs are untouched. Complexity: one run per
- *  source over about its cell and its boundary, plus O(vertex_count) memory for the running
- *  field (made with the options' or the solver's allocator); the boundaries add one such pass
- *  per round (each source's run evaluating its crossings). Thread-safe as tg_geodesic_field. */
-TG_API tg_status tg_geodesic_voronoi(const tg_geodesic* g, tg_geodesic_workspace* workspace,
+ *  source_count exceeds 0xFFFFFFFE; on error the arrays are untouched and the boundaries object
+ *  is empty. Complexity: one run per source over about its cell and its boundary, plus
+ *  O(vertex_count) memory for the running field (made with the options' or the solver's
+ *  allocator); the boundaries add one such pass per round (each source's run evaluating its
+ *  crossings). Thread-safe as tg_geodesic_field. (New in 0.4; in 0.6 the boundaries became a
+ *  caller-created object and the distance comes before the label.) */
+TG_API tg_status tg_geodesic_voronoi(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                                      const tg_surface_point* sources, size_t source_count,
-                                     const tg_field_options* options, uint32_t* out_vertex_label,
-                                     double* out_vertex_distance, tg_voronoi_boundaries** out_boundaries,
+                                     const tg_field_options* options, tg_voronoi_boundaries* boundaries,
+                                     double* out_vertex_distance, uint32_t* out_vertex_label,
                                      tg_field_stats* out_stats);
 
 /** The boundaries' polylines (valid until tg_voronoi_boundaries_destroy). */
@@ -1579,13 +1658,23 @@ typedef struct tg_voronoi_boundaries_view {
     const double* xyz;              /**< 3 per point: their positions */
 } tg_voronoi_boundaries_view;
 
+/** Fills *out_view with the boundaries' current content (all zero for NULL, and no polylines before
+ *  the first tg_geodesic_voronoi that asked for them); the view's arrays stay valid until the
+ *  object is filled again or destroyed. O(1). Thread-safe. (New in 0.4.) */
 TG_API void tg_voronoi_boundaries_get_view(const tg_voronoi_boundaries* boundaries,
                                            tg_voronoi_boundaries_view* out_view);
-/** NULL-safe. */
+/** Frees the object (with the allocator it was created with). NULL is a no-op. (New in 0.4.) */
 TG_API void tg_voronoi_boundaries_destroy(tg_voronoi_boundaries* boundaries);
 
-/** Isolines of an exact field (tg_geodesic_isolines), an object of their own. */
+/** Isolines of an exact field: a result object (see "Conventions"), created empty by
+ *  tg_isolines_create, filled by tg_geodesic_isolines, read through tg_isolines_get_view, freed by
+ *  tg_isolines_destroy. */
 typedef struct tg_isolines tg_isolines;
+
+/** Creates an empty isolines object (no levels). allocator: the memory of its arrays (NULL:
+ *  libc); it must outlive the object. Errors: TG_ERR_INVALID_ARGUMENT (NULL out_isolines),
+ *  TG_ERR_OUT_OF_MEMORY (*out_isolines NULL). (New in 0.6.) */
+TG_API tg_status tg_isolines_create(const tg_allocator* allocator, tg_isolines** out_isolines);
 
 /** Exact isolines: for each level, the curves on the surface where the exact geodesic distance
  *  from the sources (as tg_geodesic_field measures it: the nearest of several sources) equals
@@ -1626,24 +1715,25 @@ typedef struct tg_isolines tg_isolines;
  *  workspace: one of this solver's, or NULL for a temporary one. sources, source_count: as
  *  tg_geodesic_field. levels: level_count >= 1 finite values >= 0 (any order, repeats allowed;
  *  the same unit as the coordinates); levels beyond the options' max_distance give no polylines.
- *  options: as tg_geodesic_field (the allocator also makes the result); progress is called during
+ *  options: as tg_geodesic_field; progress is called during
  *  the propagation as for a field, then while the levels are traced (between faces and levels,
  *  about every 5 ms) with front_distance the level, rows_done the levels traced of row_count =
- *  level_count and settled_fraction their share. out_isolines: receives
- *  the result (NULL on error). out_vertex_distance: NULL or vertex_count doubles, the field as
+ *  level_count and settled_fraction their share. isolines: the result
+ *  (tg_isolines_create; its old content replaced, its arrays made with its allocator).
+ *  out_vertex_distance: NULL or vertex_count doubles, the field as
  *  tg_geodesic_field returns it (bit-identical). out_stats: may be NULL.
- *  Errors: as tg_geodesic_field, and TG_ERR_INVALID_ARGUMENT for NULL levels or out_isolines, a
- *  level_count of 0, a negative, NaN or infinite level. On error nothing is returned, nothing
- *  leaks. Complexity: the field's propagation plus, per level, the faces it meets times the
+ *  Errors: as tg_geodesic_field, and TG_ERR_INVALID_ARGUMENT for NULL levels or isolines, a
+ *  level_count of 0, a negative, NaN or infinite level. On error the isolines object is empty (no
+ *  levels), out_vertex_distance and out_stats are untouched, nothing leaks. Complexity: the field's propagation plus, per level, the faces it meets times the
  *  windows recorded there (a run without levels records nothing: plain fields are not slowed).
- *  Thread-safe as tg_geodesic_field. */
-TG_API tg_status tg_geodesic_isolines(const tg_geodesic* g, tg_geodesic_workspace* workspace,
+ *  Thread-safe as tg_geodesic_field. (New in 0.4.) */
+TG_API tg_status tg_geodesic_isolines(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                                       const tg_surface_point* sources, size_t source_count, const double* levels,
                                       size_t level_count, const tg_field_options* options,
-                                      tg_isolines** out_isolines, double* out_vertex_distance,
+                                      tg_isolines* isolines, double* out_vertex_distance,
                                       tg_field_stats* out_stats);
 
-/** Read-only view of isolines (valid until tg_isolines_destroy). Polylines are grouped by level:
+/** Read-only view of isolines (valid until the object is filled again or destroyed). Polylines are grouped by level:
  *  those of level i are level_start[i] .. level_start[i + 1] - 1; polyline p is points
  *  polyline_start[p] .. polyline_start[p + 1] - 1. */
 typedef struct tg_isolines_view {
@@ -1659,9 +1749,9 @@ typedef struct tg_isolines_view {
     const double* xyz;               /**< 3 per point */
 } tg_isolines_view;
 
-/** Fills *out_view (all zero for NULL). O(1). Thread-safe. */
+/** Fills *out_view (all zero for NULL). O(1). Thread-safe. (New in 0.4.) */
 TG_API void tg_isolines_get_view(const tg_isolines* isolines, tg_isolines_view* out_view);
-/** Frees the result (with the allocator it was made with). NULL is a no-op. */
+/** Frees the object (with the allocator it was created with). NULL is a no-op. (New in 0.4.) */
 TG_API void tg_isolines_destroy(tg_isolines* isolines);
 
 /** Farthest-point sampling in exact geodesic distance: sample 0 is start_vertex, and each next
@@ -1684,12 +1774,12 @@ TG_API void tg_isolines_destroy(tg_isolines* isolines);
  *  (+inf where none reaches). out_vertex_label (may be NULL): vertex_count labels, the position
  *  in out_samples of the nearest sample (ties to the earliest), TG_NONE where none reaches.
  *  out_stats (may be NULL): counters summed over the runs.
- *  Errors: TG_ERR_INVALID_ARGUMENT (NULL g or out_samples, sample_count 0 or larger than the
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic or out_samples, sample_count 0 or larger than the
  *  referenced vertices, start_vertex out of range or unreferenced, a limit, a workspace of
  *  another solver), TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED; on error the outputs are untouched.
  *  Complexity: one run per sample over about its cell, plus O(vertex_count) per sample for the
- *  scan. Thread-safe as tg_geodesic_field. */
-TG_API tg_status tg_geodesic_farthest_point_sampling(const tg_geodesic* g, tg_geodesic_workspace* workspace,
+ *  scan. Thread-safe as tg_geodesic_field. (New in 0.4.) */
+TG_API tg_status tg_geodesic_farthest_point_sampling(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                                                      uint32_t start_vertex, uint64_t seed, size_t sample_count,
                                                      const tg_field_options* options, uint32_t* out_samples,
                                                      double* out_vertex_distance, uint32_t* out_vertex_label,

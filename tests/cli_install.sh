@@ -61,7 +61,7 @@ mkdir -p "$tmp/cm"
 cat >"$tmp/cm/CMakeLists.txt" <<'CM'
 cmake_minimum_required(VERSION 3.16)
 project(consumer C)
-find_package(trigeo 0.5 REQUIRED)
+find_package(trigeo 0.6 REQUIRED)
 add_executable(consumer ../consumer.c)
 target_link_libraries(consumer PRIVATE trigeo::trigeo)
 CM

@@ -82,7 +82,7 @@ cases = [
                                         "-o", o("d.npy")], 1.0),
     ("field --sources --to", ["field", arm, "--sources", same_src, "--to", targets, "--max-distance", "0.01",
                               "--threads", "1", "-o", o("t.npy")], 1.0),
-    ("field --isolines", ["field", arm, "--from", "v:0", "--isolines", "1000", "-o", o("I.obj")], 1.0),
+    ("field --isolines", ["field", arm, "--from", "v:0", "--isoline-count", "1000", "-o", o("I.obj")], 1.0),
     # the labels take about 1 s, the boundaries 10 s: the signal comes while the boundaries are found
     ("field --labels --boundaries", ["field", arm, "--sources", cells, "--labels", "-o", o("L.ply"),
                                      "--boundaries", o("B.obj")], 3.0),

@@ -48,7 +48,7 @@ check(sum(1 for pl in doc["polylines"] if pl["closed"]) >= 1, "a closed circle")
 # OBJ with a count: N groups, 'l' records indexing 'v' records; on a corpus mesh
 mesh = os.path.join(meshes, "cgal_nefertiti.off")
 obj = os.path.join(tmp, "iso.obj")
-r = run("field", mesh, "--from", "v:3", "--isolines", "8", "-o", obj, "--quiet")
+r = run("field", mesh, "--from", "v:3", "--isoline-count", "8", "-o", obj, "--quiet")
 check(r.returncode == 0, "obj: exit %d %s" % (r.returncode, r.stderr))
 lines = open(obj).read().splitlines()
 nv = sum(1 for l in lines if l.startswith("v "))
@@ -57,14 +57,21 @@ ls = [l for l in lines if l.startswith("l ")]
 check(len(groups) == 8 and len(ls) >= 8, "%d groups, %d polylines" % (len(groups), len(ls)))
 check(all(1 <= int(i) <= nv for l in ls for i in l.split()[1:]), "'l' indices in range")
 
-# a lone integer is a count of levels below the max, a number with a point one level (the help
-# and the README say so): "1" halves the largest distance, "1.0" is the level 1
+# a number is always a level, as in Python's Mesh.isolines (the help and the README say so): "1"
+# and "1.0" are the level 1; a count of levels below the max is asked for by name
 js = os.path.join(tmp, "one.json")
 got = {}
-for text in ("1", "1.0"):
-    r = run("field", mesh, "--from", "v:3", "--isolines", text, "-o", js, "--quiet")
-    got[text] = json.load(open(js))["levels"] if r.returncode == 0 else r.stderr
-check(got["1.0"] == [1.0] and len(got["1"]) == 1 and got["1"][0] != 1.0, "--isolines 1 and 1.0: %r" % got)
+for opt, text in (("--isolines", "1"), ("--isolines", "1.0"), ("--isoline-count", "1")):
+    r = run("field", mesh, "--from", "v:3", opt, text, "-o", js, "--quiet")
+    got[opt + " " + text] = json.load(open(js))["levels"] if r.returncode == 0 else r.stderr
+check(got["--isolines 1"] == [1.0] and got["--isolines 1.0"] == [1.0] and len(got["--isoline-count 1"]) == 1
+      and got["--isoline-count 1"][0] > 1.0, "--isolines 1, 1.0 and --isoline-count 1: %r" % got)
+r = run("field", mesh, "--from", "v:3", "--isolines", "1", "--isoline-count", "2", "-o", js)
+check(r.returncode == 1 and "not both" in r.stderr, "levels and a count: exit %d %r" % (r.returncode, r.stderr))
+for bad in ("0", "4097", "2.5", "x"):
+    r = run("field", mesh, "--from", "v:3", "--isoline-count", bad, "-o", os.path.join(tmp, "never.json"))
+    check(r.returncode == 2 and "--isoline-count" in r.stderr and not os.path.exists(os.path.join(tmp, "never.json")),
+          "--isoline-count %s: exit %d %r" % (bad, r.returncode, r.stderr.strip()))
 
 # render draws the exact isolines of --from
 png = os.path.join(tmp, "iso.png")
@@ -101,7 +108,7 @@ check(r.returncode == 0 and len(got) == len(want) and not bad,
 
 # bad input: exit 2 (levels) or 1 (usage), no file, the reason named
 for bad, code, why in [("-0.1", 2, "level"), ("0.1,nan", 2, "level"), ("", 2, "level"), ("0.1,,0.2", 2, "level"),
-                       ("0", 2, "count"), ("inf", 2, "level")]:
+                       ("inf", 2, "level"), ("3,x", 2, "level")]:
     o = os.path.join(tmp, "bad.obj")
     r = run("field", flat, "--from", src, "--isolines", bad, "-o", o)
     check(r.returncode == code and not os.path.exists(o) and why in r.stderr,

@@ -31,7 +31,7 @@ src, pts = write("s.txt", "v:0\nv:40\n"), write("a.txt", "0.5 0.5 0\nv:3\n")
 runs = [("field", ["--from", "v:0", "-o", o("f.csv")]), ("field", ["--from", "v:0"]),
         ("field", ["--from", "v:0", "-o", o("f.ply")]), ("field", ["--from", "v:0;v:40", "--labels", "-o", o("l.csv")]),
         ("field", ["--sources", src, "--labels", "-o", o("l.ply"), "--boundaries", o("b.obj")]),
-        ("field", ["--from", "v:0", "--isolines", "3", "-o", o("i.obj")]),
+        ("field", ["--from", "v:0", "--isoline-count", "3", "-o", o("i.obj")]),
         ("field", ["--sources", src, "--max-distance", "0.3", "-o", o("m.npz")]),
         ("field", ["--sources", src, "-o", o("m.npy")]), ("field", ["--sources", src, "--to", pts, "-o", o("t.csv")]),
         ("field", ["--from", "v:0", "--at", pts, "-o", o("at.txt")]),

@@ -41,7 +41,7 @@ made = [run("path", "mesh.obj", "--from", "v:0", "--to", "v:300", "-o", "in_path
         run("field", "mesh.obj", "--from", "v:0", "-o", "in_field.ply"),
         run("field", "mesh.obj", "--sources", "sources.txt", "--labels", "-o", "in_labels.ply", "--boundaries", "in_bounds.obj"),
         run("logmap", "mesh.obj", "--from", "v:0", "-o", "in_logmap.ply"),
-        run("field", "mesh.obj", "--from", "v:0", "--isolines", "3", "-o", "in_iso.obj")]
+        run("field", "mesh.obj", "--from", "v:0", "--isoline-count", "3", "-o", "in_iso.obj")]
 check(all(r.returncode == 0 for r in made), "the overlay inputs: %r" % [r.stderr for r in made if r.returncode])
 
 # Each row: the command line with {mesh}, {in:NAME} for an input file and {out:SLOT.ext} for an
@@ -70,7 +70,7 @@ rows = [
     "field {mesh} --sources {in:sources.txt} --to {in:points.txt} -o {out:o.csv}",
     "field {mesh} --sources {in:sources.txt} --labels -o {out:o.ply} --boundaries {out:b.obj}",
     "field {mesh} --from v:0;v:400 --labels -o {out:o.csv} --boundaries {out:b.json}",
-    "field {mesh} --from v:0 --isolines 3 -o {out:o.obj}",
+    "field {mesh} --from v:0 --isoline-count 3 -o {out:o.obj}",
     "field {mesh} --sources {in:sources.txt} --isolines 0.1,0.2 -o {out:o.json}",
     "sample {mesh} --count 3 -o {out:o.txt} --field {out:f.ply}",
     "sample {mesh} --count 3 -o {out:o.csv} --field {out:f.csv}",
@@ -213,7 +213,7 @@ bad_ext = [
     ("trace", "mesh.obj", "--batch", "traces.txt", "-o", "x.json"),
     ("logmap", "mesh.obj", "--from", "v:0", "-o", "x.obj"),
     ("field", "mesh.obj", "--from", "v:0", "-o", "x.xyz"),
-    ("field", "mesh.obj", "--from", "v:0", "--isolines", "2", "-o", "x.ply"),
+    ("field", "mesh.obj", "--from", "v:0", "--isoline-count", "2", "-o", "x.ply"),
     ("field", "mesh.obj", "--sources", "sources.txt", "--labels", "-o", "x.ply", "--boundaries", "x.csv"),
     ("sample", "mesh.obj", "--count", "3", "-o", "x.ply"),
     ("sample", "mesh.obj", "--count", "3", "--field", "x.txt"),

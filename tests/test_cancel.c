@@ -96,16 +96,27 @@ static void test_matrices(const tg_geodesic* g, const tg_mesh* mesh)
     /* the local matrix of every vertex within 0.3 (a row: about 0.4 ms) */
     stopper s = stop_between_rows();
     tg_field_options o = field_options(&s, -1.0);
-    tg_sparse_matrix* lm = (tg_sparse_matrix*)&s; /* must come back NULL */
-    CHECK_STATUS(tg_geodesic_local_matrix(g, NULL, n, 0.3, &o, 1, &lm, NULL), TG_ERR_CANCELLED);
-    CHECK(lm == NULL);
+    /* the matrix holds an earlier result: a cancelled call must leave it empty */
+    tg_sparse_matrix* lm = NULL;
+    CHECK_STATUS(tg_sparse_matrix_create(NULL, &lm), TG_OK);
+    tg_surface_point first[2] = {tg_surface_vertex(0), tg_surface_vertex(1)};
+    CHECK_STATUS(tg_geodesic_local_matrix(g, first, 2, 0.1, NULL, 1, lm, NULL), TG_OK);
+    tg_sparse_matrix_view mv;
+    tg_sparse_matrix_get_view(lm, &mv);
+    CHECK(mv.row_count == 2 && mv.entry_count > 0);
+    CHECK_STATUS(tg_geodesic_local_matrix(g, NULL, n, 0.3, &o, 1, lm, NULL), TG_ERR_CANCELLED);
+    tg_sparse_matrix_get_view(lm, &mv);
+    CHECK_MSG(mv.row_count == 0 && mv.entry_count == 0 && !mv.col, "cancelled local matrix: %zu rows left",
+              mv.row_count);
     CHECK_MSG(s.matching == 1 && s.rows_in_order, "local matrix: %d reports between rows", s.matching);
     printf("local matrix: stopped after %zu of %zu rows\n", s.last.rows_done, n);
     /* on two threads too */
     s = stop_between_rows();
-    lm = (tg_sparse_matrix*)&s;
-    CHECK_STATUS(tg_geodesic_local_matrix(g, NULL, n, 0.3, &o, 2, &lm, NULL), TG_ERR_CANCELLED);
-    CHECK(lm == NULL);
+    CHECK_STATUS(tg_geodesic_local_matrix(g, first, 2, 0.1, NULL, 1, lm, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_local_matrix(g, NULL, n, 0.3, &o, 2, lm, NULL), TG_ERR_CANCELLED);
+    tg_sparse_matrix_get_view(lm, &mv);
+    CHECK(mv.row_count == 0 && mv.entry_count == 0);
+    tg_sparse_matrix_destroy(lm);
 
     /* the dense matrix of 600 sources within 0.3: rows of about 0.4 ms */
     size_t rows = 600;
@@ -248,9 +259,17 @@ static void test_isolines_and_cells(const tg_geodesic* g, size_t n)
     tg_surface_point src = tg_surface_vertex(0);
     stopper s = stop_at(1, L, 0);
     tg_field_options o = field_options(&s, -1.0);
-    tg_isolines* iso = (tg_isolines*)&s;
-    CHECK_STATUS(tg_geodesic_isolines(g, NULL, &src, 1, levels, L, &o, &iso, NULL, NULL), TG_ERR_CANCELLED);
-    CHECK(iso == NULL);
+    tg_isolines* iso = NULL;
+    CHECK_STATUS(tg_isolines_create(NULL, &iso), TG_OK);
+    CHECK_STATUS(tg_geodesic_isolines(g, NULL, &src, 1, levels, 2, NULL, iso, NULL, NULL), TG_OK);
+    tg_isolines_view iv;
+    tg_isolines_get_view(iso, &iv);
+    CHECK(iv.level_count == 2 && iv.polyline_count > 0);
+    CHECK_STATUS(tg_geodesic_isolines(g, NULL, &src, 1, levels, L, &o, iso, NULL, NULL), TG_ERR_CANCELLED);
+    tg_isolines_get_view(iso, &iv);
+    CHECK_MSG(iv.level_count == 0 && iv.polyline_count == 0 && iv.point_count == 0,
+              "cancelled isolines: %zu levels left", iv.level_count);
+    tg_isolines_destroy(iso);
     CHECK_MSG(s.matching == 1 && s.last.row_count == L && s.last.rows_done < L,
               "isolines: %d reports while tracing levels (stopped after %zu of %zu)", s.matching, s.last.rows_done,
               s.last.row_count);
@@ -261,11 +280,19 @@ static void test_isolines_and_cells(const tg_geodesic* g, size_t n)
     for (size_t i = 0; i < S; ++i) cells[i] = tg_surface_vertex((uint32_t)((i * 7919) % n));
     s = stop_at(2, S, 1);
     o = field_options(&s, -1.0);
-    tg_voronoi_boundaries* b = (tg_voronoi_boundaries*)&s;
+    tg_voronoi_boundaries* b = NULL;
+    CHECK_STATUS(tg_voronoi_boundaries_create(NULL, &b), TG_OK);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, cells, 3, NULL, b, NULL, NULL, NULL), TG_OK);
+    tg_voronoi_boundaries_view bv;
+    tg_voronoi_boundaries_get_view(b, &bv);
+    CHECK(bv.polyline_count > 0);
     uint32_t* label = malloc(n * sizeof *label);
     for (size_t i = 0; i < n; ++i) label[i] = 77;
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, cells, S, &o, label, NULL, &b, NULL), TG_ERR_CANCELLED);
-    CHECK(b == NULL && label[0] == 77 && label[n - 1] == 77);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, cells, S, &o, b, NULL, label, NULL), TG_ERR_CANCELLED);
+    tg_voronoi_boundaries_get_view(b, &bv);
+    CHECK_MSG(bv.polyline_count == 0 && bv.point_count == 0 && label[0] == 77 && label[n - 1] == 77,
+              "cancelled voronoi: %zu polylines left, label[0] %u", bv.polyline_count, label[0]);
+    tg_voronoi_boundaries_destroy(b);
     CHECK_MSG(s.matching == 2, "voronoi: %d reports with every source done", s.matching);
     /* farthest-point sampling: stopped at its first report, outputs untouched */
     s = stop_at(1, 0, 0);

@@ -64,6 +64,22 @@ static bool row_equals_field(row_view r, const double* field, size_t nv, const c
     return true;
 }
 
+/* A new, empty matrix (libc's memory). */
+static tg_sparse_matrix* new_matrix(void)
+{
+    tg_sparse_matrix* m = NULL;
+    CHECK_STATUS(tg_sparse_matrix_create(NULL, &m), TG_OK);
+    return m;
+}
+
+/* The matrix holds no rows and no arrays (as after a failed or cancelled call). */
+static bool empty_matrix(const tg_sparse_matrix* m)
+{
+    tg_sparse_matrix_view v;
+    tg_sparse_matrix_get_view(m, &v);
+    return v.row_count == 0 && v.col_count == 0 && v.entry_count == 0 && !v.row_start && !v.col && !v.value;
+}
+
 static bool same_matrix(const tg_sparse_matrix* a, const tg_sparse_matrix* b)
 {
     tg_sparse_matrix_view x, y;
@@ -96,10 +112,10 @@ static void check_local(const tg_mesh* m, const char* name, const tg_surface_poi
     tg_geodesic* g = NULL;
     CHECK_STATUS(tg_geodesic_create(m, NULL, &g), TG_OK);
     if (!g) return;
-    tg_sparse_matrix* mats[3] = {NULL, NULL, NULL};
+    tg_sparse_matrix* mats[3] = {new_matrix(), new_matrix(), new_matrix()};
     tg_field_stats st;
     for (int t = 0; t < 3; ++t)
-        CHECK_STATUS(tg_geodesic_local_matrix(g, sources, count, radius, NULL, t + 1, &mats[t], &st), TG_OK);
+        CHECK_STATUS(tg_geodesic_local_matrix(g, sources, count, radius, NULL, t + 1, mats[t], &st), TG_OK);
     if (!mats[0] || !mats[1] || !mats[2]) goto done;
     CHECK_MSG(same_matrix(mats[0], mats[1]) && same_matrix(mats[0], mats[2]),
               "%s: the matrix on 1, 2 and 3 threads differs", name);
@@ -289,8 +305,8 @@ static void test_flat_grid(void)
      * where grid pairs lie at 1.0 and rounding decides) */
     const double radii[] = {0.3, 1.0 + 1e-9, 1.0 - 1e-9};
     for (int k = 0; k < 3; ++k) {
-        tg_sparse_matrix* mat = NULL;
-        CHECK_STATUS(tg_geodesic_local_matrix(g, NULL, nv, radii[k], NULL, 2, &mat, NULL), TG_OK);
+        tg_sparse_matrix* mat = new_matrix();
+        CHECK_STATUS(tg_geodesic_local_matrix(g, NULL, nv, radii[k], NULL, 2, mat, NULL), TG_OK);
         if (!mat) continue;
         tg_sparse_matrix_view v;
         tg_sparse_matrix_get_view(mat, &v);
@@ -401,8 +417,8 @@ static void test_points_stop_early(void)
     double c[3], diag = tg_test_mesh_box(m, c);
     /* the vertices within 5% of the diagonal of vertex 0: the first 6 the sources, all the targets */
     tg_surface_point v0 = tg_surface_vertex(0);
-    tg_sparse_matrix* near = NULL;
-    CHECK_STATUS(tg_geodesic_local_matrix(g, &v0, 1, 0.05 * diag, NULL, 1, &near, NULL), TG_OK);
+    tg_sparse_matrix* near = new_matrix();
+    CHECK_STATUS(tg_geodesic_local_matrix(g, &v0, 1, 0.05 * diag, NULL, 1, near, NULL), TG_OK);
     tg_sparse_matrix_view v;
     tg_sparse_matrix_get_view(near, &v);
     size_t T = v.entry_count, K = T < 6 ? T : 6;
@@ -460,20 +476,44 @@ static void test_errors_and_cancel(void)
     tg_surface_point s[3] = {tg_surface_vertex(0), tg_surface_face(10, 0.2, 0.3, 0.5), tg_surface_edge(99, 0.5)};
     tg_surface_point bad[2] = {tg_surface_vertex(1), tg_surface_vertex((uint32_t)nv)};
     tg_surface_point bad_face = tg_surface_face(3, 0.5, 0.6, 0.1);
-    tg_sparse_matrix* out = (tg_sparse_matrix*)&out; /* not NULL: must be cleared */
-    CHECK_STATUS(tg_geodesic_local_matrix(g, s, 3, -1.0, NULL, 1, &out, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK(out == NULL);
-    CHECK_STATUS(tg_geodesic_local_matrix(g, s, 3, NAN, NULL, 1, &out, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_local_matrix(g, bad, 2, 0.1, NULL, 1, &out, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_local_matrix(g, &bad_face, 1, 0.1, NULL, 1, &out, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_local_matrix(g, NULL, nv - 1, 0.1, NULL, 1, &out, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_local_matrix(g, NULL, 5, 0.1, NULL, 1, &out, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_local_matrix(g, s, 3, 0.1, NULL, -1, &out, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_local_matrix(NULL, s, 3, 0.1, NULL, 1, &out, NULL), TG_ERR_INVALID_ARGUMENT);
+    /* a matrix holding a result: each refused call must leave it empty */
+    tg_sparse_matrix* out = new_matrix();
+#define REFILL() CHECK_STATUS(tg_geodesic_local_matrix(g, s, 3, 0.1, NULL, 1, out, NULL), TG_OK)
+    REFILL();
+    CHECK(!empty_matrix(out));
+    CHECK_STATUS(tg_geodesic_local_matrix(g, s, 3, -1.0, NULL, 1, out, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK(empty_matrix(out));
+    REFILL();
+    CHECK_STATUS(tg_geodesic_local_matrix(g, s, 3, NAN, NULL, 1, out, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK(empty_matrix(out));
+    REFILL();
+    CHECK_STATUS(tg_geodesic_local_matrix(g, bad, 2, 0.1, NULL, 1, out, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK(empty_matrix(out));
+    REFILL();
+    CHECK_STATUS(tg_geodesic_local_matrix(g, &bad_face, 1, 0.1, NULL, 1, out, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK(empty_matrix(out));
+    REFILL();
+    CHECK_STATUS(tg_geodesic_local_matrix(g, NULL, nv - 1, 0.1, NULL, 1, out, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK(empty_matrix(out));
+    REFILL();
+    CHECK_STATUS(tg_geodesic_local_matrix(g, NULL, 5, 0.1, NULL, 1, out, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK(empty_matrix(out));
+    REFILL();
+    CHECK_STATUS(tg_geodesic_local_matrix(g, s, 3, 0.1, NULL, -1, out, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK(empty_matrix(out));
+    REFILL();
+    CHECK_STATUS(tg_geodesic_local_matrix(NULL, s, 3, 0.1, NULL, 1, out, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK(empty_matrix(out));
     CHECK_STATUS(tg_geodesic_local_matrix(g, s, 3, 0.1, NULL, 1, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK(out == NULL);
+    /* a limit in the options is refused, not ignored (the radius is the argument) */
+    REFILL();
+    tg_field_options lim = limit_options(0.5);
+    CHECK_STATUS(tg_geodesic_local_matrix(g, s, 3, 0.1, &lim, 1, out, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK(empty_matrix(out));
+#undef REFILL
+    CHECK_STATUS(tg_sparse_matrix_create(NULL, NULL), TG_ERR_INVALID_ARGUMENT);
     /* no sources: an empty 0 x V matrix */
-    CHECK_STATUS(tg_geodesic_local_matrix(g, s, 0, 0.1, NULL, 1, &out, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_local_matrix(g, s, 0, 0.1, NULL, 1, out, NULL), TG_OK);
     tg_sparse_matrix_view v;
     tg_sparse_matrix_get_view(out, &v);
     CHECK(v.row_count == 0 && v.col_count == nv && v.entry_count == 0 && v.row_start && v.row_start[0] == 0);
@@ -507,14 +547,14 @@ static void test_errors_and_cancel(void)
     memset(&o, 0, sizeof o);
     o.progress = on_progress;
     o.progress_user = &log;
-    CHECK_STATUS(tg_geodesic_local_matrix(g, many, K, INFINITY, &o, 2, &out, NULL), TG_OK);
+    out = new_matrix();
+    CHECK_STATUS(tg_geodesic_local_matrix(g, many, K, INFINITY, &o, 2, out, NULL), TG_OK);
     CHECK(log.sane && (log.calls == 0 || log.rows == K));
-    tg_sparse_matrix_destroy(out);
     progress_log stop = {0, 1, 0, 1};
     o.progress_user = &stop;
-    out = (tg_sparse_matrix*)&out;
-    CHECK_STATUS(tg_geodesic_local_matrix(g, many, K, INFINITY, &o, 2, &out, NULL), TG_ERR_CANCELLED);
-    CHECK(out == NULL);
+    CHECK_STATUS(tg_geodesic_local_matrix(g, many, K, INFINITY, &o, 2, out, NULL), TG_ERR_CANCELLED);
+    CHECK(empty_matrix(out));
+    tg_sparse_matrix_destroy(out);
     double* dense = malloc(K * 3 * sizeof *dense);
     for (int i = 0; i < K * 3; ++i) dense[i] = -5;
     stop.calls = 0;
@@ -547,8 +587,8 @@ static void test_out_of_memory(void)
     tg_surface_point t[T];
     mixed_sources(m, t, T, 3);
     for (int threads = 1; threads <= 2; ++threads) {
-        tg_sparse_matrix* ref = NULL;
-        CHECK_STATUS(tg_geodesic_local_matrix(g, NULL, nv, radius, NULL, threads, &ref, NULL), TG_OK);
+        tg_sparse_matrix* ref = new_matrix();
+        CHECK_STATUS(tg_geodesic_local_matrix(g, NULL, nv, radius, NULL, threads, ref, NULL), TG_OK);
         /* every allocation point in the full suite; in the fast one the first 32, then every 8th */
         int points = 0;
         for (long k = 0; ref; k += k < 32 || tg_test_full() ? 1 : 8) {
@@ -557,12 +597,14 @@ static void test_out_of_memory(void)
             tg_field_options o;
             memset(&o, 0, sizeof o);
             o.allocator = &a;
-            tg_sparse_matrix* got = (tg_sparse_matrix*)&got;
-            tg_status st = tg_geodesic_local_matrix(g, NULL, nv, radius, &o, threads, &got, NULL);
+            /* the result object's memory fails too (its creation, then its arrays) */
+            tg_sparse_matrix* got = NULL;
+            tg_status st = tg_sparse_matrix_create(&a, &got);
+            if (st == TG_OK) st = tg_geodesic_local_matrix(g, NULL, nv, radius, &o, threads, got, NULL);
             if (st == TG_OK) CHECK_MSG(same_matrix(got, ref), "allocation %ld failing: a different matrix", k);
-            tg_sparse_matrix_destroy(st == TG_OK ? got : NULL);
-            CHECK_MSG(st == TG_OK || (st == TG_ERR_OUT_OF_MEMORY && got == NULL), "allocation %ld failing: %s", k,
-                      tg_status_name(st));
+            CHECK_MSG(st == TG_OK || (st == TG_ERR_OUT_OF_MEMORY && (!got || empty_matrix(got))),
+                      "allocation %ld failing: %s", k, tg_status_name(st));
+            tg_sparse_matrix_destroy(got);
             CHECK_MSG(cnt.allocs == cnt.frees, "allocation %ld failing: %ld allocations, %ld frees", k, cnt.allocs,
                       cnt.frees);
             if (st == TG_OK || k > 100000) break;

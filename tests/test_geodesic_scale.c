@@ -303,7 +303,8 @@ static void more_compute(const tg_mesh* m, double s, more* r)
     const tg_surface_point src[4] = {tg_surface_vertex(0), tg_surface_vertex(300), tg_surface_face(77, 0.2, 0.3, 0.5),
                                      tg_surface_edge(301, 0.37)};
     tg_voronoi_boundaries* b = NULL;
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, src, 4, NULL, r->vor_label, r->vor_dist, &b, NULL), TG_OK);
+    CHECK_STATUS(tg_voronoi_boundaries_create(NULL, &b), TG_OK);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, src, 4, NULL, b, r->vor_dist, r->vor_label, NULL), TG_OK);
     tg_voronoi_boundaries_view bv;
     tg_voronoi_boundaries_get_view(b, &bv);
     r->bpoints = bv.point_count;
@@ -312,7 +313,8 @@ static void more_compute(const tg_mesh* m, double s, more* r)
     tg_voronoi_boundaries_destroy(b);
     const double levels[3] = {0.1 * s, 0.35 * s, 0.6 * s};
     tg_isolines* iso = NULL;
-    CHECK_STATUS(tg_geodesic_isolines(g, NULL, src, 1, levels, 3, NULL, &iso, NULL, NULL), TG_OK);
+    CHECK_STATUS(tg_isolines_create(NULL, &iso), TG_OK);
+    CHECK_STATUS(tg_geodesic_isolines(g, NULL, src, 1, levels, 3, NULL, iso, NULL, NULL), TG_OK);
     tg_isolines_view iv;
     tg_isolines_get_view(iso, &iv);
     r->ipoints = iv.point_count, r->ipolylines = iv.polyline_count;

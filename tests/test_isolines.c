@@ -19,7 +19,8 @@ static tg_isolines* iso_of(ctx* c, const tg_surface_point* src, size_t ns, const
                            tg_isolines_view* v)
 {
     tg_isolines* iso = NULL;
-    CHECK_STATUS(tg_geodesic_isolines(c->geo, c->ws, src, ns, levels, nl, NULL, &iso, NULL, NULL), TG_OK);
+    CHECK_STATUS(tg_isolines_create(NULL, &iso), TG_OK);
+    CHECK_STATUS(tg_geodesic_isolines(c->geo, c->ws, src, ns, levels, nl, NULL, iso, NULL, NULL), TG_OK);
     tg_isolines_get_view(iso, v);
     return iso;
 }
@@ -549,8 +550,10 @@ static void test_max_distance(void)
     memset(&o, 0, sizeof o);
     o.limit = TG_FIELD_MAX_DISTANCE, o.max_distance = 150.0;
     tg_isolines *lim = NULL, *all = NULL;
-    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, levels, 3, &o, &lim, NULL, NULL), TG_OK);
-    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, levels, 3, NULL, &all, NULL, NULL), TG_OK);
+    CHECK_STATUS(tg_isolines_create(NULL, &lim), TG_OK);
+    CHECK_STATUS(tg_isolines_create(NULL, &all), TG_OK);
+    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, levels, 3, &o, lim, NULL, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, levels, 3, NULL, all, NULL, NULL), TG_OK);
     tg_isolines_view a, b;
     tg_isolines_get_view(lim, &a);
     tg_isolines_get_view(all, &b);
@@ -574,21 +577,52 @@ static void test_bad_input(void)
 {
     ctx c = open_ctx_for(flat_square(4, 1));
     tg_surface_point src = tg_surface_vertex(0);
-    tg_isolines* iso = (tg_isolines*)&c; /* must become NULL */
     double good = 0.5, nan = NAN, neg = -0.1, inf = INFINITY;
-    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, &nan, 1, NULL, &iso, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK(iso == NULL);
-    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, &neg, 1, NULL, &iso, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, &inf, 1, NULL, &iso, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, &good, 0, NULL, &iso, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, NULL, 1, NULL, &iso, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, &good, 1, NULL, NULL, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    tg_isolines* iso = NULL;
+    CHECK_STATUS(tg_isolines_create(NULL, &iso), TG_OK);
+    CHECK_STATUS(tg_isolines_create(NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    tg_isolines_view v;
+    /* each refused call leaves the object empty, though it held a result before */
+#define REFUSED(...)                                                                                 \
+    do {                                                                                             \
+        CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, &good, 1, NULL, iso, NULL, NULL), TG_OK); \
+        tg_isolines_get_view(iso, &v);                                                               \
+        CHECK(v.level_count == 1 && v.polyline_count > 0);                                           \
+        CHECK_STATUS(tg_geodesic_isolines(__VA_ARGS__), TG_ERR_INVALID_ARGUMENT);                    \
+        tg_isolines_get_view(iso, &v);                                                               \
+        CHECK_MSG(v.level_count == 0 && v.polyline_count == 0 && v.point_count == 0 && !v.xyz,       \
+                  "refused call left %zu levels, %zu polylines", v.level_count, v.polyline_count);   \
+    } while (0)
+    REFUSED(c.geo, c.ws, &src, 1, &nan, 1, NULL, iso, NULL, NULL);
+    REFUSED(c.geo, c.ws, &src, 1, &neg, 1, NULL, iso, NULL, NULL);
+    REFUSED(c.geo, c.ws, &src, 1, &inf, 1, NULL, iso, NULL, NULL);
+    REFUSED(c.geo, c.ws, &src, 1, &good, 0, NULL, iso, NULL, NULL);
+    REFUSED(c.geo, c.ws, &src, 1, NULL, 1, NULL, iso, NULL, NULL);
     tg_surface_point bad = tg_surface_vertex(100000);
-    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &bad, 1, &good, 1, NULL, &iso, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK(iso == NULL);
+    REFUSED(c.geo, c.ws, &bad, 1, &good, 1, NULL, iso, NULL, NULL);
+    REFUSED(NULL, c.ws, &src, 1, &good, 1, NULL, iso, NULL, NULL);
+#undef REFUSED
+    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, &good, 1, NULL, NULL, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    /* no sources: nothing reached, no curves (the one rule for empty source lists) */
+    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 0, &good, 1, NULL, iso, NULL, NULL), TG_OK);
+    tg_isolines_get_view(iso, &v);
+    CHECK_MSG(v.level_count == 1 && v.polyline_count == 0, "no sources: %zu levels, %zu polylines", v.level_count,
+              v.polyline_count);
+    /* a reused object holds the new result, equal to a fresh object's */
+    double two[2] = {0.25, 0.75};
+    tg_isolines* fresh = NULL;
+    CHECK_STATUS(tg_isolines_create(NULL, &fresh), TG_OK);
+    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, two, 2, NULL, fresh, NULL, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_isolines(c.geo, c.ws, &src, 1, two, 2, NULL, iso, NULL, NULL), TG_OK);
+    tg_isolines_view f;
+    tg_isolines_get_view(fresh, &f);
+    tg_isolines_get_view(iso, &v);
+    CHECK(v.level_count == 2 && v.point_count == f.point_count && v.point_count > 0 &&
+          memcmp(v.xyz, f.xyz, 3 * v.point_count * sizeof(double)) == 0);
+    tg_isolines_destroy(fresh);
     /* the field beside the lines equals tg_geodesic_field, bit for bit */
     double a[25], b[25];
-    CHECK_STATUS(tg_geodesic_isolines(c.geo, NULL, &src, 1, &good, 1, NULL, &iso, a, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_isolines(c.geo, NULL, &src, 1, &good, 1, NULL, iso, a, NULL), TG_OK);
     CHECK_STATUS(tg_geodesic_field(c.geo, NULL, &src, 1, NULL, b, NULL), TG_OK);
     CHECK(memcmp(a, b, sizeof a) == 0);
     tg_isolines_destroy(iso);

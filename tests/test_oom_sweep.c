@@ -1286,23 +1286,29 @@ typedef struct nearest_ctx {
     size_t ref_points;
 } nearest_ctx;
 
-/* The boundaries' point count and positions equal the reference's (and the object is freed). */
-static bool same_boundaries(const nearest_ctx* nc, tg_voronoi_boundaries* b)
+/* The boundaries' point count and positions equal the reference's. */
+static bool same_boundaries(const nearest_ctx* nc, const tg_voronoi_boundaries* b)
 {
     tg_voronoi_boundaries_view v;
     tg_voronoi_boundaries_get_view(b, &v);
-    bool same = v.point_count == nc->ref_points && same_bytes(v.xyz, nc->ref_xyz, 3 * v.point_count * sizeof(double));
-    tg_voronoi_boundaries_destroy(b);
-    return same;
+    return v.point_count == nc->ref_points && same_bytes(v.xyz, nc->ref_xyz, 3 * v.point_count * sizeof(double));
+}
+
+/* An object left empty (as after a failure). */
+static bool no_boundaries(const tg_voronoi_boundaries* b)
+{
+    tg_voronoi_boundaries_view v;
+    tg_voronoi_boundaries_get_view(b, &v);
+    return v.polyline_count == 0 && v.point_count == 0 && !v.points && !v.xyz;
 }
 
 static tg_status run_nearest(const nearest_ctx* nc, const tg_geodesic* g, tg_geodesic_workspace* ws,
                              const tg_field_options* o, uint32_t* label, double* dist, uint32_t* samples,
-                             tg_voronoi_boundaries** bounds)
+                             tg_voronoi_boundaries* bounds)
 {
     if (nc->fps == 1)
         return tg_geodesic_farthest_point_sampling(g, ws, field_sources[1].index, 0, 12, o, samples, dist, label, NULL);
-    return tg_geodesic_voronoi(g, ws, field_sources, FIELD_SOURCES, o, label, dist, nc->fps == 2 ? bounds : NULL, NULL);
+    return tg_geodesic_voronoi(g, ws, field_sources, FIELD_SOURCES, o, nc->fps == 2 ? bounds : NULL, dist, label, NULL);
 }
 
 static tg_status try_nearest(sweep* s, void* ctx)
@@ -1327,11 +1333,18 @@ static tg_status try_nearest(sweep* s, void* ctx)
     memset(label, 0xA5, nv * sizeof *label);
     memset(dist, 0xA5, nv * sizeof *dist);
     memset(samples, 0xA5, sizeof samples);
-    tg_voronoi_boundaries* bounds = NOT_NULL;
+    /* the result object made with the failing allocator (its arrays are part of the sweep), and
+     * holding an earlier result that a failure must clear */
+    tg_voronoi_boundaries* bounds = NULL;
+    CHECK_STATUS(tg_voronoi_boundaries_create(&s->a, &bounds), TG_OK);
+    if (nc->fps == 2) CHECK_STATUS(run_nearest(nc, g, ws, NULL, NULL, dist, samples, bounds), TG_OK);
+    memset(dist, 0xA5, nv * sizeof *dist);
     arm(s);
-    tg_status st = run_nearest(nc, g, ws, &o, label, dist, samples, &bounds);
+    tg_status st = run_nearest(nc, g, ws, &o, label, dist, samples, bounds);
     disarm(s);
-    if (nc->fps == 2) CHECK_NULL_ON_FAILURE(s, st, bounds);
+    if (nc->fps == 2 && st != TG_OK)
+        CHECK_MSG(no_boundaries(bounds), "%s, allocation %ld failing: boundaries left after %s", s->name, s->k,
+                  tg_status_name(st));
     if (st == TG_OK) {
         CHECK_MSG(same_bytes(label, nc->ref_label, nv * sizeof *label) && same_bytes(dist, nc->ref_dist, nv * sizeof *dist) &&
                       (nc->fps != 1 || same_bytes(samples, nc->ref_samples, sizeof samples)) &&
@@ -1343,13 +1356,14 @@ static tg_status try_nearest(sweep* s, void* ctx)
                   "%s, allocation %ld failing: outputs written after %s", s->name, s->k, tg_status_name(st));
     }
     if (st != TG_OK && ws) { /* the workspace still gives the right result */
-        CHECK_STATUS(run_nearest(nc, g, ws, &o, label, dist, samples, &bounds), TG_OK);
+        CHECK_STATUS(run_nearest(nc, g, ws, &o, label, dist, samples, bounds), TG_OK);
         if (nc->fps == 2) CHECK_MSG(same_boundaries(nc, bounds), "%s: boundaries differ after a failure", s->name);
         CHECK_MSG(same_bytes(label, nc->ref_label, nv * sizeof *label) && same_bytes(dist, nc->ref_dist, nv * sizeof *dist),
                   "%s, allocation %ld failing: the next call on the workspace differs", s->name, s->k);
     }
     free(label);
     free(dist);
+    tg_voronoi_boundaries_destroy(bounds);
     tg_geodesic_workspace_destroy(ws);
     tg_geodesic_destroy(own_g);
     return st;
@@ -1372,7 +1386,8 @@ static void sweep_nearest(void)
             nc.ref_label = malloc(nc.nv * sizeof *nc.ref_label);
             nc.ref_dist = malloc(nc.nv * sizeof *nc.ref_dist);
             tg_voronoi_boundaries* ref = NULL;
-            CHECK_STATUS(run_nearest(&nc, spot_g, NULL, NULL, nc.ref_label, nc.ref_dist, nc.ref_samples, &ref), TG_OK);
+            CHECK_STATUS(tg_voronoi_boundaries_create(NULL, &ref), TG_OK);
+            CHECK_STATUS(run_nearest(&nc, spot_g, NULL, NULL, nc.ref_label, nc.ref_dist, nc.ref_samples, ref), TG_OK);
             tg_voronoi_boundaries_view v;
             tg_voronoi_boundaries_get_view(ref, &v);
             nc.ref_points = v.point_count;

@@ -157,7 +157,8 @@ static size_t check_voronoi(const char* name, const tg_mesh* m, const tg_geodesi
     size_t ties = oracle_voronoi(g, n, s, k, o, want_lab, want_d);
     tg_field_stats st;
     tg_voronoi_boundaries* bounds = NULL;
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, k, o, lab, d, &bounds, &st), TG_OK);
+    CHECK_STATUS(tg_voronoi_boundaries_create(NULL, &bounds), TG_OK);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, k, o, bounds, d, lab, &st), TG_OK);
     check_boundaries(name, m, g, s, k, o, lab, bounds);
     tg_voronoi_boundaries_destroy(bounds);
     size_t bad = 0;
@@ -171,7 +172,7 @@ static size_t check_voronoi(const char* name, const tg_mesh* m, const tg_geodesi
     /* the labels alone and the distances alone are the same */
     uint32_t* lab2 = malloc(n * sizeof *lab2);
     double* d2 = malloc(n * sizeof *d2);
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, k, o, lab2, NULL, NULL, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, k, o, NULL, NULL, lab2, NULL), TG_OK);
     CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, k, o, NULL, d2, NULL, NULL), TG_OK);
     CHECK_MSG(!memcmp(lab, lab2, n * sizeof *lab) && !memcmp(d, d2, n * sizeof *d), "%s: outputs alone differ", name);
     printf("%s: %zu sources, %zu vertices, %zu ties, %llu windows propagated\n", name, k, n, ties,
@@ -263,7 +264,7 @@ static void test_components(void)
     check_voronoi("two components", c.mesh, c.geo, s, 2, NULL);
     uint32_t lab[64];
     double d[64];
-    CHECK_STATUS(tg_geodesic_voronoi(c.geo, NULL, s, 2, NULL, lab, d, NULL, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_voronoi(c.geo, NULL, s, 2, NULL, NULL, d, lab, NULL), TG_OK);
     CHECK_MSG(lab[second] == TG_NONE && isinf(d[second]) && lab[lone] == TG_NONE && isinf(d[lone]),
               "other component / unreferenced: labels %u %u, distances %g %g", lab[second], lab[lone], d[second], d[lone]);
     /* sample 1 is in the other component (+inf is farthest), at its lowest index */
@@ -338,7 +339,7 @@ static void test_cancel_and_bad_input(const char* data_dir)
     o.progress = cancel_third, o.progress_user = &log;
     memset(lab, 0xA5, n * sizeof *lab);
     memset(samples, 0xA5, sizeof samples);
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, 20, &o, lab, NULL, NULL, NULL), TG_ERR_CANCELLED);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, 20, &o, NULL, NULL, lab, NULL), TG_ERR_CANCELLED);
     CHECK_MSG(log.calls == 3 && log.ordered, "progress: %d calls, ordered %d", log.calls, log.ordered);
     log = (progress_log){0, 0, true};
     CHECK_STATUS(tg_geodesic_farthest_point_sampling(g, NULL, 0, 0, 20, &o, samples, NULL, lab, NULL), TG_ERR_CANCELLED);
@@ -348,15 +349,15 @@ static void test_cancel_and_bad_input(const char* data_dir)
     CHECK_MSG(untouched, "outputs written after cancellation");
 
     tg_surface_point bad = tg_surface_vertex((uint32_t)n);
-    CHECK_STATUS(tg_geodesic_voronoi(NULL, NULL, s, 2, NULL, lab, d, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_voronoi(NULL, NULL, s, 2, NULL, NULL, d, lab, NULL), TG_ERR_INVALID_ARGUMENT);
     CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, 2, NULL, NULL, NULL, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, NULL, 2, NULL, lab, d, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, &bad, 1, NULL, lab, d, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_voronoi(g, ows, s, 2, NULL, lab, d, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, NULL, 2, NULL, NULL, d, lab, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, &bad, 1, NULL, NULL, d, lab, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_voronoi(g, ows, s, 2, NULL, NULL, d, lab, NULL), TG_ERR_INVALID_ARGUMENT);
     tg_field_options neg;
     memset(&neg, 0, sizeof neg);
     neg.limit = TG_FIELD_MAX_DISTANCE, neg.max_distance = NAN;
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, 2, &neg, lab, d, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, 2, &neg, NULL, d, lab, NULL), TG_ERR_INVALID_ARGUMENT);
     neg.max_distance = 1.0;
     CHECK_STATUS(tg_geodesic_farthest_point_sampling(g, NULL, 0, 0, 2, &neg, samples, d, lab, NULL),
                  TG_ERR_INVALID_ARGUMENT);
@@ -372,8 +373,31 @@ static void test_cancel_and_bad_input(const char* data_dir)
                  TG_ERR_INVALID_ARGUMENT);
     CHECK_STATUS(tg_geodesic_farthest_point_sampling(g, NULL, 0, 0, n + 1, NULL, samples, d, lab, NULL),
                  TG_ERR_INVALID_ARGUMENT);
+    /* a boundaries object holding a result is left empty by a refused call, and refilled by the next */
+    tg_voronoi_boundaries* b = NULL;
+    CHECK_STATUS(tg_voronoi_boundaries_create(NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_voronoi_boundaries_create(NULL, &b), TG_OK);
+    tg_voronoi_boundaries_view bv;
+    tg_voronoi_boundaries_get_view(b, &bv);
+    CHECK(bv.polyline_count == 0 && bv.point_count == 0);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, 2, NULL, b, NULL, NULL, NULL), TG_OK);
+    tg_voronoi_boundaries_get_view(b, &bv);
+    size_t first = bv.point_count;
+    CHECK(bv.polyline_count > 0 && first > 0);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, &bad, 1, NULL, b, d, lab, NULL), TG_ERR_INVALID_ARGUMENT);
+    tg_voronoi_boundaries_get_view(b, &bv);
+    CHECK_MSG(bv.polyline_count == 0 && bv.point_count == 0 && !bv.xyz, "refused call left %zu polylines",
+              bv.polyline_count);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, 2, NULL, b, NULL, NULL, NULL), TG_OK);
+    tg_voronoi_boundaries_get_view(b, &bv);
+    CHECK_EQ_INT(bv.point_count, first);
+    /* no sources: no boundaries */
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, s, 0, NULL, b, NULL, NULL, NULL), TG_OK);
+    tg_voronoi_boundaries_get_view(b, &bv);
+    CHECK(bv.polyline_count == 0);
+    tg_voronoi_boundaries_destroy(b);
     /* no sources: every vertex unreached */
-    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, NULL, 0, NULL, lab, d, NULL, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_voronoi(g, NULL, NULL, 0, NULL, NULL, d, lab, NULL), TG_OK);
     CHECK_MSG(lab[0] == TG_NONE && isinf(d[0]), "no sources: %u %g", lab[0], d[0]);
     free(lab), free(d);
     tg_geodesic_workspace_destroy(ows);

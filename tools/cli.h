@@ -252,11 +252,13 @@ int cli_write_labels(cli_output_set* set, const char* path, const tg_mesh* mesh,
 
 /* ---- isolines (cli_isolines.c: trigeo field --isolines, trigeo render) ---- */
 
-/* --isolines VALUE: a comma-separated list of levels (finite, >= 0), or a count N (digits only,
- * 1..4096): N levels equally spaced below the largest finite distance (cli_auto_levels). On
- * success *out_levels (malloc'd, N entries; zeros for a count) and *out_count, and *out_auto is
- * true for a count. Prints the error (naming `option`) and returns CLI_INPUT on a bad value. */
-int cli_parse_levels(const char* option, const char* text, double** out_levels, size_t* out_count, bool* out_auto);
+/* --isolines VALUE: a comma-separated list of levels (finite, >= 0; a number is always a level, so
+ * "3" is the level 3). On success *out_levels (malloc'd) and *out_count. Prints the error (naming
+ * `option`) and returns CLI_INPUT on a bad value. */
+int cli_parse_levels(const char* option, const char* text, double** out_levels, size_t* out_count);
+/* --isoline-count N: N (1..4096) levels equally spaced below the largest finite distance, filled
+ * in later by cli_auto_levels; *out_levels (malloc'd, N zeros) and *out_count. Errors as above. */
+int cli_parse_level_count(const char* option, const char* text, double** out_levels, size_t* out_count);
 /* N levels max * k / (N + 1), k = 1..N, max the largest finite value of dist[0..n) (all 0 when
  * none is finite). */
 void cli_auto_levels(const double* dist, size_t n, size_t count, double* out_levels);

@@ -1,4 +1,4 @@
-/* cli_isolines.c - the isolines' levels as the CLI takes them (a list or a count) and their
+/* cli_isolines.c - the isolines' levels as the CLI takes them (a list, or a count by name) and their
  * writers (OBJ polylines, JSON), for `trigeo field --isolines` and `trigeo render`.
  * Based on: the CLI contract of the project's DESIGN.md (outputs renamed into place when
  * complete; bad input: exit 2, no file). */
@@ -11,24 +11,27 @@
 
 #define MAX_LEVELS 4096
 
-int cli_parse_levels(const char* option, const char* text, double** out_levels, size_t* out_count, bool* out_auto)
+int cli_parse_level_count(const char* option, const char* text, double** out_levels, size_t* out_count)
 {
-    *out_levels = NULL, *out_count = 0, *out_auto = false;
-    size_t len = strlen(text), digits = strspn(text, "0123456789");
-    if (len && digits == len) { /* a count */
-        unsigned long long n = 0;
-        if (!cli_parse_uint(text, &n) || n < 1 || n > MAX_LEVELS) {
-            cli_error(NULL, 0, "%s %s: a count of levels must be 1..%d", option, text, MAX_LEVELS);
-            return CLI_INPUT;
-        }
-        *out_levels = calloc((size_t)n, sizeof(double));
-        if (!*out_levels) {
-            cli_error(NULL, 0, "out of memory");
-            return CLI_INPUT;
-        }
-        *out_count = (size_t)n, *out_auto = true;
-        return CLI_OK;
+    *out_levels = NULL, *out_count = 0;
+    unsigned long long n = 0;
+    if (!cli_parse_uint(text, &n) || n < 1 || n > MAX_LEVELS) {
+        cli_error(NULL, 0, "%s %s: a count of levels must be 1..%d", option, text, MAX_LEVELS);
+        return CLI_INPUT;
     }
+    *out_levels = calloc((size_t)n, sizeof(double));
+    if (!*out_levels) {
+        cli_error(NULL, 0, "out of memory");
+        return CLI_INPUT;
+    }
+    *out_count = (size_t)n;
+    return CLI_OK;
+}
+
+int cli_parse_levels(const char* option, const char* text, double** out_levels, size_t* out_count)
+{
+    *out_levels = NULL, *out_count = 0;
+    size_t len = strlen(text);
     size_t n = 1;
     for (size_t i = 0; i < len; ++i) n += text[i] == ',';
     char* buf = malloc(len + 1);
@@ -46,7 +49,7 @@ int cli_parse_levels(const char* option, const char* text, double** out_levels, 
         char* comma = strchr(s, ',');
         if (comma) *comma = '\0';
         if (!cli_parse_nonneg(s, &lv[k])) {
-            cli_error(NULL, 0, "%s: level %zu '%s' is not a finite number >= 0 (give LEVEL,LEVEL,... or a count N)",
+            cli_error(NULL, 0, "%s: level %zu '%s' is not a finite number >= 0 (give LEVEL,LEVEL,...; a count is --isoline-count N)",
                       option, k + 1, s);
             free(buf), free(lv);
             return CLI_INPUT;

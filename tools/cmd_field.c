@@ -146,7 +146,8 @@ typedef struct field_args {
     bool sparse;          /* the matrix within the radius, sparse (.npz, or .csv triplets) */
     bool labels;          /* --labels: the nearest source's index per vertex (Voronoi) */
     const char* boundaries; /* --boundaries: the cells' boundaries (.obj or .json) */
-    const char* isolines; /* --isolines: the levels (a list or a count); -o is then ISO.obj|.json */
+    const char* isolines; /* --isolines: the levels (a list); -o is then ISO.obj|.json */
+    const char* isoline_count; /* --isoline-count: that many levels below the largest distance */
     const char* sources_path;
     const char* at_path;  /* --at (--from) or --to (--sources): distances at these points */
     char** at_items;
@@ -309,8 +310,8 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     double t0 = cli_seconds();
     if (st == TG_OK && fa->labels) {
         label = malloc((n ? n : 1) * sizeof *label);
-        st = label ? tg_geodesic_voronoi(geo, NULL, pts, count, &o, label, dist,
-                                                    fa->boundaries ? &bounds : NULL, &stats) : TG_ERR_OUT_OF_MEMORY;
+        st = !label ? TG_ERR_OUT_OF_MEMORY : fa->boundaries ? tg_voronoi_boundaries_create(NULL, &bounds) : TG_OK;
+        if (st == TG_OK) st = tg_geodesic_voronoi(geo, NULL, pts, count, &o, bounds, dist, label, &stats);
     } else if (st == TG_OK && fa->matrix && fa->at_count)
         st = tg_geodesic_distance_matrix_at(geo, pts, count, at_pts, fa->at_count, &o, fa->threads, dist, &stats);
     else if (st == TG_OK && fa->matrix)
@@ -382,8 +383,8 @@ done:
     return rc;
 }
 
-/* --isolines: the exact isolines of the field of the sources (the nearest of them), to -o. A count
- * of levels runs the field first for its largest distance. */
+/* --isolines / --isoline-count: the exact isolines of the field of the sources (the nearest of
+ * them), to -o. A count of levels runs the field first for its largest distance. */
 static int run_isolines(const field_args* fa, char** items, const unsigned long long* lines, size_t count)
 {
     int rc = CLI_INPUT;
@@ -392,10 +393,13 @@ static int run_isolines(const field_args* fa, char** items, const unsigned long 
     tg_isolines* iso = NULL;
     double *levels = NULL, *dist = NULL;
     size_t nl = 0;
-    bool autolv = false;
+    bool autolv = fa->isoline_count != NULL;
     tg_surface_point* pts = malloc(count * sizeof *pts);
     if (!pts) cli_error(NULL, 0, "out of memory");
-    if (!pts || (rc = cli_parse_levels("--isolines", fa->isolines, &levels, &nl, &autolv)) != CLI_OK) goto done;
+    if (!pts) goto done;
+    rc = autolv ? cli_parse_level_count("--isoline-count", fa->isoline_count, &levels, &nl)
+                : cli_parse_levels("--isolines", fa->isolines, &levels, &nl);
+    if (rc != CLI_OK) goto done;
     rc = CLI_INPUT;
     tg_mesh* mesh = cli_load_mesh_for_distances(fa->mesh_path);
     if (!mesh) goto done;
@@ -414,7 +418,8 @@ static int run_isolines(const field_args* fa, char** items, const unsigned long 
             st = tg_geodesic_field(geo, NULL, pts, count, &o, dist, NULL);
             if (st == TG_OK) cli_auto_levels(dist, nv, nl, levels);
         }
-        if (st == TG_OK) st = tg_geodesic_isolines(geo, NULL, pts, count, levels, nl, &o, &iso, dist, &stats);
+        if (st == TG_OK) st = tg_isolines_create(NULL, &iso);
+        if (st == TG_OK) st = tg_geodesic_isolines(geo, NULL, pts, count, levels, nl, &o, iso, dist, &stats);
         double secs = cli_seconds() - t0;
         cli_interrupt_polling(false);
         cli_progress_end(&prog);
@@ -480,10 +485,12 @@ static int run_sparse(const field_args* fa, char** items, const unsigned long lo
     cli_progress prog;
     tg_field_stats stats;
     start_work(fa, &o, &prog, &stats);
+    o.limit = TG_FIELD_UNLIMITED; /* the radius is the call's own argument */
     double t0 = cli_seconds();
+    if (st == TG_OK) st = tg_sparse_matrix_create(NULL, &mat);
     if (st == TG_OK)
         st = tg_geodesic_local_matrix(geo, pts, count, fa->max_dist >= 0 ? fa->max_dist : INFINITY, &o, fa->threads,
-                                      &mat, &stats);
+                                      mat, &stats);
     double secs = cli_seconds() - t0;
     cli_interrupt_polling(false);
     cli_progress_end(&prog);
@@ -534,7 +541,7 @@ static int run(int argc, char** argv)
             fa.labels = true;
         } else if (!strcmp(a, "--from") || !strcmp(a, "-o") || !strcmp(a, "--csv") || !strcmp(a, "--max-distance") ||
                    !strcmp(a, "--sources") || !strcmp(a, "--threads") || !strcmp(a, "--at") || !strcmp(a, "--to") ||
-                   !strcmp(a, "--boundaries") || !strcmp(a, "--isolines")) {
+                   !strcmp(a, "--boundaries") || !strcmp(a, "--isolines") || !strcmp(a, "--isoline-count")) {
             if (i + 1 >= argc) return cli_usage("field", "%s needs a value", a);
             const char* val = argv[++i];
             if (!strcmp(a, "--from"))
@@ -555,6 +562,8 @@ static int run(int argc, char** argv)
                 fa.boundaries = val;
             else if (!strcmp(a, "--isolines"))
                 fa.isolines = val;
+            else if (!strcmp(a, "--isoline-count"))
+                fa.isoline_count = val;
             else
                 maxd = val;
         } else if (a[0] == '-' && a[1]) {
@@ -568,11 +577,14 @@ static int run(int argc, char** argv)
     if (!fa.mesh_path) return cli_usage("field", "missing MESH");
     if (!from == !fa.sources_path) return cli_usage("field", "give either --from SPEC[;SPEC...] or --sources FILE");
     if (fa.out && csv) return cli_usage("field", "-o and --csv exclude each other");
-    if (fa.isolines) { /* one field of the sources, its isolines to -o */
+    if (fa.isolines && fa.isoline_count)
+        return cli_usage("field", "give the levels (--isolines L,L,...) or their count (--isoline-count N), not both");
+    if (fa.isolines || fa.isoline_count) { /* one field of the sources, its isolines to -o */
+        const char* opt = fa.isolines ? "--isolines" : "--isoline-count";
         if (!fa.out || !(cli_ext_is(fa.out, ".obj") || cli_ext_is(fa.out, ".json")))
-            return cli_usage("field", "--isolines writes -o ISO.obj or ISO.json");
+            return cli_usage("field", "%s writes -o ISO.obj or ISO.json", opt);
         if (csv || fa.labels || fa.at_path || fa.sparse || (fa.sources_path && !strcmp(fa.sources_path, "all")))
-            return cli_usage("field", "--isolines goes with --from or --sources FILE, -o and --max-distance only");
+            return cli_usage("field", "%s goes with --from or --sources FILE, -o and --max-distance only", opt);
     } else if (csv) {
         fa.out = csv;
         fa.format = OUT_CSV;
@@ -581,7 +593,7 @@ static int run(int argc, char** argv)
         if (fa.format == OUT_NONE && !(fa.at_path && strrchr(fa.out, '.') && !strcmp(strrchr(fa.out, '.'), ".txt")))
             return cli_usage("field", "-o %s: the extension must be .ply, .csv, .npy or .npz", fa.out);
     }
-    fa.matrix = fa.sources_path != NULL && !fa.labels && !fa.isolines;
+    fa.matrix = fa.sources_path != NULL && !fa.labels && !fa.isolines && !fa.isoline_count;
     if (fa.boundaries && !fa.labels) return cli_usage("field", "--boundaries goes with --labels");
     if (fa.boundaries && !cli_ext_is(fa.boundaries, ".obj") && !cli_ext_is(fa.boundaries, ".json"))
         return cli_usage("field", "--boundaries %s: the extension must be .obj or .json", fa.boundaries);
@@ -632,7 +644,7 @@ static int run(int argc, char** argv)
         if (n < 0)
             rc = CLI_INPUT;
         else
-            rc = fa.isolines ? run_isolines(&fa, items, lines, (size_t)n)
+            rc = fa.isolines || fa.isoline_count ? run_isolines(&fa, items, lines, (size_t)n)
                  : fa.sparse ? run_sparse(&fa, items, lines, (size_t)n)
                              : run_field(&fa, items, lines, (size_t)n);
         free(text), free(items), free(lines);
@@ -650,7 +662,7 @@ static int run(int argc, char** argv)
     }
     memcpy(list, from, len + 1);
     size_t count = cli_split_list(list, items, MAX_SOURCES);
-    rc = count ? (fa.isolines ? run_isolines(&fa, items, NULL, count) : run_field(&fa, items, NULL, count))
+    rc = count ? (fa.isolines || fa.isoline_count ? run_isolines(&fa, items, NULL, count) : run_field(&fa, items, NULL, count))
                : cli_usage("field", "bad --from list \"%s\" (SPEC;SPEC;..., no empty item, at most %d)", from, MAX_SOURCES);
     free(list), free(items);
     free(at_text), free(fa.at_items), free(fa.at_lines);
@@ -660,7 +672,7 @@ static int run(int argc, char** argv)
 const cli_command cli_cmd_field = {
     "field",
     "field MESH --from SPEC[;SPEC...] [--at POINTS] | --sources FILE|all [--to POINTS] [-o OUT.ply|.csv|.npy|.npz]\n"
-    "       [--max-distance D] [--sparse] [--labels [--boundaries B.obj|.json]] [--isolines L,L,...|N -o ISO.obj|.json]",
+    "       [--max-distance D] [--sparse] [--labels [--boundaries B.obj|.json]] [--isolines L,L,... | --isoline-count N -o ISO.obj|.json]",
     "The exact geodesic distance from surface points to every vertex (window propagation: window\n"
     "lists crossing one face at a time behind a front of vertices, after Qin et al. 2016 and Xin &\n"
     "Wang 2009). Distance is intrinsic: faces' winding does not matter, and paths continue into\n"
@@ -708,16 +720,17 @@ const cli_command cli_cmd_field = {
     "                         records (a '# cells A B' comment before each 'l'; trigeo render\n"
     "                         --path draws them); .json: {\"polylines\": [{\"cells\": [A, B],\n"
     "                         \"points\": [[x, y, z], ...], \"surface\": [\"e:H:t\" | \"f:F:b0,b1,b2\"]}]}\n"
-    "  --isolines L,L,...|N   the exact isolines of the field (--from, or --sources FILE: the nearest\n"
-    "                         source) at these levels, or, given a lone integer N (write 1.0 for\n"
-    "                         the one level 1), at N levels equally spaced below the largest\n"
-    "                         distance (max * k / (N + 1)); crossings of edges exact, arcs\n"
+    "  --isolines L,L,...     the exact isolines of the field (--from, or --sources FILE: the nearest\n"
+    "                         source) at these levels (a number is always a level: 3 is the level\n"
+    "                         3, as in Python's Mesh.isolines); crossings of edges exact, arcs\n"
     "                         inside faces within 1e-3 of the face; -o ISO.obj: 'v' records, a\n"
     "                         group 'g level_I' ('# level L') of 'l' polylines per level (closed\n"
     "                         ones end on their first vertex); -o ISO.json: {\"levels\": [...],\n"
     "                         \"polylines\": [{\"level\": I, \"value\": L, \"closed\": B, \"points\":\n"
     "                         [[x, y, z], ...], \"faces\": [...], \"surface\": [\"e:H:t\", ...]}]};\n"
     "                         negative, NaN or missing levels: exit 2, no file\n"
+    "  --isoline-count N      instead of --isolines: N levels equally spaced below the largest\n"
+    "                         distance (max * k / (N + 1), k = 1..N; Python: isolines(count=N))\n"
     "  --max-distance D       stop at distance D (0 allowed): farther vertices get inf\n"
     "  --threads N            --sources: threads, at most 256 (default 0: all cores)\n"
     "  --quiet                no progress line (else drawn on stderr when it is a terminal and\n"

@@ -166,7 +166,8 @@ static int isolines_of_sources(const char* mesh_path, tg_mesh* mesh, cli_spec_li
     if (st == TG_OK) st = tg_geodesic_field(geo, NULL, srcs->point, srcs->count, &o, ex->dist, NULL);
     if (st == TG_OK) {
         cli_auto_levels(ex->dist, nv, 16, levels);
-        st = tg_geodesic_isolines(geo, NULL, srcs->point, srcs->count, levels, 16, &o, &ex->iso, NULL, NULL);
+        st = tg_isolines_create(NULL, &ex->iso);
+        if (st == TG_OK) st = tg_geodesic_isolines(geo, NULL, srcs->point, srcs->count, levels, 16, &o, ex->iso, NULL, NULL);
     }
     cli_interrupt_polling(false);
     if (st == TG_OK) {

@@ -63,13 +63,49 @@ def test_equals_cli(tmp_path):
             assert np.array_equal(p, q)
 
 
+def test_one_rule_with_the_cli(tmp_path):
+    """A number is always a level (3 is the level 3, in Python as in the CLI's --isolines 3); a
+    count of levels is asked for by name: count=N equals the CLI's --isoline-count N, levels and
+    points bit for bit."""
+    m = trigeo.load(SPOT)
+    assert [len(x) for x in m.isolines(5, 0.3)] == [len(x) for x in m.isolines(5, [0.3])]
+    for opt, value, kw in (("--isolines", "0.3", {"levels": 0.3}), ("--isoline-count", "3", {"count": 3})):
+        out = tmp_path / "iso.json"
+        r = run_cli("field", SPOT, "--from", "v:5", opt, value, "-o", str(out), "--quiet")
+        assert r.returncode == 0, r.stderr
+        doc = json.loads(out.read_text())
+        lines = m.isolines(5, **kw)
+        assert len(doc["levels"]) == len(lines), (opt, doc["levels"])
+        cli = [[np.array(pl["points"]) for pl in doc["polylines"] if pl["level"] == i] for i in range(len(lines))]
+        assert [len(x) for x in cli] == [len(x) for x in lines], opt
+        for a, b in zip(cli, lines):
+            for p, q in zip(a, b):
+                assert np.array_equal(p, q), opt
+    # count=N: max * k / (N + 1) of the field's largest finite distance
+    d = m.field(5)
+    far = d[np.isfinite(d)].max()
+    got = m.isolines(5, count=3, details=True)
+    for k, lines in enumerate(got):
+        want = far * (k + 1) / 4
+        for pl in lines:
+            at = m.field_at(5, pl["surface_points"])
+            assert np.all(np.abs(at - want) <= 1e-9 * want), (k, at[:3], want)
+
+
 def test_bad_levels():
     m = flat_square(4)
     for bad in ([], [-0.1], [math.nan], [math.inf], [0.1, -1.0]):
         with pytest.raises(trigeo.InvalidArgumentError):
             m.isolines(0, bad)
-    with pytest.raises(trigeo.InvalidArgumentError):
-        m.isolines([], [0.1])
+    for bad in (0, -1, 4097, 2.5, True, "3"):
+        with pytest.raises(trigeo.InvalidArgumentError, match="count"):
+            m.isolines(0, count=bad)
+    with pytest.raises(trigeo.InvalidArgumentError, match="one of them"):
+        m.isolines(0, [0.1], count=2)
+    with pytest.raises(trigeo.InvalidArgumentError, match="one of them"):
+        m.isolines(0)
+    # no sources: nothing reached, no curves (the one rule for empty source lists)
+    assert m.isolines([], [0.1, 0.2]) == [[], []]
 
 
 def test_render_draws_them(tmp_path):

@@ -1386,12 +1386,10 @@ class Mesh:
         beyond get inf): a finite number >= 0 (subnormals included, as the CLI's --max-distance),
         None for no limit. progress: called with the settled fraction in [0, 1] every few ms; return
         False to cancel (CancelledError). Ctrl-C stops the computation too. Returns (n,) float64;
-        inf where no path reaches (other components, unused vertices). At least one source is
-        needed (InvalidArgumentError otherwise)."""
+        inf where no path reaches (other components, unused vertices). An empty source list is
+        accepted, as by every call taking sources: nothing is reached (all inf)."""
         def work(call: _Call) -> np.ndarray:
             src = self._surface_points(sources, "sources")
-            if len(src) == 0:
-                raise _bad("field needs at least one source (with none, no vertex has a distance)")
             o = self._field_options(max_distance, call)
             out = np.empty(self.vertex_count)
             geo = self._get_geo()
@@ -1449,8 +1447,6 @@ class Mesh:
         indices or (k, 3) positions. Returns (k,) float64."""
         def work(call: _Call) -> np.ndarray:
             src = self._surface_points(sources, "sources")
-            if len(src) == 0:
-                raise _bad("field_at needs at least one source")
             pts = self._surface_points(points, "points")
             o = self._field_options(max_distance, call)
             out = np.empty(len(pts))
@@ -1547,16 +1543,12 @@ class Mesh:
             rows = self.vertex_count if everything else len(src)
             o = self._field_options(None, call)
             geo = self._get_geo()
-            mat = ctypes.c_void_p()
-            st = _L.tg_geodesic_local_matrix(geo, src, rows, radius, ctypes.byref(o), threads, ctypes.byref(mat),
-                                             None)
-            if st != 0:
-                _L.tg_sparse_matrix_destroy(mat)
+            st = _L.tg_geodesic_local_matrix(geo, src, rows, radius, ctypes.byref(o), threads, mat, None)
             call.finish(st, "distance_matrix")
-            return mat
 
-        mat = self._run(work, progress)
+        mat = _new(_L.tg_sparse_matrix_create, None)
         try:
+            self._run(work, progress)
             v = _c.SparseMatrixView()
             _L.tg_sparse_matrix_get_view(mat, ctypes.byref(v))
             n, k = v.entry_count, v.row_count
@@ -1626,22 +1618,23 @@ class Mesh:
         n = self.vertex_count
         labels = np.empty(n, dtype=np.uint32)
         dist = np.empty(n)
-        bounds = ctypes.c_void_p()
 
         def work(call: _Call) -> None:
             src = self._surface_points(sources, "sources")
             o = self._field_options(max_distance, call)
-            out_b = ctypes.byref(bounds) if boundaries else None
             geo = self._get_geo()
             with self._geo_ws.take() as ws:
-                st = _L.tg_geodesic_voronoi(geo, ws, src, len(src), ctypes.byref(o), _ptr(labels, ctypes.c_uint32),
-                                            _ptr(dist), out_b, None)
+                st = _L.tg_geodesic_voronoi(geo, ws, src, len(src), ctypes.byref(o), bounds, _ptr(dist),
+                                            _ptr(labels, ctypes.c_uint32), None)
             call.finish(st, "voronoi")
 
-        self._run(work, progress)
         if not boundaries:
+            bounds = None
+            self._run(work, progress)
             return _labels(labels), dist
+        bounds = _new(_L.tg_voronoi_boundaries_create, None)
         try:
+            self._run(work, progress)
             v = _c.BoundariesView()
             _L.tg_voronoi_boundaries_get_view(bounds, ctypes.byref(v))
             xyz = np.ctypeslib.as_array(v.xyz, shape=(v.point_count, 3)).copy() if v.point_count else np.empty((0, 3))
@@ -1655,11 +1648,14 @@ class Mesh:
             _L.tg_voronoi_boundaries_destroy(bounds)
         return _labels(labels), dist, lines
 
-    def isolines(self, sources: Any, levels: Any, max_distance: Optional[float] = None, details: bool = False,
-                 progress: Optional[Callable[[float], Any]] = None) -> list:
+    def isolines(self, sources: Any, levels: Any = None, max_distance: Optional[float] = None, details: bool = False,
+                 progress: Optional[Callable[[float], Any]] = None, *, count: Optional[int] = None) -> list:
         """Exact isolines: for each level, the curves where the exact geodesic distance from the
-        nearest source equals it. sources as field(); levels: a number or a sequence of finite
-        levels >= 0 (any order). Edge crossings are placed on the exact distance function (not
+        nearest source equals it. sources as field() (none: no curves); levels: a number or a
+        sequence of finite levels >= 0 (any order; a number is always a level, as the CLI's
+        --isolines). count=N instead of levels: N levels equally spaced below the largest
+        distance, max * k / (N + 1) for k = 1..N (the CLI's --isoline-count N; the field is
+        computed first for its largest distance). Edge crossings are placed on the exact distance function (not
         interpolated between vertices) and the curves follow the exact circular arcs inside faces
         (within 1e-3 of the face's size); every point's field_at() is its level to ~1e-15.
         Returns one list per level (in the order given) of polylines, each a (k, 3) float64
@@ -1668,25 +1664,39 @@ class Mesh:
         each point), "surface_points" k SurfacePoints (edge points at crossings, face points
         inside faces). max_distance: as field() (levels beyond it give no polylines)."""
         details = _flag(details, "details")
-        lv = np.ascontiguousarray(np.atleast_1d(_floats(levels, "levels", "a level or a sequence")).ravel())
-        if lv.size == 0:
-            raise _bad(f"levels must be one or more finite numbers >= 0, not {_show(levels)}")
-        _check_values(lv, "levels", ">=0")
-        handle = ctypes.c_void_p()
+        if (levels is None) == (count is None):
+            raise _bad("give the levels or count=N (how many levels below the largest distance), one of them")
+        if count is not None:
+            if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or not 1 <= count <= 4096:
+                raise _bad(f"count must be an integer from 1 to 4096, not {_show(count)}")
+            lv = np.zeros(int(count))
+        else:
+            lv = np.ascontiguousarray(np.atleast_1d(_floats(levels, "levels", "a level or a sequence")).ravel())
+            if lv.size == 0:
+                raise _bad(f"levels must be one or more finite numbers >= 0, not {_show(levels)}")
+            _check_values(lv, "levels", ">=0")
 
         def work(call: _Call) -> None:
             src = self._surface_points(sources, "sources")
-            if len(src) == 0:
-                raise _bad("isolines need at least one source")
             o = self._field_options(max_distance, call)
             geo = self._get_geo()
             with self._geo_ws.take() as ws:
-                st = _L.tg_geodesic_isolines(geo, ws, src, len(src), _ptr(lv), lv.size, ctypes.byref(o),
-                                             ctypes.byref(handle), None, None)
+                if count is not None:  # the levels below the field's largest finite distance, as the CLI's
+                    d = np.empty(self.vertex_count)
+                    st = _L.tg_geodesic_field(geo, ws, src, len(src), ctypes.byref(o), _ptr(d), None)
+                    if st != 0:
+                        call.finish(st, "isolines")
+                    fin = d[np.isfinite(d)]
+                    far = float(fin.max()) if fin.size and fin.max() > 0 else 0.0
+                    for k in range(lv.size):
+                        lv[k] = far * float(k + 1) / float(lv.size + 1)
+                st = _L.tg_geodesic_isolines(geo, ws, src, len(src), _ptr(lv), lv.size, ctypes.byref(o), handle,
+                                             None, None)
             call.finish(st, "isolines")
 
-        self._run(work, progress)
+        handle = _new(_L.tg_isolines_create, None)
         try:
+            self._run(work, progress)
             v = _c.IsolinesView()
             _L.tg_isolines_get_view(handle, ctypes.byref(v))
             n = v.point_count

@@ -212,14 +212,34 @@ static void scratch_free(const tg_allocator* a, scratch* s)
     for (size_t i = 0; i < sizeof all / sizeof all[0]; ++i) tg__free(a, all[i]);
 }
 
-void tg_voronoi_boundaries_destroy(tg_voronoi_boundaries* b)
+void tg__voronoi_boundaries_clear(tg_voronoi_boundaries* b)
 {
-    if (!b) return;
     tg_allocator a = b->allocator;
     tg__free(&a, b->polyline_start);
     tg__free(&a, b->polyline_cells);
     tg__free(&a, b->points);
     tg__free(&a, b->xyz);
+    memset(b, 0, sizeof *b);
+    b->allocator = a;
+}
+
+tg_status tg_voronoi_boundaries_create(const tg_allocator* allocator, tg_voronoi_boundaries** out_boundaries)
+{
+    if (!out_boundaries) return TG_ERR_INVALID_ARGUMENT;
+    *out_boundaries = NULL;
+    tg_voronoi_boundaries* b = tg__alloc(allocator, sizeof *b);
+    if (!b) return TG_ERR_OUT_OF_MEMORY;
+    memset(b, 0, sizeof *b);
+    if (allocator) b->allocator = *allocator;
+    *out_boundaries = b;
+    return TG_OK;
+}
+
+void tg_voronoi_boundaries_destroy(tg_voronoi_boundaries* b)
+{
+    if (!b) return;
+    tg__voronoi_boundaries_clear(b);
+    tg_allocator a = b->allocator;
     tg__free(&a, b);
 }
 
@@ -316,17 +336,17 @@ static void chain(const tg_geodesic* g, const segment* segs, size_t ns, size_t n
 }
 
 tg_status tg__voronoi_boundaries(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources,
-                                 size_t source_count, tg_voronoi_boundaries** out)
+                                 size_t source_count, tg_voronoi_boundaries* b)
 {
     const tg_geodesic* g = nf->g;
     const tg_allocator* a = &nf->allocator;
     size_t nh = 3 * (size_t)g->face_count, n = 0;
     scratch s;
     memset(&s, 0, sizeof s);
-    tg_voronoi_boundaries* b = tg__alloc(a, sizeof *b);
-    if (b) memset(b, 0, sizeof *b), b->allocator = *a;
+    tg__voronoi_boundaries_clear(b);
+    const tg_allocator* ba = &b->allocator; /* the result's arrays */
     s.cross_of = tg__alloc_array(a, nh ? nh : 1, sizeof(uint32_t));
-    tg_status st = b && s.cross_of ? TG_OK : TG_ERR_OUT_OF_MEMORY;
+    tg_status st = s.cross_of ? TG_OK : TG_ERR_OUT_OF_MEMORY;
     /* the boundary edges: ends in two cells, both reached, a length to cross */
     for (size_t h = 0; st == TG_OK && h < nh; ++h) s.cross_of[h] = TG_NONE;
     for (uint32_t h = 0; st == TG_OK && h < nh; ++h) {
@@ -389,19 +409,15 @@ tg_status tg__voronoi_boundaries(tg__nearest* nf, tg__field_scratch* fs, const t
         s.adj_start = tg__alloc_array(a, nodes_n + 1, sizeof *s.adj_start);
         s.adj = tg__alloc_array(a, 2 * ns + 1, sizeof *s.adj);
         s.used = tg__alloc_array(a, ns + 1, sizeof *s.used);
-        b->polyline_start = tg__alloc_array(a, ns + 2, sizeof *b->polyline_start);
-        b->polyline_cells = tg__alloc_array(a, 2 * ns + 2, sizeof *b->polyline_cells);
-        b->points = tg__alloc_array(a, 2 * ns + 1, sizeof *b->points);
-        b->xyz = tg__alloc_array(a, 6 * ns + 3, sizeof *b->xyz);
+        b->polyline_start = tg__alloc_array(ba, ns + 2, sizeof *b->polyline_start);
+        b->polyline_cells = tg__alloc_array(ba, 2 * ns + 2, sizeof *b->polyline_cells);
+        b->points = tg__alloc_array(ba, 2 * ns + 1, sizeof *b->points);
+        b->xyz = tg__alloc_array(ba, 6 * ns + 3, sizeof *b->xyz);
         if (!s.adj_start || !s.adj || !s.used || !b->polyline_start || !b->polyline_cells || !b->points || !b->xyz)
             st = TG_ERR_OUT_OF_MEMORY;
     }
     if (st == TG_OK) chain(g, s.segs, ns, nodes_n, s.nodes, &s, b);
     scratch_free(a, &s);
-    if (st != TG_OK) {
-        tg_voronoi_boundaries_destroy(b);
-        return st;
-    }
-    *out = b;
-    return TG_OK;
+    if (st != TG_OK) tg__voronoi_boundaries_clear(b);
+    return st;
 }

@@ -1194,12 +1194,33 @@ struct tg_isolines {
     double* xyz;
 };
 
-void tg_isolines_destroy(tg_isolines* r)
+/* Empties a result: its arrays freed, no levels. */
+static void isolines_clear(tg_isolines* r)
 {
-    if (!r) return;
     tg_allocator a = r->allocator;
     void* arrays[] = {r->levels, r->level_start, r->polyline_start, r->closed, r->points, r->faces, r->xyz};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i) tg__free(&a, arrays[i]);
+    memset(r, 0, sizeof *r);
+    r->allocator = a;
+}
+
+tg_status tg_isolines_create(const tg_allocator* allocator, tg_isolines** out_isolines)
+{
+    if (!out_isolines) return TG_ERR_INVALID_ARGUMENT;
+    *out_isolines = NULL;
+    tg_isolines* r = tg__alloc(allocator, sizeof *r);
+    if (!r) return TG_ERR_OUT_OF_MEMORY;
+    memset(r, 0, sizeof *r);
+    if (allocator) r->allocator = *allocator;
+    *out_isolines = r;
+    return TG_OK;
+}
+
+void tg_isolines_destroy(tg_isolines* r)
+{
+    if (!r) return;
+    isolines_clear(r);
+    tg_allocator a = r->allocator;
     tg__free(&a, r);
 }
 
@@ -1213,14 +1234,13 @@ void tg_isolines_get_view(const tg_isolines* r, tg_isolines_view* out)
     out->faces = r->faces, out->xyz = r->xyz;
 }
 
-static tg_isolines* make_result(const iso_state* st, const tg_allocator* a, const double* levels, size_t nl,
-                                const size_t* level_start)
+/* The result into r (emptied first), its arrays made with r's allocator. */
+static bool make_result(const iso_state* st, tg_isolines* r, const double* levels, size_t nl,
+                        const size_t* level_start)
 {
     const tg_geodesic* g = st->g;
-    tg_isolines* r = tg__alloc(a, sizeof *r);
-    if (!r) return NULL;
-    memset(r, 0, sizeof *r);
-    r->allocator = *a;
+    isolines_clear(r);
+    const tg_allocator* a = &r->allocator;
     size_t np = st->out_nodes.count, npl = st->out_closed.count;
     r->level_count = nl, r->polyline_count = npl, r->point_count = np;
     r->levels = tg__alloc_array(a, nl, sizeof(double));
@@ -1231,8 +1251,8 @@ static tg_isolines* make_result(const iso_state* st, const tg_allocator* a, cons
     r->faces = tg__alloc_array(a, np ? np : 1, sizeof(uint32_t));
     r->xyz = tg__alloc_array(a, np ? 3 * np : 1, sizeof(double));
     if (!r->levels || !r->level_start || !r->polyline_start || !r->closed || !r->points || !r->faces || !r->xyz) {
-        tg_isolines_destroy(r);
-        return NULL;
+        isolines_clear(r);
+        return false;
     }
     memcpy(r->levels, levels, nl * sizeof(double));
     memcpy(r->level_start, level_start, (nl + 1) * sizeof(size_t));
@@ -1246,7 +1266,7 @@ static tg_isolines* make_result(const iso_state* st, const tg_allocator* a, cons
         r->faces[i] = tg__face_out(g, faces[i]);
         tg_surface_point_position(g->mesh, &r->points[i], r->xyz + 3 * i);
     }
-    return r;
+    return true;
 }
 
 static void state_free(iso_state* st)
@@ -1297,7 +1317,7 @@ static void vec_init(iso_state* st)
 /* The run, then every level traced and chained (solver frame: levels times scale). */
 static tg_status isolines_of(const tg_geodesic* g, tg__field_scratch* fs, const tg_surface_point* sources,
                              size_t source_count, const double* levels, size_t nl, const tg_field_options* options,
-                             const tg_allocator* a, tg_isolines** out, double* out_vertex_distance,
+                             const tg_allocator* a, tg_isolines* out, double* out_vertex_distance,
                              tg_field_stats* out_stats)
 {
     double* sorted = tg__alloc_array(a, nl, sizeof(double));
@@ -1338,8 +1358,7 @@ static tg_status isolines_of(const tg_geodesic* g, tg__field_scratch* fs, const 
     }
     if (status == TG_OK) {
         level_start[nl] = st.out_closed.count;
-        *out = make_result(&st, a, levels, nl, level_start);
-        if (!*out) status = TG_ERR_OUT_OF_MEMORY;
+        if (!make_result(&st, out, levels, nl, level_start)) status = TG_ERR_OUT_OF_MEMORY;
     }
     if (status == TG_OK) {
         if (out_vertex_distance) tg__field_copy_out(&run, out_vertex_distance);
@@ -1353,22 +1372,22 @@ static tg_status isolines_of(const tg_geodesic* g, tg__field_scratch* fs, const 
 
 tg_status tg_geodesic_isolines(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
                                size_t source_count, const double* levels, size_t level_count,
-                               const tg_field_options* options, tg_isolines** out_isolines,
+                               const tg_field_options* options, tg_isolines* isolines,
                                double* out_vertex_distance, tg_field_stats* out_stats)
 {
-    if (!out_isolines) return TG_ERR_INVALID_ARGUMENT;
-    *out_isolines = NULL;
-    if (!levels || level_count == 0) return TG_ERR_INVALID_ARGUMENT;
-    for (size_t i = 0; i < level_count; ++i)
-        if (!(levels[i] >= 0.0 && levels[i] < INFINITY)) return TG_ERR_INVALID_ARGUMENT;
-    tg_status st = tg__field_check(g, sources, source_count, options);
-    if (st != TG_OK) return st;
-    tg_geodesic_workspace* own;
-    const tg_allocator* a = options && options->allocator ? options->allocator : &g->allocator;
-    st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
-    if (st != TG_OK) return st;
-    st = isolines_of(g, &ws->field, sources, source_count, levels, level_count, options, a, out_isolines,
-                     out_vertex_distance, out_stats);
-    tg__workspace_release(own);
+    if (!isolines) return TG_ERR_INVALID_ARGUMENT;
+    tg_status st = levels && level_count ? TG_OK : TG_ERR_INVALID_ARGUMENT;
+    for (size_t i = 0; st == TG_OK && i < level_count; ++i)
+        if (!(levels[i] >= 0.0 && levels[i] < INFINITY)) st = TG_ERR_INVALID_ARGUMENT;
+    if (st == TG_OK) st = tg__field_check(g, sources, source_count, options);
+    tg_geodesic_workspace* own = NULL;
+    if (st == TG_OK) st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
+    if (st == TG_OK) {
+        const tg_allocator* a = options && options->allocator ? options->allocator : &g->allocator;
+        st = isolines_of(g, &ws->field, sources, source_count, levels, level_count, options, a, isolines,
+                         out_vertex_distance, out_stats);
+        tg__workspace_release(own);
+    }
+    if (st != TG_OK) isolines_clear(isolines);
     return st;
 }

@@ -89,7 +89,7 @@ static bool csr_append(const tg_allocator* a, csr_build* c, const uint32_t* col,
     return true;
 }
 
-static void csr_build_free(const tg_allocator* a, csr_build* c, size_t rows)
+static void csr_build_free(const tg_allocator* a, const tg_allocator* ma, csr_build* c, size_t rows)
 {
     for (size_t i = 0; i < c->blocks.count; ++i) {
         csr_block* b = (csr_block*)c->blocks.data + i;
@@ -98,38 +98,49 @@ static void csr_build_free(const tg_allocator* a, csr_build* c, size_t rows)
     tg__vec_free(a, &c->blocks);
     for (size_t i = 0; c->pending && i < rows; ++i) tg__free(a, c->pending[i]);
     tg__free(a, c->pending);
-    tg__free(a, c->row_start);
+    tg__free(ma, c->row_start);
     memset(c, 0, sizeof *c);
 }
 
-/* The blocks copied into the final arrays (each freed once copied), the row starts handed over. */
-static tg_status csr_finish(const tg_allocator* a, csr_build* c, size_t rows, size_t cols, tg_sparse_matrix** out)
+/* Empties a matrix: its arrays freed, no rows. */
+static void sparse_clear(tg_sparse_matrix* m)
 {
-    tg_sparse_matrix* m = tg__alloc(a, sizeof *m);
-    if (!m) return TG_ERR_OUT_OF_MEMORY;
-    memset(m, 0, sizeof *m);
-    m->allocator = *a;
-    m->row_count = rows, m->col_count = cols, m->entry_count = c->entries;
+    tg__free(&m->allocator, m->row_start);
+    tg__free(&m->allocator, m->col);
+    tg__free(&m->allocator, m->value);
+    m->row_start = NULL, m->col = NULL, m->value = NULL;
+    m->row_count = m->col_count = m->entry_count = 0;
+}
+
+/* The blocks copied into the final arrays, made with the matrix's allocator (each block freed once
+ * copied), the row starts (made with it too) handed over; the matrix's old content freed. */
+static tg_status csr_finish(const tg_allocator* a, csr_build* c, size_t rows, size_t cols, tg_sparse_matrix* m)
+{
+    const tg_allocator* ma = &m->allocator;
+    uint32_t* col = NULL;
+    double* value = NULL;
     if (c->entries) {
-        m->col = tg__alloc_array(a, c->entries, sizeof(uint32_t));
-        m->value = tg__alloc_array(a, c->entries, sizeof(double));
-        if (!m->col || !m->value) {
-            tg__free(a, m->col), tg__free(a, m->value), tg__free(a, m);
+        col = tg__alloc_array(ma, c->entries, sizeof(uint32_t));
+        value = tg__alloc_array(ma, c->entries, sizeof(double));
+        if (!col || !value) {
+            tg__free(ma, col), tg__free(ma, value);
             return TG_ERR_OUT_OF_MEMORY;
         }
     }
     size_t at = 0;
     for (size_t i = 0; i < c->blocks.count; ++i) {
         csr_block* b = (csr_block*)c->blocks.data + i;
-        memcpy(m->col + at, b->col, b->count * sizeof(uint32_t));
-        memcpy(m->value + at, b->value, b->count * sizeof(double));
+        memcpy(col + at, b->col, b->count * sizeof(uint32_t));
+        memcpy(value + at, b->value, b->count * sizeof(double));
         at += b->count;
         tg__free(a, b->col), tg__free(a, b->value);
         b->col = NULL, b->value = NULL;
     }
+    sparse_clear(m);
+    m->row_count = rows, m->col_count = cols, m->entry_count = c->entries;
+    m->col = col, m->value = value;
     m->row_start = c->row_start;
     c->row_start = NULL;
-    *out = m;
     return TG_OK;
 }
 
@@ -541,31 +552,53 @@ tg_status tg_geodesic_distance_matrix_at(const tg_geodesic* g, const tg_surface_
 
 tg_status tg_geodesic_local_matrix(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
                                    double max_distance, const tg_field_options* options, int threads,
-                                   tg_sparse_matrix** out_matrix, tg_field_stats* out_stats)
+                                   tg_sparse_matrix* matrix, tg_field_stats* out_stats)
 {
-    if (out_matrix) *out_matrix = NULL;
-    if (!g || !out_matrix || threads < 0 || !(max_distance >= 0.0)) return TG_ERR_INVALID_ARGUMENT;
-    if (!sources && source_count != g->vertex_count) return TG_ERR_INVALID_ARGUMENT;
-    tg_status st = sources ? tg__field_check(g, sources, source_count, NULL) : TG_OK;
-    if (st != TG_OK) return st;
-    if (source_count >= SIZE_MAX / sizeof(uint64_t) - 1) return TG_ERR_OUT_OF_MEMORY;
+    if (!matrix) return TG_ERR_INVALID_ARGUMENT;
+    tg_status st = TG_OK;
+    if (!g || threads < 0 || !(max_distance >= 0.0) || (options && options->limit != TG_FIELD_UNLIMITED))
+        st = TG_ERR_INVALID_ARGUMENT;
+    else if (!sources && source_count != g->vertex_count)
+        st = TG_ERR_INVALID_ARGUMENT;
+    else if (sources)
+        st = tg__field_check(g, sources, source_count, NULL);
+    if (st == TG_OK && source_count >= SIZE_MAX / sizeof(uint64_t) - 1) st = TG_ERR_OUT_OF_MEMORY;
+    if (st != TG_OK) {
+        sparse_clear(matrix);
+        return st;
+    }
     batch b;
     bool ordered = batch_init(&b, g, options, sources, source_count);
     b.row = local_row;
     b.limit = max_distance * g->scale;
     const tg_allocator* a = &b.alloc;
     b.csr.blocks.elem = sizeof(csr_block);
-    b.csr.row_start = tg__calloc_array(a, source_count + 1, sizeof(uint64_t));
+    b.csr.row_start = tg__calloc_array(&matrix->allocator, source_count + 1, sizeof(uint64_t));
     b.csr.pending = tg__calloc_array(a, source_count ? source_count : 1, sizeof(pending_row*));
     tg_field_stats sum;
     memset(&sum, 0, sizeof sum);
     st = ordered && b.csr.row_start && b.csr.pending ? TG_OK : TG_ERR_OUT_OF_MEMORY;
     if (st == TG_OK && source_count > 0) st = batch_run(&b, threads, &sum);
-    if (st == TG_OK) st = csr_finish(a, &b.csr, source_count, g->vertex_count, out_matrix);
-    csr_build_free(a, &b.csr, source_count);
+    if (st == TG_OK) st = csr_finish(a, &b.csr, source_count, g->vertex_count, matrix);
+    csr_build_free(a, &matrix->allocator, &b.csr, source_count);
     batch_free(&b);
-    if (st != TG_OK) return st;
+    if (st != TG_OK) {
+        sparse_clear(matrix);
+        return st;
+    }
     if (out_stats) *out_stats = sum;
+    return TG_OK;
+}
+
+tg_status tg_sparse_matrix_create(const tg_allocator* allocator, tg_sparse_matrix** out_matrix)
+{
+    if (!out_matrix) return TG_ERR_INVALID_ARGUMENT;
+    *out_matrix = NULL;
+    tg_sparse_matrix* m = tg__alloc(allocator, sizeof *m);
+    if (!m) return TG_ERR_OUT_OF_MEMORY;
+    memset(m, 0, sizeof *m);
+    if (allocator) m->allocator = *allocator;
+    *out_matrix = m;
     return TG_OK;
 }
 
@@ -591,9 +624,7 @@ size_t tg_sparse_matrix_memory_bytes(const tg_sparse_matrix* m)
 void tg_sparse_matrix_destroy(tg_sparse_matrix* m)
 {
     if (!m) return;
+    sparse_clear(m);
     tg_allocator a = m->allocator;
-    tg__free(&a, m->row_start);
-    tg__free(&a, m->col);
-    tg__free(&a, m->value);
     tg__free(&a, m);
 }

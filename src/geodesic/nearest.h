@@ -43,9 +43,11 @@ void tg__nearest_copy_out(const tg__nearest* nf, double* out_dist, uint32_t* out
 
 /* The cell boundaries of the complete field nf of these sources (bisector.c): every crossing of
  * an edge between two cells found by rounds of runs bounded by nf->dist (stats added to nf),
- * chained into polylines, allocated with nf's allocator. Errors: TG_ERR_OUT_OF_MEMORY (*out
- * untouched). */
+ * chained into polylines, into b (its old content freed; its arrays made with its allocator, the
+ * scratch with nf's). Errors: TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED (b then empty). */
 tg_status tg__voronoi_boundaries(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources,
-                                 size_t source_count, tg_voronoi_boundaries** out);
+                                 size_t source_count, tg_voronoi_boundaries* b);
+/* Empties b: its arrays freed, no polylines (bisector.c). */
+void tg__voronoi_boundaries_clear(tg_voronoi_boundaries* b);
 
 #endif

@@ -87,32 +87,37 @@ void tg__nearest_copy_out(const tg__nearest* nf, double* out_dist, uint32_t* out
 }
 
 tg_status tg_geodesic_voronoi(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
-                              size_t source_count, const tg_field_options* options, uint32_t* out_vertex_label,
-                              double* out_vertex_distance, tg_voronoi_boundaries** out_boundaries,
-                              tg_field_stats* out_stats)
+                              size_t source_count, const tg_field_options* options, tg_voronoi_boundaries* boundaries,
+                              double* out_vertex_distance, uint32_t* out_vertex_label, tg_field_stats* out_stats)
 {
-    if (out_boundaries) *out_boundaries = NULL;
-    if (!out_vertex_label && !out_vertex_distance && !out_boundaries) return TG_ERR_INVALID_ARGUMENT;
-    if (source_count >= TG_NONE) return TG_ERR_INVALID_ARGUMENT; /* labels are uint32_t, TG_NONE: none */
-    tg_status st = tg__field_check(g, sources, source_count, options);
-    if (st != TG_OK) return st;
-    const tg_allocator* a = options && options->allocator ? options->allocator : &g->allocator;
-    tg_geodesic_workspace* own;
-    st = tg__workspace_acquire(g, a, &ws, &own);
-    if (st != TG_OK) return st;
+    tg_status st = TG_OK;
+    if (!out_vertex_label && !out_vertex_distance && !boundaries) st = TG_ERR_INVALID_ARGUMENT;
+    else if (source_count >= TG_NONE) st = TG_ERR_INVALID_ARGUMENT; /* labels are uint32_t, TG_NONE: none */
+    else st = tg__field_check(g, sources, source_count, options);
+    const tg_allocator* a = st == TG_OK && options && options->allocator ? options->allocator : NULL;
+    tg_geodesic_workspace* own = NULL;
+    if (st == TG_OK) {
+        if (!a) a = &g->allocator;
+        st = tg__workspace_acquire(g, a, &ws, &own);
+    }
+    if (st != TG_OK) {
+        if (boundaries) tg__voronoi_boundaries_clear(boundaries);
+        return st;
+    }
     tg__nearest nf;
     if (!tg__nearest_init(&nf, g, a, tg__field_limit(g, options))) {
         tg__workspace_release(own);
+        if (boundaries) tg__voronoi_boundaries_clear(boundaries);
         return TG_ERR_OUT_OF_MEMORY;
     }
     nf.options = options, nf.rows = source_count;
     for (size_t i = 0; st == TG_OK && i < source_count; ++i) st = tg__nearest_add(&nf, &ws->field, &sources[i]);
-    tg_voronoi_boundaries* bounds = NULL;
-    if (st == TG_OK && out_boundaries) st = tg__voronoi_boundaries(&nf, &ws->field, sources, source_count, &bounds);
+    if (st == TG_OK && boundaries) st = tg__voronoi_boundaries(&nf, &ws->field, sources, source_count, boundaries);
     if (st == TG_OK) {
-        if (out_boundaries) *out_boundaries = bounds;
         tg__nearest_copy_out(&nf, out_vertex_distance, out_vertex_label);
         if (out_stats) *out_stats = nf.stats;
+    } else if (boundaries) {
+        tg__voronoi_boundaries_clear(boundaries);
     }
     tg__nearest_free(&nf);
     tg__workspace_release(own);

@@ -1292,17 +1292,23 @@ typedef enum tg_field_limit {
 /** Options of the field calls. NULL or all-zero means defaults. Every call that takes them
  *  honours each member or refuses it (TG_ERR_INVALID_ARGUMENT); none ignores one:
  *
- *    call                                   allocator  limit / max_distance      progress
- *    tg_geodesic_field, _field_at           honoured   honoured                  honoured
- *    tg_geodesic_log_map                    honoured   honoured                  honoured
- *    tg_geodesic_distance_matrix, _at       honoured   honoured (every row)      honoured
- *    tg_geodesic_local_matrix               honoured   refused: the radius is    honoured
- *                                                      its max_distance argument
- *    tg_geodesic_voronoi                    honoured   honoured                  honoured
- *    tg_geodesic_isolines                   honoured   honoured                  honoured
- *    tg_geodesic_farthest_point_sampling    honoured   refused (samples need     honoured
- *                                                      the whole field)
+ *    call                                 allocator  limit / max_distance    progress  threads
+ *    tg_geodesic_field                    honoured   honoured                honoured  honoured
+ *    tg_geodesic_field_at                 honoured   honoured                honoured  honoured
+ *                                                                                      without
+ *                                                                                      points,
+ *                                                                                      else 0/1
+ *    tg_geodesic_log_map                  honoured   honoured                honoured  0/1 only
+ *    tg_geodesic_distance_matrix, _at     honoured   honoured (every row)    honoured  0/1 only
+ *    tg_geodesic_local_matrix             honoured   refused: the radius is  honoured  0/1 only
+ *                                                    its max_distance
+ *    tg_geodesic_voronoi                  honoured   honoured                honoured  0/1 only
+ *    tg_geodesic_isolines                 honoured   honoured                honoured  0/1 only
+ *    tg_geodesic_farthest_point_sampling  honoured   refused (samples need   honoured  0/1 only
+ *                                                    the whole field)
  *
+ *  ("0/1 only": any other thread count is refused; the matrices spread their rows with their own
+ *  `threads` argument.)
  *  The allocator serves the call's scratch (a temporary workspace, per-thread scratch); result
  *  objects use their own allocator, given when they were created. */
 typedef struct tg_field_options {

@@ -910,7 +910,9 @@ static tg_status propagate_serial(tg__field_run* run)
 }
 
 /* ---- several threads: rounds ----
- * A round takes up to ROUND_VERTICES vertices off the front, then crosses the lists in the FIFO
+ * A round takes up to ROUND_VERTICES vertices off the front (and no more than a ROUND_SHARE-th
+ * of the vertices on it, so that where the front is narrow, on small meshes and near the
+ * sources, rounds stay thin and the order of vertices still does its filtering), then crosses the lists in the FIFO
  * wave by wave: the lists of a wave cross their faces at once, each on a thread's lane (reading
  * the distances as the wave began), and the lanes are merged in the wave's order (corner
  * distances, released slots, then the children pushed as the serial engine pushes them). Waves
@@ -919,6 +921,7 @@ static tg_status propagate_serial(tg__field_run* run)
  * Every distance is still a real path and every filter still compares with real paths, so the
  * result is exact like the serial engine's; they differ in the order windows meet (rounding). */
 #define ROUND_VERTICES 256
+#define ROUND_SHARE 8
 #define WAVE_MIN 16
 
 /* The results of one list, in its lane, applied to the shared state. */
@@ -1104,7 +1107,9 @@ static tg_status rounds_lead(tg__field_run* run, crew* c)
         }
         fs->fifo.count = fs->fifo_head = 0;
         bool done = false;
-        for (int k = 0; k < ROUND_VERTICES && !done; ++k) {
+        size_t take = fs->front.count / ROUND_SHARE;
+        take = take < 1 ? 1 : take > ROUND_VERTICES ? ROUND_VERTICES : take;
+        for (size_t k = 0; k < take && !done; ++k) {
             int step = front_step(run);
             if (step == STEP_DONE) done = true;
             else if (step != STEP_ON) return step_status(step);

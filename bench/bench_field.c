@@ -1,7 +1,9 @@
 /* bench_field.c - exact geodesic distance fields: seconds per field (median and max over sources)
  * from random vertex sources, windows propagated, scratch memory and peak RSS.
  *
- * usage: bench_field MESH [--sources N] [--seed S] [--batch K]
+ * usage: bench_field MESH [--sources N] [--seed S] [--threads T] [--batch K]
+ *   --threads T: each field on T threads (tg_field_options.threads; default 1, the serial engine;
+ *   0: every core)
  *   --batch K: instead, K fields from K random vertices through tg_geodesic_distance_matrix on 1 and
  *   on 2 threads; prints | mesh | faces | fields/s on 1 thread | fields/s on 2 threads | (wall).
  *   N (default 5) fields, each from one random vertex (fixed seed: every run times the same
@@ -28,13 +30,15 @@ int main(int argc, char** argv)
 {
     if (argc < 2) die("usage: bench_field MESH [--sources N] [--seed S]", NULL);
     const char* path = argv[1];
-    int sources = 5, batch = 0;
+    int sources = 5, batch = 0, threads = 1;
     unsigned long long seed = 1;
     for (int i = 2; i < argc; ++i) {
         if (!strcmp(argv[i], "--sources") && i + 1 < argc)
             sources = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--batch") && i + 1 < argc)
             batch = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--threads") && i + 1 < argc)
+            threads = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--seed") && i + 1 < argc)
             seed = strtoull(argv[++i], NULL, 10);
         else
@@ -85,7 +89,10 @@ int main(int argc, char** argv)
         tg_surface_point src = tg_surface_vertex(v);
         tg_field_stats st;
         double w0 = bench_wall(), c0 = bench_cpu_thread();
-        if (tg_geodesic_field(g, NULL, &src, 1, NULL, dist, &st) != TG_OK) die("field failed on", path);
+        tg_field_options o;
+        memset(&o, 0, sizeof o);
+        o.threads = threads == 0 ? TG_THREADS_ALL : threads;
+        if (tg_geodesic_field(g, NULL, &src, 1, &o, dist, &st) != TG_OK) die("field failed on", path);
         cpu[q] = bench_cpu_thread() - c0;
         wall[q] = bench_wall() - w0;
         windows[q] = (double)st.windows_propagated;

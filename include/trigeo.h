@@ -1325,7 +1325,8 @@ typedef struct tg_field_options {
     /** Threads for one field: 0 or 1 (the default) the serial engine; N >= 2 the same exact
      *  propagation in rounds whose lists cross their faces on N threads at once, merged in a
      *  fixed order, so every N >= 2 (and TG_THREADS_ALL: every core) gives the same bits, within
-     *  rounding (about 1e-15 relative) of the serial engine's. Honoured by tg_geodesic_field and
+     *  rounding (about 1e-15 relative) of the serial engine's; no more threads than the machine's
+     *  processors are started (the bits do not change). Honoured by tg_geodesic_field and
      *  by tg_geodesic_field_at without points; every other call (and field_at with points)
      *  refuses anything but 0 or 1 (TG_ERR_INVALID_ARGUMENT), as it refuses a count below
      *  TG_THREADS_ALL. (New in 0.6.) */

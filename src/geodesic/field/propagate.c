@@ -942,23 +942,25 @@ static bool merge_task(tg__field_run* run, const tg__lane_task* t)
 }
 
 /* The crew of a run on several threads: thread 0 (the caller's) runs the rounds and the merges;
- * the others wait for a wave, cross lists from it, and wait again. A waiting thread spins a
- * little (a wave follows the last one within microseconds), then sleeps on a condition variable,
- * so that on a machine whose cores are busy with other work the crew gives its cores back
- * instead of spinning at a barrier while a descheduled thread holds the wave up (OpenMP's
- * barriers did: 2 threads took 4 s where one took 0.4 on a loaded machine). */
+ * the others wait for a wave, cross lists from it, and wait again. Lists are taken CREW_CHUNK at
+ * a time from one counter that also names its wave, so a thread that wakes late takes nothing of
+ * a wave already done (nor a list twice), and thread 0 waits only until every list of the wave
+ * has crossed, not for every thread: on a machine whose cores are busy with other work a
+ * descheduled thread does not hold a wave up. A waiting thread spins a little (a wave follows
+ * the last one within microseconds), then sleeps on a condition variable, giving its core back
+ * (OpenMP's barriers spun: 2 threads took 4 s where one took 0.4 on a loaded machine). */
 typedef struct crew {
-    atomic_uint epoch;     /* bumped by thread 0 for each wave (and to stop) */
-    atomic_size_t next;    /* the next list of the wave to take */
-    atomic_int active;     /* threads still crossing lists of the wave */
-    atomic_int sleepers;   /* threads asleep waiting for a wave */
-    atomic_int lead_sleeps; /* thread 0 asleep waiting for the wave's end */
-    size_t count;          /* the wave's lists */
-    int workers;           /* threads besides thread 0 */
+    atomic_uint epoch;          /* the current wave's number (bumped by thread 0; 0: none yet) */
+    atomic_uint_fast64_t next;  /* the wave's number << 32 | the next list to take */
+    atomic_size_t done;         /* lists of the current wave crossed */
+    atomic_int sleepers;        /* threads asleep waiting for a wave */
+    atomic_int lead_sleeps;     /* thread 0 asleep waiting for the wave's end */
+    size_t count;               /* the wave's lists */
+    int workers;                /* threads besides thread 0 */
     int quit;
 #ifdef TG__CREW_THREADS
     mtx_t mu;
-    cnd_t wave, done;
+    cnd_t wave, finished;
 #endif
 } crew;
 
@@ -972,16 +974,22 @@ static void crew_relax(void)
 #endif
 }
 
-/* Crosses lists of the current wave on lane t until none is left. */
-static void crew_cross(tg__field_run* run, crew* c, int t)
+/* Crosses lists of wave `id` on lane t until none is left (or the wave is another's). */
+static void crew_cross(tg__field_run* run, crew* c, int t, unsigned id)
 {
     tg__field_scratch* fs = run->fs;
     tg__field_lane* L = &fs->lanes[t];
     const uint32_t* wave = fs->wave.data;
     tg__lane_task* tasks = fs->tasks.data;
     for (;;) {
-        size_t i0 = atomic_fetch_add(&c->next, CREW_CHUNK);
-        if (i0 >= c->count) break;
+        uint_fast64_t v = atomic_load(&c->next);
+        size_t i0;
+        for (;;) {
+            if ((unsigned)(v >> 32) != id) return;
+            i0 = (size_t)(v & 0xFFFFFFFFu);
+            if (i0 >= c->count) return;
+            if (atomic_compare_exchange_weak(&c->next, &v, v + CREW_CHUNK)) break;
+        }
         size_t i1 = i0 + CREW_CHUNK < c->count ? i0 + CREW_CHUNK : c->count;
         for (size_t i = i0; i < i1; ++i) {
             tg__lane_task* k = &tasks[i];
@@ -992,11 +1000,20 @@ static void crew_cross(tg__field_run* run, crew* c, int t)
             k->child1 = (uint32_t)L->child.count, k->relax1 = (uint32_t)L->relax.count;
             k->freed1 = (uint32_t)L->freed.count;
         }
+#ifdef TG__CREW_THREADS
+        if (atomic_fetch_add(&c->done, i1 - i0) + (i1 - i0) == c->count && t && atomic_load(&c->lead_sleeps)) {
+            mtx_lock(&c->mu);
+            cnd_signal(&c->finished);
+            mtx_unlock(&c->mu);
+        }
+#else
+        atomic_fetch_add(&c->done, i1 - i0);
+#endif
     }
 }
 
 #ifdef TG__CREW_THREADS
-/* A helper thread: waits for each wave, crosses its share, reports its end. */
+/* A helper thread: waits for each wave and crosses lists of it. */
 static void crew_work(tg__field_run* run, crew* c, int t)
 {
     unsigned seen = 0;
@@ -1012,42 +1029,44 @@ static void crew_work(tg__field_run* run, crew* c, int t)
         }
         seen = atomic_load(&c->epoch);
         if (c->quit) return;
-        crew_cross(run, c, t);
-        if (atomic_fetch_sub(&c->active, 1) == 1 && atomic_load(&c->lead_sleeps)) {
-            mtx_lock(&c->mu);
-            cnd_signal(&c->done);
-            mtx_unlock(&c->mu);
-        }
+        crew_cross(run, c, t, seen);
     }
 }
+#endif
 
-/* Thread 0: starts a wave of `count` lists (or, with quit, ends the crew). */
-static void crew_start(crew* c, size_t count, int quit)
+/* Thread 0: publishes a wave of `count` lists (or, with quit, ends the crew); returns its number. */
+static unsigned crew_start(crew* c, size_t count, int quit)
 {
+    unsigned id = atomic_load(&c->epoch) + 1;
+    if (id == 0) id = 1; /* 0 is "none yet" */
     c->count = count, c->quit = quit;
-    atomic_store(&c->next, 0);
-    atomic_store(&c->active, c->workers);
-    atomic_fetch_add(&c->epoch, 1);
+    atomic_store(&c->done, 0);
+    atomic_store(&c->next, (uint_fast64_t)id << 32);
+    atomic_store(&c->epoch, id);
+#ifdef TG__CREW_THREADS
     if (atomic_load(&c->sleepers)) {
         mtx_lock(&c->mu);
         cnd_broadcast(&c->wave);
         mtx_unlock(&c->mu);
     }
+#endif
+    return id;
 }
 
-/* Thread 0: waits until every helper is done with the wave. */
+/* Thread 0: waits until every list of the wave has crossed. */
 static void crew_wait(crew* c)
 {
     int spin = 0;
-    while (atomic_load(&c->active) && spin < CREW_SPIN) crew_relax(), ++spin;
-    if (!atomic_load(&c->active)) return;
+    while (atomic_load(&c->done) != c->count && spin < CREW_SPIN) crew_relax(), ++spin;
+#ifdef TG__CREW_THREADS
+    if (atomic_load(&c->done) == c->count) return;
     mtx_lock(&c->mu);
     atomic_store(&c->lead_sleeps, 1);
-    while (atomic_load(&c->active)) cnd_wait(&c->done, &c->mu);
+    while (atomic_load(&c->done) != c->count) cnd_wait(&c->finished, &c->mu);
     atomic_store(&c->lead_sleeps, 0);
     mtx_unlock(&c->mu);
-}
 #endif
+}
 
 /* One wave: the n lists waiting in the FIFO cross at once on the crew's lanes, then merge. */
 static tg_status cross_wave(tg__field_run* run, crew* c, size_t n)
@@ -1064,15 +1083,9 @@ static tg_status cross_wave(tg__field_run* run, crew* c, size_t n)
         L->child.count = L->relax.count = L->freed.count = 0;
         L->failed = 0;
     }
-#ifdef TG__CREW_THREADS
-    crew_start(c, n, 0);
-    crew_cross(run, c, 0);
+    unsigned id = crew_start(c, n, 0);
+    crew_cross(run, c, 0, id);
     crew_wait(c);
-#else
-    c->count = n;
-    atomic_store(&c->next, 0);
-    crew_cross(run, c, 0);
-#endif
     for (int t = 0; t <= c->workers; ++t) {
         tg__field_lane* L = &fs->lanes[t];
         if (L->failed) return TG_ERR_OUT_OF_MEMORY;
@@ -1122,10 +1135,15 @@ static tg_status rounds_lead(tg__field_run* run, crew* c)
 static tg_status propagate_rounds(tg__field_run* run, int threads)
 {
     tg__field_scratch* fs = run->fs;
+#ifdef _OPENMP
+    /* a thread per core at most: more only wait for each other (the bits are the same) */
+    int procs = omp_get_num_procs();
+    if (procs >= 1 && threads > procs) threads = procs;
+#endif
     if (!tg__field_lanes(fs, threads)) return TG_ERR_OUT_OF_MEMORY;
     crew c;
     memset(&c, 0, sizeof c);
-    atomic_init(&c.epoch, 0), atomic_init(&c.next, 0), atomic_init(&c.active, 0);
+    atomic_init(&c.epoch, 0), atomic_init(&c.next, 0), atomic_init(&c.done, 0);
     atomic_init(&c.sleepers, 0), atomic_init(&c.lead_sleeps, 0);
     tg_status st = TG_OK;
 #ifdef TG__CREW_THREADS
@@ -1134,7 +1152,7 @@ static tg_status propagate_rounds(tg__field_run* run, int threads)
         mtx_destroy(&c.mu);
         return TG_ERR_OUT_OF_MEMORY;
     }
-    if (cnd_init(&c.done) != thrd_success) {
+    if (cnd_init(&c.finished) != thrd_success) {
         cnd_destroy(&c.wave), mtx_destroy(&c.mu);
         return TG_ERR_OUT_OF_MEMORY;
     }
@@ -1149,7 +1167,7 @@ static tg_status propagate_rounds(tg__field_run* run, int threads)
             crew_work(run, &c, t);
         }
     }
-    cnd_destroy(&c.done), cnd_destroy(&c.wave), mtx_destroy(&c.mu);
+    cnd_destroy(&c.finished), cnd_destroy(&c.wave), mtx_destroy(&c.mu);
 #else
     (void)threads;
     st = rounds_lead(run, &c);

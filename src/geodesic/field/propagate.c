@@ -955,9 +955,9 @@ typedef struct crew {
     atomic_size_t done;         /* lists of the current wave crossed */
     atomic_int sleepers;        /* threads asleep waiting for a wave */
     atomic_int lead_sleeps;     /* thread 0 asleep waiting for the wave's end */
-    size_t count;               /* the wave's lists */
+    atomic_size_t count;        /* the wave's lists (read beside `next`, which says whose) */
     int workers;                /* threads besides thread 0 */
-    int quit;
+    atomic_int quit;
 #ifdef TG__CREW_THREADS
     mtx_t mu;
     cnd_t wave, finished;
@@ -979,18 +979,21 @@ static void crew_cross(tg__field_run* run, crew* c, int t, unsigned id)
 {
     tg__field_scratch* fs = run->fs;
     tg__field_lane* L = &fs->lanes[t];
-    const uint32_t* wave = fs->wave.data;
-    tg__lane_task* tasks = fs->tasks.data;
     for (;;) {
         uint_fast64_t v = atomic_load(&c->next);
-        size_t i0;
+        size_t i0, count;
         for (;;) {
             if ((unsigned)(v >> 32) != id) return;
-            i0 = (size_t)(v & 0xFFFFFFFFu);
-            if (i0 >= c->count) return;
+            /* a count of a later wave goes with a `next` of it: the exchange below then fails */
+            i0 = (size_t)(v & 0xFFFFFFFFu), count = atomic_load(&c->count);
+            if (i0 >= count) return;
             if (atomic_compare_exchange_weak(&c->next, &v, v + CREW_CHUNK)) break;
         }
-        size_t i1 = i0 + CREW_CHUNK < c->count ? i0 + CREW_CHUNK : c->count;
+        /* holding lists of the wave, it cannot end: its count and arrays stay (thread 0 grows
+         * them only between waves) */
+        const uint32_t* wave = fs->wave.data;
+        tg__lane_task* tasks = fs->tasks.data;
+        size_t i1 = i0 + CREW_CHUNK < count ? i0 + CREW_CHUNK : count;
         for (size_t i = i0; i < i1; ++i) {
             tg__lane_task* k = &tasks[i];
             k->lane = (uint32_t)t;
@@ -1001,7 +1004,7 @@ static void crew_cross(tg__field_run* run, crew* c, int t, unsigned id)
             k->freed1 = (uint32_t)L->freed.count;
         }
 #ifdef TG__CREW_THREADS
-        if (atomic_fetch_add(&c->done, i1 - i0) + (i1 - i0) == c->count && t && atomic_load(&c->lead_sleeps)) {
+        if (atomic_fetch_add(&c->done, i1 - i0) + (i1 - i0) == count && t && atomic_load(&c->lead_sleeps)) {
             mtx_lock(&c->mu);
             cnd_signal(&c->finished);
             mtx_unlock(&c->mu);
@@ -1028,7 +1031,7 @@ static void crew_work(tg__field_run* run, crew* c, int t)
             mtx_unlock(&c->mu);
         }
         seen = atomic_load(&c->epoch);
-        if (c->quit) return;
+        if (atomic_load(&c->quit)) return;
         crew_cross(run, c, t, seen);
     }
 }
@@ -1039,7 +1042,8 @@ static unsigned crew_start(crew* c, size_t count, int quit)
 {
     unsigned id = atomic_load(&c->epoch) + 1;
     if (id == 0) id = 1; /* 0 is "none yet" */
-    c->count = count, c->quit = quit;
+    atomic_store(&c->count, count);
+    atomic_store(&c->quit, quit);
     atomic_store(&c->done, 0);
     atomic_store(&c->next, (uint_fast64_t)id << 32);
     atomic_store(&c->epoch, id);
@@ -1057,12 +1061,13 @@ static unsigned crew_start(crew* c, size_t count, int quit)
 static void crew_wait(crew* c)
 {
     int spin = 0;
-    while (atomic_load(&c->done) != c->count && spin < CREW_SPIN) crew_relax(), ++spin;
+    size_t count = atomic_load(&c->count);
+    while (atomic_load(&c->done) != count && spin < CREW_SPIN) crew_relax(), ++spin;
 #ifdef TG__CREW_THREADS
-    if (atomic_load(&c->done) == c->count) return;
+    if (atomic_load(&c->done) == count) return;
     mtx_lock(&c->mu);
     atomic_store(&c->lead_sleeps, 1);
-    while (atomic_load(&c->done) != c->count) cnd_wait(&c->finished, &c->mu);
+    while (atomic_load(&c->done) != count) cnd_wait(&c->finished, &c->mu);
     atomic_store(&c->lead_sleeps, 0);
     mtx_unlock(&c->mu);
 #endif
@@ -1143,7 +1148,8 @@ static tg_status propagate_rounds(tg__field_run* run, int threads)
     if (!tg__field_lanes(fs, threads)) return TG_ERR_OUT_OF_MEMORY;
     crew c;
     memset(&c, 0, sizeof c);
-    atomic_init(&c.epoch, 0), atomic_init(&c.next, 0), atomic_init(&c.done, 0);
+    atomic_init(&c.epoch, 0), atomic_init(&c.next, 0), atomic_init(&c.done, 0), atomic_init(&c.count, 0);
+    atomic_init(&c.quit, 0);
     atomic_init(&c.sleepers, 0), atomic_init(&c.lead_sleeps, 0);
     tg_status st = TG_OK;
 #ifdef TG__CREW_THREADS

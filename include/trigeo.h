@@ -1346,6 +1346,13 @@ typedef struct tg_field_stats {
     uint64_t max_queue;              /**< largest number of entries on the vertex front */
     uint64_t peak_windows;           /**< largest number of windows alive at once */
     size_t peak_bytes;               /**< largest workspace memory in use (bytes) */
+    /* One field on several threads (tg_field_options.threads > 1; zero otherwise): its schedule,
+     * from which a speed-up on more threads can be planned (BENCHMARKS.md, "Every core"). */
+    uint64_t rounds;     /**< rounds: vertices taken off the front together */
+    uint64_t waves;      /**< waves of lists crossed on all threads at once */
+    uint64_t wave_lists; /**< the lists those waves crossed (the rest crossed on thread 0) */
+    double lead_seconds; /**< thread 0's time outside the waves: the front, the merges, small waves */
+    double wave_seconds; /**< the threads' busy time in the waves, summed over the threads */
 } tg_field_stats;
 
 /** The exact geodesic distance from a set of surface points to every vertex: the length of the

@@ -125,4 +125,6 @@ void tg__field_stats_add(tg_field_stats* sum, const tg_field_stats* s)
     if (s->max_queue > sum->max_queue) sum->max_queue = s->max_queue;
     if (s->peak_windows > sum->peak_windows) sum->peak_windows = s->peak_windows;
     if (s->peak_bytes > sum->peak_bytes) sum->peak_bytes = s->peak_bytes;
+    sum->rounds += s->rounds, sum->waves += s->waves, sum->wave_lists += s->wave_lists;
+    sum->lead_seconds += s->lead_seconds, sum->wave_seconds += s->wave_seconds;
 }

@@ -157,6 +157,7 @@ typedef struct tg__lane_relax {
 typedef struct tg__field_lane {
     tg__vec child, relax, freed, list, keys, hits;
     tg_field_stats stats;
+    double busy_s; /* time spent crossing lists (the schedule's figures) */
     int failed;    /* a buffer could not grow */
     char pad[128]; /* lanes are written by different threads: no cache line shared */
 } tg__field_lane;
@@ -264,6 +265,7 @@ typedef struct tg__field_run {
     double front;         /* distance of the last vertex taken from the front */
     size_t settled, referenced;
     uint64_t work_since_check;
+    double wave_wall_s;   /* several threads: the waves' wall time (the rest of thread 0's is serial) */
     double next_check_s;
     size_t next_bound_check; /* q->stop_at_points: the settled count of the next look at the bounds */
     /* results: vertex distances and predecessors are the scratch's (solver numbering) */

@@ -994,6 +994,7 @@ static void crew_cross(tg__field_run* run, crew* c, int t, unsigned id)
         const uint32_t* wave = fs->wave.data;
         tg__lane_task* tasks = fs->tasks.data;
         size_t i1 = i0 + CREW_CHUNK < count ? i0 + CREW_CHUNK : count;
+        double t0 = now_s();
         for (size_t i = i0; i < i1; ++i) {
             tg__lane_task* k = &tasks[i];
             k->lane = (uint32_t)t;
@@ -1003,6 +1004,7 @@ static void crew_cross(tg__field_run* run, crew* c, int t, unsigned id)
             k->child1 = (uint32_t)L->child.count, k->relax1 = (uint32_t)L->relax.count;
             k->freed1 = (uint32_t)L->freed.count;
         }
+        L->busy_s += now_s() - t0; /* before the lists are reported done: thread 0 then reads it */
 #ifdef TG__CREW_THREADS
         if (atomic_fetch_add(&c->done, i1 - i0) + (i1 - i0) == count && t && atomic_load(&c->lead_sleeps)) {
             mtx_lock(&c->mu);
@@ -1088,15 +1090,20 @@ static tg_status cross_wave(tg__field_run* run, crew* c, size_t n)
         L->child.count = L->relax.count = L->freed.count = 0;
         L->failed = 0;
     }
+    double w0 = now_s();
     unsigned id = crew_start(c, n, 0);
     crew_cross(run, c, 0, id);
     crew_wait(c);
+    run->wave_wall_s += now_s() - w0;
+    run->stats.waves++, run->stats.wave_lists += n;
     for (int t = 0; t <= c->workers; ++t) {
         tg__field_lane* L = &fs->lanes[t];
         if (L->failed) return TG_ERR_OUT_OF_MEMORY;
         run->stats.windows_filtered += L->stats.windows_filtered;
         run->stats.windows_propagated += L->stats.windows_propagated;
+        run->stats.wave_seconds += L->busy_s;
         memset(&L->stats, 0, sizeof L->stats);
+        L->busy_s = 0.0;
     }
     for (size_t i = 0; i < n; ++i)
         if (!merge_task(run, &tasks[i])) return TG_ERR_OUT_OF_MEMORY;
@@ -1125,6 +1132,7 @@ static tg_status rounds_lead(tg__field_run* run, crew* c)
         }
         fs->fifo.count = fs->fifo_head = 0;
         bool done = false;
+        run->stats.rounds++;
         size_t take = fs->front.count / ROUND_SHARE;
         take = take < 1 ? 1 : take > ROUND_VERTICES ? ROUND_VERTICES : take;
         for (size_t k = 0; k < take && !done; ++k) {
@@ -1167,7 +1175,9 @@ static tg_status propagate_rounds(tg__field_run* run, int threads)
         int t = omp_get_thread_num();
         if (t == 0) {
             c.workers = omp_get_num_threads() - 1; /* the helpers read it only after a wave starts */
+            double t0 = now_s();
             st = rounds_lead(run, &c);
+            run->stats.lead_seconds = now_s() - t0 - run->wave_wall_s;
             crew_start(&c, 0, 1);
         } else {
             crew_work(run, &c, t);
@@ -1176,7 +1186,9 @@ static tg_status propagate_rounds(tg__field_run* run, int threads)
     cnd_destroy(&c.finished), cnd_destroy(&c.wave), mtx_destroy(&c.mu);
 #else
     (void)threads;
+    double t0 = now_s();
     st = rounds_lead(run, &c);
+    run->stats.lead_seconds = now_s() - t0 - run->wave_wall_s;
 #endif
     return st;
 }

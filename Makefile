@@ -53,7 +53,8 @@ demo: build
 # The sanitizer tree: FUZZ=ON (make check, make fuzz) adds the libFuzzer targets, which build a
 # second, coverage-instrumented copy of the library; make test leaves them out.
 FUZZ ?= OFF
-SAN_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+SAN_ENV := ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+           LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp
 build-asan: deps
 	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
 	      -DTG_SANITIZE=ON -DTG_FUZZ=$(FUZZ) $(CMAKE_FLAGS) >/dev/null

@@ -1,7 +1,13 @@
 /* bench_field.c - exact geodesic distance fields: seconds per field (median and max over sources)
  * from random vertex sources, windows propagated, scratch memory and peak RSS.
  *
- * usage: bench_field MESH [--sources N] [--seed S] [--batch K]
+ * usage: bench_field MESH [--sources N] [--seed S] [--threads T] [--batch K]
+ *   --threads T: each field on T threads (tg_field_options.threads; default 1, the serial engine;
+ *   0: every core); with T != 1 a second row gives the parallel schedule summed over the fields:
+ *   | rounds | waves | lists per wave | serial share f (thread 0 outside the waves, over that
+ *   plus the threads' busy time in them) | Amdahl speed-up 1 / (f + (1 - f) / P) at P = 2, 4,
+ *   8, 16, 32 (the waves' lists are taken 8 at a time, so P beyond lists per wave / 8 cannot be
+ *   busy: that bound is the last column) |
  *   --batch K: instead, K fields from K random vertices through tg_geodesic_distance_matrix on 1 and
  *   on 2 threads; prints | mesh | faces | fields/s on 1 thread | fields/s on 2 threads | (wall).
  *   N (default 5) fields, each from one random vertex (fixed seed: every run times the same
@@ -28,13 +34,15 @@ int main(int argc, char** argv)
 {
     if (argc < 2) die("usage: bench_field MESH [--sources N] [--seed S]", NULL);
     const char* path = argv[1];
-    int sources = 5, batch = 0;
+    int sources = 5, batch = 0, threads = 1;
     unsigned long long seed = 1;
     for (int i = 2; i < argc; ++i) {
         if (!strcmp(argv[i], "--sources") && i + 1 < argc)
             sources = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--batch") && i + 1 < argc)
             batch = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--threads") && i + 1 < argc)
+            threads = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--seed") && i + 1 < argc)
             seed = strtoull(argv[++i], NULL, 10);
         else
@@ -79,16 +87,23 @@ int main(int argc, char** argv)
     const uint32_t* t = tg_mesh_triangles(m);
     uint64_t s = seed * 0x9E3779B97F4A7C15ull + 1;
     size_t scratch = 0;
+    tg_field_stats sched;
+    memset(&sched, 0, sizeof sched);
     for (int q = 0; q < sources; ++q) {
         s ^= s >> 12, s ^= s << 25, s ^= s >> 27;
         uint32_t v = t[(s * 2685821657736338717ull) % (3 * F)];
         tg_surface_point src = tg_surface_vertex(v);
         tg_field_stats st;
         double w0 = bench_wall(), c0 = bench_cpu_thread();
-        if (tg_geodesic_field(g, NULL, &src, 1, NULL, dist, &st) != TG_OK) die("field failed on", path);
+        tg_field_options o;
+        memset(&o, 0, sizeof o);
+        o.threads = threads == 0 ? TG_THREADS_ALL : threads;
+        if (tg_geodesic_field(g, NULL, &src, 1, &o, dist, &st) != TG_OK) die("field failed on", path);
         cpu[q] = bench_cpu_thread() - c0;
         wall[q] = bench_wall() - w0;
         windows[q] = (double)st.windows_propagated;
+        sched.rounds += st.rounds, sched.waves += st.waves, sched.wave_lists += st.wave_lists;
+        sched.lead_seconds += st.lead_seconds, sched.wave_seconds += st.wave_seconds;
         if (st.peak_bytes > scratch) scratch = st.peak_bytes;
     }
     const char* name = strrchr(path, '/');
@@ -99,6 +114,14 @@ int main(int argc, char** argv)
            bench_median(cpu, (size_t)sources), mx, bench_median(wall, (size_t)sources),
            bench_median(windows, (size_t)sources), (double)scratch / (1024.0 * 1024.0),
            (double)bench_peak_rss_kib() / 1024.0);
+    if (threads != 1 && sched.waves) {
+        double f = sched.lead_seconds / (sched.lead_seconds + sched.wave_seconds);
+        double per = (double)sched.wave_lists / (double)sched.waves;
+        printf("| schedule | rounds %llu | waves %llu | %.0f lists per wave | f = %.3f |", (unsigned long long)sched.rounds,
+               (unsigned long long)sched.waves, per, f);
+        for (int p = 2; p <= 32; p *= 2) printf(" S(%d) %.2f |", p, 1.0 / (f + (1.0 - f) / p));
+        printf(" busy threads <= %.0f |\n", per / 8.0);
+    }
     free(dist), free(cpu), free(wall), free(windows);
     tg_geodesic_destroy(g);
     tg_mesh_destroy(m);

@@ -1292,17 +1292,23 @@ typedef enum tg_field_limit {
 /** Options of the field calls. NULL or all-zero means defaults. Every call that takes them
  *  honours each member or refuses it (TG_ERR_INVALID_ARGUMENT); none ignores one:
  *
- *    call                                   allocator  limit / max_distance      progress
- *    tg_geodesic_field, _field_at           honoured   honoured                  honoured
- *    tg_geodesic_log_map                    honoured   honoured                  honoured
- *    tg_geodesic_distance_matrix, _at       honoured   honoured (every row)      honoured
- *    tg_geodesic_local_matrix               honoured   refused: the radius is    honoured
- *                                                      its max_distance argument
- *    tg_geodesic_voronoi                    honoured   honoured                  honoured
- *    tg_geodesic_isolines                   honoured   honoured                  honoured
- *    tg_geodesic_farthest_point_sampling    honoured   refused (samples need     honoured
- *                                                      the whole field)
+ *    call                                 allocator  limit / max_distance    progress  threads
+ *    tg_geodesic_field                    honoured   honoured                honoured  honoured
+ *    tg_geodesic_field_at                 honoured   honoured                honoured  honoured
+ *                                                                                      without
+ *                                                                                      points,
+ *                                                                                      else 0/1
+ *    tg_geodesic_log_map                  honoured   honoured                honoured  0/1 only
+ *    tg_geodesic_distance_matrix, _at     honoured   honoured (every row)    honoured  0/1 only
+ *    tg_geodesic_local_matrix             honoured   refused: the radius is  honoured  0/1 only
+ *                                                    its max_distance
+ *    tg_geodesic_voronoi                  honoured   honoured                honoured  0/1 only
+ *    tg_geodesic_isolines                 honoured   honoured                honoured  0/1 only
+ *    tg_geodesic_farthest_point_sampling  honoured   refused (samples need   honoured  0/1 only
+ *                                                    the whole field)
  *
+ *  ("0/1 only": any other thread count is refused; the matrices spread their rows with their own
+ *  `threads` argument.)
  *  The allocator serves the call's scratch (a temporary workspace, per-thread scratch); result
  *  objects use their own allocator, given when they were created. */
 typedef struct tg_field_options {
@@ -1316,7 +1322,19 @@ typedef struct tg_field_options {
     double max_distance;
     tg_field_progress_fn progress; /**< NULL: none */
     void* progress_user;           /**< passed to progress */
+    /** Threads for one field: 0 or 1 (the default) the serial engine; N >= 2 the same exact
+     *  propagation in rounds whose lists cross their faces on N threads at once, merged in a
+     *  fixed order, so every N >= 2 (and TG_THREADS_ALL: every core) gives the same bits, within
+     *  rounding (about 1e-15 relative) of the serial engine's; no more threads than the machine's
+     *  processors are started (the bits do not change). Honoured by tg_geodesic_field and
+     *  by tg_geodesic_field_at without points; every other call (and field_at with points)
+     *  refuses anything but 0 or 1 (TG_ERR_INVALID_ARGUMENT), as it refuses a count below
+     *  TG_THREADS_ALL. (New in 0.6.) */
+    int threads;
 } tg_field_options;
+
+/** tg_field_options.threads: every core (the OpenMP default). */
+#define TG_THREADS_ALL (-1)
 
 /** Counters of one tg_geodesic_field run, or summed over a batch (for benchmarks and tests). */
 typedef struct tg_field_stats {
@@ -1328,6 +1346,13 @@ typedef struct tg_field_stats {
     uint64_t max_queue;              /**< largest number of entries on the vertex front */
     uint64_t peak_windows;           /**< largest number of windows alive at once */
     size_t peak_bytes;               /**< largest workspace memory in use (bytes) */
+    /* One field on several threads (tg_field_options.threads > 1; zero otherwise): its schedule,
+     * from which a speed-up on more threads can be planned (BENCHMARKS.md, "Every core"). */
+    uint64_t rounds;     /**< rounds: vertices taken off the front together */
+    uint64_t waves;      /**< waves of lists crossed on all threads at once */
+    uint64_t wave_lists; /**< the lists those waves crossed (the rest crossed on thread 0) */
+    double lead_seconds; /**< thread 0's time outside the waves: the front, the merges, small waves */
+    double wave_seconds; /**< the threads' busy time in the waves, summed over the threads */
 } tg_field_stats;
 
 /** The exact geodesic distance from a set of surface points to every vertex: the length of the

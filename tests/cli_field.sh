@@ -210,5 +210,23 @@ d = parse_csv(r.stdout) if r.returncode == 0 else None
 check(d is not None and len(d) == 2930 and all(math.isfinite(x) and x >= 0 for x in d) and d[0] == 0,
       "spot: exit %d, %s rows" % (r.returncode, len(d) if d else None))
 
+# --threads N on one field (--from): the same bytes for every N > 1, within 1e-12 relative of one
+# thread's; refused with --at, --labels and --isolines (they run one thread)
+outs = {}
+for t in ("1", "2", "3", "0"):
+    o = os.path.join(tmp, "t%s.csv" % t)
+    r = run(spot, "--from", "v:0;f:100:0.2,0.3,0.5", "--threads", t, "-o", o, "--quiet")
+    outs[t] = open(o).read() if r.returncode == 0 else r.stderr
+check(outs["2"] == outs["3"] == outs["0"], "--threads 2, 3 and 0 give different files")
+one, two = parse_csv(outs["1"]), parse_csv(outs["2"])
+check(one and two and len(one) == len(two) and all(abs(a - b) <= 1e-12 * a for a, b in zip(one, two)),
+      "--threads 2 vs 1: %s" % (max(abs(a - b) / a for a, b in zip(one, two) if a) if one and two else outs["2"]))
+atf = os.path.join(tmp, "at1.txt")
+open(atf, "w").write("v:3\n")
+err([spot, "--from", "v:0", "--threads", "2", "--at", atf], 1, "--threads")
+err([spot, "--from", "v:0;v:5", "--threads", "2", "--labels", "-o", os.path.join(tmp, "l.csv")], 1, "--threads")
+err([spot, "--from", "v:0", "--threads", "2", "--isolines", "0.1", "-o", os.path.join(tmp, "i.obj")], 1, "--threads")
+err([spot, "--from", "v:0", "--threads", "x"], 1, "--threads")
+
 cli_common.finish()
 PY

@@ -507,7 +507,7 @@ static void test_errors(void)
     for (size_t v = 0; v < n; ++v) untouched &= r[v] == -7.0 && a[v] == -7.0;
     CHECK_MSG(untouched, "outputs written on error");
     /* beyond max_distance: +inf and angle 0, never NaN */
-    tg_field_options o = {NULL, TG_FIELD_MAX_DISTANCE, 0.3, NULL, NULL};
+    tg_field_options o = {NULL, TG_FIELD_MAX_DISTANCE, 0.3, NULL, NULL, 0};
     CHECK_STATUS(tg_geodesic_log_map(c.geo, NULL, &s, NULL, &o, r, a, NULL), TG_OK);
     size_t beyond = 0;
     for (size_t v = 0; v < n; ++v) {

@@ -139,7 +139,8 @@ typedef struct field_args {
     const char* out;      /* -o / --csv */
     int format;
     double max_dist;      /* < 0: no limit */
-    int threads;
+    int threads;          /* --threads: 0 = all cores; --sources: the rows, --from: one field */
+    int field_threads;    /* tg_field_options.threads of one field (--from): 1 without --threads */
     bool quiet;           /* --quiet: no progress line, no summary */
     bool matrix;          /* --sources: one row per source */
     bool all;             /* --sources all: every vertex a row */
@@ -317,7 +318,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     else if (st == TG_OK && fa->matrix)
         st = tg_geodesic_distance_matrix(geo, pts, count, &o, fa->threads, dist, &stats);
     else if (st == TG_OK)
-        st = tg_geodesic_field_at(geo, NULL, pts, count, at_pts, fa->at_count, &o, at_d, dist, &stats);
+        o.threads = fa->field_threads, st = tg_geodesic_field_at(geo, NULL, pts, count, at_pts, fa->at_count, &o, at_d, dist, &stats);
     double secs = cli_seconds() - t0;
     cli_interrupt_polling(false);
     cli_progress_end(&prog);
@@ -621,6 +622,14 @@ static int run(int argc, char** argv)
     if (threads && (!cli_parse_uint(threads, &nt) || nt > TG_MAX_THREADS))
         return cli_usage("field", "--threads needs a number in 0..%d (0 = all cores), not '%s'", TG_MAX_THREADS, threads);
     fa.threads = (int)nt;
+    fa.field_threads = 1;
+    if (threads && !fa.matrix) {
+        /* one field on several threads: the plain field only (the rest runs one thread) */
+        if (nt != 1 && (fa.at_path || fa.labels || fa.isolines || fa.isoline_count))
+            return cli_usage("field", "--threads goes with --sources (rows in parallel) or a plain --from field (not %s)",
+                             fa.at_path ? "--at" : fa.labels ? "--labels" : "--isolines");
+        fa.field_threads = nt == 0 ? TG_THREADS_ALL : (int)nt;
+    }
     const cli_file_role inputs[3] = {{fa.mesh_path, "mesh"},
                                      {fa.sources_path && strcmp(fa.sources_path, "all") ? fa.sources_path : NULL,
                                       "sources file (--sources)"},
@@ -628,7 +637,7 @@ static int run(int argc, char** argv)
     const cli_file_role outputs[2] = {{fa.out, csv ? "--csv" : "-o"}, {fa.boundaries, "--boundaries"}};
     int check = cli_check_outputs(outputs, 2, inputs, 3);
     if (check != CLI_OK) return check;
-    if (fa.sources_path && !cli_threads_available(fa.threads, "field")) return CLI_INPUT;
+    if ((fa.sources_path || fa.field_threads != 1) && !cli_threads_available(fa.threads, "field")) return CLI_INPUT;
     int rc;
     char* at_text = NULL;
     if (fa.at_path) {
@@ -732,7 +741,11 @@ const cli_command cli_cmd_field = {
     "  --isoline-count N      instead of --isolines: N levels equally spaced below the largest\n"
     "                         distance (max * k / (N + 1), k = 1..N; Python: isolines(count=N))\n"
     "  --max-distance D       stop at distance D (0 allowed): farther vertices get inf\n"
-    "  --threads N            --sources: threads, at most 256 (default 0: all cores)\n"
+    "  --threads N            at most 256, 0 = all cores. --sources: the rows spread over N\n"
+    "                         threads (default 0). --from (a plain field, not --at, --labels,\n"
+    "                         --isolines): one field's window propagation on N threads (default\n"
+    "                         1: the serial engine); every N > 1 gives the same bits, within\n"
+    "                         1e-14 relative of one thread's\n"
     "  --quiet                no progress line (else drawn on stderr when it is a terminal and\n"
     "                         the work passes about a second) and no summary; errors are still\n"
     "                         printed, and data sent to stdout (-o -, --at) still is\n\n"

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 import trigeo
-from conftest import REPO, SPOT, grid, interrupt
+from conftest import REPO, SPOT, grid, interrupt, run_cli
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -279,3 +279,21 @@ def test_load_bytes_inflates_gzip():
     data = open(SPOT, "rb").read()
     m = trigeo.load_bytes(gzip.compress(data), "spot.obj")
     assert m.face_count == 5856 and np.array_equal(m.vertices, trigeo.load(SPOT).vertices)
+
+
+def test_one_field_on_several_threads(spot, tmp_path):
+    """field(threads=N): every N > 1 gives the same bits (and the CLI's field --from --threads N
+    the same numbers), within the engine's filter margin (1e-12 relative) of one thread's."""
+    one = spot.field(0)
+    two = spot.field(0, threads=2)
+    assert np.array_equal(two, spot.field(0, threads=3)) and np.array_equal(two, spot.field(0, threads=0))
+    fin = np.isfinite(one)
+    assert np.array_equal(fin, np.isfinite(two))
+    assert np.all(np.abs(two[fin] - one[fin]) <= 1e-12 * one[fin])
+    out = tmp_path / "f.npy"
+    r = run_cli("field", SPOT, "--from", "v:0", "--threads", "2", "-o", str(out), "--quiet")
+    assert r.returncode == 0, r.stderr
+    assert np.array_equal(np.load(out), two)
+    for bad in (-1, 1.5, True, "2"):
+        with pytest.raises(trigeo.InvalidArgumentError, match="threads"):
+            spot.field(0, threads=bad)

@@ -172,7 +172,7 @@ class PathOptions(ctypes.Structure):
 
 class FieldOptions(ctypes.Structure):
     _fields_ = [("allocator", c_void_p), ("limit", c_int), ("max_distance", c_double),
-                ("progress", PROGRESS_FN), ("progress_user", c_void_p)]
+                ("progress", PROGRESS_FN), ("progress_user", c_void_p), ("threads", c_int)]
 
 
 RENDER_PROGRESS_FN = ctypes.CFUNCTYPE(c_int, c_void_p, c_double)

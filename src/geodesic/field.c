@@ -10,6 +10,9 @@
 #include "geodesic/workspace.h"
 
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 /* ---- the checks every client shares ---- */
 
@@ -20,10 +23,25 @@ tg_status tg__field_check(const tg_geodesic* g, const tg_surface_point* points, 
     if (opt) {
         if (opt->limit != TG_FIELD_UNLIMITED && opt->limit != TG_FIELD_MAX_DISTANCE) return TG_ERR_INVALID_ARGUMENT;
         if (opt->limit == TG_FIELD_MAX_DISTANCE && !(opt->max_distance >= 0.0)) return TG_ERR_INVALID_ARGUMENT;
+        /* one engine thread: the calls that take more check their options with threads 1 */
+        if (opt->threads != 0 && opt->threads != 1) return TG_ERR_INVALID_ARGUMENT;
     }
     for (size_t i = 0; i < count; ++i)
         if (tg_surface_point_validate(g->mesh, &points[i], NULL) != TG_OK) return TG_ERR_INVALID_ARGUMENT;
     return TG_OK;
+}
+
+int tg__field_threads(const tg_field_options* opt)
+{
+    int t = opt ? opt->threads : 1;
+    if (t < TG_THREADS_ALL) return -1;
+    if (t == 0) return 1;
+#ifdef _OPENMP
+    if (t == TG_THREADS_ALL) t = omp_get_max_threads();
+#else
+    if (t == TG_THREADS_ALL) t = 2; /* the rounds on one thread: the bits of every other count */
+#endif
+    return t;
 }
 
 double tg__field_limit(const tg_geodesic* g, const tg_field_options* opt)
@@ -69,6 +87,8 @@ void tg__field_stats_add(tg_field_stats* sum, const tg_field_stats* s)
     if (s->max_queue > sum->max_queue) sum->max_queue = s->max_queue;
     if (s->peak_windows > sum->peak_windows) sum->peak_windows = s->peak_windows;
     if (s->peak_bytes > sum->peak_bytes) sum->peak_bytes = s->peak_bytes;
+    sum->rounds += s->rounds, sum->waves += s->waves, sum->wave_lists += s->wave_lists;
+    sum->lead_seconds += s->lead_seconds, sum->wave_seconds += s->wave_seconds;
 }
 
 /* ---- the caller's points in the solver's form ---- */
@@ -102,7 +122,12 @@ tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* ws, 
                                double* out_vertex_distance, tg_field_stats* out_stats)
 {
     if (point_count > 0 && (!points || !out_point_distance)) return TG_ERR_INVALID_ARGUMENT;
-    tg_status st = tg__field_check(g, sources, source_count, options);
+    /* several threads: plain fields only (no points) */
+    int threads = tg__field_threads(options);
+    if (threads < 1 || (threads > 1 && point_count > 0)) return TG_ERR_INVALID_ARGUMENT;
+    tg_field_options one;
+    if (options) one = *options, one.threads = 1;
+    tg_status st = tg__field_check(g, sources, source_count, options ? &one : NULL);
     if (st == TG_OK) st = tg__field_check(g, points, point_count, NULL);
     if (st != TG_OK) return st;
     tg_geodesic_workspace* own;
@@ -118,7 +143,7 @@ tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* ws, 
                          .progress = options && options->progress ? tg__field_report_single : NULL,
                          .progress_user = (void*)options,
                          /* only the points wanted: the run stops once they are settled */
-                         .stop_at_points = point_count > 0 && !out_vertex_distance};
+                         .stop_at_points = point_count > 0 && !out_vertex_distance, .threads = threads};
     tg__field_run run;
     st = tg__field_execute(&ws->field, &q, &run);
     if (st == TG_OK) {

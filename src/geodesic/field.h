@@ -16,6 +16,9 @@ tg_status tg__field_check(const tg_geodesic* g, const tg_surface_point* points, 
                           const tg_field_options* opt);
 /* The options' distance limit in the solver's frame (solver.h: distances enter times scale). */
 double tg__field_limit(const tg_geodesic* g, const tg_field_options* opt);
+/* The options' thread count: 1 for the serial engine (threads 0 or 1, or no options), the cores
+ * for TG_THREADS_ALL, -1 for a count below it (refused). */
+int tg__field_threads(const tg_field_options* opt);
 
 /* ---- the caller's points in the solver's form ---- */
 

@@ -562,7 +562,8 @@ tg_status tg_geodesic_local_matrix(const tg_geodesic* g, const tg_surface_point*
 {
     if (!matrix) return TG_ERR_INVALID_ARGUMENT;
     tg_status st = TG_OK;
-    if (!g || threads < 0 || !(max_distance >= 0.0) || (options && options->limit != TG_FIELD_UNLIMITED))
+    if (!g || threads < 0 || !(max_distance >= 0.0) || (options && options->limit != TG_FIELD_UNLIMITED) ||
+        (options && options->threads != 0 && options->threads != 1))
         st = TG_ERR_INVALID_ARGUMENT;
     else if (!sources && source_count != g->vertex_count)
         st = TG_ERR_INVALID_ARGUMENT;

@@ -113,7 +113,9 @@ typedef struct tg__corner_hit {
                                   angle its ray left at (valid where pred says so) */     \
     X(rec, tg__rec_window)     /* the windows near the levels (runs that record, record.c) */ \
     X(rec_floor, double)       /* runs that record: per face, the least distance of the windows \
-                                  that crossed it (with record.c's margin), +inf if none */
+                                  that crossed it (with record.c's margin), +inf if none */       \
+    X(wave, uint32_t)          /* several threads: the halfedges whose lists cross in one round */ \
+    X(tasks, tg__lane_task)    /* several threads: where each list's results lie in the lanes */
 
 /* A window recorded while its list crossed face h / 3 (record.c, for isolines): its source image
  * (sx, sy) and interval [b0, b1] in the frame of h, its offset sigma; a point source inside the
@@ -136,6 +138,41 @@ typedef struct tg__query_bound {
     double len[3];
 } tg__query_bound;
 
+/* ---- several threads (propagate.c): the lists of one round cross their faces at once, each on
+ * some thread's lane, which keeps what the crossing would write to shared state (children,
+ * corner distances, released slots); the lanes are then merged in the round's order, so the
+ * result does not depend on the number of threads or on which thread took which list. ---- */
+
+/* A child window for halfedge h's list, shaped and not dominated when its list crossed: the
+ * arguments of store_window. */
+typedef struct tg__lane_child {
+    uint32_t h, tag;
+    double c0, c1, x, y, sigma, d0, d1;
+} tg__lane_child;
+
+/* A corner distance found while a list crossed (relax_vertex's arguments). */
+typedef struct tg__lane_relax {
+    uint32_t v;
+    double d;
+    tg__pred how;
+} tg__lane_relax;
+
+/* One thread's buffers: the results of the lists it crossed, and its own copies of the list
+ * scratch (list, keys, hits). */
+typedef struct tg__field_lane {
+    tg__vec child, relax, freed, list, keys, hits;
+    tg_field_stats stats;
+    double busy_s; /* time spent crossing lists (the schedule's figures) */
+    int failed;    /* a buffer could not grow */
+    char pad[128]; /* lanes are written by different threads: no cache line shared */
+} tg__field_lane;
+
+/* Where the results of one list of a round lie: its lane, and the ranges in the lane's buffers. */
+typedef struct tg__lane_task {
+    uint32_t lane;
+    uint32_t child0, child1, relax0, relax1, freed0, freed1;
+} tg__lane_task;
+
 /* The engine's scratch: tables sized for the mesh once, buffers that grow to the largest run
  * and are kept. A run writes only what it reaches and notes it (touched_v, touched_h), so the
  * next run resets only that and a run bounded to a small region costs nothing per vertex. */
@@ -157,6 +194,8 @@ typedef struct tg__field_scratch {
     TG__FIELD_BUFFERS(TG__FIELD_VEC_)
 #undef TG__FIELD_VEC_
     size_t fifo_head;
+    tg__field_lane* lanes; /* several threads: one lane per thread, made on first use */
+    int lane_count;
     int touched_all; /* reset everything before the next run (first run, or a list could not grow) */
     size_t peak_bytes;
 } tg__field_scratch;
@@ -195,6 +234,9 @@ typedef struct tg__field_query {
                                         when a level lies within the face's size above its least
                                         distance (record.c), and so is every point source */
     size_t record_level_count;
+    int threads;                     /* 0 or 1: the serial engine; more: the rounds of
+                                        propagate.c on that many threads (plain runs only: no
+                                        points, toward, log map or recorded levels) */
 } tg__field_query;
 
 /* One run: its state while it propagates, then its results. */
@@ -215,6 +257,7 @@ typedef struct tg__field_run {
     double front;         /* distance of the last vertex taken from the front */
     size_t settled, referenced;
     uint64_t work_since_check;
+    double wave_wall_s;   /* several threads: the waves' wall time (the rest of thread 0's is serial) */
     double next_check_s;
     size_t next_bound_check; /* q->stop_at_points: the settled count of the next look at the bounds */
     /* results: vertex distances and predecessors are the scratch's (solver numbering) */

@@ -25,6 +25,12 @@
 
 #include <string.h>
 #include <time.h>
+#include <stdatomic.h>
+#ifdef _OPENMP
+#include <omp.h>
+#include <threads.h>
+#define TG__CREW_THREADS 1
+#endif
 
 /* Plain fields must not pay for the log map's records: the functions that pass them on are
  * inlined where they are called, so that the calls with no record (a constant NULL) compile to
@@ -88,18 +94,54 @@ static void win_release(tg__field_scratch* fs, uint32_t id)
     ((uint32_t*)fs->free_ids.data)[fs->free_ids.count++] = id;
 }
 
+/* ---- several threads: a lane keeps what a list's crossing would write to shared state ---- */
+
+/* Makes room for `extra` more elements of a lane's buffer (the allocator called by one thread at
+ * a time); false (and the lane marked failed) when out of memory. */
+static bool lane_grow(tg__field_scratch* fs, tg__field_lane* L, tg__vec* v, size_t extra)
+{
+    if (extra <= v->capacity - v->count) return true;
+    bool ok;
+#ifdef _OPENMP
+#pragma omp critical(tg__field_alloc)
+#endif
+    ok = tg__field_grow_slow(fs, v, extra);
+    if (!ok) L->failed = 1;
+    return ok;
+}
+
+/* Grows buffer v of the list scratch: the lane's when there is one, else the scratch's. */
+static TG__ALWAYS_INLINE bool scratch_grow(tg__field_scratch* fs, tg__field_lane* L, tg__vec* v, size_t extra)
+{
+    return L ? lane_grow(fs, L, v, extra) : tg__field_grow(fs, v, extra);
+}
+
+/* Releases a pool slot, or (lane) notes it for the merge: slots are reused only after the round. */
+static TG__ALWAYS_INLINE bool slot_release(tg__field_scratch* fs, tg__field_lane* L, uint32_t id)
+{
+    if (!L) {
+        win_release(fs, id);
+        return true;
+    }
+    if (!lane_grow(fs, L, &L->freed, 1)) return false;
+    ((uint32_t*)L->freed.data)[L->freed.count++] = id;
+    return true;
+}
+
 /* Takes window `id` off its list to cross the face beyond: a copy into *w (crossing may move the
- * pool) and its slot released; false for an empty window (filtered, counted). */
-static bool take_window(tg__field_run* run, uint32_t id, tg__window* w)
+ * pool) and its slot released; false for an empty window (filtered, counted) or, in a lane, when
+ * out of memory (L->failed). */
+static TG__ALWAYS_INLINE bool take_window(tg__field_run* run, tg__field_lane* L, uint32_t id, tg__window* w)
 {
     tg__field_scratch* fs = run->fs;
     *w = ((tg__window*)fs->windows.data)[id];
-    win_release(fs, id);
+    if (!slot_release(fs, L, id)) return false;
+    tg_field_stats* stats = L ? &L->stats : &run->stats;
     if (!(w->b0 < w->b1)) {
-        run->stats.windows_filtered++;
+        stats->windows_filtered++;
         return false;
     }
-    run->stats.windows_propagated++;
+    stats->windows_propagated++;
     return true;
 }
 
@@ -237,20 +279,24 @@ static bool beyond_bound(const tg__field_run* run, uint32_t h, double c0, double
     return wmin > u * (1.0 + TG__DOMINATED_REL);
 }
 
-/* Adds the window [c0, c1] on halfedge h with source image (x, y) and offset sigma to h's list,
- * unless it is empty, grazing, dominated or beyond the distance limit. */
-static TG__ALWAYS_INLINE bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, double x, double y,
-                                          double sigma, uint32_t tag, const tg__lm_rec* rec)
+/* The window [c0, c1] on halfedge h lit from (x, y) at offset sigma: false when it is empty,
+ * grazing or unreached; else the distances at its ends. */
+static TG__ALWAYS_INLINE bool window_ends(const tg_geodesic* g, uint32_t h, double c0, double c1, double x, double y,
+                                          double sigma, double* d0, double* d1)
+{
+    double len = g->frame[h].len;
+    if (!(c0 < c1) || !(-y > TG__GRAZING_REL * (fabs(x) + len)) || !(sigma < INFINITY)) return false;
+    *d0 = sigma + sqrt((c0 - x) * (c0 - x) + y * y);
+    *d1 = sigma + sqrt((c1 - x) * (c1 - x) + y * y);
+    return true;
+}
+
+/* Adds the window [c0, c1] on halfedge h (its end distances d0, d1: window_ends) to h's list,
+ * unless it is dominated or beyond the distance limit. */
+static TG__ALWAYS_INLINE bool store_window(tg__field_run* run, uint32_t h, double c0, double c1, double x, double y,
+                                           double sigma, double d0, double d1, uint32_t tag, const tg__lm_rec* rec)
 {
     tg__field_scratch* fs = run->fs;
-    const tg_geodesic* g = fs->g;
-    double len = g->frame[h].len;
-    if (!(c0 < c1) || !(-y > TG__GRAZING_REL * (fabs(x) + len)) || !(sigma < INFINITY)) {
-        run->stats.windows_filtered++;
-        return true;
-    }
-    double d0 = sigma + sqrt((c0 - x) * (c0 - x) + y * y);
-    double d1 = sigma + sqrt((c1 - x) * (c1 - x) + y * y);
     if (dominated(run, h, c0, c1, d0, d1)) {
         run->stats.windows_filtered++;
         return true;
@@ -276,6 +322,19 @@ static TG__ALWAYS_INLINE bool push_window(tg__field_run* run, uint32_t h, double
     return list_ready(run, h) ? enqueue(run, h) : true;
 }
 
+/* Adds the window [c0, c1] on halfedge h with source image (x, y) and offset sigma to h's list,
+ * unless it is empty, grazing, dominated or beyond the distance limit. */
+static TG__ALWAYS_INLINE bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, double x, double y,
+                                          double sigma, uint32_t tag, const tg__lm_rec* rec)
+{
+    double d0, d1;
+    if (!window_ends(run->g, h, c0, c1, x, y, sigma, &d0, &d1)) {
+        run->stats.windows_filtered++;
+        return true;
+    }
+    return store_window(run, h, c0, c1, x, y, sigma, d0, d1, tag, rec);
+}
+
 /* The interval [t0, t1] of halfedge e (face e / 3 on its +y side) lit from (x, y) of e's frame
  * (y > 0: inside the face) at offset sigma continues as a window into every other face at the
  * edge (rec: NULL, or the log map record in e's frame). */
@@ -293,6 +352,30 @@ static TG__ALWAYS_INLINE bool push_ring(tg__field_run* run, uint32_t e, double t
     }
     return true;
 }
+static bool lane_grow(tg__field_scratch* fs, tg__field_lane* L, tg__vec* v, size_t extra);
+
+/* push_ring for a lane: each window into the faces beyond, shaped and checked against the
+ * distances as the round's wave began (they only shrink, so what they dominate stays dominated),
+ * is kept in the lane for the merge (store_window). */
+static bool lane_ring(tg__field_run* run, tg__field_lane* L, uint32_t e, double t0, double t1, double x, double y,
+                      double sigma, uint32_t tag)
+{
+    const tg_geodesic* g = run->g;
+    for (uint32_t o = g->ring[e]; o != e; o = g->ring[o]) {
+        double ox, oy, c0, c1, d0, d1;
+        tg__ring_point(g, e, o, x, y, &ox, &oy);
+        tg__ring_interval(g, e, o, t0, t1, &c0, &c1);
+        if (!window_ends(g, o, c0, c1, ox, oy, sigma, &d0, &d1) || dominated(run, o, c0, c1, d0, d1)) {
+            L->stats.windows_filtered++;
+            continue;
+        }
+        if (!lane_grow(run->fs, L, &L->child, 1)) return false;
+        tg__lane_child c = {o, tag, c0, c1, ox, oy, sigma, d0, d1};
+        ((tg__lane_child*)L->child.data)[L->child.count++] = c;
+    }
+    return true;
+}
+
 static bool push_plain(tg__field_run* run, uint32_t e, double t0, double t1, double x, double y, double sigma,
                        uint32_t tag)
 {
@@ -449,14 +532,15 @@ static double ray_param(const double src[2], double b, const double o[2], const 
 /* The child of w lit through [t_lo, t_hi] of the exit halfedge e, which runs from o along the unit
  * direction u (tg__edge_dir) in h's frame: the source image in e's frame, then on into the faces
  * beyond. */
-static TG__ALWAYS_INLINE bool push_child(tg__field_run* run, const tg__window* w, uint32_t e, const double o[2],
-                                         const double u[2], double t_lo, double t_hi, uint32_t via_flat,
-                                         const tg__lm_rec* rec)
+static TG__ALWAYS_INLINE bool push_child(tg__field_run* run, tg__field_lane* L, const tg__window* w, uint32_t e,
+                                         const double o[2], const double u[2], double t_lo, double t_hi,
+                                         uint32_t via_flat, const tg__lm_rec* rec)
 {
     const tg_geodesic* g = run->g;
     double len = g->frame[e].len, src[2] = {w->sx, w->sy}, xy[2];
     tg__to_edge_frame_u(o, u, src, xy);
     uint32_t tag = via_flat ? tg__tag_flat_more(w->tag) : TG__TAG_ORIGIN(w->tag);
+    if (L) return lane_ring(run, L, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag); /* no records */
     if (!rec) return push_plain(run, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag);
     tg__lm_rec re = tg__lm_turn(*rec, u[0], u[1]);
     return push_recorded(run, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag, &re);
@@ -504,8 +588,8 @@ static tg__corner_hit hit_corner(const tg__window* w, const tg__frame* fr)
  * C edge CB; covering windows that reach C less shortly than the edge side's best are cut where
  * their rays cross the best one's ray to C inside the face (one angle, one split). u: the unit
  * directions of C -> A and B -> C in h's frame (the same for the whole list). */
-static TG__ALWAYS_INLINE bool cross_face(tg__field_run* run, uint32_t h, const tg__window* w, tg__corner_hit hc,
-                                         int flat, const double u[4], const tg__lm_rec* rec)
+static TG__ALWAYS_INLINE bool cross_face(tg__field_run* run, tg__field_lane* L, uint32_t h, const tg__window* w,
+                                         tg__corner_hit hc, int flat, const double u[4], const tg__lm_rec* rec)
 {
     tg__field_scratch* fs = run->fs;
     const tg_geodesic* g = fs->g;
@@ -534,12 +618,12 @@ static TG__ALWAYS_INLINE bool cross_face(tg__field_run* run, uint32_t h, const t
     if (has_l) { /* exit C -> A is halfedge hp */
         double t_hi = lo_l == 0.0 ? 1.0 : ray_param(src, lo_l, c, a);
         double t_lo = l_at_c ? 0.0 : ray_param(src, hi_l, c, a);
-        if (!push_child(run, w, hp, c, u, t_lo, t_hi, (uint32_t)flat, rec)) return false;
+        if (!push_child(run, L, w, hp, c, u, t_lo, t_hi, (uint32_t)flat, rec)) return false;
     }
     if (has_r) { /* exit B -> C is halfedge hn */
         double t_lo = hi_r == len ? 0.0 : ray_param(src, hi_r, b, c);
         double t_hi = r_at_c ? 1.0 : ray_param(src, lo_r, b, c);
-        if (!push_child(run, w, hn, b, u + 2, t_lo, t_hi, (uint32_t)flat, rec)) return false;
+        if (!push_child(run, L, w, hn, b, u + 2, t_lo, t_hi, (uint32_t)flat, rec)) return false;
     }
     return true;
 }
@@ -547,12 +631,21 @@ static TG__ALWAYS_INLINE bool cross_face(tg__field_run* run, uint32_t h, const t
 /* Moves the list of h (ids[0..n), trimmed) through the slit into the faces beyond its exit edge:
  * in the exit edge's frame (the same segment run the other way) a window's image and interval
  * are turned by pi about the segment's middle. */
-static bool cross_slit(tg__field_run* run, uint32_t h, uint32_t exit, const uint32_t* ids, size_t n)
+static bool cross_slit(tg__field_run* run, tg__field_lane* L, uint32_t h, uint32_t exit, const uint32_t* ids,
+                       size_t n)
 {
     double len = run->g->frame[exit].len;
     for (size_t i = 0; i < n; ++i) {
         tg__window w;
-        if (!take_window(run, ids[i], &w)) continue;
+        if (!take_window(run, L, ids[i], &w)) {
+            if (L && L->failed) return false;
+            continue;
+        }
+        if (L) { /* turned by pi about the segment's middle, kept for the merge */
+            if (!lane_ring(run, L, exit, len - w.b1, len - w.b0, len - w.sx, -w.sy, w.sigma, tg__tag_flat_more(w.tag)))
+                return false;
+            continue;
+        }
         tg__lm_rec rec;
         const tg__lm_rec* rp = tg__lm_of(run->q->logmap, TG__TAG_ORIGIN(w.tag), run->fs->lm_win.data, ids[i],
                                          &rec);
@@ -566,12 +659,19 @@ static bool cross_slit(tg__field_run* run, uint32_t h, uint32_t exit, const uint
 
 /* Takes the list of h and moves it across face h / 3: filters (end-vertex distances, flat faces
  * crossed twice), trims the windows against each other, lets the one that reaches the opposite
- * corner most shortly set the corner's distance and the split, then crosses each survivor. */
-static bool propagate_list(tg__field_run* run, uint32_t h)
+ * corner most shortly set the corner's distance and the split, then crosses each survivor.
+ * With a lane (several threads, plain runs) it reads the shared state as the round began and
+ * writes only h's own entries (its list, its split) and the lane: the children, the corner's
+ * distance and the released slots wait there for the merge. */
+static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, uint32_t h)
 {
     tg__field_scratch* fs = run->fs;
     const tg_geodesic* g = fs->g;
     tg__window* pool = fs->windows.data;
+    tg_field_stats* stats = L ? &L->stats : &run->stats;
+    tg__vec* listv = L ? &L->list : &fs->list;
+    tg__vec* keysv = L ? &L->keys : &fs->keys;
+    tg__vec* hitsv = L ? &L->hits : &fs->hits;
     uint32_t id = fs->head[h];
     fs->head[h] = TG_NONE;
     const tg__frame* fr = &g->frame[h];
@@ -582,45 +682,55 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
     int flat = !(fr->cy > 0.0);
     TG__PREFETCH_FACE(run, g->ring[hn]);
     TG__PREFETCH_FACE(run, g->ring[hp]);
-    fs->list.count = 0;
+    listv->count = 0;
     for (; id != TG_NONE;) {
         tg__window* w = &pool[id];
         uint32_t next = w->next;
         bool keep = crossable && !(flat && TG__TAG_FLAT(w->tag) >= TG__FLAT_MAX);
         if (keep && dominated(run, h, w->b0, w->b1, w->d0, w->d1)) keep = false;
-        if (keep && !tg__field_grow(fs, &fs->list, 1)) return false;
+        if (keep && !scratch_grow(fs, L, listv, 1)) return false;
         if (keep) {
-            ((uint32_t*)fs->list.data)[fs->list.count++] = id;
+            ((uint32_t*)listv->data)[listv->count++] = id;
         } else {
-            run->stats.windows_filtered++;
-            win_release(fs, id);
+            stats->windows_filtered++;
+            if (!slot_release(fs, L, id)) return false;
         }
         id = next;
     }
-    uint32_t* ids = fs->list.data;
-    size_t n = fs->list.count;
+    uint32_t* ids = listv->data;
+    size_t n = listv->count;
     if (n > 1) {
-        if (!tg__field_grow(fs, &fs->keys, n)) return false;
-        tg__windows_trim(pool, ids, fs->keys.data, n, fr->len);
+        if (!scratch_grow(fs, L, keysv, n)) return false;
+        tg__windows_trim(pool, ids, keysv->data, n, fr->len);
     }
-    tg__field_queries_cross(run, h, pool, ids, n);
-    if (run->q->record_levels && !tg__field_record_cross(run, h, pool, ids, n)) return false;
-    if (slit != TG_NONE) return cross_slit(run, h, slit, ids, n);
+    if (!L) {
+        tg__field_queries_cross(run, h, pool, ids, n);
+        if (run->q->record_levels && !tg__field_record_cross(run, h, pool, ids, n)) return false;
+    }
+    if (slit != TG_NONE) return cross_slit(run, L, h, slit, ids, n);
     /* rule 1: the shortest covering window to C over the list sets C and the edge side's split */
     uint32_t vc = g->tri[hp];
-    const tg__logmap* lm = run->q->logmap;
-    if (!tg__field_grow(fs, &fs->hits, n)) return false;
-    tg__corner_hit* hits = fs->hits.data;
+    const tg__logmap* lm = L ? NULL : run->q->logmap;
+    if (!scratch_grow(fs, L, hitsv, n)) return false;
+    tg__corner_hit* hits = hitsv->data;
     for (size_t i = 0; i < n; ++i) {
         const tg__window* w = &pool[ids[i]];
         if (!(w->b0 < w->b1)) continue;
         tg__corner_hit hc = hits[i] = hit_corner(w, fr);
         if (hc.covers && hc.dc < fs->split_d[h]) {
             if (!flat) {
-                if (!touch_halfedge(fs, h)) return false;
+                /* a lane's h is touched already: a window was pushed onto it */
+                if (!L && !touch_halfedge(fs, h)) return false;
                 fs->split_d[h] = hc.dc, fs->split_x[h] = hc.xc;
             }
             tg__pred ray = {h, TG__TAG_ORIGIN(w->tag), w->sx, w->sy};
+            if (L) {
+                if (!(hc.dc < fs->dist[vc])) continue; /* the merge would find it no shorter */
+                if (!lane_grow(fs, L, &L->relax, 1)) return false;
+                tg__lane_relax r = {vc, hc.dc, ray};
+                ((tg__lane_relax*)L->relax.data)[L->relax.count++] = r;
+                continue;
+            }
             tg__lm_rec rec;
             /* the angle of the ray to C */
             if (lm && hc.dc < fs->dist[vc] && tg__lm_of(lm, TG__TAG_ORIGIN(w->tag), fs->lm_win.data, ids[i], &rec))
@@ -635,13 +745,26 @@ static bool propagate_list(tg__field_run* run, uint32_t h)
     tg__edge_dir(b, c, g->frame[hn].len, u + 2);
     for (size_t i = 0; i < n; ++i) {
         tg__window w;
-        if (!take_window(run, ids[i], &w)) continue;
+        if (!take_window(run, L, ids[i], &w)) {
+            if (L && L->failed) return false;
+            continue;
+        }
         tg__lm_rec rec;
         const tg__lm_rec* rp = lm ? tg__lm_of(lm, TG__TAG_ORIGIN(w.tag), fs->lm_win.data, ids[i], &rec) : NULL;
-        if (!(rp ? cross_face(run, h, &w, hits[i], flat, u, rp) : cross_face(run, h, &w, hits[i], flat, u, NULL)))
+        if (!(rp ? cross_face(run, L, h, &w, hits[i], flat, u, rp) : cross_face(run, L, h, &w, hits[i], flat, u, NULL)))
             return false;
     }
     return true;
+}
+
+static bool propagate_list(tg__field_run* run, uint32_t h)
+{
+    return cross_list(run, NULL, h);
+}
+
+static bool propagate_lane(tg__field_run* run, tg__field_lane* L, uint32_t h)
+{
+    return cross_list(run, L, h);
 }
 
 /* ---- the front ---- */
@@ -690,10 +813,12 @@ static bool release_lists(tg__field_run* run, uint32_t v)
     return true;
 }
 
-/* Calls the progress hook when its period has passed; true to go on. */
-static bool keep_going(tg__field_run* run)
+/* Calls the progress hook when its period has passed (`work` more steps done, a look at the
+ * clock every CHECK_EVERY); true to go on. */
+static bool keep_going_by(tg__field_run* run, uint64_t work)
 {
-    if (++run->work_since_check < CHECK_EVERY) return true;
+    run->work_since_check += work;
+    if (run->work_since_check < CHECK_EVERY) return true;
     run->work_since_check = 0;
     if (run->q->cancel && *run->q->cancel) return false;
     if (!run->q->progress) return true;
@@ -703,11 +828,71 @@ static bool keep_going(tg__field_run* run)
     return run->q->progress(run->q->progress_user, run) == 0;
 }
 
-tg_status tg__field_propagate(tg__field_run* run)
+static bool keep_going(tg__field_run* run)
+{
+    return keep_going_by(run, 1);
+}
+
+/* What a step of the front tells its loop. */
+enum { STEP_DONE = 0, STEP_ON = 1, STEP_NO_MEMORY = -1, STEP_CANCELLED = -2 };
+
+/* One step of the front: the nearest vertex leaves it (a pseudo-source or source emits, its
+ * neighbours are relaxed along the edges, the lists at it are released); or, once past the limit
+ * (or with the front empty while a bound or a limit kept vertices off it), every list is released
+ * whatever its vertices. STEP_DONE when nothing is left. */
+static int front_step(tg__field_run* run)
 {
     tg__field_scratch* fs = run->fs;
     const tg_geodesic* g = fs->g;
-    run->next_check_s = now_s() + PROGRESS_PERIOD_S;
+    tg__heap_item it = {INFINITY, 0};
+    if (fs->front.count) it = tg__heap_take(fs->front.data, &fs->front.count);
+    uint32_t v = it.node;
+    if (it.key > run->max_dist || !(it.key < INFINITY)) {
+        /* past the limit, or the front is empty while vertices beyond the limit (or the
+         * bound) were never queued: every window within it must still cross, whatever its
+         * vertices */
+        fs->front.count = 0; /* the rest is past the limit too (vertices pushed from here on are not) */
+        if (!run->all_ready && (run->max_dist < INFINITY || run->bounded)) {
+            run->all_ready = 1;
+            if (fs->touched_all) {
+                for (uint32_t h = 0; h < 3 * g->face_count; ++h)
+                    if (!enqueue(run, h)) return STEP_NO_MEMORY;
+            } else { /* only halfedges that ever held a list can hold one */
+                for (size_t i = 0; i < fs->touched_h.count; ++i)
+                    if (!enqueue(run, ((const uint32_t*)fs->touched_h.data)[i])) return STEP_NO_MEMORY;
+            }
+            return STEP_ON;
+        }
+        return it.key < INFINITY ? STEP_ON : STEP_DONE;
+    }
+    if (it.key != front_key(run, v, fs->dist[v])) return STEP_ON; /* a shorter distance was queued since */
+    if (!(fs->inside[v] & VS_INSIDE)) run->settled++;
+    fs->inside[v] |= VS_INSIDE;
+    run->front = fs->dist[v];
+    bool emits = (g->vflags[v] & TG__V_PSEUDO) || (fs->inside[v] & VS_SOURCE);
+    if (emits) {
+        fs->inside[v] &= (uint8_t)~VS_SOURCE;
+        if (!emit_vertex(run, v)) return STEP_NO_MEMORY;
+    }
+    /* paths go on along v's edges from every vertex, A* runs too: a shortest path that runs
+     * straight through a vertex along a line of collinear edges is lit only by windows that
+     * graze those edges, and grazing windows are dropped (push_window), so the edge is its
+     * only carrier (cgal_fandisk.off v:1167 -> v:2463 came out 2% long when A* skipped this
+     * for vertices that cannot bend a path) */
+    if (!relax_neighbours(run, v)) return STEP_NO_MEMORY;
+    if (!release_lists(run, v)) return STEP_NO_MEMORY;
+    return keep_going(run) ? STEP_ON : STEP_CANCELLED;
+}
+
+static tg_status step_status(int step)
+{
+    return step == STEP_NO_MEMORY ? TG_ERR_OUT_OF_MEMORY : TG_ERR_CANCELLED;
+}
+
+/* The serial engine: every list in the FIFO crosses before the next vertex leaves the front. */
+static tg_status propagate_serial(tg__field_run* run)
+{
+    tg__field_scratch* fs = run->fs;
     for (;;) {
         while (fs->fifo_head < fs->fifo.count) {
             uint32_t h = ((uint32_t*)fs->fifo.data)[fs->fifo_head++];
@@ -721,45 +906,302 @@ tg_status tg__field_propagate(tg__field_run* run)
             tg__field_queries_bound(run);
             run->next_bound_check = run->settled + (run->q->point_count > 64 ? run->q->point_count : 64);
         }
-        tg__heap_item it = {INFINITY, 0};
-        if (fs->front.count) it = tg__heap_take(fs->front.data, &fs->front.count);
-        uint32_t v = it.node;
-        if (it.key > run->max_dist || !(it.key < INFINITY)) {
-            /* past the limit, or the front is empty while vertices beyond the limit (or the
-             * bound) were never queued: every window within it must still cross, whatever its
-             * vertices */
-            fs->front.count = 0; /* the rest is past the limit too (vertices pushed from here on are not) */
-            if (!run->all_ready && (run->max_dist < INFINITY || run->bounded)) {
-                run->all_ready = 1;
-                if (fs->touched_all) {
-                    for (uint32_t h = 0; h < 3 * g->face_count; ++h)
-                        if (!enqueue(run, h)) return TG_ERR_OUT_OF_MEMORY;
-                } else { /* only halfedges that ever held a list can hold one */
-                    for (size_t i = 0; i < fs->touched_h.count; ++i)
-                        if (!enqueue(run, ((const uint32_t*)fs->touched_h.data)[i])) return TG_ERR_OUT_OF_MEMORY;
-                }
-                continue;
-            }
-            if (!fs->front.count && !(it.key < INFINITY)) break;
-            continue;
-        }
-        if (it.key != front_key(run, v, fs->dist[v])) continue; /* a shorter distance was queued since */
-        if (!(fs->inside[v] & VS_INSIDE)) run->settled++;
-        fs->inside[v] |= VS_INSIDE;
-        run->front = fs->dist[v];
-        bool emits = (g->vflags[v] & TG__V_PSEUDO) || (fs->inside[v] & VS_SOURCE);
-        if (emits) {
-            fs->inside[v] &= (uint8_t)~VS_SOURCE;
-            if (!emit_vertex(run, v)) return TG_ERR_OUT_OF_MEMORY;
-        }
-        /* paths go on along v's edges from every vertex, A* runs too: a shortest path that runs
-         * straight through a vertex along a line of collinear edges is lit only by windows that
-         * graze those edges, and grazing windows are dropped (push_window), so the edge is its
-         * only carrier (cgal_fandisk.off v:1167 -> v:2463 came out 2% long when A* skipped this
-         * for vertices that cannot bend a path) */
-        if (!relax_neighbours(run, v)) return TG_ERR_OUT_OF_MEMORY;
-        if (!release_lists(run, v)) return TG_ERR_OUT_OF_MEMORY;
-        if (!keep_going(run)) return TG_ERR_CANCELLED;
+        int step = front_step(run);
+        if (step == STEP_DONE) break;
+        if (step != STEP_ON) return step_status(step);
     }
     return TG_OK;
+}
+
+/* ---- several threads: rounds ----
+ * A round takes up to ROUND_VERTICES vertices off the front (and no more than a ROUND_SHARE-th
+ * of the vertices on it, so that where the front is narrow, on small meshes and near the
+ * sources, rounds stay thin and the order of vertices still does its filtering), then crosses the lists in the FIFO
+ * wave by wave: the lists of a wave cross their faces at once, each on a thread's lane (reading
+ * the distances as the wave began), and the lanes are merged in the wave's order (corner
+ * distances, released slots, then the children pushed as the serial engine pushes them). Waves
+ * of fewer than WAVE_MIN lists cross on this thread as in the serial engine. Neither the rounds
+ * nor the merge depend on the number of threads, so every thread count gives the same bits.
+ * Every distance is still a real path and every filter still compares with real paths, so the
+ * result is exact like the serial engine's; they differ in the order windows meet (rounding). */
+#define ROUND_VERTICES 256
+#define ROUND_SHARE 8
+#define WAVE_MIN 16
+
+/* The results of one list, in its lane, applied to the shared state. */
+static bool merge_task(tg__field_run* run, const tg__lane_task* t)
+{
+    tg__field_scratch* fs = run->fs;
+    tg__field_lane* L = &fs->lanes[t->lane];
+    const tg__lane_relax* r = L->relax.data;
+    for (uint32_t i = t->relax0; i < t->relax1; ++i)
+        if (!relax_vertex(run, r[i].v, r[i].d, r[i].how)) return false;
+    const uint32_t* freed = L->freed.data;
+    for (uint32_t i = t->freed0; i < t->freed1; ++i) win_release(fs, freed[i]);
+    const tg__lane_child* c = L->child.data;
+    for (uint32_t i = t->child0; i < t->child1; ++i)
+        if (!store_window(run, c[i].h, c[i].c0, c[i].c1, c[i].x, c[i].y, c[i].sigma, c[i].d0, c[i].d1, c[i].tag, NULL))
+            return false;
+    return true;
+}
+
+/* The crew of a run on several threads: thread 0 (the caller's) runs the rounds and the merges;
+ * the others wait for a wave, cross lists from it, and wait again. Lists are taken CREW_CHUNK at
+ * a time from one counter that also names its wave, so a thread that wakes late takes nothing of
+ * a wave already done (nor a list twice), and thread 0 waits only until every list of the wave
+ * has crossed, not for every thread: on a machine whose cores are busy with other work a
+ * descheduled thread does not hold a wave up. A waiting thread spins a little (a wave follows
+ * the last one within microseconds), then sleeps on a condition variable, giving its core back
+ * (OpenMP's barriers spun: 2 threads took 4 s where one took 0.4 on a loaded machine). */
+typedef struct crew {
+    atomic_uint epoch;          /* the current wave's number (bumped by thread 0; 0: none yet) */
+    atomic_uint_fast64_t next;  /* the wave's number << 32 | the next list to take */
+    atomic_size_t done;         /* lists of the current wave crossed */
+    atomic_int sleepers;        /* threads asleep waiting for a wave */
+    atomic_int lead_sleeps;     /* thread 0 asleep waiting for the wave's end */
+    atomic_size_t count;        /* the wave's lists (read beside `next`, which says whose) */
+    int workers;                /* threads besides thread 0 */
+    atomic_int quit;
+#ifdef TG__CREW_THREADS
+    mtx_t mu;
+    cnd_t wave, finished;
+#endif
+} crew;
+
+#define CREW_SPIN 4000
+#define CREW_CHUNK 8
+
+static void crew_relax(void)
+{
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+}
+
+/* Crosses lists of wave `id` on lane t until none is left (or the wave is another's). */
+static void crew_cross(tg__field_run* run, crew* c, int t, unsigned id)
+{
+    tg__field_scratch* fs = run->fs;
+    tg__field_lane* L = &fs->lanes[t];
+    for (;;) {
+        uint_fast64_t v = atomic_load(&c->next);
+        size_t i0, count;
+        for (;;) {
+            if ((unsigned)(v >> 32) != id) return;
+            /* a count of a later wave goes with a `next` of it: the exchange below then fails */
+            i0 = (size_t)(v & 0xFFFFFFFFu), count = atomic_load(&c->count);
+            if (i0 >= count) return;
+            if (atomic_compare_exchange_weak(&c->next, &v, v + CREW_CHUNK)) break;
+        }
+        /* holding lists of the wave, it cannot end: its count and arrays stay (thread 0 grows
+         * them only between waves) */
+        const uint32_t* wave = fs->wave.data;
+        tg__lane_task* tasks = fs->tasks.data;
+        size_t i1 = i0 + CREW_CHUNK < count ? i0 + CREW_CHUNK : count;
+        double t0 = now_s();
+        for (size_t i = i0; i < i1; ++i) {
+            tg__lane_task* k = &tasks[i];
+            k->lane = (uint32_t)t;
+            k->child0 = (uint32_t)L->child.count, k->relax0 = (uint32_t)L->relax.count;
+            k->freed0 = (uint32_t)L->freed.count;
+            if (!L->failed && !propagate_lane(run, L, wave[i])) L->failed = 1;
+            k->child1 = (uint32_t)L->child.count, k->relax1 = (uint32_t)L->relax.count;
+            k->freed1 = (uint32_t)L->freed.count;
+        }
+        L->busy_s += now_s() - t0; /* before the lists are reported done: thread 0 then reads it */
+#ifdef TG__CREW_THREADS
+        if (atomic_fetch_add(&c->done, i1 - i0) + (i1 - i0) == count && t && atomic_load(&c->lead_sleeps)) {
+            mtx_lock(&c->mu);
+            cnd_signal(&c->finished);
+            mtx_unlock(&c->mu);
+        }
+#else
+        atomic_fetch_add(&c->done, i1 - i0);
+#endif
+    }
+}
+
+#ifdef TG__CREW_THREADS
+/* A helper thread: waits for each wave and crosses lists of it. */
+static void crew_work(tg__field_run* run, crew* c, int t)
+{
+    unsigned seen = 0;
+    for (;;) {
+        int spin = 0;
+        while (atomic_load(&c->epoch) == seen && spin < CREW_SPIN) crew_relax(), ++spin;
+        if (atomic_load(&c->epoch) == seen) {
+            mtx_lock(&c->mu);
+            atomic_fetch_add(&c->sleepers, 1);
+            while (atomic_load(&c->epoch) == seen) cnd_wait(&c->wave, &c->mu);
+            atomic_fetch_sub(&c->sleepers, 1);
+            mtx_unlock(&c->mu);
+        }
+        seen = atomic_load(&c->epoch);
+        if (atomic_load(&c->quit)) return;
+        crew_cross(run, c, t, seen);
+    }
+}
+#endif
+
+/* Thread 0: publishes a wave of `count` lists (or, with quit, ends the crew); returns its number. */
+static unsigned crew_start(crew* c, size_t count, int quit)
+{
+    unsigned id = atomic_load(&c->epoch) + 1;
+    if (id == 0) id = 1; /* 0 is "none yet" */
+    atomic_store(&c->count, count);
+    atomic_store(&c->quit, quit);
+    atomic_store(&c->done, 0);
+    atomic_store(&c->next, (uint_fast64_t)id << 32);
+    atomic_store(&c->epoch, id);
+#ifdef TG__CREW_THREADS
+    if (atomic_load(&c->sleepers)) {
+        mtx_lock(&c->mu);
+        cnd_broadcast(&c->wave);
+        mtx_unlock(&c->mu);
+    }
+#endif
+    return id;
+}
+
+/* Thread 0: waits until every list of the wave has crossed. */
+static void crew_wait(crew* c)
+{
+    int spin = 0;
+    size_t count = atomic_load(&c->count);
+    while (atomic_load(&c->done) != count && spin < CREW_SPIN) crew_relax(), ++spin;
+#ifdef TG__CREW_THREADS
+    if (atomic_load(&c->done) == count) return;
+    mtx_lock(&c->mu);
+    atomic_store(&c->lead_sleeps, 1);
+    while (atomic_load(&c->done) != count) cnd_wait(&c->finished, &c->mu);
+    atomic_store(&c->lead_sleeps, 0);
+    mtx_unlock(&c->mu);
+#endif
+}
+
+/* One wave: the n lists waiting in the FIFO cross at once on the crew's lanes, then merge. */
+static tg_status cross_wave(tg__field_run* run, crew* c, size_t n)
+{
+    tg__field_scratch* fs = run->fs;
+    if (!tg__field_grow(fs, &fs->wave, n) || !tg__field_grow(fs, &fs->tasks, n)) return TG_ERR_OUT_OF_MEMORY;
+    uint32_t* wave = fs->wave.data;
+    memcpy(wave, (const uint32_t*)fs->fifo.data + fs->fifo_head, n * sizeof *wave);
+    fs->fifo.count = fs->fifo_head = 0;
+    for (size_t i = 0; i < n; ++i) fs->queued[wave[i]] &= (uint8_t)~Q_QUEUED;
+    tg__lane_task* tasks = fs->tasks.data;
+    for (int t = 0; t <= c->workers; ++t) {
+        tg__field_lane* L = &fs->lanes[t];
+        L->child.count = L->relax.count = L->freed.count = 0;
+        L->failed = 0;
+    }
+    double w0 = now_s();
+    unsigned id = crew_start(c, n, 0);
+    crew_cross(run, c, 0, id);
+    crew_wait(c);
+    run->wave_wall_s += now_s() - w0;
+    run->stats.waves++, run->stats.wave_lists += n;
+    for (int t = 0; t <= c->workers; ++t) {
+        tg__field_lane* L = &fs->lanes[t];
+        if (L->failed) return TG_ERR_OUT_OF_MEMORY;
+        run->stats.windows_filtered += L->stats.windows_filtered;
+        run->stats.windows_propagated += L->stats.windows_propagated;
+        run->stats.wave_seconds += L->busy_s;
+        memset(&L->stats, 0, sizeof L->stats);
+        L->busy_s = 0.0;
+    }
+    for (size_t i = 0; i < n; ++i)
+        if (!merge_task(run, &tasks[i])) return TG_ERR_OUT_OF_MEMORY;
+    return keep_going_by(run, n) ? TG_OK : TG_ERR_CANCELLED;
+}
+
+/* Thread 0's part: the rounds. */
+static tg_status rounds_lead(tg__field_run* run, crew* c)
+{
+    tg__field_scratch* fs = run->fs;
+    for (;;) {
+        size_t n = fs->fifo.count - fs->fifo_head;
+        if (n >= WAVE_MIN) {
+            tg_status st = cross_wave(run, c, n);
+            if (st != TG_OK) return st;
+            continue;
+        }
+        if (n) { /* a small wave: these n lists on this thread, in order */
+            for (size_t i = 0; i < n; ++i) {
+                uint32_t h = ((uint32_t*)fs->fifo.data)[fs->fifo_head++];
+                fs->queued[h] &= (uint8_t)~Q_QUEUED;
+                if (!propagate_list(run, h)) return TG_ERR_OUT_OF_MEMORY;
+            }
+            if (!keep_going_by(run, n)) return TG_ERR_CANCELLED;
+            continue;
+        }
+        fs->fifo.count = fs->fifo_head = 0;
+        bool done = false;
+        run->stats.rounds++;
+        size_t take = fs->front.count / ROUND_SHARE;
+        take = take < 1 ? 1 : take > ROUND_VERTICES ? ROUND_VERTICES : take;
+        for (size_t k = 0; k < take && !done; ++k) {
+            int step = front_step(run);
+            if (step == STEP_DONE) done = true;
+            else if (step != STEP_ON) return step_status(step);
+        }
+        if (done && fs->fifo.count == fs->fifo_head) break;
+    }
+    return TG_OK;
+}
+
+static tg_status propagate_rounds(tg__field_run* run, int threads)
+{
+    tg__field_scratch* fs = run->fs;
+#ifdef _OPENMP
+    /* a thread per core at most: more only wait for each other (the bits are the same) */
+    int procs = omp_get_num_procs();
+    if (procs >= 1 && threads > procs) threads = procs;
+#endif
+    if (!tg__field_lanes(fs, threads)) return TG_ERR_OUT_OF_MEMORY;
+    crew c;
+    memset(&c, 0, sizeof c);
+    atomic_init(&c.epoch, 0), atomic_init(&c.next, 0), atomic_init(&c.done, 0), atomic_init(&c.count, 0);
+    atomic_init(&c.quit, 0);
+    atomic_init(&c.sleepers, 0), atomic_init(&c.lead_sleeps, 0);
+    tg_status st = TG_OK;
+#ifdef TG__CREW_THREADS
+    if (mtx_init(&c.mu, mtx_plain) != thrd_success) return TG_ERR_OUT_OF_MEMORY;
+    if (cnd_init(&c.wave) != thrd_success) {
+        mtx_destroy(&c.mu);
+        return TG_ERR_OUT_OF_MEMORY;
+    }
+    if (cnd_init(&c.finished) != thrd_success) {
+        cnd_destroy(&c.wave), mtx_destroy(&c.mu);
+        return TG_ERR_OUT_OF_MEMORY;
+    }
+#pragma omp parallel num_threads(threads)
+    {
+        int t = omp_get_thread_num();
+        if (t == 0) {
+            c.workers = omp_get_num_threads() - 1; /* the helpers read it only after a wave starts */
+            double t0 = now_s();
+            st = rounds_lead(run, &c);
+            run->stats.lead_seconds = now_s() - t0 - run->wave_wall_s;
+            crew_start(&c, 0, 1);
+        } else {
+            crew_work(run, &c, t);
+        }
+    }
+    cnd_destroy(&c.finished), cnd_destroy(&c.wave), mtx_destroy(&c.mu);
+#else
+    (void)threads;
+    double t0 = now_s();
+    st = rounds_lead(run, &c);
+    run->stats.lead_seconds = now_s() - t0 - run->wave_wall_s;
+#endif
+    return st;
+}
+
+tg_status tg__field_propagate(tg__field_run* run)
+{
+    const tg__field_query* q = run->q;
+    run->next_check_s = now_s() + PROGRESS_PERIOD_S;
+    bool plain = !q->point_count && !q->toward && !q->logmap && !q->record_levels;
+    if (q->threads > 1 && plain) return propagate_rounds(run, q->threads);
+    return propagate_serial(run);
 }

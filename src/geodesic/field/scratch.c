@@ -20,7 +20,33 @@ size_t tg__field_scratch_bytes(const tg__field_scratch* fs)
 #define TG__FIELD_BYTES_(name, type) bytes += fs->name.capacity * sizeof(type);
     TG__FIELD_BUFFERS(TG__FIELD_BYTES_)
 #undef TG__FIELD_BYTES_
+    for (int i = 0; i < fs->lane_count; ++i) {
+        const tg__field_lane* L = &fs->lanes[i];
+        const tg__vec* all[] = {&L->child, &L->relax, &L->freed, &L->list, &L->keys, &L->hits};
+        bytes += sizeof *L;
+        for (size_t k = 0; k < sizeof all / sizeof all[0]; ++k) bytes += all[k]->capacity * all[k]->elem;
+    }
     return bytes;
+}
+
+bool tg__field_lanes(tg__field_scratch* fs, int n)
+{
+    if (fs->lane_count >= n) return true;
+    tg__field_lane* lanes = tg__alloc_array(&fs->allocator, (size_t)n, sizeof *lanes);
+    if (!lanes) return false;
+    memset(lanes, 0, (size_t)n * sizeof *lanes);
+    if (fs->lane_count) memcpy(lanes, fs->lanes, (size_t)fs->lane_count * sizeof *lanes);
+    for (int i = fs->lane_count; i < n; ++i) {
+        tg__field_lane* L = &lanes[i];
+        L->child.elem = sizeof(tg__lane_child), L->relax.elem = sizeof(tg__lane_relax);
+        L->freed.elem = L->list.elem = sizeof(uint32_t);
+        L->keys.elem = sizeof(tg__win_key), L->hits.elem = sizeof(tg__corner_hit);
+    }
+    tg__free(&fs->allocator, fs->lanes);
+    fs->lanes = lanes, fs->lane_count = n;
+    size_t b = tg__field_scratch_bytes(fs);
+    if (b > fs->peak_bytes) fs->peak_bytes = b;
+    return true;
 }
 
 bool tg__field_grow_slow(tg__field_scratch* fs, tg__vec* v, size_t extra)
@@ -42,6 +68,12 @@ void tg__field_scratch_free(tg__field_scratch* fs)
 #define TG__FIELD_FREE_(name, type) tg__vec_free(a, &fs->name);
     TG__FIELD_BUFFERS(TG__FIELD_FREE_)
 #undef TG__FIELD_FREE_
+    for (int i = 0; i < fs->lane_count; ++i) {
+        tg__field_lane* L = &fs->lanes[i];
+        tg__vec* all[] = {&L->child, &L->relax, &L->freed, &L->list, &L->keys, &L->hits};
+        for (size_t k = 0; k < sizeof all / sizeof all[0]; ++k) tg__vec_free(a, all[k]);
+    }
+    tg__free(a, fs->lanes);
     memset(fs, 0, sizeof *fs);
 }
 

@@ -12,6 +12,8 @@ void tg__field_scratch_free(tg__field_scratch* fs);
 /* Makes room for `extra` more elements of v, one of the scratch's buffers (noting the peak of
  * the scratch's memory); false on overflow or allocation failure. */
 bool tg__field_grow_slow(tg__field_scratch* fs, tg__vec* v, size_t extra);
+/* Makes sure the scratch has n lanes (several threads, propagate.c); false when out of memory. */
+bool tg__field_lanes(tg__field_scratch* fs, int n);
 static inline bool tg__field_grow(tg__field_scratch* fs, tg__vec* v, size_t extra)
 {
     return extra <= v->capacity - v->count || tg__field_grow_slow(fs, v, extra);

@@ -1,6 +1,6 @@
 /* nearest.h - the nearest-source field: sources added one at a time to a running per-vertex
  * distance and label, each run of the exact engine bounded by what the sources before it reach
- * (field.h: tg__field_query.bound). Used by Voronoi labels (voronoi.c) and farthest-point
+ * (field/engine.h: tg__field_query.bound), in nearest.c. Used by Voronoi labels (voronoi.c) and farthest-point
  * sampling (sampling.c).
  * Based on: the project's DESIGN.md (Voronoi and sampling as thin layers over field runs). */
 #ifndef TG_GEODESIC_NEAREST_H

@@ -1,0 +1,90 @@
+/* nearest.c - the nearest-source field (nearest.h): sources added one at a time, each source's
+ * run of the exact engine bounded by the sources before it; used by Voronoi labels and their
+ * boundaries (voronoi.c, bisector.c) and by farthest-point sampling (sampling.c), below them all.
+ * Based on: Y. Qin et al., "Fast and exact discrete geodesic computation based on
+ *   triangle-oriented wavefront propagation", ACM TOG 35(4), 2016 (the engine, field/engine.h);
+ *   the bound is the vertex-distance filter of S.-Q. Xin and G.-J. Wang, ACM TOG 28(4), 2009,
+ *   with the earlier sources' distances in place of the run's own. */
+#include "geodesic/nearest.h"
+
+#include <string.h>
+
+bool tg__nearest_init(tg__nearest* nf, const tg_geodesic* g, const tg_allocator* a, double max_dist)
+{
+    memset(nf, 0, sizeof *nf);
+    nf->g = g;
+    nf->allocator = *a;
+    nf->max_dist = max_dist;
+    nf->next_report_s = tg__seconds() + TG__PROGRESS_PERIOD_S;
+    size_t nv = g->vertex_count ? g->vertex_count : 1;
+    nf->dist = tg__alloc_array(a, nv, sizeof(double));
+    nf->label = tg__alloc_array(a, nv, sizeof(uint32_t));
+    if (!nf->dist || !nf->label) {
+        tg__nearest_free(nf);
+        return false;
+    }
+    for (uint32_t u = 0; u < g->vertex_count; ++u) nf->dist[u] = INFINITY, nf->label[u] = TG_NONE;
+    return true;
+}
+
+void tg__nearest_free(tg__nearest* nf)
+{
+    tg__free(&nf->allocator, nf->dist);
+    tg__free(&nf->allocator, nf->label);
+    nf->dist = NULL, nf->label = NULL;
+}
+
+/* The progress hook: the caller's callback, told sources done of all. */
+int tg__nearest_report(void* user, const tg__field_run* run)
+{
+    const tg__nearest* nf = user;
+    tg_field_progress p;
+    tg__field_progress_rows(run, nf->added, nf->rows, &p);
+    return nf->options->progress(nf->options->progress_user, &p);
+}
+
+tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* src)
+{
+    bool progress = nf->options && nf->options->progress;
+    /* the first source alone is a plain field; later ones only where they beat the earlier */
+    tg_surface_point in = tg__surface_in(nf->g, src); /* the solver's form, once (field.h) */
+    tg__field_query q = {.sources = &in, .source_count = 1, .max_distance = nf->max_dist,
+                         .progress = progress ? tg__nearest_report : NULL, .progress_user = nf,
+                         .bound = nf->added ? nf->dist : NULL};
+    tg__field_run run;
+    tg_status st = tg__field_execute(fs, &q, &run);
+    tg__field_stats_add(&nf->stats, &run.stats);
+    if (st != TG_OK) return st;
+    /* a run writes only the vertices it reaches, and notes them (field.h: touched_v) */
+    const uint32_t* touched = fs->touched_v.data;
+    for (size_t i = 0; i < fs->touched_v.count; ++i) {
+        uint32_t u = touched[i];
+        double d = run.vertex_dist[u];
+        if (d <= nf->max_dist && d < nf->dist[u]) nf->dist[u] = d, nf->label[u] = nf->added;
+    }
+    nf->added++;
+    if (progress) { /* after every source too: a call per source, however fast the fields run */
+        tg_field_progress p;
+        tg__field_progress_rows(&run, nf->added, nf->rows, &p);
+        p.settled_fraction = (double)nf->added / (double)nf->rows; /* this source is done */
+        if (nf->options->progress(nf->options->progress_user, &p)) return TG_ERR_CANCELLED;
+    }
+    return TG_OK;
+}
+
+tg_status tg__nearest_poll(tg__nearest* nf)
+{
+    if (!nf->options || !nf->options->progress || !tg__progress_due(&nf->next_report_s)) return TG_OK;
+    tg_field_progress p = {0.0, 1.0, nf->rows, nf->rows};
+    return nf->options->progress(nf->options->progress_user, &p) ? TG_ERR_CANCELLED : TG_OK;
+}
+
+void tg__nearest_copy_out(const tg__nearest* nf, double* out_dist, uint32_t* out_label)
+{
+    const tg_geodesic* g = nf->g;
+    for (uint32_t u = 0; u < g->vertex_count; ++u) {
+        uint32_t v = g->mesh_vertex[u];
+        if (out_dist) out_dist[v] = nf->dist[u] * g->unscale;
+        if (out_label) out_label[v] = nf->label[u];
+    }
+}

@@ -103,7 +103,7 @@ static bool lane_grow(tg__field_scratch* fs, tg__field_lane* L, tg__vec* v, size
     if (extra <= v->capacity - v->count) return true;
     bool ok;
 #ifdef _OPENMP
-#pragma omp critical(tg__field_alloc)
+#pragma omp critical
 #endif
     ok = tg__field_grow_slow(fs, v, extra);
     if (!ok) L->failed = 1;
@@ -988,7 +988,8 @@ static void crew_cross(tg__field_run* run, crew* c, int t, unsigned id)
         size_t i0, count;
         for (;;) {
             if ((unsigned)(v >> 32) != id) return;
-            /* a count of a later wave goes with a `next` of it: the exchange below then fails */
+            /* a count read here may be the next wave's: `next` was closed before it was written
+             * (crew_start), so the exchange below then fails */
             i0 = (size_t)(v & 0xFFFFFFFFu), count = atomic_load(&c->count);
             if (i0 >= count) return;
             if (atomic_compare_exchange_weak(&c->next, &v, v + CREW_CHUNK)) break;
@@ -1048,6 +1049,11 @@ static unsigned crew_start(crew* c, size_t count, int quit)
 {
     unsigned id = atomic_load(&c->epoch) + 1;
     if (id == 0) id = 1; /* 0 is "none yet" */
+    /* first the counter closed (the new wave's number, no list to take): a thread still taking
+     * from the last wave, which may read the new count below, then fails its exchange instead of
+     * taking lists of the new wave under the old one's number (it did: a list crossed twice, the
+     * wave's count never reached, thread 0 asleep for good) */
+    atomic_store(&c->next, (uint_fast64_t)id << 32 | 0xFFFFFFFFu);
     atomic_store(&c->count, count);
     atomic_store(&c->quit, quit);
     atomic_store(&c->done, 0);

@@ -163,6 +163,7 @@ typedef struct tg__field_lane {
     tg__vec child, relax, freed, list, keys, hits;
     tg_field_stats stats;
     double busy_s; /* time spent crossing lists (the schedule's figures) */
+    void* grow_lock; /* the crew's lock (propagate.c): one thread at a time grows a buffer */
     int failed;    /* a buffer could not grow */
     char pad[128]; /* lanes are written by different threads: no cache line shared */
 } tg__field_lane;

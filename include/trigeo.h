@@ -99,6 +99,10 @@ extern "C" {
  *    it: the radius is its max_distance argument).
  *  - Every prototype names the solver `geodesic`; the log map's outputs are out_vertex_distance
  *    and out_vertex_angle (names only).
+ *  - One field on several threads: tg_field_options.threads (and TG_THREADS_ALL) at the end of
+ *    the struct, honoured by tg_geodesic_field and field_at without points, refused elsewhere;
+ *    tg_field_stats gained the schedule's figures (rounds, waves, wave_lists, lead_seconds,
+ *    wave_seconds) at its end.
  *  - Python and the CLI follow: one rule for isolines (a number is always a level; a count of
  *    evenly spaced levels is asked for by name) and for empty source lists (accepted, nothing
  *    reached). */

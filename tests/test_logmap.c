@@ -521,11 +521,37 @@ static void test_errors(void)
     close_sheet(&c);
 }
 
+/* Vertices of another component are not reached: +inf and angle 0, also when the workspace's
+ * last run reached them (its records of how each vertex got its distance are stale then: the
+ * angles were resolved from them, 3.9-5.7 rad on the second grid before the fix, and garbage from
+ * a fresh workspace's uninitialised records, which valgrind reported). */
+static void test_other_component(void)
+{
+    nv = nf = 0;
+    grid(4, 0.0, 0.0, 1.0, 0.0, NULL);
+    uint32_t second = grid(4, 3.0, 0.0, 1.0, 0.5, NULL);
+    ctx c = open_ctx();
+    size_t n = tg_mesh_vertex_count(c.mesh);
+    double *r = malloc(n * sizeof *r), *a = malloc(n * sizeof *a);
+    tg_surface_point far = tg_surface_face(32 + 10, 0.5, 0.3, 0.2), near = tg_surface_face(3, 0.2, 0.3, 0.5);
+    CHECK_STATUS(tg_geodesic_log_map(c.geo, c.ws, &far, NULL, NULL, r, a, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_log_map(c.geo, c.ws, &near, NULL, NULL, r, a, NULL), TG_OK);
+    size_t unreached = 0;
+    for (size_t v = second; v < n; ++v) {
+        unreached += r[v] == INFINITY;
+        CHECK_MSG(r[v] == INFINITY && a[v] == 0.0, "v%zu of the other grid: distance %.17g, angle %.17g", v, r[v], a[v]);
+    }
+    CHECK(unreached == n - second);
+    free(r), free(a);
+    close_sheet(&c);
+}
+
 int main(void)
 {
     test_flat();
     test_cone_and_saddle();
     test_errors();
+    test_other_component();
     test_any_scale();
     test_reference_length();
     test_reference_rule();

@@ -223,7 +223,9 @@ static void resolve_angles(const lm_source* s, const tg__field_run* run, uint8_t
     memset(state, 0, nv);
     for (uint32_t u0 = 0; u0 < nv; ++u0) {
         if (state[u0] == 2) continue;
-        if (!(run->vertex_dist[u0] <= run->max_dist)) {
+        /* not reached: +inf (another component; max_dist is +inf too without a limit) or
+         * beyond the limit; its record (pred) is stale or was never written */
+        if (!(run->vertex_dist[u0] < INFINITY && run->vertex_dist[u0] <= run->max_dist)) {
             out_angle[g->mesh_vertex[u0]] = 0.0, state[u0] = 2;
             continue;
         }
@@ -280,7 +282,8 @@ tg_status tg_geodesic_log_map(const tg_geodesic* g, tg_geodesic_workspace* ws, c
     if (st == TG_OK) {
         tg__field_query q = {.sources = &sp, .source_count = 1, .max_distance = tg__field_limit(g, options),
                              .progress = options && options->progress ? tg__field_report_single : NULL,
-                             .progress_user = (void*)options, .trace = true, .logmap = &s.lm};
+                             .progress_user = (void*)options, .trace = true, .logmap = &s.lm,
+                             .threads = tg__field_threads(options)};
         tg__field_run run;
         st = tg__field_execute(&ws->field, &q, &run);
         if (st == TG_OK) {

@@ -83,9 +83,17 @@ extern "C" {
 
 #define TG_VERSION_MAJOR 0
 #define TG_VERSION_MINOR 6
-#define TG_VERSION_PATCH 0
+#define TG_VERSION_PATCH 1
 /** Single integer for comparisons: major * 10000 + minor * 100 + patch. */
 #define TG_VERSION (TG_VERSION_MAJOR * 10000 + TG_VERSION_MINOR * 100 + TG_VERSION_PATCH)
+
+/* Changes in 0.6.1 (ABI-compatible with 0.6.0: same soname, new behaviour and entry points only):
+ *  - tg_field_options.threads is honoured by every call on one field: tg_geodesic_field_at with
+ *    points, tg_geodesic_log_map, tg_geodesic_voronoi (each source's run), tg_geodesic_isolines
+ *    and tg_geodesic_farthest_point_sampling (each sample's run), which refused counts above 1;
+ *    the matrices still refuse them (their rows are spread over their own `threads`).
+ *  - tg_geodesic_log_map gives angle 0 at every vertex it does not reach, as documented (a
+ *    vertex of another component could get an angle resolved from a previous run's records). */
 
 /* Changes in 0.6 (ABI: soname libtrigeo.so.0.6; programs built against 0.5 must be rebuilt), one
  * convention for every query (the table above):
@@ -1297,22 +1305,18 @@ typedef enum tg_field_limit {
  *  honours each member or refuses it (TG_ERR_INVALID_ARGUMENT); none ignores one:
  *
  *    call                                 allocator  limit / max_distance    progress  threads
- *    tg_geodesic_field                    honoured   honoured                honoured  honoured
- *    tg_geodesic_field_at                 honoured   honoured                honoured  honoured
- *                                                                                      without
- *                                                                                      points,
- *                                                                                      else 0/1
- *    tg_geodesic_log_map                  honoured   honoured                honoured  0/1 only
+ *    tg_geodesic_field, tg_geodesic_field_at   honoured   honoured           honoured  honoured
+ *    tg_geodesic_log_map                  honoured   honoured                honoured  honoured
+ *    tg_geodesic_voronoi                  honoured   honoured                honoured  honoured
+ *    tg_geodesic_isolines                 honoured   honoured                honoured  honoured
+ *    tg_geodesic_farthest_point_sampling  honoured   refused (samples need   honoured  honoured
+ *                                                    the whole field)
  *    tg_geodesic_distance_matrix, _at     honoured   honoured (every row)    honoured  0/1 only
  *    tg_geodesic_local_matrix             honoured   refused: the radius is  honoured  0/1 only
  *                                                    its max_distance
- *    tg_geodesic_voronoi                  honoured   honoured                honoured  0/1 only
- *    tg_geodesic_isolines                 honoured   honoured                honoured  0/1 only
- *    tg_geodesic_farthest_point_sampling  honoured   refused (samples need   honoured  0/1 only
- *                                                    the whole field)
  *
  *  ("0/1 only": any other thread count is refused; the matrices spread their rows with their own
- *  `threads` argument.)
+ *  `threads` argument, one field a row on one thread.)
  *  The allocator serves the call's scratch (a temporary workspace, per-thread scratch); result
  *  objects use their own allocator, given when they were created. */
 typedef struct tg_field_options {
@@ -1330,10 +1334,14 @@ typedef struct tg_field_options {
      *  propagation in rounds whose lists cross their faces on N threads at once, merged in a
      *  fixed order, so every N >= 2 (and TG_THREADS_ALL: every core) gives the same bits, within
      *  rounding (about 1e-15 relative) of the serial engine's; no more threads than the machine's
-     *  processors are started (the bits do not change). Honoured by tg_geodesic_field and
-     *  by tg_geodesic_field_at without points; every other call (and field_at with points)
-     *  refuses anything but 0 or 1 (TG_ERR_INVALID_ARGUMENT), as it refuses a count below
-     *  TG_THREADS_ALL. (New in 0.6.) */
+     *  processors are started (the bits do not change). What a call computes from its field
+     *  follows: where two paths tie within that rounding, a log map angle, a Voronoi label or a
+     *  farthest sample may be the other path's (the same for every N >= 2, run to run), and
+     *  isolines may cut a curve at other points of the same level set (each on its level to
+     *  rounding). Honoured by every call on one field (table above); the matrices refuse
+     *  anything but 0 or 1 (TG_ERR_INVALID_ARGUMENT), and every call a count below
+     *  TG_THREADS_ALL. (New in 0.6; every call on one field since 0.6.1, field and field_at
+     *  without points before.) */
     int threads;
 } tg_field_options;
 
@@ -1461,8 +1469,8 @@ TG_API tg_status tg_geodesic_field_at(const tg_geodesic* geodesic, tg_geodesic_w
  *  +inf and angle 0 (never NaN). The source vertex itself: distance 0, angle 0.
  *
  *  workspace: NULL or one of this solver's. source: a valid surface point. options: as
- *  tg_geodesic_field's (limit, allocator, progress). out_vertex_distance, out_vertex_angle: vertex_count
- *  doubles each. out_stats: may be NULL.
+ *  tg_geodesic_field's (limit, allocator, progress, threads). out_vertex_distance,
+ *  out_vertex_angle: vertex_count doubles each. out_stats: may be NULL.
  *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic, source or outputs; an invalid source; bad options;
  *  a reference vector that is zero, NaN or infinite, or that TG_TRACE_VECTOR refuses at the
  *  source (parallel to the normal there: its projection at most 1e-9 of its length); a

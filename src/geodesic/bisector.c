@@ -125,7 +125,7 @@ static tg_status evaluate_round(tg__nearest* nf, tg__field_scratch* fs, const tg
         tg_surface_point src = tg__surface_in(g, &sources[s]); /* the solver's form, once (field.h) */
         tg__field_query q = {.sources = &src, .source_count = 1, .points = pts, .point_count = m,
                              .max_distance = INFINITY, .progress = progress ? tg__nearest_report : NULL,
-                             .progress_user = nf, .bound = bound};
+                             .progress_user = nf, .bound = bound, .threads = tg__field_threads(nf->options)};
         tg__field_run run;
         tg_status st = tg__field_execute(fs, &q, &run);
         if (st == TG_OK) st = tg__nearest_poll(nf);

@@ -23,8 +23,8 @@ tg_status tg__field_check(const tg_geodesic* g, const tg_surface_point* points, 
     if (opt) {
         if (opt->limit != TG_FIELD_UNLIMITED && opt->limit != TG_FIELD_MAX_DISTANCE) return TG_ERR_INVALID_ARGUMENT;
         if (opt->limit == TG_FIELD_MAX_DISTANCE && !(opt->max_distance >= 0.0)) return TG_ERR_INVALID_ARGUMENT;
-        /* one engine thread: the calls that take more check their options with threads 1 */
-        if (opt->threads != 0 && opt->threads != 1) return TG_ERR_INVALID_ARGUMENT;
+        /* the matrices, which spread their rows instead, refuse counts above 1 themselves */
+        if (opt->threads < TG_THREADS_ALL) return TG_ERR_INVALID_ARGUMENT;
     }
     for (size_t i = 0; i < count; ++i)
         if (tg_surface_point_validate(g->mesh, &points[i], NULL) != TG_OK) return TG_ERR_INVALID_ARGUMENT;
@@ -122,12 +122,7 @@ tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* ws, 
                                double* out_vertex_distance, tg_field_stats* out_stats)
 {
     if (point_count > 0 && (!points || !out_point_distance)) return TG_ERR_INVALID_ARGUMENT;
-    /* several threads: plain fields only (no points) */
-    int threads = tg__field_threads(options);
-    if (threads < 1 || (threads > 1 && point_count > 0)) return TG_ERR_INVALID_ARGUMENT;
-    tg_field_options one;
-    if (options) one = *options, one.threads = 1;
-    tg_status st = tg__field_check(g, sources, source_count, options ? &one : NULL);
+    tg_status st = tg__field_check(g, sources, source_count, options);
     if (st == TG_OK) st = tg__field_check(g, points, point_count, NULL);
     if (st != TG_OK) return st;
     tg_geodesic_workspace* own;
@@ -143,7 +138,8 @@ tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* ws, 
                          .progress = options && options->progress ? tg__field_report_single : NULL,
                          .progress_user = (void*)options,
                          /* only the points wanted: the run stops once they are settled */
-                         .stop_at_points = point_count > 0 && !out_vertex_distance, .threads = threads};
+                         .stop_at_points = point_count > 0 && !out_vertex_distance,
+                         .threads = tg__field_threads(options)};
     tg__field_run run;
     st = tg__field_execute(&ws->field, &q, &run);
     if (st == TG_OK) {

@@ -1336,7 +1336,8 @@ static tg_status isolines_of(const tg_geodesic* g, tg__field_scratch* fs, const 
         bool progress = options && options->progress;
         tg__field_query q = {.sources = sources, .source_count = source_count, .max_distance = limit,
                              .progress = progress ? tg__field_report_single : NULL, .progress_user = (void*)options,
-                             .record_levels = sorted, .record_level_count = nl};
+                             .record_levels = sorted, .record_level_count = nl,
+                             .threads = tg__field_threads(options)};
         status = tg__field_execute(fs, &q, &run);
     }
     if (status == TG_OK) {

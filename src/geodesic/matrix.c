@@ -389,7 +389,8 @@ static tg_status dense_matrix(const tg_geodesic* g, const tg_surface_point* sour
                               const tg_field_options* options, int threads, double* out_matrix,
                               tg_field_stats* out_stats)
 {
-    if (threads < 0) return TG_ERR_INVALID_ARGUMENT;
+    /* rows spread over `threads`; one field each on one thread */
+    if (threads < 0 || (options && options->threads != 0 && options->threads != 1)) return TG_ERR_INVALID_ARGUMENT;
     tg_status st = tg__field_check(g, sources, source_count, options);
     if (st == TG_OK && at_points) st = tg__field_check(g, targets, columns, NULL);
     if (st != TG_OK) return st;

@@ -50,7 +50,7 @@ tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surfa
     tg_surface_point in = tg__surface_in(nf->g, src); /* the solver's form, once (field.h) */
     tg__field_query q = {.sources = &in, .source_count = 1, .max_distance = nf->max_dist,
                          .progress = progress ? tg__nearest_report : NULL, .progress_user = nf,
-                         .bound = nf->added ? nf->dist : NULL};
+                         .bound = nf->added ? nf->dist : NULL, .threads = tg__field_threads(nf->options)};
     tg__field_run run;
     tg_status st = tg__field_execute(fs, &q, &run);
     tg__field_stats_add(&nf->stats, &run.stats);

@@ -54,7 +54,7 @@ tg_status tg_geodesic_farthest_point_sampling(const tg_geodesic* g, tg_geodesic_
 {
     if (!g || !out_samples || sample_count == 0 || sample_count > g->referenced) return TG_ERR_INVALID_ARGUMENT;
     if (options && options->limit != TG_FIELD_UNLIMITED) return TG_ERR_INVALID_ARGUMENT;
-    if (options && options->threads != 0 && options->threads != 1) return TG_ERR_INVALID_ARGUMENT;
+    if (options && options->threads < TG_THREADS_ALL) return TG_ERR_INVALID_ARGUMENT;
     if (start_vertex == TG_NONE) start_vertex = seeded_start(g, seed);
     if (start_vertex >= g->vertex_count || !referenced(g, g->solver_vertex[start_vertex]))
         return TG_ERR_INVALID_ARGUMENT;

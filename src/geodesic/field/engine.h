@@ -150,17 +150,27 @@ typedef struct tg__lane_child {
     double c0, c1, x, y, sigma, d0, d1;
 } tg__lane_child;
 
-/* A corner distance found while a list crossed (relax_vertex's arguments). */
+/* A corner distance found while a list crossed (relax_vertex's arguments; in log map runs also
+ * the angle at which the ray to the corner leaves the source, NaN when the window has no record). */
 typedef struct tg__lane_relax {
     uint32_t v;
     double d;
     tg__pred how;
+    double theta;
 } tg__lane_relax;
 
-/* One thread's buffers: the results of the lists it crossed, and its own copies of the list
- * scratch (list, keys, hits). */
+/* The buffers of a lane: the results of the lists it crossed (child; child_rec, in log map runs,
+ * the children's records (logmap_record.h) at the same index, base NaN for none; relax; freed;
+ * qids: the trimmed lists whose windows the merge evaluates at query points or records for
+ * levels, as the serial engine does while they cross), and its own copies of the list scratch
+ * (list, keys, hits). */
+#define TG__LANE_BUFFERS(X) X(child) X(child_rec) X(relax) X(freed) X(qids) X(list) X(keys) X(hits)
+
+/* One thread's buffers (TG__LANE_BUFFERS). */
 typedef struct tg__field_lane {
-    tg__vec child, relax, freed, list, keys, hits;
+#define TG__LANE_VEC_(name) tg__vec name;
+    TG__LANE_BUFFERS(TG__LANE_VEC_)
+#undef TG__LANE_VEC_
     tg_field_stats stats;
     double busy_s; /* time spent crossing lists (the schedule's figures) */
     void* grow_lock; /* the crew's lock (propagate.c): one thread at a time grows a buffer */
@@ -171,7 +181,7 @@ typedef struct tg__field_lane {
 /* Where the results of one list of a round lie: its lane, and the ranges in the lane's buffers. */
 typedef struct tg__lane_task {
     uint32_t lane;
-    uint32_t child0, child1, relax0, relax1, freed0, freed1;
+    uint32_t child0, child1, relax0, relax1, freed0, freed1, qids0, qids1;
 } tg__lane_task;
 
 /* The engine's scratch: tables sized for the mesh once, buffers that grow to the largest run
@@ -236,8 +246,8 @@ typedef struct tg__field_query {
                                         distance (record.c), and so is every point source */
     size_t record_level_count;
     int threads;                     /* 0 or 1: the serial engine; more: the rounds of
-                                        propagate.c on that many threads (plain runs only: no
-                                        points, toward, log map or recorded levels) */
+                                        propagate.c on that many threads (every run but A*'s:
+                                        with `toward` the serial engine) */
 } tg__field_query;
 
 /* One run: its state while it propagates, then its results. */

@@ -367,11 +367,13 @@ static bool lane_grow(tg__field_scratch* fs, tg__field_lane* L, tg__vec* v, size
 
 /* push_ring for a lane: each window into the faces beyond, shaped and checked against the
  * distances as the round's wave began (they only shrink, so what they dominate stays dominated),
- * is kept in the lane for the merge (store_window). */
+ * is kept in the lane for the merge (store_window); in log map runs with its record (rec: NULL,
+ * or the record in e's frame), or a record marked none (base NaN). */
 static bool lane_ring(tg__field_run* run, tg__field_lane* L, uint32_t e, double t0, double t1, double x, double y,
-                      double sigma, uint32_t tag)
+                      double sigma, uint32_t tag, const tg__lm_rec* rec)
 {
     const tg_geodesic* g = run->g;
+    bool records = run->q->logmap != NULL;
     for (uint32_t o = g->ring[e]; o != e; o = g->ring[o]) {
         double ox, oy, c0, c1, d0, d1;
         tg__ring_point(g, e, o, x, y, &ox, &oy);
@@ -383,6 +385,11 @@ static bool lane_ring(tg__field_run* run, tg__field_lane* L, uint32_t e, double 
         if (!lane_grow(run->fs, L, &L->child, 1)) return false;
         tg__lane_child c = {o, tag, c0, c1, ox, oy, sigma, d0, d1};
         ((tg__lane_child*)L->child.data)[L->child.count++] = c;
+        if (records) { /* at the child's index */
+            if (!lane_grow(run->fs, L, &L->child_rec, 1)) return false;
+            tg__lm_rec none = {0.0, 0.0, NAN};
+            ((tg__lm_rec*)L->child_rec.data)[L->child_rec.count++] = rec ? tg__lm_ring(g, e, o, *rec) : none;
+        }
     }
     return true;
 }
@@ -551,9 +558,12 @@ static TG__ALWAYS_INLINE bool push_child(tg__field_run* run, tg__field_lane* L, 
     double len = g->frame[e].len, src[2] = {w->sx, w->sy}, xy[2];
     tg__to_edge_frame_u(o, u, src, xy);
     uint32_t tag = via_flat ? tg__tag_flat_more(w->tag) : TG__TAG_ORIGIN(w->tag);
-    if (L) return lane_ring(run, L, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag); /* no records */
-    if (!rec) return push_plain(run, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag);
+    if (!rec) {
+        if (L) return lane_ring(run, L, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag, NULL);
+        return push_plain(run, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag);
+    }
     tg__lm_rec re = tg__lm_turn(*rec, u[0], u[1]);
+    if (L) return lane_ring(run, L, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag, &re);
     return push_recorded(run, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag, &re);
 }
 
@@ -652,15 +662,16 @@ static bool cross_slit(tg__field_run* run, tg__field_lane* L, uint32_t h, uint32
             if (L && L->failed) return false;
             continue;
         }
-        if (L) { /* turned by pi about the segment's middle, kept for the merge */
-            if (!lane_ring(run, L, exit, len - w.b1, len - w.b0, len - w.sx, -w.sy, w.sigma, tg__tag_flat_more(w.tag)))
-                return false;
-            continue;
-        }
         tg__lm_rec rec;
         const tg__lm_rec* rp = tg__lm_of(run->q->logmap, TG__TAG_ORIGIN(w.tag), run->fs->lm_win.data, ids[i],
                                          &rec);
         if (rp) rec = tg__lm_half_turn(rec);
+        if (L) { /* turned by pi about the segment's middle, kept for the merge */
+            if (!lane_ring(run, L, exit, len - w.b1, len - w.b0, len - w.sx, -w.sy, w.sigma, tg__tag_flat_more(w.tag),
+                           rp))
+                return false;
+            continue;
+        }
         if (!push_through(run, exit, len - w.b1, len - w.b0, len - w.sx, -w.sy, w.sigma, tg__tag_flat_more(w.tag), rp))
             return false;
     }
@@ -671,7 +682,7 @@ static bool cross_slit(tg__field_run* run, tg__field_lane* L, uint32_t h, uint32
 /* Takes the list of h and moves it across face h / 3: filters (end-vertex distances, flat faces
  * crossed twice), trims the windows against each other, lets the one that reaches the opposite
  * corner most shortly set the corner's distance and the split, then crosses each survivor.
- * With a lane (several threads, plain runs) it reads the shared state as the round began and
+ * With a lane (several threads) it reads the shared state as the round began and
  * writes only h's own entries (its list, its split) and the lane: the children, the corner's
  * distance and the released slots wait there for the merge. */
 static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, uint32_t h)
@@ -717,11 +728,17 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
     if (!L) {
         tg__field_queries_cross(run, h, pool, ids, n);
         if (run->q->record_levels && !tg__field_record_cross(run, h, pool, ids, n)) return false;
+    } else if (run->q->record_levels || (run->q->point_count && fs->qface[h / 3])) {
+        /* evaluated and recorded by the merge, in the round's order (the windows stay in
+         * their slots until then: a lane releases none) */
+        if (!lane_grow(fs, L, &L->qids, n)) return false;
+        memcpy((uint32_t*)L->qids.data + L->qids.count, ids, n * sizeof *ids);
+        L->qids.count += n;
     }
     if (slit != TG_NONE) return cross_slit(run, L, h, slit, ids, n);
     /* rule 1: the shortest covering window to C over the list sets C and the edge side's split */
     uint32_t vc = g->tri[hp];
-    const tg__logmap* lm = L ? NULL : run->q->logmap;
+    const tg__logmap* lm = run->q->logmap;
     if (!scratch_grow(fs, L, hitsv, n)) return false;
     tg__corner_hit* hits = hitsv->data;
     for (size_t i = 0; i < n; ++i) {
@@ -735,14 +752,16 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
                 fs->split_d[h] = hc.dc, fs->split_x[h] = hc.xc;
             }
             tg__pred ray = {h, TG__TAG_ORIGIN(w->tag), w->sx, w->sy};
+            tg__lm_rec rec;
             if (L) {
                 if (!(hc.dc < fs->dist[vc])) continue; /* the merge would find it no shorter */
                 if (!lane_grow(fs, L, &L->relax, 1)) return false;
-                tg__lane_relax r = {vc, hc.dc, ray};
+                tg__lane_relax r = {vc, hc.dc, ray, NAN};
+                if (lm && tg__lm_of(lm, TG__TAG_ORIGIN(w->tag), fs->lm_win.data, ids[i], &rec))
+                    r.theta = tg__lm_angle(&rec, fr->cx - w->sx, fr->cy - w->sy);
                 ((tg__lane_relax*)L->relax.data)[L->relax.count++] = r;
                 continue;
             }
-            tg__lm_rec rec;
             /* the angle of the ray to C */
             if (lm && hc.dc < fs->dist[vc] && tg__lm_of(lm, TG__TAG_ORIGIN(w->tag), fs->lm_win.data, ids[i], &rec))
                 ((double*)fs->lm_theta.data)[vc] = tg__lm_angle(&rec, fr->cx - w->sx, fr->cy - w->sy);
@@ -900,6 +919,15 @@ static tg_status step_status(int step)
     return step == STEP_NO_MEMORY ? TG_ERR_OUT_OF_MEMORY : TG_ERR_CANCELLED;
 }
 
+/* Only the points' distances wanted: the limit drops to the largest of their upper bounds. A look
+ * costs O(points): one every as many settled vertices. */
+static void bounds_due(tg__field_run* run)
+{
+    if (!run->q->stop_at_points || run->settled < run->next_bound_check) return;
+    tg__field_queries_bound(run);
+    run->next_bound_check = run->settled + (run->q->point_count > 64 ? run->q->point_count : 64);
+}
+
 /* The serial engine: every list in the FIFO crosses before the next vertex leaves the front. */
 static tg_status propagate_serial(tg__field_run* run)
 {
@@ -912,11 +940,7 @@ static tg_status propagate_serial(tg__field_run* run)
             if (!keep_going(run)) return TG_ERR_CANCELLED;
         }
         fs->fifo.count = fs->fifo_head = 0;
-        if (run->q->stop_at_points && run->settled >= run->next_bound_check) {
-            /* a look at the points' bounds costs O(points): one every as many settled vertices */
-            tg__field_queries_bound(run);
-            run->next_bound_check = run->settled + (run->q->point_count > 64 ? run->q->point_count : 64);
-        }
+        bounds_due(run);
         int step = front_step(run);
         if (step == STEP_DONE) break;
         if (step != STEP_ON) return step_status(step);
@@ -939,20 +963,33 @@ static tg_status propagate_serial(tg__field_run* run)
 #define ROUND_SHARE 8
 #define WAVE_MIN 16
 
-/* The results of one list, in its lane, applied to the shared state. */
-static bool merge_task(tg__field_run* run, const tg__lane_task* t)
+/* The results of list h, in its lane, applied to the shared state in the serial engine's order:
+ * the windows evaluated at query points and recorded (the list still in its slots), the corner,
+ * the released slots, the children (with their log map records). */
+static bool merge_task(tg__field_run* run, uint32_t h, const tg__lane_task* t)
 {
     tg__field_scratch* fs = run->fs;
     tg__field_lane* L = &fs->lanes[t->lane];
+    if (t->qids1 > t->qids0) {
+        const uint32_t* ids = (const uint32_t*)L->qids.data + t->qids0;
+        size_t n = t->qids1 - t->qids0;
+        tg__field_queries_cross(run, h, fs->windows.data, ids, n);
+        if (run->q->record_levels && !tg__field_record_cross(run, h, fs->windows.data, ids, n)) return false;
+    }
     const tg__lane_relax* r = L->relax.data;
-    for (uint32_t i = t->relax0; i < t->relax1; ++i)
+    for (uint32_t i = t->relax0; i < t->relax1; ++i) {
+        if (r[i].d < fs->dist[r[i].v] && !isnan(r[i].theta)) ((double*)fs->lm_theta.data)[r[i].v] = r[i].theta;
         if (!relax_vertex(run, r[i].v, r[i].d, r[i].how)) return false;
+    }
     const uint32_t* freed = L->freed.data;
     for (uint32_t i = t->freed0; i < t->freed1; ++i) win_release(fs, freed[i]);
     const tg__lane_child* c = L->child.data;
-    for (uint32_t i = t->child0; i < t->child1; ++i)
-        if (!store_window(run, c[i].h, c[i].c0, c[i].c1, c[i].x, c[i].y, c[i].sigma, c[i].d0, c[i].d1, c[i].tag, NULL))
+    const tg__lm_rec* rec = run->q->logmap ? L->child_rec.data : NULL;
+    for (uint32_t i = t->child0; i < t->child1; ++i) {
+        const tg__lm_rec* ri = rec && !isnan(rec[i].base) ? &rec[i] : NULL;
+        if (!store_window(run, c[i].h, c[i].c0, c[i].c1, c[i].x, c[i].y, c[i].sigma, c[i].d0, c[i].d1, c[i].tag, ri))
             return false;
+    }
     return true;
 }
 
@@ -1010,10 +1047,10 @@ static void crew_cross(tg__field_run* run, crew* c, int t, unsigned id)
             tg__lane_task* k = &tasks[i];
             k->lane = (uint32_t)t;
             k->child0 = (uint32_t)L->child.count, k->relax0 = (uint32_t)L->relax.count;
-            k->freed0 = (uint32_t)L->freed.count;
+            k->freed0 = (uint32_t)L->freed.count, k->qids0 = (uint32_t)L->qids.count;
             if (!L->failed && !propagate_lane(run, L, wave[i])) L->failed = 1;
             k->child1 = (uint32_t)L->child.count, k->relax1 = (uint32_t)L->relax.count;
-            k->freed1 = (uint32_t)L->freed.count;
+            k->freed1 = (uint32_t)L->freed.count, k->qids1 = (uint32_t)L->qids.count;
         }
         L->busy_s += now_s() - t0; /* before the lists are reported done: thread 0 then reads it */
 #ifdef TG__CREW_THREADS
@@ -1103,7 +1140,7 @@ static tg_status cross_wave(tg__field_run* run, crew* c, size_t n)
     tg__lane_task* tasks = fs->tasks.data;
     for (int t = 0; t <= c->workers; ++t) {
         tg__field_lane* L = &fs->lanes[t];
-        L->child.count = L->relax.count = L->freed.count = 0;
+        L->child.count = L->child_rec.count = L->relax.count = L->freed.count = L->qids.count = 0;
         L->failed = 0;
     }
     double w0 = now_s();
@@ -1122,7 +1159,7 @@ static tg_status cross_wave(tg__field_run* run, crew* c, size_t n)
         L->busy_s = 0.0;
     }
     for (size_t i = 0; i < n; ++i)
-        if (!merge_task(run, &tasks[i])) return TG_ERR_OUT_OF_MEMORY;
+        if (!merge_task(run, wave[i], &tasks[i])) return TG_ERR_OUT_OF_MEMORY;
     return keep_going_by(run, n) ? TG_OK : TG_ERR_CANCELLED;
 }
 
@@ -1147,6 +1184,7 @@ static tg_status rounds_lead(tg__field_run* run, crew* c)
             continue;
         }
         fs->fifo.count = fs->fifo_head = 0;
+        bounds_due(run);
         bool done = false;
         run->stats.rounds++;
         size_t take = fs->front.count / ROUND_SHARE;
@@ -1216,7 +1254,6 @@ tg_status tg__field_propagate(tg__field_run* run)
 {
     const tg__field_query* q = run->q;
     run->next_check_s = now_s() + PROGRESS_PERIOD_S;
-    bool plain = !q->point_count && !q->toward && !q->logmap && !q->record_levels;
-    if (q->threads > 1 && plain) return propagate_rounds(run, q->threads);
+    if (q->threads > 1 && !q->toward) return propagate_rounds(run, q->threads);
     return propagate_serial(run);
 }

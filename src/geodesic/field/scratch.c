@@ -22,9 +22,10 @@ size_t tg__field_scratch_bytes(const tg__field_scratch* fs)
 #undef TG__FIELD_BYTES_
     for (int i = 0; i < fs->lane_count; ++i) {
         const tg__field_lane* L = &fs->lanes[i];
-        const tg__vec* all[] = {&L->child, &L->relax, &L->freed, &L->list, &L->keys, &L->hits};
         bytes += sizeof *L;
-        for (size_t k = 0; k < sizeof all / sizeof all[0]; ++k) bytes += all[k]->capacity * all[k]->elem;
+#define TG__LANE_BYTES_(name) bytes += L->name.capacity * L->name.elem;
+        TG__LANE_BUFFERS(TG__LANE_BYTES_)
+#undef TG__LANE_BYTES_
     }
     return bytes;
 }
@@ -38,8 +39,9 @@ bool tg__field_lanes(tg__field_scratch* fs, int n)
     if (fs->lane_count) memcpy(lanes, fs->lanes, (size_t)fs->lane_count * sizeof *lanes);
     for (int i = fs->lane_count; i < n; ++i) {
         tg__field_lane* L = &lanes[i];
-        L->child.elem = sizeof(tg__lane_child), L->relax.elem = sizeof(tg__lane_relax);
-        L->freed.elem = L->list.elem = sizeof(uint32_t);
+        L->child.elem = sizeof(tg__lane_child), L->child_rec.elem = sizeof(tg__lm_rec);
+        L->relax.elem = sizeof(tg__lane_relax);
+        L->freed.elem = L->qids.elem = L->list.elem = sizeof(uint32_t);
         L->keys.elem = sizeof(tg__win_key), L->hits.elem = sizeof(tg__corner_hit);
     }
     tg__free(&fs->allocator, fs->lanes);
@@ -70,8 +72,9 @@ void tg__field_scratch_free(tg__field_scratch* fs)
 #undef TG__FIELD_FREE_
     for (int i = 0; i < fs->lane_count; ++i) {
         tg__field_lane* L = &fs->lanes[i];
-        tg__vec* all[] = {&L->child, &L->relax, &L->freed, &L->list, &L->keys, &L->hits};
-        for (size_t k = 0; k < sizeof all / sizeof all[0]; ++k) tg__vec_free(a, all[k]);
+#define TG__LANE_FREE_(name) tg__vec_free(a, &L->name);
+        TG__LANE_BUFFERS(TG__LANE_FREE_)
+#undef TG__LANE_FREE_
     }
     tg__free(a, fs->lanes);
     memset(fs, 0, sizeof *fs);

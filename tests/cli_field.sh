@@ -210,8 +210,8 @@ d = parse_csv(r.stdout) if r.returncode == 0 else None
 check(d is not None and len(d) == 2930 and all(math.isfinite(x) and x >= 0 for x in d) and d[0] == 0,
       "spot: exit %d, %s rows" % (r.returncode, len(d) if d else None))
 
-# --threads N on one field (--from): the same bytes for every N > 1, within 1e-12 relative of one
-# thread's; refused with --at, --labels and --isolines (they run one thread)
+# --threads N on one field (--from, --at, --labels, --isolines): the same bytes for every N > 1,
+# within 1e-12 relative of one thread's
 outs = {}
 for t in ("1", "2", "3", "0"):
     o = os.path.join(tmp, "t%s.csv" % t)
@@ -222,10 +222,32 @@ one, two = parse_csv(outs["1"]), parse_csv(outs["2"])
 check(one and two and len(one) == len(two) and all(abs(a - b) <= 1e-12 * a for a, b in zip(one, two)),
       "--threads 2 vs 1: %s" % (max(abs(a - b) / a for a, b in zip(one, two) if a) if one and two else outs["2"]))
 atf = os.path.join(tmp, "at1.txt")
-open(atf, "w").write("v:3\n")
-err([spot, "--from", "v:0", "--threads", "2", "--at", atf], 1, "--threads")
-err([spot, "--from", "v:0;v:5", "--threads", "2", "--labels", "-o", os.path.join(tmp, "l.csv")], 1, "--threads")
-err([spot, "--from", "v:0", "--threads", "2", "--isolines", "0.1", "-o", os.path.join(tmp, "i.obj")], 1, "--threads")
+open(atf, "w").write("v:3\nf:7:0.2,0.3,0.5\n0.1 0.2 0.3\n")
+def numbers(text): return [float(x) for x in text.split()]
+at = {t: run(spot, "--from", "v:0", "--threads", t, "--at", atf) for t in ("1", "2", "3")}
+check(all(r.returncode == 0 for r in at.values()) and at["2"].stdout == at["3"].stdout,
+      "--at with --threads: %s" % [(r.returncode, r.stderr) for r in at.values()])
+a1, a2 = numbers(at["1"].stdout), numbers(at["2"].stdout)
+check(len(a1) == len(a2) == 3 and all(abs(x - y) <= 1e-12 * x for x, y in zip(a1, a2)),
+      "--at, 2 threads vs 1: %s vs %s" % (a2, a1))
+lab = {}
+for t in ("1", "2", "3"):
+    o = os.path.join(tmp, "lab%s.csv" % t)
+    r = run(spot, "--from", "v:0;v:1500", "--labels", "--threads", t, "-o", o, "--quiet")
+    lab[t] = open(o).read() if r.returncode == 0 else r.stderr
+check(lab["2"] == lab["3"], "--labels: 2 and 3 threads give different files")
+rows1, rows2 = [l.split(",") for l in lab["1"].split()[1:]], [l.split(",") for l in lab["2"].split()[1:]]
+check(len(rows1) == len(rows2) == 2930 and all(p[:2] == q[:2] and abs(float(p[2]) - float(q[2])) <= 1e-12 *
+                                                  float(p[2]) for p, q in zip(rows1, rows2)),
+      "--labels, 2 threads vs 1: %d and %d rows (%s)" % (len(rows1), len(rows2), lab["2"][:200]))
+iso = {}
+for t in ("1", "2", "3"):
+    o = os.path.join(tmp, "iso%s.obj" % t)
+    r = run(spot, "--from", "v:0", "--isolines", "0.2,0.5", "--threads", t, "-o", o, "--quiet")
+    iso[t] = open(o).read() if r.returncode == 0 else r.stderr
+check(iso["2"] == iso["3"], "--isolines: 2 and 3 threads give different files")
+count = lambda text: sum(1 for l in text.splitlines() if l.startswith("v "))
+check(count(iso["1"]) == count(iso["2"]) > 0, "--isolines: %d points on 2 threads, %d on one" % (count(iso["2"]), count(iso["1"])))
 err([spot, "--from", "v:0", "--threads", "x"], 1, "--threads")
 
 cli_common.finish()

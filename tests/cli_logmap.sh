@@ -139,5 +139,23 @@ for scale in (1.0, 1e100, 1e-100):
             check(rows is not None and want is not None and len(rows) == len(want) and worst <= 1e-9,
                   "spot x%g logmap --from %s %s: %s, %.3g from the unscaled map (%s)" %
                   (scale, start, " ".join(ref), "exit %d" % r.returncode, worst, r.stderr.strip()))
+# --threads N: the same bytes for every N > 1 (0 = all cores), within 1e-12 of one thread's
+spot = os.path.join(os.environ["TG_MESHES_DIR"], "nvd_spot.obj")
+outs = {}
+for t in ("1", "2", "3", "0"):
+    o = os.path.join(tmp, "thr%s.csv" % t)
+    r = run("logmap", spot, "--from", "f:40:0.2,0.3,0.5", "--threads", t, "-o", o, "--quiet")
+    outs[t] = open(o).read() if r.returncode == 0 else r.stderr
+check(outs["2"] == outs["3"] == outs["0"], "logmap --threads 2, 3 and 0 give different files")
+l1 = [l.split(",") for l in outs["1"].split()[1:]]
+l2 = [l.split(",") for l in outs["2"].split()[1:]]
+check(len(l1) == len(l2) == 2930 and all(abs(float(a[1]) - float(b[1])) <= 1e-12 * float(a[1]) and
+                                         abs(float(a[2]) - float(b[2])) <= 1e-9 for a, b in zip(l1, l2)),
+      "logmap --threads 2 vs 1: %d, %d rows" % (len(l1), len(l2)))
+for bad_t in ("x", "-1", "257"):
+    r = run("logmap", spot, "--from", "v:0", "--threads", bad_t, "-o", os.path.join(tmp, "no.csv"))
+    check(r.returncode == 1 and "--threads" in r.stderr and not os.path.exists(os.path.join(tmp, "no.csv")),
+          "logmap --threads %s: exit %d %r" % (bad_t, r.returncode, r.stderr))
+
 cli_common.finish()
 PY

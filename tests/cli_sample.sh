@@ -92,5 +92,17 @@ check(not any(f.startswith("bad") for f in os.listdir(tmp)), "no partial output"
 # triangle's, every one used by a face)
 r = run("sample", flat, "--count", "100000")
 check(r.returncode == 2 and "has only %d vertices used by faces" % len(vs) in r.stderr, "--count 100000: %s" % r.stderr)
+# --threads N: the same samples and field for every N > 1, and here one thread's (no ties on spot)
+spot = os.path.join(os.environ["TG_MESHES_DIR"], "nvd_spot.obj")
+got = {}
+for t in ("1", "2", "3"):
+    o, fo = os.path.join(tmp, "s%s.txt" % t), os.path.join(tmp, "sf%s.csv" % t)
+    r = run("sample", spot, "--count", "12", "--threads", t, "-o", o, "--field", fo, "--quiet")
+    got[t] = (open(o).read(), open(fo).read()) if r.returncode == 0 else (r.stderr, "")
+check(got["2"] == got["3"], "sample --threads 2 and 3 differ")
+check(got["1"][0] == got["2"][0] and got["1"][0].count("v:") == 12, "sample --threads 2 vs 1: %r vs %r" % (got["2"][0], got["1"][0]))
+r = run("sample", spot, "--count", "3", "--threads", "many")
+check(r.returncode == 1 and "--threads" in r.stderr, "sample --threads many: exit %d %r" % (r.returncode, r.stderr))
+
 cli_common.finish()
 PY

@@ -311,6 +311,11 @@ void cli_spec_text(const tg_surface_point* p, char* buf, size_t cap);
 /* Can `threads` threads (0: one per core) be started? Prints why not (naming `what`): OpenMP's
  * runtime would end the process instead of failing. */
 bool cli_threads_available(int threads, const char* what);
+/* --threads N of a command that runs one field (logmap, sample): NULL (not given) is 1, the
+ * serial engine; 0 every core (TG_THREADS_ALL); at most TG_MAX_THREADS. CLI_OK with the count
+ * for tg_field_options.threads in *out, else the exit code (usage printed, or the threads could
+ * not be started). */
+int cli_field_threads(const char* cmd, const char* text, int* out);
 
 /* s as a JSON string: quotes and backslashes escaped, control characters as \u00XX, and bytes
  * that are not UTF-8 (a file name in another encoding) as U+FFFD, so the document stays valid. */

@@ -532,6 +532,16 @@ bool cli_threads_available(int threads, const char* what)
     return true;
 }
 
+int cli_field_threads(const char* cmd, const char* text, int* out)
+{
+    unsigned long long n = 1;
+    if (text && (!cli_parse_uint(text, &n) || n > TG_MAX_THREADS))
+        return cli_usage(cmd, "--threads needs a number in 0..%d (0 = all cores), not '%s'", TG_MAX_THREADS, text);
+    *out = n == 0 ? TG_THREADS_ALL : (int)n;
+    if (n != 1 && !cli_threads_available((int)n, cmd)) return CLI_INPUT;
+    return CLI_OK;
+}
+
 bool cli_grow(void** p, size_t* cap, size_t need, size_t elem)
 {
     if (need <= *cap) return true;

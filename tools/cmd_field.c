@@ -161,6 +161,8 @@ static void start_work(const field_args* fa, tg_field_options* o, cli_progress* 
 {
     memset(o, 0, sizeof *o);
     if (fa->max_dist >= 0) o->limit = TG_FIELD_MAX_DISTANCE, o->max_distance = fa->max_dist;
+    /* one field on field_threads; a matrix's rows spread over fa->threads instead */
+    if (!fa->matrix) o->threads = fa->field_threads;
     cli_progress_start(prog, "field", fa->quiet);
     o->progress = on_progress;
     o->progress_user = prog;
@@ -318,7 +320,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
     else if (st == TG_OK && fa->matrix)
         st = tg_geodesic_distance_matrix(geo, pts, count, &o, fa->threads, dist, &stats);
     else if (st == TG_OK)
-        o.threads = fa->field_threads, st = tg_geodesic_field_at(geo, NULL, pts, count, at_pts, fa->at_count, &o, at_d, dist, &stats);
+        st = tg_geodesic_field_at(geo, NULL, pts, count, at_pts, fa->at_count, &o, at_d, dist, &stats);
     double secs = cli_seconds() - t0;
     cli_interrupt_polling(false);
     cli_progress_end(&prog);
@@ -623,13 +625,8 @@ static int run(int argc, char** argv)
         return cli_usage("field", "--threads needs a number in 0..%d (0 = all cores), not '%s'", TG_MAX_THREADS, threads);
     fa.threads = (int)nt;
     fa.field_threads = 1;
-    if (threads && !fa.matrix) {
-        /* one field on several threads: the plain field only (the rest runs one thread) */
-        if (nt != 1 && (fa.at_path || fa.labels || fa.isolines || fa.isoline_count))
-            return cli_usage("field", "--threads goes with --sources (rows in parallel) or a plain --from field (not %s)",
-                             fa.at_path ? "--at" : fa.labels ? "--labels" : "--isolines");
+    if (threads && !fa.matrix) /* one field (--from, --labels' each source, --isolines) on several threads */
         fa.field_threads = nt == 0 ? TG_THREADS_ALL : (int)nt;
-    }
     const cli_file_role inputs[3] = {{fa.mesh_path, "mesh"},
                                      {fa.sources_path && strcmp(fa.sources_path, "all") ? fa.sources_path : NULL,
                                       "sources file (--sources)"},
@@ -741,11 +738,11 @@ const cli_command cli_cmd_field = {
     "  --isoline-count N      instead of --isolines: N levels equally spaced below the largest\n"
     "                         distance (max * k / (N + 1), k = 1..N; Python: isolines(count=N))\n"
     "  --max-distance D       stop at distance D (0 allowed): farther vertices get inf\n"
-    "  --threads N            at most 256, 0 = all cores. --sources: the rows spread over N\n"
-    "                         threads (default 0). --from (a plain field, not --at, --labels,\n"
-    "                         --isolines): one field's window propagation on N threads (default\n"
-    "                         1: the serial engine); every N > 1 gives the same bits, within\n"
-    "                         1e-14 relative of one thread's\n"
+    "  --threads N            at most 256, 0 = all cores. --sources (a matrix): the rows spread\n"
+    "                         over N threads (default 0). --from (with --at, --isolines) and\n"
+    "                         --labels: one field's window propagation on N threads (default 1:\n"
+    "                         the serial engine); every N > 1 gives the same bits, within\n"
+    "                         1e-14 relative of one thread's (a label, at a tie, may differ)\n"
     "  --quiet                no progress line (else drawn on stderr when it is a terminal and\n"
     "                         the work passes about a second) and no summary; errors are still\n"
     "                         printed, and data sent to stdout (-o -, --at) still is\n\n"

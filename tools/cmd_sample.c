@@ -45,6 +45,7 @@ typedef struct sample_args {
     const char *out, *field_out, *start;
     unsigned long long count, seed;
     bool quiet;
+    int threads; /* tg_field_options.threads (cli_field_threads) */
 } sample_args;
 
 static int run_sample(const sample_args* sa)
@@ -81,6 +82,7 @@ static int run_sample(const sample_args* sa)
     }
     tg_field_options o;
     memset(&o, 0, sizeof o);
+    o.threads = sa->threads;
     cli_progress prog;
     cli_progress_start(&prog, "sample", sa->quiet);
     o.progress = on_progress;
@@ -137,19 +139,20 @@ static int run(int argc, char** argv)
 {
     sample_args sa;
     memset(&sa, 0, sizeof sa);
-    const char *count = NULL, *seed = NULL;
+    const char *count = NULL, *seed = NULL, *threads = NULL;
     for (int i = 1; i < argc; ++i) {
         const char* a = argv[i];
         if (!strcmp(a, "--quiet")) {
             sa.quiet = true;
         } else if (!strcmp(a, "--count") || !strcmp(a, "--start") || !strcmp(a, "--seed") || !strcmp(a, "-o") ||
-                   !strcmp(a, "--field")) {
+                   !strcmp(a, "--field") || !strcmp(a, "--threads")) {
             if (i + 1 >= argc) return cli_usage("sample", "%s needs a value", a);
             const char* val = argv[++i];
             if (!strcmp(a, "--count")) count = val;
             else if (!strcmp(a, "--start")) sa.start = val;
             else if (!strcmp(a, "--seed")) seed = val;
             else if (!strcmp(a, "-o")) sa.out = val;
+            else if (!strcmp(a, "--threads")) threads = val;
             else sa.field_out = val;
         } else if (a[0] == '-' && a[1]) {
             return cli_usage("sample", "unknown option '%s'", a);
@@ -171,12 +174,14 @@ static int run(int argc, char** argv)
         return cli_usage("sample", "--field %s: the extension must be .ply or .csv", sa.field_out);
     const cli_file_role inputs[1] = {{sa.mesh_path, "mesh"}}, outputs[2] = {{sa.out, "-o"}, {sa.field_out, "--field"}};
     int check = cli_check_outputs(outputs, 2, inputs, 1);
+    if (check == CLI_OK) check = cli_field_threads("sample", threads, &sa.threads);
     return check != CLI_OK ? check : run_sample(&sa);
 }
 
 const cli_command cli_cmd_sample = {
     "sample",
-    "sample MESH --count K [--start v:IDX | --seed N] [-o SAMPLES.txt|.csv] [--field FIELD.ply|.csv] [--quiet]",
+    "sample MESH --count K [--start v:IDX | --seed N] [-o SAMPLES.txt|.csv] [--field FIELD.ply|.csv] [--threads N] "
+    "[--quiet]",
     "Farthest-point sampling in exact geodesic distance: the first sample is --start (or the vertex\n"
     "the seed picks, default seed 0), each next one the vertex farthest from all earlier ones (a\n"
     "component no sample reaches yet counts as farthest; ties to the lowest index). Each sample's\n"
@@ -190,6 +195,9 @@ const cli_command cli_cmd_sample = {
     "  --field FIELD          per vertex the position of the nearest sample in the order (-1:\n"
     "                         none) and the distance to it: .ply properties 'label' and\n"
     "                         'distance' (trigeo render --labels), .csv rows vertex,label,distance\n"
+    "  --threads N            each sample's field on N threads (at most 256, 0 = all cores;\n"
+    "                         default 1): every N > 1 gives the same samples; one thread's\n"
+    "                         only where two candidates tie within rounding (1e-14 relative)\n"
     "  --quiet                no progress line and no summary (errors are still printed, -o -\n"
     "                         still writes the samples)\n\n"
     "Outputs are written to a temporary name and renamed when complete. Without -o - and --quiet a\n"

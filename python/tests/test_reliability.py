@@ -297,3 +297,39 @@ def test_one_field_on_several_threads(spot, tmp_path):
     for bad in (-1, 1.5, True, "2"):
         with pytest.raises(trigeo.InvalidArgumentError, match="threads"):
             spot.field(0, threads=bad)
+
+
+def test_every_call_on_one_field_on_several_threads(spot, tmp_path):
+    """threads= on field_at, log_map, voronoi, isolines and farthest_point_sampling: 2 and 3
+    threads the same bits, one thread's numbers within 1e-12 (labels, samples and angles equal
+    here: no ties on spot), and the CLI's --threads gives the same numbers."""
+    pts = [trigeo.SurfacePoint.face(40, (0.2, 0.3, 0.5)), trigeo.SurfacePoint.vertex(77), trigeo.SurfacePoint.vertex(1200)]
+    a1, a2 = spot.field_at(0, pts), spot.field_at(0, pts, threads=2)
+    assert np.array_equal(a2, spot.field_at(0, pts, threads=3))
+    assert np.all(np.abs(a2 - a1) <= 1e-12 * a1)
+    r1, t1, _ = spot.log_map(5)
+    r2, t2, uv2 = spot.log_map(5, threads=2)
+    r3, t3, _ = spot.log_map(5, threads=3)
+    assert np.array_equal(r2, r3) and np.array_equal(t2, t3)
+    assert np.all(np.abs(r2 - r1) <= 1e-12 * r1) and np.all(np.abs(t2 - t1) <= 1e-9)
+    l1, d1 = spot.voronoi([0, 900, 2000])
+    l2, d2 = spot.voronoi([0, 900, 2000], threads=2)
+    assert np.array_equal(l1, l2) and np.all(np.abs(d2 - d1) <= 1e-12 * d1)
+    i1 = spot.isolines(0, [0.3, 0.7])
+    i2, i3 = spot.isolines(0, [0.3, 0.7], threads=2), spot.isolines(0, [0.3, 0.7], threads=3)
+    assert [len(c) for c in i2] == [len(c) for c in i1] and all(
+        np.array_equal(p, q) for a, b in zip(i2, i3) for p, q in zip(a, b))
+    s1, sd1, sl1 = spot.farthest_point_sampling(10)
+    s2, sd2, sl2 = spot.farthest_point_sampling(10, threads=2)
+    assert np.array_equal(s1, s2) and np.array_equal(sl1, sl2) and np.all(np.abs(sd2 - sd1) <= 1e-12 * sd1)
+    out = tmp_path / "lm.npy"
+    r = run_cli("logmap", SPOT, "--from", "v:5", "--threads", "2", "-o", str(out), "--quiet")
+    assert r.returncode == 0, r.stderr
+    lm = np.load(out)
+    assert np.array_equal(lm[:, 0], r2) and np.array_equal(lm[:, 1], t2)
+    for call in (lambda t: spot.field_at(0, pts, threads=t), lambda t: spot.log_map(5, threads=t),
+                 lambda t: spot.voronoi([0, 9], threads=t), lambda t: spot.isolines(0, 0.3, threads=t),
+                 lambda t: spot.farthest_point_sampling(3, threads=t)):
+        for bad in (-1, 1.5, True, "2"):
+            with pytest.raises(trigeo.InvalidArgumentError, match="threads"):
+                call(bad)

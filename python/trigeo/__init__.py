@@ -1369,11 +1369,13 @@ class Mesh:
 
     # -- fields -------------------------------------------------------------------------------
 
-    def _field_options(self, max_distance: Optional[float], call: _Call) -> _c.FieldOptions:
+    def _field_options(self, max_distance: Optional[float], call: _Call, threads: int = 1) -> _c.FieldOptions:
+        """The C options; threads (checked by _threads): one field's, 0 every core."""
         o = _c.FieldOptions()
         if max_distance is not None:
             o.limit, o.max_distance = 1, _number(max_distance, "max_distance", ">=0", " (None: no limit)")
         o.progress = call.field_fn
+        o.threads = -1 if threads == 0 else threads
         return o
 
     def field(self, sources: Any, max_distance: Optional[float] = None,
@@ -1395,8 +1397,7 @@ class Mesh:
 
         def work(call: _Call) -> np.ndarray:
             src = self._surface_points(sources, "sources")
-            o = self._field_options(max_distance, call)
-            o.threads = -1 if nthreads == 0 else nthreads
+            o = self._field_options(max_distance, call, nthreads)
             out = np.empty(self.vertex_count)
             geo = self._get_geo()
             with self._geo_ws.take() as ws:
@@ -1407,7 +1408,8 @@ class Mesh:
         return self._run(work, progress)
 
     def log_map(self, source: Any, ref: Any = None, max_distance: Optional[float] = None,
-                progress: Optional[Callable[[float], Any]] = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+                progress: Optional[Callable[[float], Any]] = None,
+                threads: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The exact logarithmic map about one surface point: per vertex the exact geodesic
         distance r (bit for bit field()'s), the angle theta in radians at which its shortest path
         leaves the source, and the 2D coordinates (r cos theta, r sin theta).
@@ -1419,7 +1421,11 @@ class Mesh:
         point's halfedge, from a vertex's first halfedge with the turn around it scaled to 2 pi
         (pi at a boundary vertex, angles in [0, pi]); so trace(source, theta[v], r[v]) ends at v
         wherever its shortest path is unique and meets no vertex. Vertices not reached: r inf,
-        theta 0, coordinates inf. Returns (r, theta, uv): (n,), (n,) and (n, 2) float64."""
+        theta 0, coordinates inf. Returns (r, theta, uv): (n,), (n,) and (n, 2) float64.
+        threads: as field()'s (an angle where two paths tie within rounding may be the other
+        path's on more than one thread)."""
+        nthreads = _threads(threads)
+
         def work(call: _Call) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
             sp = (_c.SurfacePointC * 1)(self._surface_point(source, "source"))
             rp = None
@@ -1429,7 +1435,7 @@ class Mesh:
                     raise _bad(f"ref must be a 3D vector of finite numbers, not all zero, not {_show(ref)}")
                 rv = np.ascontiguousarray(rv)
                 rp = _ptr(rv)
-            o = self._field_options(max_distance, call)
+            o = self._field_options(max_distance, call, nthreads)
             r, theta = np.empty(self.vertex_count), np.empty(self.vertex_count)
             geo = self._get_geo()
             with self._geo_ws.take() as ws:
@@ -1447,14 +1453,16 @@ class Mesh:
 
         return self._run(work, progress)
 
-    def field_at(self, sources: Any, points: Any, max_distance: Optional[float] = None) -> np.ndarray:
+    def field_at(self, sources: Any, points: Any, max_distance: Optional[float] = None, threads: int = 1) -> np.ndarray:
         """The exact geodesic distance from the sources to arbitrary surface points (in faces, on
         edges, vertices) in one propagation. sources as field(); points: SurfacePoints, vertex
-        indices or (k, 3) positions. Returns (k,) float64."""
+        indices or (k, 3) positions; threads as field()'s. Returns (k,) float64."""
+        nthreads = _threads(threads)
+
         def work(call: _Call) -> np.ndarray:
             src = self._surface_points(sources, "sources")
             pts = self._surface_points(points, "points")
-            o = self._field_options(max_distance, call)
+            o = self._field_options(max_distance, call, nthreads)
             out = np.empty(len(pts))
             geo = self._get_geo()
             with self._geo_ws.take() as ws:
@@ -1610,7 +1618,7 @@ class Mesh:
     # -- Voronoi cells and sampling --------------------------------------------------------
 
     def voronoi(self, sources: Any, max_distance: Optional[float] = None, boundaries: bool = False,
-                progress: Optional[Callable[[float], Any]] = None) -> tuple:
+                progress: Optional[Callable[[float], Any]] = None, threads: int = 1) -> tuple:
         """Geodesic Voronoi cells: per vertex the index of the nearest source (in the order
         given; ties to the lowest index) and the exact distance to it. sources as field().
         Equal to the argmin over each source's own field (distance_matrix(sources).argmin(0)
@@ -1619,15 +1627,18 @@ class Mesh:
         boundary polylines, each a dict: "cells" (a, b) the labels on its two sides (a < b),
         "points" (k, 3) float64, "surface_points" k SurfacePoints (edge crossings, where the two
         sources' exact distances are equal to 1e-10 relative, and junctions inside faces of
-        three cells); closed loops repeat their first point."""
+        three cells); closed loops repeat their first point. threads: each source's field on that
+        many threads, as field()'s (a label where two sources tie within rounding may differ
+        from one thread's)."""
         boundaries = _flag(boundaries, "boundaries")
+        nthreads = _threads(threads)
         n = self.vertex_count
         labels = np.empty(n, dtype=np.uint32)
         dist = np.empty(n)
 
         def work(call: _Call) -> None:
             src = self._surface_points(sources, "sources")
-            o = self._field_options(max_distance, call)
+            o = self._field_options(max_distance, call, nthreads)
             geo = self._get_geo()
             with self._geo_ws.take() as ws:
                 st = _L.tg_geodesic_voronoi(geo, ws, src, len(src), ctypes.byref(o), bounds, _ptr(dist),
@@ -1655,7 +1666,8 @@ class Mesh:
         return _labels(labels), dist, lines
 
     def isolines(self, sources: Any, levels: Any = None, max_distance: Optional[float] = None, details: bool = False,
-                 progress: Optional[Callable[[float], Any]] = None, *, count: Optional[int] = None) -> list:
+                 progress: Optional[Callable[[float], Any]] = None, *, count: Optional[int] = None,
+                 threads: int = 1) -> list:
         """Exact isolines: for each level, the curves where the exact geodesic distance from the
         nearest source equals it. sources as field() (none: no curves); levels: a number or a
         sequence of finite levels >= 0 (any order; a number is always a level, as the CLI's
@@ -1668,8 +1680,11 @@ class Mesh:
         array; a closed curve repeats its first point at its end. With details=True each
         polyline is a dict: "points" (k, 3), "closed" bool, "faces" (k,) int64 (a face holding
         each point), "surface_points" k SurfacePoints (edge points at crossings, face points
-        inside faces). max_distance: as field() (levels beyond it give no polylines)."""
+        inside faces). max_distance: as field() (levels beyond it give no polylines). threads: as
+        field()'s (the curves' points where windows meet inside a face may differ from one
+        thread's, each on its level)."""
         details = _flag(details, "details")
+        nthreads = _threads(threads)
         if (levels is None) == (count is None):
             raise _bad("give the levels or count=N (how many levels below the largest distance), one of them")
         if count is not None:
@@ -1684,7 +1699,7 @@ class Mesh:
 
         def work(call: _Call) -> None:
             src = self._surface_points(sources, "sources")
-            o = self._field_options(max_distance, call)
+            o = self._field_options(max_distance, call, nthreads)
             geo = self._get_geo()
             with self._geo_ws.take() as ws:
                 if count is not None:  # the levels below the field's largest finite distance, as the CLI's
@@ -1725,7 +1740,7 @@ class Mesh:
         return out
 
     def farthest_point_sampling(self, count: int, start: Optional[int] = None, seed: int = 0,
-                                progress: Optional[Callable[[float], Any]] = None
+                                progress: Optional[Callable[[float], Any]] = None, threads: int = 1
                                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Farthest-point sampling in exact geodesic distance: sample 0 is `start` (a vertex used
         by a face), or, when None, the vertex `seed` picks (the same as `trigeo sample --seed`);
@@ -1734,7 +1749,9 @@ class Mesh:
         CLI's, giving the CLI's samples. Each new sample's field runs only where it
         gets below the earlier ones. Returns (samples (count,) int64 in order, distance (n,)
         float64 to the nearest sample, labels (n,) int64: its position in samples, -1 where
-        none reaches)."""
+        none reaches). threads: each sample's field on that many threads, as field()'s (the
+        samples are one thread's except where two candidates tie within rounding)."""
+        nthreads = _threads(threads)
         k = _index(count, "count")
         if k < 1:
             raise _bad(f"count must be at least 1, not {count!r}")
@@ -1748,7 +1765,7 @@ class Mesh:
         dist = np.empty(n)
 
         def work(call: _Call) -> None:
-            o = self._field_options(None, call)
+            o = self._field_options(None, call, nthreads)
             geo = self._get_geo()
             with self._geo_ws.take() as ws:
                 st = _L.tg_geodesic_farthest_point_sampling(geo, ws, first, sd, k, ctypes.byref(o),

@@ -571,6 +571,14 @@ static void test_sweep_regressions(void)
          {TG_SURFACE_FACE, 3964, 0.0, {0.32395916315178386, 0.29530977444729589, 0.38073106240092025}},
          {TG_SURFACE_FACE, 63, 0.0, {0.21480686265348425, 0.50623157311067746, 0.27896156423583829}},
          1.2664969585594597},
+        /* the target's distance came straight from vertex 537 (solver numbering), at the pole's
+         * position as vertex 536 is, through the pole's zero-area faces into a face whose corner
+         * is 536, not 537: the trace back found 537 on no edge of that face (TG_ERR_INTERNAL
+         * both ways, the sweep, seed 97); the length is tg_geodesic_field_at's (trigeo field
+         * --at) */
+        {"tm_capsule.obj", {TG_SURFACE_VERTEX, 1093, 0.0, {0, 0, 0}},
+         {TG_SURFACE_FACE, 30, 0.0, {0.97008834039079839, 0.0077288952507199582, 0.022182764358481655}},
+         0.6296078044602973},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         ctx c;

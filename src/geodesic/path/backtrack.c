@@ -332,6 +332,26 @@ static bool walk(backtrack* t, uint32_t e, double xe, const double s_in[2], uint
     }
 }
 
+/* Vertex v, not a corner of face f, at the position of a corner u of f (to rounding of f's
+ * size: a copy of u, which emitted through the zero-area faces at it into f): appends u, joined
+ * to the last node in f, then v by a segment of length 0 in a face of both. False when no corner
+ * of f is there or no face holds both. */
+static bool through_twin_corner(backtrack* t, uint32_t f, uint32_t v)
+{
+    const tg_geodesic* g = t->g;
+    tg_vec3 pos = tg__gpos(g, v);
+    double size = g->frame[3 * f].len + g->frame[3 * f + 1].len + g->frame[3 * f + 2].len;
+    const tg__node nv = tg__node_vertex(v);
+    for (int k = 0; k < 3; ++k) {
+        uint32_t u = g->tri[3 * (size_t)f + (size_t)k];
+        if (!(tg_v3_dist(tg__gpos(g, u), pos) <= TG__GRAZING_REL * size)) continue;
+        tg__node nu = tg__node_vertex(u);
+        uint32_t both = tg__common_face(g, &nu, &nv, TG_NONE);
+        if (both != TG_NONE) return add_node_in(t, nu, f) && add_node(t, nv, both);
+    }
+    return false;
+}
+
 /* Follows the predecessors from node `cur` (reached as `how`) back to the source. */
 static bool follow_back(backtrack* t, tg__node cur, tg__pred how, const tg__node* source)
 {
@@ -349,15 +369,19 @@ static bool follow_back(backtrack* t, tg__node cur, tg__pred how, const tg__node
             next = how.origin == TG__ORIGIN_SOURCE ? *source : tg__node_vertex(how.origin);
             if (how.origin != TG__ORIGIN_SOURCE && tg__corner_of(g, f, how.origin) < 0) {
                 /* a vertex emitting from a zero-area face beyond its own (field.h, TG__FLAT_MAX):
-                 * it lies inside an edge of f */
+                 * it lies inside an edge of f, or on a corner of f (a second vertex at one
+                 * position, as at the poles of tm_capsule.obj) */
                 tg_vec3 pos = tg__gpos(g, how.origin);
                 uint32_t k = 3 * f;
                 double x = 0.0;
                 while (k < 3 * f + 3 && !tg__point_on_edge(g, k, pos, &x)) ++k;
-                if (k == 3 * f + 3) return false;
-                double tt = x / g->frame[k].len;
-                if (!add_node_in(t, tg__node_edge(k, tt, 1.0 - tt), f) || !to_vertex_on_edge(t, k, how.origin, 0))
-                    return false;
+                if (k == 3 * f + 3) {
+                    if (!through_twin_corner(t, f, how.origin)) return false;
+                } else {
+                    double tt = x / g->frame[k].len;
+                    if (!add_node_in(t, tg__node_edge(k, tt, 1.0 - tt), f) || !to_vertex_on_edge(t, k, how.origin, 0))
+                        return false;
+                }
             } else if (!add_node_in(t, next, f)) {
                 return false;
             }

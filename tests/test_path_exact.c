@@ -579,6 +579,12 @@ static void test_sweep_regressions(void)
         {"tm_capsule.obj", {TG_SURFACE_VERTEX, 1093, 0.0, {0, 0, 0}},
          {TG_SURFACE_FACE, 30, 0.0, {0.97008834039079839, 0.0077288952507199582, 0.022182764358481655}},
          0.6296078044602973},
+        /* across non-manifold edges: the trace back tried every combination of faces at every
+         * such edge it crossed (1.8e9 steps, 40-97 s: with only its bound on steps, which had
+         * wrapped around, the walk now gives up: status internal); the length is
+         * tg_geodesic_field_at's */
+        {"c3d_beetle.obj", {TG_SURFACE_VERTEX, 1121, 0.0, {0, 0, 0}}, {TG_SURFACE_VERTEX, 704, 0.0, {0, 0, 0}},
+         0.541042978301056},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         ctx c;

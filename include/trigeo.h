@@ -88,6 +88,8 @@ extern "C" {
 #define TG_VERSION (TG_VERSION_MAJOR * 10000 + TG_VERSION_MINOR * 100 + TG_VERSION_PATCH)
 
 /* Changes in 0.6.1 (ABI-compatible with 0.6.0: same soname, new behaviour and entry points only):
+ *  - Parallel transport: tg_geodesic_transport_field (from a source to every vertex, along the
+ *    log map's exact paths), tg_path_transport and tg_polyline_transport (along a path).
  *  - tg_field_options.threads is honoured by every call on one field: tg_geodesic_field_at with
  *    points, tg_geodesic_log_map, tg_geodesic_voronoi (each source's run), tg_geodesic_isolines
  *    and tg_geodesic_farthest_point_sampling (each sample's run), which refused counts above 1;
@@ -1041,6 +1043,30 @@ TG_API tg_status tg_geodesic_path(const tg_geodesic* geodesic, tg_geodesic_works
  *  diag (may be NULL), TG_ERR_INVALID_ARGUMENT. */
 TG_API tg_status tg_path_write_obj(const tg_path* path, const char* filename, tg_diag* diag);
 
+/** Parallel transport along a path: the tangent vector `vector` at the path's start carried to
+ *  every point of it. Across an edge the two faces unfold into one plane, where transport is the
+ *  identity, so along a path straight in the unfolding (an exact path: TG_PATH_EXACT, or proven)
+ *  the vector keeps its angle to the path; that angle is kept at every point, vertex passages
+ *  included (where the path, and the vector with it, turns into the next face's plane). Point i
+ *  gets the vector in the plane of the face of segment i (the last point: of the last segment).
+ *  vector: 3 finite doubles, not zero; its projection onto the first segment's face plane is the
+ *  direction (TG_TRACE_VECTOR's rule), its length the result's. Angles turn counterclockwise about
+ *  each face's normal by its file winding (on a surface that is not orientable the sense flips
+ *  where the winding does). Segments of length 0 and faces of zero area keep the frame before.
+ *  mesh: the mesh the path was computed on. out_vectors: 3 doubles a point.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL arguments; a zero, NaN or infinite vector; a vector
+ *  perpendicular to the first face (projection at most 1e-9 of its length); a path with fewer than
+ *  two points, of length 0 or naming faces the mesh has not); out_vectors is then untouched.
+ *  O(points). Thread-safe. Python: Path.transport(vector). (New in 0.6.1.) */
+TG_API tg_status tg_path_transport(const tg_mesh* mesh, const tg_path* path, const double vector[3],
+                                   double* out_vectors);
+/** tg_path_transport on any polyline of the surface given as arrays: point_count points xyz
+ *  (3 each, finite), segment i lying in face faces[i] (point_count - 1 faces of `mesh`), e.g. a
+ *  tg_trace_view's points and faces. The same errors (point_count < 2, NULL arrays). (New in
+ *  0.6.1.) */
+TG_API tg_status tg_polyline_transport(const tg_mesh* mesh, size_t point_count, const double* xyz,
+                                       const uint32_t* faces, const double vector[3], double* out_vectors);
+
 /* ============================================================================================== */
 /* Paths through waypoints (src/geodesic/waypoints.c)                                             */
 /* ============================================================================================== */
@@ -1484,6 +1510,34 @@ TG_API tg_status tg_geodesic_log_map(const tg_geodesic* geodesic, tg_geodesic_wo
                               const tg_surface_point* source, const double* reference,
                               const tg_field_options* options, double* out_vertex_distance,
                               double* out_vertex_angle, tg_field_stats* out_stats);
+
+/** Parallel transport from a source to every vertex: the tangent vector `vector` at the source
+ *  carried along each vertex's exact shortest path (the log map's). Along a path straight in the
+ *  unfolding of the faces it crosses, transport keeps the angle between the vector and the path,
+ *  so at vertex v the result is the vector at the angle from the path's arriving direction that
+ *  it had from the leaving direction at the source (the log map with `vector` as its reference
+ *  gives that angle), in the plane of the face holding the path's last segment, with the length
+ *  of `vector`. Exact up to rounding, as the log map; no smoothing, unlike the vector heat
+ *  method's transport.
+ *  vector: 3 finite doubles, not zero, taken as the direction of the surface at the source by the
+ *  rule of TG_TRACE_VECTOR (as tg_geodesic_log_map's reference, refused likewise when it is
+ *  perpendicular to the surface there). At a vertex source the angles are the fan's own (not scaled
+ *  to a turn of 2 pi), measured counterclockwise from the vector, so around a cone vertex the
+ *  result depends on which way round the path leaves (the cone's holonomy).
+ *  out_vertex_vector: 3 doubles a vertex (x, y, z): 0 where not reached (another component,
+ *  beyond options' max_distance; never NaN), `vector` itself at the source vertex and where the
+ *  last segment has length 0. out_vertex_distance: NULL or vertex_count doubles, the log map's
+ *  distances. Where two paths tie (the cut locus) the vector follows the path the log map's angle
+ *  follows (the one the propagation found first); it is not flagged. On a surface that is not
+ *  orientable the sense of the angles is the solver's orientation of each face.
+ *  options: as tg_geodesic_field's (limit, allocator, progress, threads).
+ *  Errors: as tg_geodesic_log_map's (a NULL vector or out_vertex_vector too); the outputs are then
+ *  untouched. Complexity: the log map's plus O(V) (BENCHMARKS.md). Thread-safe as
+ *  tg_geodesic_field. (New in 0.6.1.) */
+TG_API tg_status tg_geodesic_transport_field(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
+                                             const tg_surface_point* source, const double vector[3],
+                                             const tg_field_options* options, double* out_vertex_vector,
+                                             double* out_vertex_distance, tg_field_stats* out_stats);
 
 /** The distance matrix: row i of out_matrix (row-major, source_count x vertex_count doubles) is
  *  the field of sources[i] alone, exactly as tg_geodesic_field computes it (bit-identical). The

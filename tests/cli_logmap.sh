@@ -71,7 +71,10 @@ for args, code, word in [(["--from", "v:5", "--ref", "0,0,0"], 1, "ref"),
                          (["--from", "f:3:0.2,0.3,0.5", "--ref", "0,0,1"], 2, "perpendicular"),
                          (["--from", "v:99999"], 2, "out of range"),
                          (["--from", "e:999999:0.5"], 2, "999999"),
-                         (["--from", "v:5", "--max-distance", "-1"], 1, "max-distance")]:
+                         (["--from", "v:5", "--max-distance", "-1"], 1, "max-distance"),
+                         (["--from", "v:5", "--transport", "0,0,0"], 1, "transport"),
+                         (["--from", "v:5", "--transport", "1,2"], 1, "transport"),
+                         (["--from", "f:3:0.2,0.3,0.5", "--transport", "0,0,1"], 2, "perpendicular")]:
     r = run("logmap", plate, *args, "-o", bad)
     check(r.returncode == code and word in r.stderr and r.stderr.startswith("trigeo: ") and not os.path.exists(bad),
           "%s: exit %d (want %d), stderr %r" % (args, r.returncode, code, r.stderr))

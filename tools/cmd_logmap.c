@@ -16,6 +16,9 @@ typedef struct logmap_args {
     bool has_ref, quiet;
     double max_dist; /* < 0: no limit */
     int threads;     /* tg_field_options.threads (cli_field_threads) */
+    bool has_transport;
+    double transport[3]; /* --transport: the vector carried to every vertex */
+    const char* transport_text;
 } logmap_args;
 
 static int on_progress(void* user, const tg_field_progress* p)
@@ -36,35 +39,58 @@ static void planar(const double* r, const double* a, size_t n, double* u, double
     }
 }
 
+/* The columns r, theta, u, v and, with --transport, tx, ty, tz (t: 3 a vertex, else NULL). */
 static int write_output(const logmap_args* la, const tg_mesh* mesh, const double* r, const double* a, const double* u,
-                        const double* v, size_t n)
+                        const double* v, const double* t, size_t n)
 {
+    size_t cols = t ? 7 : 4;
     if (cli_ext_is(la->out, ".ply")) {
-        tg_vertex_scalar sc[4] = {{"distance", r}, {"angle", a}, {"u", u}, {"v", v}};
+        double* tc = t ? malloc((n ? n : 1) * 3 * sizeof *tc) : NULL; /* one array a property */
+        if (t && !tc) {
+            cli_error(NULL, 0, "out of memory");
+            return CLI_INPUT;
+        }
+        for (size_t i = 0; tc && i < n; ++i) tc[i] = t[3 * i], tc[n + i] = t[3 * i + 1], tc[2 * n + i] = t[3 * i + 2];
+        tg_vertex_scalar sc[7] = {{"distance", r}, {"angle", a}, {"u", u}, {"v", v}, {"tx", tc},
+                                  {"ty", tc ? tc + n : NULL}, {"tz", tc ? tc + 2 * n : NULL}};
         tg_diag d;
         memset(&d, 0, sizeof d);
         cli_output out;
-        if (!cli_output_reserve(&out, la->out)) return CLI_INPUT;
-        out.f = NULL;
-        return cli_output_finish_library(&out, tg_mesh_write_ply(mesh, out.tmp, sc, 4, &d), &d);
+        int rc = CLI_INPUT;
+        if (cli_output_reserve(&out, la->out)) {
+            out.f = NULL;
+            rc = cli_output_finish_library(&out, tg_mesh_write_ply(mesh, out.tmp, sc, cols, &d), &d);
+        }
+        free(tc);
+        return rc;
     }
     cli_output out;
     FILE* f = cli_output_open(&out, la->out);
     if (!f) return CLI_INPUT;
     bool ok;
     if (cli_ext_is(la->out, ".npy")) {
-        double* rows = malloc((n ? n : 1) * 4 * sizeof *rows);
+        double* rows = malloc((n ? n : 1) * cols * sizeof *rows);
         ok = rows != NULL;
-        for (size_t i = 0; ok && i < n; ++i) rows[4 * i] = r[i], rows[4 * i + 1] = a[i], rows[4 * i + 2] = u[i], rows[4 * i + 3] = v[i];
-        ok = ok && cli_write_npy_f64(f, rows, n, 4, true);
+        for (size_t i = 0; ok && i < n; ++i) {
+            double* row = rows + cols * i;
+            row[0] = r[i], row[1] = a[i], row[2] = u[i], row[3] = v[i];
+            if (t) row[4] = t[3 * i], row[5] = t[3 * i + 1], row[6] = t[3 * i + 2];
+        }
+        ok = ok && cli_write_npy_f64(f, rows, n, cols, true);
         free(rows);
     } else {
-        ok = fprintf(f, "vertex,r,theta,u,v\n") > 0;
-        char b[4][32];
+        ok = fprintf(f, t ? "vertex,r,theta,u,v,tx,ty,tz\n" : "vertex,r,theta,u,v\n") > 0;
+        char b[7][32];
         for (size_t i = 0; ok && i < n; ++i) {
             cli_format_double(r[i], b[0]), cli_format_double(a[i], b[1]);
             cli_format_double(u[i], b[2]), cli_format_double(v[i], b[3]);
-            ok = fprintf(f, "%zu,%s,%s,%s,%s\n", i, b[0], b[1], b[2], b[3]) > 0;
+            if (t) {
+                cli_format_double(t[3 * i], b[4]), cli_format_double(t[3 * i + 1], b[5]);
+                cli_format_double(t[3 * i + 2], b[6]);
+                ok = fprintf(f, "%zu,%s,%s,%s,%s,%s,%s,%s\n", i, b[0], b[1], b[2], b[3], b[4], b[5], b[6]) > 0;
+            } else {
+                ok = fprintf(f, "%zu,%s,%s,%s,%s\n", i, b[0], b[1], b[2], b[3]) > 0;
+            }
         }
     }
     if (!ok) {
@@ -80,7 +106,7 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
     int rc = CLI_INPUT;
     tg_bvh* bvh = NULL;
     tg_geodesic* geo = NULL;
-    double *r = NULL, *a = NULL, *u = NULL, *v = NULL;
+    double *r = NULL, *a = NULL, *u = NULL, *v = NULL, *t = NULL;
     tg_surface_point source;
     tg_mesh* mesh = cli_load_mesh_for_distances(la->mesh_path);
     if (!mesh) goto done;
@@ -92,7 +118,8 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
     size_t n = tg_mesh_vertex_count(mesh);
     r = malloc((n ? n : 1) * sizeof *r), a = malloc((n ? n : 1) * sizeof *a);
     u = malloc((n ? n : 1) * sizeof *u), v = malloc((n ? n : 1) * sizeof *v);
-    if (!r || !a || !u || !v) {
+    if (la->has_transport) t = malloc((n ? n : 1) * 3 * sizeof *t);
+    if (!r || !a || !u || !v || (la->has_transport && !t)) {
         cli_error(NULL, 0, "out of memory");
         goto done;
     }
@@ -109,12 +136,22 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
     tg_field_stats stats;
     double t0 = cli_seconds();
     if (st == TG_OK) st = tg_geodesic_log_map(geo, NULL, &source, la->has_ref ? la->ref : NULL, &o, r, a, &stats);
+    bool transport_refused = false;
+    if (st == TG_OK && t) { /* a second propagation: the vector's own angles */
+        st = tg_geodesic_transport_field(geo, NULL, &source, la->transport, &o, t, NULL, NULL);
+        transport_refused = st == TG_ERR_INVALID_ARGUMENT;
+    }
     double secs = cli_seconds() - t0;
     cli_interrupt_polling(false);
     cli_progress_end(&prog);
     if (st == TG_ERR_CANCELLED) {
         cli_error(la->mesh_path, 0, "interrupted: nothing written");
         rc = 130;
+        goto done;
+    }
+    if (transport_refused) {
+        cli_error(la->mesh_path, 0, "--transport %s is perpendicular to the surface at %s (within 1e-9 radians of "
+                  "the normal there)", la->transport_text, la->from);
         goto done;
     }
     if (st == TG_ERR_INVALID_ARGUMENT && geo) {
@@ -130,7 +167,7 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
         goto done;
     }
     planar(r, a, n, u, v);
-    if ((rc = write_output(la, mesh, r, a, u, v, n)) != CLI_OK) goto done;
+    if ((rc = write_output(la, mesh, r, a, u, v, t, n)) != CLI_OK) goto done;
     if (!la->quiet && strcmp(la->out, "-")) {
         size_t reached = 0;
         double far = 0.0;
@@ -142,7 +179,7 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
     }
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
-    free(r), free(a), free(u), free(v);
+    free(r), free(a), free(u), free(v), free(t);
     tg_geodesic_destroy(geo);
     tg_bvh_destroy(bvh);
     tg_mesh_destroy(mesh);
@@ -154,12 +191,12 @@ static int run(int argc, char** argv)
     logmap_args la;
     memset(&la, 0, sizeof la);
     la.max_dist = -1.0;
-    const char *ref = NULL, *maxd = NULL, *threads = NULL;
+    const char *ref = NULL, *maxd = NULL, *threads = NULL, *transport = NULL;
     for (int i = 1; i < argc; ++i) {
         const char* s = argv[i];
         const char** slot = !strcmp(s, "--from") ? &la.from : !strcmp(s, "--ref") ? &ref
                             : !strcmp(s, "-o") ? &la.out : !strcmp(s, "--max-distance") ? &maxd
-                            : !strcmp(s, "--threads") ? &threads : NULL;
+                            : !strcmp(s, "--threads") ? &threads : !strcmp(s, "--transport") ? &transport : NULL;
         if (slot) {
             if (i + 1 >= argc) return cli_usage("logmap", "%s needs a value", s);
             *slot = argv[++i];
@@ -184,6 +221,13 @@ static int run(int argc, char** argv)
         if (!cli_parse_doubles(ref, 3, la.ref) || (la.ref[0] == 0.0 && la.ref[1] == 0.0 && la.ref[2] == 0.0))
             return cli_usage("logmap", "bad --ref '%s' (X,Y,Z: three finite numbers, not all zero)", ref);
     }
+    if (transport) {
+        la.has_transport = true;
+        la.transport_text = transport;
+        if (!cli_parse_doubles(transport, 3, la.transport) ||
+            (la.transport[0] == 0.0 && la.transport[1] == 0.0 && la.transport[2] == 0.0))
+            return cli_usage("logmap", "bad --transport '%s' (X,Y,Z: three finite numbers, not all zero)", transport);
+    }
     if (maxd && !cli_parse_nonneg(maxd, &la.max_dist))
         return cli_usage("logmap", "bad --max-distance '%s' (a finite number >= 0)", maxd);
     cli_spec sp;
@@ -198,7 +242,8 @@ static int run(int argc, char** argv)
 
 const cli_command cli_cmd_logmap = {
     "logmap",
-    "logmap MESH --from SPEC [--ref X,Y,Z] [--max-distance D] [--threads N] -o OUT.ply|.csv|.npy [--quiet]",
+    "logmap MESH --from SPEC [--ref X,Y,Z] [--transport X,Y,Z] [--max-distance D] [--threads N] -o OUT.ply|.csv|.npy "
+    "[--quiet]",
     "The exact logarithmic map about a surface point: for every vertex the exact geodesic\n"
     "distance r (the same as trigeo field's, bit for bit), the angle theta at which its shortest\n"
     "path leaves the point, and the 2D coordinates u = r cos theta, v = r sin theta.\n\n"
@@ -208,14 +253,18 @@ const cli_command cli_cmd_logmap = {
     "                   perpendicular to the surface there. Default: as trigeo trace --angle,\n"
     "                   from corner 0 towards corner 1 of the face of f:, along the halfedge of\n"
     "                   e:, or along the vertex's first halfedge for v:\n"
+    "  --transport X,Y,Z the vector at the centre (a direction of the surface there as --ref takes\n"
+    "                   it, and a length) carried to every vertex along its exact shortest path\n"
+    "                   (parallel transport: the angle to the path is kept): 3 more columns\n"
+    "                   tx,ty,tz (0,0,0 where not reached); one more propagation\n"
     "  --max-distance D only within D (beyond: r inf)\n"
     "  --threads N      the field's propagation on N threads (at most 256, 0 = all cores;\n"
     "                   default 1): every N > 1 gives the same bits, within 1e-14 relative of\n"
     "                   one thread's (an angle at a tie may be the other path's)\n"
-    "  -o OUT           .csv   vertex,r,theta,u,v  (one row a vertex; '-' = stdout)\n"
-    "                   .npy   a (vertices, 4) float64 array, columns r, theta, u, v\n"
+    "  -o OUT           .csv   vertex,r,theta,u,v[,tx,ty,tz]  (one row a vertex; '-' = stdout)\n"
+    "                   .npy   a (vertices, 4 or 7) float64 array, columns r, theta, u, v[, tx, ty, tz]\n"
     "                   .ply   the mesh as binary PLY with per-vertex double properties\n"
-    "                          distance, angle, u, v (trigeo render MESH --logmap OUT.ply)\n"
+    "                          distance, angle, u, v[, tx, ty, tz] (trigeo render MESH --logmap OUT.ply)\n"
     "  --quiet          no progress line and no summary (errors are still printed, -o - still\n"
     "                   writes the CSV)\n\n"
     "Angles are counterclockwise about the reference face's normal (its file winding), in\n"

@@ -1123,7 +1123,9 @@ class Mesh:
                 call.finish(st, "path")
                 view = _c.PathView()
                 _L.tg_path_get_view(ph, ctypes.byref(view))
-                return Path._from_view(view)
+                p = Path._from_view(view)
+            p._mesh = self
+            return p
 
         return self._run(work)
 
@@ -1230,6 +1232,7 @@ class Mesh:
                 view = _c.PathView()
                 _L.tg_path_get_view(ph, ctypes.byref(view))
                 p = Path._from_view(view)
+            p._mesh = self
             p.waypoint_points = np.array(at[:], dtype=np.int64) if view.point_count else np.empty(0, np.int64)
             return p
 
@@ -1452,6 +1455,61 @@ class Mesh:
             return r, theta, uv
 
         return self._run(work, progress)
+
+    def transport_field(self, source: Any, vector: Any, max_distance: Optional[float] = None,
+                        progress: Optional[Callable[[float], Any]] = None,
+                        threads: int = 1) -> tuple[np.ndarray, np.ndarray]:
+        """Parallel transport from one surface point to every vertex: the tangent vector `vector`
+        at the source (3 numbers, not zero, taken as a direction of the surface there as
+        log_map's ref, with its length) carried along each vertex's exact shortest path, keeping
+        its angle to the path. Returns (vectors (n, 3), distance (n,)): the vector at each vertex
+        in the plane of the face holding its path's last segment, 0 where not reached (distance
+        inf); the log map's distances. Where two paths tie (the cut locus) the vector follows the
+        one the log map's angle follows. max_distance, progress, threads as log_map's. The same
+        numbers as tg_geodesic_transport_field and `trigeo logmap --transport X,Y,Z`."""
+        nthreads = _threads(threads)
+        vec = _floats(vector, "vector", "a 3D vector")
+        if vec.shape != (3,) or not np.all(np.isfinite(vec)) or not np.any(vec):
+            raise _bad(f"vector must be a 3D vector of finite numbers, not all zero, not {_show(vector)}")
+        vec = np.ascontiguousarray(vec)
+
+        def work(call: _Call) -> tuple[np.ndarray, np.ndarray]:
+            sp = (_c.SurfacePointC * 1)(self._surface_point(source, "source"))
+            o = self._field_options(max_distance, call, nthreads)
+            out, dist = np.empty((self.vertex_count, 3)), np.empty(self.vertex_count)
+            geo = self._get_geo()
+            with self._geo_ws.take() as ws:
+                st = _L.tg_geodesic_transport_field(geo, ws, sp, _ptr(vec), ctypes.byref(o), _ptr(out), _ptr(dist),
+                                                    None)
+            if st == 1:
+                raise _bad("transport_field: the vector is perpendicular to the surface at the source (or the "
+                           "reference face has zero area)")
+            call.finish(st, "transport_field")
+            return out, dist
+
+        return self._run(work, progress)
+
+    def _polyline_transport(self, points: np.ndarray, faces: np.ndarray, vector: Any, what: str) -> np.ndarray:
+        """tg_polyline_transport over a path's or trace's points and faces."""
+        vec = _floats(vector, "vector", "a 3D vector")
+        if vec.shape != (3,) or not np.all(np.isfinite(vec)) or not np.any(vec):
+            raise _bad(f"vector must be a 3D vector of finite numbers, not all zero, not {_show(vector)}")
+        vec = np.ascontiguousarray(vec)
+        pts = np.ascontiguousarray(points, dtype=np.float64)
+        fc = np.ascontiguousarray(faces, dtype=np.uint32)
+        if pts.shape[0] < 2:
+            raise _bad(f"{what}: the path has fewer than two points")
+
+        def work(call: _Call) -> np.ndarray:
+            out = np.empty((pts.shape[0], 3))
+            st = _L.tg_polyline_transport(self._handle(), pts.shape[0], _ptr(pts), _ptr(fc, ctypes.c_uint32),
+                                          _ptr(vec), _ptr(out))
+            if st == 1:
+                raise _bad(f"{what}: the vector is perpendicular to the path's first face, or the path has length 0")
+            call.finish(st, what)
+            return out
+
+        return self._run(work)
 
     def field_at(self, sources: Any, points: Any, max_distance: Optional[float] = None, threads: int = 1) -> np.ndarray:
         """The exact geodesic distance from the sources to arbitrary surface points (in faces, on
@@ -1993,7 +2051,7 @@ class Path:
     """
 
     __slots__ = ("length", "points", "faces", "surface_points", "status", "max_angle_defect", "global_",
-                 "initial_length", "iterations", "waypoint_points")
+                 "initial_length", "iterations", "waypoint_points", "_mesh")
 
     @classmethod
     def _from_view(cls, v: _c.PathView) -> "Path":
@@ -2006,6 +2064,7 @@ class Path:
         p.global_ = _L.tg_path_global_name(v.global_).decode()
         p.iterations = int(v.iterations)
         p.waypoint_points = None
+        p._mesh = None
         if k:
             p.points = np.ctypeslib.as_array(v.xyz, shape=(k, 3)).copy()
             p.faces = np.ctypeslib.as_array(v.faces, shape=(k - 1,)).astype(np.int64) if k > 1 else np.empty(0, np.int64)
@@ -2018,6 +2077,16 @@ class Path:
     def proven(self) -> bool:
         """True when the path is proven globally shortest."""
         return self.global_ == "proven"
+
+    def transport(self, vector: Any) -> np.ndarray:
+        """Parallel transport along the path: the tangent vector `vector` (3 numbers, not zero; its
+        projection onto the first segment's face is the direction, its length the result's) at
+        the start, carried to every point keeping its angle to the path (exact along a path
+        straight in the unfolding, as the default exact paths are). Returns (k, 3) float64, point
+        i's vector in the plane of segment i's face. The same numbers as tg_path_transport."""
+        if self._mesh is None:
+            raise _bad("transport: this path has no mesh (make it with Mesh.path or Mesh.path_through)")
+        return self._mesh._polyline_transport(self.points, self.faces, vector, "transport")
 
     def __len__(self) -> int:
         return self.points.shape[0]

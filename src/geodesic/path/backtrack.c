@@ -339,7 +339,7 @@ static bool walk_faces(backtrack* t, uint32_t e, double xe, const double s_in[2]
                 }
             }
         }
-    dead_end:
+    dead_end:;
         /* a dead end: back to the last branch point with another face to try */
         bool resumed = false;
         while (depth > 0 && !resumed) {

@@ -1,6 +1,7 @@
 /* bench_logmap.c - the exact log map beside the exact field from the same source, in one run:
  * tg_geodesic_log_map against tg_geodesic_field (the log map's distances are the field's, so the
- * difference is the cost of carrying the windows' rotations and resolving the angles).
+ * difference is the cost of carrying the windows' rotations and resolving the angles), and the
+ * transport field (tg_geodesic_transport_field: the log map plus a rotation a vertex).
  *
  * usage: bench_logmap MESH [--source V] [--reps R] [--only field|logmap]
  *   The source is vertex 0 unless --source V (a vertex index). R rounds (default 7), each one
@@ -9,6 +10,7 @@
  *   does not count the time other processes hold the core). The first round is a warm-up and not
  *   counted. Prints one markdown row:
  *   | mesh | faces | windows | field median s | log map median s | ratio of medians | ratio p90 |
+ *   transport median s | transport / log map |
  *   (ratio p90: the 90th percentile of the per-round ratios) and checks that the distances are
  *   bit-identical (exit 1 otherwise). --only runs R calls of one of the two and prints nothing (for
  *   timing whole processes side by side with an outside tool, e.g. /usr/bin/time). */
@@ -51,7 +53,8 @@ int main(int argc, char** argv)
     size_t n = tg_mesh_vertex_count(m);
     double *field = malloc(n * sizeof *field), *r = malloc(n * sizeof *r), *a = malloc(n * sizeof *a);
     double *tf = malloc(reps * sizeof *tf), *tl = malloc(reps * sizeof *tl), *ratio = malloc(reps * sizeof *ratio);
-    if (!field || !r || !a || !tf || !tl || !ratio) die("out of memory", NULL);
+    double *tt = malloc(reps * sizeof *tt), *vec = malloc(3 * n * sizeof *vec), along[3] = {1.0, 0.25, -0.5};
+    if (!field || !r || !a || !tf || !tl || !ratio || !tt || !vec) die("out of memory", NULL);
     tg_surface_point s = tg_surface_vertex((uint32_t)src);
     tg_field_stats st;
     if (only) {
@@ -69,7 +72,10 @@ int main(int argc, char** argv)
         double t1 = bench_cpu_thread();
         if (tg_geodesic_log_map(g, ws, &s, NULL, NULL, r, a, NULL) != TG_OK) die("log map failed on", path);
         double t2 = bench_cpu_thread();
-        tf[k] = t1 - t0, tl[k] = t2 - t1, ratio[k] = tl[k] / tf[k];
+        if (tg_geodesic_transport_field(g, ws, &s, along, NULL, vec, NULL, NULL) != TG_OK)
+            die("transport failed on", path);
+        double t3 = bench_cpu_thread();
+        tf[k] = t1 - t0, tl[k] = t2 - t1, tt[k] = t3 - t2, ratio[k] = tl[k] / tf[k];
     }
     if (memcmp(field, r, n * sizeof *r) != 0) {
         fprintf(stderr, "bench_logmap: %s: the log map's distances differ from the field's\n", path);
@@ -77,9 +83,11 @@ int main(int argc, char** argv)
     }
     const char* base = strrchr(path, '/');
     double mf = bench_median(tf + 1, reps - 1), ml = bench_median(tl + 1, reps - 1);
-    printf("| %s | %zu | %.2fM | %.3f | %.3f | %.3f | %.3f |\n", base ? base + 1 : path, tg_mesh_face_count(m),
-           (double)st.windows_created / 1e6, mf, ml, ml / mf, bench_quantile(ratio + 1, reps - 1, 0.9));
-    free(field), free(r), free(a), free(tf), free(tl), free(ratio);
+    double mt = bench_median(tt + 1, reps - 1);
+    printf("| %s | %zu | %.2fM | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f |\n", base ? base + 1 : path,
+           tg_mesh_face_count(m), (double)st.windows_created / 1e6, mf, ml, ml / mf,
+           bench_quantile(ratio + 1, reps - 1, 0.9), mt, mt / ml);
+    free(field), free(r), free(a), free(tf), free(tl), free(ratio), free(tt), free(vec);
     tg_geodesic_workspace_destroy(ws);
     tg_geodesic_destroy(g);
     tg_mesh_destroy(m);

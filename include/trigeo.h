@@ -88,6 +88,8 @@ extern "C" {
 #define TG_VERSION (TG_VERSION_MAJOR * 10000 + TG_VERSION_MINOR * 100 + TG_VERSION_PATCH)
 
 /* Changes in 0.6.1 (ABI-compatible with 0.6.0: same soname, new behaviour and entry points only):
+ *  - The exact gradient of a field: tg_geodesic_field_gradient (per vertex and per face, nearest
+ *    source, ties flagged).
  *  - Parallel transport: tg_geodesic_transport_field (from a source to every vertex, along the
  *    log map's exact paths), tg_path_transport and tg_polyline_transport (along a path).
  *  - tg_field_options.threads is honoured by every call on one field: tg_geodesic_field_at with
@@ -1332,7 +1334,8 @@ typedef enum tg_field_limit {
  *
  *    call                                 allocator  limit / max_distance    progress  threads
  *    tg_geodesic_field, tg_geodesic_field_at   honoured   honoured           honoured  honoured
- *    tg_geodesic_log_map                  honoured   honoured                honoured  honoured
+ *    tg_geodesic_log_map, _transport_field  honoured  honoured              honoured  honoured
+ *    tg_geodesic_field_gradient           honoured   honoured                honoured  honoured
  *    tg_geodesic_voronoi                  honoured   honoured                honoured  honoured
  *    tg_geodesic_isolines                 honoured   honoured                honoured  honoured
  *    tg_geodesic_farthest_point_sampling  honoured   refused (samples need   honoured  honoured
@@ -1538,6 +1541,46 @@ TG_API tg_status tg_geodesic_transport_field(const tg_geodesic* geodesic, tg_geo
                                              const tg_surface_point* source, const double vector[3],
                                              const tg_field_options* options, double* out_vertex_vector,
                                              double* out_vertex_distance, tg_field_stats* out_stats);
+
+/** What a gradient is at a vertex or face (tg_geodesic_field_gradient). */
+typedef enum tg_gradient_flag {
+    TG_GRADIENT_DEFINED = 0,   /**< the direction of steepest ascent: the shortest path's arriving direction */
+    TG_GRADIENT_SOURCE = 1,    /**< a source (distance 0): no direction; the gradient is (0, 0, 0) */
+    TG_GRADIENT_UNREACHED = 2, /**< no path (another component, beyond max_distance): (0, 0, 0) */
+    /** (vertices) two sources reach it as shortly (within 1e-12 relative): the field has no
+     *  gradient there; the direction given is the labelled source's path's */
+    TG_GRADIENT_TIE = 3
+} tg_gradient_flag;
+
+/** The gradient of the exact distance field from the sources: at every vertex the unit direction in
+ *  which its shortest path arrives (the last segment's, in space, in the plane of the face holding
+ *  it: the direction of steepest ascent of the field there, never averaged), the nearest source
+ *  and the distance; at every face the same at its centroid, where the field is
+ *  sigma + |p - s| for the window (source image s) that reaches it most shortly, so the gradient is
+ *  exactly (p - s) / |p - s| in the face's plane. Exact up to rounding, unlike the heat method's
+ *  normalised gradient of a smoothed field.
+ *  Method: the nearest-source field of tg_geodesic_voronoi with each vertex's record kept (labels
+ *  and ties: a vertex two sources reach within 1e-12 relative is TG_GRADIENT_TIE), then, for the
+ *  faces, one run of all the sources with the faces' centroids as query points.
+ *  Not flagged: where two paths from one source tie (its cut locus) the direction is the path the
+ *  propagation found first, as the log map's angle; a face's centroid on a cut locus likewise.
+ *  sources: source_count valid surface points (none: everything unreached). Outputs (each may be
+ *  NULL, not all): out_vertex_gradient 3 doubles a vertex, out_vertex_flag (tg_gradient_flag)
+ *  and out_vertex_label (the index of the nearest source, TG_NONE where unreached) one a vertex,
+ *  out_vertex_distance vertex_count doubles (as tg_geodesic_voronoi's); out_face_gradient 3
+ *  doubles a face, out_face_flag one a face (DEFINED, SOURCE: a source at the centroid, or
+ *  UNREACHED, also for the duplicate faces the solver skips). options: allocator, limit, progress,
+ *  threads (each run's).
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic, every output NULL, invalid sources or options),
+ *  TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED; the outputs are then untouched.
+ *  Complexity: tg_geodesic_voronoi's, plus one field with the centroids as points when a face
+ *  output is asked. Thread-safe as tg_geodesic_field. (New in 0.6.1.) */
+TG_API tg_status tg_geodesic_field_gradient(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
+                                            const tg_surface_point* sources, size_t source_count,
+                                            const tg_field_options* options, double* out_vertex_gradient,
+                                            uint8_t* out_vertex_flag, uint32_t* out_vertex_label,
+                                            double* out_vertex_distance, double* out_face_gradient,
+                                            uint8_t* out_face_flag, tg_field_stats* out_stats);
 
 /** The distance matrix: row i of out_matrix (row-major, source_count x vertex_count doubles) is
  *  the field of sources[i] alone, exactly as tg_geodesic_field computes it (bit-identical). The

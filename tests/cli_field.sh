@@ -250,5 +250,19 @@ count = lambda text: sum(1 for l in text.splitlines() if l.startswith("v "))
 check(count(iso["1"]) == count(iso["2"]) > 0, "--isolines: %d points on 2 threads, %d on one" % (count(iso["2"]), count(iso["1"])))
 err([spot, "--from", "v:0", "--threads", "x"], 1, "--threads")
 
+# --gradient: the CSV and the PLY hold the same numbers; --face-gradient beside it; usage errors
+g_csv, g_ply, g_face = (os.path.join(tmp, n) for n in ("g.csv", "g.ply", "gf.csv"))
+r = run(spot, "--from", "v:0;f:100:0.2,0.3,0.5", "--gradient", "-o", g_csv, "--face-gradient", g_face, "--quiet")
+rows = [l.split(",") for l in open(g_csv).read().split()[1:]] if r.returncode == 0 else []
+check(len(rows) == 2930 and rows[0][5] == "1" and all(abs(sum(float(x) ** 2 for x in row[2:5]) - 1) < 1e-12
+                                                     for row in rows[1:] if row[5] == "0"),
+      "--gradient CSV: exit %d %s, %d rows" % (r.returncode, r.stderr, len(rows)))
+frows = open(g_face).read().split()[1:] if r.returncode == 0 else []
+check(len(frows) == 5856, "--face-gradient: %d rows" % len(frows))
+err([spot, "--from", "v:0", "--face-gradient", g_face, "-o", g_csv], 1, "--face-gradient")
+err([spot, "--from", "v:0", "--gradient", "-o", os.path.join(tmp, "g.txt")], 1, "--gradient")
+err([spot, "--from", "v:0", "--gradient", "--labels", "-o", g_csv], 1, "--gradient")
+err([spot, "--from", "v:0", "--gradient", "-o", g_csv, "--face-gradient", g_csv], 1, "same")
+
 cli_common.finish()
 PY

@@ -282,6 +282,12 @@ cli_num_text cli_num(double x);
  * `distance` (a .ply path) or CSV rows vertex,label,distance (anything else; '-' is stdout).
  * Written to a temporary name, a member of `set` (renamed by cli_output_set_commit); CLI_OK or
  * CLI_INPUT (error printed; the caller aborts the set). */
+/* Named columns of n rows each (cols[c][i]) to path, a member of `set`: .ply the mesh with a
+ * per-vertex double property a column (at most 16), .npy an (n, ncols) float64 array, else CSV
+ * (and '-': stdout) with a header `index_name,names...` and the row index first. CLI_OK or
+ * CLI_INPUT (error printed). */
+int cli_write_columns(cli_output_set* set, const char* path, const tg_mesh* mesh, const char* index_name,
+                      const char* const* names, const double* const* cols, size_t ncols, size_t n);
 int cli_write_labels(cli_output_set* set, const char* path, const tg_mesh* mesh, const uint32_t* label, const double* dist,
                      size_t n);
 

@@ -669,6 +669,46 @@ int cli_write_labels(cli_output_set* set, const char* path, const tg_mesh* mesh,
     return CLI_OK;
 }
 
+int cli_write_columns(cli_output_set* set, const char* path, const tg_mesh* mesh, const char* index_name,
+                      const char* const* names, const double* const* cols, size_t ncols, size_t n)
+{
+    bool stdout_ = strcmp(path, "-") == 0;
+    if (!stdout_ && cli_ext_is(path, ".ply")) { /* the mesh with a property a column */
+        tg_vertex_scalar sc[16];
+        if (!mesh || ncols > 16) return CLI_INPUT;
+        for (size_t c = 0; c < ncols; ++c) sc[c].name = names[c], sc[c].values = cols[c];
+        tg_diag d;
+        memset(&d, 0, sizeof d);
+        cli_output* out = cli_output_set_reserve(set, path);
+        return out ? cli_output_library_done(out, tg_mesh_write_ply(mesh, out->tmp, sc, ncols, &d), &d) : CLI_INPUT;
+    }
+    FILE* f = cli_output_set_open(set, path);
+    if (!f) return CLI_INPUT;
+    bool ok = true;
+    if (!stdout_ && cli_ext_is(path, ".npy")) {
+        double* rows = malloc((n ? n : 1) * ncols * sizeof *rows);
+        ok = rows != NULL;
+        for (size_t i = 0; ok && i < n; ++i)
+            for (size_t c = 0; c < ncols; ++c) rows[i * ncols + c] = cols[c][i];
+        ok = ok && cli_write_npy_f64(f, rows, n, ncols, true);
+        free(rows);
+    } else {
+        ok = fprintf(f, "%s", index_name) > 0;
+        for (size_t c = 0; ok && c < ncols; ++c) ok = fprintf(f, ",%s", names[c]) > 0;
+        ok = ok && fputc('\n', f) != EOF;
+        for (size_t i = 0; ok && i < n; ++i) {
+            ok = fprintf(f, "%zu", i) > 0;
+            for (size_t c = 0; ok && c < ncols; ++c) ok = fprintf(f, ",%s", cli_num(cols[c][i]).s) > 0;
+            ok = ok && fputc('\n', f) != EOF;
+        }
+    }
+    if (!ok) {
+        cli_error(path, 0, "write failed: %s", strerror(errno));
+        return CLI_INPUT;
+    }
+    return CLI_OK;
+}
+
 bool cli_obj_vertices(FILE* f, const double* xyz, size_t count)
 {
     bool ok = true;

@@ -149,6 +149,8 @@ typedef struct field_args {
     const char* boundaries; /* --boundaries: the cells' boundaries (.obj or .json) */
     const char* isolines; /* --isolines: the levels (a list); -o is then ISO.obj|.json */
     const char* isoline_count; /* --isoline-count: that many levels below the largest distance */
+    bool gradient;        /* --gradient: the field's gradient per vertex to -o */
+    const char* face_gradient; /* --face-gradient: per face (at the centroid) to this file */
     const char* sources_path;
     const char* at_path;  /* --at (--from) or --to (--sources): distances at these points */
     char** at_items;
@@ -448,6 +450,86 @@ done:
     return rc;
 }
 
+/* --gradient: per vertex the distance, the unit direction of steepest ascent (the shortest path's
+ * arriving direction), its flag and the nearest source, to -o; with --face-gradient per face the
+ * same at its centroid. Both files or neither. */
+static int run_gradient(const field_args* fa, char** items, const unsigned long long* lines, size_t count)
+{
+    int rc = CLI_INPUT;
+    tg_bvh* bvh = NULL;
+    tg_geodesic* geo = NULL;
+    double *dist = NULL, *cols = NULL;
+    uint8_t *vflag = NULL, *fflag = NULL;
+    uint32_t* label = NULL;
+    tg_surface_point* pts = malloc(count * sizeof *pts);
+    tg_mesh* mesh = pts ? cli_load_mesh_for_distances(fa->mesh_path) : NULL;
+    if (!pts) cli_error(NULL, 0, "out of memory");
+    if (!mesh) goto done;
+    size_t nv = tg_mesh_vertex_count(mesh), F = tg_mesh_face_count(mesh);
+    if (F == 0) {
+        cli_error(fa->mesh_path, 0, "the mesh has no faces");
+        goto done;
+    }
+    if ((rc = resolve_all(fa, fa->sources_path, false, mesh, &bvh, items, lines, count, pts)) != CLI_OK) goto done;
+    rc = CLI_INPUT;
+    /* columns: distance, gx, gy, gz, flag, label per vertex; gx, gy, gz, flag per face */
+    cols = malloc((6 * nv + 4 * F + 1) * sizeof *cols);
+    double* grad = malloc((3 * (nv > F ? nv : F) + 1) * sizeof *grad);
+    vflag = malloc(nv + 1), fflag = malloc(F + 1), label = malloc((nv + 1) * sizeof *label);
+    tg_status st = cols && grad && vflag && fflag && label ? make_solver(mesh, nv, &dist, &geo) : TG_ERR_OUT_OF_MEMORY;
+    tg_field_options o;
+    cli_progress prog;
+    tg_field_stats stats;
+    start_work(fa, &o, &prog, &stats);
+    double t0 = cli_seconds();
+    double* fgrad = cols + 6 * nv; /* 3 a face, then copied into columns below */
+    if (st == TG_OK)
+        st = tg_geodesic_field_gradient(geo, NULL, pts, count, &o, grad, vflag, label, dist,
+                                        fa->face_gradient ? fgrad : NULL, fa->face_gradient ? fflag : NULL, &stats);
+    double secs = cli_seconds() - t0;
+    cli_interrupt_polling(false);
+    cli_progress_end(&prog);
+    if ((rc = finished(fa, st)) == CLI_OK) {
+        double* c = cols; /* vertex columns */
+        for (size_t v = 0; v < nv; ++v) {
+            c[v] = dist[v], c[nv + v] = grad[3 * v], c[2 * nv + v] = grad[3 * v + 1], c[3 * nv + v] = grad[3 * v + 2];
+            c[4 * nv + v] = vflag[v], c[5 * nv + v] = label[v] == TG_NONE ? -1.0 : (double)label[v];
+        }
+        static const char* const vnames[6] = {"distance", "gx", "gy", "gz", "flag", "label"};
+        static const char* const fnames[4] = {"gx", "gy", "gz", "flag"};
+        const double* vcols[6] = {c, c + nv, c + 2 * nv, c + 3 * nv, c + 4 * nv, c + 5 * nv};
+        cli_output_set outs = {0};
+        rc = cli_write_columns(&outs, fa->out, mesh, "vertex", vnames, vcols, 6, nv);
+        if (rc == CLI_OK && fa->face_gradient) {
+            memcpy(grad, fgrad, 3 * F * sizeof *grad); /* the face rows, as columns */
+            double* fc = cols + 6 * nv;
+            for (size_t f = 0; f < F; ++f)
+                fc[f] = grad[3 * f], fc[F + f] = grad[3 * f + 1], fc[2 * F + f] = grad[3 * f + 2], fc[3 * F + f] = fflag[f];
+            const double* fcols[4] = {fc, fc + F, fc + 2 * F, fc + 3 * F};
+            rc = cli_write_columns(&outs, fa->face_gradient, NULL, "face", fnames, fcols, 4, F);
+        }
+        if (rc == CLI_OK) rc = cli_output_set_commit(&outs);
+        cli_output_set_abort(&outs);
+        if (rc == CLI_OK && !fa->quiet && strcmp(fa->out, "-")) {
+            size_t counts[4] = {0, 0, 0, 0};
+            for (size_t v = 0; v < nv; ++v) counts[vflag[v] & 3]++;
+            printf("sources            %zu\n", count);
+            printf("vertices           %zu: %zu with a gradient, %zu ties, %zu sources, %zu unreached\n", nv,
+                   counts[TG_GRADIENT_DEFINED], counts[TG_GRADIENT_TIE], counts[TG_GRADIENT_SOURCE],
+                   counts[TG_GRADIENT_UNREACHED]);
+            cli_print_work(&stats, secs);
+            rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
+        }
+    }
+    free(grad);
+done:
+    free(pts), free(dist), free(cols), free(vflag), free(fflag), free(label);
+    tg_geodesic_destroy(geo);
+    tg_bvh_destroy(bvh);
+    tg_mesh_destroy(mesh);
+    return rc;
+}
+
 /* The sparse matrix as "i,j,d" lines (a header, then one line per stored entry, rows in order). */
 static bool write_triplets(FILE* f, const tg_sparse_matrix_view* v)
 {
@@ -542,9 +624,12 @@ static int run(int argc, char** argv)
             fa.sparse = true;
         } else if (!strcmp(a, "--labels")) {
             fa.labels = true;
+        } else if (!strcmp(a, "--gradient")) {
+            fa.gradient = true;
         } else if (!strcmp(a, "--from") || !strcmp(a, "-o") || !strcmp(a, "--csv") || !strcmp(a, "--max-distance") ||
                    !strcmp(a, "--sources") || !strcmp(a, "--threads") || !strcmp(a, "--at") || !strcmp(a, "--to") ||
-                   !strcmp(a, "--boundaries") || !strcmp(a, "--isolines") || !strcmp(a, "--isoline-count")) {
+                   !strcmp(a, "--boundaries") || !strcmp(a, "--isolines") || !strcmp(a, "--isoline-count") ||
+                   !strcmp(a, "--face-gradient")) {
             if (i + 1 >= argc) return cli_usage("field", "%s needs a value", a);
             const char* val = argv[++i];
             if (!strcmp(a, "--from"))
@@ -567,6 +652,8 @@ static int run(int argc, char** argv)
                 fa.isolines = val;
             else if (!strcmp(a, "--isoline-count"))
                 fa.isoline_count = val;
+            else if (!strcmp(a, "--face-gradient"))
+                fa.face_gradient = val;
             else
                 maxd = val;
         } else if (a[0] == '-' && a[1]) {
@@ -582,7 +669,18 @@ static int run(int argc, char** argv)
     if (fa.out && csv) return cli_usage("field", "-o and --csv exclude each other");
     if (fa.isolines && fa.isoline_count)
         return cli_usage("field", "give the levels (--isolines L,L,...) or their count (--isoline-count N), not both");
-    if (fa.isolines || fa.isoline_count) { /* one field of the sources, its isolines to -o */
+    if (fa.face_gradient && !fa.gradient) return cli_usage("field", "--face-gradient goes with --gradient");
+    if (fa.gradient) { /* the gradient of the field of the sources to -o (and --face-gradient) */
+        bool ext = fa.out && (!strcmp(fa.out, "-") || cli_ext_is(fa.out, ".npy") || cli_ext_is(fa.out, ".csv") ||
+                              cli_ext_is(fa.out, ".ply"));
+        if (!ext) return cli_usage("field", "--gradient writes -o G.npy, G.csv or G.ply");
+        if (fa.face_gradient && !cli_ext_is(fa.face_gradient, ".npy") && !cli_ext_is(fa.face_gradient, ".csv"))
+            return cli_usage("field", "--face-gradient %s: the extension must be .npy or .csv", fa.face_gradient);
+        if (csv || fa.labels || fa.at_path || fa.sparse || fa.isolines || fa.isoline_count ||
+            (fa.sources_path && !strcmp(fa.sources_path, "all")))
+            return cli_usage("field", "--gradient goes with --from or --sources FILE, -o, --face-gradient, "
+                                      "--max-distance and --threads only");
+    } else if (fa.isolines || fa.isoline_count) { /* one field of the sources, its isolines to -o */
         const char* opt = fa.isolines ? "--isolines" : "--isoline-count";
         if (!fa.out || !(cli_ext_is(fa.out, ".obj") || cli_ext_is(fa.out, ".json")))
             return cli_usage("field", "%s writes -o ISO.obj or ISO.json", opt);
@@ -596,7 +694,7 @@ static int run(int argc, char** argv)
         if (fa.format == OUT_NONE && !(fa.at_path && strrchr(fa.out, '.') && !strcmp(strrchr(fa.out, '.'), ".txt")))
             return cli_usage("field", "-o %s: the extension must be .ply, .csv, .npy or .npz", fa.out);
     }
-    fa.matrix = fa.sources_path != NULL && !fa.labels && !fa.isolines && !fa.isoline_count;
+    fa.matrix = fa.sources_path != NULL && !fa.labels && !fa.isolines && !fa.isoline_count && !fa.gradient;
     if (fa.boundaries && !fa.labels) return cli_usage("field", "--boundaries goes with --labels");
     if (fa.boundaries && !cli_ext_is(fa.boundaries, ".obj") && !cli_ext_is(fa.boundaries, ".json"))
         return cli_usage("field", "--boundaries %s: the extension must be .obj or .json", fa.boundaries);
@@ -631,8 +729,9 @@ static int run(int argc, char** argv)
                                      {fa.sources_path && strcmp(fa.sources_path, "all") ? fa.sources_path : NULL,
                                       "sources file (--sources)"},
                                      {fa.at_path, at_opt && !strcmp(at_opt, "--to") ? "points file (--to)" : "points file (--at)"}};
-    const cli_file_role outputs[2] = {{fa.out, csv ? "--csv" : "-o"}, {fa.boundaries, "--boundaries"}};
-    int check = cli_check_outputs(outputs, 2, inputs, 3);
+    const cli_file_role outputs[3] = {{fa.out, csv ? "--csv" : "-o"}, {fa.boundaries, "--boundaries"},
+                                      {fa.face_gradient, "--face-gradient"}};
+    int check = cli_check_outputs(outputs, 3, inputs, 3);
     if (check != CLI_OK) return check;
     if ((fa.sources_path || fa.field_threads != 1) && !cli_threads_available(fa.threads, "field")) return CLI_INPUT;
     int rc;
@@ -650,7 +749,8 @@ static int run(int argc, char** argv)
         if (n < 0)
             rc = CLI_INPUT;
         else
-            rc = fa.isolines || fa.isoline_count ? run_isolines(&fa, items, lines, (size_t)n)
+            rc = fa.gradient ? run_gradient(&fa, items, lines, (size_t)n)
+                 : fa.isolines || fa.isoline_count ? run_isolines(&fa, items, lines, (size_t)n)
                  : fa.sparse ? run_sparse(&fa, items, lines, (size_t)n)
                              : run_field(&fa, items, lines, (size_t)n);
         free(text), free(items), free(lines);
@@ -668,7 +768,9 @@ static int run(int argc, char** argv)
     }
     memcpy(list, from, len + 1);
     size_t count = cli_split_list(list, items, MAX_SOURCES);
-    rc = count ? (fa.isolines || fa.isoline_count ? run_isolines(&fa, items, NULL, count) : run_field(&fa, items, NULL, count))
+    rc = count ? (fa.gradient ? run_gradient(&fa, items, NULL, count)
+                  : fa.isolines || fa.isoline_count ? run_isolines(&fa, items, NULL, count)
+                                                    : run_field(&fa, items, NULL, count))
                : cli_usage("field", "bad --from list \"%s\" (SPEC;SPEC;..., no empty item, at most %d)", from, MAX_SOURCES);
     free(list), free(items);
     free(at_text), free(fa.at_items), free(fa.at_lines);
@@ -678,7 +780,8 @@ static int run(int argc, char** argv)
 const cli_command cli_cmd_field = {
     "field",
     "field MESH --from SPEC[;SPEC...] [--at POINTS] | --sources FILE|all [--to POINTS] [-o OUT.ply|.csv|.npy|.npz]\n"
-    "       [--max-distance D] [--sparse] [--labels [--boundaries B.obj|.json]] [--isolines L,L,... | --isoline-count N -o ISO.obj|.json]",
+    "       [--max-distance D] [--sparse] [--labels [--boundaries B.obj|.json]] [--isolines L,L,... | --isoline-count N -o ISO.obj|.json]\n"
+    "       [--gradient -o G.npy|.csv|.ply [--face-gradient FG.npy|.csv]]",
     "The exact geodesic distance from surface points to every vertex (window propagation: window\n"
     "lists crossing one face at a time behind a front of vertices, after Qin et al. 2016 and Xin &\n"
     "Wang 2009). Distance is intrinsic: faces' winding does not matter, and paths continue into\n"
@@ -735,6 +838,13 @@ const cli_command cli_cmd_field = {
     "                         \"polylines\": [{\"level\": I, \"value\": L, \"closed\": B, \"points\":\n"
     "                         [[x, y, z], ...], \"faces\": [...], \"surface\": [\"e:H:t\", ...]}]};\n"
     "                         negative, NaN or missing levels: exit 2, no file\n"
+    "  --gradient             the exact gradient to -o: per vertex distance, gx, gy, gz (the unit\n"
+    "                         direction in which its shortest path arrives: steepest ascent), flag\n"
+    "                         (0 defined, 1 a source, 2 unreached, 3 two sources tie) and label\n"
+    "                         (the nearest source, -1 none): CSV vertex,distance,gx,gy,gz,flag,label,\n"
+    "                         (n, 6) .npy or PLY properties; with --from or --sources FILE\n"
+    "  --face-gradient FG     with --gradient: per face at its centroid gx, gy, gz, flag (.npy (F, 4)\n"
+    "                         or CSV face,gx,gy,gz,flag); both files or neither\n"
     "  --isoline-count N      instead of --isolines: N levels equally spaced below the largest\n"
     "                         distance (max * k / (N + 1), k = 1..N; Python: isolines(count=N))\n"
     "  --max-distance D       stop at distance D (0 allowed): farther vertices get inf\n"

@@ -112,3 +112,41 @@ def test_cli_logmap_transport_columns(tmp_path):
     a = np.load(out)
     vec, dist = spot.transport_field(3, (1.0, 2.0, 0.5))
     assert a.shape == (spot.vertex_count, 7) and np.array_equal(a[:, 4:], vec) and np.array_equal(a[:, 0], dist)
+
+
+def test_field_gradient_on_a_plane_and_the_cli(tmp_path):
+    """Mesh.field_gradient: on a jittered flat sheet the vertex and face gradients are
+    (x - nearest source) / distance (1e-12), labels the nearest source, sources flagged; the CLI's
+    field --gradient writes the same numbers; bad arguments raise."""
+    m = flat_sheet()
+    s0, s1 = trigeo.SurfacePoint.face(40, (0.2, 0.3, 0.5)), trigeo.SurfacePoint.vertex(100)
+    p0 = np.array([0.2, 0.3, 0.5]) @ m.vertices[m.faces[40]]
+    p1 = m.vertices[100]
+    g = m.field_gradient([s0, s1], faces=True, threads=2)
+    d0 = np.linalg.norm(m.vertices - p0, axis=1)
+    d1 = np.linalg.norm(m.vertices - p1, axis=1)
+    near = np.where(d0 <= d1, 0, 1)
+    ok = g["flag"] == 0
+    assert g["flag"][100] == 1 and ok.sum() >= m.vertex_count - 2
+    assert np.array_equal(g["label"][ok], near[ok])
+    sp = np.where(near[:, None] == 0, p0, p1)
+    with np.errstate(invalid="ignore"):  # 0 / 0 at the source vertex (flagged, not compared)
+        want = (m.vertices - sp) / np.minimum(d0, d1)[:, None]
+    assert np.abs(g["gradient"][ok] - want[ok]).max() <= 1e-12
+    c = m.vertices[m.faces].mean(axis=1)
+    c0, c1 = np.linalg.norm(c - p0, axis=1), np.linalg.norm(c - p1, axis=1)
+    fs = np.where((c0 <= c1)[:, None], p0, p1)
+    assert np.all(g["face_flag"] == 0)
+    assert np.abs(g["face_gradient"] - (c - fs) / np.minimum(c0, c1)[:, None]).max() <= 1e-12
+    spot = trigeo.load(SPOT)
+    one = spot.field_gradient([0, 1500])
+    out = tmp_path / "g.npy"
+    r = run_cli("field", SPOT, "--from", "v:0;v:1500", "--gradient", "-o", str(out), "--quiet")
+    assert r.returncode == 0, r.stderr
+    a = np.load(out)
+    assert a.shape == (spot.vertex_count, 6) and np.array_equal(a[:, 0], one["distance"])
+    assert np.array_equal(a[:, 1:4], one["gradient"]) and np.array_equal(a[:, 4], one["flag"])
+    assert np.array_equal(a[:, 5], one["label"])
+    for bad in ({"faces": 2}, {"threads": -1}, {"max_distance": -1.0}):
+        with pytest.raises(trigeo.InvalidArgumentError):
+            spot.field_gradient(0, **bad)

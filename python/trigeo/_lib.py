@@ -269,6 +269,8 @@ _SIGNATURES = {
     "tg_geodesic_log_map": (c_int, [_vp, _vp, _psp, _pd, POINTER(FieldOptions), _pd, _pd, _vp]),
     "tg_geodesic_transport_field": (c_int, [_vp, _vp, _psp, _pd, POINTER(FieldOptions), _pd, _pd, _vp]),
     "tg_polyline_transport": (c_int, [_vp, c_size_t, _pd, _pu32, _pd, _pd]),
+    "tg_geodesic_field_gradient": (c_int, [_vp, _vp, _psp, c_size_t, POINTER(FieldOptions), _pd, _vp, _pu32, _pd, _pd,
+                                           _vp, _vp]),
     "tg_geodesic_field_at": (c_int, [_vp, _vp, _psp, c_size_t, _psp, c_size_t, POINTER(FieldOptions), _pd, _pd, _vp]),
     "tg_geodesic_distance_matrix": (c_int, [_vp, _psp, c_size_t, POINTER(FieldOptions), c_int, _pd, _vp]),
     "tg_geodesic_distance_matrix_at": (c_int, [_vp, _psp, c_size_t, _psp, c_size_t, POINTER(FieldOptions), c_int,

@@ -254,45 +254,6 @@ static void resolve_angles(const lm_source* s, const tg__field_run* run, uint8_t
 
 /* ---- parallel transport from the source (the log map's angles, each path's last segment) ---- */
 
-/* The unit normal of face f by the solver's winding (zero for a zero-area face). */
-static tg_vec3 solver_normal(const tg_geodesic* g, uint32_t f)
-{
-    tg_vec3 u, w;
-    tg__frame_axes(g, 3 * f, &u, &w);
-    return tg_v3_cross(u, w);
-}
-
-/* The unit direction in which the shortest path to vertex u (solver) arrives, in space, and the face
- * holding its last segment: from its record (tg__pred). False for the source vertex itself and
- * for a segment of length 0 (coincident vertices). */
-static bool arrival(const lm_source* s, const tg__field_run* run, uint32_t u, tg_vec3* out_t, uint32_t* out_f)
-{
-    const tg_geodesic* g = s->lm.g;
-    tg__pred p = run->vertex_pred[u];
-    tg_vec3 pu = tg__gpos(g, u), t;
-    if (p.h == TG_NONE) { /* along an edge from vertex p.origin */
-        if (p.origin == TG__ORIGIN_SOURCE) return false;
-        tg__node a = tg__node_vertex(p.origin), b = tg__node_vertex(u);
-        *out_f = tg__common_face(g, &a, &b, TG_NONE);
-        if (*out_f == TG_NONE) return false;
-        t = tg_v3_sub(pu, tg__gpos(g, p.origin));
-    } else if (p.h & TG__PRED_FACE) { /* straight inside a face from the source or a vertex */
-        *out_f = p.h & ~TG__PRED_FACE;
-        t = tg_v3_sub(pu, p.origin == TG__ORIGIN_SOURCE ? tg__node_pos(g, &s->node) : tg__gpos(g, p.origin));
-    } else { /* along the ray from the window's source image, in the frame of the edge it crossed */
-        double xy[2];
-        tg__frame_point(g, p.h, pu, xy);
-        tg_vec3 ax, ay;
-        tg__frame_axes(g, p.h, &ax, &ay);
-        *out_f = p.h / 3;
-        t = tg_v3_add(tg_v3_scale(ax, xy[0] - p.sx), tg_v3_scale(ay, xy[1] - p.sy));
-    }
-    double len = tg_v3_len(t);
-    if (!(len > 0.0)) return false;
-    *out_t = tg_v3_scale(t, 1.0 / len);
-    return true;
-}
-
 /* Every reached vertex's transported vector into out (3 a vertex, the mesh's numbering): the vector
  * of length `length` at the geometric angle -theta from the path's arriving direction, theta the
  * angle (from the reference, the transported vector's own direction) at which the path leaves
@@ -305,7 +266,7 @@ static void transport_out(const lm_source* s, const tg__field_run* run, const do
     double length = tg_v3_len(tg_v3(vector[0], vector[1], vector[2]));
     /* angles turn counterclockwise about the reference face's normal by its file winding; the
      * solver's normal of that face may be the opposite (a face it turned round) */
-    double sense = tg_v3_dot(solver_normal(g, s->lm.face0), tg_v3_cross(s->lm.ref_x, s->lm.ref_y)) < 0.0 ? -1.0 : 1.0;
+    double sense = tg_v3_dot(tg__solver_normal(g, s->lm.face0), tg_v3_cross(s->lm.ref_x, s->lm.ref_y)) < 0.0 ? -1.0 : 1.0;
     for (uint32_t u = 0; u < g->vertex_count; ++u) {
         double* o = out + 3 * (size_t)g->mesh_vertex[u];
         o[0] = o[1] = o[2] = 0.0;
@@ -313,14 +274,14 @@ static void transport_out(const lm_source* s, const tg__field_run* run, const do
         if (!(d < INFINITY && d <= run->max_dist)) continue;
         tg_vec3 t;
         uint32_t f;
-        if (!arrival(s, run, u, &t, &f)) {
+        if (!tg__pred_arrival(g, &run->vertex_pred[u], u, tg__gpos(g, u), tg__node_pos(g, &s->node), &t, &f)) {
             o[0] = vector[0], o[1] = vector[1], o[2] = vector[2];
             continue;
         }
         /* at a vertex source the angle is scaled to a turn of 2 pi: back to the fan's own */
         double th = angle[g->mesh_vertex[u]];
         if (s->vertex != TG_NONE && s->scale > 0.0) th /= s->scale;
-        tg_vec3 n = tg_v3_scale(solver_normal(g, f), sense);
+        tg_vec3 n = tg_v3_scale(tg__solver_normal(g, f), sense);
         tg_vec3 b = tg_v3_cross(n, t);
         tg_vec3 r = tg_v3_scale(tg_v3_sub(tg_v3_scale(t, cos(th)), tg_v3_scale(b, sin(th))), length);
         o[0] = r.x, o[1] = r.y, o[2] = r.z;

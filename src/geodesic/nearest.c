@@ -31,7 +31,17 @@ void tg__nearest_free(tg__nearest* nf)
 {
     tg__free(&nf->allocator, nf->dist);
     tg__free(&nf->allocator, nf->label);
-    nf->dist = NULL, nf->label = NULL;
+    tg__free(&nf->allocator, nf->pred);
+    tg__free(&nf->allocator, nf->tie);
+    nf->dist = NULL, nf->label = NULL, nf->pred = NULL, nf->tie = NULL;
+}
+
+bool tg__nearest_trace(tg__nearest* nf)
+{
+    size_t nv = nf->g->vertex_count ? nf->g->vertex_count : 1;
+    nf->pred = tg__alloc_array(&nf->allocator, nv, sizeof(tg__pred));
+    nf->tie = tg__calloc_array(&nf->allocator, nv, 1);
+    return nf->pred && nf->tie;
 }
 
 /* The progress hook: the caller's callback, told sources done of all. */
@@ -50,7 +60,8 @@ tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surfa
     tg_surface_point in = tg__surface_in(nf->g, src); /* the solver's form, once (field.h) */
     tg__field_query q = {.sources = &in, .source_count = 1, .max_distance = nf->max_dist,
                          .progress = progress ? tg__nearest_report : NULL, .progress_user = nf,
-                         .bound = nf->added ? nf->dist : NULL, .threads = tg__field_threads(nf->options)};
+                         .bound = nf->added ? nf->dist : NULL, .threads = tg__field_threads(nf->options),
+                         .trace = nf->pred != NULL};
     tg__field_run run;
     tg_status st = tg__field_execute(fs, &q, &run);
     tg__field_stats_add(&nf->stats, &run.stats);
@@ -59,8 +70,14 @@ tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surfa
     const uint32_t* touched = fs->touched_v.data;
     for (size_t i = 0; i < fs->touched_v.count; ++i) {
         uint32_t u = touched[i];
-        double d = run.vertex_dist[u];
-        if (d <= nf->max_dist && d < nf->dist[u]) nf->dist[u] = d, nf->label[u] = nf->added;
+        double d = run.vertex_dist[u], best = nf->dist[u];
+        if (!(d <= nf->max_dist)) continue;
+        if (nf->pred) { /* this source and the earlier best within the margin: a tie either way */
+            bool near = best < INFINITY && fabs(d - best) <= TG__NEAREST_TIE_REL * (d < best ? best : d);
+            if (d < best) nf->tie[u] = near, nf->pred[u] = run.vertex_pred[u];
+            else if (near) nf->tie[u] = 1;
+        }
+        if (d < best) nf->dist[u] = d, nf->label[u] = nf->added;
     }
     nf->added++;
     if (progress) { /* after every source too: a call per source, however fast the fields run */

@@ -20,12 +20,24 @@ typedef struct tg__nearest {
     const tg_field_options* options;
     size_t rows;
     double next_report_s; /* the next report between runs (tg__nearest_poll) */
+    /* tracing (tg__nearest_trace; NULL otherwise): per solver vertex how the source of its label
+     * reached it (tg__pred), and 1 where another source reaches it as shortly (within
+     * TG__NEAREST_TIE_REL: a tie, no gradient) */
+    tg__pred* pred;
+    uint8_t* tie;
 } tg__nearest;
+
+/* Two sources whose distances at a vertex agree within this relative margin tie there: far above
+ * the engines' rounding (~1e-15), far below any distance a user tells apart. */
+#define TG__NEAREST_TIE_REL 1e-12
 
 /* Makes the running field (every vertex +inf, TG_NONE) with allocator a; false when out of memory
  * (nothing to free then). */
 bool tg__nearest_init(tg__nearest* nf, const tg_geodesic* g, const tg_allocator* a, double max_dist);
 void tg__nearest_free(tg__nearest* nf);
+/* Makes the runs record how each vertex got its distance (nf->pred, nf->tie); false when out of
+ * memory (tg__nearest_free frees what was made). */
+bool tg__nearest_trace(tg__nearest* nf);
 /* Adds one source (a valid point): one run on fs, then every vertex it reached strictly more
  * shortly takes its distance and the label nf->added. Errors: TG_ERR_OUT_OF_MEMORY,
  * TG_ERR_CANCELLED (nf unchanged then, except the stats). */

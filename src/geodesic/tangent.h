@@ -5,6 +5,7 @@
 #ifndef TG_GEODESIC_TANGENT_H
 #define TG_GEODESIC_TANGENT_H
 
+#include "geodesic/field/engine.h"
 #include "geodesic/frame.h"
 
 /* A vector is refused when it makes an angle of at most about this (radians) with the normal of
@@ -44,5 +45,17 @@ int tg__surface_direction(const tg_geodesic* g, const tg__node* n, tg_vec3 v, tg
  * face at the edge, the direction of its half-plane nearest to v (along the edge when v points
  * out of the face), kept in *best when its cosine is larger (ties: the lower mesh face). */
 void tg__edge_nearest(const tg_geodesic* g, uint32_t e, tg_vec3 v, double vl, tg__surface_dir* best);
+
+/* The unit direction in which the path a field recorded for vertex u or a query point at `at` (its
+ * tg__pred, field/engine.h) arrives there, in space, and the face holding that last segment: along
+ * the ray from the window's source image (in the frame of the edge it crossed), along an edge from
+ * a vertex (to vertex u), or straight in a face from a vertex or from the point source at
+ * `face_source` (the position of the source in that face). False for a source vertex itself (no
+ * segment) and for a segment of length 0. */
+bool tg__pred_arrival(const tg_geodesic* g, const tg__pred* pred, uint32_t u, tg_vec3 at, tg_vec3 face_source,
+                      tg_vec3* out_t, uint32_t* out_f);
+
+/* The unit normal of face f by the solver's winding (zero for a face of zero area). */
+tg_vec3 tg__solver_normal(const tg_geodesic* g, uint32_t f);
 
 #endif

@@ -579,6 +579,14 @@ static void test_sweep_regressions(void)
         {"tm_capsule.obj", {TG_SURFACE_VERTEX, 1093, 0.0, {0, 0, 0}},
          {TG_SURFACE_FACE, 30, 0.0, {0.97008834039079839, 0.0077288952507199582, 0.022182764358481655}},
          0.6296078044602973},
+        /* two more pole pairs of the same kind (the sweep, seed 5: TG_ERR_INTERNAL one way; found
+         * by a helper's sweep of seeds 1-15, 9 failing of 6,400 before the fix, 0 after) */
+        {"tm_capsule.obj", {TG_SURFACE_FACE, 7427, 0.0, {0.21994768507861073, 0, 0.78005231492138927}},
+         {TG_SURFACE_FACE, 10138, 0.0, {0.011356899498762507, 0.4064005248099597, 0.5822425756912778}},
+         0.8567357420380738},
+        {"tm_capsule.obj", {TG_SURFACE_FACE, 190, 0.0, {0.28164388119153638, 0.71835611880846362, 0}},
+         {TG_SURFACE_FACE, 183, 0.0, {0.087738103304307424, 0.90011626310231696, 0.012145633593375615}},
+         0.05730857370515804},
         /* across non-manifold edges: the trace back tried every combination of faces at every
          * such edge it crossed (1.8e9 steps, 40-97 s: with only its bound on steps, which had
          * wrapped around, the walk now gives up: status internal); the length is

@@ -681,6 +681,120 @@ TG_API tg_status tg_bvh_winding_number_batch(const tg_bvh* bvh, const double* xy
 TG_API tg_status tg_bvh_locate(const tg_bvh* bvh, tg_bvh_workspace* workspace, const double xyz[3],
                         tg_surface_point* out_point, tg_closest_hit* out_hit);
 
+/* ============================================================================================== */
+/* Distance between two meshes (src/spatial/mesh_distance.c)                                      */
+/* ============================================================================================== */
+
+/** What the progress callback of tg_mesh_distance is told. */
+typedef struct tg_mesh_distance_progress {
+    double fraction; /**< rough share of the work done, in [0, 1] (the first pass is the first half;
+                          the refinement is measured by the interval's width on a log scale) */
+    double lower;    /**< the Hausdorff lower bound so far (0 before the first pass ends) */
+    double upper;    /**< the largest upper bound still queued (+inf during the first pass, NaN
+                          while the mean is refined) */
+} tg_mesh_distance_progress;
+
+/** Progress callback of tg_mesh_distance, called about every 5 ms of work from the calling
+ *  thread: return 0 to go on, anything else to stop (TG_ERR_CANCELLED). */
+typedef int (*tg_mesh_distance_progress_fn)(void* user, const tg_mesh_distance_progress* progress);
+
+/** Options of tg_mesh_distance; NULL or all-zero means defaults. */
+typedef struct tg_mesh_distance_options {
+    const tg_allocator* allocator; /**< the call's scratch; NULL: mesh a's allocator */
+    /** absolute width the Hausdorff interval is refined to (same unit as the coordinates, finite,
+     *  >= 0); 0: 1e-9 of the larger bounding-box diagonal of the two meshes. Widths below
+     *  4 * 2^-40 * (largest coordinate magnitude + diagonal) are raised to it (the rounding of
+     *  the distances themselves; reported in tg_mesh_distance_result.tolerance). */
+    double tolerance;
+    /** absolute width the mean's and the RMS's intervals are refined to (finite, >= 0); 0: no
+     *  refinement for them beyond what the Hausdorff interval needed (their intervals are then
+     *  what A's own triangles give: of the order of the edge length where d varies) */
+    double mean_tolerance;
+    /** the most triangle pieces kept (memory: about 150 bytes each); 0: 2^23 (never fewer than
+     *  A's faces). When reached, the refinement stops and the intervals, still valid, are wider
+     *  than asked (tg_mesh_distance_result.converged = 0). */
+    size_t max_pieces;
+    /** threads of the first pass (OpenMP; 0 all cores, 1 this thread, n at most n; negative or
+     *  beyond TG_MAX_THREADS: TG_ERR_INVALID_ARGUMENT). The refinement runs on the calling
+     *  thread. Every count gives the same bits. */
+    int threads;
+    tg_mesh_distance_progress_fn progress; /**< NULL: none */
+    void* progress_user;                   /**< passed to progress */
+} tg_mesh_distance_options;
+
+/** The certified distance from mesh A to mesh B (every number in the coordinates' unit). */
+typedef struct tg_mesh_distance_result {
+    /** the one-sided Hausdorff distance h(A, B) = max over x on A of d(x, B) lies in
+     *  [lower, upper]; upper - lower <= tolerance when converged */
+    double lower, upper;
+    double tolerance; /**< the absolute tolerance used (see tg_mesh_distance_options.tolerance) */
+    int converged;    /**< 1: upper - lower <= tolerance; 0: max_pieces stopped the refinement */
+    /** the point of A where the lower bound was realised: d(point, B) = distance, and
+     *  lower = distance - 2^-40 * (magnitude + diagonal) (clamped at 0) */
+    double distance;
+    uint32_t face;      /**< A's face (file order) holding the point */
+    double bary[3];     /**< the point's barycentrics on that face */
+    double point[3];    /**< the point */
+    uint32_t closest_face;    /**< B's face closest to the point (tg_bvh_closest's answer) */
+    double closest_bary[3];   /**< the closest point's barycentrics on it */
+    double closest_point[3];  /**< the closest point of B */
+    double area;              /**< A's total area */
+    /** the mean of d(x, B) over A's area lies in [mean_lower, mean_upper], the root mean square
+     *  in [rms_lower, rms_upper] (0 when A's area is 0) */
+    double mean_lower, mean_upper;
+    double rms_lower, rms_upper;
+    uint64_t pieces;  /**< triangle pieces made (A's faces and their subdivisions) */
+    uint64_t queries; /**< closest-point queries on B */
+} tg_mesh_distance_result;
+
+/** The distance from mesh A to mesh B, certified: the one-sided Hausdorff distance
+ *  h(A, B) = max over points x of A's faces of the distance d(x, B) to B's faces, as an interval
+ *  [lower, upper] refined until upper - lower <= tolerance; the point of A realising the lower
+ *  bound and its closest point on B; the mean and the RMS of d(x, B) over A's area as
+ *  intervals; and the exact distance of every vertex of A. The symmetric Hausdorff distance is
+ *  max(h(A, B), h(B, A)): two calls (the CLI's compare --symmetric and Python's
+ *  distance_to(symmetric=True) make them), the interval [max of lowers, max of uppers].
+ *
+ *  Method (Tang, Lee, Kim 2009): every vertex of A is queried exactly (tg_bvh_closest); the
+ *  lower bound is the largest distance realised at a point evaluated. On a triangle T of A,
+ *  d(x, t) to one triangle t of B is convex, so it lies below the linear interpolant of its
+ *  corner values, and d(x, B) <= min over the closest faces t of T's corners of those
+ *  interpolants; the maximum of that over T (a two-variable linear program, bounded by its dual,
+ *  so rounding cannot lower it) bounds max d over T. Triangles whose bound exceeds lower +
+ *  tolerance are taken worst first: the point where their bound peaks is queried, then they are
+ *  split in four at their edge midpoints (each midpoint queried). Near a point where d is the
+ *  distance to one plane of B the bound is exact; where two or three of B's faces compete it is
+ *  exact for planes too, so the refinement converges fast. The integrals of d and d^2 over each
+ *  piece are bounded by the same interpolants from above and, from below, by the concavity of
+ *  d^2(x) - |x|^2 (the distance to any set) and the 1-Lipschitz bound; these widths shrink with
+ *  the square of the pieces' size where d is large against them, linearly otherwise.
+ *
+ *  The bounds are rigorous in real arithmetic; the computed distances carry rounding of a few
+ *  ulps of the coordinates' magnitude, which every bound absorbs with a margin of 2^-40 *
+ *  (largest coordinate magnitude + diagonal).
+ *
+ *  a: mesh A, with at least one face. b: a BVH over mesh B (tg_bvh_create), whose mesh has at
+ *  least one face. Faces of either mesh may be degenerate (a zero-area face of A counts for the
+ *  Hausdorff distance, not for the area; B's are ordinary candidates as in tg_bvh_closest);
+ *  unreferenced vertices of A are not on its surface (they get a distance in
+ *  out_vertex_distance but do not count). options: NULL for defaults.
+ *  out_vertex_distance: NULL, or vertex_count(a) doubles: d(vertex, B), exactly as
+ *  tg_bvh_closest. out_result: the numbers above.
+ *
+ *  Returns TG_OK (also when max_pieces stopped the refinement: converged = 0);
+ *  TG_ERR_INVALID_ARGUMENT for a NULL a, b or out_result, a mesh without faces, a coordinate of A
+ *  beyond +-1e150, a tolerance or mean_tolerance negative, NaN or infinite, a thread count out of
+ *  range; TG_ERR_OUT_OF_MEMORY; TG_ERR_CANCELLED. On error out_result and out_vertex_distance are
+ *  untouched (out_vertex_distance may be partly written when cancelled) and nothing leaks.
+ *  Complexity: one closest-point query per vertex of A (on `threads` threads), a few
+ *  point-triangle distances per face, then about 4 queries per refined piece: the pieces
+ *  refined are those near the points where d comes within the tolerance of its maximum,
+ *  typically a few per level of subdivision (log(edge / tolerance) levels). Memory O(V + F +
+ *  pieces). Thread-safe: the meshes and the BVH are only read (concurrent calls need distinct
+ *  output arrays). (New after 0.6.) */
+TG_API tg_status tg_mesh_distance(const tg_mesh* a, const tg_bvh* b, const tg_mesh_distance_options* options,
+                                  double* out_vertex_distance, tg_mesh_distance_result* out_result);
+
 
 /* ============================================================================================== */
 /* Geodesic kernels: two-triangle and fan minimizers (src/kernels, seed 002 §2-4)                 */

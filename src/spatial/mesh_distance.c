@@ -1,0 +1,551 @@
+/* mesh_distance.c - certified distance from one mesh to another: the one-sided Hausdorff distance
+ * as an interval [lower, upper] refined to a tolerance, and the mean and RMS distance over the
+ * first mesh's area as intervals.
+ * Based on: Tang, Lee, Kim 2009, "Interactive Hausdorff distance computation for general polygonal
+ * models", SIGGRAPH, §4 (the distance to one triangle is convex over a triangle of the other mesh,
+ * so its maximum there is at a corner; branch and bound over subdivided triangles with a queue
+ * ordered by upper bound); Cignoni, Rocchini, Scopigno 1998, "Metro: measuring error on simplified
+ * surfaces" §3 (mean and RMS over the area; here bounded instead of sampled). The bounds:
+ *  - upper: for a triangle t of B, x -> d(x, t) is convex, so on a triangle T of A it lies below
+ *    the linear interpolant of its corner values; d(x, B) <= min over t in S of those
+ *    interpolants for any set S of B's triangles, and the maximum over T of that minimum is a
+ *    2-variable linear program, solved by its dual: any convex weights mu over S give
+ *    max_i sum_s mu_s d(a_i, t_s), a valid bound whatever rounding did to mu (LP duality makes
+ *    the best such mu exact);
+ *  - lower: d at points actually evaluated (exact closest-point queries);
+ *  - area integrals: d^2(x) - |x|^2 = min over y of (|y|^2 - 2 x.y) is concave, so on T
+ *    d^2 >= sum l_i d_i^2 - sum l_i |x - a_i|^2 (l the barycentrics), whose mean over T is
+ *    mean(d_i^2) - (sum of squared edges) / 12; and d >= sum l_i (d_i - |x - a_i|) (1-Lipschitz),
+ *    whose mean is at least mean(d_i) - sqrt(sum of squared edges / 12) (Cauchy-Schwarz). */
+#include "spatial/bvh_internal.h"
+#include "core/heap.h"
+#include "kernels/point_triangle.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+
+#ifdef TG_HAVE_OPENMP
+#include <omp.h>
+#endif
+
+/* A point of A where d(x, B) is known exactly: A's vertices first (ids 0 .. V-1), then the
+ * points refinement evaluated. face_a/bary: where on A (TG_NONE for a vertex: its own id). */
+typedef struct md_point {
+    double xyz[3];
+    double d;        /* distance to B (kernel's, through the BVH) */
+    uint32_t face_b; /* B's closest face */
+    uint32_t face_a;
+    double bary[3];
+} md_point;
+
+/* A triangle of A (id < F: face id) or a piece of one (4-way midpoint subdivision). */
+typedef struct md_piece {
+    uint32_t corner[3]; /* md_point ids */
+    uint32_t face;      /* A's face it lies in */
+    uint32_t split;     /* 1 when replaced by its four children */
+    double upper;       /* bound of max d over the piece (margin included) */
+    double gap;         /* the piece's share of the mean's interval width (refinement key) */
+    double d_lo, d_hi;  /* bounds of the integral of d over the piece */
+    double d2_lo, d2_hi; /* ... of d^2 */
+} md_piece;
+
+typedef struct md_ctx {
+    const tg_allocator* alloc;
+    const tg_mesh* a;
+    const tg_bvh* b;
+    const double* bxyz;
+    const uint32_t* btri;
+    double margin;
+    tg__vec points; /* md_point */
+    tg__vec pieces; /* md_piece */
+    tg__vec heap;   /* tg__heap_item: key -upper (phase 1) or -gap (phase 2) */
+    tg_bvh_workspace* ws;
+    double lower;        /* the largest realised distance */
+    uint32_t lower_point; /* where (md_point id) */
+    uint64_t queries;
+    tg_mesh_distance_progress_fn progress;
+    void* progress_user;
+    double next_report;
+} md_ctx;
+
+#define PT(c, i) (((md_point*)(c)->points.data)[i])
+#define PC(c, i) (((md_piece*)(c)->pieces.data)[i])
+
+/* The kernel's distance from p to B's face f (the BVH answers with the same kernel on exact
+ * copies of the same doubles, so a face's value here equals the query's). */
+static double face_distance(const md_ctx* c, const double* p, uint32_t f)
+{
+    const uint32_t* t = c->btri + 3 * (size_t)f;
+    tg_point_triangle r;
+    tg__point_triangle_robust_3d(p, c->bxyz + 3 * (size_t)t[0], c->bxyz + 3 * (size_t)t[1], c->bxyz + 3 * (size_t)t[2],
+                                 &r);
+    return sqrt(r.sqdist);
+}
+
+/* Candidate weight vectors of the simplex of dimension n - 1 (n <= 3) where the extremum of a
+ * min (sense +1: maximised) or max (sense -1: minimised) of k <= 3 affine functions
+ * f_p(w) = sum_a M[p][a] w_a can lie: the corners, ties of two functions on an edge, ties of three
+ * inside. Returns the best value and its w (first best in enumeration order). */
+static double envelope(const double M[3][3], int k, int n, int sense, double w_best[3])
+{
+    double best = sense > 0 ? -INFINITY : INFINITY;
+    double w[3];
+    w_best[0] = 1.0, w_best[1] = w_best[2] = 0.0;
+    int cand = 0;
+    for (;; ++cand) {
+        bool have = false;
+        w[0] = w[1] = w[2] = 0.0;
+        if (cand < n) { /* corners */
+            w[cand] = 1.0;
+            have = true;
+        } else if (cand < n + 9 * 3) { /* an edge (a, b) and a pair (p, q) of functions */
+            int e = (cand - n) / 9, pq = (cand - n) % 9, p = pq / 3, q = pq % 3;
+            int a = e, b = (e + 1) % 3;
+            if (b >= n || a >= n || (n == 2 && e != 0) || p >= k || q >= k || p >= q) continue;
+            double den = (M[p][a] - M[p][b]) - (M[q][a] - M[q][b]);
+            if (den == 0.0) continue;
+            double m = (M[q][b] - M[p][b]) / den;
+            if (!(m > 0.0 && m < 1.0)) continue;
+            w[a] = m, w[b] = 1.0 - m;
+            have = true;
+        } else if (cand == n + 27) { /* three functions tied inside (n == 3, k == 3) */
+            if (n < 3 || k < 3) break;
+            double r0[3], r1[3];
+            for (int a = 0; a < 3; ++a) r0[a] = M[0][a] - M[1][a], r1[a] = M[0][a] - M[2][a];
+            /* solve r0.w = 0, r1.w = 0, sum w = 1: w is parallel to r0 x r1 */
+            double x[3] = {r0[1] * r1[2] - r0[2] * r1[1], r0[2] * r1[0] - r0[0] * r1[2], r0[0] * r1[1] - r0[1] * r1[0]};
+            double s = x[0] + x[1] + x[2];
+            if (s == 0.0) break;
+            for (int a = 0; a < 3; ++a) w[a] = x[a] / s;
+            if (!(w[0] >= 0.0 && w[1] >= 0.0 && w[2] >= 0.0)) break;
+            have = true;
+        } else {
+            break;
+        }
+        if (!have) continue;
+        double v = sense > 0 ? INFINITY : -INFINITY;
+        for (int p = 0; p < k; ++p) {
+            double f = 0.0;
+            for (int a = 0; a < n; ++a) f += M[p][a] * w[a];
+            v = sense > 0 ? (f < v ? f : v) : (f > v ? f : v);
+        }
+        if (sense > 0 ? v > best : v < best) {
+            best = v;
+            w_best[0] = w[0], w_best[1] = w[1], w_best[2] = w[2];
+        }
+    }
+    return best;
+}
+
+/* The corner distances c[s][i] = d(a_i, t_s) for the distinct closest faces t_s of the corners. */
+static int corner_table(const md_ctx* c, const md_point* const p[3], double cs[3][3])
+{
+    uint32_t S[3];
+    int ns = 0;
+    for (int i = 0; i < 3; ++i) {
+        int s = 0;
+        while (s < ns && S[s] != p[i]->face_b) ++s;
+        if (s == ns) S[ns++] = p[i]->face_b;
+    }
+    for (int s = 0; s < ns; ++s)
+        for (int i = 0; i < 3; ++i) cs[s][i] = p[i]->face_b == S[s] ? p[i]->d : face_distance(c, p[i]->xyz, S[s]);
+    return ns;
+}
+
+/* The upper bound of max d over the triangle p[0..2] (margin included) by the dual program, and
+ * the barycentrics where the primal one peaks (the best place to look for a larger distance). */
+static double piece_upper(const md_ctx* c, const md_point* const p[3], double lam[3])
+{
+    double cs[3][3], Mt[3][3] = {{0}};
+    int ns = corner_table(c, p, cs);
+    double mu[3];
+    for (int i = 0; i < 3; ++i)
+        for (int s = 0; s < ns; ++s) Mt[i][s] = cs[s][i];
+    /* any mu of the simplex bounds the program; the enumeration finds the best */
+    double ub = envelope(Mt, 3, ns, -1, mu);
+    if (lam) (void)envelope(cs, ns, 3, +1, lam);
+    return ub + c->margin;
+}
+
+/* Fills a piece's bounds from its corners. */
+static void piece_eval(const md_ctx* c, md_piece* pc)
+{
+    const md_point* p[3] = {&PT(c, pc->corner[0]), &PT(c, pc->corner[1]), &PT(c, pc->corner[2])};
+    pc->upper = piece_upper(c, p, NULL);
+    double e[3][3], sqe = 0.0;
+    for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k) e[i][k] = p[(i + 1) % 3]->xyz[k] - p[i]->xyz[k];
+    for (int i = 0; i < 3; ++i) sqe += e[i][0] * e[i][0] + e[i][1] * e[i][1] + e[i][2] * e[i][2];
+    double n[3] = {e[0][1] * e[1][2] - e[0][2] * e[1][1], e[0][2] * e[1][0] - e[0][0] * e[1][2],
+                   e[0][0] * e[1][1] - e[0][1] * e[1][0]};
+    double area = 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    /* upper integrals: the interpolant of one face's corner values (d and d^2 are both convex) */
+    double cs[3][3];
+    int ns = corner_table(c, p, cs);
+    double hi1 = INFINITY, hi2 = INFINITY;
+    for (int s = 0; s < ns; ++s) {
+        double m1 = (cs[s][0] + cs[s][1] + cs[s][2]) / 3.0;
+        double m2 = (cs[s][0] * cs[s][0] + cs[s][1] * cs[s][1] + cs[s][2] * cs[s][2]) / 3.0;
+        if (m1 < hi1) hi1 = m1;
+        if (m2 < hi2) hi2 = m2;
+    }
+    if (pc->upper < hi1) hi1 = pc->upper;
+    if (pc->upper * pc->upper < hi2) hi2 = pc->upper * pc->upper;
+    double mean_d = (p[0]->d + p[1]->d + p[2]->d) / 3.0;
+    double mean_d2 = (p[0]->d * p[0]->d + p[1]->d * p[1]->d + p[2]->d * p[2]->d) / 3.0;
+    double lo2 = mean_d2 - sqe / 12.0, lo1 = mean_d - sqrt(sqe / 12.0);
+    if (pc->upper > 0.0 && lo2 / pc->upper > lo1) lo1 = lo2 / pc->upper; /* d >= d^2 / max d */
+    if (lo1 < 0.0) lo1 = 0.0;
+    if (lo1 * lo1 > lo2) lo2 = lo1 * lo1; /* Jensen: mean d^2 >= (mean d)^2 */
+    if (lo2 < 0.0) lo2 = 0.0;
+    /* the rounding of these few operations is far inside the margin */
+    lo1 = lo1 > c->margin ? lo1 - c->margin : 0.0;
+    lo2 = lo1 * lo1 > lo2 ? lo1 * lo1 : lo2;
+    pc->d_lo = area * lo1, pc->d_hi = area * (hi1 + c->margin);
+    pc->d2_lo = area * lo2 * (1.0 - 0x1p-40), pc->d2_hi = area * (hi2 + c->margin * (2.0 * hi1 + c->margin));
+    pc->gap = pc->d_hi - pc->d_lo;
+}
+
+/* Evaluates d(x, B) at a new point of A (face f, barycentrics b); its id, or TG_NONE out of
+ * memory. Raises the lower bound. */
+static uint32_t add_point(md_ctx* c, uint32_t f, const double b[3])
+{
+    if (c->points.count >= 0xFFFFFFF0u || !tg__vec_reserve(c->alloc, &c->points, 1)) return TG_NONE;
+    md_point* q = &PT(c, c->points.count);
+    const double* x = tg_mesh_positions(c->a);
+    const uint32_t* t = tg_mesh_triangles(c->a) + 3 * (size_t)f;
+    for (int k = 0; k < 3; ++k)
+        q->xyz[k] = b[0] * x[3 * (size_t)t[0] + k] + b[1] * x[3 * (size_t)t[1] + k] + b[2] * x[3 * (size_t)t[2] + k];
+    tg_closest_hit h;
+    if (tg_bvh_closest(c->b, c->ws, q->xyz, INFINITY, &h) != TG_OK || h.face == TG_NONE) return TG_NONE;
+    c->queries++;
+    q->d = sqrt(h.sqdist);
+    q->face_b = h.face;
+    q->face_a = f;
+    q->bary[0] = b[0], q->bary[1] = b[1], q->bary[2] = b[2];
+    uint32_t id = (uint32_t)c->points.count++;
+    if (q->d > c->lower) c->lower = q->d, c->lower_point = id;
+    return id;
+}
+
+/* Barycentrics of a point on A's face f (a vertex: the unit vector of its corner). */
+static void point_bary(const md_ctx* c, uint32_t id, uint32_t f, double b[3])
+{
+    const md_point* p = &PT(c, id);
+    if (p->face_a != TG_NONE) {
+        b[0] = p->bary[0], b[1] = p->bary[1], b[2] = p->bary[2];
+        return;
+    }
+    const uint32_t* t = tg_mesh_triangles(c->a) + 3 * (size_t)f;
+    b[0] = t[0] == id, b[1] = t[0] != id && t[1] == id, b[2] = t[0] != id && t[1] != id;
+}
+
+/* Replaces piece id by four (corners and edge midpoints); TG_ERR_OUT_OF_MEMORY when no room. */
+static tg_status split_piece(md_ctx* c, uint32_t id, uint32_t* out_first)
+{
+    if (c->pieces.count > 0xFFFFFFF0u - 4 || !tg__vec_reserve(c->alloc, &c->pieces, 4)) return TG_ERR_OUT_OF_MEMORY;
+    md_piece pc = PC(c, id);
+    double b[3][3];
+    for (int i = 0; i < 3; ++i) point_bary(c, pc.corner[i], pc.face, b[i]);
+    uint32_t mid[3]; /* mid[i]: on the edge from corner i to corner i + 1 */
+    for (int i = 0; i < 3; ++i) {
+        double m[3];
+        for (int k = 0; k < 3; ++k) m[k] = 0.5 * (b[i][k] + b[(i + 1) % 3][k]);
+        if ((mid[i] = add_point(c, pc.face, m)) == TG_NONE) return TG_ERR_OUT_OF_MEMORY;
+    }
+    const uint32_t kids[4][3] = {{pc.corner[0], mid[0], mid[2]},
+                                 {mid[0], pc.corner[1], mid[1]},
+                                 {mid[2], mid[1], pc.corner[2]},
+                                 {mid[0], mid[1], mid[2]}};
+    *out_first = (uint32_t)c->pieces.count;
+    for (int j = 0; j < 4; ++j) {
+        md_piece* k = &PC(c, c->pieces.count++);
+        memset(k, 0, sizeof *k);
+        k->corner[0] = kids[j][0], k->corner[1] = kids[j][1], k->corner[2] = kids[j][2];
+        k->face = pc.face;
+        piece_eval(c, k);
+    }
+    PC(c, id).split = 1;
+    return TG_OK;
+}
+
+static bool heap_push(md_ctx* c, double key, uint32_t id)
+{
+    if (!tg__vec_reserve(c->alloc, &c->heap, 1)) return false;
+    tg__heap_item it = {key, id};
+    tg__heap_insert((tg__heap_item*)c->heap.data, &c->heap.count, it);
+    return true;
+}
+
+/* Calls the caller's progress callback when due; true when it asked to stop. */
+static bool md_report(md_ctx* c, double fraction, double upper)
+{
+    if (!c->progress || !tg__progress_due(&c->next_report)) return false;
+    tg_mesh_distance_progress p = {fraction < 0 ? 0 : fraction > 1 ? 1 : fraction, c->lower, upper};
+    return c->progress(c->progress_user, &p) != 0;
+}
+
+/* Share of the refinement done, from the interval's width against the tolerance (log scale). */
+static double refine_fraction(double width0, double width, double tol)
+{
+    if (width <= tol || width0 <= tol) return 1.0;
+    return 0.5 + 0.5 * (1.0 - log(width / tol) / log(width0 / tol));
+}
+
+/* Phase 1: the Hausdorff interval. Pieces whose upper bound exceeds lower + tol are split,
+ * worst first, after probing the point where the piece's bound peaks. */
+static tg_status refine_hausdorff(md_ctx* c, double tol, size_t max_pieces)
+{
+    size_t F = tg_mesh_face_count(c->a);
+    c->heap.count = 0;
+    double top0 = c->lower;
+    for (size_t f = 0; f < F; ++f) {
+        if (PC(c, f).upper - c->lower > tol && !heap_push(c, -PC(c, f).upper, (uint32_t)f)) return TG_ERR_OUT_OF_MEMORY;
+        if (PC(c, f).upper > top0) top0 = PC(c, f).upper;
+    }
+    double width0 = top0 - c->lower;
+    while (c->heap.count) {
+        tg__heap_item* h = (tg__heap_item*)c->heap.data;
+        double upper = -h[0].key;
+        if (upper - c->lower <= tol) break;
+        if (md_report(c, refine_fraction(width0, upper - c->lower, tol), upper)) return TG_ERR_CANCELLED;
+        if (c->pieces.count + 4 > max_pieces) break; /* memory bound: the interval stays valid */
+        uint32_t id = tg__heap_take(h, &c->heap.count).node;
+        md_piece pc = PC(c, id);
+        const md_point* p[3] = {&PT(c, pc.corner[0]), &PT(c, pc.corner[1]), &PT(c, pc.corner[2])};
+        double lam[3], b[3][3], probe[3] = {0, 0, 0};
+        (void)piece_upper(c, p, lam);
+        for (int i = 0; i < 3; ++i) point_bary(c, pc.corner[i], pc.face, b[i]);
+        for (int i = 0; i < 3; ++i)
+            for (int k = 0; k < 3; ++k) probe[k] += lam[i] * b[i][k];
+        if (lam[0] < 1.0 && lam[1] < 1.0 && lam[2] < 1.0 && add_point(c, pc.face, probe) == TG_NONE)
+            return TG_ERR_OUT_OF_MEMORY;
+        if (pc.upper - c->lower <= tol) continue;
+        uint32_t first;
+        tg_status st = split_piece(c, id, &first);
+        if (st != TG_OK) return st;
+        for (uint32_t k = first; k < first + 4; ++k)
+            if (PC(c, k).upper - c->lower > tol && !heap_push(c, -PC(c, k).upper, k)) return TG_ERR_OUT_OF_MEMORY;
+    }
+    return TG_OK;
+}
+
+/* Sums of the live pieces' integrals, in id order (the same bits whatever the threads). */
+static void integrals(const md_ctx* c, double s[4])
+{
+    s[0] = s[1] = s[2] = s[3] = 0.0;
+    for (size_t i = 0; i < c->pieces.count; ++i) {
+        const md_piece* p = &PC(c, i);
+        if (p->split) continue;
+        s[0] += p->d_lo, s[1] += p->d_hi, s[2] += p->d2_lo, s[3] += p->d2_hi;
+    }
+}
+
+/* Phase 2 (options->mean_tolerance > 0): splits the pieces with the widest share of the mean's
+ * interval until the mean's and the RMS's intervals are within mean_tol. */
+static tg_status refine_mean(md_ctx* c, double mean_tol, double area, size_t max_pieces)
+{
+    double s[4];
+    integrals(c, s);
+    if (!(area > 0.0)) return TG_OK;
+    c->heap.count = 0;
+    for (size_t i = 0; i < c->pieces.count; ++i)
+        if (!PC(c, i).split && PC(c, i).gap > 0.0 && !heap_push(c, -PC(c, i).gap, (uint32_t)i))
+            return TG_ERR_OUT_OF_MEMORY;
+    double w0 = (s[1] - s[0]) / area;
+    size_t steps = 0;
+    while (c->heap.count) {
+        double mw = (s[1] - s[0]) / area;
+        double rw = sqrt(fmax(s[3], 0.0) / area) - sqrt(fmax(s[2], 0.0) / area);
+        if (mw <= mean_tol && rw <= mean_tol) break;
+        if (c->pieces.count + 4 > max_pieces) break;
+        if (md_report(c, refine_fraction(w0, mw, mean_tol), NAN)) return TG_ERR_CANCELLED;
+        uint32_t id = tg__heap_take((tg__heap_item*)c->heap.data, &c->heap.count).node;
+        uint32_t first;
+        tg_status st = split_piece(c, id, &first);
+        if (st != TG_OK) return st;
+        const md_piece* pp = &PC(c, id);
+        s[0] -= pp->d_lo, s[1] -= pp->d_hi, s[2] -= pp->d2_lo, s[3] -= pp->d2_hi;
+        for (uint32_t k = first; k < first + 4; ++k) {
+            const md_piece* q = &PC(c, k);
+            s[0] += q->d_lo, s[1] += q->d_hi, s[2] += q->d2_lo, s[3] += q->d2_hi;
+            if (q->gap > 0.0 && !heap_push(c, -q->gap, k)) return TG_ERR_OUT_OF_MEMORY;
+        }
+        if (++steps % 4096 == 0) integrals(c, s); /* no drift from the running sums */
+    }
+    return TG_OK;
+}
+
+/* The first pass: every vertex of A against B (in chunks, so that the caller can stop it), then
+ * every face's bounds on `threads` threads (each face on its own: the same bits whatever). */
+static tg_status first_pass(md_ctx* c, int threads)
+{
+    const tg_mesh* a = c->a;
+    size_t V = tg_mesh_vertex_count(a), F = tg_mesh_face_count(a);
+    const double* x = tg_mesh_positions(a);
+    const uint32_t* tri = tg_mesh_triangles(a);
+    tg_closest_hit* hits = tg__alloc_array(c->alloc, V ? V : 1, sizeof *hits);
+    if (!hits) return TG_ERR_OUT_OF_MEMORY;
+    const size_t chunk = 1u << 16;
+    tg_status st = TG_OK;
+    for (size_t i = 0; i < V && st == TG_OK; i += chunk) {
+        size_t n = V - i < chunk ? V - i : chunk;
+        st = tg_bvh_closest_batch(c->b, x + 3 * i, n, INFINITY, threads, hits + i);
+        if (st == TG_OK && md_report(c, 0.5 * (double)(i + n) / (double)V, INFINITY)) st = TG_ERR_CANCELLED;
+    }
+    if (st != TG_OK) {
+        tg__free(c->alloc, hits);
+        return st;
+    }
+    c->queries += V;
+    /* referenced vertices only: an unreferenced one is not on A's surface */
+    const uint32_t* vhe = tg_mesh_vertex_halfedges(a);
+    for (size_t v = 0; v < V; ++v) {
+        md_point* p = &PT(c, v);
+        memcpy(p->xyz, x + 3 * v, sizeof p->xyz);
+        p->d = sqrt(hits[v].sqdist);
+        p->face_b = hits[v].face;
+        p->face_a = TG_NONE;
+        p->bary[0] = p->bary[1] = p->bary[2] = 0.0;
+        if (vhe[v] != TG_NONE && (c->lower_point == TG_NONE || p->d > c->lower)) c->lower = p->d, c->lower_point = (uint32_t)v;
+    }
+    c->points.count = V;
+    tg__free(c->alloc, hits);
+    md_piece* pcs = (md_piece*)c->pieces.data;
+    long long Fl = (long long)F;
+#ifdef TG_HAVE_OPENMP
+    int nt = threads > 0 ? threads : omp_get_max_threads();
+#pragma omp parallel for schedule(static) num_threads(nt) if (nt > 1 && F > 4096)
+#endif
+    for (long long f = 0; f < Fl; ++f) {
+        md_piece* pc = &pcs[f];
+        memset(pc, 0, sizeof *pc);
+        for (int i = 0; i < 3; ++i) pc->corner[i] = tri[3 * f + i];
+        pc->face = (uint32_t)f;
+        piece_eval(c, pc);
+    }
+    c->pieces.count = F;
+    return TG_OK;
+}
+
+/* The larger coordinate magnitude and bounding-box diagonal of two reports. */
+static void scales(const tg_mesh_report* ra, const tg_mesh_report* rb, double* mag, double* diag)
+{
+    double m = 0.0, da = 0.0, db = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        double e[4] = {ra->bbox_min[k], ra->bbox_max[k], rb->bbox_min[k], rb->bbox_max[k]};
+        for (int j = 0; j < 4; ++j) m = fabs(e[j]) > m ? fabs(e[j]) : m;
+        da += (ra->bbox_max[k] - ra->bbox_min[k]) * (ra->bbox_max[k] - ra->bbox_min[k]);
+        db += (rb->bbox_max[k] - rb->bbox_min[k]) * (rb->bbox_max[k] - rb->bbox_min[k]);
+    }
+    *mag = m;
+    *diag = sqrt(da > db ? da : db);
+}
+
+/* The result's point of A and its closest point on B (one more query, for the closest point). */
+static tg_status fill_point(md_ctx* c, tg_mesh_distance_result* r)
+{
+    uint32_t id = c->lower_point;
+    const md_point* p = &PT(c, id);
+    uint32_t f = p->face_a;
+    if (f == TG_NONE) f = tg_mesh_vertex_halfedges(c->a)[id] / 3;
+    r->face = f;
+    point_bary(c, id, f, r->bary);
+    memcpy(r->point, p->xyz, sizeof r->point);
+    r->distance = p->d;
+    tg_closest_hit h;
+    tg_status st = tg_bvh_closest(c->b, c->ws, p->xyz, INFINITY, &h);
+    if (st != TG_OK) return st;
+    r->closest_face = h.face;
+    memcpy(r->closest_bary, h.bary, sizeof r->closest_bary);
+    memcpy(r->closest_point, h.point, sizeof r->closest_point);
+    return TG_OK;
+}
+
+static tg_status md_run(md_ctx* c, const tg_mesh_distance_options* o, double tol, double* out_vertex_distance,
+                        tg_mesh_distance_result* r)
+{
+    size_t V = tg_mesh_vertex_count(c->a), F = tg_mesh_face_count(c->a);
+    size_t max_pieces = o && o->max_pieces ? o->max_pieces : (size_t)1 << 23;
+    if (max_pieces < F) max_pieces = F;
+    if (!tg__vec_fit(c->alloc, &c->points, V) || !tg__vec_fit(c->alloc, &c->pieces, F)) return TG_ERR_OUT_OF_MEMORY;
+    tg_status st = tg_bvh_workspace_create(c->b, &c->ws);
+    if (st == TG_OK) st = first_pass(c, o ? o->threads : 0);
+    if (st == TG_OK) st = refine_hausdorff(c, tol, max_pieces);
+    if (st == TG_OK && o && o->mean_tolerance > 0.0) st = refine_mean(c, o->mean_tolerance, r->area, max_pieces);
+    if (st == TG_OK && md_report(c, 1.0, NAN)) st = TG_ERR_CANCELLED;
+    if (st != TG_OK) return st;
+    double upper = c->lower;
+    for (size_t i = 0; i < c->pieces.count; ++i)
+        if (!PC(c, i).split && PC(c, i).upper > upper) upper = PC(c, i).upper;
+    r->lower = c->lower > c->margin ? c->lower - c->margin : 0.0;
+    r->upper = upper;
+    r->converged = r->upper - r->lower <= tol;
+    double s[4];
+    integrals(c, s);
+    if (r->area > 0.0) {
+        r->mean_lower = s[0] / r->area * (1.0 - 0x1p-40), r->mean_upper = s[1] / r->area * (1.0 + 0x1p-40);
+        r->rms_lower = sqrt(s[2] / r->area * (1.0 - 0x1p-40)), r->rms_upper = sqrt(s[3] / r->area * (1.0 + 0x1p-40));
+        /* a mean is at most the maximum */
+        if (r->mean_upper > r->upper) r->mean_upper = r->upper;
+        if (r->rms_upper > r->upper) r->rms_upper = r->upper;
+    }
+    r->pieces = c->pieces.count;
+    r->queries = c->queries;
+    st = fill_point(c, r);
+    if (st == TG_OK && out_vertex_distance)
+        for (size_t v = 0; v < V; ++v) out_vertex_distance[v] = PT(c, v).d;
+    return st;
+}
+
+tg_status tg_mesh_distance(const tg_mesh* a, const tg_bvh* b, const tg_mesh_distance_options* options,
+                           double* out_vertex_distance, tg_mesh_distance_result* out_result)
+{
+    if (!a || !b || !out_result) return TG_ERR_INVALID_ARGUMENT;
+    const tg_mesh_distance_options* o = options;
+    if (o && (!(o->tolerance >= 0.0) || !isfinite(o->tolerance) || !(o->mean_tolerance >= 0.0) ||
+              !isfinite(o->mean_tolerance) || o->threads < 0 || o->threads > TG_MAX_THREADS))
+        return TG_ERR_INVALID_ARGUMENT;
+    const tg_mesh* bm = tg_bvh_mesh(b);
+    if (tg_mesh_face_count(a) == 0 || tg_mesh_face_count(bm) == 0 || tg_mesh_face_count(a) > 0x7FFFFFFFu)
+        return TG_ERR_INVALID_ARGUMENT;
+    if (!tg__mesh_in_distance_range(a)) return TG_ERR_INVALID_ARGUMENT;
+    double mag, diag;
+    scales(tg_mesh_get_report(a), tg_mesh_get_report(bm), &mag, &diag);
+    md_ctx c;
+    memset(&c, 0, sizeof c);
+    c.alloc = o && o->allocator ? o->allocator : &a->allocator;
+    c.a = a, c.b = b;
+    c.bxyz = tg_mesh_positions(bm), c.btri = tg_mesh_triangles(bm);
+    /* The kernel's distances are within a few ulps of the coordinates' magnitude plus the
+     * distance; 2^-40 of (magnitude + diagonal) covers them and the bounds' own few operations
+     * with room to spare. A tolerance below 4 margins could not be certified. */
+    c.margin = 0x1p-40 * (mag + diag);
+    c.lower_point = TG_NONE;
+    c.progress = o ? o->progress : NULL, c.progress_user = o ? o->progress_user : NULL;
+    c.points.elem = sizeof(md_point), c.pieces.elem = sizeof(md_piece), c.heap.elem = sizeof(tg__heap_item);
+    double tol = o && o->tolerance > 0.0 ? o->tolerance : 1e-9 * diag;
+    if (tol < 4.0 * c.margin) tol = 4.0 * c.margin;
+    tg_mesh_distance_result r;
+    memset(&r, 0, sizeof r);
+    r.tolerance = tol;
+    {
+        const double* x = tg_mesh_positions(a);
+        const uint32_t* t = tg_mesh_triangles(a);
+        for (size_t f = 0; f < tg_mesh_face_count(a); ++f) {
+            const double *p0 = x + 3 * (size_t)t[3 * f], *p1 = x + 3 * (size_t)t[3 * f + 1], *p2 = x + 3 * (size_t)t[3 * f + 2];
+            double u[3], v[3];
+            for (int k = 0; k < 3; ++k) u[k] = p1[k] - p0[k], v[k] = p2[k] - p0[k];
+            double n0 = u[1] * v[2] - u[2] * v[1], n1 = u[2] * v[0] - u[0] * v[2], n2 = u[0] * v[1] - u[1] * v[0];
+            r.area += 0.5 * sqrt(n0 * n0 + n1 * n1 + n2 * n2);
+        }
+    }
+    tg_status st = md_run(&c, o, tol, out_vertex_distance, &r);
+    tg_bvh_workspace_destroy(c.ws);
+    tg__vec_free(c.alloc, &c.points);
+    tg__vec_free(c.alloc, &c.pieces);
+    tg__vec_free(c.alloc, &c.heap);
+    if (st == TG_OK) *out_result = r;
+    return st;
+}

@@ -61,6 +61,7 @@ typedef struct md_ctx {
     tg__vec pieces; /* md_piece */
     tg__vec heap;   /* tg__heap_item: key -upper (phase 1) or -gap (phase 2) */
     tg_bvh_workspace* ws;
+    uint32_t* stack; /* node stack of the serial refinement (tangent_lower) */
     double lower;        /* the largest realised distance */
     uint32_t lower_point; /* where (md_point id) */
     uint64_t queries;
@@ -139,9 +140,8 @@ static double envelope(const double M[3][3], int k, int n, int sense, double w_b
 }
 
 /* The corner distances c[s][i] = d(a_i, t_s) for the distinct closest faces t_s of the corners. */
-static int corner_table(const md_ctx* c, const md_point* const p[3], double cs[3][3])
+static int corner_table(const md_ctx* c, const md_point* const p[3], double cs[3][3], uint32_t S[3])
 {
-    uint32_t S[3];
     int ns = 0;
     for (int i = 0; i < 3; ++i) {
         int s = 0;
@@ -158,7 +158,8 @@ static int corner_table(const md_ctx* c, const md_point* const p[3], double cs[3
 static double piece_upper(const md_ctx* c, const md_point* const p[3], double lam[3])
 {
     double cs[3][3], Mt[3][3] = {{0}};
-    int ns = corner_table(c, p, cs);
+    uint32_t S[3];
+    int ns = corner_table(c, p, cs, S);
     double mu[3];
     for (int i = 0; i < 3; ++i)
         for (int s = 0; s < ns; ++s) Mt[i][s] = cs[s][i];
@@ -168,8 +169,233 @@ static double piece_upper(const md_ctx* c, const md_point* const p[3], double la
     return ub + c->margin;
 }
 
+/* Polygons in a triangle's barycentric coordinates (u, v) = (l1, l2), for integrals of affine
+ * functions given by their corner values g[0..2]: g(u, v) = g0 + (g1 - g0) u + (g2 - g0) v. */
+#define MD_CLIP_MAX 16
+typedef struct md_poly {
+    int n;
+    double v[MD_CLIP_MAX + 4][2];
+} md_poly;
+
+static inline double affine_at(const double g[3], const double* uv)
+{
+    return g[0] + (g[1] - g[0]) * uv[0] + (g[2] - g[0]) * uv[1];
+}
+
+/* Keeps the part of P where h <= 0 (Sutherland-Hodgman against one line). Two polygons clipped
+ * by h and by -h meet exactly on the line: IEEE subtraction negates exactly, so both compute the
+ * same crossing points. */
+static void clip(md_poly* P, const double h[3])
+{
+    md_poly out;
+    out.n = 0;
+    for (int i = 0; i < P->n && out.n < MD_CLIP_MAX + 3; ++i) {
+        const double *a = P->v[i], *b = P->v[(i + 1) % P->n];
+        double ha = affine_at(h, a), hb = affine_at(h, b);
+        if (ha <= 0.0) out.v[out.n][0] = a[0], out.v[out.n][1] = a[1], ++out.n;
+        if ((ha < 0.0 && hb > 0.0) || (ha > 0.0 && hb < 0.0)) {
+            double w = ha / (ha - hb);
+            out.v[out.n][0] = a[0] + w * (b[0] - a[0]), out.v[out.n][1] = a[1] + w * (b[1] - a[1]);
+            ++out.n;
+        }
+    }
+    *P = out;
+}
+
+/* Where f[s] is the least of f[0..k) (ties to the lowest index, so that equal functions count
+ * once): the triangle clipped by f_s - f_t <= 0 for every other t. Convex. */
+static void region(const double (*f)[3], int k, int s, md_poly* P)
+{
+    P->n = 3;
+    P->v[0][0] = 0, P->v[0][1] = 0, P->v[1][0] = 1, P->v[1][1] = 0, P->v[2][0] = 0, P->v[2][1] = 1;
+    for (int t = 0; t < k && P->n >= 3; ++t) {
+        if (t == s) continue;
+        double h[3] = {f[s][0] - f[t][0], f[s][1] - f[t][1], f[s][2] - f[t][2]};
+        if (h[0] == 0.0 && h[1] == 0.0 && h[2] == 0.0) {
+            if (t < s) P->n = 0;
+            continue;
+        }
+        clip(P, h);
+    }
+}
+
+/* The integrals over P of g, |g| and g^2, as shares of the mean over the whole triangle (whose
+ * (u, v) area is 1/2): polygon areas by the shoelace formula, an affine g by its value at the
+ * centroid, g^2 over the fan triangles by area (sum of squares + sum of products) / 6. */
+static double poly_affine(const md_poly* P, const double g[3])
+{
+    if (P->n < 3) return 0.0;
+    double area2 = 0.0, cu = 0.0, cv = 0.0;
+    for (int i = 0; i < P->n; ++i) {
+        const double *a = P->v[i], *b = P->v[(i + 1) % P->n];
+        double cr = a[0] * b[1] - b[0] * a[1];
+        area2 += cr, cu += (a[0] + b[0]) * cr, cv += (a[1] + b[1]) * cr;
+    }
+    if (!(area2 > 0.0)) return 0.0;
+    double c[2] = {cu / (3.0 * area2), cv / (3.0 * area2)};
+    return area2 * affine_at(g, c);
+}
+
+static double poly_abs(const md_poly* P, const double g[3])
+{
+    md_poly pos = *P, neg = *P;
+    double m[3] = {-g[0], -g[1], -g[2]};
+    clip(&pos, m);
+    clip(&neg, g);
+    return poly_affine(&pos, g) - poly_affine(&neg, g);
+}
+
+static double poly_sq(const md_poly* P, const double g[3])
+{
+    double sum = 0.0;
+    for (int i = 1; i + 1 < P->n; ++i) {
+        const double *a = P->v[0], *b = P->v[i], *c = P->v[i + 1];
+        double area2 = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+        double ga = affine_at(g, a), gb = affine_at(g, b), gc = affine_at(g, c);
+        sum += area2 * (ga * ga + gb * gb + gc * gc + ga * gb + gb * gc + gc * ga) / 6.0;
+    }
+    return sum;
+}
+
+/* The mean over the triangle of the least of k affine functions (concave: exact). */
+static double min_affine_mean(const double (*f)[3], int k)
+{
+    double sum = 0.0;
+    md_poly P;
+    for (int s = 0; s < k; ++s) {
+        region(f, k, s, &P);
+        sum += poly_affine(&P, f[s]);
+    }
+    return sum;
+}
+
+/* The most faces of B the tangent lower bound looks at for one piece; beyond it (B's faces
+ * small against the distance) the other lower bounds, quadratic in the piece's size against the
+ * distance there, are the better ones anyway. */
+#define MD_NEAR_MAX 64
+
+/* A lower bound of the mean of d over the piece from B's faces near it, or -inf when more than
+ * MD_NEAR_MAX are near. Every face closest to some x of the piece is within `upper` of it, so
+ * d(x, B) = min over those faces t of d(x, t) there; d(x, t) is convex, so it lies above its
+ * tangent plane l_t at the piece's centroid c (gradient (c - y) / |c - y|, y the closest point of
+ * t); min over t of l_t is concave, so its mean over the piece is at least the mean of its corner
+ * values. Exact for faces whose closest points are inside them (d affine there). stack: the
+ * BVH's stack_capacity node entries. */
+static double tangent_lower(const md_ctx* c, uint32_t* stack, const md_point* const p[3], double upper)
+{
+    const tg_bvh* b = c->b;
+    if (!b->node_count) return -INFINITY;
+    double cc[3], lo[3], hi[3], llo[3], lhi[3];
+    for (int k = 0; k < 3; ++k) {
+        cc[k] = (p[0]->xyz[k] + p[1]->xyz[k] + p[2]->xyz[k]) / 3.0;
+        lo[k] = fmin(p[0]->xyz[k], fmin(p[1]->xyz[k], p[2]->xyz[k])) - upper;
+        hi[k] = fmax(p[0]->xyz[k], fmax(p[1]->xyz[k], p[2]->xyz[k])) + upper;
+        /* local units (B inside [-1, 1]^3): 2^-30 outward covers the conversion's rounding */
+        llo[k] = (lo[k] - b->origin[k]) * b->scale - 0x1p-30, lhi[k] = (hi[k] - b->origin[k]) * b->scale + 0x1p-30;
+    }
+    double corner_min[3] = {INFINITY, INFINITY, INFINITY};
+    double tan[MD_CLIP_MAX][3]; /* the tangents' corner values, while there are few */
+    int near = 0;
+    uint32_t sp = 0;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        const tg__bvh_node* n = &b->nodes[stack[--sp]];
+        float step[3] = {tg__f32_pow2(n->exponent[0]), tg__f32_pow2(n->exponent[1]), tg__f32_pow2(n->exponent[2])};
+        for (int s = 0; s < n->child_count; ++s) {
+            bool overlap = true;
+            for (int k = 0; k < 3 && overlap; ++k)
+                overlap = (double)tg__bvh_decode(n->origin[k], step[k], n->qlo[k][s]) <= lhi[k] &&
+                          (double)tg__bvh_decode(n->origin[k], step[k], n->qhi[k][s]) >= llo[k];
+            if (!overlap) continue;
+            if (!n->leaf_count[s]) {
+                stack[sp++] = n->child[s];
+                continue;
+            }
+            tg__bvh_leaf l = tg__bvh_leaf_at(b, n->child[s], n->leaf_count[s]);
+            for (uint32_t i = 0; i < n->leaf_count[s]; ++i) {
+                const double* v[3] = {l.vertex + 3 * l.corner[3 * i], l.vertex + 3 * l.corner[3 * i + 1],
+                                      l.vertex + 3 * l.corner[3 * i + 2]};
+                bool in = true;
+                for (int k = 0; k < 3 && in; ++k)
+                    in = fmin(v[0][k], fmin(v[1][k], v[2][k])) <= hi[k] && fmax(v[0][k], fmax(v[1][k], v[2][k])) >= lo[k];
+                if (!in) continue;
+                if (++near > MD_NEAR_MAX) return -INFINITY;
+                tg_point_triangle r;
+                tg__point_triangle_robust_3d(cc, v[0], v[1], v[2], &r);
+                double g[3] = {cc[0] - r.closest[0], cc[1] - r.closest[1], cc[2] - r.closest[2]};
+                double dc = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+                for (int j = 0; j < 3; ++j) {
+                    double lj = 0.0;
+                    if (dc > 0.0)
+                        lj = dc + (g[0] * (p[j]->xyz[0] - cc[0]) + g[1] * (p[j]->xyz[1] - cc[1]) +
+                                   g[2] * (p[j]->xyz[2] - cc[2])) / dc;
+                    if (lj < corner_min[j]) corner_min[j] = lj;
+                    if (near <= MD_CLIP_MAX) tan[near - 1][j] = lj;
+                }
+            }
+        }
+    }
+    if (!near) return -INFINITY; /* cannot happen (the corners' closest faces are near) */
+    double mean = (corner_min[0] + corner_min[1] + corner_min[2]) / 3.0;
+    if (near <= MD_CLIP_MAX) mean = fmax(mean, min_affine_mean((const double(*)[3])tan, near));
+    return mean - c->margin;
+}
+
+/* For one face t of B: at the corners, l the signed distance to t's plane and lat the distance
+ * from the corner's projection on that plane to t. d(x, t) <= |l(x)| + lat(x) and
+ * d(x, t)^2 = l(x)^2 + lat(x)^2, with l affine and lat convex (a distance to a convex set after
+ * an affine map): exact where the corners project into t, and where A crosses t's plane, where
+ * the interpolant of d is far above |l|. false for a degenerate t. */
+static bool plane_parts(const md_ctx* c, const md_point* const p[3], uint32_t f, double l[3], double lat[3])
+{
+    const uint32_t* t = c->btri + 3 * (size_t)f;
+    const double *v0 = c->bxyz + 3 * (size_t)t[0], *v1 = c->bxyz + 3 * (size_t)t[1], *v2 = c->bxyz + 3 * (size_t)t[2];
+    double e1[3], e2[3];
+    for (int k = 0; k < 3; ++k) e1[k] = v1[k] - v0[k], e2[k] = v2[k] - v0[k];
+    double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    double nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(nn > 0.0) || !isfinite(nn)) return false;
+    for (int k = 0; k < 3; ++k) n[k] /= nn;
+    for (int i = 0; i < 3; ++i) {
+        const double* a = p[i]->xyz;
+        l[i] = n[0] * (a[0] - v0[0]) + n[1] * (a[1] - v0[1]) + n[2] * (a[2] - v0[2]);
+        double q[3] = {a[0] - l[i] * n[0], a[1] - l[i] * n[1], a[2] - l[i] * n[2]};
+        lat[i] = face_distance(c, q, f);
+    }
+    return true;
+}
+
+/* Upper bounds of the means of d and d^2 over the piece: the piece is split where each corner
+ * face's interpolant (of d, resp. d^2: both convex) is the least, and on each part the face's
+ * interpolant or its plane bound (plane_parts), whichever integrates lower. Any split would be
+ * valid; this one is the interpolants' own. */
+static void upper_means(const md_ctx* c, const md_point* const p[3], double* out1, double* out2)
+{
+    double cs[3][3], sq[3][3], l[3][3], lat[3][3], lat2[3][3];
+    uint32_t S[3];
+    bool planar[3];
+    int ns = corner_table(c, p, cs, S);
+    for (int s = 0; s < ns; ++s) {
+        planar[s] = plane_parts(c, p, S[s], l[s], lat[s]);
+        for (int i = 0; i < 3; ++i) sq[s][i] = cs[s][i] * cs[s][i], lat2[s][i] = lat[s][i] * lat[s][i];
+    }
+    double hi1 = 0.0, hi2 = 0.0;
+    md_poly P;
+    for (int s = 0; s < ns; ++s) {
+        region((const double(*)[3])cs, ns, s, &P);
+        double a = poly_affine(&P, cs[s]);
+        if (planar[s]) a = fmin(a, poly_abs(&P, l[s]) + poly_affine(&P, lat[s]));
+        hi1 += a;
+        region((const double(*)[3])sq, ns, s, &P);
+        a = poly_affine(&P, sq[s]);
+        if (planar[s]) a = fmin(a, poly_sq(&P, l[s]) + poly_affine(&P, lat2[s]));
+        hi2 += a;
+    }
+    *out1 = hi1, *out2 = hi2;
+}
+
 /* Fills a piece's bounds from its corners. */
-static void piece_eval(const md_ctx* c, md_piece* pc)
+static void piece_eval(const md_ctx* c, uint32_t* stack, md_piece* pc)
 {
     const md_point* p[3] = {&PT(c, pc->corner[0]), &PT(c, pc->corner[1]), &PT(c, pc->corner[2])};
     pc->upper = piece_upper(c, p, NULL);
@@ -180,22 +406,16 @@ static void piece_eval(const md_ctx* c, md_piece* pc)
     double n[3] = {e[0][1] * e[1][2] - e[0][2] * e[1][1], e[0][2] * e[1][0] - e[0][0] * e[1][2],
                    e[0][0] * e[1][1] - e[0][1] * e[1][0]};
     double area = 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    /* upper integrals: the interpolant of one face's corner values (d and d^2 are both convex) */
-    double cs[3][3];
-    int ns = corner_table(c, p, cs);
-    double hi1 = INFINITY, hi2 = INFINITY;
-    for (int s = 0; s < ns; ++s) {
-        double m1 = (cs[s][0] + cs[s][1] + cs[s][2]) / 3.0;
-        double m2 = (cs[s][0] * cs[s][0] + cs[s][1] * cs[s][1] + cs[s][2] * cs[s][2]) / 3.0;
-        if (m1 < hi1) hi1 = m1;
-        if (m2 < hi2) hi2 = m2;
-    }
+    double hi1, hi2;
+    upper_means(c, p, &hi1, &hi2);
     if (pc->upper < hi1) hi1 = pc->upper;
     if (pc->upper * pc->upper < hi2) hi2 = pc->upper * pc->upper;
     double mean_d = (p[0]->d + p[1]->d + p[2]->d) / 3.0;
     double mean_d2 = (p[0]->d * p[0]->d + p[1]->d * p[1]->d + p[2]->d * p[2]->d) / 3.0;
     double lo2 = mean_d2 - sqe / 12.0, lo1 = mean_d - sqrt(sqe / 12.0);
     if (pc->upper > 0.0 && lo2 / pc->upper > lo1) lo1 = lo2 / pc->upper; /* d >= d^2 / max d */
+    double tl = tangent_lower(c, stack, p, pc->upper);
+    if (tl > lo1) lo1 = tl;
     if (lo1 < 0.0) lo1 = 0.0;
     if (lo1 * lo1 > lo2) lo2 = lo1 * lo1; /* Jensen: mean d^2 >= (mean d)^2 */
     if (lo2 < 0.0) lo2 = 0.0;
@@ -264,7 +484,7 @@ static tg_status split_piece(md_ctx* c, uint32_t id, uint32_t* out_first)
         memset(k, 0, sizeof *k);
         k->corner[0] = kids[j][0], k->corner[1] = kids[j][1], k->corner[2] = kids[j][2];
         k->face = pc.face;
-        piece_eval(c, k);
+        piece_eval(c, c->stack, k);
     }
     PC(c, id).split = 1;
     return TG_OK;
@@ -414,17 +634,33 @@ static tg_status first_pass(md_ctx* c, int threads)
     tg__free(c->alloc, hits);
     md_piece* pcs = (md_piece*)c->pieces.data;
     long long Fl = (long long)F;
+    int failed = 0;
 #ifdef TG_HAVE_OPENMP
     int nt = threads > 0 ? threads : omp_get_max_threads();
-#pragma omp parallel for schedule(static) num_threads(nt) if (nt > 1 && F > 4096)
+#pragma omp parallel num_threads(nt) if (nt > 1 && F > 4096)
 #endif
-    for (long long f = 0; f < Fl; ++f) {
-        md_piece* pc = &pcs[f];
-        memset(pc, 0, sizeof *pc);
-        for (int i = 0; i < 3; ++i) pc->corner[i] = tri[3 * f + i];
-        pc->face = (uint32_t)f;
-        piece_eval(c, pc);
+    {
+        uint32_t* stack = tg__alloc_array(c->alloc, c->b->stack_capacity, sizeof *stack);
+        if (!stack) {
+#ifdef TG_HAVE_OPENMP
+#pragma omp atomic write
+#endif
+            failed = 1;
+        }
+#ifdef TG_HAVE_OPENMP
+#pragma omp for schedule(static)
+#endif
+        for (long long f = 0; f < Fl; ++f) {
+            if (!stack) continue;
+            md_piece* pc = &pcs[f];
+            memset(pc, 0, sizeof *pc);
+            for (int i = 0; i < 3; ++i) pc->corner[i] = tri[3 * f + i];
+            pc->face = (uint32_t)f;
+            piece_eval(c, stack, pc);
+        }
+        tg__free(c->alloc, stack);
     }
+    if (failed) return TG_ERR_OUT_OF_MEMORY;
     c->pieces.count = F;
     return TG_OK;
 }
@@ -470,9 +706,12 @@ static tg_status md_run(md_ctx* c, const tg_mesh_distance_options* o, double tol
     size_t max_pieces = o && o->max_pieces ? o->max_pieces : (size_t)1 << 23;
     if (max_pieces < F) max_pieces = F;
     if (!tg__vec_fit(c->alloc, &c->points, V) || !tg__vec_fit(c->alloc, &c->pieces, F)) return TG_ERR_OUT_OF_MEMORY;
+    c->stack = tg__alloc_array(c->alloc, c->b->stack_capacity, sizeof *c->stack);
+    if (!c->stack) return TG_ERR_OUT_OF_MEMORY;
     tg_status st = tg_bvh_workspace_create(c->b, &c->ws);
     if (st == TG_OK) st = first_pass(c, o ? o->threads : 0);
-    if (st == TG_OK) st = refine_hausdorff(c, tol, max_pieces);
+    /* the reported lower bound is the realised one less a margin: stop a margin early */
+    if (st == TG_OK) st = refine_hausdorff(c, tol - c->margin, max_pieces);
     if (st == TG_OK && o && o->mean_tolerance > 0.0) st = refine_mean(c, o->mean_tolerance, r->area, max_pieces);
     if (st == TG_OK && md_report(c, 1.0, NAN)) st = TG_ERR_CANCELLED;
     if (st != TG_OK) return st;
@@ -543,6 +782,7 @@ tg_status tg_mesh_distance(const tg_mesh* a, const tg_bvh* b, const tg_mesh_dist
     }
     tg_status st = md_run(&c, o, tol, out_vertex_distance, &r);
     tg_bvh_workspace_destroy(c.ws);
+    tg__free(c.alloc, c.stack);
     tg__vec_free(c.alloc, &c.points);
     tg__vec_free(c.alloc, &c.pieces);
     tg__vec_free(c.alloc, &c.heap);

@@ -155,11 +155,9 @@ static int corner_table(const md_ctx* c, const md_point* const p[3], double cs[3
 
 /* The upper bound of max d over the triangle p[0..2] (margin included) by the dual program, and
  * the barycentrics where the primal one peaks (the best place to look for a larger distance). */
-static double piece_upper(const md_ctx* c, const md_point* const p[3], double lam[3])
+static double piece_upper(const md_ctx* c, const double cs[3][3], int ns, double lam[3])
 {
-    double cs[3][3], Mt[3][3] = {{0}};
-    uint32_t S[3];
-    int ns = corner_table(c, p, cs, S);
+    double Mt[3][3] = {{0}};
     double mu[3];
     for (int i = 0; i < 3; ++i)
         for (int s = 0; s < ns; ++s) Mt[i][s] = cs[s][i];
@@ -213,6 +211,11 @@ static void region(const double (*f)[3], int k, int s, md_poly* P)
         double h[3] = {f[s][0] - f[t][0], f[s][1] - f[t][1], f[s][2] - f[t][2]};
         if (h[0] == 0.0 && h[1] == 0.0 && h[2] == 0.0) {
             if (t < s) P->n = 0;
+            continue;
+        }
+        if (h[0] <= 0.0 && h[1] <= 0.0 && h[2] <= 0.0) continue; /* f_s <= f_t on the whole triangle */
+        if (h[0] >= 0.0 && h[1] >= 0.0 && h[2] >= 0.0) {          /* f_t <= f_s: f_s is nowhere least */
+            P->n = 0;                                                 /* (or only on a measure-zero set) */
             continue;
         }
         clip(P, h);
@@ -369,12 +372,11 @@ static bool plane_parts(const md_ctx* c, const md_point* const p[3], uint32_t f,
  * face's interpolant (of d, resp. d^2: both convex) is the least, and on each part the face's
  * interpolant or its plane bound (plane_parts), whichever integrates lower. Any split would be
  * valid; this one is the interpolants' own. */
-static void upper_means(const md_ctx* c, const md_point* const p[3], double* out1, double* out2)
+static void upper_means(const md_ctx* c, const md_point* const p[3], const double cs[3][3], const uint32_t S[3],
+                        int ns, double* out1, double* out2)
 {
-    double cs[3][3], sq[3][3], l[3][3], lat[3][3], lat2[3][3];
-    uint32_t S[3];
+    double sq[3][3], l[3][3], lat[3][3], lat2[3][3];
     bool planar[3];
-    int ns = corner_table(c, p, cs, S);
     for (int s = 0; s < ns; ++s) {
         planar[s] = plane_parts(c, p, S[s], l[s], lat[s]);
         for (int i = 0; i < 3; ++i) sq[s][i] = cs[s][i] * cs[s][i], lat2[s][i] = lat[s][i] * lat[s][i];
@@ -382,7 +384,7 @@ static void upper_means(const md_ctx* c, const md_point* const p[3], double* out
     double hi1 = 0.0, hi2 = 0.0;
     md_poly P;
     for (int s = 0; s < ns; ++s) {
-        region((const double(*)[3])cs, ns, s, &P);
+        region(cs, ns, s, &P);
         double a = poly_affine(&P, cs[s]);
         if (planar[s]) a = fmin(a, poly_abs(&P, l[s]) + poly_affine(&P, lat[s]));
         hi1 += a;
@@ -398,7 +400,10 @@ static void upper_means(const md_ctx* c, const md_point* const p[3], double* out
 static void piece_eval(const md_ctx* c, uint32_t* stack, md_piece* pc)
 {
     const md_point* p[3] = {&PT(c, pc->corner[0]), &PT(c, pc->corner[1]), &PT(c, pc->corner[2])};
-    pc->upper = piece_upper(c, p, NULL);
+    double cs[3][3];
+    uint32_t S[3];
+    int ns = corner_table(c, p, cs, S);
+    pc->upper = piece_upper(c, (const double(*)[3])cs, ns, NULL);
     double e[3][3], sqe = 0.0;
     for (int i = 0; i < 3; ++i)
         for (int k = 0; k < 3; ++k) e[i][k] = p[(i + 1) % 3]->xyz[k] - p[i]->xyz[k];
@@ -407,7 +412,7 @@ static void piece_eval(const md_ctx* c, uint32_t* stack, md_piece* pc)
                    e[0][0] * e[1][1] - e[0][1] * e[1][0]};
     double area = 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     double hi1, hi2;
-    upper_means(c, p, &hi1, &hi2);
+    upper_means(c, p, (const double(*)[3])cs, S, ns, &hi1, &hi2);
     if (pc->upper < hi1) hi1 = pc->upper;
     if (pc->upper * pc->upper < hi2) hi2 = pc->upper * pc->upper;
     double mean_d = (p[0]->d + p[1]->d + p[2]->d) / 3.0;
@@ -535,7 +540,10 @@ static tg_status refine_hausdorff(md_ctx* c, double tol, size_t max_pieces)
         md_piece pc = PC(c, id);
         const md_point* p[3] = {&PT(c, pc.corner[0]), &PT(c, pc.corner[1]), &PT(c, pc.corner[2])};
         double lam[3], b[3][3], probe[3] = {0, 0, 0};
-        (void)piece_upper(c, p, lam);
+        double cs[3][3];
+        uint32_t S[3];
+        int ns = corner_table(c, p, cs, S);
+        (void)piece_upper(c, (const double(*)[3])cs, ns, lam);
         for (int i = 0; i < 3; ++i) point_bary(c, pc.corner[i], pc.face, b[i]);
         for (int i = 0; i < 3; ++i)
             for (int k = 0; k < 3; ++k) probe[k] += lam[i] * b[i][k];

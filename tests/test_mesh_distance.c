@@ -288,6 +288,50 @@ static void test_ridge(void)
     tg_mesh_destroy(a), tg_mesh_destroy(b);
 }
 
+/* A piece over a vertex of B whose corners lie in faces of its fan that share no edge: B a fan of
+ * six triangles around (0, 0, height) over a hexagon, A one triangle with a corner in every
+ * other face. Flat (height 0): A lies on B, h(A, B) = 0, and the prisms of the fan's faces
+ * certify it at once (no refinement: one piece). A pyramid (height 0.3): A's triangle cuts
+ * through under the apex; the interval must hold the densely sampled maximum (a scan of every
+ * face of B) and be within the tolerance. */
+static void test_fan(void)
+{
+    for (int pyramid = 0; pyramid < 2; ++pyramid) {
+        double height = pyramid ? 0.3 : 0.0;
+        grow_mesh gb = {malloc(7 * 3 * sizeof(double)), malloc(6 * 3 * sizeof(uint32_t)), 7, 6};
+        gb.xyz[0] = 0, gb.xyz[1] = 0, gb.xyz[2] = height;
+        for (int k = 0; k < 6; ++k) {
+            double a = k * 3.14159265358979323846 / 3.0;
+            gb.xyz[3 * (k + 1)] = cos(a), gb.xyz[3 * (k + 1) + 1] = sin(a), gb.xyz[3 * (k + 1) + 2] = 0;
+            gb.tri[3 * k] = 0, gb.tri[3 * k + 1] = (uint32_t)(k + 1), gb.tri[3 * k + 2] = (uint32_t)((k + 1) % 6 + 1);
+        }
+        /* corners at the centroids of faces 0, 2, 4 (on B) */
+        grow_mesh ga = {malloc(9 * sizeof(double)), malloc(3 * sizeof(uint32_t)), 3, 1};
+        for (int i = 0; i < 3; ++i) {
+            const uint32_t* t = gb.tri + 3 * (2 * i);
+            for (int k = 0; k < 3; ++k)
+                ga.xyz[3 * i + k] = (gb.xyz[3 * t[0] + k] + gb.xyz[3 * t[1] + k] + gb.xyz[3 * t[2] + k]) / 3.0;
+            ga.tri[i] = (uint32_t)i;
+        }
+        tg_mesh *a = make(&ga), *b = make(&gb);
+        tg_mesh_distance_result r;
+        CHECK_STATUS(run(a, b, 1e-12, 1, NULL, &r), TG_OK);
+        if (!pyramid) {
+            check_interval("flat fan", &r, 0.0);
+            CHECK_EQ_INT(r.pieces, 1);
+        } else {
+            double sampled = scan_sampled(&ga, &gb, 400);
+            print_result("pyramid fan", &r);
+            printf("pyramid fan: sampled %.17g\n", sampled);
+            CHECK_MSG(r.upper >= sampled && r.lower >= sampled - r.tolerance, "sampled %.17g, interval [%.17g, %.17g]",
+                      sampled, r.lower, r.upper);
+            CHECK(r.converged && r.upper - r.lower <= r.tolerance);
+        }
+        tg_mesh_destroy(a), tg_mesh_destroy(b);
+        grow_free(&ga), grow_free(&gb);
+    }
+}
+
 static int stop_at_once(void* user, const tg_mesh_distance_progress* p)
 {
     (void)p;
@@ -363,6 +407,7 @@ int main(void)
     test_spheres();
     test_translated();
     test_ridge();
+    test_fan();
     test_garbage();
     return tg_test_finish();
 }

@@ -36,6 +36,7 @@ typedef struct md_point {
     double d;        /* distance to B (kernel's, through the BVH) */
     uint32_t face_b; /* B's closest face */
     uint32_t face_a;
+    tg_feature feature; /* where on face_b the closest point lies */
     double bary[3];
 } md_point;
 
@@ -56,12 +57,15 @@ typedef struct md_ctx {
     const tg_bvh* b;
     const double* bxyz;
     const uint32_t* btri;
+    const uint32_t* bopp;
     double margin;
     tg__vec points; /* md_point */
     tg__vec pieces; /* md_piece */
     tg__vec heap;   /* tg__heap_item: key -upper (phase 1) or -gap (phase 2) */
     tg_bvh_workspace* ws;
     uint32_t* stack; /* node stack of the serial refinement (tangent_lower) */
+    double refine_above; /* pieces whose bound is above this are refined (+inf until known) */
+    double tol_stop;     /* the refinement's width: the tolerance less a margin */
     double lower;        /* the largest realised distance */
     uint32_t lower_point; /* where (md_point id) */
     uint64_t queries;
@@ -140,10 +144,59 @@ static double envelope(const double M[3][3], int k, int n, int sense, double w_b
 }
 
 /* The corner distances c[s][i] = d(a_i, t_s) for the distinct closest faces t_s of the corners. */
+/* The faces of B around a point's closest feature (tg_closest_hit.feature): its face, the face
+ * across an edge, the fan of a vertex (walked both ways through the opposites, at most
+ * MD_FAN_MAX). Ties make the BVH name one face for a point on an edge or a vertex of B; the
+ * piece of A next to it may lie on another of these. */
+#define MD_FAN_MAX 16
+static int feature_faces(const md_ctx* c, const md_point* p, uint32_t out[MD_FAN_MAX])
+{
+    uint32_t f = p->face_b;
+    int n = 0;
+    out[n++] = f;
+    if (p->feature >= TG_FEATURE_EDGE01) {
+        uint32_t o = c->bopp[3 * (size_t)f + (p->feature - TG_FEATURE_EDGE01)];
+        if (o != TG_NONE) out[n++] = o / 3;
+    } else if (p->feature >= TG_FEATURE_VERTEX0) {
+        uint32_t h0 = 3 * f + (uint32_t)(p->feature - TG_FEATURE_VERTEX0); /* leaves the vertex in f */
+        for (uint32_t h = h0; n < MD_FAN_MAX;) { /* one way: across the edge coming in */
+            uint32_t o = c->bopp[tg_halfedge_prev(h)];
+            if (o == TG_NONE || o == h0) break;
+            out[n++] = o / 3, h = o;
+        }
+        for (uint32_t h = h0; n < MD_FAN_MAX;) { /* the other way: across the edge going out */
+            uint32_t o = c->bopp[h];
+            if (o == TG_NONE) break;
+            h = tg_halfedge_next(o);
+            if (h == h0) break;
+            out[n++] = o / 3;
+        }
+    }
+    return n;
+}
+
+/* The faces S of B whose interpolants bound the piece (at most 3) and their corner distances
+ * c[s][i] = d(a_i, t_s): a face around the closest features of all three corners first (the
+ * lowest such index), where the piece usually lies when A is B refined, then the corners'
+ * closest faces. Any choice gives a valid bound; this one a tight one. */
 static int corner_table(const md_ctx* c, const md_point* const p[3], double cs[3][3], uint32_t S[3])
 {
     int ns = 0;
-    for (int i = 0; i < 3; ++i) {
+    if (p[0]->feature != TG_FEATURE_FACE || p[1]->feature != TG_FEATURE_FACE || p[2]->feature != TG_FEATURE_FACE) {
+        uint32_t around[3][MD_FAN_MAX];
+        int na[3];
+        for (int i = 0; i < 3; ++i) na[i] = feature_faces(c, p[i], around[i]);
+        uint32_t common = TG_NONE;
+        for (int a = 0; a < na[0]; ++a) {
+            uint32_t f = around[0][a];
+            bool in1 = false, in2 = false;
+            for (int b = 0; b < na[1]; ++b) in1 |= around[1][b] == f;
+            for (int b = 0; b < na[2]; ++b) in2 |= around[2][b] == f;
+            if (in1 && in2 && f < common) common = f;
+        }
+        if (common != TG_NONE) S[ns++] = common;
+    }
+    for (int i = 0; i < 3 && ns < 3; ++i) {
         int s = 0;
         while (s < ns && S[s] != p[i]->face_b) ++s;
         if (s == ns) S[ns++] = p[i]->face_b;
@@ -396,6 +449,183 @@ static void upper_means(const md_ctx* c, const md_point* const p[3], const doubl
     *out1 = hi1, *out2 = hi2;
 }
 
+/* A bound of max d over the piece from two faces t1, t2 of B sharing the edge h (h in t1): the
+ * piece is cut by the plane through the edge containing the mean of the faces' normals (the
+ * bisector of their dihedral angle; their common plane's perpendicular when they are coplanar),
+ * and on the side of t_k, a convex polygon, d(x, B) <= d(x, t_k) <= its largest value at the
+ * polygon's vertices (convexity again). Where d is the distance to these planes this is the exact
+ * maximum: it crosses over from t1 to t2 on that plane. The interpolants of the dual bound cannot
+ * see this when the piece straddles the edge (A lying on B but triangulated across B's edges:
+ * each interpolant is then of the order of the piece's size at the corners across the edge).
+ * +inf when the faces are degenerate or fold back onto each other. */
+static double split_bound(const md_ctx* c, const md_point* const p[3], uint32_t h)
+{
+    uint32_t f[2] = {h / 3, c->bopp[h] / 3};
+    const double* P = c->bxyz + 3 * (size_t)c->btri[h];
+    const double* Q = c->bxyz + 3 * (size_t)c->btri[tg_halfedge_next(h)];
+    const double* R1 = c->bxyz + 3 * (size_t)c->btri[tg_halfedge_prev(h)];
+    double sum[3] = {0, 0, 0};
+    for (int k = 0; k < 2; ++k) {
+        const uint32_t* t = c->btri + 3 * (size_t)f[k];
+        const double *v0 = c->bxyz + 3 * (size_t)t[0], *v1 = c->bxyz + 3 * (size_t)t[1], *v2 = c->bxyz + 3 * (size_t)t[2];
+        double e1[3] = {v1[0] - v0[0], v1[1] - v0[1], v1[2] - v0[2]}, e2[3] = {v2[0] - v0[0], v2[1] - v0[1], v2[2] - v0[2]};
+        double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        double nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (!(nn > 0.0) || !isfinite(nn)) return INFINITY;
+        for (int j = 0; j < 3; ++j) sum[j] += n[j] / nn;
+    }
+    double e[3] = {Q[0] - P[0], Q[1] - P[1], Q[2] - P[2]};
+    double m[3] = {e[1] * sum[2] - e[2] * sum[1], e[2] * sum[0] - e[0] * sum[2], e[0] * sum[1] - e[1] * sum[0]};
+    double side = m[0] * (R1[0] - P[0]) + m[1] * (R1[1] - P[1]) + m[2] * (R1[2] - P[2]);
+    if (!(side != 0.0) || !isfinite(side)) return INFINITY;
+    double g[3];
+    for (int i = 0; i < 3; ++i)
+        g[i] = (side > 0 ? -1.0 : 1.0) *
+               (m[0] * (p[i]->xyz[0] - P[0]) + m[1] * (p[i]->xyz[1] - P[1]) + m[2] * (p[i]->xyz[2] - P[2]));
+    /* g <= 0 on t1's side */
+    double worst = 0.0;
+    for (int k = 0; k < 2; ++k) {
+        md_poly poly;
+        poly.n = 3;
+        poly.v[0][0] = 0, poly.v[0][1] = 0, poly.v[1][0] = 1, poly.v[1][1] = 0, poly.v[2][0] = 0, poly.v[2][1] = 1;
+        double gk[3] = {k ? -g[0] : g[0], k ? -g[1] : g[1], k ? -g[2] : g[2]};
+        clip(&poly, gk);
+        for (int i = 0; i < poly.n; ++i) {
+            double u = poly.v[i][0], v = poly.v[i][1], x[3];
+            for (int j = 0; j < 3; ++j) x[j] = (1.0 - u - v) * p[0]->xyz[j] + u * p[1]->xyz[j] + v * p[2]->xyz[j];
+            double d = face_distance(c, x, f[k]);
+            if (d > worst) worst = d;
+        }
+    }
+    return worst;
+}
+
+/* Candidate faces of B for a piece: around each corner's closest feature (feature_faces), and
+ * for a corner inside a face its three neighbours; without repeats, in that order, at most
+ * MD_CAND_MAX. */
+#define MD_CAND_MAX 24
+static int piece_candidates(const md_ctx* c, const md_point* const p[3], uint32_t out[MD_CAND_MAX])
+{
+    int n = 0;
+    for (int i = 0; i < 3; ++i) {
+        uint32_t f[MD_FAN_MAX + 3];
+        int k = feature_faces(c, p[i], f);
+        if (p[i]->feature == TG_FEATURE_FACE)
+            for (int e = 0; e < 3; ++e) {
+                uint32_t o = c->bopp[3 * (size_t)p[i]->face_b + e];
+                if (o != TG_NONE) f[k++] = o / 3;
+            }
+        for (int j = 0; j < k; ++j) {
+            int m = 0;
+            while (m < n && out[m] != f[j]) ++m;
+            if (m == n) {
+                if (n == MD_CAND_MAX) return n;
+                out[n++] = f[j];
+            }
+        }
+    }
+    return n;
+}
+
+/* A bound of max d over the piece from the prisms of its candidate faces: inside the prism over
+ * a face t (the points that project into t) d(x, t) is |l_t(x)|, the distance to t's plane,
+ * affine on each side of the plane, so its maximum over a convex polygon is at a vertex. The
+ * piece is cut, face after face, into the part inside each prism and up to three convex parts
+ * outside (one per side plane crossed); what no prism takes is bounded by the least over the
+ * candidates of the largest kernel distance at its vertices (convexity). Exact, up to rounding,
+ * where A lies on or near B and the candidates cover the piece: the case the corner faces'
+ * interpolants cannot resolve (a piece over a vertex of B, its corners in faces of the fan that
+ * share no edge). +inf when the pieces would exceed the list, or once the bound reaches
+ * `enough` (no better than what the caller has). */
+#define MD_POLY_LIST 32
+static double prism_bound(const md_ctx* c, const md_point* const p[3], double enough)
+{
+    uint32_t cand[MD_CAND_MAX];
+    int nc = piece_candidates(c, p, cand);
+    md_poly list[MD_POLY_LIST], next[MD_POLY_LIST];
+    int n = 1;
+    list[0].n = 3;
+    list[0].v[0][0] = 0, list[0].v[0][1] = 0, list[0].v[1][0] = 1, list[0].v[1][1] = 0, list[0].v[2][0] = 0,
+    list[0].v[2][1] = 1;
+    double worst = 0.0;
+    for (int ci = 0; ci < nc && n > 0; ++ci) {
+        const uint32_t* t = c->btri + 3 * (size_t)cand[ci];
+        const double* v[3] = {c->bxyz + 3 * (size_t)t[0], c->bxyz + 3 * (size_t)t[1], c->bxyz + 3 * (size_t)t[2]};
+        double e1[3], e2[3];
+        for (int k = 0; k < 3; ++k) e1[k] = v[1][k] - v[0][k], e2[k] = v[2][k] - v[0][k];
+        double nrm[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        double nn = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+        if (!(nn > 0.0) || !isfinite(nn)) continue;
+        for (int k = 0; k < 3; ++k) nrm[k] /= nn;
+        /* at the piece's corners: l (signed plane distance) and the three side functions g_e,
+         * >= 0 on the prism's side of edge e (inward normal nrm x edge) */
+        double l[3], g[3][3];
+        for (int i = 0; i < 3; ++i) {
+            const double* a = p[i]->xyz;
+            l[i] = nrm[0] * (a[0] - v[0][0]) + nrm[1] * (a[1] - v[0][1]) + nrm[2] * (a[2] - v[0][2]);
+            for (int e = 0; e < 3; ++e) {
+                const double *P = v[e], *Q = v[(e + 1) % 3];
+                double d[3] = {Q[0] - P[0], Q[1] - P[1], Q[2] - P[2]};
+                double m[3] = {nrm[1] * d[2] - nrm[2] * d[1], nrm[2] * d[0] - nrm[0] * d[2], nrm[0] * d[1] - nrm[1] * d[0]};
+                g[e][i] = m[0] * (a[0] - P[0]) + m[1] * (a[1] - P[1]) + m[2] * (a[2] - P[2]);
+            }
+        }
+        int m = 0;
+        for (int pi = 0; pi < n; ++pi) {
+            md_poly in = list[pi];
+            for (int e = 0; e < 3 && in.n >= 3; ++e) {
+                double neg[3] = {-g[e][0], -g[e][1], -g[e][2]};
+                md_poly out = in;
+                clip(&out, g[e]); /* g_e <= 0: outside across edge e */
+                clip(&in, neg);   /* g_e >= 0 */
+                if (out.n >= 3) {
+                    if (m == MD_POLY_LIST) return INFINITY;
+                    next[m++] = out;
+                }
+            }
+            for (int k = 0; k < in.n; ++k) {
+                double lv = fabs(affine_at(l, in.v[k]));
+                if (lv > worst) worst = lv;
+            }
+        }
+        if (worst >= enough) return INFINITY;
+        memcpy(list, next, (size_t)m * sizeof list[0]);
+        n = m;
+    }
+    for (int pi = 0; pi < n; ++pi) { /* what no prism took */
+        double best = INFINITY;
+        for (int ci = 0; ci < nc; ++ci) {
+            double w = 0.0;
+            for (int k = 0; k < list[pi].n; ++k) {
+                double u = list[pi].v[k][0], vv = list[pi].v[k][1], x[3];
+                for (int j = 0; j < 3; ++j) x[j] = (1.0 - u - vv) * p[0]->xyz[j] + u * p[1]->xyz[j] + vv * p[2]->xyz[j];
+                w = fmax(w, face_distance(c, x, cand[ci]));
+            }
+            best = fmin(best, w);
+        }
+        worst = fmax(worst, best);
+        if (worst >= enough) return INFINITY;
+    }
+    return worst;
+}
+
+/* The piece's upper bound: the dual bound of the corner faces' interpolants, or the split bound
+ * of two of them sharing an edge, whichever is lower (margin included). */
+static double piece_bound(const md_ctx* c, const md_point* const p[3], const double cs[3][3], const uint32_t S[3],
+                          int ns)
+{
+    double ub = piece_upper(c, cs, ns, NULL);
+    for (int a = 0; a < ns; ++a)
+        for (int b = a + 1; b < ns; ++b)
+            for (int k = 0; k < 3; ++k) {
+                uint32_t h = 3 * S[a] + (uint32_t)k, o = c->bopp[h];
+                if (o != TG_NONE && o / 3 == S[b]) ub = fmin(ub, split_bound(c, p, h) + c->margin);
+            }
+    /* only where the piece would otherwise be refined: the prisms cost more */
+    if (ub > c->refine_above) ub = fmin(ub, prism_bound(c, p, ub - c->margin) + c->margin);
+    return ub;
+}
+
 /* Fills a piece's bounds from its corners. */
 static void piece_eval(const md_ctx* c, uint32_t* stack, md_piece* pc)
 {
@@ -403,7 +633,7 @@ static void piece_eval(const md_ctx* c, uint32_t* stack, md_piece* pc)
     double cs[3][3];
     uint32_t S[3];
     int ns = corner_table(c, p, cs, S);
-    pc->upper = piece_upper(c, (const double(*)[3])cs, ns, NULL);
+    pc->upper = piece_bound(c, p, (const double(*)[3])cs, S, ns);
     double e[3][3], sqe = 0.0;
     for (int i = 0; i < 3; ++i)
         for (int k = 0; k < 3; ++k) e[i][k] = p[(i + 1) % 3]->xyz[k] - p[i]->xyz[k];
@@ -419,8 +649,11 @@ static void piece_eval(const md_ctx* c, uint32_t* stack, md_piece* pc)
     double mean_d2 = (p[0]->d * p[0]->d + p[1]->d * p[1]->d + p[2]->d * p[2]->d) / 3.0;
     double lo2 = mean_d2 - sqe / 12.0, lo1 = mean_d - sqrt(sqe / 12.0);
     if (pc->upper > 0.0 && lo2 / pc->upper > lo1) lo1 = lo2 / pc->upper; /* d >= d^2 / max d */
-    double tl = tangent_lower(c, stack, p, pc->upper);
-    if (tl > lo1) lo1 = tl;
+    /* the tangents (a box query on B's tree) only where the cheap bounds leave a gap worth it */
+    if (hi1 - fmax(lo1, 0.0) > 4.0 * c->margin) {
+        double tl = tangent_lower(c, stack, p, pc->upper);
+        if (tl > lo1) lo1 = tl;
+    }
     if (lo1 < 0.0) lo1 = 0.0;
     if (lo1 * lo1 > lo2) lo2 = lo1 * lo1; /* Jensen: mean d^2 >= (mean d)^2 */
     if (lo2 < 0.0) lo2 = 0.0;
@@ -447,6 +680,7 @@ static uint32_t add_point(md_ctx* c, uint32_t f, const double b[3])
     c->queries++;
     q->d = sqrt(h.sqdist);
     q->face_b = h.face;
+    q->feature = h.feature;
     q->face_a = f;
     q->bary[0] = b[0], q->bary[1] = b[1], q->bary[2] = b[2];
     uint32_t id = (uint32_t)c->points.count++;
@@ -634,12 +868,14 @@ static tg_status first_pass(md_ctx* c, int threads)
         memcpy(p->xyz, x + 3 * v, sizeof p->xyz);
         p->d = sqrt(hits[v].sqdist);
         p->face_b = hits[v].face;
+        p->feature = hits[v].feature;
         p->face_a = TG_NONE;
         p->bary[0] = p->bary[1] = p->bary[2] = 0.0;
         if (vhe[v] != TG_NONE && (c->lower_point == TG_NONE || p->d > c->lower)) c->lower = p->d, c->lower_point = (uint32_t)v;
     }
     c->points.count = V;
     tg__free(c->alloc, hits);
+    c->refine_above = c->lower + c->tol_stop;
     md_piece* pcs = (md_piece*)c->pieces.data;
     long long Fl = (long long)F;
     int failed = 0;
@@ -719,8 +955,7 @@ static tg_status md_run(md_ctx* c, const tg_mesh_distance_options* o, double tol
     if (!c->stack) return TG_ERR_OUT_OF_MEMORY;
     tg_status st = tg_bvh_workspace_create(c->b, &c->ws);
     if (st == TG_OK) st = first_pass(c, o ? o->threads : 0);
-    /* the reported lower bound is the realised one less a margin: stop a margin early */
-    if (st == TG_OK) st = refine_hausdorff(c, tol - c->margin, max_pieces);
+    if (st == TG_OK) st = refine_hausdorff(c, c->tol_stop, max_pieces);
     if (st == TG_OK && o && o->mean_tolerance > 0.0) st = refine_mean(c, o->mean_tolerance, r->area, max_pieces);
     if (st == TG_OK && md_report(c, 1.0, NAN)) st = TG_ERR_CANCELLED;
     if (st != TG_OK) return st;
@@ -765,7 +1000,7 @@ tg_status tg_mesh_distance(const tg_mesh* a, const tg_bvh* b, const tg_mesh_dist
     memset(&c, 0, sizeof c);
     c.alloc = o && o->allocator ? o->allocator : &a->allocator;
     c.a = a, c.b = b;
-    c.bxyz = tg_mesh_positions(bm), c.btri = tg_mesh_triangles(bm);
+    c.bxyz = tg_mesh_positions(bm), c.btri = tg_mesh_triangles(bm), c.bopp = tg_mesh_opposites(bm);
     /* The kernel's distances are within a few ulps of the coordinates' magnitude plus the
      * distance; 2^-40 of (magnitude + diagonal) covers them and the bounds' own few operations
      * with room to spare. A tolerance below 4 margins could not be certified. */
@@ -789,6 +1024,9 @@ tg_status tg_mesh_distance(const tg_mesh* a, const tg_bvh* b, const tg_mesh_dist
             r.area += 0.5 * sqrt(n0 * n0 + n1 * n1 + n2 * n2);
         }
     }
+    /* the reported lower bound is the realised one less a margin: stop a margin early */
+    c.tol_stop = tol - c.margin;
+    c.refine_above = INFINITY;
     tg_status st = md_run(&c, o, tol, out_vertex_distance, &r);
     tg_bvh_workspace_destroy(c.ws);
     tg__free(c.alloc, c.stack);

@@ -710,7 +710,7 @@ typedef struct tg_mesh_distance_options {
      *  refinement for them beyond what the Hausdorff interval needed (their intervals are then
      *  what A's own triangles give: of the order of the edge length where d varies) */
     double mean_tolerance;
-    /** the most triangle pieces kept (memory: about 150 bytes each); 0: 2^23 (never fewer than
+    /** the most triangle pieces kept (memory: about 160 bytes each); 0: 2^23 (never fewer than
      *  A's faces). When reached, the refinement stops and the intervals, still valid, are wider
      *  than asked (tg_mesh_distance_result.converged = 0). */
     size_t max_pieces;
@@ -756,18 +756,27 @@ typedef struct tg_mesh_distance_result {
  *  distance_to(symmetric=True) make them), the interval [max of lowers, max of uppers].
  *
  *  Method (Tang, Lee, Kim 2009): every vertex of A is queried exactly (tg_bvh_closest); the
- *  lower bound is the largest distance realised at a point evaluated. On a triangle T of A,
- *  d(x, t) to one triangle t of B is convex, so it lies below the linear interpolant of its
- *  corner values, and d(x, B) <= min over the closest faces t of T's corners of those
- *  interpolants; the maximum of that over T (a two-variable linear program, bounded by its dual,
- *  so rounding cannot lower it) bounds max d over T. Triangles whose bound exceeds lower +
- *  tolerance are taken worst first: the point where their bound peaks is queried, then they are
- *  split in four at their edge midpoints (each midpoint queried). Near a point where d is the
- *  distance to one plane of B the bound is exact; where two or three of B's faces compete it is
- *  exact for planes too, so the refinement converges fast. The integrals of d and d^2 over each
- *  piece are bounded by the same interpolants from above and, from below, by the concavity of
- *  d^2(x) - |x|^2 (the distance to any set) and the 1-Lipschitz bound; these widths shrink with
- *  the square of the pieces' size where d is large against them, linearly otherwise.
+ *  lower bound is the largest distance realised at a point evaluated. Upper bounds per triangle
+ *  T of A (and per piece of one), the least of:
+ *   - interpolants: d(x, t) to one triangle t of B is convex, so it lies below the linear
+ *     interpolant of its corner values, and d(x, B) <= the least of those interpolants over the
+ *     corners' closest faces; its maximum over T is a two-variable linear program, bounded
+ *     through its dual so that rounding cannot lower it;
+ *   - edge split: two of those faces sharing an edge cut T by the bisector plane of their
+ *     dihedral angle, each side bounded by its face at the polygon's vertices (convexity);
+ *   - prisms (only for pieces that would otherwise be refined): T cut into the parts inside the
+ *     prisms of nearby faces of B, where d(x, t) is the distance to t's plane, and the rest,
+ *     bounded by convexity: exact where A lies on or near B across B's edges and vertices.
+ *  Pieces whose bound exceeds lower + tolerance are taken worst first: the point where the
+ *  interpolants peak is queried, then they are split in four at their edge midpoints (each
+ *  queried). Where d is the distance to one or two planes of B the bounds are exact, so little
+ *  is refined. The integrals of d and d^2 over each piece are bounded from above by the same
+ *  interpolants (integrated exactly over the regions where each is least) and plane bounds, and
+ *  from below by the concavity of d^2(x) - |x|^2 (for the distance to any set), the 1-Lipschitz
+ *  bound, and the tangent planes at the piece's centroid of d(., t) for every face t of B within
+ *  the piece's upper bound (a box query on the BVH): their least is concave, integrated exactly.
+ *  These widths shrink quadratically with the pieces' size where d is the distance to planes,
+ *  linearly elsewhere; options->mean_tolerance refines the widest pieces further.
  *
  *  The bounds are rigorous in real arithmetic; the computed distances carry rounding of a few
  *  ulps of the coordinates' magnitude, which every bound absorbs with a margin of 2^-40 *
@@ -786,11 +795,12 @@ typedef struct tg_mesh_distance_result {
  *  beyond +-1e150, a tolerance or mean_tolerance negative, NaN or infinite, a thread count out of
  *  range; TG_ERR_OUT_OF_MEMORY; TG_ERR_CANCELLED. On error out_result and out_vertex_distance are
  *  untouched (out_vertex_distance may be partly written when cancelled) and nothing leaks.
- *  Complexity: one closest-point query per vertex of A (on `threads` threads), a few
- *  point-triangle distances per face, then about 4 queries per refined piece: the pieces
- *  refined are those near the points where d comes within the tolerance of its maximum,
- *  typically a few per level of subdivision (log(edge / tolerance) levels). Memory O(V + F +
- *  pieces). Thread-safe: the meshes and the BVH are only read (concurrent calls need distinct
+ *  Complexity: one closest-point query per vertex of A (on `threads` threads), then per face
+ *  of A (on the same threads) some ten point-triangle distances and one box query on B's BVH,
+ *  then 4 queries per refined piece (one thread): the pieces refined are those near the points
+ *  where d comes within the tolerance of its maximum, typically a few per level of subdivision
+ *  (log(edge / tolerance) levels). About 8x the vertices' closest-point pass on armadillo_1m
+ *  against igl_armadillo at 1e-6 of the diagonal (BENCHMARKS.md). Memory O(V + F + pieces). Thread-safe: the meshes and the BVH are only read (concurrent calls need distinct
  *  output arrays). (New after 0.6.) */
 TG_API tg_status tg_mesh_distance(const tg_mesh* a, const tg_bvh* b, const tg_mesh_distance_options* options,
                                   double* out_vertex_distance, tg_mesh_distance_result* out_result);

@@ -272,7 +272,7 @@ const cli_command cli_cmd_compare = {
     "  --symmetric         also h(B, A), and the symmetric distance max(h(A, B), h(B, A))\n"
     "  --threads N         threads of the first pass, at most 256 (default 0 = all cores; the\n"
     "                      numbers are the same for every count)\n"
-    "  --max-pieces N      the most triangle pieces the refinement keeps (about 150 bytes each;\n"
+    "  --max-pieces N      the most triangle pieces the refinement keeps (about 160 bytes each;\n"
     "                      default 8388608); when reached the intervals, still valid, are wider\n"
     "  -o FILE             per vertex of A its exact distance to B: .ply (A with the vertex property\n"
     "                      'distance': trigeo render FILE --field FILE) or .csv rows vertex,distance\n"

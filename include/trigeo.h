@@ -687,9 +687,10 @@ TG_API tg_status tg_bvh_locate(const tg_bvh* bvh, tg_bvh_workspace* workspace, c
 
 /** What the progress callback of tg_mesh_distance is told. */
 typedef struct tg_mesh_distance_progress {
-    double fraction; /**< rough share of the work done, in [0, 1] (the first pass is the first half;
-                          the refinement is measured by the interval's width on a log scale) */
-    double lower;    /**< the Hausdorff lower bound so far (0 before the first pass ends) */
+    double fraction; /**< rough share of the work done, in [0, 1]: A's vertices up to 0.25, its
+                          faces (in chunks of 8192) up to 0.5, then the refinement, measured by
+                          the interval's width against the tolerance on a log scale */
+    double lower;    /**< the Hausdorff lower bound so far (0 until A's vertices are measured) */
     double upper;    /**< the largest upper bound still queued (+inf during the first pass, NaN
                           while the mean is refined) */
 } tg_mesh_distance_progress;

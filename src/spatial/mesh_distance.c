@@ -854,7 +854,7 @@ static tg_status first_pass(md_ctx* c, int threads)
     for (size_t i = 0; i < V && st == TG_OK; i += chunk) {
         size_t n = V - i < chunk ? V - i : chunk;
         st = tg_bvh_closest_batch(c->b, x + 3 * i, n, INFINITY, threads, hits + i);
-        if (st == TG_OK && md_report(c, 0.5 * (double)(i + n) / (double)V, INFINITY)) st = TG_ERR_CANCELLED;
+        if (st == TG_OK && md_report(c, 0.25 * (double)(i + n) / (double)V, INFINITY)) st = TG_ERR_CANCELLED;
     }
     if (st != TG_OK) {
         tg__free(c->alloc, hits);
@@ -877,34 +877,36 @@ static tg_status first_pass(md_ctx* c, int threads)
     tg__free(c->alloc, hits);
     c->refine_above = c->lower + c->tol_stop;
     md_piece* pcs = (md_piece*)c->pieces.data;
-    long long Fl = (long long)F;
-    int failed = 0;
+    const long long Fl = (long long)F, face_chunk = 8192; /* faces between two looks at the callback */
+    int nt = 1;
 #ifdef TG_HAVE_OPENMP
-    int nt = threads > 0 ? threads : omp_get_max_threads();
-#pragma omp parallel num_threads(nt) if (nt > 1 && F > 4096)
+    nt = threads > 0 ? threads : omp_get_max_threads();
 #endif
-    {
-        uint32_t* stack = tg__alloc_array(c->alloc, c->b->stack_capacity, sizeof *stack);
-        if (!stack) {
+    const size_t cap = c->b->stack_capacity;
+    uint32_t* stacks = tg__alloc_array(c->alloc, (size_t)nt * cap, sizeof *stacks); /* one per thread */
+    if (!stacks) return TG_ERR_OUT_OF_MEMORY;
+    for (long long lo = 0; lo < Fl; lo += face_chunk) {
+        long long hi = Fl - lo < face_chunk ? Fl : lo + face_chunk;
 #ifdef TG_HAVE_OPENMP
-#pragma omp atomic write
+#pragma omp parallel for schedule(static) num_threads(nt) if (nt > 1 && hi - lo > 1024)
 #endif
-            failed = 1;
-        }
+        for (long long f = lo; f < hi; ++f) {
+            int tid = 0;
 #ifdef TG_HAVE_OPENMP
-#pragma omp for schedule(static)
+            tid = omp_get_thread_num();
 #endif
-        for (long long f = 0; f < Fl; ++f) {
-            if (!stack) continue;
             md_piece* pc = &pcs[f];
             memset(pc, 0, sizeof *pc);
             for (int i = 0; i < 3; ++i) pc->corner[i] = tri[3 * f + i];
             pc->face = (uint32_t)f;
-            piece_eval(c, stack, pc);
+            piece_eval(c, stacks + (size_t)tid * cap, pc);
         }
-        tg__free(c->alloc, stack);
+        if (md_report(c, 0.25 + 0.25 * (double)hi / (double)Fl, INFINITY)) {
+            tg__free(c->alloc, stacks);
+            return TG_ERR_CANCELLED;
+        }
     }
-    if (failed) return TG_ERR_OUT_OF_MEMORY;
+    tg__free(c->alloc, stacks);
     c->pieces.count = F;
     return TG_OK;
 }

@@ -711,9 +711,10 @@ typedef struct tg_mesh_distance_options {
      *  refinement for them beyond what the Hausdorff interval needed (their intervals are then
      *  what A's own triangles give: of the order of the edge length where d varies) */
     double mean_tolerance;
-    /** the most triangle pieces kept (memory: about 160 bytes each); 0: 2^23 (never fewer than
-     *  A's faces). When reached, the refinement stops and the intervals, still valid, are wider
-     *  than asked (tg_mesh_distance_result.converged = 0). */
+    /** the most triangle pieces kept, A's faces included (memory: about 160 bytes each, A's
+     *  faces and vertices included); 0: A's faces + 2^21 (about 330 MB of refinement); never
+     *  fewer than A's faces. When reached, the refinement stops and the intervals, still valid,
+     *  are wider than asked (the Hausdorff's: tg_mesh_distance_result.converged = 0). */
     size_t max_pieces;
     /** threads of the first pass (OpenMP; 0 all cores, 1 this thread, n at most n; negative or
      *  beyond TG_MAX_THREADS: TG_ERR_INVALID_ARGUMENT). The refinement runs on the calling

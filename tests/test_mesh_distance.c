@@ -285,6 +285,17 @@ static void test_ridge(void)
     }
     CHECK_NEAR(r.point[0], 0.0, 1e-6);
     CHECK_NEAR(r.point[1], -1.0, 1e-15);
+    /* the memory bound: too few pieces to reach the tolerance, the interval still holds */
+    tg_bvh* bvh = NULL;
+    CHECK_STATUS(tg_bvh_create(b, NULL, &bvh), TG_OK);
+    tg_mesh_distance_options o;
+    memset(&o, 0, sizeof o);
+    o.tolerance = 1e-12, o.max_pieces = 9;
+    CHECK_STATUS(tg_mesh_distance(a, bvh, &o, NULL, &r), TG_OK);
+    print_result("ridge, 9 pieces", &r);
+    CHECK(r.converged == 0 && r.pieces <= 9 && r.upper - r.lower > r.tolerance);
+    CHECK(r.lower <= sqrt(2.0) && sqrt(2.0) <= r.upper);
+    tg_bvh_destroy(bvh);
     tg_mesh_destroy(a), tg_mesh_destroy(b);
 }
 

@@ -257,7 +257,8 @@ static int run(int argc, char** argv)
 
 const cli_command cli_cmd_compare = {
     "compare",
-    "compare A B [--tolerance T] [--mean-tolerance T] [--symmetric] [--threads N] [-o A_DIST.ply|.csv] [--json]",
+    "compare A B [--tolerance T] [--mean-tolerance T] [--symmetric] [--threads N] [--max-pieces N] [-o A_DIST.ply|.csv]\n"
+    "        [--json] [--quiet]",
     "The certified distance from mesh A to mesh B: the one-sided Hausdorff distance h(A, B), the\n"
     "largest distance from a point of A's surface to B's surface, as an interval [lower, upper]\n"
     "whose width is at most the tolerance (lower: a point of A where the distance is realised;\n"
@@ -272,8 +273,9 @@ const cli_command cli_cmd_compare = {
     "  --symmetric         also h(B, A), and the symmetric distance max(h(A, B), h(B, A))\n"
     "  --threads N         threads of the first pass, at most 256 (default 0 = all cores; the\n"
     "                      numbers are the same for every count)\n"
-    "  --max-pieces N      the most triangle pieces the refinement keeps (about 160 bytes each;\n"
-    "                      default 8388608); when reached the intervals, still valid, are wider\n"
+    "  --max-pieces N      the most triangle pieces kept, A's faces included (about 160 bytes\n"
+    "                      each; default A's faces + 2097152); when reached the intervals, still\n"
+    "                      valid, are wider\n"
     "  -o FILE             per vertex of A its exact distance to B: .ply (A with the vertex property\n"
     "                      'distance': trigeo render FILE --field FILE) or .csv rows vertex,distance\n"
     "  --json              the answer as JSON on stdout (a_to_b, with --symmetric b_to_a and\n"

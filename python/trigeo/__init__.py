@@ -1045,7 +1045,7 @@ class Mesh:
         (result.symmetric). threads: the first pass's threads (0 all cores; the numbers are the
         same for every count). mean_tolerance: refine the mean's and the RMS's intervals to this
         width too (> 0; None: no more than the Hausdorff interval needs). max_pieces: the most
-        triangle pieces kept (0: 2^23). progress(fraction): return False to stop
+        triangle pieces kept, A's faces included (0: A's faces + 2**21). progress(fraction): return False to stop
         (CancelledError); Ctrl-C interrupts it. Both meshes need faces (InvalidArgumentError)."""
         if not isinstance(other, Mesh):
             raise _bad(f"other must be a trigeo.Mesh, not {_show(other)}")

@@ -949,7 +949,7 @@ static tg_status md_run(md_ctx* c, const tg_mesh_distance_options* o, double tol
                         tg_mesh_distance_result* r)
 {
     size_t V = tg_mesh_vertex_count(c->a), F = tg_mesh_face_count(c->a);
-    size_t max_pieces = o && o->max_pieces ? o->max_pieces : (size_t)1 << 23;
+    size_t max_pieces = o && o->max_pieces ? o->max_pieces : F + ((size_t)1 << 21);
     if (max_pieces < F) max_pieces = F;
     if (max_pieces > 0xFFFFFFF0u) max_pieces = 0xFFFFFFF0u; /* piece ids are 32-bit */
     if (!tg__vec_fit(c->alloc, &c->points, V) || !tg__vec_fit(c->alloc, &c->pieces, F)) return TG_ERR_OUT_OF_MEMORY;

@@ -11,12 +11,18 @@
  *    interpolants for any set S of B's triangles, and the maximum over T of that minimum is a
  *    2-variable linear program, solved by its dual: any convex weights mu over S give
  *    max_i sum_s mu_s d(a_i, t_s), a valid bound whatever rounding did to mu (LP duality makes
- *    the best such mu exact);
+ *    the best such mu exact); and, for pieces that straddle B's edges and vertices, T cut into
+ *    convex polygons each bounded by one face at its vertices (convexity again): by the bisector
+ *    plane of two faces' dihedral angle, or by the prisms of nearby faces (Sutherland, Hodgman
+ *    1974, "Reentrant polygon clipping", for the cuts);
  *  - lower: d at points actually evaluated (exact closest-point queries);
  *  - area integrals: d^2(x) - |x|^2 = min over y of (|y|^2 - 2 x.y) is concave, so on T
  *    d^2 >= sum l_i d_i^2 - sum l_i |x - a_i|^2 (l the barycentrics), whose mean over T is
- *    mean(d_i^2) - (sum of squared edges) / 12; and d >= sum l_i (d_i - |x - a_i|) (1-Lipschitz),
- *    whose mean is at least mean(d_i) - sqrt(sum of squared edges / 12) (Cauchy-Schwarz). */
+ *    mean(d_i^2) - (sum of squared edges) / 12; d >= sum l_i (d_i - |x - a_i|) (1-Lipschitz),
+ *    whose mean is at least mean(d_i) - sqrt(sum of squared edges / 12) (Cauchy-Schwarz); d is at
+ *    least the least of the tangent planes of d(., t) at T's centroid over the faces t of B near
+ *    T (a concave function, integrated exactly); from above, the interpolants (and the plane
+ *    distance plus the lateral one, |l_t| + lat_t) integrated exactly where each is least. */
 #include "spatial/bvh_internal.h"
 #include "core/heap.h"
 #include "kernels/point_triangle.h"

@@ -407,6 +407,15 @@ static void test_garbage(void)
     CHECK_NEAR(r.area, 0.5, 1e-15);
     CHECK_STATUS(run(flat, deg, 0, 1, NULL, &r), TG_OK);
     check_interval("degenerate B", &r, 0.0);
+    /* A made only of faces with a repeated index (points and segments, no halfedges) */
+    double pts_xyz[] = {0, 0, 2, 1, 0, 3};
+    uint32_t pts_tri[] = {0, 0, 0, 0, 1, 1};
+    tg_mesh* pts = NULL;
+    CHECK_STATUS(tg_mesh_create(pts_xyz, 2, pts_tri, 2, NULL, NULL, &pts), TG_OK);
+    CHECK_STATUS(run(pts, flat, 0, 1, NULL, &r), TG_OK);
+    check_interval("repeated-index A", &r, sqrt(0.0 + 9.0)); /* (1, 0, 3) is 3 above (1, 0, 0) */
+    CHECK(r.face == 1 && r.area == 0.0);
+    tg_mesh_destroy(pts);
     tg_mesh_destroy(deg), tg_mesh_destroy(flat);
     tg_bvh_destroy(bvh), tg_bvh_destroy(ebvh);
     tg_mesh_destroy(m), tg_mesh_destroy(empty);

@@ -730,6 +730,8 @@ static tg_status split_piece(md_ctx* c, uint32_t id, uint32_t* out_first)
         k->corner[0] = kids[j][0], k->corner[1] = kids[j][1], k->corner[2] = kids[j][2];
         k->face = pc.face;
         piece_eval(c, c->stack, k);
+        /* the parent's bound holds on the child too (its own can be looser, rarely) */
+        if (pc.upper < k->upper) k->upper = pc.upper;
     }
     PC(c, id).split = 1;
     return TG_OK;

@@ -343,20 +343,22 @@ static double min_affine_mean(const double (*f)[3], int k)
  * t); min over t of l_t is concave, so its mean over the piece is at least the mean of its corner
  * values. Exact for faces whose closest points are inside them (d affine there). stack: the
  * BVH's stack_capacity node entries. */
-static double tangent_lower(const md_ctx* c, uint32_t* stack, const md_point* const p[3], double upper)
+/* The faces of B whose bounding boxes come within `radius` of the piece's (every face closest
+ * to some point of the piece, when radius bounds d over it): a box query on B's tree, nodes by
+ * their decoded (outward-rounded) boxes, faces by their own. Their ids into out[0..cap), in
+ * the tree's order; -1 when there are more than cap. stack: stack_capacity entries. */
+static int near_faces(const md_ctx* c, uint32_t* stack, const md_point* const p[3], double radius, uint32_t* out,
+                      int cap)
 {
     const tg_bvh* b = c->b;
-    if (!b->node_count) return -INFINITY;
-    double cc[3], lo[3], hi[3], llo[3], lhi[3];
+    if (!b->node_count) return 0;
+    double lo[3], hi[3], llo[3], lhi[3];
     for (int k = 0; k < 3; ++k) {
-        cc[k] = (p[0]->xyz[k] + p[1]->xyz[k] + p[2]->xyz[k]) / 3.0;
-        lo[k] = fmin(p[0]->xyz[k], fmin(p[1]->xyz[k], p[2]->xyz[k])) - upper;
-        hi[k] = fmax(p[0]->xyz[k], fmax(p[1]->xyz[k], p[2]->xyz[k])) + upper;
+        lo[k] = fmin(p[0]->xyz[k], fmin(p[1]->xyz[k], p[2]->xyz[k])) - radius;
+        hi[k] = fmax(p[0]->xyz[k], fmax(p[1]->xyz[k], p[2]->xyz[k])) + radius;
         /* local units (B inside [-1, 1]^3): 2^-30 outward covers the conversion's rounding */
         llo[k] = (lo[k] - b->origin[k]) * b->scale - 0x1p-30, lhi[k] = (hi[k] - b->origin[k]) * b->scale + 0x1p-30;
     }
-    double corner_min[3] = {INFINITY, INFINITY, INFINITY};
-    double tan[MD_CLIP_MAX][3]; /* the tangents' corner values, while there are few */
     int near = 0;
     uint32_t sp = 0;
     stack[sp++] = 0;
@@ -381,23 +383,38 @@ static double tangent_lower(const md_ctx* c, uint32_t* stack, const md_point* co
                 for (int k = 0; k < 3 && in; ++k)
                     in = fmin(v[0][k], fmin(v[1][k], v[2][k])) <= hi[k] && fmax(v[0][k], fmax(v[1][k], v[2][k])) >= lo[k];
                 if (!in) continue;
-                if (++near > MD_NEAR_MAX) return -INFINITY;
-                tg_point_triangle r;
-                tg__point_triangle_robust_3d(cc, v[0], v[1], v[2], &r);
-                double g[3] = {cc[0] - r.closest[0], cc[1] - r.closest[1], cc[2] - r.closest[2]};
-                double dc = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-                for (int j = 0; j < 3; ++j) {
-                    double lj = 0.0;
-                    if (dc > 0.0)
-                        lj = dc + (g[0] * (p[j]->xyz[0] - cc[0]) + g[1] * (p[j]->xyz[1] - cc[1]) +
-                                   g[2] * (p[j]->xyz[2] - cc[2])) / dc;
-                    if (lj < corner_min[j]) corner_min[j] = lj;
-                    if (near <= MD_CLIP_MAX) tan[near - 1][j] = lj;
-                }
+                if (near == cap) return -1;
+                out[near++] = l.face[i];
             }
         }
     }
-    if (!near) return -INFINITY; /* cannot happen (the corners' closest faces are near) */
+    return near;
+}
+
+static double tangent_lower(const md_ctx* c, uint32_t* stack, const md_point* const p[3], double upper)
+{
+    uint32_t faces[MD_NEAR_MAX];
+    int near = near_faces(c, stack, p, upper, faces, MD_NEAR_MAX);
+    if (near <= 0) return -INFINITY; /* too many (or, impossibly, none: the corners' faces are near) */
+    double cc[3];
+    for (int k = 0; k < 3; ++k) cc[k] = (p[0]->xyz[k] + p[1]->xyz[k] + p[2]->xyz[k]) / 3.0;
+    double corner_min[3] = {INFINITY, INFINITY, INFINITY};
+    double tan[MD_CLIP_MAX][3]; /* the tangents' corner values, while there are few */
+    for (int fi = 0; fi < near; ++fi) {
+        const uint32_t* t = c->btri + 3 * (size_t)faces[fi];
+        tg_point_triangle r;
+        tg__point_triangle_robust_3d(cc, c->bxyz + 3 * (size_t)t[0], c->bxyz + 3 * (size_t)t[1],
+                                     c->bxyz + 3 * (size_t)t[2], &r);
+        double g[3] = {cc[0] - r.closest[0], cc[1] - r.closest[1], cc[2] - r.closest[2]};
+        double dc = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+        for (int j = 0; j < 3; ++j) {
+            double lj = 0.0;
+            if (dc > 0.0)
+                lj = dc + (g[0] * (p[j]->xyz[0] - cc[0]) + g[1] * (p[j]->xyz[1] - cc[1]) + g[2] * (p[j]->xyz[2] - cc[2])) / dc;
+            if (lj < corner_min[j]) corner_min[j] = lj;
+            if (fi < MD_CLIP_MAX) tan[fi][j] = lj;
+        }
+    }
     double mean = (corner_min[0] + corner_min[1] + corner_min[2]) / 3.0;
     if (near <= MD_CLIP_MAX) mean = fmax(mean, min_affine_mean((const double(*)[3])tan, near));
     return mean - c->margin;
@@ -506,10 +523,10 @@ static double split_bound(const md_ctx* c, const md_point* const p[3], uint32_t 
     return worst;
 }
 
-/* Candidate faces of B for a piece: around each corner's closest feature (feature_faces), and
- * for a corner inside a face its three neighbours; without repeats, in that order, at most
- * MD_CAND_MAX. */
-#define MD_CAND_MAX 24
+/* Candidate faces of B for a piece when too many are near it: around each corner's closest
+ * feature (feature_faces), and for a corner inside a face its three neighbours; without
+ * repeats, in that order, at most MD_CAND_MAX. */
+#define MD_CAND_MAX 64
 static int piece_candidates(const md_ctx* c, const md_point* const p[3], uint32_t out[MD_CAND_MAX])
 {
     int n = 0;
@@ -536,18 +553,23 @@ static int piece_candidates(const md_ctx* c, const md_point* const p[3], uint32_
 /* A bound of max d over the piece from the prisms of its candidate faces: inside the prism over
  * a face t (the points that project into t) d(x, t) is |l_t(x)|, the distance to t's plane,
  * affine on each side of the plane, so its maximum over a convex polygon is at a vertex. The
- * piece is cut, face after face, into the part inside each prism and up to three convex parts
+ * piece is cut, face after face (the faces near it: near_faces within the corners' distances,
+ * or when there are too many, piece_candidates), into the part inside each prism and up to three convex parts
  * outside (one per side plane crossed); what no prism takes is bounded by the least over the
  * candidates of the largest kernel distance at its vertices (convexity). Exact, up to rounding,
  * where A lies on or near B and the candidates cover the piece: the case the corner faces'
  * interpolants cannot resolve (a piece over a vertex of B, its corners in faces of the fan that
  * share no edge). +inf when the pieces would exceed the list, or once the bound reaches
  * `enough` (no better than what the caller has). */
-#define MD_POLY_LIST 32
-static double prism_bound(const md_ctx* c, const md_point* const p[3], double enough)
+#define MD_POLY_LIST 64
+static double prism_bound(const md_ctx* c, uint32_t* stack, const md_point* const p[3], double enough)
 {
     uint32_t cand[MD_CAND_MAX];
-    int nc = piece_candidates(c, p, cand);
+    /* any candidates give a valid bound: those within the corners' own distance of the piece's
+     * box, where the piece's closest points mostly are (within `enough` there could be hundreds) */
+    double reach = fmax(p[0]->d, fmax(p[1]->d, p[2]->d));
+    int nc = near_faces(c, stack, p, fmin(reach, enough), cand, MD_CAND_MAX);
+    if (nc <= 0) nc = piece_candidates(c, p, cand); /* too many near: those around the corners */
     md_poly list[MD_POLY_LIST], next[MD_POLY_LIST];
     int n = 1;
     list[0].n = 3;
@@ -617,8 +639,8 @@ static double prism_bound(const md_ctx* c, const md_point* const p[3], double en
 
 /* The piece's upper bound: the dual bound of the corner faces' interpolants, or the split bound
  * of two of them sharing an edge, whichever is lower (margin included). */
-static double piece_bound(const md_ctx* c, const md_point* const p[3], const double cs[3][3], const uint32_t S[3],
-                          int ns)
+static double piece_bound(const md_ctx* c, uint32_t* stack, const md_point* const p[3], const double cs[3][3],
+                          const uint32_t S[3], int ns)
 {
     double ub = piece_upper(c, cs, ns, NULL);
     for (int a = 0; a < ns; ++a)
@@ -627,8 +649,17 @@ static double piece_bound(const md_ctx* c, const md_point* const p[3], const dou
                 uint32_t h = 3 * S[a] + (uint32_t)k, o = c->bopp[h];
                 if (o != TG_NONE && o / 3 == S[b]) ub = fmin(ub, split_bound(c, p, h) + c->margin);
             }
-    /* only where the piece would otherwise be refined: the prisms cost more */
-    if (ub > c->refine_above) ub = fmin(ub, prism_bound(c, p, ub - c->margin) + c->margin);
+    /* only where the piece would otherwise be refined, and where its corners lie on B or nearly
+     * (within 1/64 of its longest edge): the prisms cost more, and help where the interpolants
+     * are far above a distance that is about 0 */
+    if (ub > c->refine_above) {
+        double reach = fmax(p[0]->d, fmax(p[1]->d, p[2]->d)), edge2 = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            const double *x = p[i]->xyz, *y = p[(i + 1) % 3]->xyz;
+            edge2 = fmax(edge2, (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) + (x[2] - y[2]) * (x[2] - y[2]));
+        }
+        if (reach * reach * 4096.0 <= edge2) ub = fmin(ub, prism_bound(c, stack, p, ub - c->margin) + c->margin);
+    }
     return ub;
 }
 
@@ -639,7 +670,7 @@ static void piece_eval(const md_ctx* c, uint32_t* stack, md_piece* pc)
     double cs[3][3];
     uint32_t S[3];
     int ns = corner_table(c, p, cs, S);
-    pc->upper = piece_bound(c, p, (const double(*)[3])cs, S, ns);
+    pc->upper = piece_bound(c, stack, p, (const double(*)[3])cs, S, ns);
     double e[3][3], sqe = 0.0;
     for (int i = 0; i < 3; ++i)
         for (int k = 0; k < 3; ++k) e[i][k] = p[(i + 1) % 3]->xyz[k] - p[i]->xyz[k];

@@ -526,7 +526,7 @@ static double split_bound(const md_ctx* c, const md_point* const p[3], uint32_t 
 /* Candidate faces of B for a piece when too many are near it: around each corner's closest
  * feature (feature_faces), and for a corner inside a face its three neighbours; without
  * repeats, in that order, at most MD_CAND_MAX. */
-#define MD_CAND_MAX 64
+#define MD_CAND_MAX 256
 static int piece_candidates(const md_ctx* c, const md_point* const p[3], uint32_t out[MD_CAND_MAX])
 {
     int n = 0;
@@ -550,88 +550,97 @@ static int piece_candidates(const md_ctx* c, const md_point* const p[3], uint32_
     return n;
 }
 
-/* A bound of max d over the piece from the prisms of its candidate faces: inside the prism over
- * a face t (the points that project into t) d(x, t) is |l_t(x)|, the distance to t's plane,
- * affine on each side of the plane, so its maximum over a convex polygon is at a vertex. The
- * piece is cut, face after face (the faces near it: near_faces within the corners' distances,
- * or when there are too many, piece_candidates), into the part inside each prism and up to three convex parts
- * outside (one per side plane crossed); what no prism takes is bounded by the least over the
+/* A bound of max d over the piece from the prisms of nearby faces: inside the prism over a face
+ * t (the points that project into t) d(x, t) is |l_t(x)|, the distance to t's plane, affine on
+ * each side of the plane, so its maximum over a convex polygon is at a vertex. Polygons are taken
+ * from a work stack, starting with the piece: the face whose prism holds the polygon's centroid
+ * takes the part inside its prism, and the up to three convex parts outside (one per side plane)
+ * go back on the stack; a polygon no prism holds (or a sliver) is bounded by the least over the
  * candidates of the largest kernel distance at its vertices (convexity). Exact, up to rounding,
- * where A lies on or near B and the candidates cover the piece: the case the corner faces'
- * interpolants cannot resolve (a piece over a vertex of B, its corners in faces of the fan that
- * share no edge). +inf when the pieces would exceed the list, or once the bound reaches
- * `enough` (no better than what the caller has). */
+ * where A lies on or near B and the candidates cover the piece: the cases the corner faces'
+ * interpolants cannot resolve (a piece over a vertex or across several faces of B). The
+ * candidates: B's faces whose boxes meet the piece's box grown by the corners' distances, or
+ * when there are too many, those around the corners (any set gives a valid bound). +inf when
+ * the work exceeds MD_PRISM_STEPS polygons, or once the bound reaches `enough`. */
+#define MD_PRISM_STEPS 512
 #define MD_POLY_LIST 64
 static double prism_bound(const md_ctx* c, uint32_t* stack, const md_point* const p[3], double enough)
 {
     uint32_t cand[MD_CAND_MAX];
-    /* any candidates give a valid bound: those within the corners' own distance of the piece's
-     * box, where the piece's closest points mostly are (within `enough` there could be hundreds) */
     double reach = fmax(p[0]->d, fmax(p[1]->d, p[2]->d));
     int nc = near_faces(c, stack, p, fmin(reach, enough), cand, MD_CAND_MAX);
-    if (nc <= 0) nc = piece_candidates(c, p, cand); /* too many near: those around the corners */
-    md_poly list[MD_POLY_LIST], next[MD_POLY_LIST];
-    int n = 1;
-    list[0].n = 3;
-    list[0].v[0][0] = 0, list[0].v[0][1] = 0, list[0].v[1][0] = 1, list[0].v[1][1] = 0, list[0].v[2][0] = 0,
-    list[0].v[2][1] = 1;
-    double worst = 0.0;
-    for (int ci = 0; ci < nc && n > 0; ++ci) {
+    if (nc <= 0) nc = piece_candidates(c, p, cand);
+    /* per candidate, at the piece's corners: l (signed plane distance) and the side functions
+     * g_e, >= 0 on the prism's side of edge e (inward normal nrm x edge); all affine in (u, v) */
+    double l[MD_CAND_MAX][3], g[MD_CAND_MAX][3][3];
+    bool ok[MD_CAND_MAX];
+    for (int ci = 0; ci < nc; ++ci) {
         const uint32_t* t = c->btri + 3 * (size_t)cand[ci];
         const double* v[3] = {c->bxyz + 3 * (size_t)t[0], c->bxyz + 3 * (size_t)t[1], c->bxyz + 3 * (size_t)t[2]};
         double e1[3], e2[3];
         for (int k = 0; k < 3; ++k) e1[k] = v[1][k] - v[0][k], e2[k] = v[2][k] - v[0][k];
         double nrm[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
         double nn = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
-        if (!(nn > 0.0) || !isfinite(nn)) continue;
+        ok[ci] = nn > 0.0 && isfinite(nn);
+        if (!ok[ci]) continue;
         for (int k = 0; k < 3; ++k) nrm[k] /= nn;
-        /* at the piece's corners: l (signed plane distance) and the three side functions g_e,
-         * >= 0 on the prism's side of edge e (inward normal nrm x edge) */
-        double l[3], g[3][3];
         for (int i = 0; i < 3; ++i) {
             const double* a = p[i]->xyz;
-            l[i] = nrm[0] * (a[0] - v[0][0]) + nrm[1] * (a[1] - v[0][1]) + nrm[2] * (a[2] - v[0][2]);
+            l[ci][i] = nrm[0] * (a[0] - v[0][0]) + nrm[1] * (a[1] - v[0][1]) + nrm[2] * (a[2] - v[0][2]);
             for (int e = 0; e < 3; ++e) {
                 const double *P = v[e], *Q = v[(e + 1) % 3];
                 double d[3] = {Q[0] - P[0], Q[1] - P[1], Q[2] - P[2]};
                 double m[3] = {nrm[1] * d[2] - nrm[2] * d[1], nrm[2] * d[0] - nrm[0] * d[2], nrm[0] * d[1] - nrm[1] * d[0]};
-                g[e][i] = m[0] * (a[0] - P[0]) + m[1] * (a[1] - P[1]) + m[2] * (a[2] - P[2]);
+                g[ci][e][i] = m[0] * (a[0] - P[0]) + m[1] * (a[1] - P[1]) + m[2] * (a[2] - P[2]);
             }
         }
-        int m = 0;
-        for (int pi = 0; pi < n; ++pi) {
-            md_poly in = list[pi];
-            for (int e = 0; e < 3 && in.n >= 3; ++e) {
-                double neg[3] = {-g[e][0], -g[e][1], -g[e][2]};
-                md_poly out = in;
-                clip(&out, g[e]); /* g_e <= 0: outside across edge e */
-                clip(&in, neg);   /* g_e >= 0 */
+    }
+    md_poly work[MD_POLY_LIST];
+    int n = 1, steps = 0;
+    work[0].n = 3;
+    work[0].v[0][0] = 0, work[0].v[0][1] = 0, work[0].v[1][0] = 1, work[0].v[1][1] = 0, work[0].v[2][0] = 0,
+    work[0].v[2][1] = 1;
+    double worst = 0.0;
+    while (n > 0) {
+        if (++steps > MD_PRISM_STEPS) return INFINITY;
+        md_poly P = work[--n];
+        double area2 = 0.0, cen[2] = {0, 0};
+        for (int k = 0; k < P.n; ++k) {
+            const double *a = P.v[k], *b = P.v[(k + 1) % P.n];
+            area2 += a[0] * b[1] - b[0] * a[1];
+            cen[0] += P.v[k][0] / P.n, cen[1] += P.v[k][1] / P.n; /* vertex mean: inside a convex polygon */
+        }
+        int hold = -1;
+        if (area2 > 0x1p-40) /* slivers are bounded directly */
+            for (int ci = 0; ci < nc && hold < 0; ++ci)
+                if (ok[ci] && affine_at(g[ci][0], cen) >= 0.0 && affine_at(g[ci][1], cen) >= 0.0 &&
+                    affine_at(g[ci][2], cen) >= 0.0)
+                    hold = ci;
+        if (hold < 0) {
+            double best = INFINITY;
+            for (int ci = 0; ci < nc; ++ci) {
+                double w = 0.0;
+                for (int k = 0; k < P.n; ++k) {
+                    double u = P.v[k][0], vv = P.v[k][1], x[3];
+                    for (int j = 0; j < 3; ++j) x[j] = (1.0 - u - vv) * p[0]->xyz[j] + u * p[1]->xyz[j] + vv * p[2]->xyz[j];
+                    w = fmax(w, face_distance(c, x, cand[ci]));
+                }
+                best = fmin(best, w);
+            }
+            worst = fmax(worst, best);
+        } else {
+            for (int e = 0; e < 3 && P.n >= 3; ++e) {
+                double neg[3] = {-g[hold][e][0], -g[hold][e][1], -g[hold][e][2]};
+                md_poly out = P;
+                clip(&out, g[hold][e]); /* g_e <= 0: outside across edge e */
+                clip(&P, neg);          /* g_e >= 0 */
                 if (out.n >= 3) {
-                    if (m == MD_POLY_LIST) return INFINITY;
-                    next[m++] = out;
+                    if (n == MD_POLY_LIST) return INFINITY;
+                    work[n++] = out;
                 }
             }
-            for (int k = 0; k < in.n; ++k) {
-                double lv = fabs(affine_at(l, in.v[k]));
-                if (lv > worst) worst = lv;
-            }
+            for (int k = 0; k < P.n; ++k) worst = fmax(worst, fabs(affine_at(l[hold], P.v[k])));
         }
-        if (worst >= enough) return INFINITY;
-        memcpy(list, next, (size_t)m * sizeof list[0]);
-        n = m;
-    }
-    for (int pi = 0; pi < n; ++pi) { /* what no prism took */
-        double best = INFINITY;
-        for (int ci = 0; ci < nc; ++ci) {
-            double w = 0.0;
-            for (int k = 0; k < list[pi].n; ++k) {
-                double u = list[pi].v[k][0], vv = list[pi].v[k][1], x[3];
-                for (int j = 0; j < 3; ++j) x[j] = (1.0 - u - vv) * p[0]->xyz[j] + u * p[1]->xyz[j] + vv * p[2]->xyz[j];
-                w = fmax(w, face_distance(c, x, cand[ci]));
-            }
-            best = fmin(best, w);
-        }
-        worst = fmax(worst, best);
         if (worst >= enough) return INFINITY;
     }
     return worst;

@@ -343,6 +343,43 @@ static void test_fan(void)
     }
 }
 
+/* A coarse triangle over a fine planar subdivision of itself (B = A cut into 8 x 8 = 64 faces,
+ * tilted in space): h(A, B) = 0, certified by the prisms of B's faces under A without refining
+ * (one piece), and the bound's own work must not leave slivers along the prisms' sides that
+ * reach over several faces. */
+static void test_coarse_on_fine(void)
+{
+    enum { K = 8 };
+    const double a[3][3] = {{0.1, 0.2, 0.3}, {1.3, 0.4, 0.1}, {0.2, 1.1, 0.9}};
+    grow_mesh ga = {malloc(9 * sizeof(double)), malloc(3 * sizeof(uint32_t)), 3, 1};
+    memcpy(ga.xyz, a, sizeof a);
+    ga.tri[0] = 0, ga.tri[1] = 1, ga.tri[2] = 2;
+    grow_mesh gb = {malloc(3 * (K + 1) * (K + 2) / 2 * sizeof(double)), malloc(3 * K * K * sizeof(uint32_t)), 0, 0};
+    uint32_t idx[K + 1][K + 1];
+    for (int i = 0; i <= K; ++i)
+        for (int j = 0; i + j <= K; ++j) {
+            double u = (double)i / K, v = (double)j / K;
+            for (int c = 0; c < 3; ++c) gb.xyz[3 * gb.nv + c] = (1 - u - v) * a[0][c] + u * a[1][c] + v * a[2][c];
+            idx[i][j] = (uint32_t)gb.nv++;
+        }
+    for (int i = 0; i < K; ++i)
+        for (int j = 0; i + j < K; ++j) {
+            uint32_t* t = gb.tri + 3 * gb.nf++;
+            t[0] = idx[i][j], t[1] = idx[i + 1][j], t[2] = idx[i][j + 1];
+            if (i + j + 1 < K) {
+                t = gb.tri + 3 * gb.nf++;
+                t[0] = idx[i + 1][j], t[1] = idx[i + 1][j + 1], t[2] = idx[i][j + 1];
+            }
+        }
+    tg_mesh *ma = make(&ga), *mb = make(&gb);
+    tg_mesh_distance_result r;
+    CHECK_STATUS(run(ma, mb, 0, 1, NULL, &r), TG_OK);
+    check_interval("coarse on fine", &r, 0.0);
+    CHECK_EQ_INT(r.pieces, 1);
+    tg_mesh_destroy(ma), tg_mesh_destroy(mb);
+    grow_free(&ga), grow_free(&gb);
+}
+
 static int stop_at_once(void* user, const tg_mesh_distance_progress* p)
 {
     (void)p;
@@ -428,6 +465,7 @@ int main(void)
     test_translated();
     test_ridge();
     test_fan();
+    test_coarse_on_fine();
     test_garbage();
     return tg_test_finish();
 }

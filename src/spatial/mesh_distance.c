@@ -526,7 +526,7 @@ static double split_bound(const md_ctx* c, const md_point* const p[3], uint32_t 
 /* Candidate faces of B for a piece when too many are near it: around each corner's closest
  * feature (feature_faces), and for a corner inside a face its three neighbours; without
  * repeats, in that order, at most MD_CAND_MAX. */
-#define MD_CAND_MAX 256
+#define MD_CAND_MAX 1024
 static int piece_candidates(const md_ctx* c, const md_point* const p[3], uint32_t out[MD_CAND_MAX])
 {
     int n = 0;
@@ -556,13 +556,14 @@ static int piece_candidates(const md_ctx* c, const md_point* const p[3], uint32_
  * from a work stack, starting with the piece: the face whose prism holds the polygon's centroid
  * takes the part inside its prism, and the up to three convex parts outside (one per side plane)
  * go back on the stack; a polygon no prism holds (or a sliver) is bounded by the least over the
- * candidates of the largest kernel distance at its vertices (convexity). Exact, up to rounding,
+ * candidates of the largest kernel distance at its vertices (convexity), or halved when that
+ * bound could raise the maximum (a sliver along the prisms' sides reaching over several faces). Exact, up to rounding,
  * where A lies on or near B and the candidates cover the piece: the cases the corner faces'
  * interpolants cannot resolve (a piece over a vertex or across several faces of B). The
  * candidates: B's faces whose boxes meet the piece's box grown by the corners' distances, or
  * when there are too many, those around the corners (any set gives a valid bound). +inf when
  * the work exceeds MD_PRISM_STEPS polygons, or once the bound reaches `enough`. */
-#define MD_PRISM_STEPS 512
+#define MD_PRISM_STEPS 2048
 #define MD_POLY_LIST 64
 static double prism_bound(const md_ctx* c, uint32_t* stack, const md_point* const p[3], double enough)
 {
@@ -596,7 +597,7 @@ static double prism_bound(const md_ctx* c, uint32_t* stack, const md_point* cons
         }
     }
     md_poly work[MD_POLY_LIST];
-    int n = 1, steps = 0;
+    int n = 1, steps = 0, last = -1;
     work[0].n = 3;
     work[0].v[0][0] = 0, work[0].v[0][1] = 0, work[0].v[1][0] = 1, work[0].v[1][1] = 0, work[0].v[2][0] = 0,
     work[0].v[2][1] = 1;
@@ -610,25 +611,54 @@ static double prism_bound(const md_ctx* c, uint32_t* stack, const md_point* cons
             area2 += a[0] * b[1] - b[0] * a[1];
             cen[0] += P.v[k][0] / P.n, cen[1] += P.v[k][1] / P.n; /* vertex mean: inside a convex polygon */
         }
-        int hold = -1;
+        int hold = -1; /* of the prisms holding the centroid (they are infinite), the nearest face */
+        double hold_l = INFINITY;
         if (area2 > 0x1p-40) /* slivers are bounded directly */
-            for (int ci = 0; ci < nc && hold < 0; ++ci)
+            for (int ci = 0; ci < nc; ++ci)
                 if (ok[ci] && affine_at(g[ci][0], cen) >= 0.0 && affine_at(g[ci][1], cen) >= 0.0 &&
-                    affine_at(g[ci][2], cen) >= 0.0)
-                    hold = ci;
+                    affine_at(g[ci][2], cen) >= 0.0 && fabs(affine_at(l[ci], cen)) < hold_l)
+                    hold = ci, hold_l = fabs(affine_at(l[ci], cen));
         if (hold < 0) {
+            /* any candidate bounds it; the last one that held a polygon (a neighbour) first, and
+             * no search past a bound that cannot raise the maximum */
             double best = INFINITY;
-            for (int ci = 0; ci < nc; ++ci) {
+            for (int o = -1; o < nc && best > worst + c->margin; ++o) {
+                int ci = o < 0 ? last : o;
+                if (ci < 0 || (o >= 0 && ci == last)) continue;
                 double w = 0.0;
-                for (int k = 0; k < P.n; ++k) {
+                for (int k = 0; k < P.n && w < best; ++k) {
                     double u = P.v[k][0], vv = P.v[k][1], x[3];
                     for (int j = 0; j < 3; ++j) x[j] = (1.0 - u - vv) * p[0]->xyz[j] + u * p[1]->xyz[j] + vv * p[2]->xyz[j];
                     w = fmax(w, face_distance(c, x, cand[ci]));
                 }
                 best = fmin(best, w);
             }
+            /* a long sliver left along the prisms' sides reaches over several faces, none of which
+             * bounds all of it: halve it across its longest edge while that can still help */
+            int longest = 0;
+            double len2 = 0.0;
+            for (int k = 0; k < P.n; ++k) {
+                const double *a = P.v[k], *b = P.v[(k + 1) % P.n];
+                double l2 = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
+                if (l2 > len2) len2 = l2, longest = k;
+            }
+            if (best > worst + c->margin && len2 > 0x1p-60 && n + 2 <= MD_POLY_LIST) {
+                const double *a = P.v[longest], *b = P.v[(longest + 1) % P.n];
+                double mid[2] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])}, d[2] = {b[0] - a[0], b[1] - a[1]};
+                /* h(u, v) = ((u, v) - mid) . d as corner values (the corners are (0,0), (1,0), (0,1)) */
+                double h[3] = {-(mid[0] * d[0] + mid[1] * d[1]), (1.0 - mid[0]) * d[0] - mid[1] * d[1],
+                               -mid[0] * d[0] + (1.0 - mid[1]) * d[1]};
+                double nh[3] = {-h[0], -h[1], -h[2]};
+                md_poly lo = P, hi = P;
+                clip(&lo, h);
+                clip(&hi, nh);
+                if (lo.n >= 3) work[n++] = lo;
+                if (hi.n >= 3) work[n++] = hi;
+                continue;
+            }
             worst = fmax(worst, best);
         } else {
+            last = hold;
             for (int e = 0; e < 3 && P.n >= 3; ++e) {
                 double neg[3] = {-g[hold][e][0], -g[hold][e][1], -g[hold][e][2]};
                 md_poly out = P;

@@ -642,7 +642,7 @@ static double prism_bound(const md_ctx* c, uint32_t* stack, const md_point* cons
                 double l2 = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
                 if (l2 > len2) len2 = l2, longest = k;
             }
-            if (best > worst + c->margin && len2 > 0x1p-60 && n + 2 <= MD_POLY_LIST) {
+            if (best > worst + c->margin && len2 > 0x1p-90 && n + 2 <= MD_POLY_LIST) {
                 const double *a = P.v[longest], *b = P.v[(longest + 1) % P.n];
                 double mid[2] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])}, d[2] = {b[0] - a[0], b[1] - a[1]};
                 /* h(u, v) = ((u, v) - mid) . d as corner values (the corners are (0,0), (1,0), (0,1)) */

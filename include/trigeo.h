@@ -766,9 +766,10 @@ typedef struct tg_mesh_distance_result {
  *     through its dual so that rounding cannot lower it;
  *   - edge split: two of those faces sharing an edge cut T by the bisector plane of their
  *     dihedral angle, each side bounded by its face at the polygon's vertices (convexity);
- *   - prisms (only for pieces that would otherwise be refined): T cut into the parts inside the
- *     prisms of nearby faces of B, where d(x, t) is the distance to t's plane, and the rest,
- *     bounded by convexity: exact where A lies on or near B across B's edges and vertices.
+ *   - prisms (only for pieces that would otherwise be refined and whose corners lie within 1/64
+ *     of their longest edge of B): T cut into the parts inside the prisms of nearby faces of B,
+ *     where d(x, t) is the distance to t's plane, and the rest, bounded by convexity: exact
+ *     where A lies on or near B across B's edges and vertices, or over many of B's faces.
  *  Pieces whose bound exceeds lower + tolerance are taken worst first: the point where the
  *  interpolants peak is queried, then they are split in four at their edge midpoints (each
  *  queried). Where d is the distance to one or two planes of B the bounds are exact, so little
@@ -801,8 +802,11 @@ typedef struct tg_mesh_distance_result {
  *  of A (on the same threads) some ten point-triangle distances and one box query on B's BVH,
  *  then 4 queries per refined piece (one thread): the pieces refined are those near the points
  *  where d comes within the tolerance of its maximum, typically a few per level of subdivision
- *  (log(edge / tolerance) levels). About 8x the vertices' closest-point pass on armadillo_1m
- *  against igl_armadillo at 1e-6 of the diagonal (BENCHMARKS.md). Memory O(V + F + pieces). Thread-safe: the meshes and the BVH are only read (concurrent calls need distinct
+ *  (log(edge / tolerance) levels). About 7x the vertices' closest-point pass on armadillo_1m
+ *  against igl_armadillo at 1e-6 of the diagonal (BENCHMARKS.md). A much coarser than B costs
+ *  more: each face of A lies over many faces of B, which its corners do not see (refined to
+ *  about B's resolution, or, where A lies on B, the prisms of B's faces under it: tens of
+ *  microseconds a face). Memory O(V + F + pieces). Thread-safe: the meshes and the BVH are only read (concurrent calls need distinct
  *  output arrays). (New after 0.6.) */
 TG_API tg_status tg_mesh_distance(const tg_mesh* a, const tg_bvh* b, const tg_mesh_distance_options* options,
                                   double* out_vertex_distance, tg_mesh_distance_result* out_result);

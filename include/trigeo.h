@@ -88,6 +88,8 @@ extern "C" {
 #define TG_VERSION (TG_VERSION_MAJOR * 10000 + TG_VERSION_MINOR * 100 + TG_VERSION_PATCH)
 
 /* Changes in 0.6.1 (ABI-compatible with 0.6.0: same soname, new behaviour and entry points only):
+ *  - The certified distance between two meshes: tg_mesh_distance (one-sided Hausdorff as an
+ *    interval within a tolerance, the realising point, mean and RMS as intervals).
  *  - The exact gradient of a field: tg_geodesic_field_gradient (per vertex and per face, nearest
  *    source, ties flagged).
  *  - Parallel transport: tg_geodesic_transport_field (from a source to every vertex, along the
@@ -692,6 +694,136 @@ TG_API tg_status tg_bvh_winding_number_batch(const tg_bvh* bvh, const double* xy
  *  workspace per thread. */
 TG_API tg_status tg_bvh_locate(const tg_bvh* bvh, tg_bvh_workspace* workspace, const double xyz[3],
                         tg_surface_point* out_point, tg_closest_hit* out_hit);
+
+/* ============================================================================================== */
+/* Distance between two meshes (src/spatial/mesh_distance.c)                                      */
+/* ============================================================================================== */
+
+/** What the progress callback of tg_mesh_distance is told. */
+typedef struct tg_mesh_distance_progress {
+    double fraction; /**< rough share of the work done, in [0, 1]: A's vertices up to 0.25, its
+                          faces (in chunks of 8192) up to 0.5, then the refinement, measured by
+                          the interval's width against the tolerance on a log scale */
+    double lower;    /**< the Hausdorff lower bound so far (0 until A's vertices are measured) */
+    double upper;    /**< the largest upper bound still queued (+inf during the first pass, NaN
+                          while the mean is refined) */
+} tg_mesh_distance_progress;
+
+/** Progress callback of tg_mesh_distance, called about every 5 ms of work from the calling
+ *  thread: return 0 to go on, anything else to stop (TG_ERR_CANCELLED). */
+typedef int (*tg_mesh_distance_progress_fn)(void* user, const tg_mesh_distance_progress* progress);
+
+/** Options of tg_mesh_distance; NULL or all-zero means defaults. */
+typedef struct tg_mesh_distance_options {
+    const tg_allocator* allocator; /**< the call's scratch; NULL: mesh a's allocator */
+    /** absolute width the Hausdorff interval is refined to (same unit as the coordinates, finite,
+     *  >= 0); 0: 1e-9 of the larger bounding-box diagonal of the two meshes. Widths below
+     *  4 * 2^-40 * (largest coordinate magnitude + diagonal) are raised to it (the rounding of
+     *  the distances themselves; reported in tg_mesh_distance_result.tolerance). */
+    double tolerance;
+    /** absolute width the mean's and the RMS's intervals are refined to (finite, >= 0); 0: no
+     *  refinement for them beyond what the Hausdorff interval needed (their intervals are then
+     *  what A's own triangles give: of the order of the edge length where d varies) */
+    double mean_tolerance;
+    /** the most triangle pieces kept, A's faces included (memory: about 160 bytes each, A's
+     *  faces and vertices included); 0: A's faces + 2^21 (about 330 MB of refinement); never
+     *  fewer than A's faces. When reached, the refinement stops and the intervals, still valid,
+     *  are wider than asked (the Hausdorff's: tg_mesh_distance_result.converged = 0). */
+    size_t max_pieces;
+    /** threads of the first pass (OpenMP; 0 all cores, 1 this thread, n at most n; negative or
+     *  beyond TG_MAX_THREADS: TG_ERR_INVALID_ARGUMENT). The refinement runs on the calling
+     *  thread. Every count gives the same bits. */
+    int threads;
+    tg_mesh_distance_progress_fn progress; /**< NULL: none */
+    void* progress_user;                   /**< passed to progress */
+} tg_mesh_distance_options;
+
+/** The certified distance from mesh A to mesh B (every number in the coordinates' unit). */
+typedef struct tg_mesh_distance_result {
+    /** the one-sided Hausdorff distance h(A, B) = max over x on A of d(x, B) lies in
+     *  [lower, upper]; upper - lower <= tolerance when converged */
+    double lower, upper;
+    double tolerance; /**< the absolute tolerance used (see tg_mesh_distance_options.tolerance) */
+    int converged;    /**< 1: upper - lower <= tolerance; 0: max_pieces stopped the refinement */
+    /** the point of A where the lower bound was realised: d(point, B) = distance, and
+     *  lower = distance - 2^-40 * (magnitude + diagonal) (clamped at 0) */
+    double distance;
+    uint32_t face;      /**< A's face (file order) holding the point */
+    double bary[3];     /**< the point's barycentrics on that face */
+    double point[3];    /**< the point */
+    uint32_t closest_face;    /**< B's face closest to the point (tg_bvh_closest's answer) */
+    double closest_bary[3];   /**< the closest point's barycentrics on it */
+    double closest_point[3];  /**< the closest point of B */
+    double area;              /**< A's total area */
+    /** the mean of d(x, B) over A's area lies in [mean_lower, mean_upper], the root mean square
+     *  in [rms_lower, rms_upper] (0 when A's area is 0) */
+    double mean_lower, mean_upper;
+    double rms_lower, rms_upper;
+    uint64_t pieces;  /**< triangle pieces made (A's faces and their subdivisions) */
+    uint64_t queries; /**< closest-point queries on B */
+} tg_mesh_distance_result;
+
+/** The distance from mesh A to mesh B, certified: the one-sided Hausdorff distance
+ *  h(A, B) = max over points x of A's faces of the distance d(x, B) to B's faces, as an interval
+ *  [lower, upper] refined until upper - lower <= tolerance; the point of A realising the lower
+ *  bound and its closest point on B; the mean and the RMS of d(x, B) over A's area as
+ *  intervals; and the exact distance of every vertex of A. The symmetric Hausdorff distance is
+ *  max(h(A, B), h(B, A)): two calls (the CLI's compare --symmetric and Python's
+ *  distance_to(symmetric=True) make them), the interval [max of lowers, max of uppers].
+ *
+ *  Method (Tang, Lee, Kim 2009): every vertex of A is queried exactly (tg_bvh_closest); the
+ *  lower bound is the largest distance realised at a point evaluated. Upper bounds per triangle
+ *  T of A (and per piece of one), the least of:
+ *   - interpolants: d(x, t) to one triangle t of B is convex, so it lies below the linear
+ *     interpolant of its corner values, and d(x, B) <= the least of those interpolants over the
+ *     corners' closest faces; its maximum over T is a two-variable linear program, bounded
+ *     through its dual so that rounding cannot lower it;
+ *   - edge split: two of those faces sharing an edge cut T by the bisector plane of their
+ *     dihedral angle, each side bounded by its face at the polygon's vertices (convexity);
+ *   - prisms (only for pieces that would otherwise be refined and whose corners lie within 1/64
+ *     of their longest edge of B): T cut into the parts inside the prisms of nearby faces of B,
+ *     where d(x, t) is the distance to t's plane, and the rest, bounded by convexity: exact
+ *     where A lies on or near B across B's edges and vertices, or over many of B's faces.
+ *  Pieces whose bound exceeds lower + tolerance are taken worst first: the point where the
+ *  interpolants peak is queried, then they are split in four at their edge midpoints (each
+ *  queried). Where d is the distance to one or two planes of B the bounds are exact, so little
+ *  is refined. The integrals of d and d^2 over each piece are bounded from above by the same
+ *  interpolants (integrated exactly over the regions where each is least) and plane bounds, and
+ *  from below by the concavity of d^2(x) - |x|^2 (for the distance to any set), the 1-Lipschitz
+ *  bound, and the tangent planes at the piece's centroid of d(., t) for every face t of B within
+ *  the piece's upper bound (a box query on the BVH): their least is concave, integrated exactly.
+ *  These widths shrink quadratically with the pieces' size where d is the distance to planes,
+ *  linearly elsewhere; options->mean_tolerance refines the widest pieces further.
+ *
+ *  The bounds are rigorous in real arithmetic; the computed distances carry rounding of a few
+ *  ulps of the coordinates' magnitude, which every bound absorbs with a margin of 2^-40 *
+ *  (largest coordinate magnitude + diagonal).
+ *
+ *  a: mesh A, with at least one face. b: a BVH over mesh B (tg_bvh_create), whose mesh has at
+ *  least one face. Faces of either mesh may be degenerate (a zero-area face of A counts for the
+ *  Hausdorff distance, not for the area; B's are ordinary candidates as in tg_bvh_closest);
+ *  unreferenced vertices of A are not on its surface (they get a distance in
+ *  out_vertex_distance but do not count). options: NULL for defaults.
+ *  out_vertex_distance: NULL, or vertex_count(a) doubles: d(vertex, B), exactly as
+ *  tg_bvh_closest. out_result: the numbers above.
+ *
+ *  Returns TG_OK (also when max_pieces stopped the refinement: converged = 0);
+ *  TG_ERR_INVALID_ARGUMENT for a NULL a, b or out_result, a mesh without faces, a coordinate of A
+ *  beyond +-1e150, a tolerance or mean_tolerance negative, NaN or infinite, a thread count out of
+ *  range; TG_ERR_OUT_OF_MEMORY; TG_ERR_CANCELLED. On error out_result and out_vertex_distance are
+ *  untouched (out_vertex_distance may be partly written when cancelled) and nothing leaks.
+ *  Complexity: one closest-point query per vertex of A (on `threads` threads), then per face
+ *  of A (on the same threads) some ten point-triangle distances and one box query on B's BVH,
+ *  then 4 queries per refined piece (one thread): the pieces refined are those near the points
+ *  where d comes within the tolerance of its maximum, typically a few per level of subdivision
+ *  (log(edge / tolerance) levels). About 7x the vertices' closest-point pass on armadillo_1m
+ *  against igl_armadillo at 1e-6 of the diagonal (BENCHMARKS.md). A much coarser than B costs
+ *  more: each face of A lies over many faces of B, which its corners do not see (refined to
+ *  about B's resolution, or, where A lies on B, the prisms of B's faces under it: tens of
+ *  microseconds a face). Memory O(V + F + pieces). Thread-safe: the meshes and the BVH are only read (concurrent calls need distinct
+ *  output arrays). (New in 0.6.1.) */
+TG_API tg_status tg_mesh_distance(const tg_mesh* a, const tg_bvh* b, const tg_mesh_distance_options* options,
+                                  double* out_vertex_distance, tg_mesh_distance_result* out_result);
 
 
 /* ============================================================================================== */

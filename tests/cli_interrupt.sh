@@ -8,7 +8,7 @@
 # isolines' levels, the Voronoi boundaries and paths through waypoints ran to their end (exit 0,
 # the file written), and trace, trace --batch, sample and closest were killed by the signal
 # handler ("trigeo: interrupted") instead of stopping their work, as was render --from while it
-# computed its field.
+# computed its field. compare (2026-11-29) was added with its command.
 # Under the sanitizers (TG_SANITIZED=1) the work runs 5-10x slower: the signal comes later, so
 # that it still finds the work running, and the allowance is 3 s (the instrumented work between
 # two looks at the flag and the instrumented exit, freeing every buffer, take longer too).
@@ -102,6 +102,9 @@ cases = [
     ("render --from (its field)", ["render", ico, "--from", "v:0", "-o", o("rf.png")], 1.0),
     ("render", ["render", arm, "--from", "v:0", "--size", "4000x4000", "-o", o("r.png")], 1.0, 3.0),
     ("closest --signed", ["closest", ico, queries, "--signed", "--sign", "winding", "--threads", "1", "-o", o("c.csv")], 1.0),
+    # the mean refined far below what it can reach: ~8 s of refinement, 240 MB at most
+    ("compare", ["compare", ico, arm, "--mean-tolerance", "1e-12", "--max-pieces", "1500000", "--threads", "1",
+                 "-o", o("cmp.ply")], 1.0),
 ]
 
 def interrupted(args, delay, sig=signal.SIGINT):

@@ -40,6 +40,9 @@ C_NAME = {
     "RenderOptions": "tg_render_options",
     "BoundariesView": "tg_voronoi_boundaries_view",
     "IsolinesView": "tg_isolines_view",
+    "MeshDistanceProgress": "tg_mesh_distance_progress",
+    "MeshDistanceOptions": "tg_mesh_distance_options",
+    "MeshDistanceResult": "tg_mesh_distance_result",
 }
 # Python field names that differ from C's (keywords)
 C_FIELD = {"global_": "global"}

@@ -44,7 +44,7 @@ from ._lib import lib as _L
 __all__ = [
     "load", "load_bytes", "Mesh", "Path", "Trace", "SurfacePoint", "version", "Error", "InvalidArgumentError",
     "OutOfMemoryError", "FileError", "ParseError", "InvalidMeshError", "UnsupportedError", "CapacityError",
-    "CancelledError", "LoadWarning", "MAX_THREADS",
+    "CancelledError", "LoadWarning", "MAX_THREADS", "MeshDistance",
 ]
 
 __version__ = _L.tg_version().decode()
@@ -456,6 +456,7 @@ class _Call:
         self.user, self.error, self.cancel = user, None, False
         self.field_fn = _c.PROGRESS_FN(self._field)
         self.render_fn = _c.RENDER_PROGRESS_FN(self._render)
+        self.mesh_distance_fn = _c.MESH_DISTANCE_PROGRESS_FN(self._mesh_distance)
 
     def _report(self, fraction: float) -> int:
         if self.cancel or self.error is not None:
@@ -476,6 +477,9 @@ class _Call:
 
     def _render(self, _user, fraction) -> int:
         return self._report(float(fraction))
+
+    def _mesh_distance(self, _user, progress) -> int:
+        return self._report(float(progress.contents.fraction))
 
     def run(self, work: Callable[[], Any], uses: Optional["_Uses"] = None) -> Any:
         """work() on this thread, or from the main thread on a helper thread (see the class)."""
@@ -758,6 +762,51 @@ def load_bytes(data: bytes, name: str = "", format: str = "auto") -> "Mesh":
     return _mesh_from_handle(h.value, None)
 
 
+class MeshDistance:
+    """The certified distance from mesh A to mesh B (Mesh.distance_to; tg_mesh_distance in C):
+
+    lower, upper: the one-sided Hausdorff distance h(A, B) (the largest distance from a point of
+        A's surface to B's surface) lies in [lower, upper]; upper - lower <= tolerance when
+        converged.
+    tolerance: the absolute tolerance used; converged: False only when max_pieces stopped the
+        refinement (the interval is then still valid, only wider).
+    distance, face, bary, point: the point of A realising the lower bound (A's face, its
+        barycentrics, xyz) and its distance to B; closest_face, closest_bary, closest_point: its
+        closest point on B.
+    area: A's area; mean, rms: (lower, upper) intervals of the mean and the root mean square
+        of the distance over A's area.
+    pieces, queries: the work (triangle pieces made, closest-point queries on B).
+    vertex_distance: (n,) float64, every vertex of A's exact distance to B.
+    reverse: with symmetric=True the same for B to A, else None; symmetric: with symmetric=True
+        the symmetric Hausdorff interval (max of the lowers, max of the uppers), else None.
+    as_dict(): the numbers as `trigeo compare --json` prints one direction."""
+
+    _FIELDS = ("lower", "upper", "tolerance", "converged", "distance", "face", "bary", "point", "closest_face",
+               "closest_bary", "closest_point", "area", "mean", "rms", "pieces", "queries")
+
+    def __init__(self, r: "_c.MeshDistanceResult", vertex_distance: np.ndarray):
+        self.lower, self.upper, self.tolerance = float(r.lower), float(r.upper), float(r.tolerance)
+        self.converged = bool(r.converged)
+        self.distance, self.face = float(r.distance), int(r.face)
+        self.bary, self.point = tuple(r.bary), tuple(r.point)
+        self.closest_face, self.closest_bary, self.closest_point = int(r.closest_face), tuple(r.closest_bary), \
+            tuple(r.closest_point)
+        self.area = float(r.area)
+        self.mean, self.rms = (float(r.mean_lower), float(r.mean_upper)), (float(r.rms_lower), float(r.rms_upper))
+        self.pieces, self.queries = int(r.pieces), int(r.queries)
+        self.vertex_distance = vertex_distance
+        self.reverse: Optional[MeshDistance] = None
+        self.symmetric: Optional[tuple] = None
+
+    def as_dict(self) -> dict:
+        return {k: list(v) if isinstance(v, tuple) else v for k, v in ((k, getattr(self, k)) for k in self._FIELDS)}
+
+    def __repr__(self) -> str:
+        sym = f", symmetric [{self.symmetric[0]!r}, {self.symmetric[1]!r}]" if self.symmetric else ""
+        return (f"<trigeo.MeshDistance hausdorff [{self.lower!r}, {self.upper!r}], mean [{self.mean[0]!r}, "
+                f"{self.mean[1]!r}], rms [{self.rms[0]!r}, {self.rms[1]!r}]{sym}>")
+
+
 class Mesh:
     """An immutable triangle mesh and its lazily built query structures (a BVH for closest
     points, a geodesic solver for paths and fields), kept for the mesh's lifetime.
@@ -982,6 +1031,55 @@ class Mesh:
 
         _check(self._run(work), "closest")
         return _hits(hits)
+
+    def distance_to(self, other: "Mesh", tolerance: Optional[float] = None, symmetric: bool = False,
+                    threads: int = 0, mean_tolerance: Optional[float] = None, max_pieces: int = 0,
+                    progress: Optional[Callable[[float], Any]] = None) -> MeshDistance:
+        """The certified distance from this mesh (A) to `other` (B): the one-sided Hausdorff
+        distance as an interval [lower, upper] no wider than the tolerance, the point realising
+        the lower bound, the mean and RMS distance over A's area as intervals, and every vertex's
+        distance (see MeshDistance; the same numbers as `trigeo compare A B`).
+
+        tolerance: the Hausdorff interval's width (> 0; None: 1e-9 of the larger bounding-box
+        diagonal). symmetric: also B to A (result.reverse) and the symmetric interval
+        (result.symmetric). threads: the first pass's threads (0 all cores; the numbers are the
+        same for every count). mean_tolerance: refine the mean's and the RMS's intervals to this
+        width too (> 0; None: no more than the Hausdorff interval needs). max_pieces: the most
+        triangle pieces kept, A's faces included (0: A's faces + 2**21). progress(fraction): return False to stop
+        (CancelledError); Ctrl-C interrupts it. Both meshes need faces (InvalidArgumentError)."""
+        if not isinstance(other, Mesh):
+            raise _bad(f"other must be a trigeo.Mesh, not {_show(other)}")
+        tol = 0.0 if tolerance is None else _number(tolerance, "tolerance", ">0", " (None: 1e-9 of the diagonal)")
+        mtol = 0.0 if mean_tolerance is None else _number(mean_tolerance, "mean_tolerance", ">0", " (None: none)")
+        symmetric = _flag(symmetric, "symmetric")
+        threads = _threads(threads)
+        pieces = _u64(max_pieces, "max_pieces")
+        for m, name in ((self, "this mesh"), (other, "other")):
+            if m.face_count == 0:
+                raise _bad(f"{name} has no faces: no surface to measure a distance from or to")
+        pairs = [(self, other)] + ([(other, self)] if symmetric else [])
+        out = []
+        for a, b in pairs:
+            r = _c.MeshDistanceResult()
+            vd = np.empty(a.vertex_count, dtype=np.float64)
+
+            def work(call: _Call, a=a, b=b, r=r, vd=vd) -> int:
+                o = _c.MeshDistanceOptions()
+                o.tolerance, o.mean_tolerance, o.max_pieces, o.threads = tol, mtol, pieces, threads
+                o.progress = call.mesh_distance_fn
+                with b._uses.use():
+                    bvh = b._get_bvh(threads)
+                    st = _L.tg_mesh_distance(a._handle(), bvh, ctypes.byref(o), _ptr(vd), ctypes.byref(r))
+                call.finish(st, "distance_to")
+                return st
+
+            self._run(work, progress)
+            out.append(MeshDistance(r, vd))
+        res = out[0]
+        if symmetric:
+            res.reverse = out[1]
+            res.symmetric = (max(res.lower, out[1].lower), max(res.upper, out[1].upper))
+        return res
 
     def signed_distance(self, points: Any, method: str = "auto",
                         threads: int = 0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

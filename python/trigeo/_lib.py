@@ -178,6 +178,27 @@ class FieldOptions(ctypes.Structure):
 RENDER_PROGRESS_FN = ctypes.CFUNCTYPE(c_int, c_void_p, c_double)
 
 
+class MeshDistanceProgress(ctypes.Structure):
+    _fields_ = [("fraction", c_double), ("lower", c_double), ("upper", c_double)]
+
+
+MESH_DISTANCE_PROGRESS_FN = ctypes.CFUNCTYPE(c_int, c_void_p, POINTER(MeshDistanceProgress))
+
+
+class MeshDistanceOptions(ctypes.Structure):
+    _fields_ = [("allocator", c_void_p), ("tolerance", c_double), ("mean_tolerance", c_double),
+                ("max_pieces", c_size_t), ("threads", c_int), ("progress", MESH_DISTANCE_PROGRESS_FN),
+                ("progress_user", c_void_p)]
+
+
+class MeshDistanceResult(ctypes.Structure):
+    _fields_ = [("lower", c_double), ("upper", c_double), ("tolerance", c_double), ("converged", c_int),
+                ("distance", c_double), ("face", c_uint32), ("bary", c_double * 3), ("point", c_double * 3),
+                ("closest_face", c_uint32), ("closest_bary", c_double * 3), ("closest_point", c_double * 3),
+                ("area", c_double), ("mean_lower", c_double), ("mean_upper", c_double), ("rms_lower", c_double),
+                ("rms_upper", c_double), ("pieces", c_uint64), ("queries", c_uint64)]
+
+
 class SparseMatrixView(ctypes.Structure):
     _fields_ = [("row_count", c_size_t), ("col_count", c_size_t), ("entry_count", c_size_t),
                 ("row_start", POINTER(c_uint64)), ("col", POINTER(c_uint32)), ("value", POINTER(c_double))]
@@ -244,6 +265,7 @@ _SIGNATURES = {
     "tg_bvh_winding_number_batch": (c_int, [_vp, _pd, c_size_t, c_int, _pd]),
     "tg_bvh_sign_method": (c_int, [_vp, c_int]),
     "tg_bvh_locate": (c_int, [_vp, _vp, _pd, _psp, POINTER(ClosestHit)]),
+    "tg_mesh_distance": (c_int, [_vp, _vp, POINTER(MeshDistanceOptions), _pd, POINTER(MeshDistanceResult)]),
     "tg_geodesic_create": (c_int, [_vp, _vp, _pvp]),
     "tg_geodesic_destroy": (None, [_vp]),
     "tg_geodesic_memory_bytes": (c_size_t, [_vp]),

@@ -1805,6 +1805,134 @@ TG_API tg_status tg_geodesic_farthest_point_sampling(const tg_geodesic* geodesic
 
 
 /* ============================================================================================== */
+/* Geodesic means (src/geodesic/mean.c)                                                           */
+/* ============================================================================================== */
+
+/** How a geodesic mean's iteration ended. */
+typedef enum tg_mean_status {
+    TG_MEAN_CONVERGED = 0,     /**< the last step was shorter than the tolerance */
+    TG_MEAN_ITERATION_CAP = 1, /**< max_iterations steps were taken first; the point is the last one */
+    /** the step could not be walked: the trace from the point went nowhere (a singular vertex,
+     *  the boundary in the step's direction) while the step was above the tolerance */
+    TG_MEAN_STALLED = 2
+} tg_mean_status;
+
+/** "converged", "iteration_cap", "stalled"; "unknown" for other values. Never NULL. (New in 0.7.) */
+TG_API const char* tg_mean_status_name(tg_mean_status status);
+
+/** What is known of the minimiser's uniqueness (see tg_geodesic_mean, "Uniqueness"). */
+typedef enum tg_mean_uniqueness {
+    /** the test was made and did not pass: the minimiser may or may not be unique (every mesh
+     *  with a vertex of angle sum below 2 pi near the points, e.g. any closed convex surface, or
+     *  a hole or handle near them, lands here) */
+    TG_MEAN_NOT_CERTIFIED = 0,
+    TG_MEAN_UNIQUE = 1,       /**< certified: the mean is the only minimiser on the surface */
+    TG_MEAN_NOT_CHECKED = 2   /**< options->skip_uniqueness was set */
+} tg_mean_uniqueness;
+
+/** "not_certified", "unique", "not_checked"; "unknown" for other values. Never NULL. (New in 0.7.) */
+TG_API const char* tg_mean_uniqueness_name(tg_mean_uniqueness uniqueness);
+
+/** Options of tg_geodesic_mean. NULL or all-zero means defaults. */
+typedef struct tg_mean_options {
+    /** stop when a step is at most tolerance times the diagonal of the bounding box of the
+     *  mesh's referenced vertices; 0: 1e-10. Negative, NaN or infinite: TG_ERR_INVALID_ARGUMENT. */
+    double tolerance;
+    uint32_t max_iterations; /**< the most steps; 0: 100 */
+    /** NULL, or the point the iteration starts from (a valid surface point in the points'
+     *  component); NULL: the point of largest weight (the lowest index on ties) */
+    const tg_surface_point* start;
+    int skip_uniqueness; /**< non-zero: no uniqueness test (TG_MEAN_NOT_CHECKED; saves its field) */
+    /** the memory of a temporary workspace and of the call's scratch; NULL: the solver's */
+    const tg_allocator* allocator;
+    /** Called while the fields run (about every 5 ms) and after each step: rows_done the steps
+     *  taken, row_count max_iterations, front_distance the field's front, settled_fraction the
+     *  share of the cap done. Non-zero stops the call: TG_ERR_CANCELLED. NULL: none. */
+    tg_field_progress_fn progress;
+    void* progress_user;
+} tg_mean_options;
+
+/** The result of tg_geodesic_mean. Distances in the unit of the coordinates. */
+typedef struct tg_mean_result {
+    tg_surface_point point; /**< the mean (canonical form, tg_surface_point_canonical) */
+    double xyz[3];          /**< its position */
+    /** the weighted mean of the squared exact distances from the mean to the points,
+     *  sum w_i d_i^2 / sum w_i: the function minimised (its gradient is -2 sum w_i log(x_i) /
+     *  sum w_i) */
+    double energy;
+    /** |sum w_i log(x_i)| / sum w_i at the mean: the length of the step the iteration would take
+     *  next (0 at an exact critical point; at most the tolerance when converged) */
+    double gradient_norm;
+    double radius;          /**< the largest exact distance from the mean to a point of positive weight */
+    uint32_t iterations;    /**< steps taken (walked traces; a halved step counts once more) */
+    uint32_t halvings;      /**< steps walked again at half length because the energy rose */
+    uint32_t fields;        /**< exact field runs made (one per step and halving, one for the test) */
+    tg_mean_status status;
+    tg_mean_uniqueness uniqueness;
+} tg_mean_result;
+
+/** The weighted geodesic mean (Karcher / Fréchet mean) of surface points: the point m of the
+ *  surface minimising sum w_i d(m, x_i)^2, d the exact geodesic distance.
+ *
+ *  Method: from the start point p, repeatedly p <- exp_p(v), v = sum w_i log_p(x_i) / sum w_i.
+ *  log_p(x_i) is the vector at p of length d(p, x_i) along the direction in which the exact
+ *  shortest path to x_i leaves p: one exact field from p with the x_i as query points (stopped
+ *  once they are settled, tg_geodesic_field_at's engine), each path followed back through the
+ *  windows (TG_PATH_EXACT's backtrack) and its straight first run (up to the first vertex it
+ *  passes, or x_i) unfolded into p's face, so the direction is exact to rounding however short
+ *  the path's first segment. The vectors are summed as TG_TRACE_ANGLE measures directions at p:
+ *  in a face and at a point of an edge the plane of the face (the two faces of the edge unfolded
+ *  into one plane), exact; at a vertex the fan's angles scaled so the turn is 2 pi (pi at a
+ *  boundary vertex), as the log map's angles (tg_geodesic_log_map). exp_p(v) is
+ *  tg_geodesic_trace from p along v's angle for v's length. On a flat region one step lands on
+ *  the weighted average of the points (the exact answer there). When a step raises the energy
+ *  (sum w_i d_i^2 / sum w_i) by more than 1e-12 relative, it is walked again from its start at
+ *  half the length (halvings). The iteration stops when a step is at most the tolerance
+ *  (TG_MEAN_CONVERGED), after max_iterations steps, or when a trace cannot move.
+ *  The iteration finds a critical point near its start: on data spread over a closed surface a
+ *  mean may be a local minimiser only; give `start` to choose where to look. At a vertex of angle
+ *  sum below 2 pi (a cone: every vertex of a closed convex mesh) the energy has a ridge, not a
+ *  minimum: stepping off the vertex shortens the distances to the points on that side more than
+ *  it lengthens the others' (their directions span less than 2 pi), so the minima of points
+ *  placed symmetrically about such a vertex lie on a small ring around it (on an icosphere of
+ *  level 3, 0.002 from the vertex for points 0.5 away; tests/test_mean.c); the vertex itself is
+ *  returned only when the iteration starts there and the vectors cancel. Where the minimiser
+ *  presses against the boundary (points on both sides of a hole, an open surface's edge) it is
+ *  no critical point: the steps end on the boundary and the iteration stops at the cap
+ *  (TG_MEAN_ITERATION_CAP, gradient_norm the outward pull) or stalls.
+ *
+ *  Uniqueness (after the iteration, unless skip_uniqueness): with R the largest distance from
+ *  the mean m to the points of positive weight, every minimiser lies within 2R of m and every
+ *  shortest path that matters within 4R (triangle inequality). The test takes K, the faces with
+ *  a vertex nearer to m than 4R plus the face's longest side (an exact field bounded there), and
+ *  certifies TG_MEAN_UNIQUE when K is a topological disc (connected, every edge in at most two
+ *  of its faces, at every vertex 0 or 2 of its edges on its border, Euler characteristic 1) and
+ *  every vertex inside K has a closed fan of angle sum at least 2 pi (flat or saddle, within
+ *  1e-13 relative). Then K with its own length metric is CAT(0) (Bridson & Haefliger 1999,
+ *  II.5.6 and II.4.1: a simply connected polyhedral surface whose vertex links have no loop
+ *  shorter than 2 pi), where the squared distance is strictly convex along geodesics, so the
+ *  energy has one minimiser (R = 0 counts as unique). The test is sufficient, not necessary:
+ *  TG_MEAN_NOT_CERTIFIED says nothing either way (points near a vertex of positive curvature,
+ *  or around a hole, are never certified, though their mean is often unique).
+ *
+ *  points: count >= 1 valid surface points, all in one component of the mesh (points of weight 0
+ *  are validated and then ignored). weights: NULL (all 1), or count finite values >= 0, not all
+ *  0. workspace: NULL or one of this solver's. options: NULL for defaults. out: the result.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic, points or out; count 0; an invalid point; points
+ *  in different components (no path joins them); a negative, NaN or infinite weight or all
+ *  weights 0; a bad tolerance; an invalid start or one in another component; a workspace of
+ *  another solver), TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED, TG_ERR_INTERNAL (a path could not be
+ *  followed back: a bug); on error *out is untouched.
+ *  Complexity: per step one exact field from p as far as the farthest point (a few paths' work
+ *  for near points, a field's for spread ones) plus the K backtracks; the uniqueness test one
+ *  field bounded to about 4R. Figures in BENCHMARKS.md. Thread-safe as tg_geodesic_field.
+ *  (New in 0.7.) */
+TG_API tg_status tg_geodesic_mean(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
+                                  const tg_surface_point* points, const double* weights, size_t count,
+                                  const tg_mean_options* options, tg_mean_result* out);
+
+
+/* ============================================================================================== */
 /* Pictures (src/render)                                                                          */
 /* ============================================================================================== */
 

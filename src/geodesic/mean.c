@@ -29,6 +29,10 @@
 /* Halvings of one step before the start of the step counts as the answer (2^-60 of a step is
  * below any tolerance relative to the mesh). */
 #define MAX_HALVINGS 60u
+/* The secant's estimate of the energy's relative curvature along the last step is used only in
+ * this range: beyond it the estimate is taken for noise (a step across a ridge or a crease). */
+#define SECANT_MIN 0.25
+#define SECANT_MAX 4.0
 /* A fan whose total angle matches the sum of its vertex's corners in K to this relative margin
  * is the vertex's only fan in K (a second fan would add its own corners' angle). */
 #define FAN_MATCH_REL 1e-9
@@ -255,6 +259,10 @@ typedef struct mean_call {
     size_t done, rows;
     double next_report_s;
     uint32_t fields;
+    /* the last step's arrival: its direction (3D, in the plane of solver face arrive_face) */
+    bool arrived;
+    uint32_t arrive_face;
+    tg_vec3 arrive_dir;
 } mean_call;
 
 /* What an evaluation at p finds. */
@@ -264,6 +272,9 @@ typedef struct mean_eval {
     double step;         /* |v| (solver units) */
     double angle;        /* v's angle at p */
     double radius;       /* max d (solver units) */
+    double vx, vy;       /* v in p's tangent plane (TG_TRACE_ANGLE's axes) */
+    bool has_arrival;    /* the last step's arrival direction at p is known: */
+    double ax, ay;       /* its unit vector in the same plane */
 } mean_eval;
 
 static int report_run(void* user, const tg__field_run* run)
@@ -316,6 +327,13 @@ static tg_status evaluate(mean_call* c, const tg_surface_point* p, mean_eval* e)
         vx += c->weights[i] * d * cos(a), vy += c->weights[i] * d * sin(a);
     }
     e->p = *p;
+    e->vx = vx / c->weight_sum, e->vy = vy / c->weight_sum;
+    e->has_arrival = false;
+    double b[3];
+    if (c->arrived && t.node.kind != TG__NODE_VERTEX && tg__node_bary(g, &t.node, c->arrive_face, b)) {
+        double a = tangent_angle(g, &t, c->arrive_face, c->arrive_dir);
+        e->has_arrival = true, e->ax = cos(a), e->ay = sin(a);
+    }
     e->energy = energy / c->weight_sum;
     e->step = hypot(vx, vy) / c->weight_sum;
     e->angle = e->step > 0.0 ? wrap_two_pi(atan2(vy, vx)) : 0.0;
@@ -323,12 +341,12 @@ static tg_status evaluate(mean_call* c, const tg_surface_point* p, mean_eval* e)
     return TG_OK;
 }
 
-/* exp_p: the trace from e->p along e->angle for `length` (solver units) into *out (canonical);
- * *out_walked the length walked (solver units). */
-static tg_status step_from(mean_call* c, tg_trace* trace, const mean_eval* e, double length, tg_surface_point* out,
-                           double* out_walked)
+/* exp_p: the trace from e->p along `angle` for `length` (solver units) into *out (canonical);
+ * *out_walked the length walked (solver units); the arrival direction noted in c. */
+static tg_status step_from(mean_call* c, tg_trace* trace, const mean_eval* e, double angle, double length,
+                           tg_surface_point* out, double* out_walked)
 {
-    tg_trace_direction dir = {TG_TRACE_ANGLE, {0.0, 0.0, 0.0}, e->angle};
+    tg_trace_direction dir = {TG_TRACE_ANGLE, {0.0, 0.0, 0.0}, angle};
     tg_trace_options to = {0, NULL, NULL};
     tg_status st = tg_geodesic_trace(c->g, &e->p, &dir, length * c->g->unscale, &to, trace);
     if (st != TG_OK) return st;
@@ -336,6 +354,10 @@ static tg_status step_from(mean_call* c, tg_trace* trace, const mean_eval* e, do
     tg_trace_get_view(trace, &v);
     *out = v.end.point;
     *out_walked = v.end.length * c->g->scale;
+    uint32_t f = v.end.face < c->g->face_count ? tg__kept_face(c->g, c->g->solver_face[v.end.face]) : TG_NONE;
+    c->arrived = f != TG_NONE && v.end.length > 0.0;
+    c->arrive_face = f;
+    c->arrive_dir = tg_v3(v.end.direction[0], v.end.direction[1], v.end.direction[2]);
     return TG_OK;
 }
 
@@ -487,6 +509,28 @@ static tg_status uniqueness_test(mean_call* c, const tg_surface_point* m, double
 
 /* ---- the iteration ---- */
 
+/* The step to take from an evaluation: v, with its component along the last step's arrival
+ * direction u divided by lambda = (along - v . u) / walked, the energy's curvature along that step
+ * relative to a flat one (a secant: over the step, walked along u from a point where v's component
+ * along it was `along`, v changed by -lambda * walked along u), when lambda is in [SECANT_MIN,
+ * SECANT_MAX] (along: NAN when the last step started at a vertex, whose scaled angles measure no
+ * such component). Where the surface curves, the plain step overshoots (lambda > 1: near saddles)
+ * or falls short (lambda < 1: near cones) by a factor the iteration then repeats; on fcpw_kitten
+ * the plain steps ended alternating in direction, each half the last (25 steps; 17 with this). */
+static void step_of(const mean_eval* e, double along, double walked, double* out_angle, double* out_length)
+{
+    double vx = e->vx, vy = e->vy;
+    if (e->has_arrival && walked > 0.0 && along == along) {
+        double a = vx * e->ax + vy * e->ay, lambda = (along - a) / walked;
+        if (lambda >= SECANT_MIN && lambda <= SECANT_MAX) {
+            double k = (1.0 / lambda - 1.0) * a;
+            vx += k * e->ax, vy += k * e->ay;
+        }
+    }
+    *out_length = hypot(vx, vy);
+    *out_angle = *out_length > 0.0 ? wrap_two_pi(atan2(vy, vx)) : 0.0;
+}
+
 /* The iteration from `start` (caller, canonical): its result into *out. */
 static tg_status iterate(mean_call* c, const tg_surface_point* start, double tol, uint32_t max_iterations,
                          bool check_unique, tg_mean_result* out)
@@ -496,7 +540,7 @@ static tg_status iterate(mean_call* c, const tg_surface_point* start, double tol
     if (st != TG_OK) return st;
     mean_eval cur, prev;
     uint32_t steps = 0, halvings = 0, halved = 0;
-    double prev_length = 0.0;
+    double prev_length = 0.0, prev_angle = 0.0, walked = 0.0, along = NAN;
     bool have_prev = false;
     tg_mean_status status = TG_MEAN_CONVERGED;
     tg_surface_point p = *start;
@@ -513,24 +557,26 @@ static tg_status iterate(mean_call* c, const tg_surface_point* start, double tol
                 break;
             }
             prev_length *= 0.5, halved++, halvings++, steps++;
-            double walked;
-            st = step_from(c, trace, &prev, prev_length, &p, &walked);
+            st = step_from(c, trace, &prev, prev_angle, prev_length, &p, &walked);
+            along = prev.p.kind == TG_SURFACE_VERTEX ? NAN : prev.vx * cos(prev_angle) + prev.vy * sin(prev_angle);
             if (st != TG_OK) break;
             continue;
         }
-        if (!(cur.step > tol)) break; /* converged */
+        double angle, length;
+        step_of(&cur, along, walked, &angle, &length);
+        if (!(length > tol) && !(cur.step > tol)) break; /* converged */
         if (steps >= max_iterations) {
             status = TG_MEAN_ITERATION_CAP;
             break;
         }
-        double walked;
-        st = step_from(c, trace, &cur, cur.step, &p, &walked);
+        along = cur.p.kind == TG_SURFACE_VERTEX ? NAN : cur.vx * cos(angle) + cur.vy * sin(angle);
+        st = step_from(c, trace, &cur, angle, length, &p, &walked);
         if (st != TG_OK) break;
         if (!(walked > 0.0)) {
             status = TG_MEAN_STALLED;
             break;
         }
-        prev = cur, prev_length = cur.step, have_prev = true, halved = 0;
+        prev = cur, prev_length = length, prev_angle = angle, have_prev = true, halved = 0;
         steps++;
     }
     tg_trace_destroy(trace);

@@ -349,5 +349,6 @@ extern const cli_command cli_cmd_field;
 extern const cli_command cli_cmd_trace;
 extern const cli_command cli_cmd_logmap;
 extern const cli_command cli_cmd_sample;
+extern const cli_command cli_cmd_mean;
 
 #endif

@@ -17,6 +17,7 @@ static const cli_command* const commands[] = {
     &cli_cmd_trace,
     &cli_cmd_logmap,
     &cli_cmd_sample,
+    &cli_cmd_mean,
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 

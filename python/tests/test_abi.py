@@ -31,6 +31,8 @@ C_NAME = {
     "PathView": "tg_path_view",
     "TraceDirection": "tg_trace_direction",
     "TraceOptions": "tg_trace_options",
+    "MeanOptions": "tg_mean_options",
+    "MeanResult": "tg_mean_result",
     "TraceEnd": "tg_trace_end",
     "TraceView": "tg_trace_view",
     "VertexScalar": "tg_vertex_scalar",

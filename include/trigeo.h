@@ -1885,10 +1885,16 @@ typedef struct tg_mean_result {
  *  into one plane), exact; at a vertex the fan's angles scaled so the turn is 2 pi (pi at a
  *  boundary vertex), as the log map's angles (tg_geodesic_log_map). exp_p(v) is
  *  tg_geodesic_trace from p along v's angle for v's length. On a flat region one step lands on
- *  the weighted average of the points (the exact answer there). When a step raises the energy
- *  (sum w_i d_i^2 / sum w_i) by more than 1e-12 relative, it is walked again from its start at
- *  half the length (halvings). The iteration stops when a step is at most the tolerance
- *  (TG_MEAN_CONVERGED), after max_iterations steps, or when a trace cannot move.
+ *  the weighted average of the points (the exact answer there). Where the surface curves, the
+ *  plain step over- or undershoots by a factor the iteration keeps repeating, so after the first
+ *  step v's component along the direction in which the last step arrived is divided by the
+ *  secant lambda = (that step's own component - v's) / its length, the energy's curvature along
+ *  it relative to a flat one, when lambda is in [0.25, 4] (not after a step from a vertex, whose
+ *  scaled angles measure no component; on fcpw_kitten this took 25 steps down to 14). When a
+ *  step raises the energy (sum w_i d_i^2 / sum w_i) by more than 1e-12 relative, it is walked
+ *  again from its start at half the length (halvings). The iteration stops when both the step
+ *  and |v| are at most the tolerance (TG_MEAN_CONVERGED), after max_iterations steps, or when a
+ *  trace cannot move.
  *  The iteration finds a critical point near its start: on data spread over a closed surface a
  *  mean may be a local minimiser only; give `start` to choose where to look. At a vertex of angle
  *  sum below 2 pi (a cone: every vertex of a closed convex mesh) the energy has a ridge, not a

@@ -1892,7 +1892,12 @@ typedef struct tg_mean_result {
  *  it relative to a flat one, when lambda is in [0.25, 4] (not after a step from a vertex, whose
  *  scaled angles measure no component; on fcpw_kitten this took 25 steps down to 14). When a
  *  step raises the energy (sum w_i d_i^2 / sum w_i) by more than 1e-12 relative, it is walked
- *  again from its start at half the length (halvings). The iteration stops when both the step
+ *  again from its start at half the length (halvings), after one try of the vertex nearest to
+ *  the step's middle (taken when its energy is lower): where the points' paths bend at a
+ *  saddle or boundary vertex the energy has a corner there, its minimum may be that vertex, and
+ *  the gradient never vanishes (steps from a vertex are walked again at a sixteenth of their
+ *  length until below the tolerance: the vertex is then the answer, gradient_norm its pull).
+ *  The iteration stops when both the step
  *  and |v| are at most the tolerance (TG_MEAN_CONVERGED), after max_iterations steps, or when a
  *  trace cannot move.
  *  The iteration finds a critical point near its start: on data spread over a closed surface a
@@ -1903,9 +1908,12 @@ typedef struct tg_mean_result {
  *  placed symmetrically about such a vertex lie on a small ring around it (on an icosphere of
  *  level 3, 0.002 from the vertex for points 0.5 away; tests/test_mean.c); the vertex itself is
  *  returned only when the iteration starts there and the vectors cancel. Where the minimiser
- *  presses against the boundary (points on both sides of a hole, an open surface's edge) it is
- *  no critical point: the steps end on the boundary and the iteration stops at the cap
- *  (TG_MEAN_ITERATION_CAP, gradient_norm the outward pull) or stalls.
+ *  presses against the boundary or sits at a saddle vertex the paths bend at (points around a
+ *  hole: its corner) it is no critical point: the vertex try above finds a minimum at a vertex
+ *  (tests/test_mean.c, a flat annulus); one on a boundary edge is approached until the cap
+ *  (TG_MEAN_ITERATION_CAP, gradient_norm the outward pull) or a stall. On 9 corpus meshes with
+ *  boundaries, saddles and non-manifold edges, 6 random points each, 6 trials: 44 of 54 converged
+ *  in 40 steps, the others at the cap, none failed.
  *
  *  Uniqueness (after the iteration, unless skip_uniqueness): with R the largest distance from
  *  the mean m to the points of positive weight, every minimiser lies within 2R of m and every

@@ -143,6 +143,9 @@ static void test_plate(void)
     close_ctx(&c);
 }
 
+static void energies(ctx* c, const tg_surface_point* x, const double* w, size_t k, const tg_surface_point* q, size_t nq,
+                     double* out);
+
 /* A flat square annulus (a 12 x 12 grid without its middle 2 x 2 cells, open): points near one
  * corner, their ball of 4R clear of the hole, are certified; points around the hole are not (the
  * faces K around them are flat but not a disc: Euler characteristic 0). */
@@ -170,6 +173,32 @@ static void test_annulus(void)
     CHECK_STATUS(tg_geodesic_mean(c.geo, c.ws, around, NULL, 4, NULL, &res), TG_OK);
     show("annulus, around the hole", &res);
     CHECK_MSG(res.uniqueness == TG_MEAN_NOT_CERTIFIED, "annulus around the hole: %s", tg_mean_uniqueness_name(res.uniqueness));
+    /* the paths to the points bend at the hole's corners: the energy has a corner there, and its
+     * minimum is the corner vertex (5, 7), where the gradient does not vanish; by exact fields,
+     * every point 0.01 from it inside a face around it has a higher energy */
+    CHECK_MSG(res.status == TG_MEAN_CONVERGED && res.point.kind == TG_SURFACE_VERTEX && res.xyz[0] == 5.0 &&
+                  res.xyz[1] == 7.0,
+              "annulus around the hole: %s at (%.17g, %.17g), kind %d", tg_mean_status_name(res.status), res.xyz[0],
+              res.xyz[1], res.point.kind);
+    if (res.point.kind == TG_SURFACE_VERTEX) {
+        tg_surface_point q[12];
+        size_t nq = 0;
+        q[nq++] = res.point;
+        for (uint32_t f = 0; f < nf && nq < 12; ++f)
+            for (int j = 0; j < 3; ++j)
+                if (tri[3 * f + j] == res.point.index) {
+                    double b[3] = {0.0, 0.0, 0.0};
+                    for (int k = 0; k < 3; ++k) b[k] = k == j ? 1.0 - 0.02 : 0.01;
+                    q[nq++] = tg_surface_face(f, b[0], b[1], b[2]);
+                }
+        double e[12];
+        energies(&c, around, w, 4, q, nq, e);
+        for (size_t i = 1; i < nq; ++i)
+            CHECK_MSG(e[i] > e[0], "annulus: energy %.17g beside the corner (face %u) below the corner's %.17g", e[i],
+                      q[i].index, e[0]);
+        CHECK_MSG(fabs(e[0] - res.energy) <= 1e-12 * e[0], "annulus: energy %.17g (fields) vs %.17g", e[0], res.energy);
+        printf("  annulus: %zu points beside the corner, all above its energy\n", nq - 1);
+    }
     close_sheet(&c);
 }
 

@@ -531,6 +531,34 @@ static void step_of(const mean_eval* e, double along, double walked, double* out
     *out_angle = *out_length > 0.0 ? wrap_two_pi(atan2(vy, vx)) : 0.0;
 }
 
+/* The corner of a's or b's face (caller points, canonical) nearest to the middle of a and b, as
+ * *out: false when it is a itself. */
+static bool corner_near(const tg_mesh* m, const tg_surface_point* a, const tg_surface_point* b, tg_surface_point* out)
+{
+    double pa[3], pb[3], mid[3], best = INFINITY;
+    tg_surface_point_position(m, a, pa);
+    tg_surface_point_position(m, b, pb);
+    for (int k = 0; k < 3; ++k) mid[k] = 0.5 * (pa[k] + pb[k]);
+    const uint32_t* tri = tg_mesh_triangles(m);
+    const double* xyz = tg_mesh_positions(m);
+    uint32_t found = TG_NONE;
+    for (int s = 0; s < 2; ++s) {
+        const tg_surface_point* p = s ? b : a;
+        uint32_t f = p->kind == TG_SURFACE_FACE ? p->index : p->kind == TG_SURFACE_EDGE ? p->index / 3 : TG_NONE;
+        uint32_t cand[3] = {p->index, TG_NONE, TG_NONE};
+        if (f != TG_NONE) cand[0] = tri[3 * (size_t)f], cand[1] = tri[3 * (size_t)f + 1], cand[2] = tri[3 * (size_t)f + 2];
+        for (int k = 0; k < 3; ++k) {
+            if (cand[k] == TG_NONE) continue;
+            const double* q = xyz + 3 * (size_t)cand[k];
+            double d = (q[0] - mid[0]) * (q[0] - mid[0]) + (q[1] - mid[1]) * (q[1] - mid[1]) + (q[2] - mid[2]) * (q[2] - mid[2]);
+            if (d < best) best = d, found = cand[k];
+        }
+    }
+    if (found == TG_NONE || (a->kind == TG_SURFACE_VERTEX && a->index == found)) return false;
+    *out = tg_surface_vertex(found);
+    return true;
+}
+
 /* The iteration from `start` (caller, canonical): its result into *out. */
 static tg_status iterate(mean_call* c, const tg_surface_point* start, double tol, uint32_t max_iterations,
                          bool check_unique, tg_mean_result* out)
@@ -541,7 +569,7 @@ static tg_status iterate(mean_call* c, const tg_surface_point* start, double tol
     mean_eval cur, prev;
     uint32_t steps = 0, halvings = 0, halved = 0;
     double prev_length = 0.0, prev_angle = 0.0, walked = 0.0, along = NAN;
-    bool have_prev = false;
+    bool have_prev = false, tried_corner = false;
     tg_mean_status status = TG_MEAN_CONVERGED;
     tg_surface_point p = *start;
     for (;;) {
@@ -550,18 +578,35 @@ static tg_status iterate(mean_call* c, const tg_surface_point* start, double tol
         st = evaluate(c, &p, &cur);
         if (st != TG_OK) break;
         if (have_prev && cur.energy > prev.energy * (1.0 + ENERGY_RISE_REL)) {
-            /* the step overshot: walk it again at half the length */
-            if (halved >= MAX_HALVINGS || !(prev_length * 0.5 > tol) || steps >= max_iterations) {
+            /* the step overshot. The minimum may be a kink at a vertex (a saddle or boundary
+             * vertex where the points' paths bend: there the energy has a corner, and the
+             * gradient never vanishes): try the vertex nearest to the step's middle once */
+            tg_surface_point w;
+            if (!tried_corner && steps < max_iterations && corner_near(c->g->mesh, &prev.p, &cur.p, &w)) {
+                mean_eval ew;
+                tried_corner = true;
+                st = evaluate(c, &w, &ew);
+                if (st != TG_OK) break;
+                if (ew.energy < prev.energy) { /* a step to the vertex */
+                    cur = ew, p = w, have_prev = false, along = NAN, walked = 0.0, steps++;
+                    goto from_here;
+                }
+            }
+            /* walk the step again at half the length (from a vertex, at a sixteenth: where the
+             * energy has a corner, every step rises until it is below the tolerance) */
+            double shrink = prev.p.kind == TG_SURFACE_VERTEX ? 1.0 / 16.0 : 0.5;
+            if (halved >= MAX_HALVINGS || !(prev_length * shrink > tol) || steps >= max_iterations) {
                 cur = prev; /* no shorter step lowers the energy: the step's start is the answer */
                 status = steps >= max_iterations && prev.step > tol ? TG_MEAN_ITERATION_CAP : TG_MEAN_CONVERGED;
                 break;
             }
-            prev_length *= 0.5, halved++, halvings++, steps++;
+            prev_length *= shrink, halved++, halvings++, steps++;
             st = step_from(c, trace, &prev, prev_angle, prev_length, &p, &walked);
             along = prev.p.kind == TG_SURFACE_VERTEX ? NAN : prev.vx * cos(prev_angle) + prev.vy * sin(prev_angle);
             if (st != TG_OK) break;
             continue;
         }
+    from_here:;
         double angle, length;
         step_of(&cur, along, walked, &angle, &length);
         if (!(length > tol) && !(cur.step > tol)) break; /* converged */
@@ -576,7 +621,7 @@ static tg_status iterate(mean_call* c, const tg_surface_point* start, double tol
             status = TG_MEAN_STALLED;
             break;
         }
-        prev = cur, prev_length = length, prev_angle = angle, have_prev = true, halved = 0;
+        prev = cur, prev_length = length, prev_angle = angle, have_prev = true, halved = 0, tried_corner = false;
         steps++;
     }
     tg_trace_destroy(trace);

@@ -1980,6 +1980,59 @@ TG_API tg_status tg_geodesic_bezier(const tg_geodesic* geodesic, tg_geodesic_wor
                                     const tg_path_options* options, tg_surface_point* out_points, double* out_xyz);
 
 /* ============================================================================================== */
+/* Centroidal Voronoi tessellations (src/geodesic/centroidal.c)                                   */
+/* ============================================================================================== */
+
+/** Options of tg_geodesic_centroidal_voronoi. NULL or all-zero means defaults. */
+typedef struct tg_centroidal_options {
+    uint32_t iterations; /**< the most Lloyd iterations; 0: 10 */
+    /** stop when no site moved more than tolerance times the bounding box's diagonal (straight
+     *  distance between its old and new positions); also each cell mean's tolerance
+     *  (tg_mean_options); 0: 1e-7. Negative, NaN or infinite: TG_ERR_INVALID_ARGUMENT. */
+    double tolerance;
+    const tg_allocator* allocator; /**< the call's scratch and temporary workspace; NULL: the solver's */
+    /** Called from inside the fields and means (about every 5 ms): rows_done the iterations
+     *  done of row_count = iterations. Non-zero stops the call: TG_ERR_CANCELLED. NULL: none. */
+    tg_field_progress_fn progress;
+    void* progress_user;
+} tg_centroidal_options;
+
+/** A geodesic centroidal Voronoi tessellation (geodesic Lloyd): K sites, each moved to the
+ *  geodesic mean of its exact Voronoi cell, repeatedly.
+ *
+ *  Method: the cells are tg_geodesic_voronoi's labels (each vertex to its nearest site in exact
+ *  distance). Quadrature: each cell is its vertices, each weighing its lumped area (a third of
+ *  the area of each face at it; the cells are not clipped inside faces), so the energy is
+ *  E = sum over vertices of area(v) d(v, nearest site)^2. An iteration moves each site to the
+ *  weighted geodesic mean of its cell's vertices (tg_geodesic_mean from the site, at most 3
+ *  steps, no uniqueness test), keeping the old site when that does not lower the cell's part of
+ *  E, then labels the vertices again: both halves lower E, so the energies never increase (to
+ *  the rounding of the exact distances, ~1e-15 relative). Empty cells keep their site. It stops
+ *  after `iterations` iterations or when no site moved more than the tolerance. On a flat region
+ *  it is the planar discrete Lloyd iteration (cell centroids the area-weighted averages of their
+ *  vertices; tests/test_centroidal.c compares them to 1e-12).
+ *
+ *  start_sites: NULL to start from farthest-point sampling (tg_geodesic_farthest_point_sampling
+ *  with start_vertex TG_NONE and `seed`), or site_count valid surface points. site_count: >= 1;
+ *  without start_sites at most the referenced vertices. options: NULL for defaults. workspace:
+ *  NULL or one of this solver's. out_sites: site_count surface points, the final sites.
+ *  out_vertex_label: NULL or vertex_count labels of the final cells (TG_NONE: unreferenced or
+ *  unreached). out_energies: NULL or room for iterations + 1 values: E before the first
+ *  iteration and after each (*out_iteration_count + 1 written). out_iteration_count: NULL or the
+ *  iterations made.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic or out_sites, site_count 0 or above the
+ *  referenced vertices without start sites, an invalid start site, a bad tolerance),
+ *  TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED, and the errors of the calls it makes; on error the
+ *  outputs are untouched. Complexity: per iteration one Voronoi labelling (about one field) and
+ *  K means over the cells (each a few fields bounded to its cell). Thread-safe as
+ *  tg_geodesic_field. (New in 0.7.) */
+TG_API tg_status tg_geodesic_centroidal_voronoi(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
+                                                const tg_surface_point* start_sites, uint64_t seed,
+                                                size_t site_count, const tg_centroidal_options* options,
+                                                tg_surface_point* out_sites, uint32_t* out_vertex_label,
+                                                double* out_energies, size_t* out_iteration_count);
+
+/* ============================================================================================== */
 /* Pictures (src/render)                                                                          */
 /* ============================================================================================== */
 

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# cli_mean.sh: `trigeo mean` and `trigeo path --bezier`, exit codes 0/1/2 and nothing written on
+# cli_mean.sh: `trigeo mean`, `trigeo path --bezier` and `trigeo sample --cvt` (its errors; its
+# numbers are python/tests/test_mean.py's), exit codes 0/1/2 and nothing written on
 # error. Known answers on the flat top of a closed plate from ../shared/tools/plate.py (no holes):
 # the mean of top points is their weighted average, the Bezier curve of top control points the
 # planar one (Bernstein form), both to 1e-12 of the diagonal; the JSON and the summary agree.
@@ -82,6 +83,9 @@ cases = [
     (["mean", plate, "--points", pts, "--weights", write("wnan.txt", "1\n1\nnan\n1\n1\n1\n1\n")], 2, "wnan.txt:3"),
     (["mean", two, "--points", write("comp.txt", "v:0\nv:4\n")], 2, "different components"),
     (["mean", two, "--points", write("one.txt", "v:0\n"), "--start", "v:4"], 2, "different components"),
+    (["sample", plate, "--count", "3", "--iterations", "4"], 1, "--iterations applies to --cvt"),
+    (["sample", plate, "--count", "3", "--cvt", "--iterations", "0"], 1, "--iterations needs"),
+    (["sample", plate, "--count", "99999999", "--cvt"], 2, "--count 99999999"),
     (["path", plate, "--bezier", "v:0;v:1", "--samples", "1"], 1, "--samples"),
     (["path", plate, "--from", "v:0", "--to", "v:1", "--samples", "5"], 1, "--samples applies to --bezier"),
     (["path", plate, "--bezier", "v:0;v:1", "--from", "v:2"], 1, "--bezier excludes"),
@@ -92,7 +96,7 @@ cases = [
     (["path", plate, "--bezier", "v:0;v:99999999"], 2, "v:99999999"),
 ]
 for args, code, text in cases:
-    target = os.path.join(tmp, "never.json" if args[0] == "mean" else "never.obj")
+    target = os.path.join(tmp, {"mean": "never.json", "sample": "never.txt"}.get(args[0], "never.obj"))
     extra = [] if "-o" in args else ["-o", target]
     r = subprocess.run([trigeo, *args, *extra], capture_output=True, text=True)
     check(r.returncode == code and text in r.stderr and not os.path.exists(target),
@@ -120,5 +124,14 @@ for degree in (1, 2, 3, 4):
     doc = json.loads(r.stdout) if r.returncode == 0 else {}
     check([tuple(x) for x in doc.get("xyz", [])] == got and len(doc.get("points", [])) == n and
           len(doc.get("controls", [])) == degree + 1, "degree %d: --json holds the OBJ's points" % degree)
+# sample --cvt on the plate: the summary's energies never increase; -o .txt one SPEC a line
+out = os.path.join(tmp, "sites.txt")
+r = run("sample", plate, "--count", "12", "--cvt", "--iterations", "3", "-o", out)
+line = [l for l in r.stdout.splitlines() if l.startswith("energies")]
+e = [float(x) for x in line[0].split()[1:]] if line else []
+check(r.returncode == 0 and len(e) >= 2 and all(b <= a * (1 + 1e-12) for a, b in zip(e, e[1:])),
+      "sample --cvt: exit %d, energies %s (%s)" % (r.returncode, e, r.stderr.strip()))
+specs_out = open(out).read().split() if os.path.exists(out) else []
+check(len(specs_out) == 12 and all(s.split(":")[0] in ("v", "e", "f") for s in specs_out), "sites file: 12 SPECs")
 cli_common.finish()
 PY

@@ -33,6 +33,7 @@ C_NAME = {
     "TraceOptions": "tg_trace_options",
     "MeanOptions": "tg_mean_options",
     "MeanResult": "tg_mean_result",
+    "CentroidalOptions": "tg_centroidal_options",
     "TraceEnd": "tg_trace_end",
     "TraceView": "tg_trace_view",
     "VertexScalar": "tg_vertex_scalar",

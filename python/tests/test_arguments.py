@@ -189,6 +189,12 @@ BAD = [
     ("points", lambda m, d: m.bezier([])),
     ("samples", lambda m, d: m.bezier([0, 1], samples=1)),
     ("samples", lambda m, d: m.bezier([0, 1], samples=2.5)),
+    ("count", lambda m, d: m.centroidal_voronoi(0)),
+    ("count", lambda m, d: m.centroidal_voronoi(N + 1)),
+    ("iterations", lambda m, d: m.centroidal_voronoi(3, iterations=0)),
+    ("start", lambda m, d: m.centroidal_voronoi(3, start=[0, 1])),
+    ("tolerance", lambda m, d: m.centroidal_voronoi(3, tolerance=-1.0)),
+    ("seed", lambda m, d: m.centroidal_voronoi(3, seed=-1)),
 ]
 
 

@@ -3,6 +3,7 @@ face folds) the mean is the weighted average of the points and the Bezier curve 
 Bernstein form, both to 1e-12 of the diagonal; the CLI (`trigeo mean --json`, `trigeo path
 --bezier`) gives the same numbers bit for bit; bad input raises InvalidArgumentError; a progress
 callback that says stop, or raises, stops the call."""
+import csv
 import json
 import math
 import os
@@ -154,3 +155,59 @@ def test_progress_stops(grid):
     with pytest.raises(KeyError):
         m.bezier([0, 100, 200], samples=5, progress=boom)
     assert m.geodesic_mean([0, 100, 200], progress=lambda fraction: None).status == "converged"
+
+
+def planar_lloyd(v, f, s, iters):
+    """The planar discrete Lloyd iteration (lumped vertex areas) from sites s: (sites, labels,
+    energies), computed independently of the library."""
+    area = np.zeros(len(v))
+    cr = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
+    np.add.at(area, f.reshape(-1), np.repeat(np.linalg.norm(cr, axis=1) / 6.0, 3))
+    s = np.array(s, dtype=float)
+    energies = []
+    for it in range(iters + 1):
+        d2 = ((v[:, None, :] - s[None, :, :]) ** 2).sum(axis=2)
+        lab = d2.argmin(axis=1)
+        energies.append(float((area * d2[np.arange(len(v)), lab]).sum()))
+        if it < iters:
+            for i in range(len(s)):
+                cell = lab == i
+                if area[cell].sum() > 0:
+                    s[i] = (area[cell, None] * v[cell]).sum(axis=0) / area[cell].sum()
+    return s, lab, np.array(energies)
+
+
+def test_centroidal_voronoi_is_planar_lloyd(grid, tmp_path):
+    m, v, f = grid
+    sites, labels, energies = m.centroidal_voronoi(6, iterations=5, seed=3, tolerance=1e-300)
+    start = m.farthest_point_sampling(6, seed=3)[0]
+    want_s, want_l, want_e = planar_lloyd(v, f, v[start], len(energies) - 1)
+    assert len(energies) >= 4 and np.all(np.abs(energies - want_e) <= 1e-12 * want_e), (energies, want_e)
+    assert np.array_equal(labels, want_l)
+    # the CLI's sites (sample --cvt -o .csv) are the same bits
+    path = tmp_path / "grid.obj"
+    with open(path, "w") as out:
+        out.writelines("v %r %r %r\n" % tuple(x) for x in v)
+        out.writelines("f %d %d %d\n" % tuple(t + 1) for t in f)
+    r = subprocess.run([cli_path(), "sample", str(path), "--count", "6", "--seed", "3", "--cvt", "--iterations", "5",
+                        "-o", str(tmp_path / "s.csv"), "--quiet"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    rows = list(csv.reader(open(tmp_path / "s.csv")))
+    assert rows[0] == ["i", "site", "x", "y", "z"] and len(rows) == 7
+    cli_xyz = np.array([[float(x) for x in row[2:5]] for row in rows[1:]])
+    assert np.linalg.norm(cli_xyz - want_s, axis=1).max() <= 1e-12 * math.sqrt(2), (cli_xyz, want_s)
+
+
+def test_centroidal_voronoi_energy_never_rises():
+    spot = trigeo.load(os.path.join(os.path.dirname(__file__), "..", "..", "data", "nvd_spot.obj"))
+    sites, labels, energies = spot.centroidal_voronoi(16, iterations=4)
+    assert len(sites) == 16 and labels.min() >= 0 and labels.max() == 15
+    assert np.all(np.diff(energies) <= 1e-12 * energies[:-1]) and energies[-1] < energies[0], energies
+    bad = trigeo.InvalidArgumentError
+    for call in (lambda: spot.centroidal_voronoi(0), lambda: spot.centroidal_voronoi(10 ** 6),
+                 lambda: spot.centroidal_voronoi(3, iterations=0), lambda: spot.centroidal_voronoi(3, start=[0, 1]),
+                 lambda: spot.centroidal_voronoi(3, tolerance=-1)):
+        with pytest.raises(bad):
+            call()
+    with pytest.raises(KeyError):
+        spot.centroidal_voronoi(16, progress=lambda fraction: (_ for _ in ()).throw(KeyError("stop")))

@@ -1324,6 +1324,51 @@ class Mesh:
 
         return self._run(work, progress)
 
+    def centroidal_voronoi(self, count: int, iterations: int = 10, start: Any = None, seed: int = 0,
+                           tolerance: Optional[float] = None, progress: Optional[Callable[[float], Any]] = None
+                           ) -> tuple[list, np.ndarray, np.ndarray]:
+        """A geodesic centroidal Voronoi tessellation (geodesic Lloyd, tg_geodesic_centroidal_voronoi,
+        the numbers of `trigeo sample --cvt`): `count` sites, each moved to the geodesic mean of
+        its exact Voronoi cell (its vertices weighing a third of their faces' areas), the cells
+        labelled again, at most `iterations` times or until no site moves more than tolerance
+        (default 1e-7) times the bounding box's diagonal. start: None (farthest-point sampling
+        with `seed`) or `count` surface points. Returns (sites, labels, energies): a list of
+        SurfacePoints, (n,) int64 cell labels (-1: unreached or unreferenced), and the energies
+        (sum of area x squared distance) before and after each iteration, never increasing."""
+        k = _index(count, "count")
+        its = _index(iterations, "iterations")
+        if not 1 <= its <= 0xFFFFFFFF:
+            raise _bad(f"iterations must be at least 1, not {_show(iterations)}")
+        sd = _u64(seed, "seed")
+        tol = 0.0 if tolerance is None else _number(tolerance, "tolerance", ">0")
+        if k < 1:
+            raise _bad(f"count must be at least 1, not {_show(count)}")
+
+        def work(call: _Call) -> tuple[list, np.ndarray, np.ndarray]:
+            sp = None
+            if start is not None:
+                sp = self._surface_points(start, "start")
+                if len(sp) != k:
+                    raise _bad(f"start must hold count = {k} surface points, not {len(sp)}")
+            elif k > self.report["vertices"] - self.report["unreferenced_vertices"]:
+                raise _bad(f"count = {k} exceeds the vertices used by faces")
+            o = _c.CentroidalOptions(its, tol, None, call.field_fn, None)
+            sites = (_c.SurfacePointC * k)()
+            labels = np.empty(self.vertex_count, np.uint32)
+            energies = np.empty(its + 1)
+            done = ctypes.c_size_t(0)
+            geo = self._get_geo()
+            with self._geo_ws.take() as ws:
+                st = _L.tg_geodesic_centroidal_voronoi(geo, ws, sp, sd, k, ctypes.byref(o), sites,
+                                                        labels.ctypes.data_as(ctypes.POINTER(ctypes.c_uint32)),
+                                                        _ptr(energies), ctypes.byref(done))
+            call.finish(st, "centroidal_voronoi")
+            lab = labels.astype(np.int64)
+            lab[labels == 0xFFFFFFFF] = -1
+            return [SurfacePoint._from_c(p) for p in sites], lab, energies[:done.value + 1].copy()
+
+        return self._run(work, progress)
+
     def _face_points(self, pts) -> tuple[np.ndarray, np.ndarray]:
         """Surface points as (face, barycentrics): a vertex in the first face using it, an edge
         point in its halfedge's face."""

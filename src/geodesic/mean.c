@@ -576,6 +576,12 @@ static tg_status iterate(mean_call* c, const tg_surface_point* start, double tol
         c->done = steps;
         if ((st = report_step(c)) != TG_OK) break;
         st = evaluate(c, &p, &cur);
+        if (st == TG_ERR_INVALID_ARGUMENT && have_prev) {
+            /* a step ended where no angle can be measured (a point of zero-area faces only):
+             * the step's start is the answer */
+            cur = prev, st = TG_OK, status = TG_MEAN_STALLED;
+            break;
+        }
         if (st != TG_OK) break;
         if (have_prev && cur.energy > prev.energy * (1.0 + ENERGY_RISE_REL)) {
             /* the step overshot. The minimum may be a kink at a vertex (a saddle or boundary
@@ -586,6 +592,10 @@ static tg_status iterate(mean_call* c, const tg_surface_point* start, double tol
                 mean_eval ew;
                 tried_corner = true;
                 st = evaluate(c, &w, &ew);
+                if (st == TG_ERR_INVALID_ARGUMENT) { /* a vertex of zero-area faces only: not a candidate */
+                    st = TG_OK;
+                    ew.energy = INFINITY;
+                }
                 if (st != TG_OK) break;
                 if (ew.energy < prev.energy) { /* a step to the vertex */
                     cur = ew, p = w, have_prev = false, along = NAN, walked = 0.0, steps++;

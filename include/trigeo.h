@@ -88,6 +88,9 @@ extern "C" {
 #define TG_VERSION (TG_VERSION_MAJOR * 10000 + TG_VERSION_MINOR * 100 + TG_VERSION_PATCH)
 
 /* Changes in 0.6.1 (ABI-compatible with 0.6.0: same soname, new behaviour and entry points only):
+ *  - Geometry on the exact maps: tg_geodesic_mean (the weighted Karcher mean, with a uniqueness
+ *    certificate), tg_geodesic_centroidal_voronoi (geodesic Lloyd), tg_geodesic_bezier (de
+ *    Casteljau on exact paths).
  *  - The certified distance between two meshes: tg_mesh_distance (one-sided Hausdorff as an
  *    interval within a tolerance, the realising point, mean and RMS as intervals).
  *  - The exact gradient of a field: tg_geodesic_field_gradient (per vertex and per face, nearest
@@ -2040,6 +2043,237 @@ TG_API tg_status tg_geodesic_farthest_point_sampling(const tg_geodesic* geodesic
                                                      double* out_vertex_distance, uint32_t* out_vertex_label,
                                                      tg_field_stats* out_stats);
 
+
+/* ============================================================================================== */
+/* Geodesic means (src/geodesic/mean.c)                                                           */
+/* ============================================================================================== */
+
+/** How a geodesic mean's iteration ended. */
+typedef enum tg_mean_status {
+    TG_MEAN_CONVERGED = 0,     /**< the last step was shorter than the tolerance */
+    TG_MEAN_ITERATION_CAP = 1, /**< max_iterations steps were taken first; the point is the last one */
+    /** the step could not be walked: the trace from the point went nowhere (a singular vertex,
+     *  the boundary in the step's direction) while the step was above the tolerance, or it ended
+     *  in zero-area faces only (no direction measurable there); the point is the step's start */
+    TG_MEAN_STALLED = 2
+} tg_mean_status;
+
+/** "converged", "iteration_cap", "stalled"; "unknown" for other values. Never NULL. (New in 0.6.1.) */
+TG_API const char* tg_mean_status_name(tg_mean_status status);
+
+/** What is known of the minimiser's uniqueness (see tg_geodesic_mean, "Uniqueness"). */
+typedef enum tg_mean_uniqueness {
+    /** the test was made and did not pass: the minimiser may or may not be unique (every mesh
+     *  with a vertex of angle sum below 2 pi near the points, e.g. any closed convex surface, or
+     *  a hole or handle near them, lands here) */
+    TG_MEAN_NOT_CERTIFIED = 0,
+    TG_MEAN_UNIQUE = 1,       /**< certified: the mean is the only minimiser on the surface */
+    TG_MEAN_NOT_CHECKED = 2   /**< options->skip_uniqueness was set */
+} tg_mean_uniqueness;
+
+/** "not_certified", "unique", "not_checked"; "unknown" for other values. Never NULL. (New in 0.6.1.) */
+TG_API const char* tg_mean_uniqueness_name(tg_mean_uniqueness uniqueness);
+
+/** Options of tg_geodesic_mean. NULL or all-zero means defaults. */
+typedef struct tg_mean_options {
+    /** stop when a step is at most tolerance times the diagonal of the bounding box of the
+     *  mesh's referenced vertices; 0: 1e-10. Negative, NaN or infinite: TG_ERR_INVALID_ARGUMENT. */
+    double tolerance;
+    uint32_t max_iterations; /**< the most steps; 0: 100 */
+    /** NULL, or the point the iteration starts from (a valid surface point in the points'
+     *  component); NULL: the point of largest weight (the lowest index on ties) */
+    const tg_surface_point* start;
+    int skip_uniqueness; /**< non-zero: no uniqueness test (TG_MEAN_NOT_CHECKED; saves its field) */
+    /** the memory of a temporary workspace and of the call's scratch; NULL: the solver's */
+    const tg_allocator* allocator;
+    /** Called while the fields run (about every 5 ms) and after each step: rows_done the steps
+     *  taken, row_count max_iterations, front_distance the field's front, settled_fraction the
+     *  share of the cap done. Non-zero stops the call: TG_ERR_CANCELLED. NULL: none. */
+    tg_field_progress_fn progress;
+    void* progress_user;
+} tg_mean_options;
+
+/** The result of tg_geodesic_mean. Distances in the unit of the coordinates. */
+typedef struct tg_mean_result {
+    tg_surface_point point; /**< the mean (canonical form, tg_surface_point_canonical) */
+    double xyz[3];          /**< its position */
+    /** the weighted mean of the squared exact distances from the mean to the points,
+     *  sum w_i d_i^2 / sum w_i: the function minimised (its gradient is -2 sum w_i log(x_i) /
+     *  sum w_i) */
+    double energy;
+    /** |sum w_i log(x_i)| / sum w_i at the mean: the length of the step the iteration would take
+     *  next (0 at an exact critical point; at most the tolerance when converged) */
+    double gradient_norm;
+    double radius;          /**< the largest exact distance from the mean to a point of positive weight */
+    uint32_t iterations;    /**< steps taken (walked traces; a halved step counts once more) */
+    uint32_t halvings;      /**< steps walked again at half length because the energy rose */
+    uint32_t fields;        /**< exact field runs made (one per step and halving, one for the test) */
+    tg_mean_status status;
+    tg_mean_uniqueness uniqueness;
+} tg_mean_result;
+
+/** The weighted geodesic mean (Karcher / Fréchet mean) of surface points: the point m of the
+ *  surface minimising sum w_i d(m, x_i)^2, d the exact geodesic distance.
+ *
+ *  Method: from the start point p, repeatedly p <- exp_p(v), v = sum w_i log_p(x_i) / sum w_i.
+ *  log_p(x_i) is the vector at p of length d(p, x_i) along the direction in which the exact
+ *  shortest path to x_i leaves p: one exact field from p with the x_i as query points (stopped
+ *  once they are settled, tg_geodesic_field_at's engine), each path followed back through the
+ *  windows (TG_PATH_EXACT's backtrack) and its straight first run (up to the first vertex it
+ *  passes, or x_i) unfolded into p's face, so the direction is exact to rounding however short
+ *  the path's first segment. The vectors are summed as TG_TRACE_ANGLE measures directions at p:
+ *  in a face and at a point of an edge the plane of the face (the two faces of the edge unfolded
+ *  into one plane), exact; at a vertex the fan's angles scaled so the turn is 2 pi (pi at a
+ *  boundary vertex), as the log map's angles (tg_geodesic_log_map). exp_p(v) is
+ *  tg_geodesic_trace from p along v's angle for v's length. On a flat region one step lands on
+ *  the weighted average of the points (the exact answer there). Where the surface curves, the
+ *  plain step over- or undershoots by a factor the iteration keeps repeating, so after the first
+ *  step v's component along the direction in which the last step arrived is divided by the
+ *  secant lambda = (that step's own component - v's) / its length, the energy's curvature along
+ *  it relative to a flat one, when lambda is in [0.25, 4] (not after a step from a vertex, whose
+ *  scaled angles measure no component; on fcpw_kitten this took 25 steps down to 14). When a
+ *  step raises the energy (sum w_i d_i^2 / sum w_i) by more than 1e-12 relative, it is walked
+ *  again from its start at half the length (halvings), after one try of the vertex nearest to
+ *  the step's middle (taken when its energy is lower): where the points' paths bend at a
+ *  saddle or boundary vertex the energy has a corner there, its minimum may be that vertex, and
+ *  the gradient never vanishes (steps from a vertex are walked again at a sixteenth of their
+ *  length until below the tolerance: the vertex is then the answer, gradient_norm its pull).
+ *  The iteration stops when both the step
+ *  and |v| are at most the tolerance (TG_MEAN_CONVERGED), after max_iterations steps, or when a
+ *  trace cannot move.
+ *  The iteration finds a critical point near its start: on data spread over a closed surface a
+ *  mean may be a local minimiser only; give `start` to choose where to look. At a vertex of angle
+ *  sum below 2 pi (a cone: every vertex of a closed convex mesh) the energy has a ridge, not a
+ *  minimum: stepping off the vertex shortens the distances to the points on that side more than
+ *  it lengthens the others' (their directions span less than 2 pi), so the minima of points
+ *  placed symmetrically about such a vertex lie on a small ring around it (on an icosphere of
+ *  level 3, 0.002 from the vertex for points 0.5 away; tests/test_mean.c); the vertex itself is
+ *  returned only when the iteration starts there and the vectors cancel. Where the minimiser
+ *  presses against the boundary or sits at a saddle vertex the paths bend at (points around a
+ *  hole: its corner) it is no critical point: the vertex try above finds a minimum at a vertex
+ *  (tests/test_mean.c, a flat annulus); one on a boundary edge is approached until the cap
+ *  (TG_MEAN_ITERATION_CAP, gradient_norm the outward pull) or a stall (TG_MEAN_STALLED also when
+ *  a step ends in zero-area faces only, where no direction can be measured: the step's start is
+ *  returned). On 9 corpus meshes with
+ *  boundaries, saddles and non-manifold edges, 6 random points each, 6 trials: 44 of 54 converged
+ *  in 40 steps, the others at the cap, none failed.
+ *
+ *  Uniqueness (after the iteration, unless skip_uniqueness): with R the largest distance from
+ *  the mean m to the points of positive weight, every minimiser lies within 2R of m and every
+ *  shortest path that matters within 4R (triangle inequality). The test takes K, the faces with
+ *  a vertex nearer to m than 4R plus the face's longest side (an exact field bounded there), and
+ *  certifies TG_MEAN_UNIQUE when K is a topological disc (connected, every edge in at most two
+ *  of its faces, at every vertex 0 or 2 of its edges on its border, Euler characteristic 1) and
+ *  every vertex inside K has a closed fan of angle sum at least 2 pi (flat or saddle, within
+ *  1e-13 relative). Then K with its own length metric is CAT(0) (Bridson & Haefliger 1999,
+ *  II.5.6 and II.4.1: a simply connected polyhedral surface whose vertex links have no loop
+ *  shorter than 2 pi), where the squared distance is strictly convex along geodesics, so the
+ *  energy has one minimiser (R = 0 counts as unique). The test is sufficient, not necessary:
+ *  TG_MEAN_NOT_CERTIFIED says nothing either way (points near a vertex of positive curvature,
+ *  or around a hole, are never certified, though their mean is often unique).
+ *
+ *  points: count >= 1 valid surface points, all in one component of the mesh (points of weight 0
+ *  are validated and then ignored). weights: NULL (all 1), or count finite values >= 0, not all
+ *  0. workspace: NULL or one of this solver's. options: NULL for defaults. out: the result.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic, points or out; count 0; an invalid point; points
+ *  in different components (no path joins them); a negative, NaN or infinite weight or all
+ *  weights 0; a bad tolerance; an invalid start or one in another component; a workspace of
+ *  another solver), TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED, TG_ERR_INTERNAL (a path could not be
+ *  followed back: a bug); on error *out is untouched.
+ *  Complexity: per step one exact field from p as far as the farthest point (a few paths' work
+ *  for near points, a field's for spread ones) plus the K backtracks; the uniqueness test one
+ *  field bounded to about 4R. Figures in BENCHMARKS.md. Thread-safe as tg_geodesic_field.
+ *  (New in 0.6.1.) */
+TG_API tg_status tg_geodesic_mean(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
+                                  const tg_surface_point* points, const double* weights, size_t count,
+                                  const tg_mean_options* options, tg_mean_result* out);
+
+
+/* ============================================================================================== */
+/* Geodesic Bézier curves (src/geodesic/bezier.c)                                                 */
+/* ============================================================================================== */
+
+/** A geodesic Bézier curve: de Casteljau's construction on the surface with exact shortest
+ *  paths, sampled at sample_count parameters t = j / (sample_count - 1), j = 0 .. sample_count - 1.
+ *
+ *  Method: for each t, the control points P_0 .. P_n are replaced n times by the points at
+ *  fraction t of the arclength of the exact shortest path (tg_geodesic_path, TG_PATH_EXACT,
+ *  proven) between consecutive points; the one point left is the curve's point at t. Each path
+ *  is computed once where t does not change it (the n paths between the control points are
+ *  shared by every sample). A point at arclength s of a path is in the face of the segment
+ *  holding it, its barycentric coordinates interpolated between the segment's ends. On a flat
+ *  region this is the planar Bézier curve of the control points. Where a shortest path is not
+ *  unique (the cut locus), the one the propagation finds is taken, so the curve may jump there.
+ *  The curve starts at P_0 and ends at P_n (exactly those points).
+ *
+ *  controls: control_count >= 1 valid surface points (any kind), all in one component.
+ *  sample_count: >= 2. options: NULL, or tg_geodesic_path's options with method TG_PATH_EXACT
+ *  (others refused); their progress callback is told rows_done = samples done of row_count =
+ *  sample_count, from inside the paths and between them. workspace: NULL or one of this
+ *  solver's. out_points: sample_count surface points (canonical form); out_xyz: NULL or 3 *
+ *  sample_count doubles, their positions.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic, controls or out_points; control_count 0;
+ *  sample_count below 2; an invalid control point; control points in different components;
+ *  options tg_geodesic_path_through refuses), TG_ERR_OUT_OF_MEMORY, TG_ERR_INTERNAL (as
+ *  tg_geodesic_path), TG_ERR_CANCELLED; on error the outputs are untouched.
+ *  Complexity: n exact paths, plus n (n - 1) / 2 per sample (between nearby points: a small
+ *  region's propagation each). Thread-safe for distinct workspaces. (New in 0.6.1.) */
+TG_API tg_status tg_geodesic_bezier(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
+                                    const tg_surface_point* controls, size_t control_count, size_t sample_count,
+                                    const tg_path_options* options, tg_surface_point* out_points, double* out_xyz);
+
+/* ============================================================================================== */
+/* Centroidal Voronoi tessellations (src/geodesic/centroidal.c)                                   */
+/* ============================================================================================== */
+
+/** Options of tg_geodesic_centroidal_voronoi. NULL or all-zero means defaults. */
+typedef struct tg_centroidal_options {
+    uint32_t iterations; /**< the most Lloyd iterations; 0: 10 */
+    /** stop when no site moved more than tolerance times the bounding box's diagonal (straight
+     *  distance between its old and new positions); also each cell mean's tolerance
+     *  (tg_mean_options); 0: 1e-7. Negative, NaN or infinite: TG_ERR_INVALID_ARGUMENT. */
+    double tolerance;
+    const tg_allocator* allocator; /**< the call's scratch and temporary workspace; NULL: the solver's */
+    /** Called from inside the fields and means (about every 5 ms): rows_done the iterations
+     *  done of row_count = iterations. Non-zero stops the call: TG_ERR_CANCELLED. NULL: none. */
+    tg_field_progress_fn progress;
+    void* progress_user;
+} tg_centroidal_options;
+
+/** A geodesic centroidal Voronoi tessellation (geodesic Lloyd): K sites, each moved to the
+ *  geodesic mean of its exact Voronoi cell, repeatedly.
+ *
+ *  Method: the cells are tg_geodesic_voronoi's labels (each vertex to its nearest site in exact
+ *  distance). Quadrature: each cell is its vertices, each weighing its lumped area (a third of
+ *  the area of each face at it; the cells are not clipped inside faces), so the energy is
+ *  E = sum over vertices of area(v) d(v, nearest site)^2. An iteration moves each site to the
+ *  weighted geodesic mean of its cell's vertices (tg_geodesic_mean from the site, at most 3
+ *  steps, no uniqueness test), keeping the old site when that does not lower the cell's part of
+ *  E, then labels the vertices again: both halves lower E, so the energies never increase (to
+ *  the rounding of the exact distances, ~1e-15 relative). Empty cells keep their site. It stops
+ *  after `iterations` iterations or when no site moved more than the tolerance. On a flat region
+ *  it is the planar discrete Lloyd iteration (cell centroids the area-weighted averages of their
+ *  vertices; tests/test_centroidal.c compares them to 1e-12).
+ *
+ *  start_sites: NULL to start from farthest-point sampling (tg_geodesic_farthest_point_sampling
+ *  with start_vertex TG_NONE and `seed`), or site_count valid surface points. site_count: >= 1;
+ *  without start_sites at most the referenced vertices. options: NULL for defaults. workspace:
+ *  NULL or one of this solver's. out_sites: site_count surface points, the final sites.
+ *  out_vertex_label: NULL or vertex_count labels of the final cells (TG_NONE: unreferenced or
+ *  unreached). out_energies: NULL or room for iterations + 1 values: E before the first
+ *  iteration and after each (*out_iteration_count + 1 written). out_iteration_count: NULL or the
+ *  iterations made.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic or out_sites, site_count 0 or above the
+ *  referenced vertices without start sites, an invalid start site, a bad tolerance),
+ *  TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED, and the errors of the calls it makes; on error the
+ *  outputs are untouched. Complexity: per iteration one Voronoi labelling (about one field) and
+ *  K means over the cells (each a few fields bounded to its cell). Thread-safe as
+ *  tg_geodesic_field. (New in 0.6.1.) */
+TG_API tg_status tg_geodesic_centroidal_voronoi(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
+                                                const tg_surface_point* start_sites, uint64_t seed,
+                                                size_t site_count, const tg_centroidal_options* options,
+                                                tg_surface_point* out_sites, uint32_t* out_vertex_label,
+                                                double* out_energies, size_t* out_iteration_count);
 
 /* ============================================================================================== */
 /* Pictures (src/render)                                                                          */

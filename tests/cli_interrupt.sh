@@ -53,6 +53,7 @@ through = ";".join("v:%d" % r.randrange(NA) for _ in range(600))                
 batch = write("batch.txt", "".join("v:%d 0.5 50\n" % r.randrange(NA) for _ in range(4000)))  # ~8 s
 pairs = write("pairs.txt", "".join("v %d %d\n" % (i % NS, (i * 7919) % NS) for i in range(20000)))
 at_pts = write("at.txt", "".join("v:%d\n" % r.randrange(163842) for _ in range(1000)))
+mean_pts = write("mean.txt", "".join("v:%d\n" % r.randrange(163842) for _ in range(10)))  # a field a step
 # a million query points as .npy (read in a blink): signed distances by winding number, ~6 s
 queries = os.path.join(tmp, "queries.npy")
 with open(queries, "wb") as f:
@@ -99,6 +100,9 @@ cases = [
     ("trace --batch", ["trace", arm, "--batch", batch, "--threads", "1", "-o", o("b.csv")], 1.0, 3.0),
     ("sample", ["sample", arm, "--count", "43000", "-o", o("s.txt")], 1.0),
     ("logmap", ["logmap", ico, "--from", "v:0", "-o", o("lm.npy")], 1.0),
+    ("mean", ["mean", ico, "--points", mean_pts, "-o", o("m.json")], 1.0),
+    ("path --bezier", ["path", ico, "--bezier", "v:0;v:50000;v:100000;v:150000", "--samples", "1001",
+                       "-o", o("bz.obj")], 1.0),
     ("render --from (its field)", ["render", ico, "--from", "v:0", "-o", o("rf.png")], 1.0),
     ("render", ["render", arm, "--from", "v:0", "--size", "4000x4000", "-o", o("r.png")], 1.0, 3.0),
     ("closest --signed", ["closest", ico, queries, "--signed", "--sign", "winding", "--threads", "1", "-o", o("c.csv")], 1.0),

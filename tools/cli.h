@@ -361,5 +361,6 @@ extern const cli_command cli_cmd_trace;
 extern const cli_command cli_cmd_logmap;
 extern const cli_command cli_cmd_sample;
 extern const cli_command cli_cmd_compare;
+extern const cli_command cli_cmd_mean;
 
 #endif

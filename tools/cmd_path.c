@@ -471,17 +471,121 @@ done:
     return rc;
 }
 
+/* ---- --bezier ---- */
+
+#define BEZIER_DEFAULT_SAMPLES 101u
+#define BEZIER_MAX_SAMPLES 10000000u
+
+static void print_bezier_json(FILE* f, const char* mesh_path, const cli_spec_list* ctrl, const tg_surface_point* pts,
+                              const double* xyz, size_t n)
+{
+    fprintf(f, "{\n  \"mesh\": ");
+    cli_json_string(f, mesh_path);
+    fprintf(f, ",\n  \"controls\": [");
+    for (size_t i = 0; i < ctrl->count; ++i) {
+        fputs(i ? ", " : "", f);
+        cli_json_point(f, &ctrl->point[i]);
+    }
+    fprintf(f, "],\n  \"samples\": %zu,\n  \"points\": [", n);
+    for (size_t i = 0; i < n; ++i) {
+        fputs(i ? ",\n    " : "\n    ", f);
+        cli_json_point(f, &pts[i]);
+    }
+    fprintf(f, "\n  ],\n  \"xyz\": [");
+    for (size_t i = 0; i < n; ++i)
+        fprintf(f, "%s[%s, %s, %s]", i ? ",\n    " : "\n    ", cli_num(xyz[3 * i]).s, cli_num(xyz[3 * i + 1]).s,
+                cli_num(xyz[3 * i + 2]).s);
+    fprintf(f, "\n  ]\n}\n");
+}
+
+/* `--bezier "SPEC;...": the geodesic Bezier curve of the control points, sampled. */
+static int run_bezier(const char* mesh_path, cli_spec_list* ctrl, size_t samples, const char* out_path, bool json)
+{
+    int rc = CLI_INPUT;
+    tg_bvh* bvh = NULL;
+    tg_geodesic* geo = NULL;
+    tg_surface_point* pts = malloc(samples * sizeof *pts);
+    double* xyz = malloc(3 * samples * sizeof *xyz);
+    tg_mesh* mesh = pts && xyz ? cli_load_mesh_for_distances(mesh_path) : NULL;
+    if (!pts || !xyz) cli_error(NULL, 0, "out of memory");
+    if (!mesh) goto done;
+    if (tg_mesh_face_count(mesh) == 0) {
+        cli_error(mesh_path, 0, "the mesh has no faces");
+        goto done;
+    }
+    if (!cli_spec_list_resolve(mesh_path, mesh, &bvh, ctrl)) goto done;
+    tg_status st = tg_geodesic_create(mesh, NULL, &geo);
+    tg_path_options o;
+    memset(&o, 0, sizeof o);
+    o = interruptible(&o);
+    cli_interrupt_polling(true);
+    if (st == TG_OK) st = tg_geodesic_bezier(geo, NULL, ctrl->point, ctrl->count, samples, &o, pts, xyz);
+    cli_interrupt_polling(false);
+    if (st == TG_ERR_CANCELLED) {
+        cli_error(mesh_path, 0, "interrupted: nothing written");
+        rc = 130;
+        goto done;
+    }
+    if (st == TG_ERR_INVALID_ARGUMENT) { /* every point was resolved: what is left is where they lie */
+        cli_error(mesh_path, 0, "the control points lie in different components of the mesh: no path joins them");
+        goto done;
+    }
+    if (st != TG_OK) {
+        cli_error(mesh_path, 0, "%s", tg_status_string(st));
+        goto done;
+    }
+    if (out_path) {
+        cli_output out;
+        FILE* f = cli_output_open(&out, out_path);
+        if (!f) goto done;
+        bool ok = true;
+        if (cli_ext_is(out_path, ".json")) {
+            print_bezier_json(f, mesh_path, ctrl, pts, xyz, samples);
+        } else {
+            ok = fprintf(f, "# trigeo geodesic Bezier curve: %zu control points, %zu samples\n", ctrl->count, samples) > 0;
+            ok = ok && cli_obj_vertices(f, xyz, samples) && cli_obj_line(f, 0, samples, false);
+        }
+        if (!ok) {
+            cli_error(out_path, 0, "write failed: %s", strerror(errno));
+            cli_output_abort(&out);
+            goto done;
+        }
+        if (cli_output_commit(&out) != CLI_OK) goto done;
+    }
+    if (json) {
+        print_bezier_json(stdout, mesh_path, ctrl, pts, xyz, samples);
+    } else if (!(out_path && !strcmp(out_path, "-"))) {
+        double len = 0.0;
+        for (size_t i = 0; i + 1 < samples; ++i) {
+            const double *a = xyz + 3 * i, *b = a + 3;
+            len += sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]));
+        }
+        printf("control points     %zu (degree %zu)\n", ctrl->count, ctrl->count - 1);
+        printf("samples            %zu\n", samples);
+        printf("polyline length    %s\n", cli_num(len).s);
+    }
+    rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
+done:
+    free(pts);
+    free(xyz);
+    tg_geodesic_destroy(geo);
+    tg_bvh_destroy(bvh);
+    tg_mesh_destroy(mesh);
+    return rc;
+}
+
 static int run(int argc, char** argv)
 {
     const char *mesh_path = NULL, *from = NULL, *to = NULL, *pairs = NULL, *out_path = NULL, *method = NULL;
-    const char *through = NULL, *threads = NULL;
+    const char *through = NULL, *threads = NULL, *bezier = NULL, *samples = NULL;
     bool json = false, certify = false, closed = false;
     tg_path_options o;
     memset(&o, 0, sizeof o);
     for (int i = 1; i < argc; ++i) {
         const char* a = argv[i];
         if (!strcmp(a, "--from") || !strcmp(a, "--to") || !strcmp(a, "--pairs") || !strcmp(a, "-o") ||
-            !strcmp(a, "--method") || !strcmp(a, "--through") || !strcmp(a, "--threads")) {
+            !strcmp(a, "--method") || !strcmp(a, "--through") || !strcmp(a, "--threads") || !strcmp(a, "--bezier") ||
+            !strcmp(a, "--samples")) {
             if (i + 1 >= argc) return cli_usage("path", "%s needs a value", a);
             const char* val = argv[++i];
             if (!strcmp(a, "--from"))
@@ -496,6 +600,10 @@ static int run(int argc, char** argv)
                 through = val;
             else if (!strcmp(a, "--threads"))
                 threads = val;
+            else if (!strcmp(a, "--bezier"))
+                bezier = val;
+            else if (!strcmp(a, "--samples"))
+                samples = val;
             else
                 method = val;
         } else if (!strcmp(a, "--json")) {
@@ -511,6 +619,29 @@ static int run(int argc, char** argv)
         } else {
             return cli_usage("path", "unexpected argument '%s'", a);
         }
+    }
+    if (samples && !bezier) return cli_usage("path", "--samples applies to --bezier");
+    if (bezier) {
+        if (from || to || pairs || through || closed || threads)
+            return cli_usage("path", "--bezier excludes --from, --to, --pairs, --through, --closed and --threads");
+        if ((method && strcmp(method, "exact")) || certify)
+            return cli_usage("path", "--bezier interpolates along exact paths (proven): --method and --certify do not apply");
+        unsigned long long ns = BEZIER_DEFAULT_SAMPLES;
+        if (samples && (!cli_parse_uint(samples, &ns) || ns < 2 || ns > BEZIER_MAX_SAMPLES))
+            return cli_usage("path", "--samples needs a number in 2..%u, not '%s'", BEZIER_MAX_SAMPLES, samples);
+        if (!mesh_path) return cli_usage("path", "missing MESH");
+        if (out_path && !cli_ext_is(out_path, ".obj") && !cli_ext_is(out_path, ".json"))
+            return cli_usage("path", "-o takes B.obj (the polyline) or B.json (the surface points too)");
+        if (json && out_path && !strcmp(out_path, "-")) return cli_usage("path", "--json and -o - both write to stdout");
+        const cli_file_role inputs[1] = {{mesh_path, "mesh"}};
+        const cli_file_role outputs[1] = {{out_path, "-o"}};
+        int rc = cli_check_outputs(outputs, 1, inputs, 1);
+        if (rc != CLI_OK) return rc;
+        cli_spec_list ctrl = {NULL, NULL, NULL, NULL, 0};
+        rc = cli_spec_list_parse("path", "--bezier", bezier, &ctrl);
+        if (rc == CLI_OK) rc = run_bezier(mesh_path, &ctrl, (size_t)ns, out_path, json);
+        cli_spec_list_free(&ctrl);
+        return rc;
     }
     if (through) {
         if (from || to || pairs) return cli_usage("path", "--through excludes --from, --to and --pairs");
@@ -569,7 +700,8 @@ static int run(int argc, char** argv)
 const cli_command cli_cmd_path = {
     "path",
     "path MESH ((--from SPEC --to SPEC | --through \"SPEC;SPEC;...\" [--closed]) [-o PATH.obj|.json] [--json] |\n"
-    "       --pairs PAIRS [-o OUT.csv] [--threads N]) [--method M] [--certify]",
+    "       --pairs PAIRS [-o OUT.csv] [--threads N]) [--method M] [--certify] |\n"
+    "       --bezier \"SPEC;SPEC;...\" [--samples N] [-o B.obj|.json] [--json]",
     "Geodesic paths on the surface between any two surface points (never snapped to a vertex): by\n"
     "default the globally shortest path, proven by an exact window propagation; or, faster, the\n"
     "shortest edge path (A*) with the endpoints inserted virtually, then shortened.\n\n"
@@ -582,6 +714,13 @@ const cli_command cli_cmd_path = {
     "                           paths between consecutive points, each proven, joined into one\n"
     "                           path (quote the list: ';' is special to the shell)\n"
     "  --closed                 with --through: back to the first point too (a loop)\n"
+    "  --bezier \"SPEC;SPEC;...\"  the geodesic Bezier curve of these control points (degree: their\n"
+    "                           count - 1): de Casteljau on the surface, each interpolation taken\n"
+    "                           along the exact shortest path (proven) between two points; on a flat\n"
+    "                           region the planar Bezier curve. Written as an OBJ polyline of the\n"
+    "                           samples (-o B.obj) or JSON with their surface points (-o B.json,\n"
+    "                           --json); from the first control point to the last\n"
+    "  --samples N              with --bezier: N points at t = 0, 1/(N-1), ..., 1 (default 101)\n"
     "  -o PATH.obj|PATH.json    write the path as an OBJ polyline (v and l records), or the\n"
     "                           JSON document of --json (the format follows the extension)\n"
     "  --json                   print surface points, faces, 3D points, length, status, certificate\n"

@@ -43,10 +43,92 @@ static int write_samples(cli_output_set* set, const char* path, const tg_mesh* m
 typedef struct sample_args {
     const char* mesh_path;
     const char *out, *field_out, *start;
-    unsigned long long count, seed;
-    bool quiet;
+    unsigned long long count, seed, iterations;
+    bool quiet, cvt;
     int threads; /* tg_field_options.threads (cli_field_threads) */
 } sample_args;
+
+/* --cvt: the sites (surface points): .txt one SPEC a line, .csv rows i,site,x,y,z (the site a
+ * quoted SPEC). */
+static int write_sites(cli_output_set* set, const char* path, const tg_mesh* mesh, const tg_surface_point* s, size_t k)
+{
+    FILE* f = cli_output_set_open(set, path);
+    if (!f) return CLI_INPUT;
+    bool csv = strcmp(path, "-") != 0 && cli_ext_is(path, ".csv");
+    bool ok = !csv || fprintf(f, "i,site,x,y,z\n") > 0;
+    for (size_t i = 0; ok && i < k; ++i) {
+        char spec[CLI_SPEC_TEXT_MAX];
+        double p[3];
+        cli_spec_text(&s[i], spec, sizeof spec);
+        tg_surface_point_position(mesh, &s[i], p);
+        /* the SPEC holds commas: quoted (RFC 4180) */
+        ok = csv ? fprintf(f, "%zu,\"%s\",%s,%s,%s\n", i, spec, cli_num(p[0]).s, cli_num(p[1]).s, cli_num(p[2]).s) > 0
+                 : fprintf(f, "%s\n", spec) > 0;
+    }
+    if (!ok) {
+        cli_error(path, 0, "write failed: %s", strerror(errno));
+        return CLI_INPUT;
+    }
+    return CLI_OK;
+}
+
+/* --cvt after the farthest-point samples: Lloyd's iteration from them, the sites written, the
+ * final cells as --field, the energies in the summary. */
+static int run_cvt(const sample_args* sa, tg_mesh* mesh, tg_geodesic* geo, const uint32_t* samples, uint32_t* label,
+                   double* dist, cli_progress* prog)
+{
+    size_t k = sa->count, n = tg_mesh_vertex_count(mesh), iters = sa->iterations ? sa->iterations : 10, done = 0;
+    tg_surface_point* sites = malloc(k * sizeof *sites);
+    double* energies = malloc((iters + 1) * sizeof *energies);
+    int rc = CLI_INPUT;
+    if (!sites || !energies) {
+        cli_error(NULL, 0, "out of memory");
+        goto done;
+    }
+    for (size_t i = 0; i < k; ++i) sites[i] = tg_surface_vertex(samples[i]);
+    tg_centroidal_options co;
+    memset(&co, 0, sizeof co);
+    co.iterations = (uint32_t)iters;
+    co.progress = on_progress;
+    co.progress_user = prog;
+    double t0 = cli_seconds();
+    cli_interrupt_polling(true);
+    tg_status st = tg_geodesic_centroidal_voronoi(geo, NULL, sites, 0, k, &co, sites, label, energies, &done);
+    tg_field_options fo;
+    memset(&fo, 0, sizeof fo);
+    fo.progress = on_progress, fo.progress_user = prog;
+    if (st == TG_OK && sa->field_out) st = tg_geodesic_voronoi(geo, NULL, sites, k, &fo, NULL, dist, label, NULL);
+    cli_interrupt_polling(false);
+    double secs = cli_seconds() - t0;
+    cli_progress_end(prog);
+    if (st == TG_ERR_CANCELLED) {
+        cli_error(sa->mesh_path, 0, "interrupted: nothing written");
+        rc = 130;
+        goto done;
+    }
+    if (st != TG_OK) {
+        cli_error(sa->mesh_path, 0, "%s", tg_status_string(st));
+        goto done;
+    }
+    cli_output_set outs = {0};
+    rc = sa->out ? write_sites(&outs, sa->out, mesh, sites, k) : CLI_OK;
+    if (rc == CLI_OK && sa->field_out) rc = cli_write_labels(&outs, sa->field_out, mesh, label, dist, n);
+    if (rc == CLI_OK) rc = cli_output_set_commit(&outs);
+    cli_output_set_abort(&outs);
+    if (rc != CLI_OK) goto done;
+    if (!sa->quiet && (!sa->out || strcmp(sa->out, "-"))) {
+        printf("sites              %zu (centroidal Voronoi from the farthest-point samples)\n", k);
+        printf("iterations         %zu\n", done);
+        printf("energies          ");
+        for (size_t i = 0; i <= done; ++i) printf(" %s", cli_num(energies[i]).s);
+        printf("\nseconds            %.3f\n", secs);
+    }
+    rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
+done:
+    free(sites);
+    free(energies);
+    return rc;
+}
 
 static int run_sample(const sample_args* sa)
 {
@@ -94,7 +176,7 @@ static int run_sample(const sample_args* sa)
                                                        &stats);
     double secs = cli_seconds() - t0;
     cli_interrupt_polling(false);
-    cli_progress_end(&prog);
+    if (!sa->cvt || st != TG_OK) cli_progress_end(&prog);
     if (st == TG_ERR_CANCELLED) {
         cli_error(sa->mesh_path, 0, "interrupted: nothing written");
         rc = 130;
@@ -108,6 +190,10 @@ static int run_sample(const sample_args* sa)
     }
     if (st != TG_OK) {
         cli_error(sa->mesh_path, 0, "%s", tg_status_string(st));
+        goto done;
+    }
+    if (sa->cvt) {
+        rc = run_cvt(sa, mesh, geo, samples, label, dist, &prog);
         goto done;
     }
     /* the samples and the field: both files or neither */
@@ -139,16 +225,19 @@ static int run(int argc, char** argv)
 {
     sample_args sa;
     memset(&sa, 0, sizeof sa);
-    const char *count = NULL, *seed = NULL, *threads = NULL;
+    const char *count = NULL, *seed = NULL, *threads = NULL, *iterations = NULL;
     for (int i = 1; i < argc; ++i) {
         const char* a = argv[i];
         if (!strcmp(a, "--quiet")) {
             sa.quiet = true;
+        } else if (!strcmp(a, "--cvt")) {
+            sa.cvt = true;
         } else if (!strcmp(a, "--count") || !strcmp(a, "--start") || !strcmp(a, "--seed") || !strcmp(a, "-o") ||
-                   !strcmp(a, "--field") || !strcmp(a, "--threads")) {
+                   !strcmp(a, "--field") || !strcmp(a, "--threads") || !strcmp(a, "--iterations")) {
             if (i + 1 >= argc) return cli_usage("sample", "%s needs a value", a);
             const char* val = argv[++i];
-            if (!strcmp(a, "--count")) count = val;
+            if (!strcmp(a, "--iterations")) iterations = val;
+            else if (!strcmp(a, "--count")) count = val;
             else if (!strcmp(a, "--start")) sa.start = val;
             else if (!strcmp(a, "--seed")) seed = val;
             else if (!strcmp(a, "-o")) sa.out = val;
@@ -167,6 +256,9 @@ static int run(int argc, char** argv)
         return cli_usage("sample", "--count needs a positive number of samples%s%s%s", count ? ", not '" : "",
                          count ? count : "", count ? "'" : "");
     if (sa.start && seed) return cli_usage("sample", "--start and --seed exclude each other");
+    if (iterations && !sa.cvt) return cli_usage("sample", "--iterations applies to --cvt");
+    if (iterations && (!cli_parse_uint(iterations, &sa.iterations) || sa.iterations < 1 || sa.iterations > 100000))
+        return cli_usage("sample", "--iterations needs a number in 1..100000, not '%s'", iterations);
     if (seed && !cli_parse_uint(seed, &sa.seed)) return cli_usage("sample", "--seed needs a non-negative integer, not '%s'", seed);
     if (sa.out && strcmp(sa.out, "-") && !cli_ext_is(sa.out, ".txt") && !cli_ext_is(sa.out, ".csv"))
         return cli_usage("sample", "-o %s: the extension must be .txt or .csv", sa.out);
@@ -180,8 +272,8 @@ static int run(int argc, char** argv)
 
 const cli_command cli_cmd_sample = {
     "sample",
-    "sample MESH --count K [--start v:IDX | --seed N] [-o SAMPLES.txt|.csv] [--field FIELD.ply|.csv] [--threads N] "
-    "[--quiet]",
+    "sample MESH --count K [--start v:IDX | --seed N] [--cvt [--iterations N]] [-o SAMPLES.txt|.csv]\n"
+    "       [--field FIELD.ply|.csv] [--threads N] [--quiet]",
     "Farthest-point sampling in exact geodesic distance: the first sample is --start (or the vertex\n"
     "the seed picks, default seed 0), each next one the vertex farthest from all earlier ones (a\n"
     "component no sample reaches yet counts as farthest; ties to the lowest index). Each sample's\n"
@@ -198,6 +290,16 @@ const cli_command cli_cmd_sample = {
     "  --threads N            each sample's field on N threads (at most 256, 0 = all cores;\n"
     "                         default 1): every N > 1 gives the same samples; one thread's\n"
     "                         only where two candidates tie within rounding (1e-14 relative)\n"
+    "  --cvt                  then a centroidal Voronoi tessellation from those samples (geodesic\n"
+    "                         Lloyd): each site moved to the geodesic mean of its exact Voronoi\n"
+    "                         cell (its vertices weighing a third of their faces' areas), the\n"
+    "                         cells labelled again, until no site moves more than 1e-7 of the\n"
+    "                         diagonal; the summary lists the energy (sum of area x squared\n"
+    "                         distance) before and after each iteration, never increasing. -o\n"
+    "                         then writes the sites as SPECs (.txt) or rows i,site,x,y,z (.csv,\n"
+    "                         the site a quoted SPEC),\n"
+    "                         --field their final cells\n"
+    "  --iterations N         with --cvt: at most N iterations (default 10)\n"
     "  --quiet                no progress line and no summary (errors are still printed, -o -\n"
     "                         still writes the samples)\n\n"
     "Outputs are written to a temporary name and renamed when complete. Without -o - and --quiet a\n"

@@ -18,6 +18,7 @@ static const cli_command* const commands[] = {
     &cli_cmd_logmap,
     &cli_cmd_sample,
     &cli_cmd_compare,
+    &cli_cmd_mean,
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 

@@ -175,6 +175,26 @@ BAD = [
     ("field 'd'", lambda m, d: m.save(d / "a.ply", fields={"d": "abc"})),
     ("field 'd'", lambda m, d: m.save(d / "a.ply", fields={"d": [[1.0], [2.0, 3.0]]})),
     ("field 'd'", lambda m, d: m.save(d / "a.ply", fields={"d": np.zeros(3)})),
+    # geodesic_mean and bezier (test_mean.py holds their oracles)
+    ("points", lambda m, d: m.geodesic_mean([])),
+    ("weights", lambda m, d: m.geodesic_mean([0, 1], weights=[1, -1])),
+    ("weights", lambda m, d: m.geodesic_mean([0, 1], weights=[0, 0])),
+    ("weights", lambda m, d: m.geodesic_mean([0, 1], weights=[1, 2, 3])),
+    ("weights", lambda m, d: m.geodesic_mean([0, 1], weights="ab")),
+    ("tolerance", lambda m, d: m.geodesic_mean([0, 1], tolerance=0)),
+    ("max_iterations", lambda m, d: m.geodesic_mean([0, 1], max_iterations=0)),
+    ("max_iterations", lambda m, d: m.geodesic_mean([0, 1], max_iterations=1.5)),
+    ("uniqueness", lambda m, d: m.geodesic_mean([0, 1], uniqueness="yes")),
+    ("start", lambda m, d: m.geodesic_mean([0, 1], start=N)),
+    ("points", lambda m, d: m.bezier([])),
+    ("samples", lambda m, d: m.bezier([0, 1], samples=1)),
+    ("samples", lambda m, d: m.bezier([0, 1], samples=2.5)),
+    ("count", lambda m, d: m.centroidal_voronoi(0)),
+    ("count", lambda m, d: m.centroidal_voronoi(N + 1)),
+    ("iterations", lambda m, d: m.centroidal_voronoi(3, iterations=0)),
+    ("start", lambda m, d: m.centroidal_voronoi(3, start=[0, 1])),
+    ("tolerance", lambda m, d: m.centroidal_voronoi(3, tolerance=-1.0)),
+    ("seed", lambda m, d: m.centroidal_voronoi(3, seed=-1)),
 ]
 
 

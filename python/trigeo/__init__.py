@@ -42,7 +42,7 @@ from . import _lib as _c
 from ._lib import lib as _L
 
 __all__ = [
-    "load", "load_bytes", "Mesh", "Path", "Trace", "SurfacePoint", "version", "Error", "InvalidArgumentError",
+    "load", "load_bytes", "Mesh", "Path", "Trace", "GeodesicMean", "SurfacePoint", "version", "Error", "InvalidArgumentError",
     "OutOfMemoryError", "FileError", "ParseError", "InvalidMeshError", "UnsupportedError", "CapacityError",
     "CancelledError", "LoadWarning", "MAX_THREADS", "MeshDistance",
 ]
@@ -1336,6 +1336,162 @@ class Mesh:
 
         return self._run(work)
 
+    # -- geometry on the exact maps ------------------------------------------------------------
+
+    def geodesic_mean(self, points: Any, weights: Any = None, start: Any = None, tolerance: Optional[float] = None,
+                      max_iterations: Optional[int] = None, uniqueness: bool = True,
+                      progress: Optional[Callable[[float], Any]] = None) -> "GeodesicMean":
+        """The weighted geodesic (Karcher / Frechet) mean: the surface point minimising
+        sum w_i d(m, x_i)^2 with exact geodesic distances, by the iteration
+        p <- exp_p(sum w_i log_p(x_i) / sum w_i) on exact paths and the exact trace (the same
+        numbers as `trigeo mean` and tg_geodesic_mean).
+
+        points: surface points as path() takes them (vertex indices, SurfacePoints, (k, 3)
+        positions), at least one, all in one component. weights: None (all 1) or k numbers >= 0,
+        not all 0. start: None (the point of largest weight) or a surface point where the
+        iteration starts (it finds a mean near it). tolerance: stop when a step is below this
+        share of the bounding box's diagonal (default 1e-10). max_iterations: at most this many
+        steps (default 100). uniqueness: False skips the uniqueness test (one bounded field).
+        Returns a GeodesicMean (point, xyz, status, iterations, halvings, gradient_norm, energy,
+        radius, uniqueness, fields). Ctrl-C and progress (the share of the step cap done)
+        interrupt it."""
+        check_unique = _flag(uniqueness, "uniqueness")
+        tol = 0.0 if tolerance is None else _number(tolerance, "tolerance", ">0")
+        cap = 0 if max_iterations is None else _index(max_iterations, "max_iterations")
+        if max_iterations is not None and not 1 <= cap <= 0xFFFFFFFF:
+            raise _bad(f"max_iterations must be at least 1, not {_show(max_iterations)}")
+
+        def work(call: _Call) -> "GeodesicMean":
+            pts = self._surface_points(points, "points")
+            k = len(pts)
+            if k == 0:
+                raise _bad("points: geodesic_mean needs at least one point")
+            wp = None
+            if weights is not None:
+                w = _floats(weights, "weights", f"a sequence of {k}")
+                if w.shape != (k,):
+                    raise _bad(f"weights must hold one number per point ({k}), not shape {w.shape}")
+                _check_values(w, "weights", ">=0")
+                if not w.sum() > 0.0:
+                    raise _bad("weights: every weight is 0 (at least one must be positive)")
+                w = np.ascontiguousarray(w)
+                wp = _ptr(w)
+            st_ = None
+            if start is not None:
+                st_ = (_c.SurfacePointC * 1)(self._surface_point(start, "start"))
+            o = _c.MeanOptions(tol, cap, st_, 0 if check_unique else 1, None, call.field_fn, None)
+            r = _c.MeanResult()
+            geo = self._get_geo()
+            with self._geo_ws.take() as ws:
+                st = _L.tg_geodesic_mean(geo, ws, pts, wp, k, ctypes.byref(o), ctypes.byref(r))
+            if st == 1 and call.error is None:
+                raise _bad("geodesic_mean: the points%s lie in different components of the mesh (no path joins "
+                           "them)" % (" (and start)" if start is not None else ""))
+            call.finish(st, "geodesic_mean")
+            return GeodesicMean._from_c(r)
+
+        return self._run(work, progress)
+
+    def bezier(self, points: Any, samples: int = 101,
+               progress: Optional[Callable[[float], Any]] = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The geodesic Bezier curve of the control points: de Casteljau's construction on the
+        surface, each interpolation taken along the exact shortest path between two points (on a
+        flat region the planar Bezier curve; the same numbers as `trigeo path --bezier` and
+        tg_geodesic_bezier). points: the n + 1 control points (as path() takes them; degree n),
+        all in one component. samples: the curve at t = 0, 1 / (samples - 1), ..., 1 (>= 2).
+        Returns (xyz, faces, bary): (samples, 3) float64 positions, (samples,) int64 faces and
+        (samples, 3) float64 barycentric coordinates in them (a point on an edge or at a vertex
+        named in one face holding it); the first is the first control point, the last the last.
+        Ctrl-C and progress (the share of the samples done) interrupt it."""
+        n = _index(samples, "samples")
+        if n < 2:
+            raise _bad(f"samples must be at least 2, not {_show(samples)}")
+
+        def work(call: _Call) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+            ctrl = self._surface_points(points, "points")
+            if len(ctrl) == 0:
+                raise _bad("points: bezier needs at least one control point")
+            out = (_c.SurfacePointC * n)()
+            xyz = np.empty((n, 3))
+            opts = _c.PathOptions(0, 0, 0.0, None, 0, call.field_fn, None)  # exact, Ctrl-C as cancellation
+            geo = self._get_geo()
+            with self._geo_ws.take() as ws:
+                st = _L.tg_geodesic_bezier(geo, ws, ctrl, len(ctrl), n, ctypes.byref(opts), out, _ptr(xyz))
+            if st == 1 and call.error is None:
+                raise _bad("bezier: the control points lie in different components of the mesh (no path joins them)")
+            call.finish(st, "bezier")
+            faces, bary = self._face_points(out)
+            return xyz, faces, bary
+
+        return self._run(work, progress)
+
+    def centroidal_voronoi(self, count: int, iterations: int = 10, start: Any = None, seed: int = 0,
+                           tolerance: Optional[float] = None, progress: Optional[Callable[[float], Any]] = None
+                           ) -> tuple[list, np.ndarray, np.ndarray]:
+        """A geodesic centroidal Voronoi tessellation (geodesic Lloyd, tg_geodesic_centroidal_voronoi,
+        the numbers of `trigeo sample --cvt`): `count` sites, each moved to the geodesic mean of
+        its exact Voronoi cell (its vertices weighing a third of their faces' areas), the cells
+        labelled again, at most `iterations` times or until no site moves more than tolerance
+        (default 1e-7) times the bounding box's diagonal. start: None (farthest-point sampling
+        with `seed`) or `count` surface points. Returns (sites, labels, energies): a list of
+        SurfacePoints, (n,) int64 cell labels (-1: unreached or unreferenced), and the energies
+        (sum of area x squared distance) before and after each iteration, never increasing."""
+        k = _index(count, "count")
+        its = _index(iterations, "iterations")
+        if not 1 <= its <= 0xFFFFFFFF:
+            raise _bad(f"iterations must be at least 1, not {_show(iterations)}")
+        sd = _u64(seed, "seed")
+        tol = 0.0 if tolerance is None else _number(tolerance, "tolerance", ">0")
+        if k < 1:
+            raise _bad(f"count must be at least 1, not {_show(count)}")
+
+        def work(call: _Call) -> tuple[list, np.ndarray, np.ndarray]:
+            sp = None
+            if start is not None:
+                sp = self._surface_points(start, "start")
+                if len(sp) != k:
+                    raise _bad(f"start must hold count = {k} surface points, not {len(sp)}")
+            elif k > self.report["vertices"] - self.report["unreferenced_vertices"]:
+                raise _bad(f"count = {k} exceeds the vertices used by faces")
+            o = _c.CentroidalOptions(its, tol, None, call.field_fn, None)
+            sites = (_c.SurfacePointC * k)()
+            labels = np.empty(self.vertex_count, np.uint32)
+            energies = np.empty(its + 1)
+            done = ctypes.c_size_t(0)
+            geo = self._get_geo()
+            with self._geo_ws.take() as ws:
+                st = _L.tg_geodesic_centroidal_voronoi(geo, ws, sp, sd, k, ctypes.byref(o), sites,
+                                                        labels.ctypes.data_as(ctypes.POINTER(ctypes.c_uint32)),
+                                                        _ptr(energies), ctypes.byref(done))
+            call.finish(st, "centroidal_voronoi")
+            lab = labels.astype(np.int64)
+            lab[labels == 0xFFFFFFFF] = -1
+            return [SurfacePoint._from_c(p) for p in sites], lab, energies[:done.value + 1].copy()
+
+        return self._run(work, progress)
+
+    def _face_points(self, pts) -> tuple[np.ndarray, np.ndarray]:
+        """Surface points as (face, barycentrics): a vertex in the first face using it, an edge
+        point in its halfedge's face."""
+        tri = self.faces
+        k = len(pts)
+        faces, bary = np.empty(k, np.int64), np.zeros((k, 3))
+        first = None
+        for i, p in enumerate(pts):
+            if p.kind == 2:
+                faces[i], bary[i] = p.index, p.bary[:]
+            elif p.kind == 1:
+                faces[i] = p.index // 3
+                bary[i, p.index % 3], bary[i, (p.index + 1) % 3] = 1.0 - p.t, p.t
+            else:
+                if first is None:
+                    flat = tri.reshape(-1)
+                    first = np.full(self.vertex_count, -1, np.int64)
+                    first[flat[::-1]] = np.arange(flat.size - 1, -1, -1) // 3
+                faces[i] = first[p.index]
+                bary[i, int(np.nonzero(tri[faces[i]] == p.index)[0][0])] = 1.0
+        return faces, bary
+
     # -- tracing ------------------------------------------------------------------------------
 
     @staticmethod
@@ -2165,6 +2321,43 @@ class _MeshHandle:
 # ---------------------------------------------------------------------------------------------
 # Path
 # ---------------------------------------------------------------------------------------------
+
+class GeodesicMean:
+    """The result of Mesh.geodesic_mean. Attributes:
+
+    point          SurfacePoint, the mean
+    xyz            (3,) float64, its position
+    status         "converged", "iteration_cap" (the last point) or "stalled" (a step could not
+                   be walked)
+    iterations     steps taken (a step walked again at half length counts once more)
+    halvings       steps walked again at half length because the energy rose
+    gradient_norm  |sum w log_p(x)| / sum w at the mean (0 at an exact critical point)
+    energy         sum w d^2 / sum w, the function minimised
+    radius         the largest distance from the mean to a point of positive weight
+    uniqueness     "unique" (certified: the faces within 4 radii form a disc with no vertex of
+                   angle sum below 2 pi inside), "not_certified" (says nothing either way) or
+                   "not_checked"
+    fields         exact field runs made
+    """
+
+    __slots__ = ("point", "xyz", "status", "iterations", "halvings", "gradient_norm", "energy", "radius",
+                 "uniqueness", "fields")
+
+    @classmethod
+    def _from_c(cls, r: _c.MeanResult) -> "GeodesicMean":
+        m = cls.__new__(cls)
+        m.point = SurfacePoint._from_c(r.point)
+        m.xyz = np.array(r.xyz[:], dtype=np.float64)
+        m.status = _L.tg_mean_status_name(r.status).decode()
+        m.uniqueness = _L.tg_mean_uniqueness_name(r.uniqueness).decode()
+        m.iterations, m.halvings, m.fields = int(r.iterations), int(r.halvings), int(r.fields)
+        m.gradient_norm, m.energy, m.radius = float(r.gradient_norm), float(r.energy), float(r.radius)
+        return m
+
+    def __repr__(self) -> str:
+        return (f"GeodesicMean({self.point!r}, xyz={self.xyz.tolist()}, status={self.status!r}, "
+                f"iterations={self.iterations}, gradient_norm={self.gradient_norm:.3g}, uniqueness={self.uniqueness!r})")
+
 
 class Path:
     """A geodesic path (from Mesh.path). Attributes:

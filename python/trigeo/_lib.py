@@ -160,6 +160,23 @@ class FieldProgress(ctypes.Structure):
 PROGRESS_FN = ctypes.CFUNCTYPE(c_int, c_void_p, POINTER(FieldProgress))
 
 
+class MeanOptions(ctypes.Structure):
+    _fields_ = [("tolerance", c_double), ("max_iterations", c_uint32), ("start", POINTER(SurfacePointC)),
+                ("skip_uniqueness", c_int), ("allocator", c_void_p), ("progress", PROGRESS_FN),
+                ("progress_user", c_void_p)]
+
+
+class MeanResult(ctypes.Structure):
+    _fields_ = [("point", SurfacePointC), ("xyz", c_double * 3), ("energy", c_double), ("gradient_norm", c_double),
+                ("radius", c_double), ("iterations", c_uint32), ("halvings", c_uint32), ("fields", c_uint32),
+                ("status", c_int), ("uniqueness", c_int)]
+
+
+class CentroidalOptions(ctypes.Structure):
+    _fields_ = [("iterations", c_uint32), ("tolerance", c_double), ("allocator", c_void_p), ("progress", PROGRESS_FN),
+                ("progress_user", c_void_p)]
+
+
 class TraceOptions(ctypes.Structure):
     _fields_ = [("max_steps", c_uint64), ("progress", PROGRESS_FN), ("progress_user", c_void_p)]
 
@@ -311,6 +328,12 @@ _SIGNATURES = {
     "tg_isolines_create": (c_int, [_vp, _pvp]),
     "tg_isolines_get_view": (None, [_vp, POINTER(IsolinesView)]),
     "tg_isolines_destroy": (None, [_vp]),
+    "tg_mean_status_name": (c_char_p, [c_int]),
+    "tg_mean_uniqueness_name": (c_char_p, [c_int]),
+    "tg_geodesic_mean": (c_int, [_vp, _vp, _psp, _pd, c_size_t, POINTER(MeanOptions), POINTER(MeanResult)]),
+    "tg_geodesic_bezier": (c_int, [_vp, _vp, _psp, c_size_t, c_size_t, POINTER(PathOptions), _psp, _pd]),
+    "tg_geodesic_centroidal_voronoi": (c_int, [_vp, _vp, _psp, c_uint64, c_size_t, POINTER(CentroidalOptions), _psp,
+                                               _pu32, _pd, POINTER(c_size_t)]),
     "tg_geodesic_farthest_point_sampling": (c_int, [_vp, _vp, c_uint32, c_uint64, c_size_t, POINTER(FieldOptions),
                                                     _pu32, _pd, _pu32, _vp]),
 }

@@ -7,6 +7,8 @@
  *   with the earlier sources' distances in place of the run's own. */
 #include "geodesic/nearest.h"
 
+#include "geodesic/field.h"
+
 #include <string.h>
 
 bool tg__nearest_init(tg__nearest* nf, const tg_geodesic* g, const tg_allocator* a, double max_dist)
@@ -33,7 +35,33 @@ void tg__nearest_free(tg__nearest* nf)
     tg__free(&nf->allocator, nf->label);
     tg__free(&nf->allocator, nf->pred);
     tg__free(&nf->allocator, nf->tie);
-    nf->dist = NULL, nf->label = NULL, nf->pred = NULL, nf->tie = NULL;
+    tg__free(&nf->allocator, nf->prebound);
+    nf->dist = NULL, nf->label = NULL, nf->pred = NULL, nf->tie = NULL, nf->prebound = NULL;
+}
+
+tg_status tg__nearest_prebound(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources, size_t count)
+{
+    const tg_geodesic* g = nf->g;
+    size_t nv = g->vertex_count ? g->vertex_count : 1;
+    tg_surface_point* in = tg__alloc_array(&nf->allocator, count ? count : 1, sizeof *in);
+    nf->prebound = tg__alloc_array(&nf->allocator, nv, sizeof(double));
+    if (!in || !nf->prebound) {
+        tg__free(&nf->allocator, in);
+        return TG_ERR_OUT_OF_MEMORY;
+    }
+    tg__field_points_in(g, sources, count, in);
+    bool progress = nf->options && nf->options->progress;
+    tg__field_query q = {.sources = in, .source_count = count, .max_distance = nf->max_dist,
+                         .progress = progress ? tg__nearest_report : NULL, .progress_user = nf,
+                         .threads = tg__field_threads(nf->options)};
+    tg__field_run run;
+    tg_status st = tg__field_execute(fs, &q, &run);
+    tg__field_stats_add(&nf->stats, &run.stats);
+    if (st == TG_OK)
+        for (uint32_t u = 0; u < g->vertex_count; ++u)
+            nf->prebound[u] = run.vertex_dist[u] <= nf->max_dist ? run.vertex_dist[u] : INFINITY;
+    tg__free(&nf->allocator, in);
+    return st;
 }
 
 bool tg__nearest_trace(tg__nearest* nf)
@@ -60,7 +88,8 @@ tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surfa
     tg_surface_point in = tg__surface_in(nf->g, src); /* the solver's form, once (field.h) */
     tg__field_query q = {.sources = &in, .source_count = 1, .max_distance = nf->max_dist,
                          .progress = progress ? tg__nearest_report : NULL, .progress_user = nf,
-                         .bound = nf->added ? nf->dist : NULL, .threads = tg__field_threads(nf->options),
+                         .bound = nf->prebound ? nf->prebound : nf->added ? nf->dist : NULL,
+                         .threads = tg__field_threads(nf->options),
                          .trace = nf->pred != NULL};
     tg__field_run run;
     tg_status st = tg__field_execute(fs, &q, &run);

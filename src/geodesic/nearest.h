@@ -25,6 +25,10 @@ typedef struct tg__nearest {
      * TG__NEAREST_TIE_REL: a tie, no gradient) */
     tg__pred* pred;
     uint8_t* tie;
+    /* NULL, or per solver vertex the distance to the nearest of all the sources (one multi-source
+     * run first, tg__nearest_prebound): each source's run is then bounded by it from the start,
+     * so it explores its own cell (and the margin), not everything the earlier sources leave */
+    double* prebound;
 } tg__nearest;
 
 /* Two sources whose distances at a vertex agree within this relative margin tie there: far above
@@ -38,6 +42,9 @@ void tg__nearest_free(tg__nearest* nf);
 /* Makes the runs record how each vertex got its distance (nf->pred, nf->tie); false when out of
  * memory (tg__nearest_free frees what was made). */
 bool tg__nearest_trace(tg__nearest* nf);
+/* One run of all the sources at once (the caller's form), its distances kept as every later run's
+ * bound (nf->prebound). Errors: TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED (the progress callback). */
+tg_status tg__nearest_prebound(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources, size_t count);
 /* Adds one source (a valid point): one run on fs, then every vertex it reached strictly more
  * shortly takes its distance and the label nf->added. Errors: TG_ERR_OUT_OF_MEMORY,
  * TG_ERR_CANCELLED (nf unchanged then, except the stats). */

@@ -34,6 +34,9 @@ tg_status tg_geodesic_voronoi(const tg_geodesic* g, tg_geodesic_workspace* ws, c
         return TG_ERR_OUT_OF_MEMORY;
     }
     nf.options = options, nf.rows = source_count;
+    /* several sources: one run of them all first bounds each one's run to its cell (without it
+     * the k-th source's run covered what the k - 1 before it left: about ln K fields in all) */
+    if (source_count > 1) st = tg__nearest_prebound(&nf, &ws->field, sources, source_count);
     for (size_t i = 0; st == TG_OK && i < source_count; ++i) st = tg__nearest_add(&nf, &ws->field, &sources[i]);
     if (st == TG_OK && boundaries) st = tg__voronoi_boundaries(&nf, &ws->field, sources, source_count, boundaries);
     if (st == TG_OK) {

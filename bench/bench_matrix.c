@@ -75,7 +75,7 @@ static void run_local(const tg_geodesic* g, const tg_mesh* m, double fraction, i
         for (size_t i = 0; i < rows; ++i) src[i] = tg_surface_vertex((uint32_t)i);
     }
     tg_sparse_matrix* mat = NULL;
-    if (tg_sparse_matrix_create(NULL, &mat) != TG_OK) return 1;
+    if (tg_sparse_matrix_create(NULL, &mat) != TG_OK) die("out of memory", NULL);
     tg_field_stats st;
     double t0 = bench_wall();
     tg_status s = tg_geodesic_local_matrix(g, src, rows < nv ? rows : nv, radius, NULL, threads, mat, &st);

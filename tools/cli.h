@@ -58,6 +58,9 @@ typedef struct cli_spec {
 /* Parses v:IDX | f:FACE:b0,b1,b2 | e:HALFEDGE:t | p:x,y,z (blanks around it allowed); false on a
  * syntax error. */
 bool cli_parse_spec(const char* s, cli_spec* out);
+/* Parses "x y z" (three numbers separated by blanks or by one comma) as a p: spec; false
+ * otherwise ("1-2 3": no separator). */
+bool cli_parse_xyz(const char* s, cli_spec* out);
 /* Splits the ';'-separated list in place into items (at most cap), blanks around each item
  * removed ("v:0; v:5"); returns the count, or 0 for an empty item or more than cap. */
 size_t cli_split_list(char* list, char** items, size_t cap);

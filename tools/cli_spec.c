@@ -165,3 +165,17 @@ void cli_spec_list_free(cli_spec_list* l)
     free(l->buffer), free(l->text), free(l->spec), free(l->point);
     memset(l, 0, sizeof *l);
 }
+
+bool cli_parse_xyz(const char* s, cli_spec* out)
+{
+    memset(out, 0, sizeof *out);
+    out->kind = 'p';
+    for (int k = 0; k < 3; ++k) {
+        const char* end;
+        if (cli_scan_double(s, &out->v[k], &end) != CLI_NUMBER_OK) return false;
+        s = end + strspn(end, " \t");
+        if (k < 2 && *s == ',') s += 1 + strspn(s + 1, " \t");
+        else if (k < 2 && s == end) return false; /* "1-2 3": no separator */
+    }
+    return *s == '\0';
+}

@@ -226,21 +226,6 @@ static int write_boundaries(cli_output_set* set, const char* path, const tg_voro
     return CLI_OK;
 }
 
-/* "x y z" (three numbers separated by blanks or by one comma) as a p: spec. */
-static bool parse_xyz(const char* s, cli_spec* out)
-{
-    memset(out, 0, sizeof *out);
-    out->kind = 'p';
-    for (int k = 0; k < 3; ++k) {
-        const char* end;
-        if (cli_scan_double(s, &out->v[k], &end) != CLI_NUMBER_OK) return false;
-        s = end + strspn(end, " \t");
-        if (k < 2 && *s == ',') s += 1 + strspn(s + 1, " \t");
-        else if (k < 2 && s == end) return false; /* "1-2 3": no separator */
-    }
-    return *s == '\0';
-}
-
 /* Resolves the spec texts items[0..count) (lines: from the sources file, named in errors).
  * CLI_OK, CLI_USAGE (a --from spec that does not parse) or CLI_INPUT (error printed). */
 static int resolve_all(const field_args* fa, const char* file, bool allow_xyz, tg_mesh* mesh, tg_bvh** bvh, char** items,
@@ -248,7 +233,7 @@ static int resolve_all(const field_args* fa, const char* file, bool allow_xyz, t
 {
     for (size_t i = 0; i < count; ++i) {
         cli_spec sp;
-        if (!cli_parse_spec(items[i], &sp) && !(allow_xyz && parse_xyz(items[i], &sp))) {
+        if (!cli_parse_spec(items[i], &sp) && !(allow_xyz && cli_parse_xyz(items[i], &sp))) {
             if (lines)
                 cli_error(file, lines[i], "bad %s '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z%s)",
                           allow_xyz ? "point" : "source", items[i], allow_xyz ? " or x y z" : "");

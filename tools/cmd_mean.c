@@ -63,21 +63,6 @@ static bool read_items(const char* path, const char* what, const char* form, lin
     return true;
 }
 
-/* "x y z" (blanks or commas between): a position, located on the surface like p:x,y,z. */
-static bool parse_xyz(const char* s, cli_spec* out)
-{
-    memset(out, 0, sizeof *out);
-    out->kind = 'p';
-    for (int k = 0; k < 3; ++k) {
-        const char* end;
-        if (cli_scan_double(s, &out->v[k], &end) != CLI_NUMBER_OK) return false;
-        s = end + strspn(end, " \t");
-        if (k < 2 && *s == ',') s += 1 + strspn(s + 1, " \t");
-        else if (k < 2 && s == end) return false;
-    }
-    return *s == '\0';
-}
-
 #define POINT_FORMS "one SPEC a line: v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z, or x y z"
 
 /* The points file resolved on the mesh: CLI_OK or CLI_INPUT (error printed, naming the line). */
@@ -85,7 +70,7 @@ static int resolve_points(const char* path, const lines* l, tg_mesh* mesh, tg_bv
 {
     for (size_t i = 0; i < l->count; ++i) {
         cli_spec sp;
-        if (!cli_parse_spec(l->item[i], &sp) && !parse_xyz(l->item[i], &sp)) {
+        if (!cli_parse_spec(l->item[i], &sp) && !cli_parse_xyz(l->item[i], &sp)) {
             cli_error(path, l->line[i], "bad point '%s' (%s)", l->item[i], POINT_FORMS);
             return CLI_INPUT;
         }

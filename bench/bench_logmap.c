@@ -72,7 +72,7 @@ int main(int argc, char** argv)
         double t1 = bench_cpu_thread();
         if (tg_geodesic_log_map(g, ws, &s, NULL, NULL, r, a, NULL) != TG_OK) die("log map failed on", path);
         double t2 = bench_cpu_thread();
-        if (tg_geodesic_transport_field(g, ws, &s, along, NULL, vec, NULL, NULL) != TG_OK)
+        if (tg_geodesic_transport_field(g, ws, &s, along, NULL, vec, NULL, NULL, NULL) != TG_OK)
             die("transport failed on", path);
         double t3 = bench_cpu_thread();
         tf[k] = t1 - t0, tl[k] = t2 - t1, tt[k] = t3 - t2, ratio[k] = tl[k] / tf[k];

@@ -1664,10 +1664,13 @@ TG_API tg_status tg_geodesic_log_map(const tg_geodesic* geodesic, tg_geodesic_wo
  *  result depends on which way round the path leaves (the cone's holonomy).
  *  out_vertex_vector: 3 doubles a vertex (x, y, z): 0 where not reached (another component,
  *  beyond options' max_distance; never NaN), `vector` itself at the source vertex and where the
- *  last segment has length 0. out_vertex_distance: NULL or vertex_count doubles, the log map's
- *  distances. Where two paths tie (the cut locus) the vector follows the path the log map's angle
- *  follows (the one the propagation found first); it is not flagged. On a surface that is not
- *  orientable the sense of the angles is the solver's orientation of each face.
+ *  last segment has length 0. out_vertex_flag: NULL or one tg_gradient_flag a vertex:
+ *  TG_GRADIENT_DEFINED, TG_GRADIENT_SOURCE (the source, or a last segment of length 0),
+ *  TG_GRADIENT_UNREACHED, or TG_GRADIENT_TIE where a second path as short (within 1e-12
+ *  relative) arrives from another direction: the cut locus, where transport is undefined (the
+ *  vector given there follows the path the log map's angle follows, the one found first).
+ *  out_vertex_distance: NULL or vertex_count doubles, the log map's distances. On a surface that
+ *  is not orientable the sense of the angles is the solver's orientation of each face.
  *  options: as tg_geodesic_field's (limit, allocator, progress, threads).
  *  Errors: as tg_geodesic_log_map's (a NULL vector or out_vertex_vector too); the outputs are then
  *  untouched. Complexity: the log map's plus O(V) (BENCHMARKS.md). Thread-safe as
@@ -1675,7 +1678,8 @@ TG_API tg_status tg_geodesic_log_map(const tg_geodesic* geodesic, tg_geodesic_wo
 TG_API tg_status tg_geodesic_transport_field(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                                              const tg_surface_point* source, const double vector[3],
                                              const tg_field_options* options, double* out_vertex_vector,
-                                             double* out_vertex_distance, tg_field_stats* out_stats);
+                                             uint8_t* out_vertex_flag, double* out_vertex_distance,
+                                             tg_field_stats* out_stats);
 
 /** What a gradient is at a vertex or face (tg_geodesic_field_gradient). */
 typedef enum tg_gradient_flag {

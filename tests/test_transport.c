@@ -23,7 +23,7 @@ static void test_flat(void)
     double vec[3] = {0.6, -0.8, 0.0}, *out = malloc(3 * n * sizeof *out), *d = malloc(n * sizeof *d);
     tg_surface_point srcs[2] = {tg_surface_face(40, 0.2, 0.3, 0.5), tg_surface_vertex(30)};
     for (int k = 0; k < 2; ++k) {
-        CHECK_STATUS(tg_geodesic_transport_field(c.geo, c.ws, &srcs[k], vec, NULL, out, d, NULL), TG_OK);
+        CHECK_STATUS(tg_geodesic_transport_field(c.geo, c.ws, &srcs[k], vec, NULL, out, NULL, d, NULL), TG_OK);
         double worst = 0.0;
         for (size_t v = 0; v < n; ++v)
             for (int i = 0; i < 3; ++i) worst = fmax(worst, fabs(out[3 * v + i] - vec[i]));
@@ -51,11 +51,11 @@ static void test_flat(void)
     CHECK_STATUS(tg_path_transport(NULL, c.path, vec, pt), TG_ERR_INVALID_ARGUMENT);
     CHECK(pt[0] == -7.0);
     out[0] = -7.0;
-    CHECK_STATUS(tg_geodesic_transport_field(c.geo, c.ws, &srcs[0], up, NULL, out, NULL, NULL),
+    CHECK_STATUS(tg_geodesic_transport_field(c.geo, c.ws, &srcs[0], up, NULL, out, NULL, NULL, NULL),
                  TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_transport_field(c.geo, c.ws, &srcs[0], zero, NULL, out, NULL, NULL),
+    CHECK_STATUS(tg_geodesic_transport_field(c.geo, c.ws, &srcs[0], zero, NULL, out, NULL, NULL, NULL),
                  TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_transport_field(c.geo, c.ws, &srcs[0], NULL, NULL, out, NULL, NULL),
+    CHECK_STATUS(tg_geodesic_transport_field(c.geo, c.ws, &srcs[0], NULL, NULL, out, NULL, NULL, NULL),
                  TG_ERR_INVALID_ARGUMENT);
     CHECK(out[0] == -7.0);
     free(pt), free(out), free(d);
@@ -120,7 +120,7 @@ static void test_field_against_paths(void)
     size_t n = tg_mesh_vertex_count(m);
     double vec[3] = {0.3, 1.0, -0.2}, *field = malloc(3 * n * sizeof *field), *d = malloc(n * sizeof *d);
     tg_surface_point src = tg_surface_face(100, 0.2, 0.3, 0.5);
-    CHECK_STATUS(tg_geodesic_transport_field(c.geo, c.ws, &src, vec, NULL, field, d, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_transport_field(c.geo, c.ws, &src, vec, NULL, field, NULL, d, NULL), TG_OK);
     size_t checked = 0, agree = 0;
     double worst = 0.0;
     for (size_t v = 7; v < n; v += 53) {
@@ -172,7 +172,7 @@ static void test_out_of_memory(void)
         tg_field_options plain;
         memset(&plain, 0, sizeof plain);
         plain.threads = threads; /* the bits of 2 threads may differ from one's by rounding */
-        CHECK_STATUS(tg_geodesic_transport_field(c.geo, NULL, &src, vec, &plain, ref, NULL, NULL), TG_OK);
+        CHECK_STATUS(tg_geodesic_transport_field(c.geo, NULL, &src, vec, &plain, ref, NULL, NULL, NULL), TG_OK);
         for (long k = 0;; ++k) {
             tg_test_counting cnt = {0, 0, k, 0};
             tg_allocator a = tg_test_failing_allocator(&cnt);
@@ -180,7 +180,7 @@ static void test_out_of_memory(void)
             memset(&o, 0, sizeof o);
             o.allocator = &a, o.threads = threads;
             out[0] = -3.0;
-            tg_status r = tg_geodesic_transport_field(c.geo, NULL, &src, vec, &o, out, NULL, NULL);
+            tg_status r = tg_geodesic_transport_field(c.geo, NULL, &src, vec, &o, out, NULL, NULL, NULL);
             CHECK_MSG(r == TG_OK || (r == TG_ERR_OUT_OF_MEMORY && out[0] == -3.0), "%d threads, allocation %ld "
                       "failing: %s, out[0] %g", threads, k, tg_status_name(r), out[0]);
             CHECK_MSG(cnt.allocs == cnt.frees, "allocation %ld failing: %ld allocations, %ld frees", k, cnt.allocs,
@@ -197,11 +197,102 @@ static void test_out_of_memory(void)
     close_ctx(&c);
 }
 
+/* The cut locus is flagged: on a regular octahedron four paths of one length join the source vertex
+ * to the opposite vertex (flag TG_GRADIENT_TIE), one reaches each other vertex (defined), and the
+ * source itself is flagged; on 1, 2 and 3 threads alike. On the flat grid nothing ties. */
+static void test_cut_locus(void)
+{
+    nv = nf = 0;
+    const double v[6][3] = {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+    const uint32_t f[8][3] = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 1}, {5, 2, 1}, {5, 3, 2}, {5, 4, 3}, {5, 1, 4}};
+    for (int i = 0; i < 6; ++i) add_v(v[i][0], v[i][1], v[i][2]);
+    for (int i = 0; i < 8; ++i) add_f(f[i][0], f[i][1], f[i][2]);
+    ctx c = open_ctx();
+    double vec[3] = {1, 0, 0}, out[18];
+    uint8_t flag[6];
+    tg_surface_point s = tg_surface_vertex(0);
+    for (int threads = 1; threads <= 3; ++threads) {
+        tg_field_options o;
+        memset(&o, 0, sizeof o);
+        o.threads = threads;
+        CHECK_STATUS(tg_geodesic_transport_field(c.geo, c.ws, &s, vec, &o, out, flag, NULL, NULL), TG_OK);
+        CHECK_MSG(flag[0] == TG_GRADIENT_SOURCE && flag[5] == TG_GRADIENT_TIE, "%d threads: source flag %d, opposite %d",
+                  threads, flag[0], flag[5]);
+        for (int k = 1; k < 5; ++k)
+            CHECK_MSG(flag[k] == TG_GRADIENT_DEFINED, "%d threads: v%d flag %d", threads, k, flag[k]);
+    }
+    close_sheet(&c);
+    /* the octahedron divided 4 times onto the sphere (2048 faces: the waves of lists are large
+     * enough to cross on the lanes of several threads): its poles still join by four paths */
+    nv = nf = 0;
+    for (int i = 0; i < 6; ++i) add_v(v[i][0], v[i][1], v[i][2]);
+    static uint32_t tri0[3 * 2048], edges[2 * 4096], mids[4096];
+    size_t nt = 8, ne = 0;
+    for (int i = 0; i < 8; ++i) tri0[3 * i] = f[i][0], tri0[3 * i + 1] = f[i][1], tri0[3 * i + 2] = f[i][2];
+    for (int level = 0; level < 4; ++level) {
+        static uint32_t next[3 * 2048];
+        size_t nn = 0;
+        ne = 0;
+        for (size_t t = 0; t < nt; ++t) {
+            uint32_t m[3];
+            for (int k = 0; k < 3; ++k) {
+                uint32_t a = tri0[3 * t + (size_t)k], b = tri0[3 * t + (size_t)(k + 1) % 3], lo = a < b ? a : b,
+                         hi = a < b ? b : a;
+                size_t e = 0;
+                while (e < ne && !(edges[2 * e] == lo && edges[2 * e + 1] == hi)) ++e;
+                if (e == ne) {
+                    double p[3], l = 0.0;
+                    for (int j = 0; j < 3; ++j) p[j] = xyz[3 * a + (size_t)j] + xyz[3 * b + (size_t)j], l += p[j] * p[j];
+                    l = sqrt(l);
+                    edges[2 * ne] = lo, edges[2 * ne + 1] = hi, mids[ne++] = add_v(p[0] / l, p[1] / l, p[2] / l);
+                }
+                m[k] = mids[e];
+            }
+            uint32_t a = tri0[3 * t], b = tri0[3 * t + 1], cc = tri0[3 * t + 2];
+            uint32_t quad[4][3] = {{a, m[0], m[2]}, {m[0], b, m[1]}, {m[2], m[1], cc}, {m[0], m[1], m[2]}};
+            for (int q = 0; q < 4; ++q, ++nn)
+                for (int j = 0; j < 3; ++j) next[3 * nn + (size_t)j] = quad[q][j];
+        }
+        nt = nn;
+        memcpy(tri0, next, 3 * nt * sizeof *tri0);
+    }
+    for (size_t t = 0; t < nt; ++t) add_f(tri0[3 * t], tri0[3 * t + 1], tri0[3 * t + 2]);
+    c = open_ctx();
+    for (int threads = 1; threads <= 2; ++threads) {
+        size_t nvs = tg_mesh_vertex_count(c.mesh);
+        double* o3 = malloc(3 * nvs * sizeof *o3);
+        uint8_t* fl = malloc(nvs);
+        tg_field_options o;
+        memset(&o, 0, sizeof o);
+        o.threads = threads;
+        tg_field_stats st;
+        CHECK_STATUS(tg_geodesic_transport_field(c.geo, c.ws, &s, vec, &o, o3, fl, NULL, &st), TG_OK);
+        CHECK_MSG(fl[5] == TG_GRADIENT_TIE, "divided octahedron, %d threads: the opposite pole's flag %d (waves %llu)",
+                  threads, fl[5], (unsigned long long)st.waves);
+        free(o3), free(fl);
+    }
+    close_sheet(&c);
+    nv = nf = 0;
+    grid(8, 0.0, 0.0, 1.0, 0.0, NULL);
+    c = open_ctx();
+    size_t n = tg_mesh_vertex_count(c.mesh);
+    double* o3 = malloc(3 * n * sizeof *o3);
+    uint8_t* fl = malloc(n);
+    tg_surface_point fp = tg_surface_face(40, 0.2, 0.3, 0.5);
+    CHECK_STATUS(tg_geodesic_transport_field(c.geo, c.ws, &fp, vec, NULL, o3, fl, NULL, NULL), TG_OK);
+    size_t ties = 0;
+    for (size_t k = 0; k < n; ++k) ties += fl[k] == TG_GRADIENT_TIE;
+    CHECK_MSG(ties == 0, "flat grid: %zu vertices flagged as cut locus", ties);
+    free(o3), free(fl);
+    close_sheet(&c);
+}
+
 int main(void)
 {
     test_flat();
     test_gauss_bonnet();
     test_field_against_paths();
     test_out_of_memory();
+    test_cut_locus();
     return tg_test_finish();
 }

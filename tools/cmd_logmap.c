@@ -138,7 +138,7 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
     if (st == TG_OK) st = tg_geodesic_log_map(geo, NULL, &source, la->has_ref ? la->ref : NULL, &o, r, a, &stats);
     bool transport_refused = false;
     if (st == TG_OK && t) { /* a second propagation: the vector's own angles */
-        st = tg_geodesic_transport_field(geo, NULL, &source, la->transport, &o, t, NULL, NULL);
+        st = tg_geodesic_transport_field(geo, NULL, &source, la->transport, &o, t, NULL, NULL, NULL);
         transport_refused = st == TG_ERR_INVALID_ARGUMENT;
     }
     double secs = cli_seconds() - t0;

@@ -82,7 +82,8 @@ def test_transport_is_the_identity_on_a_plane_and_follows_the_paths():
     m = flat_sheet()
     src = trigeo.SurfacePoint.face(40, (0.2, 0.3, 0.5))
     vec = np.array([0.6, -0.8, 0.0])
-    out, dist = m.transport_field(src, (0.6, -0.8, 0.0))
+    out, dist, flag = m.transport_field(src, (0.6, -0.8, 0.0))
+    assert np.all(flag == 0)
     assert np.abs(out - vec).max() <= 1e-12 and np.array_equal(dist, m.log_map(src)[0])
     p = m.path(src, 100)
     tilted = np.array([0.6, -0.8, 0.7])
@@ -91,7 +92,7 @@ def test_transport_is_the_identity_on_a_plane_and_follows_the_paths():
     assert np.abs(t - vec * np.linalg.norm(tilted)).max() <= 1e-12
     spot = trigeo.load(SPOT)
     s = trigeo.SurfacePoint.face(100, (0.2, 0.3, 0.5))
-    field, _ = spot.transport_field(s, (0.3, 1.0, -0.2), threads=2)
+    field, _, _ = spot.transport_field(s, (0.3, 1.0, -0.2), threads=2)
     for v in (7, 400, 1200, 2500):
         last = spot.path(s, v).transport((0.3, 1.0, -0.2))[-1]
         assert np.abs(last - field[v]).max() <= 1e-9, (v, last, field[v])
@@ -110,7 +111,7 @@ def test_cli_logmap_transport_columns(tmp_path):
     r = run_cli("logmap", SPOT, "--from", "v:3", "--transport", "1,2,0.5", "-o", str(out), "--quiet")
     assert r.returncode == 0, r.stderr
     a = np.load(out)
-    vec, dist = spot.transport_field(3, (1.0, 2.0, 0.5))
+    vec, dist, _ = spot.transport_field(3, (1.0, 2.0, 0.5))
     assert a.shape == (spot.vertex_count, 7) and np.array_equal(a[:, 4:], vec) and np.array_equal(a[:, 0], dist)
 
 

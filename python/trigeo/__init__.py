@@ -1712,14 +1712,15 @@ class Mesh:
 
     def transport_field(self, source: Any, vector: Any, max_distance: Optional[float] = None,
                         progress: Optional[Callable[[float], Any]] = None,
-                        threads: int = 1) -> tuple[np.ndarray, np.ndarray]:
+                        threads: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Parallel transport from one surface point to every vertex: the tangent vector `vector`
         at the source (3 numbers, not zero, taken as a direction of the surface there as
         log_map's ref, with its length) carried along each vertex's exact shortest path, keeping
-        its angle to the path. Returns (vectors (n, 3), distance (n,)): the vector at each vertex
-        in the plane of the face holding its path's last segment, 0 where not reached (distance
-        inf); the log map's distances. Where two paths tie (the cut locus) the vector follows the
-        one the log map's angle follows. max_distance, progress, threads as log_map's. The same
+        its angle to the path. Returns (vectors (n, 3), distance (n,), flag (n,)): the vector at
+        each vertex in the plane of the face holding its path's last segment, 0 where not reached
+        (distance inf); the log map's distances; flag as field_gradient's (0 transported, 1 the
+        source, 2 unreached, 3 the cut locus: a second path as short arrives from another
+        direction, transport undefined; the vector there follows the log map's path). max_distance, progress, threads as log_map's. The same
         numbers as tg_geodesic_transport_field and `trigeo logmap --transport X,Y,Z`."""
         nthreads = _threads(threads)
         vec = _floats(vector, "vector", "a 3D vector")
@@ -1727,19 +1728,20 @@ class Mesh:
             raise _bad(f"vector must be a 3D vector of finite numbers, not all zero, not {_show(vector)}")
         vec = np.ascontiguousarray(vec)
 
-        def work(call: _Call) -> tuple[np.ndarray, np.ndarray]:
+        def work(call: _Call) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
             sp = (_c.SurfacePointC * 1)(self._surface_point(source, "source"))
             o = self._field_options(max_distance, call, nthreads)
             out, dist = np.empty((self.vertex_count, 3)), np.empty(self.vertex_count)
+            flag = np.empty(self.vertex_count, dtype=np.uint8)
             geo = self._get_geo()
             with self._geo_ws.take() as ws:
-                st = _L.tg_geodesic_transport_field(geo, ws, sp, _ptr(vec), ctypes.byref(o), _ptr(out), _ptr(dist),
-                                                    None)
+                st = _L.tg_geodesic_transport_field(geo, ws, sp, _ptr(vec), ctypes.byref(o), _ptr(out),
+                                                    _ptr(flag, ctypes.c_uint8), _ptr(dist), None)
             if st == 1:
                 raise _bad("transport_field: the vector is perpendicular to the surface at the source (or the "
                            "reference face has zero area)")
             call.finish(st, "transport_field")
-            return out, dist
+            return out, dist, flag.astype(np.int64)
 
         return self._run(work, progress)
 

@@ -306,7 +306,7 @@ _SIGNATURES = {
                                         c_int, POINTER(TraceEnd)]),
     "tg_geodesic_field": (c_int, [_vp, _vp, _psp, c_size_t, POINTER(FieldOptions), _pd, _vp]),
     "tg_geodesic_log_map": (c_int, [_vp, _vp, _psp, _pd, POINTER(FieldOptions), _pd, _pd, _vp]),
-    "tg_geodesic_transport_field": (c_int, [_vp, _vp, _psp, _pd, POINTER(FieldOptions), _pd, _pd, _vp]),
+    "tg_geodesic_transport_field": (c_int, [_vp, _vp, _psp, _pd, POINTER(FieldOptions), _pd, _vp, _pd, _vp]),
     "tg_polyline_transport": (c_int, [_vp, c_size_t, _pd, _pu32, _pd, _pd]),
     "tg_geodesic_field_gradient": (c_int, [_vp, _vp, _psp, c_size_t, POINTER(FieldOptions), _pd, _vp, _pu32, _pd, _pd,
                                            _vp, _vp]),

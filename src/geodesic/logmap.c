@@ -260,7 +260,7 @@ static void resolve_angles(const lm_source* s, const tg__field_run* run, uint8_t
  * the source: parallel transport along a straight line of the unfolding keeps the angle between
  * the vector and the line. Unreached vertices get 0; the source vertex the vector as given. */
 static void transport_out(const lm_source* s, const tg__field_run* run, const double* angle, const double* vector,
-                          double* out)
+                          const uint8_t* ties, double* out, uint8_t* out_flag)
 {
     const tg_geodesic* g = s->lm.g;
     double length = tg_v3_len(tg_v3(vector[0], vector[1], vector[2]));
@@ -269,15 +269,19 @@ static void transport_out(const lm_source* s, const tg__field_run* run, const do
     double sense = tg_v3_dot(tg__solver_normal(g, s->lm.face0), tg_v3_cross(s->lm.ref_x, s->lm.ref_y)) < 0.0 ? -1.0 : 1.0;
     for (uint32_t u = 0; u < g->vertex_count; ++u) {
         double* o = out + 3 * (size_t)g->mesh_vertex[u];
+        uint8_t* fl = out_flag ? out_flag + g->mesh_vertex[u] : NULL;
         o[0] = o[1] = o[2] = 0.0;
+        if (fl) *fl = TG_GRADIENT_UNREACHED;
         double d = run->vertex_dist[u];
         if (!(d < INFINITY && d <= run->max_dist)) continue;
         tg_vec3 t;
         uint32_t f;
         if (!tg__pred_arrival(g, &run->vertex_pred[u], u, tg__gpos(g, u), tg__node_pos(g, &s->node), &t, &f)) {
             o[0] = vector[0], o[1] = vector[1], o[2] = vector[2];
+            if (fl) *fl = TG_GRADIENT_SOURCE;
             continue;
         }
+        if (fl) *fl = ties[u] ? TG_GRADIENT_TIE : TG_GRADIENT_DEFINED;
         /* at a vertex source the angle is scaled to a turn of 2 pi: back to the fan's own */
         double th = angle[g->mesh_vertex[u]];
         if (s->vertex != TG_NONE && s->scale > 0.0) th /= s->scale;
@@ -294,7 +298,7 @@ static void transport_out(const lm_source* s, const tg__field_run* run, const do
  * (the log map's reference) into out_vector. */
 static tg_status log_map(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* source,
                          const double* reference, const tg_field_options* options, double* out_distance,
-                         double* out_angle, double* out_vector, tg_field_stats* out_stats)
+                         double* out_angle, double* out_vector, uint8_t* out_flag, tg_field_stats* out_stats)
 {
     tg_status st = tg__field_check(g, source, 1, options);
     if (st != TG_OK) return st;
@@ -310,8 +314,9 @@ static tg_status log_map(const tg_geodesic* g, tg_geodesic_workspace* ws, const 
     double* fan = tg__alloc_array(a, nfan ? nfan : 1, sizeof(double));
     uint8_t* state = tg__alloc_array(a, nv ? nv : 1, 1);
     uint32_t* stack = tg__alloc_array(a, nv ? nv : 1, sizeof(uint32_t));
+    uint8_t* ties = out_vector ? tg__calloc_array(a, nv ? nv : 1, 1) : NULL; /* the transport's cut locus */
     lm_source s;
-    if (!fan || !state || !stack) st = TG_ERR_OUT_OF_MEMORY;
+    if (!fan || !state || !stack || (out_vector && !ties)) st = TG_ERR_OUT_OF_MEMORY;
     if (st == TG_OK) st = source_setup(g, source, reference, fan, &s);
     tg_geodesic_workspace* own = NULL;
     if (st == TG_OK) st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
@@ -319,18 +324,19 @@ static tg_status log_map(const tg_geodesic* g, tg_geodesic_workspace* ws, const 
     if (st == TG_OK) {
         tg__field_query q = {.sources = &sp, .source_count = 1, .max_distance = tg__field_limit(g, options),
                              .progress = options && options->progress ? tg__field_report_single : NULL,
-                             .progress_user = (void*)options, .trace = true, .logmap = &s.lm,
+                             .progress_user = (void*)options, .trace = true, .logmap = &s.lm, .ties = ties,
                              .threads = tg__field_threads(options)};
         tg__field_run run;
         st = tg__field_execute(&ws->field, &q, &run);
         if (st == TG_OK) {
             if (out_distance) tg__field_copy_out(&run, out_distance);
             resolve_angles(&s, &run, state, stack, out_angle);
-            if (out_vector) transport_out(&s, &run, out_angle, reference, out_vector);
+            if (out_vector) transport_out(&s, &run, out_angle, reference, ties, out_vector, out_flag);
             if (out_stats) *out_stats = run.stats;
         }
     }
     tg__workspace_release(own);
+    tg__free(a, ties);
     tg__free(a, stack);
     tg__free(a, state);
     tg__free(a, fan);
@@ -342,18 +348,18 @@ tg_status tg_geodesic_log_map(const tg_geodesic* g, tg_geodesic_workspace* ws, c
                               double* out_angle, tg_field_stats* out_stats)
 {
     if (!g || !source || !out_distance || !out_angle) return TG_ERR_INVALID_ARGUMENT;
-    return log_map(g, ws, source, reference, options, out_distance, out_angle, NULL, out_stats);
+    return log_map(g, ws, source, reference, options, out_distance, out_angle, NULL, NULL, out_stats);
 }
 
 tg_status tg_geodesic_transport_field(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* source,
                                       const double vector[3], const tg_field_options* options, double* out_vector,
-                                      double* out_distance, tg_field_stats* out_stats)
+                                      uint8_t* out_flag, double* out_distance, tg_field_stats* out_stats)
 {
     if (!g || !source || !vector || !out_vector) return TG_ERR_INVALID_ARGUMENT;
     const tg_allocator* a = options && options->allocator ? options->allocator : &g->allocator;
     double* angle = tg__alloc_array(a, g->vertex_count ? g->vertex_count : 1, sizeof(double));
     if (!angle) return TG_ERR_OUT_OF_MEMORY;
-    tg_status st = log_map(g, ws, source, vector, options, out_distance, angle, out_vector, out_stats);
+    tg_status st = log_map(g, ws, source, vector, options, out_distance, angle, out_vector, out_flag, out_stats);
     tg__free(a, angle);
     return st;
 }

@@ -102,7 +102,7 @@ tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surfa
         double d = run.vertex_dist[u], best = nf->dist[u];
         if (!(d <= nf->max_dist)) continue;
         if (nf->pred) { /* this source and the earlier best within the margin: a tie either way */
-            bool near = best < INFINITY && fabs(d - best) <= TG__NEAREST_TIE_REL * (d < best ? best : d);
+            bool near = best < INFINITY && fabs(d - best) <= TG__TIE_REL * (d < best ? best : d);
             if (d < best) nf->tie[u] = near, nf->pred[u] = run.vertex_pred[u];
             else if (near) nf->tie[u] = 1;
         }

@@ -22,7 +22,7 @@ typedef struct tg__nearest {
     double next_report_s; /* the next report between runs (tg__nearest_poll) */
     /* tracing (tg__nearest_trace; NULL otherwise): per solver vertex how the source of its label
      * reached it (tg__pred), and 1 where another source reaches it as shortly (within
-     * TG__NEAREST_TIE_REL: a tie, no gradient) */
+     * TG__TIE_REL, field/engine.h: a tie, no gradient) */
     tg__pred* pred;
     uint8_t* tie;
     /* NULL, or per solver vertex the distance to the nearest of all the sources (one multi-source
@@ -31,9 +31,6 @@ typedef struct tg__nearest {
     double* prebound;
 } tg__nearest;
 
-/* Two sources whose distances at a vertex agree within this relative margin tie there: far above
- * the engines' rounding (~1e-15), far below any distance a user tells apart. */
-#define TG__NEAREST_TIE_REL 1e-12
 
 /* Makes the running field (every vertex +inf, TG_NONE) with allocator a; false when out of memory
  * (nothing to free then). */

@@ -78,6 +78,9 @@ typedef struct tg__pred {
 /* A*: the bound kept above the best distance to the target found so far, so that rounding of the
  * lower bounds never drops the window of the shortest path. */
 #define TG__TIGHT_REL 1e-9
+/* Two paths to a vertex whose lengths agree within this relative margin tie (runs that mark ties:
+ * the cut locus): far above the engine's rounding (~1e-15), far below what a user tells apart. */
+#define TG__TIE_REL 1e-12
 
 /* Trimming (window.c): the key of a window while one list is sorted by start. */
 typedef struct tg__win_key {
@@ -245,6 +248,10 @@ typedef struct tg__field_query {
                                         when a level lies within the face's size above its least
                                         distance (record.c), and so is every point source */
     size_t record_level_count;
+    uint8_t* ties;                   /* NULL, or per vertex (solver numbering, zeroed by the
+                                        caller) set to 1 where a second path as short (within
+                                        TG__TIE_REL) arrives from another direction: the cut locus
+                                        (runs that trace; a point source is sources[0]) */
     int threads;                     /* 0 or 1: the serial engine; more: the rounds of
                                         propagate.c on that many threads (every run but A*'s:
                                         with `toward` the serial engine) */

@@ -190,10 +190,51 @@ static double front_key(const tg__field_run* run, uint32_t v, double d)
 }
 
 /* Records distance d for vertex v if shorter (reached as `how` says), and puts it on the front. */
+/* The unit direction in which a path recorded as `p` arrives at vertex v (false: none, at a source
+ * vertex or along a segment of length 0); a point source is the run's first source. */
+static bool arrival_of(const tg__field_run* run, uint32_t v, const tg__pred* p, tg_vec3* out)
+{
+    const tg_geodesic* g = run->g;
+    tg_vec3 pv = tg__gpos(g, v), t;
+    if (p->h == TG_NONE) {
+        if (p->origin == TG__ORIGIN_SOURCE) return false;
+        t = tg_v3_sub(pv, tg__gpos(g, p->origin));
+    } else if (p->h & TG__PRED_FACE) {
+        tg__node src = tg__node_from_surface(&run->q->sources[0]);
+        t = tg_v3_sub(pv, p->origin == TG__ORIGIN_SOURCE ? tg__node_pos(g, &src) : tg__gpos(g, p->origin));
+    } else {
+        double xy[2];
+        tg__frame_point(g, p->h, pv, xy);
+        tg_vec3 ax, ay;
+        tg__frame_axes(g, p->h, &ax, &ay);
+        t = tg_v3_add(tg_v3_scale(ax, xy[0] - p->sx), tg_v3_scale(ay, xy[1] - p->sy));
+    }
+    double len = tg_v3_len(t);
+    if (!(len > 0.0)) return false;
+    *out = tg_v3_scale(t, 1.0 / len);
+    return true;
+}
+
+/* Runs that mark ties (q->ties): do two paths, recorded as a and b, arrive at v from different
+ * directions? (Windows of one image in the faces around a vertex are one path: the same
+ * direction to rounding.) */
+static bool two_paths(const tg__field_run* run, uint32_t v, const tg__pred* a, const tg__pred* b)
+{
+    tg_vec3 ta, tb;
+    return arrival_of(run, v, a, &ta) && arrival_of(run, v, b, &tb) && tg_v3_dot(ta, tb) < 1.0 - 1e-9;
+}
+
 static bool relax_vertex(tg__field_run* run, uint32_t v, double d, tg__pred how)
 {
     tg__field_scratch* fs = run->fs;
-    if (!(d < fs->dist[v])) return true;
+    uint8_t* ties = run->q->ties;
+    if (!(d < fs->dist[v])) {
+        /* as short as the best to the margin, from elsewhere: the cut locus */
+        if (ties && d <= fs->dist[v] * (1.0 + TG__TIE_REL) && two_paths(run, v, &fs->pred[v], &how)) ties[v] = 1;
+        return true;
+    }
+    if (ties)
+        ties[v] = fs->dist[v] <= d * (1.0 + TG__TIE_REL) && two_paths(run, v, &fs->pred[v], &how);
     if (!touch_vertex(fs, v)) return false;
     fs->dist[v] = d;
     if (run->q->trace) fs->pred[v] = how;
@@ -754,7 +795,8 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
             tg__pred ray = {h, TG__TAG_ORIGIN(w->tag), w->sx, w->sy};
             tg__lm_rec rec;
             if (L) {
-                if (!(hc.dc < fs->dist[vc])) continue; /* the merge would find it no shorter */
+                /* the merge would find it no shorter (nor a tie, in runs that mark them) */
+                if (!(hc.dc < fs->dist[vc]) && !(run->q->ties && hc.dc <= fs->dist[vc] * (1.0 + TG__TIE_REL))) continue;
                 if (!lane_grow(fs, L, &L->relax, 1)) return false;
                 tg__lane_relax r = {vc, hc.dc, ray, NAN};
                 if (lm && tg__lm_of(lm, TG__TAG_ORIGIN(w->tag), fs->lm_win.data, ids[i], &rec))

@@ -41,18 +41,20 @@ static void planar(const double* r, const double* a, size_t n, double* u, double
 
 /* The columns r, theta, u, v and, with --transport, tx, ty, tz (t: 3 a vertex, else NULL). */
 static int write_output(const logmap_args* la, const tg_mesh* mesh, const double* r, const double* a, const double* u,
-                        const double* v, const double* t, size_t n)
+                        const double* v, const double* t, const uint8_t* tflag, size_t n)
 {
-    size_t cols = t ? 7 : 4;
+    size_t cols = t ? 8 : 4;
     if (cli_ext_is(la->out, ".ply")) {
-        double* tc = t ? malloc((n ? n : 1) * 3 * sizeof *tc) : NULL; /* one array a property */
+        double* tc = t ? malloc((n ? n : 1) * 4 * sizeof *tc) : NULL; /* one array a property */
         if (t && !tc) {
             cli_error(NULL, 0, "out of memory");
             return CLI_INPUT;
         }
-        for (size_t i = 0; tc && i < n; ++i) tc[i] = t[3 * i], tc[n + i] = t[3 * i + 1], tc[2 * n + i] = t[3 * i + 2];
-        tg_vertex_scalar sc[7] = {{"distance", r}, {"angle", a}, {"u", u}, {"v", v}, {"tx", tc},
-                                  {"ty", tc ? tc + n : NULL}, {"tz", tc ? tc + 2 * n : NULL}};
+        for (size_t i = 0; tc && i < n; ++i)
+            tc[i] = t[3 * i], tc[n + i] = t[3 * i + 1], tc[2 * n + i] = t[3 * i + 2], tc[3 * n + i] = tflag[i];
+        tg_vertex_scalar sc[8] = {{"distance", r}, {"angle", a}, {"u", u}, {"v", v}, {"tx", tc},
+                                  {"ty", tc ? tc + n : NULL}, {"tz", tc ? tc + 2 * n : NULL},
+                                  {"tflag", tc ? tc + 3 * n : NULL}};
         tg_diag d;
         memset(&d, 0, sizeof d);
         cli_output out;
@@ -74,12 +76,12 @@ static int write_output(const logmap_args* la, const tg_mesh* mesh, const double
         for (size_t i = 0; ok && i < n; ++i) {
             double* row = rows + cols * i;
             row[0] = r[i], row[1] = a[i], row[2] = u[i], row[3] = v[i];
-            if (t) row[4] = t[3 * i], row[5] = t[3 * i + 1], row[6] = t[3 * i + 2];
+            if (t) row[4] = t[3 * i], row[5] = t[3 * i + 1], row[6] = t[3 * i + 2], row[7] = tflag[i];
         }
         ok = ok && cli_write_npy_f64(f, rows, n, cols, true);
         free(rows);
     } else {
-        ok = fprintf(f, t ? "vertex,r,theta,u,v,tx,ty,tz\n" : "vertex,r,theta,u,v\n") > 0;
+        ok = fprintf(f, t ? "vertex,r,theta,u,v,tx,ty,tz,tflag\n" : "vertex,r,theta,u,v\n") > 0;
         char b[7][32];
         for (size_t i = 0; ok && i < n; ++i) {
             cli_format_double(r[i], b[0]), cli_format_double(a[i], b[1]);
@@ -87,7 +89,8 @@ static int write_output(const logmap_args* la, const tg_mesh* mesh, const double
             if (t) {
                 cli_format_double(t[3 * i], b[4]), cli_format_double(t[3 * i + 1], b[5]);
                 cli_format_double(t[3 * i + 2], b[6]);
-                ok = fprintf(f, "%zu,%s,%s,%s,%s,%s,%s,%s\n", i, b[0], b[1], b[2], b[3], b[4], b[5], b[6]) > 0;
+                ok = fprintf(f, "%zu,%s,%s,%s,%s,%s,%s,%s,%d\n", i, b[0], b[1], b[2], b[3], b[4], b[5], b[6],
+                             tflag[i]) > 0;
             } else {
                 ok = fprintf(f, "%zu,%s,%s,%s,%s\n", i, b[0], b[1], b[2], b[3]) > 0;
             }
@@ -107,6 +110,7 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
     tg_bvh* bvh = NULL;
     tg_geodesic* geo = NULL;
     double *r = NULL, *a = NULL, *u = NULL, *v = NULL, *t = NULL;
+    uint8_t* tflag = NULL;
     tg_surface_point source;
     tg_mesh* mesh = cli_load_mesh_for_distances(la->mesh_path);
     if (!mesh) goto done;
@@ -118,8 +122,8 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
     size_t n = tg_mesh_vertex_count(mesh);
     r = malloc((n ? n : 1) * sizeof *r), a = malloc((n ? n : 1) * sizeof *a);
     u = malloc((n ? n : 1) * sizeof *u), v = malloc((n ? n : 1) * sizeof *v);
-    if (la->has_transport) t = malloc((n ? n : 1) * 3 * sizeof *t);
-    if (!r || !a || !u || !v || (la->has_transport && !t)) {
+    if (la->has_transport) t = malloc((n ? n : 1) * 3 * sizeof *t), tflag = malloc(n ? n : 1);
+    if (!r || !a || !u || !v || (la->has_transport && (!t || !tflag))) {
         cli_error(NULL, 0, "out of memory");
         goto done;
     }
@@ -138,7 +142,7 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
     if (st == TG_OK) st = tg_geodesic_log_map(geo, NULL, &source, la->has_ref ? la->ref : NULL, &o, r, a, &stats);
     bool transport_refused = false;
     if (st == TG_OK && t) { /* a second propagation: the vector's own angles */
-        st = tg_geodesic_transport_field(geo, NULL, &source, la->transport, &o, t, NULL, NULL, NULL);
+        st = tg_geodesic_transport_field(geo, NULL, &source, la->transport, &o, t, tflag, NULL, NULL);
         transport_refused = st == TG_ERR_INVALID_ARGUMENT;
     }
     double secs = cli_seconds() - t0;
@@ -167,7 +171,7 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
         goto done;
     }
     planar(r, a, n, u, v);
-    if ((rc = write_output(la, mesh, r, a, u, v, t, n)) != CLI_OK) goto done;
+    if ((rc = write_output(la, mesh, r, a, u, v, t, tflag, n)) != CLI_OK) goto done;
     if (!la->quiet && strcmp(la->out, "-")) {
         size_t reached = 0;
         double far = 0.0;
@@ -179,7 +183,7 @@ static int run_logmap(const logmap_args* la, const cli_spec* sp)
     }
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
-    free(r), free(a), free(u), free(v), free(t);
+    free(r), free(a), free(u), free(v), free(t), free(tflag);
     tg_geodesic_destroy(geo);
     tg_bvh_destroy(bvh);
     tg_mesh_destroy(mesh);
@@ -255,16 +259,17 @@ const cli_command cli_cmd_logmap = {
     "                   e:, or along the vertex's first halfedge for v:\n"
     "  --transport X,Y,Z the vector at the centre (a direction of the surface there as --ref takes\n"
     "                   it, and a length) carried to every vertex along its exact shortest path\n"
-    "                   (parallel transport: the angle to the path is kept): 3 more columns\n"
-    "                   tx,ty,tz (0,0,0 where not reached); one more propagation\n"
+    "                   (parallel transport: the angle to the path is kept): 4 more columns\n"
+    "                   tx,ty,tz (0,0,0 where not reached) and tflag (0 transported, 1 the\n"
+    "                   centre, 2 unreached, 3 the cut locus); one more propagation\n"
     "  --max-distance D only within D (beyond: r inf)\n"
     "  --threads N      the field's propagation on N threads (at most 256, 0 = all cores;\n"
     "                   default 1): every N > 1 gives the same bits, within 1e-14 relative of\n"
     "                   one thread's (an angle at a tie may be the other path's)\n"
-    "  -o OUT           .csv   vertex,r,theta,u,v[,tx,ty,tz]  (one row a vertex; '-' = stdout)\n"
-    "                   .npy   a (vertices, 4 or 7) float64 array, columns r, theta, u, v[, tx, ty, tz]\n"
+    "  -o OUT           .csv   vertex,r,theta,u,v[,tx,ty,tz,tflag]  (one row a vertex; '-' = stdout)\n"
+    "                   .npy   a (vertices, 4 or 8) float64 array, columns r, theta, u, v[, tx, ty, tz, tflag]\n"
     "                   .ply   the mesh as binary PLY with per-vertex double properties\n"
-    "                          distance, angle, u, v[, tx, ty, tz] (trigeo render MESH --logmap OUT.ply)\n"
+    "                          distance, angle, u, v[, tx, ty, tz, tflag] (trigeo render MESH --logmap OUT.ply)\n"
     "  --quiet          no progress line and no summary (errors are still printed, -o - still\n"
     "                   writes the CSV)\n\n"
     "Angles are counterclockwise about the reference face's normal (its file winding), in\n"

@@ -111,8 +111,9 @@ def test_cli_logmap_transport_columns(tmp_path):
     r = run_cli("logmap", SPOT, "--from", "v:3", "--transport", "1,2,0.5", "-o", str(out), "--quiet")
     assert r.returncode == 0, r.stderr
     a = np.load(out)
-    vec, dist, _ = spot.transport_field(3, (1.0, 2.0, 0.5))
-    assert a.shape == (spot.vertex_count, 7) and np.array_equal(a[:, 4:], vec) and np.array_equal(a[:, 0], dist)
+    vec, dist, flag = spot.transport_field(3, (1.0, 2.0, 0.5))
+    assert a.shape == (spot.vertex_count, 8) and np.array_equal(a[:, 4:7], vec) and np.array_equal(a[:, 0], dist)
+    assert np.array_equal(a[:, 7], flag)
 
 
 def test_field_gradient_on_a_plane_and_the_cli(tmp_path):

@@ -11,6 +11,8 @@
  *   basis of the plane has to be chosen for). */
 #include "geodesic/tangent.h"
 
+#include "geodesic/field/propagate.h"
+
 /* A normal whose length is at most this share of the summed weights is not a direction: the
  * faces' normals cancel (a pinched vertex of two opposite cones, a sheet folded onto itself), and
  * what is left is rounding of about 1e-16 per face. */
@@ -196,27 +198,13 @@ tg_vec3 tg__solver_normal(const tg_geodesic* g, uint32_t f)
 bool tg__pred_arrival(const tg_geodesic* g, const tg__pred* pred, uint32_t u, tg_vec3 at, tg_vec3 face_source,
                       tg_vec3* out_t, uint32_t* out_f)
 {
-    tg__pred p = *pred;
-    tg_vec3 pu = at, t;
-    if (p.h == TG_NONE) { /* along an edge from vertex p.origin */
-        if (p.origin == TG__ORIGIN_SOURCE) return false;
-        tg__node a = tg__node_vertex(p.origin), b = tg__node_vertex(u);
+    if (pred->h == TG_NONE) { /* along an edge: a face of it */
+        if (pred->origin == TG__ORIGIN_SOURCE) return false;
+        tg__node a = tg__node_vertex(pred->origin), b = tg__node_vertex(u);
         *out_f = tg__common_face(g, &a, &b, TG_NONE);
         if (*out_f == TG_NONE) return false;
-        t = tg_v3_sub(pu, tg__gpos(g, p.origin));
-    } else if (p.h & TG__PRED_FACE) { /* straight inside a face from the source or a vertex */
-        *out_f = p.h & ~TG__PRED_FACE;
-        t = tg_v3_sub(pu, p.origin == TG__ORIGIN_SOURCE ? face_source : tg__gpos(g, p.origin));
-    } else { /* along the ray from the window's source image, in the frame of the edge it crossed */
-        double xy[2];
-        tg__frame_point(g, p.h, pu, xy);
-        tg_vec3 ax, ay;
-        tg__frame_axes(g, p.h, &ax, &ay);
-        *out_f = p.h / 3;
-        t = tg_v3_add(tg_v3_scale(ax, xy[0] - p.sx), tg_v3_scale(ay, xy[1] - p.sy));
+    } else {
+        *out_f = pred->h & TG__PRED_FACE ? pred->h & ~TG__PRED_FACE : pred->h / 3;
     }
-    double len = tg_v3_len(t);
-    if (!(len > 0.0)) return false;
-    *out_t = tg_v3_scale(t, 1.0 / len);
-    return true;
+    return tg__field_arrival(g, pred, at, face_source, out_t);
 }

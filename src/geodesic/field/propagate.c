@@ -190,21 +190,17 @@ static double front_key(const tg__field_run* run, uint32_t v, double d)
 }
 
 /* Records distance d for vertex v if shorter (reached as `how` says), and puts it on the front. */
-/* The unit direction in which a path recorded as `p` arrives at vertex v (false: none, at a source
- * vertex or along a segment of length 0); a point source is the run's first source. */
-static bool arrival_of(const tg__field_run* run, uint32_t v, const tg__pred* p, tg_vec3* out)
+bool tg__field_arrival(const tg_geodesic* g, const tg__pred* p, tg_vec3 at, tg_vec3 face_source, tg_vec3* out)
 {
-    const tg_geodesic* g = run->g;
-    tg_vec3 pv = tg__gpos(g, v), t;
-    if (p->h == TG_NONE) {
+    tg_vec3 t;
+    if (p->h == TG_NONE) { /* along an edge from vertex p->origin */
         if (p->origin == TG__ORIGIN_SOURCE) return false;
-        t = tg_v3_sub(pv, tg__gpos(g, p->origin));
-    } else if (p->h & TG__PRED_FACE) {
-        tg__node src = tg__node_from_surface(&run->q->sources[0]);
-        t = tg_v3_sub(pv, p->origin == TG__ORIGIN_SOURCE ? tg__node_pos(g, &src) : tg__gpos(g, p->origin));
-    } else {
+        t = tg_v3_sub(at, tg__gpos(g, p->origin));
+    } else if (p->h & TG__PRED_FACE) { /* straight inside a face from the source or a vertex */
+        t = tg_v3_sub(at, p->origin == TG__ORIGIN_SOURCE ? face_source : tg__gpos(g, p->origin));
+    } else { /* along the ray from the window's source image, in the frame of the edge it crossed */
         double xy[2];
-        tg__frame_point(g, p->h, pv, xy);
+        tg__frame_point(g, p->h, at, xy);
         tg_vec3 ax, ay;
         tg__frame_axes(g, p->h, &ax, &ay);
         t = tg_v3_add(tg_v3_scale(ax, xy[0] - p->sx), tg_v3_scale(ay, xy[1] - p->sy));
@@ -213,6 +209,13 @@ static bool arrival_of(const tg__field_run* run, uint32_t v, const tg__pred* p, 
     if (!(len > 0.0)) return false;
     *out = tg_v3_scale(t, 1.0 / len);
     return true;
+}
+
+/* tg__field_arrival at vertex v of this run (a point source is the run's first source). */
+static bool arrival_of(const tg__field_run* run, uint32_t v, const tg__pred* p, tg_vec3* out)
+{
+    tg__node src = tg__node_from_surface(&run->q->sources[0]);
+    return tg__field_arrival(run->g, p, tg__gpos(run->g, v), tg__node_pos(run->g, &src), out);
 }
 
 /* Runs that mark ties (q->ties): do two paths, recorded as a and b, arrive at v from different

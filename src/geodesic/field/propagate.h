@@ -11,5 +11,10 @@ void tg__field_reset(tg__field_scratch* fs);
 tg_status tg__field_seed(tg__field_run* run, const tg_surface_point* src);
 /* Runs the wavefront to the end (or past max_dist). TG_ERR_CANCELLED when progress says stop. */
 tg_status tg__field_propagate(tg__field_run* run);
+/* The unit direction in which the path recorded as *p (engine.h, tg__pred) arrives at the point
+ * `at` (a vertex, or a query point): along the ray from the window's source image, along an edge
+ * from a vertex, or straight in a face from a vertex or from the point source at `face_source`.
+ * False for a source vertex itself (no segment) and a segment of length 0. */
+bool tg__field_arrival(const tg_geodesic* g, const tg__pred* p, tg_vec3 at, tg_vec3 face_source, tg_vec3* out);
 
 #endif

@@ -83,9 +83,19 @@ extern "C" {
 
 #define TG_VERSION_MAJOR 0
 #define TG_VERSION_MINOR 6
-#define TG_VERSION_PATCH 1
+#define TG_VERSION_PATCH 2
 /** Single integer for comparisons: major * 10000 + minor * 100 + patch. */
 #define TG_VERSION (TG_VERSION_MAJOR * 10000 + TG_VERSION_MINOR * 100 + TG_VERSION_PATCH)
+
+/* Changes in 0.6.2 (ABI-compatible with 0.6.0: same soname, new entry points only):
+ *  - Curves as sources of exact fields: tg_geodesic_curve_field (segments of polylines on the
+ *    surface, mixed with point sources; exact: the insides of the segments are sources of
+ *    parallel rays), tg_geodesic_boundary_segments (the mesh's boundary as segments),
+ *    tg_surface_segment_validate, tg_surface_point_snap (a point within a tolerance of an edge or
+ *    corner named by it: polylines given in coordinates). CLI: field --from curve:FILE and
+ *    --from boundary; Python: Mesh.field(curve=, curves=, boundary=), field_at likewise,
+ *    Mesh.boundary_segments().
+ *  - A solver takes at most 536,870,909 vertices (one id fewer: it names a curve's windows). */
 
 /* Changes in 0.6.1 (ABI-compatible with 0.6.0: same soname, new behaviour and entry points only):
  *  - Geometry on the exact maps: tg_geodesic_mean (the weighted Karcher mean, with a uniqueness
@@ -497,6 +507,16 @@ static inline tg_surface_point tg_surface_face(uint32_t face, double b0, double 
  *  a vertex must be referenced by some face. Returns TG_OK or TG_ERR_INVALID_ARGUMENT with a
  *  sentence in diag (may be NULL). O(1). Thread-safe. */
 TG_API tg_status tg_surface_point_validate(const tg_mesh* mesh, const tg_surface_point* point, tg_diag* diag);
+
+/** A valid surface point moved onto the edge or corner it lies within `tolerance` of: a face
+ *  point's barycentrics at most tolerance become 0 (the others rescaled to sum to 1), an edge
+ *  point's t within tolerance of 0 or 1 its end; then named by that feature (a face point with one
+ *  zero weight an edge point, with two a vertex; an edge point at an end a vertex). For points
+ *  located from coordinates that lie on an edge up to rounding (the crossings of a path written
+ *  as xyz), so that they name the edge whose faces on both sides hold them (curves:
+ *  tg_surface_segment_validate). An invalid point, a NULL mesh or a negative or NaN tolerance:
+ *  the point unchanged. O(1). Thread-safe. (New in 0.6.2.) */
+TG_API tg_surface_point tg_surface_point_snap(const tg_mesh* mesh, const tg_surface_point* point, double tolerance);
 
 /** The 3D position of a (valid) surface point. O(1). Thread-safe. */
 TG_API void tg_surface_point_position(const tg_mesh* mesh, const tg_surface_point* point, double out_xyz[3]);
@@ -950,7 +970,7 @@ typedef struct tg_geodesic_options {
 
 /** Builds the solver for mesh (not copied; must stay alive and unchanged until
  *  tg_geodesic_destroy). options may be NULL. Errors: TG_ERR_UNSUPPORTED (coordinates beyond
- *  +-1e150: squared lengths would overflow; 536,870,911 vertices or more: the exact engine numbers
+ *  +-1e150: squared lengths would overflow; 536,870,910 vertices or more: the exact engine numbers
  *  vertices in 29 bits), TG_ERR_INVALID_ARGUMENT (NULL mesh or out),
  *  TG_ERR_OUT_OF_MEMORY. On failure *out_geodesic is NULL. O(V + F log(valence)) time, O(V + F)
  *  memory. Thread-safe (no shared state). */
@@ -1593,6 +1613,60 @@ TG_API tg_status tg_geodesic_field_at(const tg_geodesic* geodesic, tg_geodesic_w
                                const tg_surface_point* sources, size_t source_count,
                                const tg_surface_point* points, size_t point_count, const tg_field_options* options,
                                double* out_point_distance, double* out_vertex_distance, tg_field_stats* out_stats);
+
+/** A segment of a curve on the surface: two surface points with a face in common (consecutive
+ *  points of a polyline inside one face or along one edge); a and b the same point: a point. */
+typedef struct tg_surface_segment {
+    tg_surface_point a, b;
+} tg_surface_segment;
+
+/** Checks a segment against the solver's mesh: both ends valid surface points
+ *  (tg_surface_point_validate) lying in one kept face (a vertex of it, a point of its edges or
+ *  inside it; the same point twice is a point). TG_OK or TG_ERR_INVALID_ARGUMENT with a sentence
+ *  in diag (may be NULL). O(valence). Thread-safe. (New in 0.6.2.) */
+TG_API tg_status tg_surface_segment_validate(const tg_geodesic* geodesic, const tg_surface_segment* segment,
+                                             tg_diag* diag);
+
+/** The exact geodesic distance from curves on the surface (and points), at every vertex and at
+ *  surface points: each vertex's distance is the length of the shortest path on the surface to
+ *  the nearest point of any segment or source.
+ *
+ *  Method: a shortest path from a curve leaves it at an end of a segment or at right angles from
+ *  its inside. The ends are point sources; the inside of a segment is a source of parallel rays,
+ *  a window whose distance is the distance to the segment's line, unfolded across faces like a
+ *  point's windows (and trimmed, split and filtered by the same rules), so the result is exact
+ *  like tg_geodesic_field's (rounding about 1e-15 relative per unfolded face). In the faces that
+ *  hold a segment the distance is the Euclidean distance to it. A segment along an edge lights
+ *  the faces on both sides (a boundary edge: its one face); a segment whose only common faces
+ *  have zero area lights nothing beyond its ends.
+ *
+ *  sources: source_count point sources as in tg_geodesic_field (may be 0). segments:
+ *  segment_count segments (NULL when 0), each end a valid surface point, the two ends in one kept
+ *  face (or the same point); a polyline of K points is K - 1 segments; the mesh's boundary is
+ *  tg_geodesic_boundary_segments. points, out_point_distance, out_vertex_distance, options,
+ *  out_stats: as tg_geodesic_field_at (out_vertex_distance may be NULL only with points: the run
+ *  then stops once the points are settled). With neither sources nor segments every distance is
+ *  +inf. options->threads: as tg_geodesic_field (the same bits for every count >= 2).
+ *  Errors: TG_ERR_INVALID_ARGUMENT (as tg_geodesic_field_at; an invalid segment end, ends with no
+ *  face in common, NULL segments with a non-zero count, no output), TG_ERR_OUT_OF_MEMORY,
+ *  TG_ERR_CANCELLED; on error the outputs are untouched. Complexity: as a field from as many
+ *  sources; the windows of a long curve are many but short-lived (each is dominated a few faces
+ *  away by its neighbours). Thread-safe as tg_geodesic_field. (New in 0.6.2.) */
+TG_API tg_status tg_geodesic_curve_field(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
+                                         const tg_surface_point* sources, size_t source_count,
+                                         const tg_surface_segment* segments, size_t segment_count,
+                                         const tg_surface_point* points, size_t point_count,
+                                         const tg_field_options* options, double* out_point_distance,
+                                         double* out_vertex_distance, tg_field_stats* out_stats);
+
+/** The mesh's boundary as segments: every edge of exactly one kept face (duplicate faces and faces
+ *  with a repeated vertex do not count; non-manifold edges are not boundary), from vertex to
+ *  vertex, in the order of the faces and their corners in the file. out: room for capacity
+ *  segments, or NULL to ask for the count; *out_count: the number of boundary edges.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic or out_count), TG_ERR_CAPACITY (out too small;
+ *  *out_count still set). O(F). Thread-safe. (New in 0.6.2.) */
+TG_API tg_status tg_geodesic_boundary_segments(const tg_geodesic* geodesic, tg_surface_segment* out, size_t capacity,
+                                               size_t* out_count);
 
 /** The exact logarithmic map (polar coordinates about a point): for every vertex its exact
  *  geodesic distance from `source` (out_vertex_distance, bit-identical to tg_geodesic_field's for this

@@ -70,7 +70,7 @@ static void test_trim_near_tie(void)
     w[0].tag = 1, w[1].tag = 2;
     uint32_t ids[2] = {1, 0}; /* lists arrive in descending order of start */
     tg__win_key keys[2];
-    tg__windows_trim(w, ids, keys, 2, 15.713484026367716);
+    tg__windows_trim(w, ids, keys, 2, 15.713484026367716, false);
     double mid = 0.5 * 15.713484026367697;
     CHECK_NEAR(w[0].b1, mid, 1e-9);
     CHECK_NEAR(w[1].b0, mid, 1e-9);

@@ -68,11 +68,13 @@ static int on_progress(void* user, const tg_field_progress* p)
     return cli_interrupted();
 }
 
-/* Reads a sources or points file: one item a line; a leading BOM, blank lines and '#' comments
- * skipped. Returns the number of items (texts copied into *out_text, pointers into it in
- * *out_items, their line numbers in *out_lines), or -1 after printing the error. */
+/* Reads a sources, points or curve file: one item a line; a leading BOM, blank lines and '#'
+ * comments skipped. Returns the number of items (texts copied into *out_text, pointers into it in
+ * *out_items, their line numbers in *out_lines; out_breaks: NULL, or per item 1 where a blank line
+ * comes between it and the item before, which ends a polyline of a curve file), or -1 after
+ * printing the error. */
 static long read_lines(const char* path, const char* what, char** out_text, char*** out_items,
-                       unsigned long long** out_lines)
+                       unsigned long long** out_lines, unsigned char** out_breaks)
 {
     size_t len = 0;
     char* text = cli_read_all(path, &len);
@@ -86,12 +88,14 @@ static long read_lines(const char* path, const char* what, char** out_text, char
     for (size_t i = 0; i < len; ++i) lines += text[i] == '\n';
     char** items = malloc(lines * sizeof *items);
     unsigned long long* at = malloc(lines * sizeof *at);
-    if (!items || !at) {
-        free(text), free(items), free(at);
+    unsigned char* breaks = out_breaks ? calloc(lines, 1) : NULL;
+    if (!items || !at || (out_breaks && !breaks)) {
+        free(text), free(items), free(at), free(breaks);
         cli_error(path, 0, "out of memory");
         return -1;
     }
     long n = 0;
+    bool blank = false;
     char* s = cli_skip_bom(text);
     for (unsigned long long line = 1; *s || line == 1; ++line) {
         char* end = strchr(s, '\n');
@@ -103,7 +107,11 @@ static long read_lines(const char* path, const char* what, char** out_text, char
         if (l && s[0] != '#') {
             items[n] = s;
             at[n] = line;
+            if (breaks) breaks[n] = blank && n > 0;
+            blank = false;
             n++;
+        } else if (!l) {
+            blank = true;
         }
         s = next;
         if (!end) break;
@@ -111,21 +119,23 @@ static long read_lines(const char* path, const char* what, char** out_text, char
     if (n == 0) {
         cli_error(path, 0, "no %s (one SPEC a line: v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z%s)", what,
                   strcmp(what, "points") ? "" : ", or x y z");
-        free(text), free(items), free(at);
+        free(text), free(items), free(at), free(breaks);
         return -1;
     }
     *out_text = text, *out_items = items, *out_lines = at;
+    if (out_breaks) *out_breaks = breaks;
     return n;
 }
 
-static void print_summary(size_t sources, bool matrix, const char* columns, const double* d, size_t rows, size_t n,
-                          double secs, const tg_field_stats* st)
+static void print_summary(size_t sources, size_t segments, bool matrix, const char* columns, const double* d,
+                          size_t rows, size_t n, double secs, const tg_field_stats* st)
 {
     size_t reached = 0;
     double far = 0;
     for (size_t v = 0; v < n * rows; ++v)
         if (isfinite(d[v])) reached++, far = fmax(far, d[v]);
     printf("sources            %zu%s\n", sources, matrix ? " (one field each)" : "");
+    if (segments) printf("curve segments     %zu\n", segments);
     if (matrix)
         printf("%-18s %zu (%zu of %zu matrix entries reached)\n", columns, n, reached, n * rows);
     else
@@ -156,6 +166,11 @@ typedef struct field_args {
     char** at_items;
     unsigned long long* at_lines;
     size_t at_count;
+    /* curve sources in the --from list: curve:FILE items and `boundary` */
+    const char** curves;
+    size_t curve_count;
+    bool boundary;
+    size_t segments;      /* the segments they made (for the summary) */
 } field_args;
 
 /* The options of the computation (the limit, progress on a terminal, Ctrl-C as cancellation). */
@@ -258,16 +273,115 @@ static tg_status make_solver(tg_mesh* mesh, size_t n, double** out_dist, tg_geod
     return *out_dist ? tg_geodesic_create(mesh, NULL, out_geo) : TG_ERR_OUT_OF_MEMORY;
 }
 
-static int run_field(const field_args* fa, char** items, const unsigned long long* lines, size_t count)
+/* A curve's points given in coordinates (a path's .obj) lie on the edges they cross up to
+ * rounding: within this share of an edge (barycentric, or t along an edge) they are taken on it
+ * (tg_surface_point_snap), whose faces on both sides hold them. */
+#define ON_EDGE_REL 1e-9
+
+/* Appends the polylines of curve file `path` (one point a line as a SPEC, "x y z" or an OBJ
+ * "v x y z"; a blank line between polylines; a polyline of one point is that point; OBJ "l", "o"
+ * and "g" lines are ignored, so a path's .obj is a curve) to *seg as segments, each checked on
+ * the solver (tg_surface_segment_validate). CLI_OK, or CLI_INPUT after the error (file, line). */
+static int read_curve(const field_args* fa, const char* path, tg_mesh* mesh, tg_bvh** bvh, const tg_geodesic* geo,
+                      tg_surface_segment** seg, size_t* n)
+{
+    char* text = NULL;
+    char** items = NULL;
+    unsigned long long* lines = NULL;
+    unsigned char* breaks = NULL;
+    tg_surface_point* pts = NULL;
+    long k = read_lines(path, "curve points", &text, &items, &lines, &breaks);
+    if (k < 0) return CLI_INPUT;
+    long kept = 0; /* OBJ: "v x y z" is a point, "l", "o", "g" lines are not */
+    for (long i = 0; i < k; ++i) {
+        const char* it = items[i];
+        if ((it[0] == 'l' || it[0] == 'o' || it[0] == 'g') && (it[1] == ' ' || it[1] == '\t')) {
+            if (i + 1 < k) breaks[i + 1] |= breaks[i];
+            continue;
+        }
+        items[kept] = it[0] == 'v' && (it[1] == ' ' || it[1] == '\t') ? items[i] + 2 : items[i];
+        lines[kept] = lines[i], breaks[kept] = breaks[i];
+        kept++;
+    }
+    k = kept;
+    int rc = CLI_INPUT;
+    if (k == 0) {
+        cli_error(path, 0, "no curve points (one point a line: v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t, p:x,y,z or x y z)");
+        goto done;
+    }
+    tg_surface_segment* grown = realloc(*seg, (*n + (size_t)k) * sizeof *grown);
+    pts = malloc((size_t)k * sizeof *pts);
+    if (grown) *seg = grown;
+    if (!grown || !pts) {
+        cli_error(NULL, 0, "out of memory");
+        goto done;
+    }
+    if ((rc = resolve_all(fa, path, true, mesh, bvh, items, lines, (size_t)k, pts)) != CLI_OK) goto done;
+    rc = CLI_INPUT;
+    for (long i = 0; i < k; ++i) pts[i] = tg_surface_point_snap(mesh, &pts[i], ON_EDGE_REL);
+    for (long i = 0; i < k; ++i) {
+        bool starts = i == 0 || breaks[i], alone = starts && (i + 1 == k || breaks[i + 1]);
+        if (starts && !alone) continue; /* the first point of a polyline: its segment comes next */
+        tg_surface_segment sg = {alone ? pts[i] : pts[i - 1], pts[i]};
+        tg_diag d;
+        memset(&d, 0, sizeof d);
+        if (tg_surface_segment_validate(geo, &sg, &d) != TG_OK) {
+            if (alone)
+                cli_error(path, lines[i], "%s", d.message);
+            else
+                cli_error(path, lines[i], "the segment from line %llu: %s", lines[i - 1], d.message);
+            goto done;
+        }
+        (*seg)[(*n)++] = sg;
+    }
+    rc = CLI_OK;
+done:
+    free(text), free(items), free(lines), free(breaks), free(pts);
+    return rc;
+}
+
+/* The segments of the --from list's curve sources (curve:FILE items, `boundary`) into *out
+ * (malloc'd, NULL when none) and *out_count. CLI_OK, or CLI_INPUT after the error. */
+static int curve_segments(const field_args* fa, tg_mesh* mesh, tg_bvh** bvh, const tg_geodesic* geo,
+                          tg_surface_segment** out, size_t* out_count)
+{
+    tg_surface_segment* seg = NULL;
+    size_t n = 0;
+    *out = NULL, *out_count = 0;
+    if (fa->boundary) {
+        tg_geodesic_boundary_segments(geo, NULL, 0, &n);
+        if (!n) {
+            cli_error(fa->mesh_path, 0, "the mesh has no boundary (--from boundary): every edge has two faces or more");
+            return CLI_INPUT;
+        }
+        seg = malloc(n * sizeof *seg);
+        if (!seg || tg_geodesic_boundary_segments(geo, seg, n, &n) != TG_OK) {
+            free(seg);
+            cli_error(NULL, 0, "out of memory");
+            return CLI_INPUT;
+        }
+    }
+    for (size_t i = 0; i < fa->curve_count; ++i)
+        if (read_curve(fa, fa->curves[i], mesh, bvh, geo, &seg, &n) != CLI_OK) {
+            free(seg);
+            return CLI_INPUT;
+        }
+    *out = seg, *out_count = n;
+    return CLI_OK;
+}
+
+static int run_field(field_args* fa, char** items, const unsigned long long* lines, size_t count)
 {
     int rc = CLI_INPUT;
+    tg_surface_segment* seg = NULL; /* curve sources */
+    size_t nseg = 0;
     tg_bvh* bvh = NULL;
     tg_geodesic* geo = NULL;
     double *dist = NULL, *at_d = NULL;
     tg_surface_point* at_pts = NULL;
     uint32_t* label = NULL; /* --labels */
     tg_voronoi_boundaries* bounds = NULL;
-    tg_surface_point* pts = malloc(count * sizeof *pts);
+    tg_surface_point* pts = malloc((count ? count : 1) * sizeof *pts);
     tg_mesh* mesh = pts ? cli_load_mesh_for_distances(fa->mesh_path) : NULL;
     if (!pts) cli_error(NULL, 0, "out of memory");
     if (!mesh) goto done;
@@ -293,12 +407,19 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
         goto done;
     }
     tg_status st = make_solver(mesh, n * rows, &dist, &geo);
+    if (st == TG_OK && (fa->curve_count || fa->boundary)) {
+        if ((rc = curve_segments(fa, mesh, &bvh, geo, &seg, &nseg)) != CLI_OK) goto done;
+        rc = CLI_INPUT;
+        fa->segments = nseg;
+    }
     tg_field_options o;
     cli_progress prog;
     tg_field_stats stats;
     start_work(fa, &o, &prog, &stats);
     double t0 = cli_seconds();
-    if (st == TG_OK && fa->labels) {
+    if (st == TG_OK && seg) {
+        st = tg_geodesic_curve_field(geo, NULL, pts, count, seg, nseg, at_pts, fa->at_count, &o, at_d, dist, &stats);
+    } else if (st == TG_OK && fa->labels) {
         label = malloc((n ? n : 1) * sizeof *label);
         st = !label ? TG_ERR_OUT_OF_MEMORY : fa->boundaries ? tg_voronoi_boundaries_create(NULL, &bounds) : TG_OK;
         if (st == TG_OK) st = tg_geodesic_voronoi(geo, NULL, pts, count, &o, bounds, dist, label, &stats);
@@ -333,7 +454,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
             }
         }
         if (rc != CLI_OK) goto done;
-        if (!fa->quiet && strcmp(path, "-")) print_summary(count, false, "vertices", dist, rows, n, secs, &stats);
+        if (!fa->quiet && strcmp(path, "-")) print_summary(count, fa->segments, false, "vertices", dist, rows, n, secs, &stats);
         rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
         goto done;
     }
@@ -345,7 +466,7 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
         cli_output_set_abort(&outs);
         if (rc != CLI_OK) goto done;
         if (!fa->quiet && (!fa->out || strcmp(fa->out, "-")))
-            print_summary(count, false, "vertices", dist, rows, n, secs, &stats);
+            print_summary(count, fa->segments, false, "vertices", dist, rows, n, secs, &stats);
         rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
         goto done;
     }
@@ -362,10 +483,10 @@ static int run_field(const field_args* fa, char** items, const unsigned long lon
         goto done;
     }
     if (!fa->quiet && (!fa->out || strcmp(fa->out, "-")))
-        print_summary(count, fa->matrix, fa->matrix && fa->at_count ? "points" : "vertices", dist, rows, n, secs, &stats);
+        print_summary(count, fa->segments, fa->matrix, fa->matrix && fa->at_count ? "points" : "vertices", dist, rows, n, secs, &stats);
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
-    free(pts), free(dist), free(at_pts), free(at_d), free(label);
+    free(pts), free(dist), free(at_pts), free(at_d), free(label), free(seg);
     tg_voronoi_boundaries_destroy(bounds);
     tg_geodesic_destroy(geo);
     tg_bvh_destroy(bvh);
@@ -446,7 +567,7 @@ static int run_gradient(const field_args* fa, char** items, const unsigned long 
     double *dist = NULL, *cols = NULL;
     uint8_t *vflag = NULL, *fflag = NULL;
     uint32_t* label = NULL;
-    tg_surface_point* pts = malloc(count * sizeof *pts);
+    tg_surface_point* pts = malloc((count ? count : 1) * sizeof *pts);
     tg_mesh* mesh = pts ? cli_load_mesh_for_distances(fa->mesh_path) : NULL;
     if (!pts) cli_error(NULL, 0, "out of memory");
     if (!mesh) goto done;
@@ -651,6 +772,41 @@ static int run(int argc, char** argv)
     }
     if (!fa.mesh_path) return cli_usage("field", "missing MESH");
     if (!from == !fa.sources_path) return cli_usage("field", "give either --from SPEC[;SPEC...] or --sources FILE");
+    /* the --from list: point SPECs, and curve sources (curve:FILE, boundary) set apart */
+    char* list = NULL;
+    char** items = NULL;
+    size_t count = 0;
+    if (from) {
+        size_t len = strlen(from);
+        list = malloc(len + 1);
+        items = malloc(MAX_SOURCES * sizeof *items);
+        fa.curves = malloc(MAX_SOURCES * sizeof *fa.curves);
+        if (!list || !items || !fa.curves) {
+            free(list), free(items), free(fa.curves);
+            cli_error(NULL, 0, "out of memory");
+            return CLI_INPUT;
+        }
+        memcpy(list, from, len + 1);
+        size_t all = cli_split_list(list, items, MAX_SOURCES);
+        for (size_t i = 0; i < all; ++i) {
+            if (!strcmp(items[i], "boundary"))
+                fa.boundary = true;
+            else if (!strncmp(items[i], "curve:", 6) && items[i][6])
+                fa.curves[fa.curve_count++] = items[i] + 6;
+            else
+                items[count++] = items[i];
+        }
+        int bad = all == 0 ? cli_usage("field", "bad --from list \"%s\" (SPEC;SPEC;..., no empty item, at most %d)",
+                                       from, MAX_SOURCES)
+                  : (fa.boundary || fa.curve_count) && (fa.gradient || fa.labels || fa.isolines || fa.isoline_count)
+                      ? cli_usage("field", "curve sources (curve:FILE, boundary) go with a field (-o, --at, "
+                                           "--max-distance, --threads), not yet with --gradient, --labels or --isolines")
+                      : CLI_OK;
+        if (bad != CLI_OK) {
+            free(list), free(items), free(fa.curves);
+            return bad;
+        }
+    }
     if (fa.out && csv) return cli_usage("field", "-o and --csv exclude each other");
     if (fa.isolines && fa.isoline_count)
         return cli_usage("field", "give the levels (--isolines L,L,...) or their count (--isoline-count N), not both");
@@ -710,54 +866,57 @@ static int run(int argc, char** argv)
     fa.field_threads = 1;
     if (threads && !fa.matrix) /* one field (--from, --labels' each source, --isolines) on several threads */
         fa.field_threads = nt == 0 ? TG_THREADS_ALL : (int)nt;
-    const cli_file_role inputs[3] = {{fa.mesh_path, "mesh"},
-                                     {fa.sources_path && strcmp(fa.sources_path, "all") ? fa.sources_path : NULL,
-                                      "sources file (--sources)"},
-                                     {fa.at_path, at_opt && !strcmp(at_opt, "--to") ? "points file (--to)" : "points file (--at)"}};
+    cli_file_role* inputs = malloc((3 + fa.curve_count) * sizeof *inputs);
+    if (!inputs) {
+        free(list), free(items), free(fa.curves);
+        cli_error(NULL, 0, "out of memory");
+        return CLI_INPUT;
+    }
+    inputs[0] = (cli_file_role){fa.mesh_path, "mesh"};
+    inputs[1] = (cli_file_role){fa.sources_path && strcmp(fa.sources_path, "all") ? fa.sources_path : NULL,
+                                "sources file (--sources)"};
+    inputs[2] = (cli_file_role){fa.at_path, at_opt && !strcmp(at_opt, "--to") ? "points file (--to)" : "points file (--at)"};
+    for (size_t i = 0; i < fa.curve_count; ++i) inputs[3 + i] = (cli_file_role){fa.curves[i], "curve file (--from curve:)"};
     const cli_file_role outputs[3] = {{fa.out, csv ? "--csv" : "-o"}, {fa.boundaries, "--boundaries"},
                                       {fa.face_gradient, "--face-gradient"}};
-    int check = cli_check_outputs(outputs, 3, inputs, 3);
-    if (check != CLI_OK) return check;
-    if ((fa.sources_path || fa.field_threads != 1) && !cli_threads_available(fa.threads, "field")) return CLI_INPUT;
+    int check = cli_check_outputs(outputs, 3, inputs, 3 + fa.curve_count);
+    free(inputs);
+    if (check == CLI_OK && (fa.sources_path || fa.field_threads != 1) && !cli_threads_available(fa.threads, "field"))
+        check = CLI_INPUT;
+    if (check != CLI_OK) {
+        free(list), free(items), free(fa.curves);
+        return check;
+    }
     int rc;
     char* at_text = NULL;
     if (fa.at_path) {
-        long na = read_lines(fa.at_path, "points", &at_text, &fa.at_items, &fa.at_lines);
-        if (na < 0) return CLI_INPUT;
+        long na = read_lines(fa.at_path, "points", &at_text, &fa.at_items, &fa.at_lines, NULL);
+        if (na < 0) {
+            free(list), free(items), free(fa.curves);
+            return CLI_INPUT;
+        }
         fa.at_count = (size_t)na;
     }
     if (fa.sources_path) { /* a matrix, or the Voronoi cells of the listed sources */
         char* text = NULL;
-        char** items = NULL;
+        char** rows = NULL;
         unsigned long long* lines = NULL;
-        long n = fa.all ? 0 : read_lines(fa.sources_path, "sources", &text, &items, &lines);
+        long n = fa.all ? 0 : read_lines(fa.sources_path, "sources", &text, &rows, &lines, NULL);
         if (n < 0)
             rc = CLI_INPUT;
         else
-            rc = fa.gradient ? run_gradient(&fa, items, lines, (size_t)n)
-                 : fa.isolines || fa.isoline_count ? run_isolines(&fa, items, lines, (size_t)n)
-                 : fa.sparse ? run_sparse(&fa, items, lines, (size_t)n)
-                             : run_field(&fa, items, lines, (size_t)n);
-        free(text), free(items), free(lines);
+            rc = fa.gradient ? run_gradient(&fa, rows, lines, (size_t)n)
+                 : fa.isolines || fa.isoline_count ? run_isolines(&fa, rows, lines, (size_t)n)
+                 : fa.sparse ? run_sparse(&fa, rows, lines, (size_t)n)
+                             : run_field(&fa, rows, lines, (size_t)n);
+        free(text), free(rows), free(lines);
         free(at_text), free(fa.at_items), free(fa.at_lines);
         return rc;
     }
-    size_t len = strlen(from);
-    char* list = malloc(len + 1);
-    char** items = malloc(MAX_SOURCES * sizeof *items);
-    if (!list || !items) {
-        free(list), free(items);
-        free(at_text), free(fa.at_items), free(fa.at_lines);
-        cli_error(NULL, 0, "out of memory");
-        return CLI_INPUT;
-    }
-    memcpy(list, from, len + 1);
-    size_t count = cli_split_list(list, items, MAX_SOURCES);
-    rc = count ? (fa.gradient ? run_gradient(&fa, items, NULL, count)
-                  : fa.isolines || fa.isoline_count ? run_isolines(&fa, items, NULL, count)
-                                                    : run_field(&fa, items, NULL, count))
-               : cli_usage("field", "bad --from list \"%s\" (SPEC;SPEC;..., no empty item, at most %d)", from, MAX_SOURCES);
-    free(list), free(items);
+    rc = fa.gradient ? run_gradient(&fa, items, NULL, count)
+         : fa.isolines || fa.isoline_count ? run_isolines(&fa, items, NULL, count)
+                                           : run_field(&fa, items, NULL, count);
+    free(list), free(items), free(fa.curves);
     free(at_text), free(fa.at_items), free(fa.at_lines);
     return rc;
 }
@@ -777,6 +936,15 @@ const cli_command cli_cmd_field = {
     "                                                    of summing to 1 they are rescaled)\n"
     "                                   e:HALFEDGE:t     a point of an edge (halfedge 3*face+corner)\n"
     "                                   p:x,y,z          the surface point closest to x,y,z\n"
+    "                                   curve:FILE       every point of a curve: FILE has one point\n"
+    "                                                    a line (a SPEC, x y z, or an OBJ v line:\n"
+    "                                                    a path's .obj is a curve), a blank line\n"
+    "                                                    between polylines; consecutive points lie\n"
+    "                                                    in one face or on one edge (a point within\n"
+    "                                                    1e-9 of an edge or corner is taken on it)\n"
+    "                                   boundary         every boundary edge of the mesh\n"
+    "                         curves are exact sources (their segments' insides too), with -o,\n"
+    "                         --at, --max-distance and --threads\n"
     "  --sources FILE|all     one field per source: FILE has one SPEC a line ('#' comments and\n"
     "                         blank lines skipped; '-' reads stdin), 'all' is every vertex in order\n"
     "                         (sparse outputs only); the fields are computed in parallel and\n"

@@ -23,6 +23,7 @@ C_NAME = {
     "Allocator": "tg_allocator",
     "MeshReport": "tg_mesh_report",
     "SurfacePointC": "tg_surface_point",
+    "SurfaceSegmentC": "tg_surface_segment",
     "ClosestHit": "tg_closest_hit",
     "SignedHit": "tg_signed_hit",
     "BvhOptions": "tg_bvh_options",

@@ -138,6 +138,11 @@ def _check(status: int, what: str, diag: Optional[_c.Diag] = None) -> None:
         _raise(status, what, diag)
 
 
+# A curve's points given in coordinates lie on the edges they cross up to rounding: within this share
+# of an edge (a barycentric, or t along an edge) they are taken on it (the CLI's ON_EDGE_REL).
+_ON_EDGE_REL = 1e-9
+
+
 def _bad(message: str) -> InvalidArgumentError:
     return InvalidArgumentError(message)
 
@@ -1635,10 +1640,87 @@ class Mesh:
         o.threads = -1 if threads == 0 else threads
         return o
 
-    def field(self, sources: Any, max_distance: Optional[float] = None,
-              progress: Optional[Callable[[float], Any]] = None, threads: int = 1) -> np.ndarray:
+    def _segments(self, curve: Any, curves: Any, boundary: Any) -> Optional[ctypes.Array]:
+        """The curve sources of field() and field_at() as C segments (None: none given)."""
+        boundary = _flag(boundary, "boundary")
+        lines = []
+        if curve is not None:
+            lines.append(("curve", curve))
+        if curves is not None:
+            if isinstance(curves, (str, bytes)) or not isinstance(curves, (list, tuple)):
+                raise _bad("curves must be a list of polylines (each as curve= takes one)")
+            lines += [(f"curves[{i}]", c) for i, c in enumerate(curves)]
+        if not lines and not boundary:
+            return None
+        geo = self._get_geo()
+        segs = []
+        if boundary:
+            n = ctypes.c_size_t(0)
+            _L.tg_geodesic_boundary_segments(geo, None, 0, ctypes.byref(n))
+            if n.value == 0:
+                raise _bad("boundary=True: the mesh has no boundary (every edge has two faces or more)")
+            arr = (_c.SurfaceSegmentC * n.value)()
+            _check(_L.tg_geodesic_boundary_segments(geo, arr, n.value, ctypes.byref(n)), "boundary")
+            segs += list(arr)
+        for what, line in lines:
+            pts = self._surface_points(line, what)
+            if len(pts) == 0:
+                raise _bad(f"{what}: an empty polyline")
+            # points from coordinates lie on the edges they cross up to rounding: named by that edge
+            snapped = [_L.tg_surface_point_snap(self._handle(), ctypes.byref(p), _ON_EDGE_REL) for p in pts]
+            pairs = [(snapped[0], snapped[0])] if len(snapped) == 1 else list(zip(snapped, snapped[1:]))
+            for i, (a, b) in enumerate(pairs):
+                sg = _c.SurfaceSegmentC(a, b)
+                diag = _c.Diag()
+                if _L.tg_surface_segment_validate(geo, ctypes.byref(sg), ctypes.byref(diag)):
+                    msg = diag.message.decode(errors="replace") or "invalid segment"
+                    raise _bad(f"{what}: points {i} and {i + 1}: {msg}")
+                segs.append(sg)
+        return (_c.SurfaceSegmentC * len(segs))(*segs)
+
+    def _curve_field(self, name: str, sources: Any, segs: ctypes.Array, points: Any, max_distance: Optional[float],
+                     progress: Optional[Callable[[float], Any]], nthreads: int) -> np.ndarray:
+        """tg_geodesic_curve_field: the vertices' distances, or (points given) the points'."""
+        def work(call: _Call) -> np.ndarray:
+            src = self._surface_points(sources if sources is not None else [], "sources")
+            pts = self._surface_points(points, "points") if points is not None else None
+            o = self._field_options(max_distance, call, nthreads)
+            out = np.empty(self.vertex_count if pts is None else len(pts))
+            geo = self._get_geo()
+            with self._geo_ws.take() as ws:
+                if pts is None:
+                    st = _L.tg_geodesic_curve_field(geo, ws, src, len(src), segs, len(segs), None, 0,
+                                                    ctypes.byref(o), None, _ptr(out), None)
+                else:
+                    st = _L.tg_geodesic_curve_field(geo, ws, src, len(src), segs, len(segs), pts, len(pts),
+                                                    ctypes.byref(o), _ptr(out), None, None)
+            call.finish(st, name)
+            return out
+
+        return self._run(work, progress)
+
+    def boundary_segments(self) -> np.ndarray:
+        """The mesh's boundary edges, (m, 2) vertex indices (each edge of exactly one kept face,
+        in the order of the faces and their corners): the segments field(boundary=True) uses."""
+        geo = self._get_geo()
+        n = ctypes.c_size_t(0)
+        _L.tg_geodesic_boundary_segments(geo, None, 0, ctypes.byref(n))
+        arr = (_c.SurfaceSegmentC * max(n.value, 1))()
+        _check(_L.tg_geodesic_boundary_segments(geo, arr, n.value, ctypes.byref(n)), "boundary_segments")
+        return np.array([[arr[i].a.index, arr[i].b.index] for i in range(n.value)], dtype=np.int64).reshape(-1, 2)
+
+    def field(self, sources: Any = None, max_distance: Optional[float] = None,
+              progress: Optional[Callable[[float], Any]] = None, threads: int = 1, *, curve: Any = None,
+              curves: Any = None, boundary: bool = False) -> np.ndarray:
         """The exact geodesic distance from the nearest source to every vertex, by window
         propagation (Chen-Han / VTP), exact up to rounding.
+
+        Curves are sources too, exact (every point of them, the insides of their segments
+        included, as the CLI's --from curve:FILE and boundary): curve= one polyline (an integer
+        array of vertices, a (k, 3) array of positions snapped to the surface, or SurfacePoints;
+        consecutive points in one face or on one edge: a path's points are a curve; points within
+        1e-9 of an edge or corner are taken on it), curves= a list of polylines, boundary=True
+        every boundary edge of the mesh. They mix with point sources.
 
         sources: a vertex index, a list or integer array of vertices, SurfacePoints (on faces or
         edges too), or (k, 3) positions snapped to the surface. max_distance: stop there (vertices
@@ -1651,6 +1733,11 @@ class Mesh:
         propagation on N threads: every N > 1 gives the same bits, within 1e-12 relative of one
         thread's (the CLI's field --from --threads N)."""
         nthreads = _threads(threads)
+        segs = self._segments(curve, curves, boundary)
+        if segs is not None:
+            return self._curve_field("field", sources, segs, None, max_distance, progress, nthreads)
+        if sources is None:
+            raise _bad("field() needs sources, curve=, curves= or boundary=True")
 
         def work(call: _Call) -> np.ndarray:
             src = self._surface_points(sources, "sources")
@@ -1803,11 +1890,16 @@ class Mesh:
 
         return self._run(work)
 
-    def field_at(self, sources: Any, points: Any, max_distance: Optional[float] = None, threads: int = 1) -> np.ndarray:
+    def field_at(self, sources: Any, points: Any, max_distance: Optional[float] = None, threads: int = 1, *,
+                 curve: Any = None, curves: Any = None, boundary: bool = False) -> np.ndarray:
         """The exact geodesic distance from the sources to arbitrary surface points (in faces, on
-        edges, vertices) in one propagation. sources as field(); points: SurfacePoints, vertex
-        indices or (k, 3) positions; threads as field()'s. Returns (k,) float64."""
+        edges, vertices) in one propagation. sources as field() (None with curves only); points:
+        SurfacePoints, vertex indices or (k, 3) positions; threads, curve, curves, boundary as
+        field()'s. Returns (k,) float64."""
         nthreads = _threads(threads)
+        segs = self._segments(curve, curves, boundary)
+        if segs is not None:
+            return self._curve_field("field_at", sources, segs, points, max_distance, None, nthreads)
 
         def work(call: _Call) -> np.ndarray:
             src = self._surface_points(sources, "sources")

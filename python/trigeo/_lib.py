@@ -105,6 +105,10 @@ class SurfacePointC(ctypes.Structure):
     _fields_ = [("kind", c_int), ("index", c_uint32), ("t", c_double), ("bary", c_double * 3)]
 
 
+class SurfaceSegmentC(ctypes.Structure):
+    _fields_ = [("a", SurfacePointC), ("b", SurfacePointC)]
+
+
 class ClosestHit(ctypes.Structure):
     _fields_ = [("face", c_uint32), ("feature", c_int), ("sqdist", c_double), ("point", c_double * 3),
                 ("bary", c_double * 3)]
@@ -311,6 +315,11 @@ _SIGNATURES = {
     "tg_geodesic_field_gradient": (c_int, [_vp, _vp, _psp, c_size_t, POINTER(FieldOptions), _pd, _vp, _pu32, _pd, _pd,
                                            _vp, _vp]),
     "tg_geodesic_field_at": (c_int, [_vp, _vp, _psp, c_size_t, _psp, c_size_t, POINTER(FieldOptions), _pd, _pd, _vp]),
+    "tg_geodesic_curve_field": (c_int, [_vp, _vp, _psp, c_size_t, POINTER(SurfaceSegmentC), c_size_t, _psp, c_size_t,
+                                        POINTER(FieldOptions), _pd, _pd, _vp]),
+    "tg_geodesic_boundary_segments": (c_int, [_vp, POINTER(SurfaceSegmentC), c_size_t, POINTER(c_size_t)]),
+    "tg_surface_segment_validate": (c_int, [_vp, POINTER(SurfaceSegmentC), _pdiag]),
+    "tg_surface_point_snap": (SurfacePointC, [_vp, _psp, c_double]),
     "tg_geodesic_distance_matrix": (c_int, [_vp, _psp, c_size_t, POINTER(FieldOptions), c_int, _pd, _vp]),
     "tg_geodesic_distance_matrix_at": (c_int, [_vp, _psp, c_size_t, _psp, c_size_t, POINTER(FieldOptions), c_int,
                                                _pd, _vp]),

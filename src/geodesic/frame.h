@@ -96,6 +96,19 @@ static inline void tg__ring_interval(const tg_geodesic* g, uint32_t e, uint32_t 
     }
 }
 
+/* A line window's ray direction (nx, ny) and offset sigma (the distance at (px, py) is
+ * sigma + nx px + ny py), given in e's frame, in o's frame (tg__ring_point's map). */
+static inline void tg__ring_line(const tg_geodesic* g, uint32_t e, uint32_t o, double nx, double ny, double sigma,
+                                 double* out_nx, double* out_ny, double* out_sigma)
+{
+    if (g->tri[o] == g->tri[e]) {
+        *out_nx = nx, *out_sigma = sigma;
+    } else { /* x -> len - x: the new origin is at x = len */
+        *out_nx = -nx, *out_sigma = sigma + nx * g->frame[o].len;
+    }
+    *out_ny = -ny;
+}
+
 /* The unit direction of the edge from o to d (2D points of some frame, |d - o| = len > 0). */
 static inline void tg__edge_dir(const double o[2], const double d[2], double len, double u[2])
 {
@@ -108,6 +121,15 @@ static inline void tg__to_edge_frame_u(const double o[2], const double u[2], con
     double rx = p[0] - o[0], ry = p[1] - o[1];
     out[0] = rx * u[0] + ry * u[1];
     out[1] = u[0] * ry - u[1] * rx;
+}
+/* A line window's direction n and offset sigma (as tg__ring_line) in the frame of the edge from o
+ * along u: the direction turned, the offset the distance at o. */
+static inline void tg__to_edge_frame_line(const double o[2], const double u[2], const double n[2], double sigma,
+                                          double out_n[2], double* out_sigma)
+{
+    out_n[0] = n[0] * u[0] + n[1] * u[1];
+    out_n[1] = u[0] * n[1] - u[1] * n[0];
+    *out_sigma = sigma + n[0] * o[0] + n[1] * o[1];
 }
 /* The same for the edge from o to d (|d - o| = len > 0). */
 static inline void tg__to_edge_frame(const double o[2], const double d[2], double len, const double p[2],

@@ -658,7 +658,7 @@ tg_status tg_geodesic_create(const tg_mesh* mesh, const tg_geodesic_options* opt
     if (!out) return TG_ERR_INVALID_ARGUMENT;
     *out = NULL;
     if (!mesh) return TG_ERR_INVALID_ARGUMENT;
-    if (!tg__mesh_in_distance_range(mesh) || mesh->vertex_count >= TG__MAX_VERTICES) return TG_ERR_UNSUPPORTED;
+    if (!tg__mesh_in_distance_range(mesh) || mesh->vertex_count >= TG__MAX_VERTICES - 1u) return TG_ERR_UNSUPPORTED;
     const tg_allocator* a = options ? options->allocator : NULL;
     tg_geodesic* g = tg__alloc(a, sizeof *g);
     if (!g) return TG_ERR_OUT_OF_MEMORY;

@@ -53,8 +53,9 @@ enum {
  * oded_plane_holes.obj left a point behind it 0.07% long, proven). The windows' own snaps (1e-12
  * of an edge, query.c, CORNER_SNAP_REL) cover a shadow this thin near the vertex. */
 #define TG__FLAT_ANGLE_REL 1e-13
-/* Vertices a solver takes: the window engine names a pseudo-source vertex in 29 bits of a
- * window's tag, the all-ones value meaning the sources (field/engine.h). */
+/* Vertices a solver takes (fewer than this less one): the window engine names a pseudo-source
+ * vertex in 29 bits of a window's tag, the all-ones value meaning the sources, the one below it
+ * the inside of a curve source's segment (field/engine.h). */
 #define TG__MAX_VERTICES 0x1FFFFFFFu
 
 struct tg_geodesic {

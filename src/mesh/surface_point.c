@@ -118,3 +118,22 @@ tg_surface_point tg_surface_point_canonical(const tg_mesh* m, const tg_surface_p
     }
     return q;
 }
+
+tg_surface_point tg_surface_point_snap(const tg_mesh* m, const tg_surface_point* p, double tolerance)
+{
+    tg_surface_point q = *p;
+    if (!m || !(tolerance >= 0.0) || tg_surface_point_validate(m, p, NULL) != TG_OK) return q;
+    if (q.kind == TG_SURFACE_EDGE) {
+        if (q.t <= tolerance) q.t = 0.0;
+        else if (q.t >= 1.0 - tolerance) q.t = 1.0;
+    } else if (q.kind == TG_SURFACE_FACE) {
+        double sum = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            if (q.bary[k] <= tolerance) q.bary[k] = 0.0;
+            sum += q.bary[k];
+        }
+        if (!(sum > 0.0)) return *p; /* every weight below the tolerance: no nearest feature to name */
+        for (int k = 0; k < 3; ++k) q.bary[k] /= sum;
+    }
+    return tg_surface_point_canonical(m, &q);
+}

@@ -25,10 +25,22 @@
 #include "core/heap.h"
 #include "geodesic/frame.h"
 
+/* Inlined where called, so that constant arguments (no log map record, no line windows) remove
+ * the code for them (propagate.c, window.c). */
+#if defined(__GNUC__) || defined(__clang__)
+#define TG__ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define TG__ALWAYS_INLINE inline
+#endif
+
 /* A window: the interval [b0, b1] (distances from tri[h]) of the edge of halfedge h, lit from
  * outside face h / 3 by the source image (sx, sy) of h's frame (so sy < 0). The distance at (x, 0)
  * is sigma + |(x, 0) - (sx, sy)|. Windows wait in the list of their halfedge and are propagated
- * into face h / 3. */
+ * into face h / 3.
+ * A line window (origin TG__ORIGIN_LINE: lit by the inside of a segment of a curve source, whose
+ * rays leave it at right angles) has parallel rays: (sx, sy) is then their unit direction (sy > 0,
+ * into the face) and the distance at (x, y) of h's frame is sigma + sx x + sy y (the distance to
+ * the segment's line, unfolded). */
 typedef struct tg__window {
     double b0, b1;
     double sx, sy;
@@ -49,6 +61,7 @@ typedef struct tg__window {
  * cross up to TG__FLAT_MAX of them in a row: a bound, since zero-area faces can also form cycles
  * (a doubled face, a degenerate closed component) around which a window would pass forever. */
 #define TG__ORIGIN_SOURCE TG__MAX_VERTICES
+#define TG__ORIGIN_LINE (TG__MAX_VERTICES - 1u) /* solver.c: no vertex takes this id */
 #define TG__FLAT_SHIFT 29
 #define TG__FLAT_MAX 7u
 #define TG__TAG_ORIGIN(tag) ((tag) & TG__ORIGIN_SOURCE)
@@ -62,9 +75,10 @@ static inline uint32_t tg__tag_flat_more(uint32_t tag)
 
 /* How a vertex (or a query point) got its distance, for tracing the path back (recorded only
  * when a run asks for it): along the ray of a window that crossed halfedge h (its source image
- * (sx, sy) in h's frame, its origin: a pseudo-source vertex or TG__ORIGIN_SOURCE), along an edge
- * from the vertex `origin` (h == TG_NONE), or straight inside face f from a point source or a
- * vertex `origin` (h == TG__PRED_FACE | f). */
+ * (sx, sy) in h's frame, its origin: a pseudo-source vertex or TG__ORIGIN_SOURCE; for
+ * TG__ORIGIN_LINE the rays' direction), along an edge from the vertex `origin` (h == TG_NONE), or
+ * straight inside face f from a point source or a vertex `origin` (h == TG__PRED_FACE | f; from
+ * the inside of a segment, origin TG__ORIGIN_LINE, (sx, sy) is the direction in the frame of 3f). */
 typedef struct tg__pred {
     uint32_t h, origin;
     double sx, sy;
@@ -223,6 +237,10 @@ typedef struct tg__field_query {
      * tg__field_points_in); the engine never sees the caller's form */
     const tg_surface_point* sources; /* valid points */
     size_t source_count;
+    const tg_surface_point* segments; /* curve sources: segment_count pairs (a, b) of valid points
+                                        with a face in common (tg__field_seed_segment): each
+                                        point of the segment a source */
+    size_t segment_count;
     const tg_surface_point* points; /* the distance is wanted at these too (none: point_count 0) */
     size_t point_count;
     double max_distance;             /* +inf: no limit; beyond it, +inf */
@@ -267,6 +285,7 @@ typedef struct tg__field_run {
     int all_ready;        /* past max_dist: every list propagates whatever its vertices */
     int astar;            /* q->toward is set */
     int bounded;          /* q->bound is set: pruned by it, lists all released once the front is empty */
+    int lines;            /* q->segment_count > 0: line windows (engine.h) may come */
     tg_vec3 target;       /* its position */
     /* the vertices joined to the target by a segment in a face (A*): their distance bounds it */
     uint32_t tcorner[4];
@@ -306,10 +325,36 @@ static inline double tg__window_snap(double len, double sx, double sy)
     return 1e-10 * (len + fabs(sx) + fabs(sy));
 }
 
-static inline double tg__win_dist(const tg__window* w, double x)
+static inline bool tg__win_is_line(const tg__window* w)
 {
+    return TG__TAG_ORIGIN(w->tag) == TG__ORIGIN_LINE;
+}
+
+/* The distance of window w at (x, 0) of its halfedge's frame (lines: line windows may come). */
+static TG__ALWAYS_INLINE double tg__win_dist_k(const tg__window* w, double x, bool lines)
+{
+    if (lines && tg__win_is_line(w)) return w->sigma + w->sx * x;
     double dx = x - w->sx;
     return w->sigma + sqrt(dx * dx + w->sy * w->sy);
+}
+static inline double tg__win_dist(const tg__window* w, double x)
+{
+    if (tg__win_is_line(w)) return w->sigma + w->sx * x;
+    double dx = x - w->sx;
+    return w->sigma + sqrt(dx * dx + w->sy * w->sy);
+}
+
+/* The distance of window w at the point (px, py) of its frame (py >= 0: in its face) along its
+ * ray, and where that ray crosses the edge (*out_x). */
+static inline double tg__win_dist_at(const tg__window* w, double px, double py, double* out_x)
+{
+    if (tg__win_is_line(w)) {
+        *out_x = px - py * w->sx / w->sy;
+        return fmax(0.0, w->sigma + w->sx * px + w->sy * py); /* at the segment: 0, not -1e-17 */
+    }
+    *out_x = w->sx + (px - w->sx) * (-w->sy) / (py - w->sy);
+    double dx = px - w->sx, dy = py - w->sy;
+    return w->sigma + sqrt(dx * dx + dy * dy);
 }
 
 #endif

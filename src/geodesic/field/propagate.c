@@ -32,14 +32,10 @@
 #define TG__CREW_THREADS 1
 #endif
 
-/* Plain fields must not pay for the log map's records: the functions that pass them on are
- * inlined where they are called, so that the calls with no record (a constant NULL) compile to
- * the code without them. */
-#if defined(__GNUC__) || defined(__clang__)
-#define TG__ALWAYS_INLINE inline __attribute__((always_inline))
-#else
-#define TG__ALWAYS_INLINE inline
-#endif
+/* Plain fields must not pay for the log map's records nor for line windows: the functions that
+ * pass them on are inlined where they are called (TG__ALWAYS_INLINE, engine.h), so that the calls
+ * with no record (a constant NULL) and no lines (a constant false) compile to the code without
+ * them. */
 
 enum { VS_INSIDE = 1, VS_SOURCE = 2, VS_TOUCHED = 4 }; /* fs->inside */
 enum { Q_QUEUED = 1, Q_TOUCHED = 2 };                  /* fs->queued */
@@ -196,6 +192,10 @@ bool tg__field_arrival(const tg_geodesic* g, const tg__pred* p, tg_vec3 at, tg_v
     if (p->h == TG_NONE) { /* along an edge from vertex p->origin */
         if (p->origin == TG__ORIGIN_SOURCE) return false;
         t = tg_v3_sub(at, tg__gpos(g, p->origin));
+    } else if (p->origin == TG__ORIGIN_LINE) { /* at right angles from a curve's segment */
+        tg_vec3 ax, ay;
+        tg__frame_axes(g, p->h & TG__PRED_FACE ? 3 * (p->h & ~TG__PRED_FACE) : p->h, &ax, &ay);
+        t = tg_v3_add(tg_v3_scale(ax, p->sx), tg_v3_scale(ay, p->sy));
     } else if (p->h & TG__PRED_FACE) { /* straight inside a face from the source or a vertex */
         t = tg_v3_sub(at, p->origin == TG__ORIGIN_SOURCE ? face_source : tg__gpos(g, p->origin));
     } else { /* along the ray from the window's source image, in the frame of the edge it crossed */
@@ -334,12 +334,19 @@ static bool beyond_bound(const tg__field_run* run, uint32_t h, double c0, double
     return wmin > u * (1.0 + TG__DOMINATED_REL);
 }
 
-/* The window [c0, c1] on halfedge h lit from (x, y) at offset sigma: false when it is empty,
- * grazing or unreached; else the distances at its ends. */
+/* The window [c0, c1] on halfedge h lit from (x, y) at offset sigma (line: a line window, rays
+ * of direction (x, y)): false when it is empty, grazing or unreached; else the distances at its
+ * ends. (`line` and the flags below are constants where they are inlined: plain fields carry no
+ * test for line windows.) */
 static TG__ALWAYS_INLINE bool window_ends(const tg_geodesic* g, uint32_t h, double c0, double c1, double x, double y,
-                                          double sigma, double* d0, double* d1)
+                                          double sigma, bool line, double* d0, double* d1)
 {
     double len = g->frame[h].len;
+    if (line) {
+        if (!(c0 < c1) || !(y > TG__GRAZING_REL) || !(sigma < INFINITY)) return false;
+        *d0 = fmax(0.0, sigma + x * c0), *d1 = fmax(0.0, sigma + x * c1); /* rounding below the segment: 0 */
+        return true;
+    }
     if (!(c0 < c1) || !(-y > TG__GRAZING_REL * (fabs(x) + len)) || !(sigma < INFINITY)) return false;
     *d0 = sigma + sqrt((c0 - x) * (c0 - x) + y * y);
     *d1 = sigma + sqrt((c1 - x) * (c1 - x) + y * y);
@@ -349,14 +356,15 @@ static TG__ALWAYS_INLINE bool window_ends(const tg_geodesic* g, uint32_t h, doub
 /* Adds the window [c0, c1] on halfedge h (its end distances d0, d1: window_ends) to h's list,
  * unless it is dominated or beyond the distance limit. */
 static TG__ALWAYS_INLINE bool store_window(tg__field_run* run, uint32_t h, double c0, double c1, double x, double y,
-                                           double sigma, double d0, double d1, uint32_t tag, const tg__lm_rec* rec)
+                                           double sigma, double d0, double d1, uint32_t tag, const tg__lm_rec* rec,
+                                           bool line)
 {
     tg__field_scratch* fs = run->fs;
     if (dominated(run, h, c0, c1, d0, d1)) {
         run->stats.windows_filtered++;
         return true;
     }
-    double key = (x > c0 && x < c1) ? sigma - y : (d0 < d1 ? d0 : d1);
+    double key = (!line && x > c0 && x < c1) ? sigma - y : (d0 < d1 ? d0 : d1);
     if (run->bounded && beyond_bound(run, h, c0, c1, key)) {
         run->stats.windows_filtered++;
         return true;
@@ -380,30 +388,31 @@ static TG__ALWAYS_INLINE bool store_window(tg__field_run* run, uint32_t h, doubl
 /* Adds the window [c0, c1] on halfedge h with source image (x, y) and offset sigma to h's list,
  * unless it is empty, grazing, dominated or beyond the distance limit. */
 static TG__ALWAYS_INLINE bool push_window(tg__field_run* run, uint32_t h, double c0, double c1, double x, double y,
-                                          double sigma, uint32_t tag, const tg__lm_rec* rec)
+                                          double sigma, uint32_t tag, const tg__lm_rec* rec, bool line)
 {
     double d0, d1;
-    if (!window_ends(run->g, h, c0, c1, x, y, sigma, &d0, &d1)) {
+    if (!window_ends(run->g, h, c0, c1, x, y, sigma, line, &d0, &d1)) {
         run->stats.windows_filtered++;
         return true;
     }
-    return store_window(run, h, c0, c1, x, y, sigma, d0, d1, tag, rec);
+    return store_window(run, h, c0, c1, x, y, sigma, d0, d1, tag, rec, line);
 }
 
 /* The interval [t0, t1] of halfedge e (face e / 3 on its +y side) lit from (x, y) of e's frame
  * (y > 0: inside the face) at offset sigma continues as a window into every other face at the
  * edge (rec: NULL, or the log map record in e's frame). */
 static TG__ALWAYS_INLINE bool push_ring(tg__field_run* run, uint32_t e, double t0, double t1, double x, double y,
-                                        double sigma, uint32_t tag, const tg__lm_rec* rec)
+                                        double sigma, uint32_t tag, const tg__lm_rec* rec, bool line)
 {
     const tg_geodesic* g = run->g;
     for (uint32_t o = g->ring[e]; o != e; o = g->ring[o]) {
-        double ox, oy, c0, c1;
-        tg__ring_point(g, e, o, x, y, &ox, &oy);
+        double ox, oy, os = sigma, c0, c1;
+        if (line) tg__ring_line(g, e, o, x, y, sigma, &ox, &oy, &os);
+        else tg__ring_point(g, e, o, x, y, &ox, &oy);
         tg__ring_interval(g, e, o, t0, t1, &c0, &c1);
         tg__lm_rec ro;
         if (rec) ro = tg__lm_ring(g, e, o, *rec);
-        if (!push_window(run, o, c0, c1, ox, oy, sigma, tag, rec ? &ro : NULL)) return false;
+        if (!push_window(run, o, c0, c1, ox, oy, os, tag, rec ? &ro : NULL, line)) return false;
     }
     return true;
 }
@@ -417,17 +426,18 @@ static bool lane_ring(tg__field_run* run, tg__field_lane* L, uint32_t e, double 
                       double sigma, uint32_t tag, const tg__lm_rec* rec)
 {
     const tg_geodesic* g = run->g;
-    bool records = run->q->logmap != NULL;
+    bool records = run->q->logmap != NULL, line = TG__TAG_ORIGIN(tag) == TG__ORIGIN_LINE;
     for (uint32_t o = g->ring[e]; o != e; o = g->ring[o]) {
-        double ox, oy, c0, c1, d0, d1;
-        tg__ring_point(g, e, o, x, y, &ox, &oy);
+        double ox, oy, os = sigma, c0, c1, d0, d1;
+        if (line) tg__ring_line(g, e, o, x, y, sigma, &ox, &oy, &os);
+        else tg__ring_point(g, e, o, x, y, &ox, &oy);
         tg__ring_interval(g, e, o, t0, t1, &c0, &c1);
-        if (!window_ends(g, o, c0, c1, ox, oy, sigma, &d0, &d1) || dominated(run, o, c0, c1, d0, d1)) {
+        if (!window_ends(g, o, c0, c1, ox, oy, os, line, &d0, &d1) || dominated(run, o, c0, c1, d0, d1)) {
             L->stats.windows_filtered++;
             continue;
         }
         if (!lane_grow(run->fs, L, &L->child, 1)) return false;
-        tg__lane_child c = {o, tag, c0, c1, ox, oy, sigma, d0, d1};
+        tg__lane_child c = {o, tag, c0, c1, ox, oy, os, d0, d1};
         ((tg__lane_child*)L->child.data)[L->child.count++] = c;
         if (records) { /* at the child's index */
             if (!lane_grow(run->fs, L, &L->child_rec, 1)) return false;
@@ -441,12 +451,18 @@ static bool lane_ring(tg__field_run* run, tg__field_lane* L, uint32_t e, double 
 static bool push_plain(tg__field_run* run, uint32_t e, double t0, double t1, double x, double y, double sigma,
                        uint32_t tag)
 {
-    return push_ring(run, e, t0, t1, x, y, sigma, tag, NULL);
+    return push_ring(run, e, t0, t1, x, y, sigma, tag, NULL, false);
 }
 static bool push_recorded(tg__field_run* run, uint32_t e, double t0, double t1, double x, double y, double sigma,
                           uint32_t tag, const tg__lm_rec* rec)
 {
-    return push_ring(run, e, t0, t1, x, y, sigma, tag, rec);
+    return push_ring(run, e, t0, t1, x, y, sigma, tag, rec, false);
+}
+/* A line window's (engine.h: the direction (x, y), its tag TG__ORIGIN_LINE's) push_ring. */
+static bool push_line(tg__field_run* run, uint32_t e, double t0, double t1, double x, double y, double sigma,
+                      uint32_t tag)
+{
+    return push_ring(run, e, t0, t1, x, y, sigma, tag, NULL, true);
 }
 static TG__ALWAYS_INLINE bool push_through(tg__field_run* run, uint32_t e, double t0, double t1, double x, double y,
                                            double sigma, uint32_t tag, const tg__lm_rec* rec)
@@ -578,6 +594,82 @@ tg_status tg__field_seed(tg__field_run* run, const tg_surface_point* sp)
     return ok ? TG_OK : TG_ERR_OUT_OF_MEMORY;
 }
 
+/* The inside of a segment AB of face f (barycentrics ba, bb; |AB| > 0) as a source: on each side
+ * of AB that f lies on, the rays leaving AB at right angles (the distance to the segment, where
+ * the foot of the perpendicular falls inside it) reach f's corners and query points, and light
+ * f's other edges as line windows. The ends are point sources of their own. */
+static bool emit_segment_face(tg__field_run* run, uint32_t f, const double ba[3], const double bb[3])
+{
+    const tg_geodesic* g = run->g;
+    const tg__frame* f0 = &g->frame[3 * (size_t)f];
+    double A[2], B[2], corners[3][2];
+    tg__frame_bary(f0, 0, ba, A);
+    tg__frame_bary(f0, 0, bb, B);
+    tg__frame_corners(f0, corners);
+    double tx = B[0] - A[0], ty = B[1] - A[1], len = sqrt(tx * tx + ty * ty);
+    double scale = f0->len + fabs(f0->cx) + f0->cy;
+    if (!(len > TG__GRAZING_REL * scale)) return true; /* a point: its ends are sources */
+    tx /= len, ty /= len;
+    for (int side = 1; side >= -1; side -= 2) {
+        double m[2] = {-ty * side, tx * side}; /* the unit normal towards this side, frame of 3f */
+        double reach = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            double r = (corners[k][0] - A[0]) * m[0] + (corners[k][1] - A[1]) * m[1];
+            if (r > reach) reach = r;
+        }
+        if (!(reach > TG__GRAZING_REL * scale)) continue; /* f lies on the other side only */
+        tg__pred across = {TG__PRED_FACE | f, TG__ORIGIN_LINE, m[0], m[1]};
+        for (int k = 0; k < 3; ++k) {
+            double rx = corners[k][0] - A[0], ry = corners[k][1] - A[1];
+            double t = rx * tx + ry * ty, d = rx * m[0] + ry * m[1];
+            if (t > 0.0 && t < len && d > 0.0 && !relax_vertex(run, g->tri[3 * (size_t)f + (size_t)k], d, across))
+                return false;
+        }
+        tg__field_queries_segment(run, f, A, B, m);
+        for (uint32_t k = 0; k < 3; ++k) {
+            uint32_t h = 3 * f + k;
+            const tg__frame* fr = &g->frame[h];
+            if (!(fr->len > 0.0)) continue;
+            double Ah[2], Bh[2];
+            tg__frame_bary(fr, k, ba, Ah);
+            tg__frame_bary(fr, k, bb, Bh);
+            /* the frames of one face differ by a rotation: the normal to the same side */
+            double ux = (Bh[0] - Ah[0]) / len, uy = (Bh[1] - Ah[1]) / len;
+            double n[2] = {-uy * side, ux * side};
+            if (!(n[1] < -TG__GRAZING_REL)) continue; /* rays away from (or along) this edge */
+            double xa = Ah[0] - Ah[1] * n[0] / n[1], xb = Bh[0] - Bh[1] * n[0] / n[1];
+            double c0 = xa < xb ? xa : xb, c1 = xa < xb ? xb : xa;
+            if (c0 < 0.0) c0 = 0.0;
+            if (c1 > fr->len) c1 = fr->len;
+            if (!(c0 < c1)) continue;
+            double sigma = -(n[0] * Ah[0] + n[1] * Ah[1]); /* 0 on the segment */
+            if (!push_line(run, h, c0, c1, n[0], n[1], sigma, TG__ORIGIN_LINE)) return false;
+        }
+    }
+    return true;
+}
+
+tg_status tg__field_seed_segment(tg__field_run* run, const tg_surface_point* a, const tg_surface_point* b)
+{
+    const tg_geodesic* g = run->g;
+    tg_status st = tg__field_seed(run, a);
+    if (st == TG_OK) st = tg__field_seed(run, b);
+    if (st != TG_OK) return st;
+    tg__node na = tg__node_from_surface(a), nb = tg__node_from_surface(b);
+    if (tg__node_same(g, &na, &nb)) return TG_OK;
+    /* the faces holding a: every one at its vertex, at its edge, or its face */
+    uint32_t v = na.kind == TG__NODE_VERTEX ? na.id : na.kind == TG__NODE_EDGE ? g->tri[na.id] : TG_NONE;
+    uint32_t i0 = v != TG_NONE ? g->corner_start[v] : 0, i1 = v != TG_NONE ? g->corner_start[v + 1] : 1;
+    for (uint32_t i = i0; i < i1; ++i) {
+        uint32_t f = v != TG_NONE ? g->corners[i] / 3 : na.id;
+        double ba[3], bb[3];
+        if (g->fflags[f] & (TG__F_SKIP | TG__F_FLAT)) continue;
+        if (!tg__node_bary(g, &na, f, ba) || !tg__node_bary(g, &nb, f, bb)) continue;
+        if (!emit_segment_face(run, f, ba, bb)) return TG_ERR_OUT_OF_MEMORY;
+    }
+    return TG_OK;
+}
+
 /* ---- one list across its face ---- */
 
 /* Parameter in [0, 1] along the segment o -> e where the ray from src through (b, 0) meets it. */
@@ -591,20 +683,43 @@ static double ray_param(const double src[2], double b, const double o[2], const 
     return t <= 1.0 ? t : 1.0;
 }
 
+/* The same for the ray of direction n through (b, 0) (a line window's). */
+static double line_param(const double n[2], double b, const double o[2], const double e[2])
+{
+    double num = (b - o[0]) * n[1] - (0.0 - o[1]) * n[0];
+    double den = (e[0] - o[0]) * n[1] - (e[1] - o[1]) * n[0];
+    double t = num / den;
+    if (!(t >= 0.0)) return 0.0;
+    return t <= 1.0 ? t : 1.0;
+}
+
+/* Where window w's ray through (b, 0) meets the segment o -> e (ray_param, line_param). */
+static TG__ALWAYS_INLINE double win_param(const tg__window* w, double b, const double o[2], const double e[2],
+                                          bool lines)
+{
+    const double src[2] = {w->sx, w->sy};
+    return lines && tg__win_is_line(w) ? line_param(src, b, o, e) : ray_param(src, b, o, e);
+}
+
 /* The child of w lit through [t_lo, t_hi] of the exit halfedge e, which runs from o along the unit
  * direction u (tg__edge_dir) in h's frame: the source image in e's frame, then on into the faces
  * beyond. */
 static TG__ALWAYS_INLINE bool push_child(tg__field_run* run, tg__field_lane* L, const tg__window* w, uint32_t e,
                                          const double o[2], const double u[2], double t_lo, double t_hi,
-                                         uint32_t via_flat, const tg__lm_rec* rec)
+                                         uint32_t via_flat, const tg__lm_rec* rec, bool lines)
 {
     const tg_geodesic* g = run->g;
-    double len = g->frame[e].len, src[2] = {w->sx, w->sy}, xy[2];
-    tg__to_edge_frame_u(o, u, src, xy);
+    double len = g->frame[e].len, src[2] = {w->sx, w->sy}, xy[2], sigma = w->sigma;
     uint32_t tag = via_flat ? tg__tag_flat_more(w->tag) : TG__TAG_ORIGIN(w->tag);
+    if (lines && tg__win_is_line(w)) { /* no log map record: log maps have no curve */
+        tg__to_edge_frame_line(o, u, src, w->sigma, xy, &sigma);
+        if (L) return lane_ring(run, L, e, t_lo * len, t_hi * len, xy[0], xy[1], sigma, tag, NULL);
+        return push_line(run, e, t_lo * len, t_hi * len, xy[0], xy[1], sigma, tag);
+    }
+    tg__to_edge_frame_u(o, u, src, xy);
     if (!rec) {
-        if (L) return lane_ring(run, L, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag, NULL);
-        return push_plain(run, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag);
+        if (L) return lane_ring(run, L, e, t_lo * len, t_hi * len, xy[0], xy[1], sigma, tag, NULL);
+        return push_plain(run, e, t_lo * len, t_hi * len, xy[0], xy[1], sigma, tag);
     }
     tg__lm_rec re = tg__lm_turn(*rec, u[0], u[1]);
     if (L) return lane_ring(run, L, e, t_lo * len, t_hi * len, xy[0], xy[1], w->sigma, tag, &re);
@@ -613,16 +728,23 @@ static TG__ALWAYS_INLINE bool push_child(tg__field_run* run, tg__field_lane* L, 
 
 
 
-static tg__corner_hit hit_corner(const tg__window* w, const tg__frame* fr)
+static TG__ALWAYS_INLINE tg__corner_hit hit_corner(const tg__window* w, const tg__frame* fr, bool lines)
 {
     tg__corner_hit r;
     const double src[2] = {w->sx, w->sy}, c[2] = {fr->cx, fr->cy};
     const double x0[2] = {w->b0, 0.0}, x1[2] = {w->b1, 0.0};
     /* > 0: C is left of the ray, which passes right of C */
-    r.o0 = tg__orient2d_sign(src, x0, c);
-    r.o1 = tg__orient2d_sign(src, x1, c);
-    /* where the ray through C crosses the edge (cy - sy > 0 since sy < 0 <= cy) */
-    double xc = w->sx + (fr->cx - w->sx) * (-w->sy) / (fr->cy - w->sy);
+    double xc;
+    if (lines && tg__win_is_line(w)) { /* rays of direction (sx, sy): the sides by the cross product */
+        double a0 = w->sx * fr->cy - w->sy * (fr->cx - w->b0), a1 = w->sx * fr->cy - w->sy * (fr->cx - w->b1);
+        r.o0 = (a0 > 0.0) - (a0 < 0.0), r.o1 = (a1 > 0.0) - (a1 < 0.0);
+        xc = fr->cx - fr->cy * w->sx / w->sy;
+    } else {
+        r.o0 = tg__orient2d_sign(src, x0, c);
+        r.o1 = tg__orient2d_sign(src, x1, c);
+        /* where the ray through C crosses the edge (cy - sy > 0 since sy < 0 <= cy) */
+        xc = w->sx + (fr->cx - w->sx) * (-w->sy) / (fr->cy - w->sy);
+    }
     /* A ray through C (rays through vertices are common on grids and CAD meshes) bounds windows
      * on both of its sides, and rounding may make both miss C by an ulp: the window whose start
      * ray passes C that closely takes it. One side is enough: the window beyond a window's end
@@ -635,7 +757,8 @@ static tg__corner_hit hit_corner(const tg__window* w, const tg__frame* fr)
     r.dc = INFINITY, r.xc = 0.0;
     if (r.covers) {
         double dxc = fr->cx - w->sx, dyc = fr->cy - w->sy;
-        r.dc = w->sigma + sqrt(dxc * dxc + dyc * dyc);
+        r.dc = lines && tg__win_is_line(w) ? fmax(0.0, w->sigma + w->sx * fr->cx + w->sy * fr->cy)
+                                  : w->sigma + sqrt(dxc * dxc + dyc * dyc);
         if (r.o1 == 0) {
             r.xc = w->b1;
         } else if (r.o0 == 0) {
@@ -654,14 +777,15 @@ static tg__corner_hit hit_corner(const tg__window* w, const tg__frame* fr)
  * their rays cross the best one's ray to C inside the face (one angle, one split). u: the unit
  * directions of C -> A and B -> C in h's frame (the same for the whole list). */
 static TG__ALWAYS_INLINE bool cross_face(tg__field_run* run, tg__field_lane* L, uint32_t h, const tg__window* w,
-                                         tg__corner_hit hc, int flat, const double u[4], const tg__lm_rec* rec)
+                                         tg__corner_hit hc, int flat, const double u[4], const tg__lm_rec* rec,
+                                         bool lines)
 {
     tg__field_scratch* fs = run->fs;
     const tg_geodesic* g = fs->g;
     uint32_t hn = tg_halfedge_next(h), hp = tg_halfedge_prev(h);
     const tg__frame* fr = &g->frame[h];
     double len = fr->len;
-    const double src[2] = {w->sx, w->sy}, a[2] = {0.0, 0.0}, b[2] = {len, 0.0}, c[2] = {fr->cx, fr->cy};
+    const double a[2] = {0.0, 0.0}, b[2] = {len, 0.0}, c[2] = {fr->cx, fr->cy};
     bool has_l = false, has_r = false;
     double lo_l = w->b0, hi_l = w->b1, lo_r = w->b0, hi_r = w->b1;
     if (hc.o1 <= 0) {
@@ -681,14 +805,14 @@ static TG__ALWAYS_INLINE bool cross_face(tg__field_run* run, tg__field_lane* L, 
         }
     }
     if (has_l) { /* exit C -> A is halfedge hp */
-        double t_hi = lo_l == 0.0 ? 1.0 : ray_param(src, lo_l, c, a);
-        double t_lo = l_at_c ? 0.0 : ray_param(src, hi_l, c, a);
-        if (!push_child(run, L, w, hp, c, u, t_lo, t_hi, (uint32_t)flat, rec)) return false;
+        double t_hi = lo_l == 0.0 ? 1.0 : win_param(w, lo_l, c, a, lines);
+        double t_lo = l_at_c ? 0.0 : win_param(w, hi_l, c, a, lines);
+        if (!push_child(run, L, w, hp, c, u, t_lo, t_hi, (uint32_t)flat, rec, lines)) return false;
     }
     if (has_r) { /* exit B -> C is halfedge hn */
-        double t_lo = hi_r == len ? 0.0 : ray_param(src, hi_r, b, c);
-        double t_hi = r_at_c ? 1.0 : ray_param(src, lo_r, b, c);
-        if (!push_child(run, L, w, hn, b, u + 2, t_lo, t_hi, (uint32_t)flat, rec)) return false;
+        double t_lo = hi_r == len ? 0.0 : win_param(w, hi_r, b, c, lines);
+        double t_hi = r_at_c ? 1.0 : win_param(w, lo_r, b, c, lines);
+        if (!push_child(run, L, w, hn, b, u + 2, t_lo, t_hi, (uint32_t)flat, rec, lines)) return false;
     }
     return true;
 }
@@ -710,13 +834,16 @@ static bool cross_slit(tg__field_run* run, tg__field_lane* L, uint32_t h, uint32
         const tg__lm_rec* rp = tg__lm_of(run->q->logmap, TG__TAG_ORIGIN(w.tag), run->fs->lm_win.data, ids[i],
                                          &rec);
         if (rp) rec = tg__lm_half_turn(rec);
+        /* a line window's direction turns too, its offset becomes the distance at the far end */
+        bool line = tg__win_is_line(&w);
+        double x = line ? -w.sx : len - w.sx, sigma = line ? w.sigma + w.sx * len : w.sigma;
         if (L) { /* turned by pi about the segment's middle, kept for the merge */
-            if (!lane_ring(run, L, exit, len - w.b1, len - w.b0, len - w.sx, -w.sy, w.sigma, tg__tag_flat_more(w.tag),
-                           rp))
+            if (!lane_ring(run, L, exit, len - w.b1, len - w.b0, x, -w.sy, sigma, tg__tag_flat_more(w.tag), rp))
                 return false;
             continue;
         }
-        if (!push_through(run, exit, len - w.b1, len - w.b0, len - w.sx, -w.sy, w.sigma, tg__tag_flat_more(w.tag), rp))
+        if (line ? !push_line(run, exit, len - w.b1, len - w.b0, x, -w.sy, sigma, tg__tag_flat_more(w.tag))
+                 : !push_through(run, exit, len - w.b1, len - w.b0, x, -w.sy, sigma, tg__tag_flat_more(w.tag), rp))
             return false;
     }
     (void)h;
@@ -729,7 +856,7 @@ static bool cross_slit(tg__field_run* run, tg__field_lane* L, uint32_t h, uint32
  * With a lane (several threads) it reads the shared state as the round began and
  * writes only h's own entries (its list, its split) and the lane: the children, the corner's
  * distance and the released slots wait there for the merge. */
-static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, uint32_t h)
+static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, uint32_t h, bool lines)
 {
     tg__field_scratch* fs = run->fs;
     const tg_geodesic* g = fs->g;
@@ -767,7 +894,7 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
     size_t n = listv->count;
     if (n > 1) {
         if (!scratch_grow(fs, L, keysv, n)) return false;
-        tg__windows_trim(pool, ids, keysv->data, n, fr->len);
+        tg__windows_trim(pool, ids, keysv->data, n, fr->len, lines);
     }
     if (!L) {
         tg__field_queries_cross(run, h, pool, ids, n);
@@ -788,7 +915,7 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
     for (size_t i = 0; i < n; ++i) {
         const tg__window* w = &pool[ids[i]];
         if (!(w->b0 < w->b1)) continue;
-        tg__corner_hit hc = hits[i] = hit_corner(w, fr);
+        tg__corner_hit hc = hits[i] = hit_corner(w, fr, lines);
         if (hc.covers && hc.dc < fs->split_d[h]) {
             if (!flat) {
                 /* a lane's h is touched already: a window was pushed onto it */
@@ -826,7 +953,8 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
         }
         tg__lm_rec rec;
         const tg__lm_rec* rp = lm ? tg__lm_of(lm, TG__TAG_ORIGIN(w.tag), fs->lm_win.data, ids[i], &rec) : NULL;
-        if (!(rp ? cross_face(run, L, h, &w, hits[i], flat, u, rp) : cross_face(run, L, h, &w, hits[i], flat, u, NULL)))
+        if (!(rp ? cross_face(run, L, h, &w, hits[i], flat, u, rp, false)
+                 : cross_face(run, L, h, &w, hits[i], flat, u, NULL, lines)))
             return false;
     }
     return true;
@@ -834,12 +962,13 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
 
 static bool propagate_list(tg__field_run* run, uint32_t h)
 {
-    return cross_list(run, NULL, h);
+    /* two copies: plain fields test no window for a line */
+    return run->lines ? cross_list(run, NULL, h, true) : cross_list(run, NULL, h, false);
 }
 
 static bool propagate_lane(tg__field_run* run, tg__field_lane* L, uint32_t h)
 {
-    return cross_list(run, L, h);
+    return run->lines ? cross_list(run, L, h, true) : cross_list(run, L, h, false);
 }
 
 /* ---- the front ---- */
@@ -1032,7 +1161,8 @@ static bool merge_task(tg__field_run* run, uint32_t h, const tg__lane_task* t)
     const tg__lm_rec* rec = run->q->logmap ? L->child_rec.data : NULL;
     for (uint32_t i = t->child0; i < t->child1; ++i) {
         const tg__lm_rec* ri = rec && !isnan(rec[i].base) ? &rec[i] : NULL;
-        if (!store_window(run, c[i].h, c[i].c0, c[i].c1, c[i].x, c[i].y, c[i].sigma, c[i].d0, c[i].d1, c[i].tag, ri))
+        if (!store_window(run, c[i].h, c[i].c0, c[i].c1, c[i].x, c[i].y, c[i].sigma, c[i].d0, c[i].d1, c[i].tag, ri,
+                          TG__TAG_ORIGIN(c[i].tag) == TG__ORIGIN_LINE))
             return false;
     }
     return true;

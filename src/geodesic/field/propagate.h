@@ -9,11 +9,16 @@
 void tg__field_reset(tg__field_scratch* fs);
 /* Seeds one source (distance 0), a valid point in the solver's form (engine.h, tg__field_query). */
 tg_status tg__field_seed(tg__field_run* run, const tg_surface_point* src);
+/* Seeds the segment from a to b (valid points in the solver's form with a face in common; the
+ * same point: a point source): its ends as point sources, its inside by line windows (engine.h)
+ * from every kept face holding both. */
+tg_status tg__field_seed_segment(tg__field_run* run, const tg_surface_point* a, const tg_surface_point* b);
 /* Runs the wavefront to the end (or past max_dist). TG_ERR_CANCELLED when progress says stop. */
 tg_status tg__field_propagate(tg__field_run* run);
 /* The unit direction in which the path recorded as *p (engine.h, tg__pred) arrives at the point
  * `at` (a vertex, or a query point): along the ray from the window's source image, along an edge
- * from a vertex, or straight in a face from a vertex or from the point source at `face_source`.
+ * from a vertex, straight in a face from a vertex or from the point source at `face_source`, or
+ * at right angles from a curve's segment.
  * False for a source vertex itself (no segment) and a segment of length 0. */
 bool tg__field_arrival(const tg_geodesic* g, const tg__pred* p, tg_vec3 at, tg_vec3 face_source, tg_vec3* out);
 

@@ -189,12 +189,11 @@ void tg__field_queries_cross(tg__field_run* run, uint32_t h, const tg__window* p
         for (size_t i = 0; i < n; ++i) {
             const tg__window* w = &pool[ids[i]];
             if (!(w->b0 < w->b1)) continue;
-            /* where the ray from the source image to the point crosses the edge */
-            double xs = w->sx + (px - w->sx) * (-w->sy) / (py - w->sy);
-            double snap = tg__window_snap(fr->len, w->sx, w->sy);
+            /* where the ray from the source image (or the line window's ray) to the point
+             * crosses the edge */
+            double xs, d = tg__win_dist_at(w, px, py, &xs);
+            double snap = tg__win_is_line(w) ? tg__window_snap(fr->len, 0.0, 0.0) : tg__window_snap(fr->len, w->sx, w->sy);
             if (!(xs >= w->b0 - snap && xs <= w->b1 + snap)) continue;
-            double dx = px - w->sx, dy = py - w->sy;
-            double d = w->sigma + sqrt(dx * dx + dy * dy);
             if (d < run->qdist[q[j].id]) {
                 run->qdist[q[j].id] = d;
                 tg__field_tighten(run, d);
@@ -223,6 +222,29 @@ void tg__field_queries_source(tg__field_run* run, const double src[3], double si
                 tg__pred inside = {TG__PRED_FACE | f, origin, 0.0, 0.0};
                 ((tg__pred*)fs->qpred.data)[q[j].id] = inside;
             }
+        }
+    }
+}
+
+void tg__field_queries_segment(tg__field_run* run, uint32_t f, const double A[2], const double B[2], const double m[2])
+{
+    tg__field_scratch* fs = run->fs;
+    if (!run->q->point_count || !fs->qface[f]) return;
+    const tg__frame* fr = &fs->g->frame[3 * (size_t)f];
+    double tx = B[0] - A[0], ty = B[1] - A[1], len_sq = tx * tx + ty * ty;
+    size_t begin, end;
+    pairs_of(fs, f, &begin, &end);
+    const tg__query_pair* q = fs->qpairs.data;
+    for (size_t j = begin; j < end; ++j) {
+        double pt[2];
+        tg__frame_bary(fr, 0, q[j].b, pt);
+        double rx = pt[0] - A[0], ry = pt[1] - A[1];
+        double t = rx * tx + ry * ty, d = rx * m[0] + ry * m[1];
+        if (!(t > 0.0 && t < len_sq && d >= 0.0) || !(d < run->qdist[q[j].id])) continue;
+        run->qdist[q[j].id] = d;
+        if (run->q->trace) {
+            tg__pred across = {TG__PRED_FACE | f, TG__ORIGIN_LINE, m[0], m[1]};
+            ((tg__pred*)fs->qpred.data)[q[j].id] = across;
         }
     }
 }

@@ -12,6 +12,9 @@ tg_status tg__field_queries_setup(tg__field_run* run);
 void tg__field_queries_cross(tg__field_run* run, uint32_t h, const tg__window* pool, const uint32_t* ids, size_t n);
 /* A point source (or a point a zero-area face carries) at distance sigma inside face f. */
 void tg__field_queries_source(tg__field_run* run, const double src[3], double sigma, uint32_t f, uint32_t origin);
+/* The inside of a curve's segment A -> B (2D, the frame of halfedge 3f) as a source in face f, on
+ * the side of its unit normal m: the points whose foot of the perpendicular falls inside it. */
+void tg__field_queries_segment(tg__field_run* run, uint32_t f, const double A[2], const double B[2], const double m[2]);
 /* q->stop_at_points: lowers the limit to the largest upper bound of the points' distances (times
  * 1 + TG__TIGHT_REL) once every point has a finite one; then every point is settled within it. */
 void tg__field_queries_bound(tg__field_run* run);

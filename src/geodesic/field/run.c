@@ -15,14 +15,17 @@
 
 /* ---- one run ---- */
 
-/* Referenced vertices in the components of the sources (the progress denominator): O(sources). */
-static size_t reachable_vertices(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count)
+/* Referenced vertices in the components of the sources and segments (the progress denominator):
+ * O(sources + segments). */
+static size_t reachable_vertices(const tg_geodesic* g, const tg__field_query* q)
 {
-    if (source_count > 8) return (size_t)g->referenced;
+    size_t count = q->source_count + q->segment_count;
+    if (count > 8) return (size_t)g->referenced;
     uint32_t comps[8];
     size_t nc = 0, n = 0;
-    for (size_t i = 0; i < source_count; ++i) {
-        uint32_t f = tg__surface_face(g, &sources[i]);
+    for (size_t i = 0; i < count; ++i) {
+        const tg_surface_point* p = i < q->source_count ? &q->sources[i] : &q->segments[2 * (i - q->source_count)];
+        uint32_t f = tg__surface_face(g, p);
         if (f == TG_NONE) continue;
         bool seen = false;
         for (size_t k = 0; k < nc; ++k) seen |= comps[k] == g->comp[f];
@@ -56,15 +59,18 @@ tg_status tg__field_execute(tg__field_scratch* fs, const tg__field_query* q, tg_
     run->q = q;
     run->max_dist = q->max_distance;
     run->bounded = q->bound != NULL;
+    run->lines = q->segment_count > 0;
     if (q->toward) {
         run->astar = 1, run->target = tg_v3_load(q->toward);
         if (q->point_count == 1) target_corners(run);
     }
-    run->referenced = reachable_vertices(fs->g, q->sources, q->source_count);
+    run->referenced = reachable_vertices(fs->g, q);
     tg__field_reset(fs);
     fs->peak_bytes = tg__field_scratch_bytes(fs); /* this run's peak, from what the scratch holds now */
     tg_status st = tg__field_record_setup(run) ? tg__field_queries_setup(run) : TG_ERR_OUT_OF_MEMORY;
     for (size_t i = 0; st == TG_OK && i < q->source_count; ++i) st = tg__field_seed(run, &q->sources[i]);
+    for (size_t i = 0; st == TG_OK && i < q->segment_count; ++i)
+        st = tg__field_seed_segment(run, &q->segments[2 * i], &q->segments[2 * i + 1]);
     if (st == TG_OK) st = tg__field_propagate(run);
     tg__field_queries_finish(run, st == TG_OK); /* also clears the face marks */
     run->vertex_dist = fs->dist;

@@ -27,8 +27,14 @@
  * are lit too (their paths bend by a second-order angle at most). */
 #define SAME_SOURCE_REL 1e-13
 
-static bool same_source(const tg__window* wi, const tg__window* wj, double len)
+static TG__ALWAYS_INLINE bool same_source(const tg__window* wi, const tg__window* wj, double len, bool lines)
 {
+    if (lines && tg__win_is_line(wi) != tg__win_is_line(wj)) return false;
+    if (lines && tg__win_is_line(wi)) { /* one direction, one offset: one bundle of parallel rays */
+        double tol = SAME_SOURCE_REL * (fabs(wi->sigma) + len);
+        return fabs(wi->sx - wj->sx) <= SAME_SOURCE_REL && fabs(wi->sy - wj->sy) <= SAME_SOURCE_REL &&
+               fabs(wi->sigma - wj->sigma) <= tol && wj->b0 <= wi->b1 + tol;
+    }
     double scale = fabs(wi->sx) + fabs(wi->sy) + wi->sigma + len;
     double tol = SAME_SOURCE_REL * scale;
     return fabs(wi->sx - wj->sx) <= tol && fabs(wi->sy - wj->sy) <= tol && fabs(wi->sigma - wj->sigma) <= tol &&
@@ -46,8 +52,44 @@ static bool same_source(const tg__window* wi, const tg__window* wj, double len)
  * exactly one root, found by Newton's method from the linear root: squaring psi = 0 once more
  * into a quadratic would pair that root with the spurious one an O(alpha) away, and the
  * rounding of the nearly zero discriminant would lose both. Otherwise the quadratic is solved. */
-static int crossing_roots(const tg__window* wi, const tg__window* wj, double p, double q, double r[2])
+/* Roots in (p, q), sorted, of D_i = D_j where one window or both are line windows (engine.h):
+ * two lines cross once (their distances are linear in x); a line (offset sigma_l, slope n) and a
+ * point image (sx, sy, sigma_p) where k + n u = sqrt(u^2 + sy^2) with u = x - sx and
+ * k = sigma_l - sigma_p + n sx, i.e. -ny^2 u^2 + 2 k n u + k^2 - sy^2 = 0 (squaring adds the roots
+ * where k + n u < 0: harmless breakpoints, as for two points). */
+static int crossing_roots_line(const tg__window* wi, const tg__window* wj, double p, double q, double r[2])
 {
+    double cand[2];
+    int n = 0;
+    if (tg__win_is_line(wi) && tg__win_is_line(wj)) {
+        double slope = wi->sx - wj->sx;
+        if (slope != 0.0) cand[n++] = (wj->sigma - wi->sigma) / slope;
+    } else {
+        const tg__window *wl = tg__win_is_line(wi) ? wi : wj, *wp = wl == wi ? wj : wi;
+        double nx = wl->sx, k = wl->sigma - wp->sigma + nx * wp->sx;
+        double A = -wl->sy * wl->sy, B = 2.0 * k * nx, C = (k - wp->sy) * (k + wp->sy);
+        double disc = B * B - 4.0 * A * C;
+        if (disc >= 0.0) {
+            double sq = sqrt(disc);
+            double t = -0.5 * (B + (B >= 0.0 ? sq : -sq)); /* no cancellation */
+            cand[n++] = t / A + wp->sx;
+            if (t != 0.0) cand[n++] = C / t + wp->sx;
+        }
+    }
+    int out = 0;
+    for (int i = 0; i < n; ++i)
+        if (cand[i] > p && cand[i] < q) r[out++] = cand[i];
+    if (out == 2 && r[0] > r[1]) {
+        double t = r[0];
+        r[0] = r[1], r[1] = t;
+    }
+    return out;
+}
+
+static TG__ALWAYS_INLINE int crossing_roots(const tg__window* wi, const tg__window* wj, double p, double q, double r[2],
+                                            bool lines)
+{
+    if (lines && (tg__win_is_line(wi) || tg__win_is_line(wj))) return crossing_roots_line(wi, wj, p, q, r);
     double c = 0.5 * (wi->sx + wj->sx), ha = 0.5 * (wi->sx - wj->sx); /* image i at +ha, j at -ha */
     double P = wi->sy * wi->sy;
     double alpha = wj->sigma - wi->sigma;
@@ -96,9 +138,9 @@ static int crossing_roots(const tg__window* wi, const tg__window* wj, double p, 
 }
 
 /* Which window keeps the part around x: +1 for i, -1 for j. */
-static int winner_at(const tg__window* wi, const tg__window* wj, double x, int i_first)
+static TG__ALWAYS_INLINE int winner_at(const tg__window* wi, const tg__window* wj, double x, int i_first, bool lines)
 {
-    double di = tg__win_dist(wi, x), dj = tg__win_dist(wj, x);
+    double di = tg__win_dist_k(wi, x, lines), dj = tg__win_dist_k(wj, x, lines);
     double tol = TIE_REL * (di > dj ? di : dj);
     if (dj > di + tol) return 1;
     if (di > dj + tol) return -1;
@@ -108,7 +150,7 @@ static int winner_at(const tg__window* wi, const tg__window* wj, double x, int i
 
 /* Trims the pair over their overlap [p, q]: each window loses the runs of sub-intervals that the
  * other wins and that touch its own end. */
-static void trim_pair(tg__window* wi, tg__window* wj)
+static TG__ALWAYS_INLINE void trim_pair(tg__window* wi, tg__window* wj, bool lines)
 {
     double p = wi->b0 > wj->b0 ? wi->b0 : wj->b0, q = wi->b1 < wj->b1 ? wi->b1 : wj->b1;
     if (!(p < q)) return;
@@ -116,11 +158,11 @@ static void trim_pair(tg__window* wi, tg__window* wj)
     int nb = 0;
     br[nb++] = p;
     double r[2];
-    int nr = crossing_roots(wi, wj, p, q, r);
+    int nr = crossing_roots(wi, wj, p, q, r, lines);
     for (int k = 0; k < nr; ++k) br[nb++] = r[k];
     br[nb++] = q;
     int win[3];
-    for (int k = 0; k + 1 < nb; ++k) win[k] = winner_at(wi, wj, 0.5 * (br[k] + br[k + 1]), 1);
+    for (int k = 0; k + 1 < nb; ++k) win[k] = winner_at(wi, wj, 0.5 * (br[k] + br[k + 1]), 1, lines);
     int ns = nb - 1;
     /* prefix runs: the window that starts at p loses the prefix the other wins */
     int k0 = 0;
@@ -151,7 +193,38 @@ static int cmp_key(const void* x, const void* y)
     return (a->id > b->id) - (a->id < b->id);
 }
 
-uint64_t tg__windows_trim(tg__window* pool, uint32_t* ids, tg__win_key* keys, size_t n, double len)
+/* The merges and trims of tg__windows_trim after the sort (ids in order of start). */
+static TG__ALWAYS_INLINE uint64_t trim_sorted(tg__window* pool, const uint32_t* ids, const tg__win_key* keys, size_t n,
+                                              double len, bool lines)
+{
+    /* merge runs of windows of one source image (a fan of thin faces splits one bundle of rays
+     * into as many windows as it has faces) */
+    size_t live = 0;
+    for (size_t j = 1; j < n; ++j) {
+        tg__window *wi = &pool[ids[live]], *wj = &pool[ids[j]];
+        if (same_source(wi, wj, len, lines)) {
+            if (wj->b1 > wi->b1) wi->b1 = wj->b1;
+            wj->b1 = wj->b0; /* empty: dropped by the caller */
+        } else {
+            live = j;
+        }
+    }
+    /* trimming only raises starts and lowers ends, so once a later window's start before
+     * trimming reaches wi's end, no window after it overlaps wi */
+    uint64_t pairs = 0;
+    for (size_t i = 0; i < n; ++i) {
+        tg__window* wi = &pool[ids[i]];
+        for (size_t j = i + 1; j < n && wi->b0 < wi->b1 && keys[j].key < wi->b1; ++j) {
+            tg__window* wj = &pool[ids[j]];
+            if (!(wj->b0 < wj->b1)) continue;
+            trim_pair(wi, wj, lines);
+            pairs++;
+        }
+    }
+    return pairs;
+}
+
+uint64_t tg__windows_trim(tg__window* pool, uint32_t* ids, tg__win_key* keys, size_t n, double len, bool lines)
 {
     /* sort by b0: lists are built by prepending, so they usually arrive in descending order */
     for (size_t i = 0; i < n; ++i) keys[n - 1 - i].key = pool[ids[i]].b0, keys[n - 1 - i].id = ids[i];
@@ -173,29 +246,6 @@ uint64_t tg__windows_trim(tg__window* pool, uint32_t* ids, tg__win_key* keys, si
         }
     }
     for (size_t i = 0; i < n; ++i) ids[i] = keys[i].id;
-    /* merge runs of windows of one source image (a fan of thin faces splits one bundle of rays
-     * into as many windows as it has faces) */
-    size_t live = 0;
-    for (size_t j = 1; j < n; ++j) {
-        tg__window *wi = &pool[ids[live]], *wj = &pool[ids[j]];
-        if (same_source(wi, wj, len)) {
-            if (wj->b1 > wi->b1) wi->b1 = wj->b1;
-            wj->b1 = wj->b0; /* empty: dropped by the caller */
-        } else {
-            live = j;
-        }
-    }
-    /* trimming only raises starts and lowers ends, so once a later window's start before
-     * trimming reaches wi's end, no window after it overlaps wi */
-    uint64_t pairs = 0;
-    for (size_t i = 0; i < n; ++i) {
-        tg__window* wi = &pool[ids[i]];
-        for (size_t j = i + 1; j < n && wi->b0 < wi->b1 && keys[j].key < wi->b1; ++j) {
-            tg__window* wj = &pool[ids[j]];
-            if (!(wj->b0 < wj->b1)) continue;
-            trim_pair(wi, wj);
-            pairs++;
-        }
-    }
-    return pairs;
+    /* two copies: plain fields test no window for a line */
+    return lines ? trim_sorted(pool, ids, keys, n, len, true) : trim_sorted(pool, ids, keys, n, len, false);
 }

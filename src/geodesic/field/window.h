@@ -10,6 +10,6 @@
  * one window is shorter than another by the relative margin over a part of their common interval
  * that touches an end of the other, that part is cut from the other; windows left empty get
  * b1 <= b0. Returns the number of pairs compared. */
-uint64_t tg__windows_trim(tg__window* pool, uint32_t* ids, tg__win_key* keys, size_t n, double len);
+uint64_t tg__windows_trim(tg__window* pool, uint32_t* ids, tg__win_key* keys, size_t n, double len, bool lines);
 
 #endif

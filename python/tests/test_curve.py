@@ -1,0 +1,91 @@
+"""Fields from curves (Mesh.field(curve=, curves=, boundary=), field_at, boundary_segments): on a
+flat grid the Euclidean distance to the polyline and to the square's sides; the same numbers as
+the CLI's --from curve:FILE / boundary, bit for bit; a path's points as a curve; bad input."""
+import numpy as np
+import pytest
+
+import trigeo
+from conftest import SPOT, corpus, run_cli
+
+
+def flat_grid(n):
+    i, j = np.meshgrid(np.arange(n + 1), np.arange(n + 1), indexing="ij")
+    v = np.stack([i.ravel() / n, j.ravel() / n, np.zeros(i.size)], axis=1)
+    a = (i[:-1, :-1] * (n + 1) + j[:-1, :-1]).ravel()
+    f = np.concatenate([np.stack([a, a + n + 1, a + n + 2], 1), np.stack([a, a + n + 2, a + 1], 1)])
+    return trigeo.Mesh(v, f)
+
+
+def seg_dist(p, a, b):
+    t = np.clip(((p - a) @ (b - a)) / ((b - a) @ (b - a)), 0, 1)
+    return np.linalg.norm(p - (a + t[:, None] * (b - a)), axis=1)
+
+
+def test_flat_boundary_and_edges():
+    m = flat_grid(10)
+    v = m.vertices
+    d = m.field(boundary=True)
+    want = np.minimum(np.minimum(v[:, 0], 1 - v[:, 0]), np.minimum(v[:, 1], 1 - v[:, 1]))
+    assert np.abs(d - want).max() <= 1e-12, np.abs(d - want).max()
+    assert m.boundary_segments().shape == (40, 2)
+    # a grid line x = 0.5 from y = 0.2 to 0.7 along the edges, as vertices: the distance to the segment
+    line = [5 * 11 + k for k in range(2, 8)]
+    d = m.field(curve=line, threads=2)
+    a, b = np.array([0.5, 0.2, 0]), np.array([0.5, 0.7, 0])
+    assert np.abs(d - seg_dist(v, a, b)).max() <= 1e-12
+    # points: the same at face points, mixed with a point source far away
+    rng = np.random.default_rng(5)
+    q = np.column_stack([rng.uniform(0, 1, (50, 2)), np.zeros(50)])
+    got = m.field_at([0], q, curve=line)
+    want = np.minimum(seg_dist(q, a, b), np.linalg.norm(q, axis=1))
+    assert np.abs(got - want).max() <= 1e-12, np.abs(got - want).max()
+
+
+def test_equals_cli_and_path_curve(tmp_path):
+    name = corpus("igl_camelhead.off")
+    m = trigeo.load(name)
+    out = tmp_path / "b.csv"
+    r = run_cli("field", name, "--from", "boundary", "--csv", str(out), "--quiet")
+    assert r.returncode == 0, r.stderr
+    assert np.array_equal(np.loadtxt(out, delimiter=",", skiprows=1)[:, 1], m.field(boundary=True))
+    # a path written as .obj is a curve for the CLI; its points are one for Python: the same field
+    s = trigeo.load(SPOT)
+    p = s.path(17, 2500)
+    obj = tmp_path / "p.obj"
+    r = run_cli("path", SPOT, "--from", "v:17", "--to", "v:2500", "-o", str(obj))
+    assert r.returncode == 0, r.stderr
+    out = tmp_path / "c.csv"
+    r = run_cli("field", SPOT, "--from", f"curve:{obj};v:3", "--csv", str(out), "--quiet")
+    assert r.returncode == 0, r.stderr
+    cli = np.loadtxt(out, delimiter=",", skiprows=1)[:, 1]
+    assert np.array_equal(cli, s.field([3], curve=p.points))
+    xyz = np.array([[float(t) for t in line.split()[1:]] for line in obj.read_text().splitlines()
+                    if line.startswith("v ")])
+    assert np.array_equal(cli, s.field(3, curve=xyz))
+    # every point of the curve at distance 0 (to the rounding of a position), never below
+    d = s.field_at(None, p.surface_points, curve=p.points)
+    assert np.all(d >= 0.0) and d.max() <= 1e-15, d
+
+
+def test_bad_curves(tmp_path):
+    s = trigeo.load(SPOT)
+    with pytest.raises(trigeo.InvalidArgumentError, match="no face together"):
+        s.field(curve=[0, 2000])
+    with pytest.raises(trigeo.InvalidArgumentError, match="no boundary"):
+        s.field(boundary=True)
+    with pytest.raises(trigeo.InvalidArgumentError, match="needs sources"):
+        s.field()
+    with pytest.raises(trigeo.InvalidArgumentError, match="list of polylines"):
+        s.field(curves=5)
+    bad = tmp_path / "c.txt"
+    bad.write_text("v:0\nv:2000\n")
+    r = run_cli("field", SPOT, "--from", f"curve:{bad}", "-o", str(tmp_path / "o.ply"))
+    assert r.returncode == 2 and f"{bad}:2: the segment from line 1" in r.stderr, r.stderr
+    assert not (tmp_path / "o.ply").exists()
+    r = run_cli("field", SPOT, "--from", "boundary", "-o", str(tmp_path / "o.ply"))
+    assert r.returncode == 2 and "no boundary" in r.stderr
+    r = run_cli("field", SPOT, "--from", f"curve:{bad}", "--labels", "-o", str(tmp_path / "o.ply"))
+    assert r.returncode == 1 and "curve sources" in r.stderr
+    # the output may not overwrite the curve file
+    r = run_cli("field", SPOT, "--from", f"curve:{bad}", "--csv", str(bad))
+    assert r.returncode != 0 and bad.read_text() == "v:0\nv:2000\n"

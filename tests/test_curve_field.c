@@ -1,0 +1,410 @@
+/* test_curve_field.c - exact fields from curves (tg_geodesic_curve_field, tg_geodesic_boundary_segments)
+ * against independent answers: on flat grids the Euclidean distance to the polyline (straight,
+ * bent, along mesh edges, through vertices) at every vertex and at random face points (1e-12 of
+ * the diagonal); from the boundary of a flat square min(x, 1 - x, y, 1 - y); on curved corpus meshes
+ * the field from K points spaced s apart along the curve (point sources, tg_geodesic_field) lies
+ * above the curve's, by at most s / 2, and closer as K grows (a curve whose inside lit nothing would
+ * be too long by up to the segments' half length; one lit too far, too short); a zero-length
+ * segment is a point source (the same bits); 2 and 7 threads the same bits, within 1e-14 of one
+ * thread; every allocation failing in turn; bad input. */
+#include "tg_test.h"
+#include "tg_test_geodesic.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* Euclidean distance from (x, y) to the segment (ax, ay) - (bx, by). */
+static double seg_dist(double x, double y, double ax, double ay, double bx, double by)
+{
+    double tx = bx - ax, ty = by - ay, l2 = tx * tx + ty * ty;
+    double t = l2 > 0 ? ((x - ax) * tx + (y - ay) * ty) / l2 : 0.0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    double dx = x - (ax + t * tx), dy = y - (ay + t * ty);
+    return sqrt(dx * dx + dy * dy);
+}
+
+static int cmp_double(const void* a, const void* b)
+{
+    double x = *(const double*)a, y = *(const double*)b;
+    return (x > y) - (x < y);
+}
+
+/* The polyline pts[0 .. k) of a flat mesh (z = 0, built with add_v / add_f) cut at every edge it
+ * crosses into segments of one face each (face points of that face), appended to seg; returns
+ * the new count. */
+static size_t cut_polyline(const double (*pts)[2], int k, tg_surface_segment* seg, size_t count, size_t cap)
+{
+    for (int i = 0; i + 1 < k; ++i) {
+        double ax = pts[i][0], ay = pts[i][1], bx = pts[i + 1][0], by = pts[i + 1][1];
+        double ts[4096];
+        int nt = 0;
+        ts[nt++] = 0.0, ts[nt++] = 1.0;
+        for (size_t f = 0; f < nf; ++f)
+            for (int e = 0; e < 3; ++e) { /* the segment against each edge's line */
+                const double *p = xyz + 3 * tri[3 * f + e], *q = xyz + 3 * tri[3 * f + (e + 1) % 3];
+                double den = (bx - ax) * (q[1] - p[1]) - (by - ay) * (q[0] - p[0]);
+                if (den == 0.0) continue;
+                double t = ((p[0] - ax) * (q[1] - p[1]) - (p[1] - ay) * (q[0] - p[0])) / den;
+                double u = ((p[0] - ax) * (by - ay) - (p[1] - ay) * (bx - ax)) / den;
+                if (t > 0 && t < 1 && u >= 0 && u <= 1 && nt < 4096) ts[nt++] = t;
+            }
+        qsort(ts, (size_t)nt, sizeof *ts, cmp_double);
+        for (int j = 0; j + 1 < nt; ++j) {
+            if (ts[j + 1] - ts[j] < 1e-12) continue;
+            double m = 0.5 * (ts[j] + ts[j + 1]);
+            uint32_t f = find_face(ax + m * (bx - ax), ay + m * (by - ay));
+            CHECK(f != TG_NONE && count < cap);
+            tg_surface_point e[2];
+            for (int s = 0; s < 2; ++s) {
+                double t = ts[j + s];
+                e[s] = at(f, ax + t * (bx - ax), ay + t * (by - ay));
+                double sum = 0;
+                for (int c = 0; c < 3; ++c) { /* on the face's boundary: clamp the rounding */
+                    if (e[s].bary[c] < 0) e[s].bary[c] = 0;
+                    sum += e[s].bary[c];
+                }
+                for (int c = 0; c < 3; ++c) e[s].bary[c] /= sum;
+            }
+            seg[count].a = e[0], seg[count].b = e[1];
+            count++;
+        }
+    }
+    return count;
+}
+
+/* The flat grid against the Euclidean distance to polylines: straight across faces, bent, along a
+ * grid line (vertex to vertex, along edges), from a corner vertex. */
+static void test_flat_polylines(void)
+{
+    static const double lines[4][4][2] = {
+        {{0.13, 0.21}, {0.71, 0.58}, {0, 0}, {0, 0}},
+        {{0.2, 0.8}, {0.45, 0.35}, {0.9, 0.62}, {0, 0}},
+        {{0.25, 0.5}, {0.75, 0.5}, {0, 0}, {0, 0}}, /* a grid line: along edges */
+        {{0.0, 0.0}, {0.3, 0.1}, {0.1, 0.35}, {0.6, 0.95}},
+    };
+    static const int counts[4] = {2, 3, 2, 4};
+    nv = nf = 0;
+    grid(16, 0.0, 0.0, 1.0, 0.0, NULL);
+    ctx c = open_ctx();
+    size_t n = tg_mesh_vertex_count(c.mesh);
+    double* d = malloc(n * sizeof *d);
+    tg_rng r = {7};
+    tg_surface_point pts[200];
+    double pd[200], px[200], py[200];
+    for (int i = 0; i < 200; ++i) {
+        pts[i] = random_face_point(&r, nf);
+        const double *a = xyz + 3 * tri[3 * pts[i].index], *b = xyz + 3 * tri[3 * pts[i].index + 1],
+                     *cc = xyz + 3 * tri[3 * pts[i].index + 2];
+        px[i] = pts[i].bary[0] * a[0] + pts[i].bary[1] * b[0] + pts[i].bary[2] * cc[0];
+        py[i] = pts[i].bary[0] * a[1] + pts[i].bary[1] * b[1] + pts[i].bary[2] * cc[1];
+    }
+    for (int l = 0; l < 4; ++l) {
+        tg_surface_segment seg[512];
+        size_t ns = cut_polyline(lines[l], counts[l], seg, 0, 512);
+        CHECK(ns > (size_t)counts[l]);
+        CHECK_STATUS(tg_geodesic_curve_field(c.geo, c.ws, NULL, 0, seg, ns, pts, 200, NULL, pd, d, NULL), TG_OK);
+        double worst = 0, worst_p = 0;
+        for (size_t v = 0; v < n; ++v) {
+            double e = INFINITY;
+            for (int k = 0; k + 1 < counts[l]; ++k)
+                e = fmin(e, seg_dist(xyz[3 * v], xyz[3 * v + 1], lines[l][k][0], lines[l][k][1], lines[l][k + 1][0],
+                                     lines[l][k + 1][1]));
+            worst = fmax(worst, fabs(d[v] - e));
+        }
+        for (int i = 0; i < 200; ++i) {
+            double e = INFINITY;
+            for (int k = 0; k + 1 < counts[l]; ++k)
+                e = fmin(e, seg_dist(px[i], py[i], lines[l][k][0], lines[l][k][1], lines[l][k + 1][0], lines[l][k + 1][1]));
+            worst_p = fmax(worst_p, fabs(pd[i] - e));
+        }
+        double least = INFINITY; /* never below 0, by rounding either */
+        for (size_t v = 0; v < n; ++v) least = fmin(least, d[v]);
+        for (int i = 0; i < 200; ++i) least = fmin(least, pd[i]);
+        CHECK_MSG(worst <= 1e-12 && worst_p <= 1e-12 && least >= 0.0,
+                  "polyline %d (%zu segments): vertices off by %.3g, points by %.3g, least distance %.3g", l, ns, worst,
+                  worst_p, least);
+    }
+    /* the grid line again, as vertex-to-vertex segments along the edges */
+    tg_surface_segment along[8];
+    for (int i = 0; i < 8; ++i) {
+        along[i].a = tg_surface_vertex((uint32_t)(8 * 17 + 4 + i));
+        along[i].b = tg_surface_vertex((uint32_t)(8 * 17 + 5 + i));
+    }
+    CHECK_STATUS(tg_geodesic_curve_field(c.geo, c.ws, NULL, 0, along, 8, NULL, 0, NULL, NULL, d, NULL), TG_OK);
+    double worst = 0;
+    for (size_t v = 0; v < n; ++v)
+        worst = fmax(worst, fabs(d[v] - seg_dist(xyz[3 * v], xyz[3 * v + 1], 0.25, 0.5, 0.75, 0.5)));
+    CHECK_MSG(worst <= 1e-12, "along the edges of y = 0.5: off by %.3g", worst);
+    free(d);
+    close_sheet(&c);
+}
+
+/* From the boundary of the flat unit square: the distance to the nearest side. */
+static void test_flat_boundary(void)
+{
+    nv = nf = 0;
+    grid(12, 0.0, 0.0, 1.0, 0.0, NULL);
+    ctx c = open_ctx();
+    size_t n = tg_mesh_vertex_count(c.mesh), count = 0;
+    CHECK_STATUS(tg_geodesic_boundary_segments(c.geo, NULL, 0, &count), TG_OK);
+    CHECK_MSG(count == 48, "boundary edges %zu, expected 48", count);
+    tg_surface_segment seg[48];
+    size_t small = 0;
+    CHECK_STATUS(tg_geodesic_boundary_segments(c.geo, seg, 10, &small), TG_ERR_CAPACITY);
+    CHECK(small == 48);
+    CHECK_STATUS(tg_geodesic_boundary_segments(c.geo, seg, 48, &count), TG_OK);
+    for (size_t i = 0; i < count; ++i) { /* both ends on one side of the square */
+        const double *a = xyz + 3 * seg[i].a.index, *b = xyz + 3 * seg[i].b.index;
+        CHECK_MSG(seg[i].a.kind == TG_SURFACE_VERTEX && ((a[0] == b[0] && (a[0] == 0 || a[0] == 1)) ||
+                                                         (a[1] == b[1] && (a[1] == 0 || a[1] == 1))),
+                  "segment %zu: (%g, %g) - (%g, %g)", i, a[0], a[1], b[0], b[1]);
+    }
+    double* d = malloc(n * sizeof *d);
+    CHECK_STATUS(tg_geodesic_curve_field(c.geo, NULL, NULL, 0, seg, count, NULL, 0, NULL, NULL, d, NULL), TG_OK);
+    double worst = 0;
+    for (size_t v = 0; v < n; ++v) {
+        double x = xyz[3 * v], y = xyz[3 * v + 1];
+        worst = fmax(worst, fabs(d[v] - fmin(fmin(x, 1 - x), fmin(y, 1 - y))));
+    }
+    CHECK_MSG(worst <= 1e-12, "from the boundary: off by %.3g", worst);
+    free(d);
+    close_sheet(&c);
+}
+
+/* The curve: an exact path's segments (each inside one face) on a curved mesh. Point sources
+ * spaced along it bound its field from above, within half their spacing, closer as they get
+ * denser; and a mesh with a boundary, its boundary likewise. */
+static void dense_check(ctx* c, const tg_surface_segment* seg, size_t ns, const char* what)
+{
+    size_t n = tg_mesh_vertex_count(c->mesh);
+    const double* x = tg_mesh_positions(c->mesh);
+    double *d = malloc(n * sizeof *d), *p = malloc(n * sizeof *p);
+    CHECK_STATUS(tg_geodesic_curve_field(c->geo, c->ws, NULL, 0, seg, ns, NULL, 0, NULL, NULL, d, NULL), TG_OK);
+    double last_gap = INFINITY;
+    for (int k = 2; k <= 32; k *= 4) { /* k + 1 points a segment */
+        tg_surface_point* src = malloc(ns * (size_t)(k + 1) * sizeof *src);
+        double spacing = 0;
+        size_t m = 0;
+        for (size_t i = 0; i < ns; ++i) {
+            tg_surface_point pa = seg[i].a, pb = seg[i].b;
+            /* both ends as barycentrics of a common face: faces of a path are given; use a's face */
+            uint32_t f = pa.kind == TG_SURFACE_FACE ? pa.index : pb.index;
+            const uint32_t* t = tg_mesh_triangles(c->mesh) + 3 * (size_t)f;
+            double ba[3], bb[3];
+            for (int s = 0; s < 2; ++s) {
+                const tg_surface_point* q = s ? &pb : &pa;
+                double* b = s ? bb : ba;
+                b[0] = b[1] = b[2] = 0;
+                if (q->kind == TG_SURFACE_FACE) {
+                    CHECK(q->index == f);
+                    memcpy(b, q->bary, sizeof q->bary);
+                } else {
+                    CHECK(q->kind == TG_SURFACE_VERTEX);
+                    for (int j = 0; j < 3; ++j)
+                        if (t[j] == q->index) b[j] = 1;
+                }
+            }
+            double len = 0;
+            for (int j = 0; j < 3; ++j) {
+                double dj = 0;
+                for (int l = 0; l < 3; ++l) dj += (bb[l] - ba[l]) * x[3 * t[l] + j];
+                len += dj * dj;
+            }
+            spacing = fmax(spacing, sqrt(len) / k);
+            for (int j = 0; j <= k; ++j) {
+                double s = (double)j / k;
+                src[m++] = tg_surface_face(f, ba[0] + s * (bb[0] - ba[0]), ba[1] + s * (bb[1] - ba[1]),
+                                           1.0 - (ba[0] + s * (bb[0] - ba[0])) - (ba[1] + s * (bb[1] - ba[1])));
+                if (src[m - 1].bary[2] < 0) src[m - 1].bary[2] = 0;
+            }
+        }
+        CHECK_STATUS(tg_geodesic_field(c->geo, c->ws, src, m, NULL, p, NULL), TG_OK);
+        double below = 0, gap = 0;
+        for (size_t v = 0; v < n; ++v) {
+            if (!(p[v] < INFINITY)) {
+                CHECK_MSG(!(d[v] < INFINITY), "%s: v%zu reached from the curve only", what, v);
+                continue;
+            }
+            below = fmax(below, d[v] - p[v] * (1 + 1e-12));
+            gap = fmax(gap, p[v] - d[v]);
+        }
+        CHECK_MSG(below <= 0 && gap <= 0.5 * spacing * (1 + 1e-9) && gap < last_gap,
+                  "%s, %d pieces a segment (spacing %.3g): the curve's field above the points' by %.3g, below by %.3g "
+                  "(the last gap %.3g)", what, k, spacing, below, gap, last_gap);
+        last_gap = gap;
+        free(src);
+    }
+    free(d), free(p);
+}
+
+static void test_curved(void)
+{
+    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), "nvd_spot.obj");
+    if (!m) return;
+    ctx c = open_ctx_for(m);
+    /* an exact path's segments, each given in its face (path points are in the path's faces) */
+    tg_surface_point from = tg_surface_vertex(17), to = tg_surface_vertex(2500);
+    CHECK_STATUS(tg_geodesic_path(c.geo, c.ws, &from, &to, NULL, c.path), TG_OK);
+    tg_path_view pv;
+    tg_path_get_view(c.path, &pv);
+    tg_surface_segment* seg = malloc(pv.point_count * sizeof *seg);
+    const uint32_t* t = tg_mesh_triangles(m);
+    size_t ns = 0;
+    for (size_t i = 0; i + 1 < pv.point_count; ++i) {
+        uint32_t f = pv.faces[i];
+        for (int s = 0; s < 2; ++s) { /* both ends as face points of f */
+            const double* q = pv.xyz + 3 * (i + (size_t)s);
+            double b[3];
+            const double *a = tg_mesh_positions(m) + 3 * t[3 * f], *bb = tg_mesh_positions(m) + 3 * t[3 * f + 1],
+                         *cc = tg_mesh_positions(m) + 3 * t[3 * f + 2];
+            double e1[3], e2[3], r[3], d11 = 0, d12 = 0, d22 = 0, d1 = 0, d2 = 0;
+            for (int k = 0; k < 3; ++k) e1[k] = bb[k] - a[k], e2[k] = cc[k] - a[k], r[k] = q[k] - a[k];
+            for (int k = 0; k < 3; ++k)
+                d11 += e1[k] * e1[k], d12 += e1[k] * e2[k], d22 += e2[k] * e2[k], d1 += r[k] * e1[k], d2 += r[k] * e2[k];
+            double den = d11 * d22 - d12 * d12;
+            b[1] = (d22 * d1 - d12 * d2) / den, b[2] = (d11 * d2 - d12 * d1) / den;
+            for (int k = 1; k < 3; ++k) b[k] = b[k] < 0 ? 0 : b[k] > 1 ? 1 : b[k];
+            if (b[1] + b[2] > 1) b[2] = 1 - b[1];
+            b[0] = 1 - b[1] - b[2];
+            tg_surface_point p = tg_surface_face(f, b[0], b[1], b[2]);
+            if (s) seg[ns].b = p;
+            else seg[ns].a = p;
+        }
+        ns++;
+    }
+    CHECK(ns > 10);
+    dense_check(&c, seg, ns, "nvd_spot, an exact path");
+    free(seg);
+    close_ctx(&c);
+}
+
+/* A zero-length segment is its point as a source; 2 and 7 threads give the same bits, one thread
+ * within 1e-14. */
+static void test_point_and_threads(void)
+{
+    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), "nvd_spot.obj");
+    if (!m) return;
+    ctx c = open_ctx_for(m);
+    size_t n = tg_mesh_vertex_count(m), nb = 0;
+    double *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b), *e = malloc(n * sizeof *e);
+    tg_surface_point p = tg_surface_face(40, 0.2, 0.3, 0.5);
+    tg_surface_segment zero = {p, p};
+    CHECK_STATUS(tg_geodesic_field(c.geo, c.ws, &p, 1, NULL, a, NULL), TG_OK);
+    CHECK_STATUS(tg_geodesic_curve_field(c.geo, c.ws, NULL, 0, &zero, 1, NULL, 0, NULL, NULL, b, NULL), TG_OK);
+    CHECK_MSG(memcmp(a, b, n * sizeof *a) == 0, "a zero-length segment is not its point");
+    /* a curve of 40 segments: a ring of edges around vertex 100's neighbourhood, as face points */
+    tg_rng r = {3};
+    tg_surface_segment seg[40];
+    const uint32_t* t = tg_mesh_triangles(m);
+    for (int i = 0; i < 40; ++i) { /* random chords of random faces */
+        uint32_t f = (uint32_t)(tg_rng_next(&r) % tg_mesh_face_count(m));
+        (void)t;
+        double u = tg_rng_unit(&r) * 0.5, w = tg_rng_unit(&r) * 0.5;
+        seg[i].a = tg_surface_face(f, 1 - u - w, u, w);
+        seg[i].b = tg_surface_edge(3 * f + (uint32_t)(i % 3), tg_rng_unit(&r));
+    }
+    tg_field_options o;
+    memset(&o, 0, sizeof o);
+    CHECK_STATUS(tg_geodesic_curve_field(c.geo, c.ws, NULL, 0, seg, 40, NULL, 0, &o, NULL, a, NULL), TG_OK);
+    o.threads = 2;
+    CHECK_STATUS(tg_geodesic_curve_field(c.geo, c.ws, NULL, 0, seg, 40, NULL, 0, &o, NULL, b, NULL), TG_OK);
+    o.threads = 7;
+    CHECK_STATUS(tg_geodesic_curve_field(c.geo, c.ws, NULL, 0, seg, 40, NULL, 0, &o, NULL, e, NULL), TG_OK);
+    CHECK_MSG(memcmp(b, e, n * sizeof *b) == 0, "2 and 7 threads differ");
+    double worst = 0;
+    for (size_t v = 0; v < n; ++v)
+        if (a[v] < INFINITY) worst = fmax(worst, fabs(a[v] - b[v]) / a[v]);
+        else CHECK(!(b[v] < INFINITY));
+    CHECK_MSG(worst <= 1e-14, "2 threads vs 1: %.3g relative", worst);
+    /* the segments' ends are on the curve: distance 0 there */
+    CHECK_STATUS(tg_geodesic_curve_field(c.geo, c.ws, NULL, 0, seg, 40, &seg[5].a, 1, NULL, e, NULL, NULL), TG_OK);
+    CHECK_MSG(e[0] == 0.0, "a segment's end at %g", e[0]);
+    (void)nb;
+    free(a), free(b), free(e);
+    close_ctx(&c);
+}
+
+/* Every allocation failing in turn (1 and 2 threads): TG_ERR_OUT_OF_MEMORY, nothing written or
+ * leaked, until the first success gives the reference's bits. */
+static void test_out_of_memory(void)
+{
+    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), "nvd_spot.obj");
+    if (!m) return;
+    ctx c = open_ctx_for(m);
+    size_t n = tg_mesh_vertex_count(m);
+    double *ref = malloc(n * sizeof *ref), *out = malloc(n * sizeof *out), pr, po;
+    tg_surface_segment seg[3] = {{tg_surface_vertex(10), tg_surface_vertex(11)},
+                                 {tg_surface_face(7, 0.2, 0.2, 0.6), tg_surface_face(7, 0.6, 0.3, 0.1)},
+                                 {tg_surface_edge(30, 0.5), tg_surface_face(10, 0.1, 0.1, 0.8)}};
+    tg_surface_point q = tg_surface_face(400, 0.3, 0.3, 0.4);
+    /* segment 0 must join two vertices of one face: take face 0's first two corners */
+    const uint32_t* t = tg_mesh_triangles(m);
+    seg[0].a = tg_surface_vertex(t[0]), seg[0].b = tg_surface_vertex(t[1]);
+    seg[2].b = tg_surface_face(10, 0.1, 0.1, 0.8), seg[2].a = tg_surface_edge(30, 0.5); /* face 10: halfedge 30 */
+    int points = 0;
+    for (int threads = 1; threads <= 2; ++threads) {
+        tg_field_options plain;
+        memset(&plain, 0, sizeof plain);
+        plain.threads = threads;
+        CHECK_STATUS(tg_geodesic_curve_field(c.geo, NULL, NULL, 0, seg, 3, &q, 1, &plain, &pr, ref, NULL), TG_OK);
+        for (long k = 0;; ++k) {
+            tg_test_counting cnt = {0, 0, k, 0};
+            tg_allocator a = tg_test_failing_allocator(&cnt);
+            tg_field_options o = plain;
+            o.allocator = &a;
+            out[0] = -3.0, po = -3.0;
+            tg_status st = tg_geodesic_curve_field(c.geo, NULL, NULL, 0, seg, 3, &q, 1, &o, &po, out, NULL);
+            CHECK_MSG(st == TG_OK || (st == TG_ERR_OUT_OF_MEMORY && out[0] == -3.0 && po == -3.0),
+                      "%d threads, allocation %ld failing: %s, out[0] %g", threads, k, tg_status_name(st), out[0]);
+            CHECK_MSG(cnt.allocs == cnt.frees, "allocation %ld failing: %ld allocations, %ld frees", k, cnt.allocs,
+                      cnt.frees);
+            if (st == TG_OK) {
+                CHECK_MSG(memcmp(out, ref, n * sizeof *out) == 0 && po == pr, "%d threads: a different field", threads);
+                break;
+            }
+            if (++points > 10000) break;
+        }
+    }
+    CHECK(points > 5);
+    free(ref), free(out);
+    close_ctx(&c);
+}
+
+static void test_bad_input(void)
+{
+    nv = nf = 0;
+    grid(4, 0.0, 0.0, 1.0, 0.0, NULL);
+    ctx c = open_ctx();
+    double d[25], pd;
+    tg_surface_segment far = {tg_surface_vertex(0), tg_surface_vertex(24)}; /* no common face */
+    CHECK_STATUS(tg_geodesic_curve_field(c.geo, c.ws, NULL, 0, &far, 1, NULL, 0, NULL, NULL, d, NULL),
+                 TG_ERR_INVALID_ARGUMENT);
+    tg_surface_segment bad = {tg_surface_vertex(0), tg_surface_face(0, 0.5, 0.7, 0.1)}; /* bary sum 1.3 */
+    CHECK_STATUS(tg_geodesic_curve_field(c.geo, c.ws, NULL, 0, &bad, 1, NULL, 0, NULL, NULL, d, NULL),
+                 TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_curve_field(c.geo, c.ws, NULL, 0, NULL, 2, NULL, 0, NULL, NULL, d, NULL),
+                 TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_curve_field(c.geo, c.ws, NULL, 0, &far, 0, NULL, 0, NULL, NULL, NULL, NULL),
+                 TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_curve_field(NULL, c.ws, NULL, 0, &far, 0, NULL, 0, NULL, NULL, d, NULL),
+                 TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_boundary_segments(c.geo, NULL, 0, NULL), TG_ERR_INVALID_ARGUMENT);
+    /* nothing at all: +inf everywhere; a point only */
+    CHECK_STATUS(tg_geodesic_curve_field(c.geo, c.ws, NULL, 0, NULL, 0, NULL, 0, NULL, NULL, d, NULL), TG_OK);
+    CHECK(d[0] == INFINITY && d[24] == INFINITY);
+    tg_surface_point p = tg_surface_vertex(24);
+    CHECK_STATUS(tg_geodesic_curve_field(c.geo, c.ws, NULL, 0, NULL, 0, &p, 1, NULL, &pd, NULL, NULL), TG_OK);
+    CHECK(pd == INFINITY);
+    close_sheet(&c);
+}
+
+int main(void)
+{
+    test_flat_polylines();
+    test_flat_boundary();
+    test_curved();
+    test_point_and_threads();
+    test_out_of_memory();
+    test_bad_input();
+    return tg_test_finish();
+}

@@ -92,9 +92,10 @@ extern "C" {
  *    surface, mixed with point sources; exact: the insides of the segments are sources of
  *    parallel rays), tg_geodesic_boundary_segments (the mesh's boundary as segments),
  *    tg_surface_segment_validate, tg_surface_point_snap (a point within a tolerance of an edge or
- *    corner named by it: polylines given in coordinates). CLI: field --from curve:FILE and
- *    --from boundary; Python: Mesh.field(curve=, curves=, boundary=), field_at likewise,
- *    Mesh.boundary_segments().
+ *    corner named by it: polylines given in coordinates), tg_geodesic_curve_path (the exact path
+ *    from the nearest point of the curves). CLI: field --from curve:FILE and --from boundary,
+ *    path --from curve:FILE|boundary; Python: Mesh.field(curve=, curves=, boundary=), field_at
+ *    likewise, Mesh.curve_path, Mesh.boundary_segments().
  *  - A solver takes at most 536,870,909 vertices (one id fewer: it names a curve's windows). */
 
 /* Changes in 0.6.1 (ABI-compatible with 0.6.0: same soname, new behaviour and entry points only):
@@ -1658,6 +1659,25 @@ TG_API tg_status tg_geodesic_curve_field(const tg_geodesic* geodesic, tg_geodesi
                                          const tg_surface_point* points, size_t point_count,
                                          const tg_field_options* options, double* out_point_distance,
                                          double* out_vertex_distance, tg_field_stats* out_stats);
+
+/** The exact shortest path from the nearest point of the sources and curves to `to`: the path
+ *  starts at that point (a source, an end of a segment, or a point inside a segment, where the
+ *  path leaves the segment at right angles), ends at `to`, and its length is
+ *  tg_geodesic_curve_field's distance at `to` (proven: global TG_PATH_PROVEN, as
+ *  tg_geodesic_path's exact paths). Method: an exact propagation from all of them ordered toward
+ *  `to` (A*, one thread), then the path followed back through the windows to the point it comes
+ *  from. sources, segments: as tg_geodesic_curve_field (at least one of either, else the path is
+ *  unreachable). options: NULL or with method TG_PATH_EXACT (the default) and certify off (the
+ *  path is exact); progress as tg_geodesic_path's. path: the result (points from the curve to
+ *  `to`; unreachable when no source or curve lies in `to`'s component: 0 points, length +inf).
+ *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic, to or path; NULL sources or segments with a
+ *  non-zero count; an invalid point or segment; another method or certify on),
+ *  TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED; on error the path is empty. Thread-safe as
+ *  tg_geodesic_path. (New in 0.6.2.) */
+TG_API tg_status tg_geodesic_curve_path(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
+                                        const tg_surface_point* sources, size_t source_count,
+                                        const tg_surface_segment* segments, size_t segment_count,
+                                        const tg_surface_point* to, const tg_path_options* options, tg_path* path);
 
 /** The mesh's boundary as segments: every edge of exactly one kept face (duplicate faces and faces
  *  with a repeated vertex do not count; non-manifold edges are not boundary), from vertex to

@@ -370,6 +370,156 @@ static void test_out_of_memory(void)
     close_ctx(&c);
 }
 
+/* Position of a surface point of the fixture's mesh. */
+static void pos_of(const tg_mesh* m, const tg_surface_point* p, double out[3])
+{
+    tg_surface_point_position(m, p, out);
+}
+
+/* Distance in space from p to the segment a b. */
+static double seg_dist3(const double p[3], const double a[3], const double b[3])
+{
+    double ab[3], ap[3], ll = 0, t = 0;
+    for (int k = 0; k < 3; ++k) ab[k] = b[k] - a[k], ap[k] = p[k] - a[k], ll += ab[k] * ab[k], t += ap[k] * ab[k];
+    t = ll > 0 ? t / ll : 0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    double d = 0;
+    for (int k = 0; k < 3; ++k) d += (p[k] - a[k] - t * ab[k]) * (p[k] - a[k] - t * ab[k]);
+    return sqrt(d);
+}
+
+/* Checks one path from curves: proven, its length the field's distance at the target (rel 1e-12),
+ * its first point on a segment or a source (1e-12 of the scale), its last the target, each
+ * segment of it inside its face (its ends' barycentrics in that face >= -1e-9). */
+static void check_curve_path(const ctx* c, const tg_surface_point* src, size_t ns, const tg_surface_segment* seg,
+                             size_t nseg, const tg_surface_point* to, double want, const char* what)
+{
+    tg_path_view v;
+    tg_path_get_view(c->path, &v);
+    CHECK_MSG(v.point_count >= 1 && v.global == TG_PATH_PROVEN && fabs(v.length - want) <= 1e-12 * (want + 1e-300) + 1e-15,
+              "%s: %zu points, %s, length %.17g, field %.17g", what, v.point_count, tg_path_global_name(v.global),
+              v.length, want);
+    if (!v.point_count) return;
+    double first = INFINITY, p[3], a[3], b[3];
+    for (size_t i = 0; i < nseg; ++i) {
+        pos_of(c->mesh, &seg[i].a, a), pos_of(c->mesh, &seg[i].b, b);
+        first = fmin(first, seg_dist3(v.xyz, a, b));
+    }
+    for (size_t i = 0; i < ns; ++i) pos_of(c->mesh, &src[i], a), first = fmin(first, seg_dist3(v.xyz, a, a));
+    pos_of(c->mesh, to, p);
+    double last = seg_dist3(v.xyz + 3 * (v.point_count - 1), p, p);
+    CHECK_MSG(first <= 1e-12 && last <= 1e-12, "%s: the first point %.3g from the curves, the last %.3g from the target",
+              what, first, last);
+    const double* x = tg_mesh_positions(c->mesh);
+    const uint32_t* t = tg_mesh_triangles(c->mesh);
+    for (size_t i = 0; i + 1 < v.point_count; ++i)
+        for (int e = 0; e < 2; ++e) { /* both ends of segment i in face faces[i] */
+            const double* q = v.xyz + 3 * (i + (size_t)e);
+            uint32_t f = v.faces[i];
+            const double *c0 = x + 3 * t[3 * f], *c1 = x + 3 * t[3 * f + 1], *c2 = x + 3 * t[3 * f + 2];
+            double e1[3], e2[3], r[3], n[3], d11 = 0, d12 = 0, d22 = 0, d1 = 0, d2 = 0;
+            for (int k = 0; k < 3; ++k) e1[k] = c1[k] - c0[k], e2[k] = c2[k] - c0[k], r[k] = q[k] - c0[k];
+            n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+            for (int k = 0; k < 3; ++k)
+                d11 += e1[k] * e1[k], d12 += e1[k] * e2[k], d22 += e2[k] * e2[k], d1 += r[k] * e1[k], d2 += r[k] * e2[k];
+            double den = d11 * d22 - d12 * d12, b1 = (d22 * d1 - d12 * d2) / den, b2 = (d11 * d2 - d12 * d1) / den;
+            double off = fabs(n[0] * r[0] + n[1] * r[1] + n[2] * r[2]) / sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            CHECK_MSG(b1 >= -1e-9 && b2 >= -1e-9 && b1 + b2 <= 1 + 1e-9 && off <= 1e-12,
+                      "%s: point %zu of the path outside face %u of its segment %zu (%.3g, %.3g; %.3g off the plane)",
+                      what, i + (size_t)e, f, i, b1, b2, off);
+        }
+}
+
+/* Paths from curves: on the flat grid straight, of the Euclidean distance to the polyline, from
+ * the boundary of the square; on nvd_spot from an exact path's segments (and a point source)
+ * of the field's length at 60 random targets; bad options. */
+static void test_curve_paths(void)
+{
+    static const double line[3][2] = {{0.2, 0.8}, {0.45, 0.35}, {0.9, 0.62}};
+    nv = nf = 0;
+    grid(16, 0.0, 0.0, 1.0, 0.0, NULL);
+    ctx c = open_ctx();
+    tg_surface_segment seg[512];
+    size_t ns = cut_polyline(line, 3, seg, 0, 512);
+    tg_rng r = {11};
+    for (int i = 0; i < 40; ++i) {
+        tg_surface_point to = random_face_point(&r, nf);
+        double p[3], d;
+        pos_of(c.mesh, &to, p);
+        d = fmin(seg_dist(p[0], p[1], 0.2, 0.8, 0.45, 0.35), seg_dist(p[0], p[1], 0.45, 0.35, 0.9, 0.62));
+        CHECK_STATUS(tg_geodesic_curve_path(c.geo, c.ws, NULL, 0, seg, ns, &to, NULL, c.path), TG_OK);
+        check_curve_path(&c, NULL, 0, seg, ns, &to, d, "flat polyline");
+        tg_path_view v;
+        tg_path_get_view(c.path, &v);
+        CHECK_MSG(v.point_count && fabs(v.length - seg_dist3(v.xyz, v.xyz + 3 * (v.point_count - 1), v.xyz + 3 * (v.point_count - 1))) <= 1e-12,
+                  "flat: the path from the curve is not straight (length %.17g)", v.length);
+    }
+    size_t nb = 0;
+    tg_surface_segment bnd[64];
+    CHECK_STATUS(tg_geodesic_boundary_segments(c.geo, bnd, 64, &nb), TG_OK);
+    for (int i = 0; i < 20; ++i) {
+        tg_surface_point to = random_face_point(&r, nf);
+        double p[3];
+        pos_of(c.mesh, &to, p);
+        double d = fmin(fmin(p[0], 1 - p[0]), fmin(p[1], 1 - p[1]));
+        CHECK_STATUS(tg_geodesic_curve_path(c.geo, NULL, NULL, 0, bnd, nb, &to, NULL, c.path), TG_OK);
+        check_curve_path(&c, NULL, 0, bnd, nb, &to, d, "flat boundary");
+    }
+    /* a segment inside one face, targets in that face: behind its end (the path straight from the
+     * end, a point source in the face) and beside it (at right angles from its inside) */
+    {
+        uint32_t f = find_face(0.26, 0.256);
+        tg_surface_segment one = {at(f, 0.26, 0.256), at(f, 0.27, 0.258)};
+        const double tp[2][2] = {{0.256, 0.2525}, {0.265, 0.2615}};
+        for (int k = 0; k < 2; ++k) {
+            tg_surface_point q = at(f, tp[k][0], tp[k][1]);
+            CHECK(find_face(tp[k][0], tp[k][1]) == f);
+            double d = seg_dist(tp[k][0], tp[k][1], 0.26, 0.256, 0.27, 0.258);
+            CHECK_STATUS(tg_geodesic_curve_path(c.geo, c.ws, NULL, 0, &one, 1, &q, NULL, c.path), TG_OK);
+            check_curve_path(&c, NULL, 0, &one, 1, &q, d, k ? "beside a segment in its face" : "behind a segment's end");
+        }
+    }
+    /* a target on the curve: a path of length 0 */
+    CHECK_STATUS(tg_geodesic_curve_path(c.geo, c.ws, NULL, 0, seg, ns, &seg[3].a, NULL, c.path), TG_OK);
+    check_curve_path(&c, NULL, 0, seg, ns, &seg[3].a, 0.0, "on the curve");
+    tg_path_options bad;
+    memset(&bad, 0, sizeof bad);
+    bad.method = TG_PATH_STRAIGHTEN;
+    tg_surface_point to = tg_surface_vertex(3);
+    CHECK_STATUS(tg_geodesic_curve_path(c.geo, c.ws, NULL, 0, seg, ns, &to, &bad, c.path), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_curve_path(c.geo, c.ws, NULL, 0, NULL, 3, &to, NULL, c.path), TG_ERR_INVALID_ARGUMENT);
+    /* nothing to start from: unreachable */
+    CHECK_STATUS(tg_geodesic_curve_path(c.geo, c.ws, NULL, 0, NULL, 0, &to, NULL, c.path), TG_OK);
+    tg_path_view v;
+    tg_path_get_view(c.path, &v);
+    CHECK(v.point_count == 0 && v.length == INFINITY);
+    close_sheet(&c);
+
+    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), "nvd_spot.obj");
+    if (!m) return;
+    ctx s = open_ctx_for(m);
+    tg_surface_point from = tg_surface_vertex(17), far = tg_surface_vertex(2500);
+    CHECK_STATUS(tg_geodesic_path(s.geo, s.ws, &from, &far, NULL, s.path), TG_OK);
+    tg_path_view pv;
+    tg_path_get_view(s.path, &pv);
+    tg_surface_segment* cs = malloc(pv.point_count * sizeof *cs);
+    for (size_t i = 0; i + 1 < pv.point_count; ++i) {
+        cs[i].a = tg_surface_point_snap(m, &pv.points[i], 0.0);
+        cs[i].b = tg_surface_point_snap(m, &pv.points[i + 1], 0.0);
+    }
+    size_t ncs = pv.point_count - 1;
+    tg_surface_point extra = tg_surface_vertex(1000);
+    for (int i = 0; i < 60; ++i) {
+        tg_surface_point q = random_face_point(&r, tg_mesh_face_count(m));
+        double d;
+        CHECK_STATUS(tg_geodesic_curve_field(s.geo, s.ws, &extra, 1, cs, ncs, &q, 1, NULL, &d, NULL, NULL), TG_OK);
+        CHECK_STATUS(tg_geodesic_curve_path(s.geo, s.ws, &extra, 1, cs, ncs, &q, NULL, s.path), TG_OK);
+        check_curve_path(&s, &extra, 1, cs, ncs, &q, d, "nvd_spot");
+    }
+    free(cs);
+    close_ctx(&s);
+}
+
 static void test_bad_input(void)
 {
     nv = nf = 0;
@@ -405,6 +555,7 @@ int main(void)
     test_curved();
     test_point_and_threads();
     test_out_of_memory();
+    test_curve_paths();
     test_bad_input();
     return tg_test_finish();
 }

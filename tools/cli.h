@@ -36,6 +36,38 @@ int cli_usage(const char* cmd, const char* fmt, ...)
  * "windows            N created, M propagated" and "seconds            S.SSS", on stdout. */
 void cli_print_work(const tg_field_stats* st, double secs);
 
+/* ---- files of surface points and curves (cli_curve.c) ---- */
+
+/* Reads a sources, points or curve file: one item a line; a leading BOM, blank lines and '#'
+ * comments skipped. Returns the number of items (texts copied into *out_text, pointers into it in
+ * *out_items, their line numbers in *out_lines; out_breaks: NULL, or per item 1 where a blank line
+ * comes between it and the item before, which ends a polyline of a curve file), or -1 after
+ * printing the error. */
+long cli_read_lines(const char* path, const char* what, char** out_text, char*** out_items,
+                    unsigned long long** out_lines, unsigned char** out_breaks);
+/* Resolves the spec texts items[0..count) on the mesh into pts (lines: from `file`, named in
+ * errors; NULL: command-line items of command cmd, errors naming mesh_path; allow_xyz: "x y z"
+ * too). CLI_OK, CLI_USAGE (a command-line item that does not parse) or CLI_INPUT (printed). */
+int cli_resolve_items(const char* cmd, const char* mesh_path, const char* file, bool allow_xyz, tg_mesh* mesh,
+                      tg_bvh** bvh, char** items, const unsigned long long* lines, size_t count, tg_surface_point* pts);
+
+/* The curve sources of a --from list: `curve:FILE` items and `boundary`. */
+#define CLI_CURVES_MAX 64
+typedef struct cli_curves {
+    const char* files[CLI_CURVES_MAX];
+    size_t count; /* may exceed CLI_CURVES_MAX: too many (the caller refuses) */
+    bool boundary;
+} cli_curves;
+/* Is item a curve source (`boundary`, `curve:FILE`)? Then it is noted in *c. */
+bool cli_curve_item(const char* item, cli_curves* c);
+/* The segments of the curve sources c into *out (malloc'd, NULL when none) and *out_count: the
+ * boundary's (an error when the mesh has none), then each file's polylines (one point a line as a
+ * SPEC, "x y z" or an OBJ "v x y z"; a blank line between polylines; a point within 1e-9 of an
+ * edge or corner taken on it), each segment checked (tg_surface_segment_validate, errors naming
+ * file and line). CLI_OK, or CLI_INPUT after the error. */
+int cli_curve_segments(const char* cmd, const char* mesh_path, const cli_curves* c, tg_mesh* mesh, tg_bvh** bvh,
+                       const tg_geodesic* geo, tg_surface_segment** out, size_t* out_count);
+
 /* ---- the mesh (cli_mesh.c) ---- */
 
 /* The format every later cli_load_mesh reads (--format of the command line; TG_FORMAT_AUTO, the

@@ -68,65 +68,6 @@ static int on_progress(void* user, const tg_field_progress* p)
     return cli_interrupted();
 }
 
-/* Reads a sources, points or curve file: one item a line; a leading BOM, blank lines and '#'
- * comments skipped. Returns the number of items (texts copied into *out_text, pointers into it in
- * *out_items, their line numbers in *out_lines; out_breaks: NULL, or per item 1 where a blank line
- * comes between it and the item before, which ends a polyline of a curve file), or -1 after
- * printing the error. */
-static long read_lines(const char* path, const char* what, char** out_text, char*** out_items,
-                       unsigned long long** out_lines, unsigned char** out_breaks)
-{
-    size_t len = 0;
-    char* text = cli_read_all(path, &len);
-    if (!text) return -1;
-    if (memchr(text, 0, len)) {
-        cli_error(path, 0, "binary data (a NUL byte): not a %s file", what);
-        free(text);
-        return -1;
-    }
-    size_t lines = 1;
-    for (size_t i = 0; i < len; ++i) lines += text[i] == '\n';
-    char** items = malloc(lines * sizeof *items);
-    unsigned long long* at = malloc(lines * sizeof *at);
-    unsigned char* breaks = out_breaks ? calloc(lines, 1) : NULL;
-    if (!items || !at || (out_breaks && !breaks)) {
-        free(text), free(items), free(at), free(breaks);
-        cli_error(path, 0, "out of memory");
-        return -1;
-    }
-    long n = 0;
-    bool blank = false;
-    char* s = cli_skip_bom(text);
-    for (unsigned long long line = 1; *s || line == 1; ++line) {
-        char* end = strchr(s, '\n');
-        char* next = end ? end + 1 : s + strlen(s);
-        if (end) *end = '\0';
-        while (*s == ' ' || *s == '\t') ++s;
-        size_t l = strlen(s);
-        while (l && (s[l - 1] == ' ' || s[l - 1] == '\t' || s[l - 1] == '\r')) s[--l] = '\0';
-        if (l && s[0] != '#') {
-            items[n] = s;
-            at[n] = line;
-            if (breaks) breaks[n] = blank && n > 0;
-            blank = false;
-            n++;
-        } else if (!l) {
-            blank = true;
-        }
-        s = next;
-        if (!end) break;
-    }
-    if (n == 0) {
-        cli_error(path, 0, "no %s (one SPEC a line: v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z%s)", what,
-                  strcmp(what, "points") ? "" : ", or x y z");
-        free(text), free(items), free(at), free(breaks);
-        return -1;
-    }
-    *out_text = text, *out_items = items, *out_lines = at;
-    if (out_breaks) *out_breaks = breaks;
-    return n;
-}
-
 static void print_summary(size_t sources, size_t segments, bool matrix, const char* columns, const double* d,
                           size_t rows, size_t n, double secs, const tg_field_stats* st)
 {
@@ -166,10 +107,7 @@ typedef struct field_args {
     char** at_items;
     unsigned long long* at_lines;
     size_t at_count;
-    /* curve sources in the --from list: curve:FILE items and `boundary` */
-    const char** curves;
-    size_t curve_count;
-    bool boundary;
+    cli_curves curves;    /* curve sources in the --from list: curve:FILE items and `boundary` */
     size_t segments;      /* the segments they made (for the summary) */
 } field_args;
 
@@ -241,133 +179,11 @@ static int write_boundaries(cli_output_set* set, const char* path, const tg_voro
     return CLI_OK;
 }
 
-/* Resolves the spec texts items[0..count) (lines: from the sources file, named in errors).
- * CLI_OK, CLI_USAGE (a --from spec that does not parse) or CLI_INPUT (error printed). */
-static int resolve_all(const field_args* fa, const char* file, bool allow_xyz, tg_mesh* mesh, tg_bvh** bvh, char** items,
-                       const unsigned long long* lines, size_t count, tg_surface_point* pts)
-{
-    for (size_t i = 0; i < count; ++i) {
-        cli_spec sp;
-        if (!cli_parse_spec(items[i], &sp) && !(allow_xyz && cli_parse_xyz(items[i], &sp))) {
-            if (lines)
-                cli_error(file, lines[i], "bad %s '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z%s)",
-                          allow_xyz ? "point" : "source", items[i], allow_xyz ? " or x y z" : "");
-            else
-                cli_usage("field", "bad source '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", items[i]);
-            return lines ? CLI_INPUT : CLI_USAGE;
-        }
-        char where[4096];
-        if (lines)
-            snprintf(where, sizeof where, "%s:%llu", file, lines[i]);
-        else
-            snprintf(where, sizeof where, "%s", fa->mesh_path);
-        if (!cli_resolve_spec(where, mesh, bvh, items[i], &sp, &pts[i])) return CLI_INPUT;
-    }
-    return CLI_OK;
-}
-
 /* The distances' array (n doubles) and the mesh's solver; TG_OK or the reason. */
 static tg_status make_solver(tg_mesh* mesh, size_t n, double** out_dist, tg_geodesic** out_geo)
 {
     *out_dist = malloc((n ? n : 1) * sizeof **out_dist);
     return *out_dist ? tg_geodesic_create(mesh, NULL, out_geo) : TG_ERR_OUT_OF_MEMORY;
-}
-
-/* A curve's points given in coordinates (a path's .obj) lie on the edges they cross up to
- * rounding: within this share of an edge (barycentric, or t along an edge) they are taken on it
- * (tg_surface_point_snap), whose faces on both sides hold them. */
-#define ON_EDGE_REL 1e-9
-
-/* Appends the polylines of curve file `path` (one point a line as a SPEC, "x y z" or an OBJ
- * "v x y z"; a blank line between polylines; a polyline of one point is that point; OBJ "l", "o"
- * and "g" lines are ignored, so a path's .obj is a curve) to *seg as segments, each checked on
- * the solver (tg_surface_segment_validate). CLI_OK, or CLI_INPUT after the error (file, line). */
-static int read_curve(const field_args* fa, const char* path, tg_mesh* mesh, tg_bvh** bvh, const tg_geodesic* geo,
-                      tg_surface_segment** seg, size_t* n)
-{
-    char* text = NULL;
-    char** items = NULL;
-    unsigned long long* lines = NULL;
-    unsigned char* breaks = NULL;
-    tg_surface_point* pts = NULL;
-    long k = read_lines(path, "curve points", &text, &items, &lines, &breaks);
-    if (k < 0) return CLI_INPUT;
-    long kept = 0; /* OBJ: "v x y z" is a point, "l", "o", "g" lines are not */
-    for (long i = 0; i < k; ++i) {
-        const char* it = items[i];
-        if ((it[0] == 'l' || it[0] == 'o' || it[0] == 'g') && (it[1] == ' ' || it[1] == '\t')) {
-            if (i + 1 < k) breaks[i + 1] |= breaks[i];
-            continue;
-        }
-        items[kept] = it[0] == 'v' && (it[1] == ' ' || it[1] == '\t') ? items[i] + 2 : items[i];
-        lines[kept] = lines[i], breaks[kept] = breaks[i];
-        kept++;
-    }
-    k = kept;
-    int rc = CLI_INPUT;
-    if (k == 0) {
-        cli_error(path, 0, "no curve points (one point a line: v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t, p:x,y,z or x y z)");
-        goto done;
-    }
-    tg_surface_segment* grown = realloc(*seg, (*n + (size_t)k) * sizeof *grown);
-    pts = malloc((size_t)k * sizeof *pts);
-    if (grown) *seg = grown;
-    if (!grown || !pts) {
-        cli_error(NULL, 0, "out of memory");
-        goto done;
-    }
-    if ((rc = resolve_all(fa, path, true, mesh, bvh, items, lines, (size_t)k, pts)) != CLI_OK) goto done;
-    rc = CLI_INPUT;
-    for (long i = 0; i < k; ++i) pts[i] = tg_surface_point_snap(mesh, &pts[i], ON_EDGE_REL);
-    for (long i = 0; i < k; ++i) {
-        bool starts = i == 0 || breaks[i], alone = starts && (i + 1 == k || breaks[i + 1]);
-        if (starts && !alone) continue; /* the first point of a polyline: its segment comes next */
-        tg_surface_segment sg = {alone ? pts[i] : pts[i - 1], pts[i]};
-        tg_diag d;
-        memset(&d, 0, sizeof d);
-        if (tg_surface_segment_validate(geo, &sg, &d) != TG_OK) {
-            if (alone)
-                cli_error(path, lines[i], "%s", d.message);
-            else
-                cli_error(path, lines[i], "the segment from line %llu: %s", lines[i - 1], d.message);
-            goto done;
-        }
-        (*seg)[(*n)++] = sg;
-    }
-    rc = CLI_OK;
-done:
-    free(text), free(items), free(lines), free(breaks), free(pts);
-    return rc;
-}
-
-/* The segments of the --from list's curve sources (curve:FILE items, `boundary`) into *out
- * (malloc'd, NULL when none) and *out_count. CLI_OK, or CLI_INPUT after the error. */
-static int curve_segments(const field_args* fa, tg_mesh* mesh, tg_bvh** bvh, const tg_geodesic* geo,
-                          tg_surface_segment** out, size_t* out_count)
-{
-    tg_surface_segment* seg = NULL;
-    size_t n = 0;
-    *out = NULL, *out_count = 0;
-    if (fa->boundary) {
-        tg_geodesic_boundary_segments(geo, NULL, 0, &n);
-        if (!n) {
-            cli_error(fa->mesh_path, 0, "the mesh has no boundary (--from boundary): every edge has two faces or more");
-            return CLI_INPUT;
-        }
-        seg = malloc(n * sizeof *seg);
-        if (!seg || tg_geodesic_boundary_segments(geo, seg, n, &n) != TG_OK) {
-            free(seg);
-            cli_error(NULL, 0, "out of memory");
-            return CLI_INPUT;
-        }
-    }
-    for (size_t i = 0; i < fa->curve_count; ++i)
-        if (read_curve(fa, fa->curves[i], mesh, bvh, geo, &seg, &n) != CLI_OK) {
-            free(seg);
-            return CLI_INPUT;
-        }
-    *out = seg, *out_count = n;
-    return CLI_OK;
 }
 
 static int run_field(field_args* fa, char** items, const unsigned long long* lines, size_t count)
@@ -389,7 +205,7 @@ static int run_field(field_args* fa, char** items, const unsigned long long* lin
         cli_error(fa->mesh_path, 0, "the mesh has no faces");
         goto done;
     }
-    if ((rc = resolve_all(fa, fa->sources_path, false, mesh, &bvh, items, lines, count, pts)) != CLI_OK) goto done;
+    if ((rc = cli_resolve_items("field", fa->mesh_path, fa->sources_path, false, mesh, &bvh, items, lines, count, pts)) != CLI_OK) goto done;
     at_pts = fa->at_count ? malloc(fa->at_count * sizeof *at_pts) : NULL;
     at_d = fa->at_count ? malloc(fa->at_count * sizeof *at_d) : NULL;
     if (fa->at_count && (!at_pts || !at_d)) {
@@ -397,7 +213,7 @@ static int run_field(field_args* fa, char** items, const unsigned long long* lin
         goto done;
     }
     if (fa->at_count &&
-        (rc = resolve_all(fa, fa->at_path, true, mesh, &bvh, fa->at_items, fa->at_lines, fa->at_count, at_pts)) != CLI_OK)
+        (rc = cli_resolve_items("field", fa->mesh_path, fa->at_path, true, mesh, &bvh, fa->at_items, fa->at_lines, fa->at_count, at_pts)) != CLI_OK)
         goto done;
     rc = CLI_INPUT;
     /* the columns: the vertices, or with --sources and --to the points */
@@ -407,8 +223,9 @@ static int run_field(field_args* fa, char** items, const unsigned long long* lin
         goto done;
     }
     tg_status st = make_solver(mesh, n * rows, &dist, &geo);
-    if (st == TG_OK && (fa->curve_count || fa->boundary)) {
-        if ((rc = curve_segments(fa, mesh, &bvh, geo, &seg, &nseg)) != CLI_OK) goto done;
+    if (st == TG_OK && (fa->curves.count || fa->curves.boundary)) {
+        if ((rc = cli_curve_segments("field", fa->mesh_path, &fa->curves, mesh, &bvh, geo, &seg, &nseg)) != CLI_OK)
+            goto done;
         rc = CLI_INPUT;
         fa->segments = nseg;
     }
@@ -517,7 +334,7 @@ static int run_isolines(const field_args* fa, char** items, const unsigned long 
     size_t nv = tg_mesh_vertex_count(mesh);
     if (tg_mesh_face_count(mesh) == 0) {
         cli_error(fa->mesh_path, 0, "the mesh has no faces");
-    } else if ((rc = resolve_all(fa, fa->sources_path, false, mesh, &bvh, items, lines, count, pts)) == CLI_OK) {
+    } else if ((rc = cli_resolve_items("field", fa->mesh_path, fa->sources_path, false, mesh, &bvh, items, lines, count, pts)) == CLI_OK) {
         rc = CLI_INPUT;
         tg_status st = make_solver(mesh, nv, &dist, &geo);
         tg_field_options o;
@@ -576,7 +393,7 @@ static int run_gradient(const field_args* fa, char** items, const unsigned long 
         cli_error(fa->mesh_path, 0, "the mesh has no faces");
         goto done;
     }
-    if ((rc = resolve_all(fa, fa->sources_path, false, mesh, &bvh, items, lines, count, pts)) != CLI_OK) goto done;
+    if ((rc = cli_resolve_items("field", fa->mesh_path, fa->sources_path, false, mesh, &bvh, items, lines, count, pts)) != CLI_OK) goto done;
     rc = CLI_INPUT;
     /* columns: distance, gx, gy, gz, flag, label per vertex; gx, gy, gz, flag per face */
     cols = malloc((6 * nv + 4 * F + 1) * sizeof *cols);
@@ -668,7 +485,7 @@ static int run_sparse(const field_args* fa, char** items, const unsigned long lo
             cli_error(NULL, 0, "out of memory");
             goto done;
         }
-        if ((rc = resolve_all(fa, fa->sources_path, false, mesh, &bvh, items, lines, count, pts)) != CLI_OK) goto done;
+        if ((rc = cli_resolve_items("field", fa->mesh_path, fa->sources_path, false, mesh, &bvh, items, lines, count, pts)) != CLI_OK) goto done;
         rc = CLI_INPUT;
     }
     tg_status st = tg_geodesic_create(mesh, NULL, &geo);
@@ -780,30 +597,24 @@ static int run(int argc, char** argv)
         size_t len = strlen(from);
         list = malloc(len + 1);
         items = malloc(MAX_SOURCES * sizeof *items);
-        fa.curves = malloc(MAX_SOURCES * sizeof *fa.curves);
-        if (!list || !items || !fa.curves) {
-            free(list), free(items), free(fa.curves);
+        if (!list || !items) {
+            free(list), free(items);
             cli_error(NULL, 0, "out of memory");
             return CLI_INPUT;
         }
         memcpy(list, from, len + 1);
         size_t all = cli_split_list(list, items, MAX_SOURCES);
-        for (size_t i = 0; i < all; ++i) {
-            if (!strcmp(items[i], "boundary"))
-                fa.boundary = true;
-            else if (!strncmp(items[i], "curve:", 6) && items[i][6])
-                fa.curves[fa.curve_count++] = items[i] + 6;
-            else
-                items[count++] = items[i];
-        }
+        for (size_t i = 0; i < all; ++i)
+            if (!cli_curve_item(items[i], &fa.curves)) items[count++] = items[i];
         int bad = all == 0 ? cli_usage("field", "bad --from list \"%s\" (SPEC;SPEC;..., no empty item, at most %d)",
                                        from, MAX_SOURCES)
-                  : (fa.boundary || fa.curve_count) && (fa.gradient || fa.labels || fa.isolines || fa.isoline_count)
+                  : fa.curves.count > CLI_CURVES_MAX ? cli_usage("field", "at most %d curve files", CLI_CURVES_MAX)
+                  : (fa.curves.boundary || fa.curves.count) && (fa.gradient || fa.labels || fa.isolines || fa.isoline_count)
                       ? cli_usage("field", "curve sources (curve:FILE, boundary) go with a field (-o, --at, "
                                            "--max-distance, --threads), not yet with --gradient, --labels or --isolines")
                       : CLI_OK;
         if (bad != CLI_OK) {
-            free(list), free(items), free(fa.curves);
+            free(list), free(items);
             return bad;
         }
     }
@@ -866,9 +677,9 @@ static int run(int argc, char** argv)
     fa.field_threads = 1;
     if (threads && !fa.matrix) /* one field (--from, --labels' each source, --isolines) on several threads */
         fa.field_threads = nt == 0 ? TG_THREADS_ALL : (int)nt;
-    cli_file_role* inputs = malloc((3 + fa.curve_count) * sizeof *inputs);
+    cli_file_role* inputs = malloc((3 + fa.curves.count) * sizeof *inputs);
     if (!inputs) {
-        free(list), free(items), free(fa.curves);
+        free(list), free(items);
         cli_error(NULL, 0, "out of memory");
         return CLI_INPUT;
     }
@@ -876,23 +687,23 @@ static int run(int argc, char** argv)
     inputs[1] = (cli_file_role){fa.sources_path && strcmp(fa.sources_path, "all") ? fa.sources_path : NULL,
                                 "sources file (--sources)"};
     inputs[2] = (cli_file_role){fa.at_path, at_opt && !strcmp(at_opt, "--to") ? "points file (--to)" : "points file (--at)"};
-    for (size_t i = 0; i < fa.curve_count; ++i) inputs[3 + i] = (cli_file_role){fa.curves[i], "curve file (--from curve:)"};
+    for (size_t i = 0; i < fa.curves.count; ++i) inputs[3 + i] = (cli_file_role){fa.curves.files[i], "curve file (--from curve:)"};
     const cli_file_role outputs[3] = {{fa.out, csv ? "--csv" : "-o"}, {fa.boundaries, "--boundaries"},
                                       {fa.face_gradient, "--face-gradient"}};
-    int check = cli_check_outputs(outputs, 3, inputs, 3 + fa.curve_count);
+    int check = cli_check_outputs(outputs, 3, inputs, 3 + fa.curves.count);
     free(inputs);
     if (check == CLI_OK && (fa.sources_path || fa.field_threads != 1) && !cli_threads_available(fa.threads, "field"))
         check = CLI_INPUT;
     if (check != CLI_OK) {
-        free(list), free(items), free(fa.curves);
+        free(list), free(items);
         return check;
     }
     int rc;
     char* at_text = NULL;
     if (fa.at_path) {
-        long na = read_lines(fa.at_path, "points", &at_text, &fa.at_items, &fa.at_lines, NULL);
+        long na = cli_read_lines(fa.at_path, "points", &at_text, &fa.at_items, &fa.at_lines, NULL);
         if (na < 0) {
-            free(list), free(items), free(fa.curves);
+            free(list), free(items);
             return CLI_INPUT;
         }
         fa.at_count = (size_t)na;
@@ -901,7 +712,7 @@ static int run(int argc, char** argv)
         char* text = NULL;
         char** rows = NULL;
         unsigned long long* lines = NULL;
-        long n = fa.all ? 0 : read_lines(fa.sources_path, "sources", &text, &rows, &lines, NULL);
+        long n = fa.all ? 0 : cli_read_lines(fa.sources_path, "sources", &text, &rows, &lines, NULL);
         if (n < 0)
             rc = CLI_INPUT;
         else
@@ -916,7 +727,7 @@ static int run(int argc, char** argv)
     rc = fa.gradient ? run_gradient(&fa, items, NULL, count)
          : fa.isolines || fa.isoline_count ? run_isolines(&fa, items, NULL, count)
                                            : run_field(&fa, items, NULL, count);
-    free(list), free(items), free(fa.curves);
+    free(list), free(items);
     free(at_text), free(fa.at_items), free(fa.at_lines);
     return rc;
 }

@@ -395,17 +395,29 @@ done:
     return rc;
 }
 
-static int run_single(const char* mesh_path, const char* from, const char* to, waypoints* through, const char* out_path,
-                      bool json, const char* method_name, const tg_path_options* o)
+/* --from with curve sources (`curve:FILE`, `boundary`, and point SPECs beside them): the exact path
+ * from the nearest of them to --to (tg_geodesic_curve_path). */
+typedef struct curve_from {
+    cli_curves curves;
+    char** items; /* the point SPECs of the list */
+    size_t count;
+} curve_from;
+
+static int run_single(const char* mesh_path, const char* from, const char* to, waypoints* through,
+                      const curve_from* cf, const char* out_path, bool json, const char* method_name,
+                      const tg_path_options* o)
 {
     cli_spec sa, sb;
-    if (!through && !cli_parse_spec(from, &sa)) return cli_usage("path", "bad --from '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", from);
+    if (!through && !cf && !cli_parse_spec(from, &sa)) return cli_usage("path", "bad --from '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", from);
     if (!through && !cli_parse_spec(to, &sb)) return cli_usage("path", "bad --to '%s' (v:IDX, f:FACE:b0,b1,b2, e:HALFEDGE:t or p:x,y,z)", to);
     int rc = CLI_INPUT;
     tg_bvh* bvh = NULL;
     tg_geodesic* geo = NULL;
     tg_geodesic_workspace* ws = NULL;
     tg_path* path = NULL;
+    tg_surface_segment* seg = NULL; /* cf: the curves' segments and the point sources */
+    tg_surface_point* cpts = NULL;
+    size_t nseg = 0;
     tg_mesh* mesh = cli_load_mesh_for_distances(mesh_path);
     tg_surface_point a, b;
     if (!mesh) goto done;
@@ -414,9 +426,22 @@ static int run_single(const char* mesh_path, const char* from, const char* to, w
         goto done;
     }
     if (through ? !cli_spec_list_resolve(mesh_path, mesh, &bvh, &through->list)
-                : !cli_resolve_spec(mesh_path, mesh, &bvh, from, &sa, &a) || !cli_resolve_spec(mesh_path, mesh, &bvh, to, &sb, &b))
+                : (!cf && !cli_resolve_spec(mesh_path, mesh, &bvh, from, &sa, &a)) ||
+                      !cli_resolve_spec(mesh_path, mesh, &bvh, to, &sb, &b))
         goto done;
     tg_status st = tg_geodesic_create(mesh, NULL, &geo);
+    if (st == TG_OK && cf) {
+        cpts = malloc((cf->count ? cf->count : 1) * sizeof *cpts);
+        if (!cpts) {
+            cli_error(NULL, 0, "out of memory");
+            goto done;
+        }
+        if ((rc = cli_resolve_items("path", mesh_path, NULL, false, mesh, &bvh, cf->items, NULL, cf->count, cpts)) !=
+                CLI_OK ||
+            (rc = cli_curve_segments("path", mesh_path, &cf->curves, mesh, &bvh, geo, &seg, &nseg)) != CLI_OK)
+            goto done;
+        rc = CLI_INPUT;
+    }
     if (st == TG_OK) st = tg_geodesic_workspace_create(geo, &ws);
     if (st == TG_OK) st = tg_path_create(NULL, &path);
     tg_path_options oi = interruptible(o);
@@ -425,6 +450,8 @@ static int run_single(const char* mesh_path, const char* from, const char* to, w
         size_t n = through->list.count;
         st = tg_geodesic_path_through(geo, ws, through->list.point, n, through->closed ? TG_PATH_CLOSED : TG_PATH_OPEN,
                                       &oi, path, through->at);
+    } else if (st == TG_OK && cf) {
+        st = tg_geodesic_curve_path(geo, ws, cpts, cf->count, seg, nseg, &b, &oi, path);
     } else if (st == TG_OK) {
         st = tg_geodesic_path(geo, ws, &a, &b, &oi, path);
     }
@@ -463,6 +490,7 @@ static int run_single(const char* mesh_path, const char* from, const char* to, w
         print_summary(stdout, o->method, &v, through);
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
+    free(seg), free(cpts);
     tg_path_destroy(path);
     tg_geodesic_workspace_destroy(ws);
     tg_geodesic_destroy(geo);
@@ -684,14 +712,44 @@ static int run(int argc, char** argv)
         return cli_usage("path", "-o takes PATH.obj (the polyline) or PATH.json (the whole answer)");
     int rc = cli_check_outputs(outputs, 1, inputs, 1);
     if (rc != CLI_OK) return rc;
-    if (!through) return run_single(mesh_path, from, to, NULL, out_path, json, method, &o);
+    if (!through && from && (strchr(from, ';') || !strcmp(from, "boundary") || !strncmp(from, "curve:", 5))) {
+        /* curve sources: `curve:FILE`, `boundary`, with point SPECs beside them */
+        char* list = strdup(from);
+        curve_from cf;
+        memset(&cf, 0, sizeof cf);
+        cf.items = malloc(CLI_SPEC_LIST_MAX * sizeof *cf.items);
+        if (!list || !cf.items) {
+            free(list), free(cf.items);
+            cli_error(NULL, 0, "out of memory");
+            return CLI_INPUT;
+        }
+        size_t all = cli_split_list(list, cf.items, CLI_SPEC_LIST_MAX);
+        for (size_t i = 0; i < all; ++i)
+            if (!cli_curve_item(cf.items[i], &cf.curves)) cf.items[cf.count++] = cf.items[i];
+        cli_file_role roles[1 + CLI_CURVES_MAX];
+        roles[0] = inputs[0];
+        for (size_t i = 0; i < cf.curves.count && i < CLI_CURVES_MAX; ++i)
+            roles[1 + i] = (cli_file_role){cf.curves.files[i], "curve file (--from curve:)"};
+        if (!all || (!cf.curves.count && !cf.curves.boundary))
+            rc = cli_usage("path", "bad --from list \"%s\": one SPEC, or curves (curve:FILE, boundary) with SPECs", from);
+        else if (cf.curves.count > CLI_CURVES_MAX)
+            rc = cli_usage("path", "at most %d curve files", CLI_CURVES_MAX);
+        else if (o.method != TG_PATH_EXACT || o.certify)
+            rc = cli_usage("path", "a path from curves is exact (proven): --method and --certify do not apply");
+        else
+            rc = cli_check_outputs(outputs, 1, roles, 1 + cf.curves.count);
+        if (rc == CLI_OK) rc = run_single(mesh_path, from, to, NULL, &cf, out_path, json, method, &o);
+        free(list), free(cf.items);
+        return rc;
+    }
+    if (!through) return run_single(mesh_path, from, to, NULL, NULL, out_path, json, method, &o);
     waypoints w = {{NULL, NULL, NULL, NULL, 0}, NULL, closed};
     rc = cli_spec_list_parse("path", "--through", through, &w.list);
     if (rc == CLI_OK && !(w.at = malloc((w.list.count + 1) * sizeof *w.at))) {
         cli_error(NULL, 0, "out of memory");
         rc = CLI_INPUT;
     }
-    if (rc == CLI_OK) rc = run_single(mesh_path, NULL, NULL, &w, out_path, json, method, &o);
+    if (rc == CLI_OK) rc = run_single(mesh_path, NULL, NULL, &w, NULL, out_path, json, method, &o);
     cli_spec_list_free(&w.list);
     free(w.at);
     return rc;
@@ -699,7 +757,7 @@ static int run(int argc, char** argv)
 
 const cli_command cli_cmd_path = {
     "path",
-    "path MESH ((--from SPEC --to SPEC | --through \"SPEC;SPEC;...\" [--closed]) [-o PATH.obj|.json] [--json] |\n"
+    "path MESH ((--from SPEC|curve:FILE|boundary --to SPEC | --through \"SPEC;SPEC;...\" [--closed]) [-o PATH.obj|.json] [--json] |\n"
     "       --pairs PAIRS [-o OUT.csv] [--threads N]) [--method M] [--certify] |\n"
     "       --bezier \"SPEC;SPEC;...\" [--samples N] [-o B.obj|.json] [--json]",
     "Geodesic paths on the surface between any two surface points (never snapped to a vertex): by\n"
@@ -710,6 +768,10 @@ const cli_command cli_cmd_path = {
     "                                                    of summing to 1 they are rescaled)\n"
     "                                       e:HALFEDGE:t     a point of an edge (halfedge 3*face+corner)\n"
     "                                       p:x,y,z          the surface point closest to x,y,z\n"
+    "  --from \"curve:FILE;boundary;SPEC...\"  the exact path to --to from the nearest point of curves\n"
+    "                           (a curve file as trigeo field --from curve:FILE reads it; boundary:\n"
+    "                           the mesh's boundary) and of the SPECs; it starts where it leaves\n"
+    "                           them (at right angles from a segment's inside)\n"
     "  --through \"SPEC;SPEC;...\" the shortest route through these points in this order: the exact\n"
     "                           paths between consecutive points, each proven, joined into one\n"
     "                           path (quote the list: ';' is special to the shell)\n"

@@ -67,6 +67,38 @@ def test_equals_cli_and_path_curve(tmp_path):
     assert np.all(d >= 0.0) and d.max() <= 1e-15, d
 
 
+def test_curve_paths(tmp_path):
+    """curve_path: on the flat grid a straight path of the Euclidean distance to the boundary,
+    starting on it; on nvd_spot of field_at's length from a path-curve and a point, and the CLI's
+    path --from "curve:FILE;v:3" the same points."""
+    m = flat_grid(10)
+    rng = np.random.default_rng(2)
+    for q in np.column_stack([rng.uniform(0.05, 0.95, (10, 2)), np.zeros(10)]):
+        p = m.curve_path(q, boundary=True)
+        want = min(q[0], 1 - q[0], q[1], 1 - q[1])
+        assert p.global_ == "proven" and abs(p.length - want) <= 1e-12, (p.length, want)
+        assert min(p.points[0][0], 1 - p.points[0][0], p.points[0][1], 1 - p.points[0][1]) <= 1e-12
+        assert np.linalg.norm(p.points[-1] - q) <= 1e-12
+    s = trigeo.load(SPOT)
+    curve = s.path(17, 2500).points
+    for v in (100, 900, 2000):
+        p = s.curve_path(v, curve=curve, sources=[3])
+        d = s.field_at([3], [v], curve=curve)[0]
+        assert p.global_ == "proven" and abs(p.length - d) <= 1e-12 * d
+    obj = tmp_path / "c.obj"
+    r = run_cli("path", SPOT, "--from", "v:17", "--to", "v:2500", "-o", str(obj))
+    assert r.returncode == 0, r.stderr
+    out = tmp_path / "p.obj"
+    r = run_cli("path", SPOT, "--from", f"curve:{obj};v:3", "--to", "v:900", "-o", str(out))
+    assert r.returncode == 0, r.stderr
+    cli = np.array([[float(t) for t in line.split()[1:]] for line in out.read_text().splitlines()
+                    if line.startswith("v ")])
+    py = s.curve_path(900, curve=curve, sources=[3]).points
+    assert cli.shape == py.shape and np.abs(cli - py).max() <= 1e-15
+    with pytest.raises(trigeo.InvalidArgumentError, match="needs curve"):
+        s.curve_path(900)
+
+
 def test_bad_curves(tmp_path):
     s = trigeo.load(SPOT)
     with pytest.raises(trigeo.InvalidArgumentError, match="no face together"):

@@ -1699,6 +1699,36 @@ class Mesh:
 
         return self._run(work, progress)
 
+    def curve_path(self, to: Any, *, curve: Any = None, curves: Any = None, boundary: bool = False,
+                   sources: Any = None, progress: Optional[Callable[[float], Any]] = None) -> "Path":
+        """The exact shortest path from the nearest point of the curves (and sources) to `to`:
+        it starts where it leaves them (a source, a polyline's end, or at right angles from a
+        segment's inside) and its length is field_at()'s distance at `to` (global "proven"; the
+        CLI's path --from curve:FILE|boundary). curve, curves, boundary as field()'s; sources:
+        point sources beside them (as field()'s). Returns a Path (unreachable: no points)."""
+        segs = self._segments(curve, curves, boundary)
+        if segs is None and sources is None:
+            raise _bad("curve_path() needs curve=, curves=, boundary=True or sources=")
+        if segs is None:
+            segs = (_c.SurfaceSegmentC * 0)()
+
+        def work(call: _Call) -> "Path":
+            src = self._surface_points(sources if sources is not None else [], "sources")
+            t = self._surface_point(to, "to")
+            opts = _c.PathOptions(_METHODS["exact"], 0, 0.0, None, 0, call.field_fn, None)
+            geo = self._get_geo()
+            with self._geo_ws.take() as ws, self._paths.take() as ph:
+                st = _L.tg_geodesic_curve_path(geo, ws, src, len(src), segs, len(segs), ctypes.byref(t),
+                                               ctypes.byref(opts), ph)
+                call.finish(st, "curve_path")
+                view = _c.PathView()
+                _L.tg_path_get_view(ph, ctypes.byref(view))
+                p = Path._from_view(view)
+            p._mesh = self
+            return p
+
+        return self._run(work, progress)
+
     def boundary_segments(self) -> np.ndarray:
         """The mesh's boundary edges, (m, 2) vertex indices (each edge of exactly one kept face,
         in the order of the faces and their corners): the segments field(boundary=True) uses."""

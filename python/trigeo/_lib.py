@@ -318,6 +318,8 @@ _SIGNATURES = {
     "tg_geodesic_curve_field": (c_int, [_vp, _vp, _psp, c_size_t, POINTER(SurfaceSegmentC), c_size_t, _psp, c_size_t,
                                         POINTER(FieldOptions), _pd, _pd, _vp]),
     "tg_geodesic_boundary_segments": (c_int, [_vp, POINTER(SurfaceSegmentC), c_size_t, POINTER(c_size_t)]),
+    "tg_geodesic_curve_path": (c_int, [_vp, _vp, _psp, c_size_t, POINTER(SurfaceSegmentC), c_size_t, _psp,
+                                       POINTER(PathOptions), _vp]),
     "tg_surface_segment_validate": (c_int, [_vp, POINTER(SurfaceSegmentC), _pdiag]),
     "tg_surface_point_snap": (SurfacePointC, [_vp, _psp, c_double]),
     "tg_geodesic_distance_matrix": (c_int, [_vp, _psp, c_size_t, POINTER(FieldOptions), c_int, _pd, _vp]),

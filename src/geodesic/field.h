@@ -33,6 +33,17 @@ bool tg__field_points_in_workspace(tg_geodesic_workspace* ws, const tg_surface_p
                                    const tg_surface_point* points, size_t point_count,
                                    const tg_surface_point** out_sources, const tg_surface_point** out_points);
 
+/* A query's sources, curve segments (two points each) and points in the solver's form, into the
+ * workspace's buffer (as tg__field_points_in_workspace; NULL for none). The segments are checked
+ * (tg_surface_segment_validate): TG_ERR_INVALID_ARGUMENT for a bad one, TG_ERR_OUT_OF_MEMORY.
+ * (curve.c) */
+typedef struct tg__curve_in {
+    const tg_surface_point *sources, *segments, *points;
+} tg__curve_in;
+tg_status tg__curve_points_in(tg_geodesic_workspace* ws, const tg_surface_point* sources, size_t source_count,
+                              const tg_surface_segment* segments, size_t segment_count, const tg_surface_point* points,
+                              size_t point_count, tg__curve_in* out);
+
 /* ---- the public figures ---- */
 
 /* A run's progress as tg_field_progress tells it for a single field: the front in the mesh's

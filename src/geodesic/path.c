@@ -5,6 +5,7 @@
  *   and C. H. Papadimitriou, "The discrete geodesic problem", 1987, §6 (the exact distance and
  *   path through the windows); the project's DESIGN.md (tg_path: points with every crossing and
  *   vertex passage, faces, length, status, certificate). */
+#include "geodesic/field.h"
 #include "geodesic/workspace.h"
 #include "kernels/edge_path.h"
 
@@ -271,6 +272,57 @@ tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, cons
     if (st == TG_OK) st = tg__endpoint_make(g, &ws->allocator, to, g->vertex_count + 1, &ws->to_neighbours, &dst);
     if (st == TG_OK && src.comp == dst.comp && src.comp != TG_NONE) /* else unreachable: the cleared path */
         st = rq.method == TG_PATH_EXACT ? exact_path(ws, &rq, from, to, path) : shortened_path(ws, &rq, &src, &dst, from, to, path);
+    if (st != TG_OK) tg__path_clear(path);
+    tg__workspace_release(own);
+    return st;
+}
+
+/* The exact path from the nearest of the sources and curves to `to` (converted: in), as exact_path
+ * does it for one source: the propagation from all of them ordered toward `to`, the backtrack to
+ * the point of a source or a segment it comes from. */
+static tg_status curve_route(tg_geodesic_workspace* ws, const request* rq, const tg__curve_in* in, size_t source_count,
+                             size_t segment_count, tg_path* path)
+{
+    const tg_geodesic* g = ws->geo;
+    tg__node target = tg__node_from_surface(in->points);
+    double toward[3];
+    tg_v3_store(tg__node_pos(g, &target), toward);
+    tg__field_query q = {.sources = in->sources, .source_count = source_count, .segments = in->segments,
+                         .segment_count = segment_count, .points = in->points, .point_count = 1,
+                         .max_distance = INFINITY, .progress = rq->progress.fn ? report_propagation : NULL,
+                         .progress_user = (void*)&rq->progress, .trace = true, .toward = toward};
+    tg__field_run run;
+    tg_status st = tg__field_execute(&ws->field, &q, &run);
+    if (st != TG_OK || !(run.qdist[0] < INFINITY)) return st; /* unreachable: the cleared path */
+    bool oom = false;
+    bool found = tg__path_backtrack(g, &ws->allocator, &run, NULL, &target, &ws->route, &oom);
+    if (oom) return TG_ERR_OUT_OF_MEMORY;
+    if (!found || !backtrack_exact(g, &ws->route, run.qdist[0])) return TG_ERR_INTERNAL;
+    st = fill_exact(g, &ws->allocator, &ws->route, path);
+    path->initial_length = path->length;
+    path->edge_path_vertices = 0;
+    return st;
+}
+
+tg_status tg_geodesic_curve_path(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
+                                 size_t source_count, const tg_surface_segment* segments, size_t segment_count,
+                                 const tg_surface_point* to, const tg_path_options* options, tg_path* path)
+{
+    if (!g || !to || !path || (source_count && !sources) || (segment_count && !segments)) return TG_ERR_INVALID_ARGUMENT;
+    tg__path_clear(path);
+    request rq;
+    tg_status st = read_options(options, &rq);
+    if (st != TG_OK) return st;
+    if (rq.method != TG_PATH_EXACT || rq.certify || tg_surface_point_validate(g->mesh, to, NULL) != TG_OK)
+        return TG_ERR_INVALID_ARGUMENT;
+    for (size_t i = 0; i < source_count; ++i)
+        if (tg_surface_point_validate(g->mesh, &sources[i], NULL) != TG_OK) return TG_ERR_INVALID_ARGUMENT;
+    tg_geodesic_workspace* own;
+    st = tg__workspace_acquire(g, NULL, &ws, &own);
+    if (st != TG_OK) return st;
+    tg__curve_in in;
+    st = tg__curve_points_in(ws, sources, source_count, segments, segment_count, to, 1, &in);
+    if (st == TG_OK) st = curve_route(ws, &rq, &in, source_count, segment_count, path);
     if (st != TG_OK) tg__path_clear(path);
     tg__workspace_release(own);
     return st;

@@ -12,7 +12,10 @@
  * its origin: a pseudo-source vertex or the source), along an edge, or straight inside a face.
  * A window's ray is a straight line in the unfolding of the faces it crossed, so walking back
  * from the target towards the source image, face by face, crosses exactly those faces and ends
- * on the origin. */
+ * on the origin. From a run of several sources and curves (source NULL: the run's own), the walk
+ * ends on the source point whose image it reaches, or, along a line window's parallel rays (the
+ * inside of a curve's segment), at the foot of the ray on the segment: the point at the target's
+ * distance back along the ray, an image like a point source's. */
 #include "core/predicates.h"
 #include "geodesic/path/stages.h"
 
@@ -77,12 +80,83 @@ static bool add_node_in(backtrack* t, tg__node node, uint32_t f)
     return add_node(t, node, f);
 }
 
-/* Does the origin land in face o / 3 at the image s (in o's frame)? Then its node. */
-static bool lands(const tg_geodesic* g, uint32_t o, const double s[2], uint32_t origin, const tg__node* source,
-                  tg__node* out)
+/* The image s (in o's frame) put back in space on the plane of face o / 3. */
+static tg_vec3 image_pos(const tg_geodesic* g, uint32_t o, const double s[2])
+{
+    tg_vec3 u, v;
+    tg__frame_axes(g, o, &u, &v);
+    return tg_v3_add(tg__gpos(g, g->tri[o]), tg_v3_add(tg_v3_scale(u, s[0]), tg_v3_scale(v, s[1])));
+}
+
+/* Distance from p to the segment a b (in space). */
+static double segment_dist(tg_vec3 p, tg_vec3 a, tg_vec3 b)
+{
+    tg_vec3 ab = tg_v3_sub(b, a);
+    double ll = tg_v3_dot(ab, ab), t = ll > 0.0 ? tg_v3_dot(tg_v3_sub(p, a), ab) / ll : 0.0;
+    t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+    return tg_v3_dist(p, tg_v3_add(a, tg_v3_scale(ab, t)));
+}
+
+/* A run of several sources and curves (the backtrack's source NULL): does the image s (in o's
+ * frame) of a point source (TG__ORIGIN_SOURCE) or a segment's inside (TG__ORIGIN_LINE) land in
+ * face o / 3? A point source there at the image, or the image inside the face on a segment:
+ * its node (a segment's point as a face point of the face). */
+static bool lands_on_sources(const tg_geodesic* g, const tg__field_query* q, uint32_t o, const double s[2],
+                             uint32_t origin, tg__node* out)
 {
     const tg__frame* fr = &g->frame[o];
+    if (!(fr->cy > 0.0)) return false;
+    double scale = fr->len + fabs(s[0]) + fabs(s[1]), tol = LAND_REL * scale;
+    tg_vec3 p = image_pos(g, o, s);
+    uint32_t f = o / 3;
+    if (origin == TG__ORIGIN_SOURCE) { /* the sources, and the segments' ends */
+        for (size_t i = 0; i < q->source_count + 2 * q->segment_count; ++i) {
+            const tg_surface_point* sp = i < q->source_count ? &q->sources[i] : &q->segments[i - q->source_count];
+            tg__node n = tg__node_from_surface(sp);
+            double b[3];
+            if (tg_v3_dist(p, tg__node_pos(g, &n)) <= tol && tg__node_bary(g, &n, f, b)) {
+                *out = n;
+                return true;
+            }
+        }
+        return false;
+    }
+    /* a segment's inside: the image in the face (to the margin) and on a segment */
+    double c[3][2];
+    tg__frame_corners(fr, c);
+    for (int k = 0; k < 3; ++k) {
+        const double *a = c[k], *b = c[(k + 1) % 3];
+        double ex = b[0] - a[0], ey = b[1] - a[1], l = hypot(ex, ey);
+        if (l > 0.0 && (ex * (s[1] - a[1]) - ey * (s[0] - a[0])) / l < -tol) return false;
+    }
+    for (size_t i = 0; i < q->segment_count; ++i) {
+        tg__node na = tg__node_from_surface(&q->segments[2 * i]), nb = tg__node_from_surface(&q->segments[2 * i + 1]);
+        double ba[3], bb[3];
+        if (!tg__node_bary(g, &na, f, ba) || !tg__node_bary(g, &nb, f, bb)) continue;
+        if (!(segment_dist(p, tg__node_pos(g, &na), tg__node_pos(g, &nb)) <= tol)) continue;
+        /* the barycentrics of the image in f, clamped onto the face */
+        double x = s[0], y = s[1];
+        double b2 = y / fr->cy, b1 = (x - b2 * fr->cx) / fr->len, b0 = 1.0 - b1 - b2;
+        double w[3] = {b0, b1, b2}, sum = 0.0;
+        uint32_t k0 = o % 3; /* corner k0 of f is tri[o]: w[j] belongs to corner (k0 + j) % 3 */
+        tg__node node = {TG__NODE_FACE, f, 0.0, 0.0, {0.0, 0.0, 0.0}};
+        for (int j = 0; j < 3; ++j) sum += w[j] = w[j] < 0.0 ? 0.0 : w[j];
+        for (int j = 0; j < 3; ++j) node.bary[(k0 + (uint32_t)j) % 3] = w[j] / sum;
+        *out = node;
+        return true;
+    }
+    return false;
+}
+
+/* Does the origin land in face o / 3 at the image s (in o's frame)? Then its node. */
+static bool lands(const tg__field_run* run, uint32_t o, const double s[2], uint32_t origin, const tg__node* source,
+                  tg__node* out)
+{
+    const tg_geodesic* g = run->g;
+    const tg__frame* fr = &g->frame[o];
     double scale = fr->len + fabs(s[0]) + fabs(s[1]);
+    if (!source && (origin == TG__ORIGIN_SOURCE || origin == TG__ORIGIN_LINE))
+        return lands_on_sources(g, run->q, o, s, origin, out);
     if (origin != TG__ORIGIN_SOURCE || source->kind == TG__NODE_VERTEX) {
         uint32_t v = origin != TG__ORIGIN_SOURCE ? origin : source->id;
         double c[3][2];
@@ -227,7 +301,10 @@ static bool to_vertex_on_edge(backtrack* t, uint32_t h, uint32_t v, uint32_t dep
 static bool on_flat_apex(backtrack* t, uint32_t xh, const double ns[2], double len, uint32_t origin, const tg__node* source,
                          tg__node* out)
 {
-    uint32_t v = origin != TG__ORIGIN_SOURCE ? origin : source->kind == TG__NODE_VERTEX ? source->id : TG_NONE;
+    uint32_t v = origin == TG__ORIGIN_LINE                ? TG_NONE
+                 : origin != TG__ORIGIN_SOURCE              ? origin
+                 : source && source->kind == TG__NODE_VERTEX ? source->id
+                                                            : TG_NONE;
     double tol = LAND_REL * (len + fabs(ns[0]));
     if (v == TG_NONE || !(fabs(ns[1]) <= tol && ns[0] > 0.0 && ns[0] < len)) return false;
     size_t n = t->n;
@@ -272,7 +349,7 @@ static bool walk_faces(backtrack* t, uint32_t e, double xe, const double s_in[2]
                        const tg__node* source, bool prune, tg__node* out_origin)
 {
     const tg_geodesic* g = t->g;
-    double sigma = origin == TG__ORIGIN_SOURCE ? 0.0 : t->field->vertex_dist[origin];
+    double sigma = origin == TG__ORIGIN_SOURCE || origin == TG__ORIGIN_LINE ? 0.0 : t->field->vertex_dist[origin];
     branch stack[32];
     int depth = 0;
     size_t guard = WALK_STEPS_PER_FACE * (size_t)g->face_count + 1024;
@@ -294,7 +371,7 @@ static bool walk_faces(backtrack* t, uint32_t e, double xe, const double s_in[2]
             uint32_t f = o / 3;
             tg__node landed;
             if (prune && depth > 0 && ray_too_short(t, o, x, sp, sigma)) goto dead_end;
-            if (lands(g, o, sp, origin, source, &landed)) {
+            if (lands(t->field, o, sp, origin, source, &landed)) {
                 *out_origin = landed;
                 return add_node(t, landed, f);
             }
@@ -389,13 +466,49 @@ static bool walk(backtrack* t, uint32_t e, double xe, const double s[2], uint32_
     return walk_faces(t, e, xe, s, origin, source, false, out_origin);
 }
 
-/* Follows the predecessors from node `cur` (reached as `how`) back to the source. */
-static bool follow_back(backtrack* t, tg__node cur, tg__pred how, const tg__node* source)
+/* A run of several sources (source NULL): the point source in face f that the path to `cur`, at
+ * distance d, comes from straight inside f (the one whose distance to cur is d, to rounding). */
+static bool source_in_face(const backtrack* t, uint32_t f, const tg__node* cur, double d, tg__node* out)
+{
+    const tg__field_query* q = t->field->q;
+    tg_vec3 p = tg__node_pos(t->g, cur);
+    double best = INFINITY;
+    for (size_t i = 0; i < q->source_count + 2 * q->segment_count; ++i) {
+        const tg_surface_point* sp = i < q->source_count ? &q->sources[i] : &q->segments[i - q->source_count];
+        tg__node n = tg__node_from_surface(sp);
+        double b[3], gap;
+        if (!tg__node_bary(t->g, &n, f, b) || !((gap = fabs(tg_v3_dist(p, tg__node_pos(t->g, &n)) - d)) < best)) continue;
+        best = gap, *out = n;
+    }
+    return best <= 1e-9 * (d + t->g->frame[3 * f].len);
+}
+
+/* The foot on a curve's segment of the ray of direction (nx, ny) in the frame of halfedge h
+ * that reaches `cur` at distance d: cur's point d back along the ray, in h's frame. */
+static void foot_of(const tg_geodesic* g, uint32_t h, const tg__node* cur, double nx, double ny, double d, double out[2])
+{
+    double p[2];
+    tg__frame_point(g, h, tg__node_pos(g, cur), p);
+    out[0] = p[0] - d * nx, out[1] = p[1] - d * ny;
+}
+
+/* Follows the predecessors from node `cur` (reached as `how`, at distance d) back to the source
+ * (NULL: to the run's sources and curves). */
+static bool follow_back(backtrack* t, tg__node cur, tg__pred how, double d, const tg__node* source)
 {
     const tg_geodesic* g = t->g;
     const tg__pred* pred = t->field->vertex_pred;
     for (size_t hops = 0; hops <= (size_t)g->vertex_count + 2; ++hops) {
         tg__node next;
+        if (how.origin == TG__ORIGIN_LINE && (how.h & TG__PRED_FACE)) {
+            /* at right angles from a segment inside face f: its foot, as a face point of f */
+            uint32_t f = how.h & ~TG__PRED_FACE;
+            double foot[2];
+            foot_of(g, 3 * f, &cur, how.sx, how.sy, d, foot);
+            tg__node landed;
+            return lands_on_sources(g, t->field->q, 3 * f, foot, TG__ORIGIN_LINE, &landed) &&
+                   add_node_in(t, landed, f);
+        }
         if (how.h == TG_NONE) { /* along an edge from vertex origin, or the vertex source itself */
             if (how.origin == TG__ORIGIN_SOURCE) return true;
             next = tg__node_vertex(how.origin);
@@ -403,7 +516,11 @@ static bool follow_back(backtrack* t, tg__node cur, tg__pred how, const tg__node
             if (f == TG_NONE || !add_node(t, next, f)) return false;
         } else if (how.h & TG__PRED_FACE) { /* straight inside face f from a vertex or the source */
             uint32_t f = how.h & ~TG__PRED_FACE;
-            next = how.origin == TG__ORIGIN_SOURCE ? *source : tg__node_vertex(how.origin);
+            if (how.origin == TG__ORIGIN_SOURCE && !source) {
+                if (!source_in_face(t, f, &cur, d, &next)) return false;
+            } else {
+                next = how.origin == TG__ORIGIN_SOURCE ? *source : tg__node_vertex(how.origin);
+            }
             if (how.origin != TG__ORIGIN_SOURCE && tg__corner_of(g, f, how.origin) < 0) {
                 /* a vertex emitting from a zero-area face beyond its own (field.h, TG__FLAT_MAX):
                  * it lies inside an edge of f, or on a corner of f (a second vertex at one
@@ -427,6 +544,7 @@ static bool follow_back(backtrack* t, tg__node cur, tg__pred how, const tg__node
             uint32_t h = how.h;
             double p[2], s[2] = {how.sx, how.sy};
             tg__frame_point(g, h, tg__node_pos(g, &cur), p);
+            if (how.origin == TG__ORIGIN_LINE) foot_of(g, h, &cur, how.sx, how.sy, d, s); /* the image: its foot */
             double xs = s[0] + (p[0] - s[0]) * (-s[1]) / (p[1] - s[1]);
             double len = g->frame[h].len;
             if (!(xs >= 0.0)) xs = 0.0;
@@ -438,10 +556,11 @@ static bool follow_back(backtrack* t, tg__node cur, tg__pred how, const tg__node
             /* s is beyond h already (s[1] < 0 in h's frame): walk on into the faces behind */
             if (!walk(t, h, xs, s, how.origin, source, &next)) return false;
             /* the source, or a vertex: the origin, or one the ray passes (through_corner) */
-            if (next.kind != TG__NODE_VERTEX || tg__node_same(g, &next, source)) return true;
+            if (next.kind != TG__NODE_VERTEX || (source && tg__node_same(g, &next, source))) return true;
         }
         cur = next;
         how = pred[next.id];
+        d = t->field->vertex_dist[next.id];
     }
     return false;
 }
@@ -453,9 +572,10 @@ bool tg__path_backtrack(const tg_geodesic* g, const tg_allocator* a, const tg__f
     out->nodes.count = out->faces.count = 0;
     *out_of_memory = false;
     tg__pred how = field->qpred[0];
-    if (target->kind == TG__NODE_VERTEX) how = field->vertex_pred[target->id];
-    bool ok = add_node(&t, *target, TG_NONE) &&
-              (tg__node_same(g, target, source) || follow_back(&t, *target, how, source));
+    double d = field->qdist[0];
+    if (target->kind == TG__NODE_VERTEX) how = field->vertex_pred[target->id], d = field->vertex_dist[target->id];
+    bool at_source = source ? tg__node_same(g, target, source) : d == 0.0;
+    bool ok = add_node(&t, *target, TG_NONE) && (at_source || follow_back(&t, *target, how, d, source));
     *out_of_memory = t.out_of_memory;
     if (!ok) return false;
     /* target-first -> source-first */

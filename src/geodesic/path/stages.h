@@ -201,7 +201,8 @@ tg_status tg__relax(const tg_geodesic* g, const tg_allocator* a, tg__relax_scrat
 
 /* The shortest path from source to target (solver nodes) followed back through a field run that
  * recorded how every vertex and the target (its one query point) got its distance: into *out,
- * source first. false when the walk found no way back (no nodes then), or *out_of_memory. */
+ * source first. source NULL: from the nearest of the run's sources and curves (its point on them
+ * first). false when the walk found no way back (no nodes then), or *out_of_memory. */
 bool tg__path_backtrack(const tg_geodesic* g, const tg_allocator* a, const tg__field_run* field,
                         const tg__node* source, const tg__node* target, tg__route* out, bool* out_of_memory);
 

@@ -93,7 +93,7 @@ extern "C" {
  *    parallel rays), tg_geodesic_boundary_segments (the mesh's boundary as segments),
  *    tg_surface_segment_validate, tg_surface_point_snap (a point within a tolerance of an edge or
  *    corner named by it: polylines given in coordinates), tg_geodesic_curve_path (the exact path
- *    from the nearest point of the curves). CLI: field --from curve:FILE and --from boundary,
+ *    from the nearest point of the curves), tg_geodesic_curve_voronoi (cells of curve sites). CLI: field --from curve:FILE and --from boundary,
  *    path --from curve:FILE|boundary; Python: Mesh.field(curve=, curves=, boundary=), field_at
  *    likewise, Mesh.curve_path, Mesh.boundary_segments().
  *  - A solver takes at most 536,870,909 vertices (one id fewer: it names a curve's windows). */
@@ -1678,6 +1678,26 @@ TG_API tg_status tg_geodesic_curve_path(const tg_geodesic* geodesic, tg_geodesic
                                         const tg_surface_point* sources, size_t source_count,
                                         const tg_surface_segment* segments, size_t segment_count,
                                         const tg_surface_point* to, const tg_path_options* options, tg_path* path);
+
+/** Geodesic Voronoi cells of sites made of curves and points: per vertex the site nearest to it
+ *  (the exact distance to the nearest point of each site's sources and segments, as
+ *  tg_geodesic_curve_field computes it) and that distance. Ties go to the lowest site.
+ *  Method: one field of every site, then one run per site bounded by it (each explores its own
+ *  cell), as tg_geodesic_voronoi. sources, segments: as tg_geodesic_curve_field. source_site,
+ *  segment_site: the site of each (< site_count); NULL: source i is site i, segment i is site
+ *  source_count + i. site_count: the sites (a site with nothing in it labels nothing).
+ *  out_vertex_distance, out_vertex_label: vertex_count values (either may be NULL, not both):
+ *  +inf and TG_NONE where no site reaches. Errors: TG_ERR_INVALID_ARGUMENT (as
+ *  tg_geodesic_curve_field; a site out of range; site_count >= TG_NONE; no output),
+ *  TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED; on error the outputs are untouched. Cell boundaries:
+ *  tg_geodesic_voronoi's, for point sites only. Complexity: about two fields.
+ *  Thread-safe as tg_geodesic_field. (New in 0.6.2.) */
+TG_API tg_status tg_geodesic_curve_voronoi(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
+                                           const tg_surface_point* sources, size_t source_count,
+                                           const uint32_t* source_site, const tg_surface_segment* segments,
+                                           size_t segment_count, const uint32_t* segment_site, size_t site_count,
+                                           const tg_field_options* options, double* out_vertex_distance,
+                                           uint32_t* out_vertex_label, tg_field_stats* out_stats);
 
 /** The mesh's boundary as segments: every edge of exactly one kept face (duplicate faces and faces
  *  with a repeated vertex do not count; non-manifold edges are not boundary), from vertex to

@@ -520,6 +520,107 @@ static void test_curve_paths(void)
     close_ctx(&s);
 }
 
+/* Voronoi cells of curve sites: on the flat grid the Euclidean argmin over a polyline, a second
+ * polyline and a point (ties within 1e-9 skipped), on nvd_spot the argmin of each site's own
+ * curve field (bit for bit where no two sites tie); every allocation failing in turn; bad sites. */
+static void test_curve_voronoi(void)
+{
+    static const double la[2][2] = {{0.1, 0.1}, {0.6, 0.3}}, lb[3][2] = {{0.2, 0.9}, {0.5, 0.6}, {0.9, 0.9}};
+    nv = nf = 0;
+    grid(16, 0.0, 0.0, 1.0, 0.0, NULL);
+    ctx c = open_ctx();
+    size_t n = tg_mesh_vertex_count(c.mesh);
+    tg_surface_segment seg[512];
+    uint32_t site[512];
+    size_t na = cut_polyline(la, 2, seg, 0, 512), ns = cut_polyline(lb, 3, seg, na, 512);
+    for (size_t i = 0; i < ns; ++i) site[i] = i < na ? 0 : 2;
+    tg_surface_point pt = at(find_face(0.85, 0.2), 0.85, 0.2);
+    uint32_t pt_site = 1;
+    double* d = malloc(n * sizeof *d);
+    uint32_t* lab = malloc(n * sizeof *lab);
+    CHECK_STATUS(tg_geodesic_curve_voronoi(c.geo, c.ws, &pt, 1, &pt_site, seg, ns, site, 3, NULL, d, lab, NULL), TG_OK);
+    size_t bad = 0, checked = 0;
+    double worst = 0;
+    for (size_t v = 0; v < n; ++v) {
+        double x = xyz[3 * v], y = xyz[3 * v + 1], e[3];
+        e[0] = seg_dist(x, y, la[0][0], la[0][1], la[1][0], la[1][1]);
+        e[1] = hypot(x - 0.85, y - 0.2);
+        e[2] = fmin(seg_dist(x, y, lb[0][0], lb[0][1], lb[1][0], lb[1][1]), seg_dist(x, y, lb[1][0], lb[1][1], lb[2][0], lb[2][1]));
+        uint32_t best = e[0] <= e[1] && e[0] <= e[2] ? 0 : e[1] <= e[2] ? 1 : 2;
+        double second = INFINITY;
+        for (uint32_t k = 0; k < 3; ++k)
+            if (k != best) second = fmin(second, e[k]);
+        worst = fmax(worst, fabs(d[v] - e[best]));
+        if (second - e[best] <= 1e-9) continue;
+        checked++;
+        bad += lab[v] != best;
+    }
+    CHECK_MSG(bad == 0 && checked > n / 2 && worst <= 1e-12, "flat curve Voronoi: %zu of %zu labels wrong, distances off by %.3g",
+              bad, checked, worst);
+    uint32_t out_of_range = 3;
+    CHECK_STATUS(tg_geodesic_curve_voronoi(c.geo, c.ws, &pt, 1, &out_of_range, seg, ns, site, 3, NULL, d, lab, NULL),
+                 TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_curve_voronoi(c.geo, c.ws, &pt, 1, NULL, seg, ns, site, 3, NULL, NULL, NULL, NULL),
+                 TG_ERR_INVALID_ARGUMENT);
+    free(d), free(lab);
+    close_sheet(&c);
+
+    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), "nvd_spot.obj");
+    if (!m) return;
+    ctx s = open_ctx_for(m);
+    n = tg_mesh_vertex_count(m);
+    tg_rng r = {21};
+    tg_surface_segment cs[30];
+    uint32_t cs_site[30];
+    for (int i = 0; i < 30; ++i) { /* random chords, 5 sites of 6 */
+        uint32_t f = (uint32_t)(tg_rng_next(&r) % tg_mesh_face_count(m));
+        double u = tg_rng_unit(&r) * 0.5, w = tg_rng_unit(&r) * 0.5;
+        cs[i].a = tg_surface_face(f, 1 - u - w, u, w);
+        cs[i].b = tg_surface_edge(3 * f + (uint32_t)(i % 3), tg_rng_unit(&r));
+        cs_site[i] = (uint32_t)(i % 5);
+    }
+    double* all = malloc(5 * n * sizeof *all);
+    for (uint32_t k = 0; k < 5; ++k) {
+        tg_surface_segment mine[6];
+        for (int i = 0; i < 6; ++i) mine[i] = cs[5 * i + (int)k];
+        CHECK_STATUS(tg_geodesic_curve_field(s.geo, s.ws, NULL, 0, mine, 6, NULL, 0, NULL, NULL, all + k * n, NULL), TG_OK);
+    }
+    d = malloc(n * sizeof *d), lab = malloc(n * sizeof *lab);
+    CHECK_STATUS(tg_geodesic_curve_voronoi(s.geo, NULL, NULL, 0, NULL, cs, 30, cs_site, 5, NULL, d, lab, NULL), TG_OK);
+    bad = checked = 0;
+    for (size_t v = 0; v < n; ++v) {
+        uint32_t best = 0;
+        for (uint32_t k = 1; k < 5; ++k)
+            if (all[k * n + v] < all[best * n + v]) best = k;
+        double second = INFINITY;
+        for (uint32_t k = 0; k < 5; ++k)
+            if (k != best) second = fmin(second, all[k * n + v]);
+        if (second - all[best * n + v] <= 1e-12 * second) continue;
+        checked++;
+        bad += lab[v] != best || d[v] != all[best * n + v];
+    }
+    CHECK_MSG(bad == 0 && checked > n / 2, "nvd_spot curve Voronoi: %zu of %zu vertices differ from the argmin", bad,
+              checked);
+    /* every allocation failing in turn */
+    int points = 0;
+    for (long k = 0;; ++k) {
+        tg_test_counting cnt = {0, 0, k, 0};
+        tg_allocator a = tg_test_failing_allocator(&cnt);
+        tg_field_options o;
+        memset(&o, 0, sizeof o);
+        o.allocator = &a;
+        lab[0] = 77;
+        tg_status st = tg_geodesic_curve_voronoi(s.geo, NULL, NULL, 0, NULL, cs, 30, cs_site, 5, &o, NULL, lab, NULL);
+        CHECK_MSG(st == TG_OK || (st == TG_ERR_OUT_OF_MEMORY && lab[0] == 77), "allocation %ld failing: %s", k,
+                  tg_status_name(st));
+        CHECK_MSG(cnt.allocs == cnt.frees, "allocation %ld failing: %ld allocations, %ld frees", k, cnt.allocs, cnt.frees);
+        if (st == TG_OK || ++points > 10000) break;
+    }
+    CHECK(points > 5);
+    free(all), free(d), free(lab);
+    close_ctx(&s);
+}
+
 static void test_bad_input(void)
 {
     nv = nf = 0;
@@ -556,6 +657,7 @@ int main(void)
     test_point_and_threads();
     test_out_of_memory();
     test_curve_paths();
+    test_curve_voronoi();
     test_bad_input();
     return tg_test_finish();
 }

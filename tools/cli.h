@@ -64,9 +64,10 @@ bool cli_curve_item(const char* item, cli_curves* c);
  * boundary's (an error when the mesh has none), then each file's polylines (one point a line as a
  * SPEC, "x y z" or an OBJ "v x y z"; a blank line between polylines; a point within 1e-9 of an
  * edge or corner taken on it), each segment checked (tg_surface_segment_validate, errors naming
- * file and line). CLI_OK, or CLI_INPUT after the error. */
+ * file and line). out_ends: NULL, or room for 1 + c->count: where the boundary's segments end,
+ * then where each file's end. CLI_OK, or CLI_INPUT after the error. */
 int cli_curve_segments(const char* cmd, const char* mesh_path, const cli_curves* c, tg_mesh* mesh, tg_bvh** bvh,
-                       const tg_geodesic* geo, tg_surface_segment** out, size_t* out_count);
+                       const tg_geodesic* geo, tg_surface_segment** out, size_t* out_count, size_t* out_ends);
 
 /* ---- the mesh (cli_mesh.c) ---- */
 

@@ -168,7 +168,7 @@ bool cli_curve_item(const char* item, cli_curves* c)
 }
 
 int cli_curve_segments(const char* cmd, const char* mesh_path, const cli_curves* c, tg_mesh* mesh, tg_bvh** bvh,
-                       const tg_geodesic* geo, tg_surface_segment** out, size_t* out_count)
+                       const tg_geodesic* geo, tg_surface_segment** out, size_t* out_count, size_t* out_ends)
 {
     tg_surface_segment* seg = NULL;
     size_t n = 0;
@@ -186,11 +186,14 @@ int cli_curve_segments(const char* cmd, const char* mesh_path, const cli_curves*
             return CLI_INPUT;
         }
     }
-    for (size_t i = 0; i < c->count && i < CLI_CURVES_MAX; ++i)
+    if (out_ends) out_ends[0] = n;
+    for (size_t i = 0; i < c->count && i < CLI_CURVES_MAX; ++i) {
         if (read_curve(cmd, mesh_path, c->files[i], mesh, bvh, geo, &seg, &n) != CLI_OK) {
             free(seg);
             return CLI_INPUT;
         }
+        if (out_ends) out_ends[1 + i] = n;
+    }
     *out = seg, *out_count = n;
     return CLI_OK;
 }

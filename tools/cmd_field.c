@@ -108,7 +108,12 @@ typedef struct field_args {
     unsigned long long* at_lines;
     size_t at_count;
     cli_curves curves;    /* curve sources in the --from list: curve:FILE items and `boundary` */
-    size_t segments;      /* the segments they made (for the summary) */
+    size_t segments;
+    /* --labels with curves: each item of the --from list a site, numbered in the list's order: the
+     * point sources', the curve files' and the boundary's */
+    uint32_t* point_site;
+    uint32_t curve_site[CLI_CURVES_MAX], boundary_site;
+    size_t site_count;      /* the segments they made (for the summary) */
 } field_args;
 
 /* The options of the computation (the limit, progress on a terminal, Ctrl-C as cancellation). */
@@ -190,6 +195,7 @@ static int run_field(field_args* fa, char** items, const unsigned long long* lin
 {
     int rc = CLI_INPUT;
     tg_surface_segment* seg = NULL; /* curve sources */
+    uint32_t* seg_site = NULL;      /* --labels: their sites */
     size_t nseg = 0;
     tg_bvh* bvh = NULL;
     tg_geodesic* geo = NULL;
@@ -224,8 +230,17 @@ static int run_field(field_args* fa, char** items, const unsigned long long* lin
     }
     tg_status st = make_solver(mesh, n * rows, &dist, &geo);
     if (st == TG_OK && (fa->curves.count || fa->curves.boundary)) {
-        if ((rc = cli_curve_segments("field", fa->mesh_path, &fa->curves, mesh, &bvh, geo, &seg, &nseg)) != CLI_OK)
+        size_t ends[1 + CLI_CURVES_MAX];
+        if ((rc = cli_curve_segments("field", fa->mesh_path, &fa->curves, mesh, &bvh, geo, &seg, &nseg, ends)) != CLI_OK)
             goto done;
+        if (fa->labels && !(seg_site = malloc((nseg ? nseg : 1) * sizeof *seg_site))) {
+            cli_error(NULL, 0, "out of memory");
+            goto done;
+        }
+        for (size_t i = 0, k = 0; fa->labels && i < nseg; ++i) { /* the site of each segment */
+            while (k <= fa->curves.count && i >= ends[k]) ++k;
+            seg_site[i] = k == 0 ? fa->boundary_site : fa->curve_site[k - 1];
+        }
         rc = CLI_INPUT;
         fa->segments = nseg;
     }
@@ -234,7 +249,12 @@ static int run_field(field_args* fa, char** items, const unsigned long long* lin
     tg_field_stats stats;
     start_work(fa, &o, &prog, &stats);
     double t0 = cli_seconds();
-    if (st == TG_OK && seg) {
+    if (st == TG_OK && seg && fa->labels) {
+        label = malloc((n ? n : 1) * sizeof *label);
+        st = !label ? TG_ERR_OUT_OF_MEMORY
+                    : tg_geodesic_curve_voronoi(geo, NULL, pts, count, fa->point_site, seg, nseg, seg_site,
+                                                fa->site_count, &o, dist, label, &stats);
+    } else if (st == TG_OK && seg) {
         st = tg_geodesic_curve_field(geo, NULL, pts, count, seg, nseg, at_pts, fa->at_count, &o, at_d, dist, &stats);
     } else if (st == TG_OK && fa->labels) {
         label = malloc((n ? n : 1) * sizeof *label);
@@ -303,7 +323,7 @@ static int run_field(field_args* fa, char** items, const unsigned long long* lin
         print_summary(count, fa->segments, fa->matrix, fa->matrix && fa->at_count ? "points" : "vertices", dist, rows, n, secs, &stats);
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
-    free(pts), free(dist), free(at_pts), free(at_d), free(label), free(seg);
+    free(pts), free(dist), free(at_pts), free(at_d), free(label), free(seg), free(seg_site);
     tg_voronoi_boundaries_destroy(bounds);
     tg_geodesic_destroy(geo);
     tg_bvh_destroy(bvh);
@@ -598,23 +618,42 @@ static int run(int argc, char** argv)
         list = malloc(len + 1);
         items = malloc(MAX_SOURCES * sizeof *items);
         if (!list || !items) {
-            free(list), free(items);
+            free(list), free(items), free(fa.point_site);
             cli_error(NULL, 0, "out of memory");
             return CLI_INPUT;
         }
         memcpy(list, from, len + 1);
         size_t all = cli_split_list(list, items, MAX_SOURCES);
-        for (size_t i = 0; i < all; ++i)
-            if (!cli_curve_item(items[i], &fa.curves)) items[count++] = items[i];
+        fa.point_site = malloc(all * sizeof *fa.point_site);
+        if (!fa.point_site) {
+            free(list), free(items), free(fa.point_site);
+            cli_error(NULL, 0, "out of memory");
+            return CLI_INPUT;
+        }
+        for (size_t i = 0; i < all; ++i) { /* the sites of --labels: the items in the list's order */
+            size_t files = fa.curves.count;
+            bool had_boundary = fa.curves.boundary;
+            if (!cli_curve_item(items[i], &fa.curves)) {
+                fa.point_site[count] = (uint32_t)i;
+                items[count++] = items[i];
+            } else if (fa.curves.count > files) {
+                if (files < CLI_CURVES_MAX) fa.curve_site[files] = (uint32_t)i;
+            } else if (!had_boundary) {
+                fa.boundary_site = (uint32_t)i;
+            }
+        }
+        fa.site_count = all;
         int bad = all == 0 ? cli_usage("field", "bad --from list \"%s\" (SPEC;SPEC;..., no empty item, at most %d)",
                                        from, MAX_SOURCES)
                   : fa.curves.count > CLI_CURVES_MAX ? cli_usage("field", "at most %d curve files", CLI_CURVES_MAX)
-                  : (fa.curves.boundary || fa.curves.count) && (fa.gradient || fa.labels || fa.isolines || fa.isoline_count)
-                      ? cli_usage("field", "curve sources (curve:FILE, boundary) go with a field (-o, --at, "
-                                           "--max-distance, --threads), not yet with --gradient, --labels or --isolines")
+                  : (fa.curves.boundary || fa.curves.count) && (fa.gradient || fa.isolines || fa.isoline_count)
+                      ? cli_usage("field", "curve sources (curve:FILE, boundary) go with a field (-o, --at, --labels, "
+                                           "--max-distance, --threads), not yet with --gradient or --isolines")
+                  : (fa.curves.boundary || fa.curves.count) && fa.boundaries
+                      ? cli_usage("field", "--boundaries draws the cells of point sources only, not of curves")
                       : CLI_OK;
         if (bad != CLI_OK) {
-            free(list), free(items);
+            free(list), free(items), free(fa.point_site);
             return bad;
         }
     }
@@ -679,7 +718,7 @@ static int run(int argc, char** argv)
         fa.field_threads = nt == 0 ? TG_THREADS_ALL : (int)nt;
     cli_file_role* inputs = malloc((3 + fa.curves.count) * sizeof *inputs);
     if (!inputs) {
-        free(list), free(items);
+        free(list), free(items), free(fa.point_site);
         cli_error(NULL, 0, "out of memory");
         return CLI_INPUT;
     }
@@ -695,7 +734,7 @@ static int run(int argc, char** argv)
     if (check == CLI_OK && (fa.sources_path || fa.field_threads != 1) && !cli_threads_available(fa.threads, "field"))
         check = CLI_INPUT;
     if (check != CLI_OK) {
-        free(list), free(items);
+        free(list), free(items), free(fa.point_site);
         return check;
     }
     int rc;
@@ -703,7 +742,7 @@ static int run(int argc, char** argv)
     if (fa.at_path) {
         long na = cli_read_lines(fa.at_path, "points", &at_text, &fa.at_items, &fa.at_lines, NULL);
         if (na < 0) {
-            free(list), free(items);
+            free(list), free(items), free(fa.point_site);
             return CLI_INPUT;
         }
         fa.at_count = (size_t)na;
@@ -727,7 +766,7 @@ static int run(int argc, char** argv)
     rc = fa.gradient ? run_gradient(&fa, items, NULL, count)
          : fa.isolines || fa.isoline_count ? run_isolines(&fa, items, NULL, count)
                                            : run_field(&fa, items, NULL, count);
-    free(list), free(items);
+    free(list), free(items), free(fa.point_site);
     free(at_text), free(fa.at_items), free(fa.at_lines);
     return rc;
 }
@@ -785,7 +824,8 @@ const cli_command cli_cmd_field = {
     "                         the lowest; -1 where none reaches) and its distance, as PLY\n"
     "                         properties 'label' and 'distance' (trigeo render --labels) or CSV\n"
     "                         rows vertex,label,distance; equal to the argmin over the sources'\n"
-    "                         separate fields\n"
+    "                         separate fields; with curves in --from every item of the list is a\n"
+    "                         site (a curve file all its polylines, boundary the whole boundary)\n"
     "  --boundaries B         with --labels: the cells' boundaries as polylines; on every edge\n"
     "                         between two cells the point where the two sources' distances are\n"
     "                         equal (to 1e-10 relative), joined inside faces (a face of three cells\n"

@@ -438,7 +438,7 @@ static int run_single(const char* mesh_path, const char* from, const char* to, w
         }
         if ((rc = cli_resolve_items("path", mesh_path, NULL, false, mesh, &bvh, cf->items, NULL, cf->count, cpts)) !=
                 CLI_OK ||
-            (rc = cli_curve_segments("path", mesh_path, &cf->curves, mesh, &bvh, geo, &seg, &nseg)) != CLI_OK)
+            (rc = cli_curve_segments("path", mesh_path, &cf->curves, mesh, &bvh, geo, &seg, &nseg, NULL)) != CLI_OK)
             goto done;
         rc = CLI_INPUT;
     }

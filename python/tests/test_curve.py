@@ -99,6 +99,32 @@ def test_curve_paths(tmp_path):
         s.curve_path(900)
 
 
+def test_curve_voronoi(tmp_path):
+    """voronoi(curves=, boundary=): on the flat grid the Euclidean argmin over a point, a curve
+    and the boundary; the CLI's --labels with the same sites in the list's order the same."""
+    m = flat_grid(12)
+    v = m.vertices
+    line = [6 * 13 + k for k in range(3, 10)]  # x = 0.5, y = 0.25 .. 0.75
+    lab, d = m.voronoi([13 * 2 + 2], curves=[line], boundary=True)
+    a, b = np.array([0.5, 0.25, 0]), np.array([0.5, 0.75, 0])
+    e = np.stack([np.linalg.norm(v - v[13 * 2 + 2], axis=1), seg_dist(v, a, b),
+                  np.minimum(np.minimum(v[:, 0], 1 - v[:, 0]), np.minimum(v[:, 1], 1 - v[:, 1]))])
+    srt = np.sort(e, axis=0)
+    clear = srt[1] - srt[0] > 1e-9
+    assert np.array_equal(lab[clear], e.argmin(0)[clear]) and np.abs(d - srt[0]).max() <= 1e-12
+    name = corpus("igl_camelhead.off")
+    c = trigeo.load(name)
+    e = [int(i) for i in c.faces[0][:2]]  # an edge of the mesh
+    curve = tmp_path / "c.txt"
+    curve.write_text(f"v:{e[0]}\nv:{e[1]}\n")
+    out = tmp_path / "l.csv"
+    r = run_cli("field", name, "--from", f"v:5000;curve:{curve};boundary", "--labels", "-o", str(out), "--quiet")
+    assert r.returncode == 0, r.stderr
+    cli = np.loadtxt(out, delimiter=",", skiprows=1)
+    lab, d = c.voronoi([5000], curves=[e], boundary=True)
+    assert np.array_equal(cli[:, 1].astype(np.int64), lab) and np.array_equal(cli[:, 2], d)
+
+
 def test_bad_curves(tmp_path):
     s = trigeo.load(SPOT)
     with pytest.raises(trigeo.InvalidArgumentError, match="no face together"):
@@ -116,7 +142,7 @@ def test_bad_curves(tmp_path):
     assert not (tmp_path / "o.ply").exists()
     r = run_cli("field", SPOT, "--from", "boundary", "-o", str(tmp_path / "o.ply"))
     assert r.returncode == 2 and "no boundary" in r.stderr
-    r = run_cli("field", SPOT, "--from", f"curve:{bad}", "--labels", "-o", str(tmp_path / "o.ply"))
+    r = run_cli("field", SPOT, "--from", f"curve:{bad}", "--gradient", "-o", str(tmp_path / "o.npy"))
     assert r.returncode == 1 and "curve sources" in r.stderr
     # the output may not overwrite the curve file
     r = run_cli("field", SPOT, "--from", f"curve:{bad}", "--csv", str(bad))

@@ -2089,8 +2089,9 @@ class Mesh:
 
     # -- Voronoi cells and sampling --------------------------------------------------------
 
-    def voronoi(self, sources: Any, max_distance: Optional[float] = None, boundaries: bool = False,
-                progress: Optional[Callable[[float], Any]] = None, threads: int = 1) -> tuple:
+    def voronoi(self, sources: Any = None, max_distance: Optional[float] = None, boundaries: bool = False,
+                progress: Optional[Callable[[float], Any]] = None, threads: int = 1, *, curves: Any = None,
+                boundary: bool = False) -> tuple:
         """Geodesic Voronoi cells: per vertex the index of the nearest source (in the order
         given; ties to the lowest index) and the exact distance to it. sources as field().
         Equal to the argmin over each source's own field (distance_matrix(sources).argmin(0)
@@ -2101,12 +2102,43 @@ class Mesh:
         sources' exact distances are equal to 1e-10 relative, and junctions inside faces of
         three cells); closed loops repeat their first point. threads: each source's field on that
         many threads, as field()'s (a label where two sources tie within rounding may differ
-        from one thread's)."""
+        from one thread's).
+        Curve sites (tg_geodesic_curve_voronoi, the CLI's --labels with curve:FILE and boundary):
+        curves= a list of polylines (each as field()'s curve=), boundary=True the mesh's
+        boundary: the sites are the sources (0 .. S-1), then each curve, then the boundary, each
+        vertex labelled with the nearest (exact distance to its nearest point); boundaries=True
+        is for point sources only."""
         boundaries = _flag(boundaries, "boundaries")
         nthreads = _threads(threads)
         n = self.vertex_count
         labels = np.empty(n, dtype=np.uint32)
         dist = np.empty(n)
+        if curves is not None or _flag(boundary, "boundary"):
+            if boundaries:
+                raise _bad("boundaries=True draws the cells of point sources only, not of curves")
+            if curves is not None and (isinstance(curves, (str, bytes)) or not isinstance(curves, (list, tuple))):
+                raise _bad("curves must be a list of polylines (each as field()'s curve= takes one)")
+            parts = [self._segments(c, None, False) for c in (curves or [])]
+            if boundary:
+                parts.append(self._segments(None, None, True))
+
+            def work_curves(call: _Call) -> None:
+                src = self._surface_points(sources if sources is not None else [], "sources")
+                segs = [sg for part in parts for sg in part]
+                site = [len(src) + k for k, part in enumerate(parts) for _ in part]
+                arr = (_c.SurfaceSegmentC * len(segs))(*segs)
+                sites = (ctypes.c_uint32 * max(len(site), 1))(*site)
+                o = self._field_options(max_distance, call, nthreads)
+                with self._geo_ws.take() as ws:
+                    st = _L.tg_geodesic_curve_voronoi(self._get_geo(), ws, src, len(src), None, arr, len(segs), sites,
+                                                      len(src) + len(parts), ctypes.byref(o), _ptr(dist),
+                                                      _ptr(labels, ctypes.c_uint32), None)
+                call.finish(st, "voronoi")
+
+            self._run(work_curves, progress)
+            return _labels(labels), dist
+        if sources is None:
+            raise _bad("voronoi() needs sources, curves= or boundary=True")
 
         def work(call: _Call) -> None:
             src = self._surface_points(sources, "sources")

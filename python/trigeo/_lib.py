@@ -318,6 +318,8 @@ _SIGNATURES = {
     "tg_geodesic_curve_field": (c_int, [_vp, _vp, _psp, c_size_t, POINTER(SurfaceSegmentC), c_size_t, _psp, c_size_t,
                                         POINTER(FieldOptions), _pd, _pd, _vp]),
     "tg_geodesic_boundary_segments": (c_int, [_vp, POINTER(SurfaceSegmentC), c_size_t, POINTER(c_size_t)]),
+    "tg_geodesic_curve_voronoi": (c_int, [_vp, _vp, _psp, c_size_t, _pu32, POINTER(SurfaceSegmentC), c_size_t, _pu32,
+                                          c_size_t, POINTER(FieldOptions), _pd, _pu32, _vp]),
     "tg_geodesic_curve_path": (c_int, [_vp, _vp, _psp, c_size_t, POINTER(SurfaceSegmentC), c_size_t, _psp,
                                        POINTER(PathOptions), _vp]),
     "tg_surface_segment_validate": (c_int, [_vp, POINTER(SurfaceSegmentC), _pdiag]),

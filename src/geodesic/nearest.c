@@ -39,19 +39,16 @@ void tg__nearest_free(tg__nearest* nf)
     nf->dist = NULL, nf->label = NULL, nf->pred = NULL, nf->tie = NULL, nf->prebound = NULL;
 }
 
-tg_status tg__nearest_prebound(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources, size_t count)
+tg_status tg__nearest_prebound_sites(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources,
+                                     size_t count, const tg_surface_point* segments, size_t segment_count)
 {
     const tg_geodesic* g = nf->g;
     size_t nv = g->vertex_count ? g->vertex_count : 1;
-    tg_surface_point* in = tg__alloc_array(&nf->allocator, count ? count : 1, sizeof *in);
     nf->prebound = tg__alloc_array(&nf->allocator, nv, sizeof(double));
-    if (!in || !nf->prebound) {
-        tg__free(&nf->allocator, in);
-        return TG_ERR_OUT_OF_MEMORY;
-    }
-    tg__field_points_in(g, sources, count, in);
+    if (!nf->prebound) return TG_ERR_OUT_OF_MEMORY;
     bool progress = nf->options && nf->options->progress;
-    tg__field_query q = {.sources = in, .source_count = count, .max_distance = nf->max_dist,
+    tg__field_query q = {.sources = sources, .source_count = count, .segments = segments,
+                         .segment_count = segment_count, .max_distance = nf->max_dist,
                          .progress = progress ? tg__nearest_report : NULL, .progress_user = nf,
                          .threads = tg__field_threads(nf->options)};
     tg__field_run run;
@@ -60,6 +57,15 @@ tg_status tg__nearest_prebound(tg__nearest* nf, tg__field_scratch* fs, const tg_
     if (st == TG_OK)
         for (uint32_t u = 0; u < g->vertex_count; ++u)
             nf->prebound[u] = run.vertex_dist[u] <= nf->max_dist ? run.vertex_dist[u] : INFINITY;
+    return st;
+}
+
+tg_status tg__nearest_prebound(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources, size_t count)
+{
+    tg_surface_point* in = tg__alloc_array(&nf->allocator, count ? count : 1, sizeof *in);
+    if (!in) return TG_ERR_OUT_OF_MEMORY;
+    tg__field_points_in(nf->g, sources, count, in);
+    tg_status st = tg__nearest_prebound_sites(nf, fs, in, count, NULL, 0);
     tg__free(&nf->allocator, in);
     return st;
 }
@@ -83,10 +89,17 @@ int tg__nearest_report(void* user, const tg__field_run* run)
 
 tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* src)
 {
-    bool progress = nf->options && nf->options->progress;
-    /* the first source alone is a plain field; later ones only where they beat the earlier */
     tg_surface_point in = tg__surface_in(nf->g, src); /* the solver's form, once (field.h) */
-    tg__field_query q = {.sources = &in, .source_count = 1, .max_distance = nf->max_dist,
+    return tg__nearest_add_site(nf, fs, &in, 1, NULL, 0);
+}
+
+tg_status tg__nearest_add_site(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources,
+                               size_t source_count, const tg_surface_point* segments, size_t segment_count)
+{
+    bool progress = nf->options && nf->options->progress;
+    /* the first site alone is a plain field; later ones only where they beat the earlier */
+    tg__field_query q = {.sources = sources, .source_count = source_count, .segments = segments,
+                         .segment_count = segment_count, .max_distance = nf->max_dist,
                          .progress = progress ? tg__nearest_report : NULL, .progress_user = nf,
                          .bound = nf->prebound ? nf->prebound : nf->added ? nf->dist : NULL,
                          .threads = tg__field_threads(nf->options),

@@ -42,10 +42,18 @@ bool tg__nearest_trace(tg__nearest* nf);
 /* One run of all the sources at once (the caller's form), its distances kept as every later run's
  * bound (nf->prebound). Errors: TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED (the progress callback). */
 tg_status tg__nearest_prebound(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources, size_t count);
+/* tg__nearest_prebound of sites: point sources and curve segments (two points each), all in the
+ * solver's form already (field/engine.h, tg__field_query). */
+tg_status tg__nearest_prebound_sites(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources,
+                                     size_t count, const tg_surface_point* segments, size_t segment_count);
 /* Adds one source (a valid point): one run on fs, then every vertex it reached strictly more
  * shortly takes its distance and the label nf->added. Errors: TG_ERR_OUT_OF_MEMORY,
  * TG_ERR_CANCELLED (nf unchanged then, except the stats). */
 tg_status tg__nearest_add(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* src);
+/* The same for one site of several point sources and curve segments (solver form): one run of
+ * them all, one label. */
+tg_status tg__nearest_add_site(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources,
+                               size_t source_count, const tg_surface_point* segments, size_t segment_count);
 /* The progress hook of a run of nf (progress_user: nf): the caller's callback, told the sources
  * (rows) added so far. */
 int tg__nearest_report(void* user, const struct tg__field_run* run);

@@ -93,7 +93,8 @@ extern "C" {
  *    parallel rays), tg_geodesic_boundary_segments (the mesh's boundary as segments),
  *    tg_surface_segment_validate, tg_surface_point_snap (a point within a tolerance of an edge or
  *    corner named by it: polylines given in coordinates), tg_geodesic_curve_path (the exact path
- *    from the nearest point of the curves), tg_geodesic_curve_voronoi (cells of curve sites). CLI: field --from curve:FILE and --from boundary,
+ *    from the nearest point of the curves), tg_geodesic_curve_voronoi (cells of curve sites),
+ *    tg_geodesic_curve_distance_matrix (rows of curves). CLI: field --from curve:FILE and --from boundary,
  *    path --from curve:FILE|boundary; Python: Mesh.field(curve=, curves=, boundary=), field_at
  *    likewise, Mesh.curve_path, Mesh.boundary_segments().
  *  - A solver takes at most 536,870,909 vertices (one id fewer: it names a curve's windows). */
@@ -1698,6 +1699,27 @@ TG_API tg_status tg_geodesic_curve_voronoi(const tg_geodesic* geodesic, tg_geode
                                            size_t segment_count, const uint32_t* segment_site, size_t site_count,
                                            const tg_field_options* options, double* out_vertex_distance,
                                            uint32_t* out_vertex_label, tg_field_stats* out_stats);
+
+/** The distance matrix of rows made of curves and points: row k is tg_geodesic_curve_field of
+ *  row k's sources and segments (bit for bit), at every vertex (targets NULL, target_count 0:
+ *  row_count x vertex_count) or at the targets (row_count x target_count, each row's run stopped
+ *  once its targets are settled, as tg_geodesic_distance_matrix_at). source_row, segment_row:
+ *  the row of each source and segment (< row_count); NULL: source i is row i, segment i is row
+ *  source_count + i (a row with nothing in it is +inf). Rows run in parallel on `threads`
+ *  threads (0: the OpenMP default), each on one thread (options->threads must be 0 or 1).
+ *  out_matrix: row-major doubles, +inf where unreachable or beyond the options' limit.
+ *  Errors: TG_ERR_INVALID_ARGUMENT (as tg_geodesic_curve_field and tg_geodesic_distance_matrix;
+ *  a row out of range, row_count >= TG_NONE), TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED; each row
+ *  is written only once complete, as tg_geodesic_distance_matrix's. Thread-safe: geodesic is
+ *  only read.
+ *  (New in 0.6.2.) */
+TG_API tg_status tg_geodesic_curve_distance_matrix(const tg_geodesic* geodesic, const tg_surface_point* sources,
+                                                   size_t source_count, const uint32_t* source_row,
+                                                   const tg_surface_segment* segments, size_t segment_count,
+                                                   const uint32_t* segment_row, size_t row_count,
+                                                   const tg_surface_point* targets, size_t target_count,
+                                                   const tg_field_options* options, int threads, double* out_matrix,
+                                                   tg_field_stats* out_stats);
 
 /** The mesh's boundary as segments: every edge of exactly one kept face (duplicate faces and faces
  *  with a repeated vertex do not count; non-manifold edges are not boundary), from vertex to

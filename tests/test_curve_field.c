@@ -621,6 +621,59 @@ static void test_curve_voronoi(void)
     close_ctx(&s);
 }
 
+/* Curve rows of a distance matrix: each row bit for bit its own curve field (every vertex, on 1
+ * and 2 threads) and field_at at targets; an empty row +inf; a row out of range refused. */
+static void test_curve_matrix(void)
+{
+    tg_mesh* m = tg_test_load_corpus_mesh(tg_test_meshes_dir(), "nvd_spot.obj");
+    if (!m) return;
+    ctx s = open_ctx_for(m);
+    size_t n = tg_mesh_vertex_count(m);
+    tg_rng r = {5};
+    tg_surface_segment cs[12];
+    uint32_t row[12];
+    for (int i = 0; i < 12; ++i) {
+        uint32_t f = (uint32_t)(tg_rng_next(&r) % tg_mesh_face_count(m));
+        double u = tg_rng_unit(&r) * 0.5, w = tg_rng_unit(&r) * 0.5;
+        cs[i].a = tg_surface_face(f, 1 - u - w, u, w);
+        cs[i].b = tg_surface_edge(3 * f + (uint32_t)(i % 3), tg_rng_unit(&r));
+        row[i] = (uint32_t)(i % 3); /* rows 0..2; row 3 empty */
+    }
+    tg_surface_point pt = tg_surface_vertex(77), targets[5];
+    uint32_t pt_row = 2;
+    for (int i = 0; i < 5; ++i) targets[i] = random_face_point(&r, tg_mesh_face_count(m));
+    double *mat = malloc(4 * n * sizeof *mat), *one = malloc(n * sizeof *one), at[4 * 5], want[5];
+    for (int threads = 1; threads <= 2; ++threads) {
+        CHECK_STATUS(tg_geodesic_curve_distance_matrix(s.geo, &pt, 1, &pt_row, cs, 12, row, 4, NULL, 0, NULL, threads,
+                                                       mat, NULL),
+                     TG_OK);
+        CHECK_STATUS(tg_geodesic_curve_distance_matrix(s.geo, &pt, 1, &pt_row, cs, 12, row, 4, targets, 5, NULL, threads,
+                                                       at, NULL),
+                     TG_OK);
+        for (uint32_t k = 0; k < 3; ++k) {
+            tg_surface_segment mine[4];
+            for (int i = 0; i < 4; ++i) mine[i] = cs[3 * i + (int)k];
+            CHECK_STATUS(tg_geodesic_curve_field(s.geo, s.ws, k == 2 ? &pt : NULL, k == 2, mine, 4, NULL, 0, NULL, NULL,
+                                                 one, NULL),
+                         TG_OK);
+            CHECK_MSG(memcmp(one, mat + k * n, n * sizeof *one) == 0, "%d threads: row %u differs from its field",
+                      threads, k);
+            CHECK_STATUS(tg_geodesic_curve_field(s.geo, s.ws, k == 2 ? &pt : NULL, k == 2, mine, 4, targets, 5, NULL,
+                                                 want, NULL, NULL),
+                         TG_OK);
+            CHECK_MSG(memcmp(want, at + 5 * k, sizeof want) == 0, "%d threads: row %u at the targets differs", threads, k);
+        }
+        bool empty = true;
+        for (size_t v = 0; v < n; ++v) empty = empty && mat[3 * n + v] == INFINITY;
+        CHECK_MSG(empty && at[15] == INFINITY, "the empty row is not +inf");
+    }
+    uint32_t bad_row = 4;
+    CHECK_STATUS(tg_geodesic_curve_distance_matrix(s.geo, &pt, 1, &bad_row, cs, 12, row, 4, NULL, 0, NULL, 1, mat, NULL),
+                 TG_ERR_INVALID_ARGUMENT);
+    free(mat), free(one);
+    close_ctx(&s);
+}
+
 static void test_bad_input(void)
 {
     nv = nf = 0;
@@ -658,6 +711,7 @@ int main(void)
     test_out_of_memory();
     test_curve_paths();
     test_curve_voronoi();
+    test_curve_matrix();
     test_bad_input();
     return tg_test_finish();
 }

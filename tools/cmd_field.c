@@ -222,8 +222,11 @@ static int run_field(field_args* fa, char** items, const unsigned long long* lin
         (rc = cli_resolve_items("field", fa->mesh_path, fa->at_path, true, mesh, &bvh, fa->at_items, fa->at_lines, fa->at_count, at_pts)) != CLI_OK)
         goto done;
     rc = CLI_INPUT;
-    /* the columns: the vertices, or with --sources and --to the points */
-    size_t n = fa->matrix && fa->at_count ? fa->at_count : tg_mesh_vertex_count(mesh), rows = fa->matrix ? count : 1;
+    /* the columns: the vertices, or with --sources and --to the points; the rows: the sources, or
+     * every item with curve rows */
+    bool curves = fa->curves.count || fa->curves.boundary;
+    size_t n = fa->matrix && fa->at_count ? fa->at_count : tg_mesh_vertex_count(mesh),
+           rows = fa->matrix ? (curves ? fa->site_count : count) : 1;
     if (n && rows > SIZE_MAX / sizeof(double) / n) {
         cli_error(fa->sources_path, 0, "%zu sources x %zu vertices is too large", count, n);
         goto done;
@@ -241,6 +244,16 @@ static int run_field(field_args* fa, char** items, const unsigned long long* lin
             while (k <= fa->curves.count && i >= ends[k]) ++k;
             seg_site[i] = k == 0 ? fa->boundary_site : fa->curve_site[k - 1];
         }
+        if (fa->matrix) { /* rows: the same numbering */
+            if (!(seg_site = malloc((nseg ? nseg : 1) * sizeof *seg_site))) {
+                cli_error(NULL, 0, "out of memory");
+                goto done;
+            }
+            for (size_t i = 0, k = 0; i < nseg; ++i) {
+                while (k <= fa->curves.count && i >= ends[k]) ++k;
+                seg_site[i] = k == 0 ? fa->boundary_site : fa->curve_site[k - 1];
+            }
+        }
         rc = CLI_INPUT;
         fa->segments = nseg;
     }
@@ -249,7 +262,10 @@ static int run_field(field_args* fa, char** items, const unsigned long long* lin
     tg_field_stats stats;
     start_work(fa, &o, &prog, &stats);
     double t0 = cli_seconds();
-    if (st == TG_OK && seg && fa->labels) {
+    if (st == TG_OK && seg && fa->matrix) {
+        st = tg_geodesic_curve_distance_matrix(geo, pts, count, fa->point_site, seg, nseg, seg_site, fa->site_count,
+                                               at_pts, fa->at_count, &o, fa->threads, dist, &stats);
+    } else if (st == TG_OK && seg && fa->labels) {
         label = malloc((n ? n : 1) * sizeof *label);
         st = !label ? TG_ERR_OUT_OF_MEMORY
                     : tg_geodesic_curve_voronoi(geo, NULL, pts, count, fa->point_site, seg, nseg, seg_site,
@@ -320,7 +336,7 @@ static int run_field(field_args* fa, char** items, const unsigned long long* lin
         goto done;
     }
     if (!fa->quiet && (!fa->out || strcmp(fa->out, "-")))
-        print_summary(count, fa->segments, fa->matrix, fa->matrix && fa->at_count ? "points" : "vertices", dist, rows, n, secs, &stats);
+        print_summary(rows > 1 ? rows : count, fa->segments, fa->matrix, fa->matrix && fa->at_count ? "points" : "vertices", dist, rows, n, secs, &stats);
     rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
 done:
     free(pts), free(dist), free(at_pts), free(at_d), free(label), free(seg), free(seg_site);
@@ -553,6 +569,58 @@ done:
     return rc;
 }
 
+/* Sets the curve items (curve:FILE, boundary) of a --from list or a sources file apart from the
+ * point SPECs: items (and lines, when not NULL) keep the points, *out_count their number; every
+ * item is a site (--labels) or a row (--sources) in the order given (fa->point_site,
+ * curve_site, boundary_site, site_count). CLI_OK, or CLI_INPUT when out of memory (printed). */
+static int split_curves(field_args* fa, char** items, unsigned long long* lines, size_t all, size_t* out_count)
+{
+    size_t count = 0;
+    fa->point_site = malloc((all ? all : 1) * sizeof *fa->point_site);
+    if (!fa->point_site) {
+        cli_error(NULL, 0, "out of memory");
+        return CLI_INPUT;
+    }
+    for (size_t i = 0; i < all; ++i) {
+        size_t files = fa->curves.count;
+        bool had_boundary = fa->curves.boundary;
+        if (!cli_curve_item(items[i], &fa->curves)) {
+            fa->point_site[count] = (uint32_t)i;
+            if (lines) lines[count] = lines[i];
+            items[count++] = items[i];
+        } else if (fa->curves.count > files) {
+            if (files < CLI_CURVES_MAX) fa->curve_site[files] = (uint32_t)i;
+        } else if (!had_boundary) {
+            fa->boundary_site = (uint32_t)i;
+        }
+    }
+    fa->site_count = all;
+    *out_count = count;
+    return CLI_OK;
+}
+
+/* The files a run reads, with the curve files of fa->curves, checked against its outputs
+ * (cli_check_outputs). */
+static int check_files(const field_args* fa, const char* at_opt, const char* csv)
+{
+    cli_file_role* inputs = malloc((3 + fa->curves.count) * sizeof *inputs);
+    if (!inputs) {
+        cli_error(NULL, 0, "out of memory");
+        return CLI_INPUT;
+    }
+    inputs[0] = (cli_file_role){fa->mesh_path, "mesh"};
+    inputs[1] = (cli_file_role){fa->sources_path && strcmp(fa->sources_path, "all") ? fa->sources_path : NULL,
+                                "sources file (--sources)"};
+    inputs[2] = (cli_file_role){fa->at_path, at_opt && !strcmp(at_opt, "--to") ? "points file (--to)" : "points file (--at)"};
+    for (size_t i = 0; i < fa->curves.count && i < CLI_CURVES_MAX; ++i)
+        inputs[3 + i] = (cli_file_role){fa->curves.files[i], "curve file (curve:)"};
+    const cli_file_role outputs[3] = {{fa->out, csv ? "--csv" : "-o"}, {fa->boundaries, "--boundaries"},
+                                      {fa->face_gradient, "--face-gradient"}};
+    int check = cli_check_outputs(outputs, 3, inputs, 3 + (fa->curves.count < CLI_CURVES_MAX ? fa->curves.count : CLI_CURVES_MAX));
+    free(inputs);
+    return check;
+}
+
 static int run(int argc, char** argv)
 {
     field_args fa;
@@ -624,25 +692,10 @@ static int run(int argc, char** argv)
         }
         memcpy(list, from, len + 1);
         size_t all = cli_split_list(list, items, MAX_SOURCES);
-        fa.point_site = malloc(all * sizeof *fa.point_site);
-        if (!fa.point_site) {
+        if (split_curves(&fa, items, NULL, all, &count) != CLI_OK) {
             free(list), free(items), free(fa.point_site);
-            cli_error(NULL, 0, "out of memory");
             return CLI_INPUT;
         }
-        for (size_t i = 0; i < all; ++i) { /* the sites of --labels: the items in the list's order */
-            size_t files = fa.curves.count;
-            bool had_boundary = fa.curves.boundary;
-            if (!cli_curve_item(items[i], &fa.curves)) {
-                fa.point_site[count] = (uint32_t)i;
-                items[count++] = items[i];
-            } else if (fa.curves.count > files) {
-                if (files < CLI_CURVES_MAX) fa.curve_site[files] = (uint32_t)i;
-            } else if (!had_boundary) {
-                fa.boundary_site = (uint32_t)i;
-            }
-        }
-        fa.site_count = all;
         int bad = all == 0 ? cli_usage("field", "bad --from list \"%s\" (SPEC;SPEC;..., no empty item, at most %d)",
                                        from, MAX_SOURCES)
                   : fa.curves.count > CLI_CURVES_MAX ? cli_usage("field", "at most %d curve files", CLI_CURVES_MAX)
@@ -716,21 +769,7 @@ static int run(int argc, char** argv)
     fa.field_threads = 1;
     if (threads && !fa.matrix) /* one field (--from, --labels' each source, --isolines) on several threads */
         fa.field_threads = nt == 0 ? TG_THREADS_ALL : (int)nt;
-    cli_file_role* inputs = malloc((3 + fa.curves.count) * sizeof *inputs);
-    if (!inputs) {
-        free(list), free(items), free(fa.point_site);
-        cli_error(NULL, 0, "out of memory");
-        return CLI_INPUT;
-    }
-    inputs[0] = (cli_file_role){fa.mesh_path, "mesh"};
-    inputs[1] = (cli_file_role){fa.sources_path && strcmp(fa.sources_path, "all") ? fa.sources_path : NULL,
-                                "sources file (--sources)"};
-    inputs[2] = (cli_file_role){fa.at_path, at_opt && !strcmp(at_opt, "--to") ? "points file (--to)" : "points file (--at)"};
-    for (size_t i = 0; i < fa.curves.count; ++i) inputs[3 + i] = (cli_file_role){fa.curves.files[i], "curve file (--from curve:)"};
-    const cli_file_role outputs[3] = {{fa.out, csv ? "--csv" : "-o"}, {fa.boundaries, "--boundaries"},
-                                      {fa.face_gradient, "--face-gradient"}};
-    int check = cli_check_outputs(outputs, 3, inputs, 3 + fa.curves.count);
-    free(inputs);
+    int check = check_files(&fa, at_opt, csv);
     if (check == CLI_OK && (fa.sources_path || fa.field_threads != 1) && !cli_threads_available(fa.threads, "field"))
         check = CLI_INPUT;
     if (check != CLI_OK) {
@@ -752,14 +791,22 @@ static int run(int argc, char** argv)
         char** rows = NULL;
         unsigned long long* lines = NULL;
         long n = fa.all ? 0 : cli_read_lines(fa.sources_path, "sources", &text, &rows, &lines, NULL);
-        if (n < 0)
-            rc = CLI_INPUT;
-        else
+        size_t kept = 0;
+        rc = n < 0 ? CLI_INPUT : split_curves(&fa, rows, lines, (size_t)n, &kept);
+        if (rc == CLI_OK && (fa.curves.count || fa.curves.boundary)) { /* curve rows */
+            rc = fa.curves.count > CLI_CURVES_MAX ? cli_usage("field", "at most %d curve files", CLI_CURVES_MAX)
+                 : fa.sparse || fa.gradient || fa.isolines || fa.isoline_count || fa.boundaries
+                     ? cli_usage("field", "curve rows (curve:FILE, boundary) in --sources go with the dense matrix "
+                                          "(-o .npy, .csv; --to) and --labels")
+                     : check_files(&fa, at_opt, csv);
+            n = (long)kept;
+        }
+        if (rc == CLI_OK)
             rc = fa.gradient ? run_gradient(&fa, rows, lines, (size_t)n)
                  : fa.isolines || fa.isoline_count ? run_isolines(&fa, rows, lines, (size_t)n)
                  : fa.sparse ? run_sparse(&fa, rows, lines, (size_t)n)
                              : run_field(&fa, rows, lines, (size_t)n);
-        free(text), free(rows), free(lines);
+        free(text), free(rows), free(lines), free(fa.point_site);
         free(at_text), free(fa.at_items), free(fa.at_lines);
         return rc;
     }
@@ -798,7 +845,9 @@ const cli_command cli_cmd_field = {
     "  --sources FILE|all     one field per source: FILE has one SPEC a line ('#' comments and\n"
     "                         blank lines skipped; '-' reads stdin), 'all' is every vertex in order\n"
     "                         (sparse outputs only); the fields are computed in parallel and\n"
-    "                         written as the distance matrix, one row per source\n"
+    "                         written as the distance matrix, one row per source; a line\n"
+    "                         curve:FILE or boundary is a row of that curve (dense matrix, --to,\n"
+    "                         --labels)\n"
     "  --to POINTS            with --sources: the matrix of sources x these points (SPEC or \"x y z\"\n"
     "                         a line), each field stopped once its points are settled (.npy, .csv)\n"
     "  --sparse               with --sources: only the entries within --max-distance (every\n"

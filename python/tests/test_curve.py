@@ -125,6 +125,31 @@ def test_curve_voronoi(tmp_path):
     assert np.array_equal(cli[:, 1].astype(np.int64), lab) and np.array_equal(cli[:, 2], d)
 
 
+def test_curve_matrix(tmp_path):
+    """distance_matrix(curves=, boundary=): each row its own field bit for bit (and at targets);
+    the CLI's --sources with curve:FILE and boundary lines the same rows."""
+    name = corpus("igl_camelhead.off")
+    c = trigeo.load(name)
+    e = [int(i) for i in c.faces[0][:2]]
+    path = c.path(10, 8000).points
+    m = c.distance_matrix([5000], curves=[e, path], boundary=True, threads=2)
+    assert m.shape == (4, c.vertex_count)
+    assert np.array_equal(m[0], c.field([5000]))
+    assert np.array_equal(m[1], c.field(curve=e)) and np.array_equal(m[2], c.field(curve=path))
+    assert np.array_equal(m[3], c.field(boundary=True))
+    at = c.distance_matrix([5000], curves=[e], targets=[1, 2, 3])
+    assert np.array_equal(at[1], c.field_at(None, [1, 2, 3], curve=e))
+    curve = tmp_path / "e.txt"
+    curve.write_text(f"v:{e[0]}\nv:{e[1]}\n")
+    rows = tmp_path / "rows.txt"
+    rows.write_text(f"boundary\nv:5000\ncurve:{curve}\n")
+    out = tmp_path / "m.npy"
+    r = run_cli("field", name, "--sources", str(rows), "-o", str(out), "--quiet")
+    assert r.returncode == 0, r.stderr
+    cli = np.load(out)
+    assert np.array_equal(cli, m[[3, 0, 1]])
+
+
 def test_bad_curves(tmp_path):
     s = trigeo.load(SPOT)
     with pytest.raises(trigeo.InvalidArgumentError, match="no face together"):

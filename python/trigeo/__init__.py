@@ -1945,17 +1945,27 @@ class Mesh:
 
         return self._run(work)
 
-    def distance_matrix(self, sources: Any, max_distance: Optional[float] = None, threads: int = 0,
+    def distance_matrix(self, sources: Any = None, max_distance: Optional[float] = None, threads: int = 0,
                         progress: Optional[Callable[[float], Any]] = None, *, targets: Any = None,
-                        sparse: bool = False) -> Any:
+                        sparse: bool = False, curves: Any = None, boundary: bool = False) -> Any:
         """One exact field per source: row i is field([sources[i]]) exactly (bit-identical).
         Rows run in parallel on `threads` C threads (0: all cores). Returns (K, n) float64.
 
         targets: surface points (as field_at's points): the (K, T) matrix of the distances from
         each source to them, each field stopped as soon as its targets are settled (see
         _matrix_at). sparse=True: the local matrix, a scipy.sparse.csr_matrix of every vertex
-        within max_distance of each source (see _local_matrix); sources may then be "all"."""
+        within max_distance of each source (see _local_matrix); sources may then be "all".
+        Curve rows (tg_geodesic_curve_distance_matrix, the CLI's curve:FILE and boundary lines in
+        --sources): curves= a list of polylines (each as field()'s curve=), boundary=True the
+        mesh's boundary; the rows are the sources, then each curve, then the boundary, each row
+        field(curve=...) of its own bit for bit (dense only, targets allowed)."""
         sparse = _flag(sparse, "sparse")
+        if curves is not None or _flag(boundary, "boundary"):
+            if sparse:
+                raise _bad("curve rows give a dense matrix: sparse=True does not apply")
+            return self._curve_matrix(sources, curves, boundary, targets, max_distance, threads, progress)
+        if sources is None:
+            raise _bad("distance_matrix() needs sources, curves= or boundary=True")
         if targets is not None:
             if sparse:
                 raise _bad("targets gives a dense (K, T) matrix: sparse=True does not apply")
@@ -1973,6 +1983,34 @@ class Mesh:
             out = np.empty((len(src), self.vertex_count))
             geo = self._get_geo()
             st = _L.tg_geodesic_distance_matrix(geo, src, len(src), ctypes.byref(o), threads, _ptr(out), None)
+            call.finish(st, "distance_matrix")
+            return out
+
+        return self._run(work, progress)
+
+    def _curve_matrix(self, sources: Any, curves: Any, boundary: bool, targets: Any, max_distance: Optional[float],
+                      threads: int, progress: Optional[Callable[[float], Any]]) -> np.ndarray:
+        """distance_matrix with curve rows: the sources' rows, each curve's, the boundary's."""
+        if curves is not None and (isinstance(curves, (str, bytes)) or not isinstance(curves, (list, tuple))):
+            raise _bad("curves must be a list of polylines (each as field()'s curve= takes one)")
+        parts = [self._segments(c, None, False) for c in (curves or [])]
+        if boundary:
+            parts.append(self._segments(None, None, True))
+        threads = _threads(threads)
+
+        def work(call: _Call) -> np.ndarray:
+            src = self._surface_points(sources if sources is not None else [], "sources")
+            tgt = self._surface_points(targets, "targets") if targets is not None else None
+            segs = [sg for part in parts for sg in part]
+            rows = [len(src) + k for k, part in enumerate(parts) for _ in part]
+            arr = (_c.SurfaceSegmentC * len(segs))(*segs)
+            seg_row = (ctypes.c_uint32 * max(len(rows), 1))(*rows)
+            nrows = len(src) + len(parts)
+            o = self._field_options(max_distance, call)
+            out = np.empty((nrows, self.vertex_count if tgt is None else len(tgt)))
+            st = _L.tg_geodesic_curve_distance_matrix(self._get_geo(), src, len(src), None, arr, len(segs), seg_row,
+                                                      nrows, tgt, 0 if tgt is None else len(tgt), ctypes.byref(o),
+                                                      threads, _ptr(out), None)
             call.finish(st, "distance_matrix")
             return out
 

@@ -94,6 +94,59 @@ tg_status tg_geodesic_curve_field(const tg_geodesic* g, tg_geodesic_workspace* w
     return st;
 }
 
+void tg__curve_sites_free(const tg_allocator* a, tg__curve_sites* s)
+{
+    tg__free(a, s->src_start), tg__free(a, s->seg_start), tg__free(a, s->src), tg__free(a, s->seg);
+    memset(s, 0, sizeof *s);
+}
+
+/* The site of source i and of segment i (the NULL defaults of tg__curve_sites_make). */
+static size_t source_site_of(const uint32_t* site, size_t i)
+{
+    return site ? site[i] : i;
+}
+static size_t segment_site_of(const uint32_t* site, size_t source_count, size_t i)
+{
+    return site ? site[i] : source_count + i;
+}
+
+tg_status tg__curve_sites_make(const tg_geodesic* g, const tg_allocator* a, const tg_surface_point* sources,
+                               size_t source_count, const uint32_t* source_site, const tg_surface_segment* segments,
+                               size_t segment_count, const uint32_t* segment_site, size_t site_count,
+                               tg__curve_sites* s)
+{
+    memset(s, 0, sizeof *s);
+    if (site_count >= TG_NONE || (segment_count && !segments) || (source_count && !sources) ||
+        segment_count > SIZE_MAX / (2 * sizeof(tg_surface_point)))
+        return TG_ERR_INVALID_ARGUMENT;
+    for (size_t i = 0; i < source_count; ++i)
+        if (source_site_of(source_site, i) >= site_count || tg_surface_point_validate(g->mesh, &sources[i], NULL) != TG_OK)
+            return TG_ERR_INVALID_ARGUMENT;
+    for (size_t i = 0; i < segment_count; ++i)
+        if (segment_site_of(segment_site, source_count, i) >= site_count ||
+            tg_surface_segment_validate(g, &segments[i], NULL) != TG_OK)
+            return TG_ERR_INVALID_ARGUMENT;
+    s->src_start = tg__calloc_array(a, site_count + 2, sizeof(size_t));
+    s->seg_start = tg__calloc_array(a, site_count + 2, sizeof(size_t));
+    s->src = tg__alloc_array(a, source_count ? source_count : 1, sizeof(tg_surface_point));
+    s->seg = tg__alloc_array(a, segment_count ? 2 * segment_count : 1, sizeof(tg_surface_point));
+    if (!s->src_start || !s->seg_start || !s->src || !s->seg) {
+        tg__curve_sites_free(a, s);
+        return TG_ERR_OUT_OF_MEMORY;
+    }
+    /* a counting sort by site, each point in the solver's form */
+    for (size_t i = 0; i < source_count; ++i) s->src_start[source_site_of(source_site, i) + 2]++;
+    for (size_t i = 0; i < segment_count; ++i) s->seg_start[segment_site_of(segment_site, source_count, i) + 2]++;
+    for (size_t k = 2; k < site_count + 2; ++k) s->src_start[k] += s->src_start[k - 1], s->seg_start[k] += s->seg_start[k - 1];
+    for (size_t i = 0; i < source_count; ++i)
+        s->src[s->src_start[source_site_of(source_site, i) + 1]++] = tg__surface_in(g, &sources[i]);
+    for (size_t i = 0; i < segment_count; ++i) {
+        size_t at = s->seg_start[segment_site_of(segment_site, source_count, i) + 1]++;
+        s->seg[2 * at] = tg__surface_in(g, &segments[i].a), s->seg[2 * at + 1] = tg__surface_in(g, &segments[i].b);
+    }
+    return TG_OK;
+}
+
 /* The halfedge of solver face f on the edge of solver vertices a, b (either direction), TG_NONE
  * when f has no such edge. */
 static uint32_t face_edge(const tg_geodesic* g, uint32_t f, uint32_t a, uint32_t b)

@@ -44,6 +44,22 @@ tg_status tg__curve_points_in(tg_geodesic_workspace* ws, const tg_surface_point*
                               const tg_surface_segment* segments, size_t segment_count, const tg_surface_point* points,
                               size_t point_count, tg__curve_in* out);
 
+/* Sites of several point sources and curve segments (curve Voronoi cells, curve matrix rows),
+ * gathered by site in the solver's form: site k's sources are src[src_start[k] .. src_start[k +
+ * 1]), its segments' ends seg[2 * seg_start[k] .. 2 * seg_start[k + 1]). (curve.c) */
+typedef struct tg__curve_sites {
+    size_t *src_start, *seg_start;
+    tg_surface_point *src, *seg;
+} tg__curve_sites;
+/* Checks (valid points and segments, every site below site_count < TG_NONE; NULL source_site:
+ * source i is site i, NULL segment_site: segment i is site source_count + i) and gathers them
+ * with allocator a. TG_ERR_INVALID_ARGUMENT, TG_ERR_OUT_OF_MEMORY (nothing to free then). */
+tg_status tg__curve_sites_make(const tg_geodesic* g, const tg_allocator* a, const tg_surface_point* sources,
+                               size_t source_count, const uint32_t* source_site, const tg_surface_segment* segments,
+                               size_t segment_count, const uint32_t* segment_site, size_t site_count,
+                               tg__curve_sites* out);
+void tg__curve_sites_free(const tg_allocator* a, tg__curve_sites* s);
+
 /* ---- the public figures ---- */
 
 /* A run's progress as tg_field_progress tells it for a single field: the front in the mesh's

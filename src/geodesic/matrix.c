@@ -174,6 +174,7 @@ struct batch {
     tg_status (*row)(worker* w, size_t i);
     uint32_t* order;                 /* the rows in the order they are run (see row_order) */
     const tg_surface_point* sources; /* the caller's; NULL: row i is vertex i (local matrix) */
+    const tg__curve_sites* sites;    /* curve rows: row i is site i (sources NULL) */
     tg_surface_point* targets;       /* the columns of the matrix at points, in the solver's form
                                         (field.h), converted once for every row */
     size_t target_count;
@@ -227,12 +228,15 @@ static void row_done(batch* b)
     if (b->opt->progress(b->opt->progress_user, &p) != 0) b->stop = 1, b->cancelled = 1;
 }
 
-/* The question of one row: its one source (the solver's form), the targets, the limit, the
- * batch's progress and cancellation. Every row of both matrices is asked here, so an engine option that applies to
- * every row (such as stopping once the targets are settled) is set here and nowhere else. */
-static tg__field_query row_query(batch* b, worker* w, const tg_surface_point* source)
+/* The question of one row: its sources and curve segments (the solver's form), the targets, the
+ * limit, the batch's progress and cancellation. Every row of every matrix is asked here, so an
+ * engine option that applies to every row (such as stopping once the targets are settled) is set
+ * here and nowhere else. */
+static tg__field_query row_query(batch* b, worker* w, const tg_surface_point* sources, size_t source_count,
+                                 const tg_surface_point* segments, size_t segment_count)
 {
-    tg__field_query q = {.sources = source, .source_count = 1, .points = b->targets,
+    tg__field_query q = {.sources = sources, .source_count = source_count, .segments = segments,
+                         .segment_count = segment_count, .points = b->targets,
                          .point_count = b->target_count, .max_distance = b->limit,
                          .progress = b->opt && b->opt->progress ? report_row : NULL, .progress_user = w,
                          .cancel = &b->stop, .stop_at_points = b->target_count > 0};
@@ -368,8 +372,16 @@ static void batch_free(batch* b)
 static tg_status dense_row(worker* w, size_t i)
 {
     batch* b = w->b;
-    tg_surface_point src = tg__surface_in(b->g, &b->sources[i]); /* the solver's form, once (field.h) */
-    tg__field_query q = row_query(b, w, &src);
+    tg_surface_point src;
+    tg__field_query q;
+    if (b->sites) { /* a curve row: its site's sources and segments */
+        const tg__curve_sites* s = b->sites;
+        q = row_query(b, w, s->src + s->src_start[i], s->src_start[i + 1] - s->src_start[i], s->seg + 2 * s->seg_start[i],
+                      s->seg_start[i + 1] - s->seg_start[i]);
+    } else {
+        src = tg__surface_in(b->g, &b->sources[i]); /* the solver's form, once (field.h) */
+        q = row_query(b, w, &src, 1, NULL, 0);
+    }
     tg__field_run run;
     tg_status st = tg__field_execute(&w->fs, &q, &run);
     if (st != TG_OK) return st;
@@ -383,15 +395,16 @@ static tg_status dense_row(worker* w, size_t i)
     return TG_OK;
 }
 
-/* The dense matrix of sources x columns: the targets (at_points), or every vertex. */
+/* The dense matrix of sources x columns: the targets (at_points), or every vertex; sites: NULL,
+ * or the curve rows (then sources NULL and source_count their number). */
 static tg_status dense_matrix(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
-                              bool at_points, const tg_surface_point* targets, size_t columns,
-                              const tg_field_options* options, int threads, double* out_matrix,
+                              const tg__curve_sites* sites, bool at_points, const tg_surface_point* targets,
+                              size_t columns, const tg_field_options* options, int threads, double* out_matrix,
                               tg_field_stats* out_stats)
 {
     /* rows spread over `threads`; one field each on one thread */
     if (threads < 0 || (options && options->threads != 0 && options->threads != 1)) return TG_ERR_INVALID_ARGUMENT;
-    tg_status st = tg__field_check(g, sources, source_count, options);
+    tg_status st = tg__field_check(g, sources, sites ? 0 : source_count, options);
     if (st == TG_OK && at_points) st = tg__field_check(g, targets, columns, NULL);
     if (st != TG_OK) return st;
     size_t cells;
@@ -407,6 +420,7 @@ static tg_status dense_matrix(const tg_geodesic* g, const tg_surface_point* sour
             return TG_ERR_OUT_OF_MEMORY;
         }
         b.row = dense_row;
+        b.sites = sites;
         b.limit = tg__field_limit(g, options);
         b.dense = out_matrix;
         st = batch_run(&b, threads, &sum);
@@ -524,7 +538,7 @@ static tg_status local_row(worker* w, size_t i)
         /* the solver's form, once (field.h; a vertex's is its solver index) */
         tg_surface_point src =
             b->sources ? tg__surface_in(b->g, &b->sources[i]) : tg_surface_vertex(b->g->solver_vertex[i]);
-        tg__field_query q = row_query(b, w, &src);
+        tg__field_query q = row_query(b, w, &src, 1, NULL, 0);
         tg__field_run run;
         tg_status st = tg__field_execute(&w->fs, &q, &run);
         if (st != TG_OK) return st;
@@ -544,7 +558,7 @@ tg_status tg_geodesic_distance_matrix(const tg_geodesic* g, const tg_surface_poi
                                       tg_field_stats* out_stats)
 {
     if (!out_matrix || !g) return TG_ERR_INVALID_ARGUMENT;
-    return dense_matrix(g, sources, source_count, false, NULL, g->vertex_count, options, threads, out_matrix,
+    return dense_matrix(g, sources, source_count, NULL, false, NULL, g->vertex_count, options, threads, out_matrix,
                         out_stats);
 }
 
@@ -553,8 +567,27 @@ tg_status tg_geodesic_distance_matrix_at(const tg_geodesic* g, const tg_surface_
                                          const tg_field_options* options, int threads, double* out_matrix,
                                          tg_field_stats* out_stats)
 {
-    return dense_matrix(g, sources, source_count, true, targets, target_count, options, threads, out_matrix,
+    return dense_matrix(g, sources, source_count, NULL, true, targets, target_count, options, threads, out_matrix,
                         out_stats);
+}
+
+tg_status tg_geodesic_curve_distance_matrix(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,
+                                            const uint32_t* source_row, const tg_surface_segment* segments,
+                                            size_t segment_count, const uint32_t* segment_row, size_t row_count,
+                                            const tg_surface_point* targets, size_t target_count,
+                                            const tg_field_options* options, int threads, double* out_matrix,
+                                            tg_field_stats* out_stats)
+{
+    if (!g || (target_count && !targets)) return TG_ERR_INVALID_ARGUMENT;
+    const tg_allocator* a = options && options->allocator ? options->allocator : &g->allocator;
+    tg__curve_sites sites;
+    tg_status st = tg__curve_sites_make(g, a, sources, source_count, source_row, segments, segment_count, segment_row,
+                                        row_count, &sites);
+    if (st != TG_OK) return st;
+    st = dense_matrix(g, NULL, row_count, &sites, target_count > 0, targets, target_count ? target_count : g->vertex_count,
+                      options, threads, out_matrix, out_stats);
+    tg__curve_sites_free(a, &sites);
+    return st;
 }
 
 tg_status tg_geodesic_local_matrix(const tg_geodesic* g, const tg_surface_point* sources, size_t source_count,

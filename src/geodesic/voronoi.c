@@ -52,70 +52,30 @@ tg_status tg_geodesic_voronoi(const tg_geodesic* g, tg_geodesic_workspace* ws, c
     return st;
 }
 
-/* The points of each site, gathered (solver form): its sources at src[src_start[k] ..
- * src_start[k + 1]), its segments' ends at seg[2 * seg_start[k] .. 2 * seg_start[k + 1]). */
-typedef struct sites {
-    size_t *src_start, *seg_start;
-    tg_surface_point *src, *seg;
-} sites;
-
-static void sites_free(const tg_allocator* a, sites* s)
-{
-    tg__free(a, s->src_start), tg__free(a, s->seg_start), tg__free(a, s->src), tg__free(a, s->seg);
-}
-
-/* Counting sort of the converted points by site. */
-static bool sites_make(const tg_allocator* a, const tg__curve_in* in, size_t source_count, const uint32_t* source_site,
-                       size_t segment_count, const uint32_t* segment_site, size_t site_count, sites* s)
-{
-    memset(s, 0, sizeof *s);
-    s->src_start = tg__calloc_array(a, site_count + 2, sizeof(size_t));
-    s->seg_start = tg__calloc_array(a, site_count + 2, sizeof(size_t));
-    s->src = tg__alloc_array(a, source_count ? source_count : 1, sizeof(tg_surface_point));
-    s->seg = tg__alloc_array(a, segment_count ? 2 * segment_count : 1, sizeof(tg_surface_point));
-    if (!s->src_start || !s->seg_start || !s->src || !s->seg) return false;
-    for (size_t i = 0; i < source_count; ++i) s->src_start[(source_site ? source_site[i] : i) + 2]++;
-    for (size_t i = 0; i < segment_count; ++i) s->seg_start[(segment_site ? segment_site[i] : source_count + i) + 2]++;
-    for (size_t k = 2; k < site_count + 2; ++k) s->src_start[k] += s->src_start[k - 1], s->seg_start[k] += s->seg_start[k - 1];
-    for (size_t i = 0; i < source_count; ++i) s->src[s->src_start[(source_site ? source_site[i] : i) + 1]++] = in->sources[i];
-    for (size_t i = 0; i < segment_count; ++i) {
-        size_t at = s->seg_start[(segment_site ? segment_site[i] : source_count + i) + 1]++;
-        s->seg[2 * at] = in->segments[2 * i], s->seg[2 * at + 1] = in->segments[2 * i + 1];
-    }
-    return true;
-}
-
 tg_status tg_geodesic_curve_voronoi(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
                                     size_t source_count, const uint32_t* source_site,
                                     const tg_surface_segment* segments, size_t segment_count,
                                     const uint32_t* segment_site, size_t site_count, const tg_field_options* options,
                                     double* out_vertex_distance, uint32_t* out_vertex_label, tg_field_stats* out_stats)
 {
-    if ((!out_vertex_label && !out_vertex_distance) || site_count >= TG_NONE || (segment_count && !segments))
-        return TG_ERR_INVALID_ARGUMENT;
-    for (size_t i = 0; i < source_count; ++i)
-        if ((source_site ? source_site[i] : i) >= site_count) return TG_ERR_INVALID_ARGUMENT;
-    for (size_t i = 0; i < segment_count; ++i)
-        if ((segment_site ? segment_site[i] : source_count + i) >= site_count) return TG_ERR_INVALID_ARGUMENT;
+    if (!out_vertex_label && !out_vertex_distance) return TG_ERR_INVALID_ARGUMENT;
     tg_status st = tg__field_check(g, sources, source_count, options);
     if (st != TG_OK) return st;
     const tg_allocator* a = options && options->allocator ? options->allocator : &g->allocator;
-    tg_geodesic_workspace* own = NULL;
-    st = tg__workspace_acquire(g, a, &ws, &own);
+    tg__curve_sites s;
+    st = tg__curve_sites_make(g, a, sources, source_count, source_site, segments, segment_count, segment_site,
+                              site_count, &s);
     if (st != TG_OK) return st;
-    tg__curve_in in;
-    st = tg__curve_points_in(ws, sources, source_count, segments, segment_count, NULL, 0, &in);
-    if (st != TG_OK) {
-        tg__workspace_release(own);
-        return st;
-    }
-    sites s;
+    tg_geodesic_workspace* own = NULL;
     tg__nearest nf;
-    bool made = sites_make(a, &in, source_count, source_site, segment_count, segment_site, site_count, &s);
-    if (!made || !tg__nearest_init(&nf, g, a, tg__field_limit(g, options))) {
-        sites_free(a, &s);
+    st = tg__workspace_acquire(g, a, &ws, &own);
+    if (st == TG_OK && !tg__nearest_init(&nf, g, a, tg__field_limit(g, options))) {
         tg__workspace_release(own);
-        return TG_ERR_OUT_OF_MEMORY;
+        st = TG_ERR_OUT_OF_MEMORY;
+    }
+    if (st != TG_OK) {
+        tg__curve_sites_free(a, &s);
+        return st;
     }
     nf.options = options, nf.rows = site_count;
     /* one run of every site first bounds each site's run to its cell (as tg_geodesic_voronoi) */
@@ -128,7 +88,7 @@ tg_status tg_geodesic_curve_voronoi(const tg_geodesic* g, tg_geodesic_workspace*
         if (out_stats) *out_stats = nf.stats;
     }
     tg__nearest_free(&nf);
-    sites_free(a, &s);
+    tg__curve_sites_free(a, &s);
     tg__workspace_release(own);
     return st;
 }

@@ -54,6 +54,7 @@ batch = write("batch.txt", "".join("v:%d 0.5 50\n" % r.randrange(NA) for _ in ra
 pairs = write("pairs.txt", "".join("v %d %d\n" % (i % NS, (i * 7919) % NS) for i in range(20000)))
 at_pts = write("at.txt", "".join("v:%d\n" % r.randrange(163842) for _ in range(1000)))
 mean_pts = write("mean.txt", "".join("v:%d\n" % r.randrange(163842) for _ in range(10)))  # a field a step
+curve = write("curve.txt", "f:0:0.2,0.3,0.5\nf:0:0.5,0.3,0.2\n")  # a segment inside face 0: a curve source
 # a million query points as .npy (read in a blink): signed distances by winding number, ~6 s
 queries = os.path.join(tmp, "queries.npy")
 with open(queries, "wb") as f:
@@ -90,6 +91,8 @@ cases = [
     ("field --labels", ["field", ico, "--from", "v:0;v:5000;v:100000", "--labels", "-o", o("L2.ply")], 1.0),
     ("field --from", ["field", ico, "--from", "v:0", "-o", o("f.ply")], 1.0),
     ("field --from --at", ["field", ico, "--from", "v:0", "--at", at_pts, "-o", o("at.txt")], 1.0),
+    ("field --from curve:", ["field", ico, "--from", "curve:" + curve, "-o", o("cf.ply")], 1.0),
+    ("path --from curve:", ["path", ico, "--from", "curve:" + curve, "--to", "v:3", "-o", o("cp.obj")], 1.0),
     ("path --through", ["path", arm, "--through", through, "-o", o("th.obj")], 1.0),
     ("path --from --to", ["path", ico, "--from", "v:0", "--to", "v:3", "-o", o("p.obj")], 1.0),
     ("path --pairs", ["path", spot, "--pairs", pairs, "--threads", "1", "-o", o("pairs.csv")], 1.0),

@@ -284,6 +284,7 @@ static void run_scene(scene* sc)
 typedef struct more {
     uint32_t samples[12], *fps_label, *vor_label;
     double *fps_dist, *vor_dist, *matrix, through;
+    double *curve, curve_path; /* a curve field (2 segments) and the exact path from it */
     size_t bpoints, ipoints, ipolylines;
     double *bxyz, *ixyz;
     tg_surface_point *ipts;
@@ -335,12 +336,24 @@ static void more_compute(const tg_mesh* m, double s, more* r)
     r->through = pv.length;
     tg_path_destroy(p);
     CHECK_STATUS(tg_geodesic_distance_matrix(g, src, 3, NULL, 1, r->matrix, NULL), TG_OK);
+    /* curves: an edge of face 77 and a chord of face 100 */
+    const uint32_t* t = tg_mesh_triangles(m);
+    const tg_surface_segment seg[2] = {{tg_surface_vertex(t[3 * 77]), tg_surface_vertex(t[3 * 77 + 1])},
+                                       {tg_surface_face(100, 0.6, 0.2, 0.2), tg_surface_edge(301, 0.37)}};
+    r->curve = malloc(n * sizeof *r->curve);
+    CHECK_STATUS(tg_geodesic_curve_field(g, NULL, NULL, 0, seg, 2, NULL, 0, NULL, NULL, r->curve, NULL), TG_OK);
+    tg_surface_point to = tg_surface_vertex(200);
+    CHECK_STATUS(tg_path_create(NULL, &p), TG_OK);
+    CHECK_STATUS(tg_geodesic_curve_path(g, NULL, NULL, 0, seg, 2, &to, NULL, p), TG_OK);
+    tg_path_get_view(p, &pv);
+    r->curve_path = pv.length;
+    tg_path_destroy(p);
     tg_geodesic_destroy(g);
 }
 
 static void more_free(more* r)
 {
-    free(r->fps_label), free(r->vor_label), free(r->fps_dist), free(r->vor_dist), free(r->matrix);
+    free(r->fps_label), free(r->vor_label), free(r->fps_dist), free(r->vor_dist), free(r->matrix), free(r->curve);
     free(r->bxyz), free(r->ixyz), free(r->ipts), free(r->ifaces);
 }
 
@@ -383,7 +396,8 @@ static void test_more_commands(void)
         if (exact && !idx && r.ipoints)
             idx += memcmp(r.ipts, ref.ipts, r.ipoints * sizeof *r.ipts) != 0 || memcmp(r.ifaces, ref.ifaces, r.ipoints * sizeof *r.ifaces) != 0;
         int num = more_off(r.fps_dist, ref.fps_dist, n, s, exact, 1e-12, 0.0) + more_off(r.vor_dist, ref.vor_dist, n, s, exact, 1e-12, 0.0) +
-                  more_off(r.matrix, ref.matrix, 3 * n, s, exact, 1e-12, 0.0) + more_off(&r.through, &ref.through, 1, s, exact, 1e-12, 0.0);
+                  more_off(r.matrix, ref.matrix, 3 * n, s, exact, 1e-12, 0.0) + more_off(&r.through, &ref.through, 1, s, exact, 1e-12, 0.0) +
+                  more_off(r.curve, ref.curve, n, s, exact, 1e-12, 0.0) + more_off(&r.curve_path, &ref.curve_path, 1, s, exact, 1e-12, 0.0);
         /* boundary crossings are found to 1e-10 (tg_geodesic_voronoi): held to 1e-9; isoline points
          * move by up to 3.3e-8 of the diagonal when the mesh is scaled by 1 + 2^-50 or by 3 (a
          * rounding of the input: points where two circles meet nearly tangentially are known to
@@ -392,7 +406,8 @@ static void test_more_commands(void)
             num += more_off(r.bxyz, ref.bxyz, 3 * r.bpoints, s, exact, 1e-9, diag) +
                    more_off(r.ixyz, ref.ixyz, 3 * r.ipoints, s, exact, 1e-7, diag);
         printf("other commands at x%g: %d index arrays and %d numbers differ (%zu samples/labels, %zu boundary and %zu "
-               "isoline points, a route, a 3-row matrix)\n", s, idx, num, 12 + 2 * n, r.bpoints, r.ipoints);
+               "isoline points, a route, a 3-row matrix, a curve field and path)\n", s, idx, num, 12 + 2 * n, r.bpoints,
+               r.ipoints);
         CHECK_MSG(idx == 0 && num == 0, "x%g: %d index arrays and %d numbers differ from the unscaled ones", s, idx, num);
         more_free(&r);
         tg_mesh_destroy(ms);

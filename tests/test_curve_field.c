@@ -515,6 +515,15 @@ static void test_curve_paths(void)
         CHECK_STATUS(tg_geodesic_curve_field(s.geo, s.ws, &extra, 1, cs, ncs, &q, 1, NULL, &d, NULL, NULL), TG_OK);
         CHECK_STATUS(tg_geodesic_curve_path(s.geo, s.ws, &extra, 1, cs, ncs, &q, NULL, s.path), TG_OK);
         check_curve_path(&s, &extra, 1, cs, ncs, &q, d, "nvd_spot");
+        /* symmetric: the exact path from where it starts on the curve to the target is as long */
+        tg_path_view cv;
+        tg_path_get_view(s.path, &cv);
+        if (!cv.point_count) continue;
+        tg_surface_point start = cv.points[0];
+        CHECK_STATUS(tg_geodesic_path(s.geo, s.ws, &start, &q, NULL, s.path), TG_OK);
+        tg_path_get_view(s.path, &cv);
+        CHECK_MSG(fabs(cv.length - d) <= 1e-12 * d, "nvd_spot: the exact path from the curve path's start %.17g, the "
+                  "curve's distance %.17g", cv.length, d);
     }
     free(cs);
     close_ctx(&s);

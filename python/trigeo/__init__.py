@@ -1220,17 +1220,21 @@ class Mesh:
             spa = self._surface_point(a, "a")
             spb = self._surface_point(b, "b")
             opts = _c.PathOptions(_METHODS[method], 0, 0.0, None, 1 if certify else 0, call.field_fn, None)
-            geo = self._get_geo()
-            with self._geo_ws.take() as ws, self._paths.take() as ph:
-                st = _L.tg_geodesic_path(geo, ws, ctypes.byref(spa), ctypes.byref(spb), ctypes.byref(opts), ph)
-                call.finish(st, "path")
-                view = _c.PathView()
-                _L.tg_path_get_view(ph, ctypes.byref(view))
-                p = Path._from_view(view)
-            p._mesh = self
-            return p
+            return self._path_call(call, "path", lambda geo, ws, ph: _L.tg_geodesic_path(
+                geo, ws, ctypes.byref(spa), ctypes.byref(spb), ctypes.byref(opts), ph))
 
         return self._run(work)
+
+    def _path_call(self, call: _Call, name: str, fn: Callable[[Any, Any, Any], int]) -> "Path":
+        """Runs fn(geo, workspace, path handle) (a tg_geodesic_*path call) and reads its Path."""
+        geo = self._get_geo()
+        with self._geo_ws.take() as ws, self._paths.take() as ph:
+            call.finish(fn(geo, ws, ph), name)
+            view = _c.PathView()
+            _L.tg_path_get_view(ph, ctypes.byref(view))
+            p = Path._from_view(view)
+        p._mesh = self
+        return p
 
     def _pair_points(self, pairs: Any, froms: Any, tos: Any) -> tuple:
         """The endpoints of path_lengths' pairs, as two C arrays."""
@@ -1716,16 +1720,8 @@ class Mesh:
             src = self._surface_points(sources if sources is not None else [], "sources")
             t = self._surface_point(to, "to")
             opts = _c.PathOptions(_METHODS["exact"], 0, 0.0, None, 0, call.field_fn, None)
-            geo = self._get_geo()
-            with self._geo_ws.take() as ws, self._paths.take() as ph:
-                st = _L.tg_geodesic_curve_path(geo, ws, src, len(src), segs, len(segs), ctypes.byref(t),
-                                               ctypes.byref(opts), ph)
-                call.finish(st, "curve_path")
-                view = _c.PathView()
-                _L.tg_path_get_view(ph, ctypes.byref(view))
-                p = Path._from_view(view)
-            p._mesh = self
-            return p
+            return self._path_call(call, "curve_path", lambda geo, ws, ph: _L.tg_geodesic_curve_path(
+                geo, ws, src, len(src), segs, len(segs), ctypes.byref(t), ctypes.byref(opts), ph))
 
         return self._run(work, progress)
 

@@ -30,32 +30,6 @@ tg_status tg_surface_segment_validate(const tg_geodesic* g, const tg_surface_seg
     return TG_OK;
 }
 
-tg_status tg__curve_points_in(tg_geodesic_workspace* ws, const tg_surface_point* sources, size_t source_count,
-                              const tg_surface_segment* segments, size_t segment_count, const tg_surface_point* points,
-                              size_t point_count, tg__curve_in* out)
-{
-    const tg_geodesic* g = ws->geo;
-    memset(out, 0, sizeof *out);
-    for (size_t i = 0; i < segment_count; ++i)
-        if (tg_surface_segment_validate(g, &segments[i], NULL) != TG_OK) return TG_ERR_INVALID_ARGUMENT;
-    if (segment_count > (SIZE_MAX / sizeof(tg_surface_point) - source_count - point_count) / 2)
-        return TG_ERR_INVALID_ARGUMENT;
-    size_t n = source_count + 2 * segment_count + point_count;
-    if (!n) return TG_OK;
-    if (!tg__vec_fit(&ws->allocator, &ws->field_points, n)) return TG_ERR_OUT_OF_MEMORY;
-    tg_surface_point* in = ws->field_points.data;
-    tg__field_points_in(g, sources, source_count, in);
-    for (size_t i = 0; i < segment_count; ++i) {
-        in[source_count + 2 * i] = tg__surface_in(g, &segments[i].a);
-        in[source_count + 2 * i + 1] = tg__surface_in(g, &segments[i].b);
-    }
-    tg__field_points_in(g, points, point_count, in + source_count + 2 * segment_count);
-    out->sources = source_count ? in : NULL;
-    out->segments = segment_count ? in + source_count : NULL;
-    out->points = point_count ? in + source_count + 2 * segment_count : NULL;
-    return TG_OK;
-}
-
 tg_status tg_geodesic_curve_field(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
                                   size_t source_count, const tg_surface_segment* segments, size_t segment_count,
                                   const tg_surface_point* points, size_t point_count, const tg_field_options* options,
@@ -67,31 +41,8 @@ tg_status tg_geodesic_curve_field(const tg_geodesic* g, tg_geodesic_workspace* w
     tg_status st = tg__field_check(g, sources, source_count, options);
     if (st == TG_OK) st = tg__field_check(g, points, point_count, NULL);
     if (st != TG_OK) return st;
-    tg_geodesic_workspace* own;
-    st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
-    if (st != TG_OK) return st;
-    tg__curve_in in;
-    st = tg__curve_points_in(ws, sources, source_count, segments, segment_count, points, point_count, &in);
-    if (st != TG_OK) {
-        tg__workspace_release(own);
-        return st;
-    }
-    tg__field_query q = {.sources = in.sources, .source_count = source_count, .segments = in.segments,
-                         .segment_count = segment_count, .points = in.points, .point_count = point_count,
-                         .max_distance = tg__field_limit(g, options),
-                         .progress = options && options->progress ? tg__field_report_single : NULL,
-                         .progress_user = (void*)options,
-                         .stop_at_points = point_count > 0 && !out_vertex_distance,
-                         .threads = tg__field_threads(options)};
-    tg__field_run run;
-    st = tg__field_execute(&ws->field, &q, &run);
-    if (st == TG_OK) {
-        if (out_vertex_distance) tg__field_copy_out(&run, out_vertex_distance);
-        for (size_t i = 0; i < point_count; ++i) out_point_distance[i] = run.qdist[i] * g->unscale;
-        if (out_stats) *out_stats = run.stats;
-    }
-    tg__workspace_release(own);
-    return st;
+    return tg__field_run_points(g, ws, sources, source_count, segments, segment_count, points, point_count, options,
+                                out_point_distance, out_vertex_distance, out_stats);
 }
 
 void tg__curve_sites_free(const tg_allocator* a, tg__curve_sites* s)

@@ -98,43 +98,59 @@ void tg__field_points_in(const tg_geodesic* g, const tg_surface_point* points, s
     for (size_t i = 0; i < n; ++i) out[i] = tg__surface_in(g, &points[i]);
 }
 
+tg_status tg__curve_points_in(tg_geodesic_workspace* ws, const tg_surface_point* sources, size_t source_count,
+                              const tg_surface_segment* segments, size_t segment_count, const tg_surface_point* points,
+                              size_t point_count, tg__curve_in* out)
+{
+    const tg_geodesic* g = ws->geo;
+    memset(out, 0, sizeof *out);
+    for (size_t i = 0; i < segment_count; ++i)
+        if (tg_surface_segment_validate(g, &segments[i], NULL) != TG_OK) return TG_ERR_INVALID_ARGUMENT;
+    if (segment_count > (SIZE_MAX / sizeof(tg_surface_point) - source_count - point_count) / 2)
+        return TG_ERR_INVALID_ARGUMENT;
+    size_t n = source_count + 2 * segment_count + point_count;
+    if (!n) return TG_OK;
+    if (!tg__vec_fit(&ws->allocator, &ws->field_points, n)) return TG_ERR_OUT_OF_MEMORY;
+    tg_surface_point* in = ws->field_points.data;
+    tg__field_points_in(g, sources, source_count, in);
+    for (size_t i = 0; i < segment_count; ++i) {
+        in[source_count + 2 * i] = tg__surface_in(g, &segments[i].a);
+        in[source_count + 2 * i + 1] = tg__surface_in(g, &segments[i].b);
+    }
+    tg__field_points_in(g, points, point_count, in + source_count + 2 * segment_count);
+    out->sources = source_count ? in : NULL;
+    out->segments = segment_count ? in + source_count : NULL;
+    out->points = point_count ? in + source_count + 2 * segment_count : NULL;
+    return TG_OK;
+}
+
 bool tg__field_points_in_workspace(tg_geodesic_workspace* ws, const tg_surface_point* sources, size_t source_count,
                                    const tg_surface_point* points, size_t point_count,
                                    const tg_surface_point** out_sources, const tg_surface_point** out_points)
 {
-    *out_sources = *out_points = NULL;
-    size_t n = source_count + point_count; /* two arrays the caller holds: no overflow */
-    if (!n) return true;
-    if (!tg__vec_fit(&ws->allocator, &ws->field_points, n)) return false;
-    tg_surface_point* in = ws->field_points.data;
-    tg__field_points_in(ws->geo, sources, source_count, in);
-    tg__field_points_in(ws->geo, points, point_count, in + source_count);
-    *out_sources = source_count ? in : NULL;
-    *out_points = point_count ? in + source_count : NULL;
-    return true;
+    tg__curve_in in;
+    tg_status st = tg__curve_points_in(ws, sources, source_count, NULL, 0, points, point_count, &in);
+    *out_sources = in.sources, *out_points = in.points;
+    return st == TG_OK;
 }
 
-/* ---- the entry points ---- */
-
-tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
-                               size_t source_count, const tg_surface_point* points, size_t point_count,
-                               const tg_field_options* options, double* out_point_distance,
-                               double* out_vertex_distance, tg_field_stats* out_stats)
+tg_status tg__field_run_points(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
+                               size_t source_count, const tg_surface_segment* segments, size_t segment_count,
+                               const tg_surface_point* points, size_t point_count, const tg_field_options* options,
+                               double* out_point_distance, double* out_vertex_distance, tg_field_stats* out_stats)
 {
-    if (point_count > 0 && (!points || !out_point_distance)) return TG_ERR_INVALID_ARGUMENT;
-    tg_status st = tg__field_check(g, sources, source_count, options);
-    if (st == TG_OK) st = tg__field_check(g, points, point_count, NULL);
-    if (st != TG_OK) return st;
     tg_geodesic_workspace* own;
-    st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
+    tg_status st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
     if (st != TG_OK) return st;
-    const tg_surface_point *in_sources, *in_points;
-    if (!tg__field_points_in_workspace(ws, sources, source_count, points, point_count, &in_sources, &in_points)) {
+    tg__curve_in in;
+    st = tg__curve_points_in(ws, sources, source_count, segments, segment_count, points, point_count, &in);
+    if (st != TG_OK) {
         tg__workspace_release(own);
-        return TG_ERR_OUT_OF_MEMORY;
+        return st;
     }
-    tg__field_query q = {.sources = in_sources, .source_count = source_count, .points = in_points,
-                         .point_count = point_count, .max_distance = tg__field_limit(g, options),
+    tg__field_query q = {.sources = in.sources, .source_count = source_count, .segments = in.segments,
+                         .segment_count = segment_count, .points = in.points, .point_count = point_count,
+                         .max_distance = tg__field_limit(g, options),
                          .progress = options && options->progress ? tg__field_report_single : NULL,
                          .progress_user = (void*)options,
                          /* only the points wanted: the run stops once they are settled */
@@ -149,6 +165,21 @@ tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* ws, 
     }
     tg__workspace_release(own);
     return st;
+}
+
+/* ---- the entry points ---- */
+
+tg_status tg_geodesic_field_at(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
+                               size_t source_count, const tg_surface_point* points, size_t point_count,
+                               const tg_field_options* options, double* out_point_distance,
+                               double* out_vertex_distance, tg_field_stats* out_stats)
+{
+    if (point_count > 0 && (!points || !out_point_distance)) return TG_ERR_INVALID_ARGUMENT;
+    tg_status st = tg__field_check(g, sources, source_count, options);
+    if (st == TG_OK) st = tg__field_check(g, points, point_count, NULL);
+    if (st != TG_OK) return st;
+    return tg__field_run_points(g, ws, sources, source_count, NULL, 0, points, point_count, options, out_point_distance,
+                                out_vertex_distance, out_stats);
 }
 
 tg_status tg_geodesic_field(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,

@@ -33,17 +33,6 @@ bool tg__field_points_in_workspace(tg_geodesic_workspace* ws, const tg_surface_p
                                    const tg_surface_point* points, size_t point_count,
                                    const tg_surface_point** out_sources, const tg_surface_point** out_points);
 
-/* A query's sources, curve segments (two points each) and points in the solver's form, into the
- * workspace's buffer (as tg__field_points_in_workspace; NULL for none). The segments are checked
- * (tg_surface_segment_validate): TG_ERR_INVALID_ARGUMENT for a bad one, TG_ERR_OUT_OF_MEMORY.
- * (curve.c) */
-typedef struct tg__curve_in {
-    const tg_surface_point *sources, *segments, *points;
-} tg__curve_in;
-tg_status tg__curve_points_in(tg_geodesic_workspace* ws, const tg_surface_point* sources, size_t source_count,
-                              const tg_surface_segment* segments, size_t segment_count, const tg_surface_point* points,
-                              size_t point_count, tg__curve_in* out);
-
 /* Sites of several point sources and curve segments (curve Voronoi cells, curve matrix rows),
  * gathered by site in the solver's form: site k's sources are src[src_start[k] .. src_start[k +
  * 1]), its segments' ends seg[2 * seg_start[k] .. 2 * seg_start[k + 1]). (curve.c) */
@@ -59,6 +48,27 @@ tg_status tg__curve_sites_make(const tg_geodesic* g, const tg_allocator* a, cons
                                size_t segment_count, const uint32_t* segment_site, size_t site_count,
                                tg__curve_sites* out);
 void tg__curve_sites_free(const tg_allocator* a, tg__curve_sites* s);
+
+/* A query's sources, curve segments (two points each) and points in the solver's form, into the
+ * workspace's buffer (as tg__field_points_in_workspace; NULL for none). The segments are checked
+ * (tg_surface_segment_validate): TG_ERR_INVALID_ARGUMENT for a bad one, TG_ERR_OUT_OF_MEMORY.
+ *  */
+typedef struct tg__curve_in {
+    const tg_surface_point *sources, *segments, *points;
+} tg__curve_in;
+tg_status tg__curve_points_in(tg_geodesic_workspace* ws, const tg_surface_point* sources, size_t source_count,
+                              const tg_surface_segment* segments, size_t segment_count, const tg_surface_point* points,
+                              size_t point_count, tg__curve_in* out);
+
+/* The run of tg_geodesic_field_at and tg_geodesic_curve_field after their argument checks: the
+ * workspace (NULL: a temporary one), the points in the solver's form, one run, the distances
+ * out (out_point_distance: point_count of them; out_vertex_distance: NULL or vertex_count), the
+ * counters. Errors: TG_ERR_INVALID_ARGUMENT (a bad segment), TG_ERR_OUT_OF_MEMORY,
+ * TG_ERR_CANCELLED; outputs untouched on error. */
+tg_status tg__field_run_points(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
+                               size_t source_count, const tg_surface_segment* segments, size_t segment_count,
+                               const tg_surface_point* points, size_t point_count, const tg_field_options* options,
+                               double* out_point_distance, double* out_vertex_distance, tg_field_stats* out_stats);
 
 /* ---- the public figures ---- */
 

@@ -52,6 +52,19 @@ static TG__ALWAYS_INLINE bool same_source(const tg__window* wi, const tg__window
  * exactly one root, found by Newton's method from the linear root: squaring psi = 0 once more
  * into a quadratic would pair that root with the spurious one an O(alpha) away, and the
  * rounding of the nearly zero discriminant would lose both. Otherwise the quadratic is solved. */
+/* The candidates cand[0 .. n) inside (p, q), sorted, into r; their count. */
+static TG__ALWAYS_INLINE int roots_inside(const double* cand, int n, double p, double q, double r[2])
+{
+    int out = 0;
+    for (int i = 0; i < n; ++i)
+        if (cand[i] > p && cand[i] < q) r[out++] = cand[i];
+    if (out == 2 && r[0] > r[1]) {
+        double t = r[0];
+        r[0] = r[1], r[1] = t;
+    }
+    return out;
+}
+
 /* Roots in (p, q), sorted, of D_i = D_j where one window or both are line windows (engine.h):
  * two lines cross once (their distances are linear in x); a line (offset sigma_l, slope n) and a
  * point image (sx, sy, sigma_p) where k + n u = sqrt(u^2 + sy^2) with u = x - sx and
@@ -76,14 +89,7 @@ static int crossing_roots_line(const tg__window* wi, const tg__window* wj, doubl
             if (t != 0.0) cand[n++] = C / t + wp->sx;
         }
     }
-    int out = 0;
-    for (int i = 0; i < n; ++i)
-        if (cand[i] > p && cand[i] < q) r[out++] = cand[i];
-    if (out == 2 && r[0] > r[1]) {
-        double t = r[0];
-        r[0] = r[1], r[1] = t;
-    }
-    return out;
+    return roots_inside(cand, n, p, q, r);
 }
 
 static TG__ALWAYS_INLINE int crossing_roots(const tg__window* wi, const tg__window* wj, double p, double q, double r[2],
@@ -127,14 +133,7 @@ static TG__ALWAYS_INLINE int crossing_roots(const tg__window* wi, const tg__wind
             }
         }
     }
-    int out = 0;
-    for (int i = 0; i < n; ++i)
-        if (cand[i] > p && cand[i] < q) r[out++] = cand[i];
-    if (out == 2 && r[0] > r[1]) {
-        double t = r[0];
-        r[0] = r[1], r[1] = t;
-    }
-    return out;
+    return roots_inside(cand, n, p, q, r);
 }
 
 /* Which window keeps the part around x: +1 for i, -1 for j. */

@@ -2,7 +2,8 @@
  * creation, every reader (OBJ, OFF, binary and ASCII PLY, binary and ASCII STL, gzip) from files
  * and memory, the writers, the BVH build, workspaces and batch queries, the
  * geodesic solver, paths by every method with and without the certificate, exact fields (single,
- * at points, batch on 1 and 2 threads, with and without a distance limit), Voronoi labels,
+ * at points, batch on 1 and 2 threads, with and without a distance limit), curves as sources
+ * (the field, the path from them, their Voronoi cells, curve rows of a matrix), Voronoi labels,
  * farthest-point sampling and the renderer.
  *
  * Each entry point runs once per allocation point k (every one up to a few hundred, a sample
@@ -1273,6 +1274,124 @@ static void sweep_fields(void)
                 }
 }
 
+/* ---- curves as sources: the field (at points too), the path from them, Voronoi cells of curve
+ * sites, curve rows of a matrix (1 and 2 threads) ---- */
+
+enum { CURVE_SEGMENTS = 24 };
+static tg_surface_segment curve_segments[CURVE_SEGMENTS]; /* chords of faces and an edge */
+static uint32_t curve_site[CURVE_SEGMENTS];               /* 3 sites */
+
+typedef struct curve_ctx {
+    int call; /* 0 field (and points), 1 path, 2 Voronoi, 3 matrix */
+    int threads;
+    size_t nv;
+    double *ref, *out;
+    uint32_t *ref_label, *label;
+    path_copy ref_path;
+} curve_ctx;
+
+static tg_status curve_call(curve_ctx* cc, const tg_allocator* a, double* out, double* out_points, uint32_t* label,
+                            tg_path* p)
+{
+    tg_field_options o;
+    memset(&o, 0, sizeof o);
+    o.allocator = a;
+    switch (cc->call) {
+    case 0:
+        return tg_geodesic_curve_field(spot_g, NULL, field_sources, 1, curve_segments, CURVE_SEGMENTS, field_points,
+                                       FIELD_POINTS, &o, out_points, out, NULL);
+    case 1: return tg_geodesic_curve_path(spot_g, NULL, NULL, 0, curve_segments, CURVE_SEGMENTS, &far_b, NULL, p);
+    case 2:
+        return tg_geodesic_curve_voronoi(spot_g, NULL, NULL, 0, NULL, curve_segments, CURVE_SEGMENTS, curve_site, 3, &o,
+                                         out, label, NULL);
+    default:
+        return tg_geodesic_curve_distance_matrix(spot_g, NULL, 0, NULL, curve_segments, CURVE_SEGMENTS, curve_site, 3,
+                                                 NULL, 0, &o, cc->threads, out, NULL);
+    }
+}
+
+static tg_status try_curve(sweep* s, void* ctx)
+{
+    curve_ctx* cc = ctx;
+    size_t n = (cc->call == 3 ? 3 : 1) * cc->nv + FIELD_POINTS;
+    for (size_t i = 0; i < n; ++i) cc->out[i] = -7.0;
+    tg_path* p = NULL;
+    if (cc->call == 1) CHECK_STATUS(tg_path_create(NULL, &p), TG_OK);
+    /* the path's workspace is a temporary one from the solver's allocator: a solver with s->a */
+    tg_geodesic* g = spot_g;
+    tg_geodesic_options go = {&s->a};
+    if (cc->call == 1) {
+        CHECK_STATUS(tg_geodesic_create(spot, &go, &g), TG_OK);
+        tg_geodesic* keep = spot_g;
+        spot_g = g;
+        arm(s);
+        tg_status st = curve_call(cc, NULL, NULL, NULL, NULL, p);
+        disarm(s);
+        spot_g = keep;
+        tg_path_view v;
+        tg_path_get_view(p, &v);
+        if (st == TG_OK)
+            CHECK_MSG(same_path(p, &cc->ref_path), "%s: the path differs from the default allocator's", s->name);
+        else
+            CHECK_MSG(v.point_count == 0, "%s, allocation %ld failing: the path is not empty", s->name, s->k);
+        tg_path_destroy(p);
+        tg_geodesic_destroy(g);
+        return st;
+    }
+    arm(s);
+    tg_status st = curve_call(cc, &s->a, cc->out, cc->out + n - FIELD_POINTS, cc->label, NULL);
+    disarm(s);
+    size_t written = cc->call == 0 ? n : n - FIELD_POINTS; /* the points' distances: the field's only */
+    if (st == TG_OK) {
+        CHECK_MSG(same_bytes(cc->out, cc->ref, written * sizeof *cc->out) &&
+                      (!cc->label || same_bytes(cc->label, cc->ref_label, cc->nv * sizeof *cc->label)),
+                  "%s: the result differs from the default allocator's", s->name);
+    } else {
+        bool untouched = true;
+        for (size_t i = 0; i < (cc->call == 3 ? 0 : n); ++i) untouched = untouched && cc->out[i] == -7.0;
+        CHECK_MSG(untouched, "%s, allocation %ld failing: the outputs were written", s->name, s->k);
+    }
+    return st;
+}
+
+static void sweep_curves(void)
+{
+    size_t nv = tg_mesh_vertex_count(spot);
+    const uint32_t* t = tg_mesh_triangles(spot);
+    tg_rng rng = {0xc0e5};
+    for (int i = 0; i < CURVE_SEGMENTS; ++i) {
+        uint32_t f = (uint32_t)(tg_rng_next(&rng) % tg_mesh_face_count(spot));
+        double u = tg_rng_unit(&rng) * 0.5, w = tg_rng_unit(&rng) * 0.5;
+        curve_segments[i].a = tg_surface_face(f, 1 - u - w, u, w);
+        curve_segments[i].b = i % 4 ? tg_surface_edge(3 * f + (uint32_t)(i % 3), tg_rng_unit(&rng))
+                                    : tg_surface_vertex(t[3 * f + 2]);
+        curve_site[i] = (uint32_t)(i % 3);
+    }
+    const long dense = TG_TEST_WORK(300, 60), stride = TG_TEST_WORK(2, 7);
+    static const char* names[] = {"tg_geodesic_curve_field (and points)", "tg_geodesic_curve_path",
+                                  "tg_geodesic_curve_voronoi", "tg_geodesic_curve_distance_matrix"};
+    for (int call = 0; call < 4; ++call)
+        for (int threads = 1; threads <= (call == 3 ? 2 : 1); ++threads) {
+            curve_ctx cc;
+            memset(&cc, 0, sizeof cc);
+            cc.call = call, cc.threads = threads, cc.nv = nv;
+            size_t n = 3 * nv + FIELD_POINTS;
+            cc.ref = malloc(n * sizeof *cc.ref), cc.out = malloc(n * sizeof *cc.out);
+            if (call == 2) cc.ref_label = malloc(nv * sizeof *cc.ref_label), cc.label = malloc(nv * sizeof *cc.label);
+            size_t used = (call == 3 ? 3 : 1) * nv + FIELD_POINTS;
+            tg_path* p = NULL;
+            CHECK_STATUS(tg_path_create(NULL, &p), TG_OK);
+            CHECK_STATUS(curve_call(&cc, NULL, cc.ref, cc.ref + used - FIELD_POINTS, cc.ref_label, p), TG_OK);
+            if (call == 1) cc.ref_path = copy_path(p);
+            tg_path_destroy(p);
+            char name[160];
+            snprintf(name, sizeof name, "%s (%d thread%s)", names[call], threads, threads > 1 ? "s" : "");
+            sweep_run(name, try_curve, &cc, dense, stride);
+            if (call == 1) free_path_copy(&cc.ref_path);
+            free(cc.ref), free(cc.out), free(cc.ref_label), free(cc.label);
+        }
+}
+
 /* ---- Voronoi labels and farthest-point sampling ---- */
 
 typedef struct nearest_ctx {
@@ -1536,6 +1655,7 @@ int main(void)
     sweep_bvh();
     sweep_geodesic(troubled, disk);
     sweep_fields();
+    sweep_curves();
     sweep_nearest();
     sweep_render();
 

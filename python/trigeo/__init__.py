@@ -1430,12 +1430,14 @@ class Mesh:
                            ) -> tuple[list, np.ndarray, np.ndarray]:
         """A geodesic centroidal Voronoi tessellation (geodesic Lloyd, tg_geodesic_centroidal_voronoi,
         the numbers of `trigeo sample --cvt`): `count` sites, each moved to the geodesic mean of
-        its exact Voronoi cell (its vertices weighing a third of their faces' areas), the cells
-        labelled again, at most `iterations` times or until no site moves more than tolerance
-        (default 1e-7) times the bounding box's diagonal. start: None (farthest-point sampling
-        with `seed`) or `count` surface points. Returns (sites, labels, energies): a list of
-        SurfacePoints, (n,) int64 cell labels (-1: unreached or unreferenced), and the energies
-        (sum of area x squared distance) before and after each iteration, never increasing."""
+        its exact Voronoi cell (the cells clipped inside the faces at their boundaries, each
+        vertex weighing the integral of its hat function over the cell: the quadrature in
+        trigeo.h), the cells made again, at most `iterations` times or until no site moves more
+        than tolerance (default 1e-7) times the bounding box's diagonal. start: None
+        (farthest-point sampling with `seed`) or `count` surface points. Returns (sites, labels,
+        energies): a list of SurfacePoints, (n,) int64 vertex labels (-1: unreached or
+        unreferenced), and the energies (the integral over the cells of the squared distance to
+        their site) before and after each iteration, never increasing."""
         k = _index(count, "count")
         its = _index(iterations, "iterations")
         if not 1 <= its <= 0xFFFFFFFF:

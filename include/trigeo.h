@@ -2197,34 +2197,56 @@ TG_API tg_status tg_geodesic_mean(const tg_geodesic* geodesic, tg_geodesic_works
 /* Geodesic Bézier curves (src/geodesic/bezier.c)                                                 */
 /* ============================================================================================== */
 
+/** How tg_geodesic_bezier interpolates between two points a and b at each level of de Casteljau's
+ *  construction. */
+typedef enum tg_bezier_method {
+    /** the point at fraction t of the arclength of the exact shortest path from a to b (default) */
+    TG_BEZIER_PATHS = 0,
+    /** exp_a(t log_a(b)): the trace from a (tg_geodesic_trace) along the direction in which the
+     *  exact shortest path to b leaves a (the exact log map at a, as tg_geodesic_mean measures it)
+     *  for t d(a, b) */
+    TG_BEZIER_LOG_MAP = 1,
+} tg_bezier_method;
+
 /** A geodesic Bézier curve: de Casteljau's construction on the surface with exact shortest
- *  paths, sampled at sample_count parameters t = j / (sample_count - 1), j = 0 .. sample_count - 1.
+ *  paths or the exact exponential and log maps, sampled at sample_count parameters
+ *  t = j / (sample_count - 1), j = 0 .. sample_count - 1.
  *
  *  Method: for each t, the control points P_0 .. P_n are replaced n times by the points at
- *  fraction t of the arclength of the exact shortest path (tg_geodesic_path, TG_PATH_EXACT,
- *  proven) between consecutive points; the one point left is the curve's point at t. Each path
- *  is computed once where t does not change it (the n paths between the control points are
- *  shared by every sample). A point at arclength s of a path is in the face of the segment
- *  holding it, its barycentric coordinates interpolated between the segment's ends. On a flat
- *  region this is the planar Bézier curve of the control points. Where a shortest path is not
+ *  parameter t between consecutive points; the one point left is the curve's point at t.
+ *  TG_BEZIER_PATHS: the point at fraction t of the arclength of the exact shortest path
+ *  (tg_geodesic_path, TG_PATH_EXACT, proven) between the two; each path is computed once where t
+ *  does not change it (the n paths between the control points are shared by every sample); a
+ *  point at arclength s of a path is in the face of the segment holding it, its barycentric
+ *  coordinates interpolated between the segment's ends. TG_BEZIER_LOG_MAP: exp_a(t log_a(b)),
+ *  one exact field from a (stopped once b is settled) for the direction in which the shortest
+ *  path to b leaves a, then the trace along it for t d(a, b). The two agree wherever the
+ *  shortest path from a to b is one straight unfolding (it passes no vertex): then the trace
+ *  follows it; where it bends round a saddle or boundary vertex, the trace goes straight on past
+ *  the vertex instead (on an icosphere, whose vertices are all cones, with the control points
+ *  within a quarter of the radius: within 1e-12 of the radius; tests/test_bezier.c). On a flat
+ *  region both are the planar Bézier curve of the control points. Where a shortest path is not
  *  unique (the cut locus), the one the propagation finds is taken, so the curve may jump there.
  *  The curve starts at P_0 and ends at P_n (exactly those points).
  *
  *  controls: control_count >= 1 valid surface points (any kind), all in one component.
- *  sample_count: >= 2. options: NULL, or tg_geodesic_path's options with method TG_PATH_EXACT
- *  (others refused); their progress callback is told rows_done = samples done of row_count =
- *  sample_count, from inside the paths and between them. workspace: NULL or one of this
- *  solver's. out_points: sample_count surface points (canonical form); out_xyz: NULL or 3 *
- *  sample_count doubles, their positions.
+ *  sample_count: >= 2. method: a tg_bezier_method (others: TG_ERR_INVALID_ARGUMENT). options:
+ *  NULL, or tg_geodesic_path's options with method TG_PATH_EXACT (others refused); their progress
+ *  callback is told rows_done = samples done of row_count = sample_count, from inside the fields
+ *  and between them. workspace: NULL or one of this solver's. out_points: sample_count surface
+ *  points (canonical form); out_xyz: NULL or 3 * sample_count doubles, their positions.
  *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic, controls or out_points; control_count 0;
- *  sample_count below 2; an invalid control point; control points in different components;
- *  options tg_geodesic_path_through refuses), TG_ERR_OUT_OF_MEMORY, TG_ERR_INTERNAL (as
- *  tg_geodesic_path), TG_ERR_CANCELLED; on error the outputs are untouched.
- *  Complexity: n exact paths, plus n (n - 1) / 2 per sample (between nearby points: a small
- *  region's propagation each). Thread-safe for distinct workspaces. (New in 0.6.1.) */
+ *  sample_count below 2; an unknown method; an invalid control point; control points in
+ *  different components; options tg_geodesic_path_through refuses), TG_ERR_OUT_OF_MEMORY,
+ *  TG_ERR_INTERNAL (as tg_geodesic_path), TG_ERR_CANCELLED; on error the outputs are untouched.
+ *  Complexity: TG_BEZIER_PATHS n exact paths, plus n (n - 1) / 2 per sample; TG_BEZIER_LOG_MAP
+ *  n (n + 1) / 2 fields and traces per sample (between nearby points: a small region's
+ *  propagation each). Thread-safe for distinct workspaces. (New in 0.6.1; `method` added before
+ *  0.6.1 shipped.) */
 TG_API tg_status tg_geodesic_bezier(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                                     const tg_surface_point* controls, size_t control_count, size_t sample_count,
-                                    const tg_path_options* options, tg_surface_point* out_points, double* out_xyz);
+                                    tg_bezier_method method, const tg_path_options* options,
+                                    tg_surface_point* out_points, double* out_xyz);
 
 /* ============================================================================================== */
 /* Centroidal Voronoi tessellations (src/geodesic/centroidal.c)                                   */

@@ -1,6 +1,6 @@
 """Mesh.geodesic_mean and Mesh.bezier against independent oracles: on a flat jittered grid (no
 face folds) the mean is the weighted average of the points and the Bezier curve the planar one in
-Bernstein form, both to 1e-12 of the diagonal; the CLI (`trigeo mean --json`, `trigeo path
+Bernstein form (by both methods), both to 1e-12 of the diagonal; the CLI (`trigeo mean --json`, `trigeo path
 --bezier`) gives the same numbers bit for bit; bad input raises InvalidArgumentError; a progress
 callback that says stop, or raises, stops the call."""
 import csv
@@ -79,11 +79,11 @@ def test_mean_is_the_weighted_average(grid):
 def test_bezier_is_the_planar_curve(grid):
     m, v, f = grid
     rnd = np.random.default_rng(2)
-    for degree in range(1, 6):
+    for degree, method in [(d, how) for d in range(1, 6) for how in ("paths", "logmap")]:
         ctrl = face_points(rnd, f, degree + 1)
         cx = np.array([position(v, f, p) for p in ctrl])
         n = 11
-        xyz, faces, bary = m.bezier(ctrl, samples=n)
+        xyz, faces, bary = m.bezier(ctrl, samples=n, method=method)
         assert xyz.shape == (n, 3) and faces.shape == (n,) and bary.shape == (n, 3)
         for j in range(n):
             t = j / (n - 1)
@@ -122,6 +122,11 @@ def test_same_numbers_as_the_cli(grid, tmp_path):
     assert r.returncode == 0, r.stderr
     xyz, _, _ = mesh.bezier(pts[:4], samples=9)
     assert json.loads(r.stdout)["xyz"] == xyz.tolist()
+    r = subprocess.run([cli_path(), "path", str(path), "--bezier", ";".join(specs[:4]), "--samples", "9",
+                        "--bezier-method", "logmap", "--json"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    xyz, _, _ = mesh.bezier(pts[:4], samples=9, method="logmap")
+    assert json.loads(r.stdout)["xyz"] == xyz.tolist()
 
 
 def test_bad_input(grid):
@@ -135,7 +140,7 @@ def test_bad_input(grid):
                  lambda: m.geodesic_mean([0, 1], tolerance=-1), lambda: m.geodesic_mean([0, 1], max_iterations=0),
                  lambda: m.geodesic_mean([0, 10 ** 9]), lambda: two.geodesic_mean([0, 4]),
                  lambda: two.geodesic_mean([0, 1], start=4), lambda: m.bezier([0, 1], samples=1),
-                 lambda: m.bezier([]), lambda: two.bezier([0, 1, 4])):
+                 lambda: m.bezier([]), lambda: two.bezier([0, 1, 4]), lambda: m.bezier([0, 1], method="exact")):
         with pytest.raises(bad):
             call()
     with pytest.raises(bad, match="different components"):

@@ -13,8 +13,9 @@
  *   (path/backtrack.c, as TG_PATH_EXACT), the strip unfolding (Mitchell, Mount & Papadimitriou
  *   1987, §3) and the trace (walk.c) with TG_TRACE_ANGLE's conventions, as the log map's
  *   (logmap.c: angles at a vertex scaled so the turn is 2 pi, geometry-central's). */
+#include "geodesic/mean.h"
+
 #include "geodesic/field.h"
-#include "geodesic/workspace.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -696,6 +697,27 @@ static double diagonal(const tg_geodesic* g)
     }
     if (!(lo[0] <= hi[0])) return 0.0;
     return sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+tg_status tg__exp_log(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* a,
+                      const tg_surface_point* b, double t, tg_field_progress_fn progress, void* progress_user,
+                      size_t rows_done, size_t row_count, tg_trace* trace, tg_surface_point* out)
+{
+    tg_surface_point bs = tg__surface_in(g, b), start = tg_surface_point_canonical(g->mesh, a);
+    double one = 1.0;
+    mean_call c;
+    memset(&c, 0, sizeof c);
+    c.g = g, c.ws = ws, c.a = &g->allocator, c.points = &bs, c.weights = &one, c.k = 1, c.weight_sum = 1.0;
+    c.route.nodes.elem = sizeof(tg__node), c.route.faces.elem = sizeof(uint32_t);
+    c.fn = progress, c.user = progress_user, c.done = rows_done, c.rows = row_count;
+    mean_eval e;
+    tg_status st = evaluate(&c, &start, &e); /* e.step = d(a, b), e.angle its direction at a */
+    double walked;
+    if (st == TG_OK && e.step > 0.0 && t > 0.0) st = step_from(&c, trace, &e, e.angle, t * e.step, out, &walked);
+    else if (st == TG_OK) *out = start;
+    tg__vec_free(c.a, &c.route.nodes);
+    tg__vec_free(c.a, &c.route.faces);
+    return st;
 }
 
 tg_status tg_geodesic_mean(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* points,

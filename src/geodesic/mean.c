@@ -260,6 +260,7 @@ typedef struct mean_call {
     size_t done, rows;
     double next_report_s;
     uint32_t fields;
+    const double* toward; /* NULL, or with one point its position (solver frame): the runs are A*'s */
     /* the last step's arrival: its direction (3D, in the plane of solver face arrive_face) */
     bool arrived;
     uint32_t arrive_face;
@@ -303,7 +304,7 @@ static tg_status evaluate(mean_call* c, const tg_surface_point* p, mean_eval* e)
     tg_surface_point src = tg__surface_in(g, p);
     tg__field_query q = {.sources = &src, .source_count = 1, .points = c->points, .point_count = c->k,
                          .max_distance = INFINITY, .progress = c->fn ? report_run : NULL, .progress_user = c,
-                         .trace = true, .stop_at_points = true};
+                         .trace = true, .stop_at_points = true, .toward = c->toward};
     tg__field_run run;
     c->fields++;
     tg_status st = tg__field_execute(&c->ws->field, &q, &run);
@@ -710,6 +711,10 @@ tg_status tg__exp_log(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_
     c.g = g, c.ws = ws, c.a = &g->allocator, c.points = &bs, c.weights = &one, c.k = 1, c.weight_sum = 1.0;
     c.route.nodes.elem = sizeof(tg__node), c.route.faces.elem = sizeof(uint32_t);
     c.fn = progress, c.user = progress_user, c.done = rows_done, c.rows = row_count;
+    tg__node bn = tg__node_from_surface(&bs);
+    double toward[3];
+    tg_v3_store(tg__node_pos(g, &bn), toward);
+    c.toward = toward; /* one point: the propagation ordered toward it (as TG_PATH_EXACT's) */
     mean_eval e;
     tg_status st = evaluate(&c, &start, &e); /* e.step = d(a, b), e.angle its direction at a */
     double walked;

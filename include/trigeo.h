@@ -2290,7 +2290,7 @@ typedef struct tg_centroidal_options {
  *  gap between |y|^2 and its linear interpolant), where W_i(v) is the integral over cell i's
  *  pieces of v's hat function (its barycentric coordinate). An iteration moves each site to the
  *  weighted geodesic mean of the vertices v with weights W_i(v) (tg_geodesic_mean from the site,
- *  at most 3 steps, no uniqueness test): the subtracted term does not depend on the site, so this
+ *  at most 2 steps, no uniqueness test): the subtracted term does not depend on the site, so this
  *  minimises the cell's part of E (on a flat region: the exact centroid of the polygonal cell).
  *  The old site is kept when the mean does not lower that part; then the cells are made again.
  *  Both halves lower E (the mean by the check; the new pieces are where the q are least), so the

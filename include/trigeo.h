@@ -2333,34 +2333,56 @@ TG_API tg_status tg_geodesic_mean(const tg_geodesic* geodesic, tg_geodesic_works
 /* Geodesic Bézier curves (src/geodesic/bezier.c)                                                 */
 /* ============================================================================================== */
 
+/** How tg_geodesic_bezier interpolates between two points a and b at each level of de Casteljau's
+ *  construction. */
+typedef enum tg_bezier_method {
+    /** the point at fraction t of the arclength of the exact shortest path from a to b (default) */
+    TG_BEZIER_PATHS = 0,
+    /** exp_a(t log_a(b)): the trace from a (tg_geodesic_trace) along the direction in which the
+     *  exact shortest path to b leaves a (the exact log map at a, as tg_geodesic_mean measures it)
+     *  for t d(a, b) */
+    TG_BEZIER_LOG_MAP = 1,
+} tg_bezier_method;
+
 /** A geodesic Bézier curve: de Casteljau's construction on the surface with exact shortest
- *  paths, sampled at sample_count parameters t = j / (sample_count - 1), j = 0 .. sample_count - 1.
+ *  paths or the exact exponential and log maps, sampled at sample_count parameters
+ *  t = j / (sample_count - 1), j = 0 .. sample_count - 1.
  *
  *  Method: for each t, the control points P_0 .. P_n are replaced n times by the points at
- *  fraction t of the arclength of the exact shortest path (tg_geodesic_path, TG_PATH_EXACT,
- *  proven) between consecutive points; the one point left is the curve's point at t. Each path
- *  is computed once where t does not change it (the n paths between the control points are
- *  shared by every sample). A point at arclength s of a path is in the face of the segment
- *  holding it, its barycentric coordinates interpolated between the segment's ends. On a flat
- *  region this is the planar Bézier curve of the control points. Where a shortest path is not
+ *  parameter t between consecutive points; the one point left is the curve's point at t.
+ *  TG_BEZIER_PATHS: the point at fraction t of the arclength of the exact shortest path
+ *  (tg_geodesic_path, TG_PATH_EXACT, proven) between the two; each path is computed once where t
+ *  does not change it (the n paths between the control points are shared by every sample); a
+ *  point at arclength s of a path is in the face of the segment holding it, its barycentric
+ *  coordinates interpolated between the segment's ends. TG_BEZIER_LOG_MAP: exp_a(t log_a(b)),
+ *  one exact field from a (stopped once b is settled) for the direction in which the shortest
+ *  path to b leaves a, then the trace along it for t d(a, b). The two agree wherever the
+ *  shortest path from a to b is one straight unfolding (it passes no vertex): then the trace
+ *  follows it; where it bends round a saddle or boundary vertex, the trace goes straight on past
+ *  the vertex instead (on an icosphere, whose vertices are all cones, with the control points
+ *  within a quarter of the radius: within 1e-12 of the radius; tests/test_bezier.c). On a flat
+ *  region both are the planar Bézier curve of the control points. Where a shortest path is not
  *  unique (the cut locus), the one the propagation finds is taken, so the curve may jump there.
  *  The curve starts at P_0 and ends at P_n (exactly those points).
  *
  *  controls: control_count >= 1 valid surface points (any kind), all in one component.
- *  sample_count: >= 2. options: NULL, or tg_geodesic_path's options with method TG_PATH_EXACT
- *  (others refused); their progress callback is told rows_done = samples done of row_count =
- *  sample_count, from inside the paths and between them. workspace: NULL or one of this
- *  solver's. out_points: sample_count surface points (canonical form); out_xyz: NULL or 3 *
- *  sample_count doubles, their positions.
+ *  sample_count: >= 2. method: a tg_bezier_method (others: TG_ERR_INVALID_ARGUMENT). options:
+ *  NULL, or tg_geodesic_path's options with method TG_PATH_EXACT (others refused); their progress
+ *  callback is told rows_done = samples done of row_count = sample_count, from inside the fields
+ *  and between them. workspace: NULL or one of this solver's. out_points: sample_count surface
+ *  points (canonical form); out_xyz: NULL or 3 * sample_count doubles, their positions.
  *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic, controls or out_points; control_count 0;
- *  sample_count below 2; an invalid control point; control points in different components;
- *  options tg_geodesic_path_through refuses), TG_ERR_OUT_OF_MEMORY, TG_ERR_INTERNAL (as
- *  tg_geodesic_path), TG_ERR_CANCELLED; on error the outputs are untouched.
- *  Complexity: n exact paths, plus n (n - 1) / 2 per sample (between nearby points: a small
- *  region's propagation each). Thread-safe for distinct workspaces. (New in 0.6.1.) */
+ *  sample_count below 2; an unknown method; an invalid control point; control points in
+ *  different components; options tg_geodesic_path_through refuses), TG_ERR_OUT_OF_MEMORY,
+ *  TG_ERR_INTERNAL (as tg_geodesic_path), TG_ERR_CANCELLED; on error the outputs are untouched.
+ *  Complexity: TG_BEZIER_PATHS n exact paths, plus n (n - 1) / 2 per sample; TG_BEZIER_LOG_MAP
+ *  n (n + 1) / 2 fields and traces per sample (between nearby points: a small region's
+ *  propagation each). Thread-safe for distinct workspaces. (New in 0.6.1; `method` added before
+ *  0.6.1 shipped.) */
 TG_API tg_status tg_geodesic_bezier(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                                     const tg_surface_point* controls, size_t control_count, size_t sample_count,
-                                    const tg_path_options* options, tg_surface_point* out_points, double* out_xyz);
+                                    tg_bezier_method method, const tg_path_options* options,
+                                    tg_surface_point* out_points, double* out_xyz);
 
 /* ============================================================================================== */
 /* Centroidal Voronoi tessellations (src/geodesic/centroidal.c)                                   */
@@ -2383,17 +2405,37 @@ typedef struct tg_centroidal_options {
 /** A geodesic centroidal Voronoi tessellation (geodesic Lloyd): K sites, each moved to the
  *  geodesic mean of its exact Voronoi cell, repeatedly.
  *
- *  Method: the cells are tg_geodesic_voronoi's labels (each vertex to its nearest site in exact
- *  distance). Quadrature: each cell is its vertices, each weighing its lumped area (a third of
- *  the area of each face at it; the cells are not clipped inside faces), so the energy is
- *  E = sum over vertices of area(v) d(v, nearest site)^2. An iteration moves each site to the
- *  weighted geodesic mean of its cell's vertices (tg_geodesic_mean from the site, at most 3
- *  steps, no uniqueness test), keeping the old site when that does not lower the cell's part of
- *  E, then labels the vertices again: both halves lower E, so the energies never increase (to
- *  the rounding of the exact distances, ~1e-15 relative). Empty cells keep their site. It stops
- *  after `iterations` iterations or when no site moved more than the tolerance. On a flat region
- *  it is the planar discrete Lloyd iteration (cell centroids the area-weighted averages of their
- *  vertices; tests/test_centroidal.c compares them to 1e-12).
+ *  Method: Lloyd's iteration on the exact Voronoi cells, clipped inside the faces. The vertices
+ *  are labelled as tg_geodesic_voronoi labels them (each to its nearest site in exact distance).
+ *  Each face is then split between its candidate cells: those of its corners, of the vertices
+ *  across its edges and of the sites in it, and every cell whose piece in a face next to it runs
+ *  along the shared edge (repeated until no face gains one, at most 16 rounds and 8 cells a
+ *  face, so the thin tip of a cell crossing faces that hold none of its vertices is found).
+ *  For every candidate i the exact distances d_i from its site to the face's three corners are
+ *  evaluated (one run per site, bounded by the labelling's field plus 4 times the longest edge).
+ *  In the face's plane d_i^2 is taken as q_i = |y|^2 + the linear function through the three
+ *  corner values; q_i - q_j is linear, so cell i's piece, where q_i is the least (ties to the
+ *  lower index), is the triangle clipped by straight lines. q_i = d_i^2 exactly wherever the
+ *  site's shortest paths into the face unfold straight (d_i = |y - s'| with s' the site's image:
+ *  no bend at a vertex, no cut locus of the site in the face), so there the pieces are bounded by
+ *  the exact bisectors and everything below is exact; elsewhere |q_i - d_i^2| <= 2 d h + 2 h^2 (h
+ *  the face's longest side, d the distance; O(h^2) away from the bending vertex).
+ *  Quadrature (stated exactly): E = sum over cells of the integral of q_i over the cell's pieces,
+ *  computed in closed form as sum over cells i and vertices v of W_i(v) d_i(v)^2 minus sum over
+ *  faces of A (a^2 + b^2 + c^2) / 12 (A the face's area, a, b, c its sides: the integral of the
+ *  gap between |y|^2 and its linear interpolant), where W_i(v) is the integral over cell i's
+ *  pieces of v's hat function (its barycentric coordinate). An iteration moves each site to the
+ *  weighted geodesic mean of the vertices v with weights W_i(v) (tg_geodesic_mean from the site,
+ *  at most 2 steps, no uniqueness test): the subtracted term does not depend on the site, so this
+ *  minimises the cell's part of E (on a flat region: the exact centroid of the polygonal cell).
+ *  The old site is kept when the mean does not lower that part; then the cells are made again.
+ *  Both halves lower E (the mean by the check; the new pieces are where the q are least), so the
+ *  energies never increase (to the rounding of the exact distances, ~1e-15 relative). Empty cells
+ *  keep their site. It stops after `iterations` iterations or when no site moved more than the
+ *  tolerance. On a flat region it is the planar Lloyd iteration of the continuous domain
+ *  (tests/test_centroidal.c compares energies and sites to 1e-12 with cells clipped by the
+ *  straight bisectors of all the sites; the lumped-area quadrature of earlier builds, each cell
+ *  its vertices, was 1.2-1.5% off in energy there, its sites up to 0.7 of an edge away).
  *
  *  start_sites: NULL to start from farthest-point sampling (tg_geodesic_farthest_point_sampling
  *  with start_vertex TG_NONE and `seed`), or site_count valid surface points. site_count: >= 1;
@@ -2406,8 +2448,9 @@ typedef struct tg_centroidal_options {
  *  Errors: TG_ERR_INVALID_ARGUMENT (NULL geodesic or out_sites, site_count 0 or above the
  *  referenced vertices without start sites, an invalid start site, a bad tolerance),
  *  TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED, and the errors of the calls it makes; on error the
- *  outputs are untouched. Complexity: per iteration one Voronoi labelling (about one field) and
- *  K means over the cells (each a few fields bounded to its cell). Thread-safe as
+ *  outputs are untouched. Complexity: per iteration one Voronoi labelling (about one field), the
+ *  corner distances (runs bounded to each cell and a margin: about one field) and K means over
+ *  the cells (each a few fields bounded to its cell); figures in BENCHMARKS.md. Thread-safe as
  *  tg_geodesic_field. (New in 0.6.1.) */
 TG_API tg_status tg_geodesic_centroidal_voronoi(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                                                 const tg_surface_point* start_sites, uint64_t seed,

@@ -3,7 +3,7 @@
 # numbers are python/tests/test_mean.py's), exit codes 0/1/2 and nothing written on
 # error. Known answers on the flat top of a closed plate from ../shared/tools/plate.py (no holes):
 # the mean of top points is their weighted average, the Bezier curve of top control points the
-# planar one (Bernstein form), both to 1e-12 of the diagonal; the JSON and the summary agree.
+# planar one (Bernstein form, by both --bezier-method), both to 1e-12 of the diagonal; the JSON and the summary agree.
 set -u
 trigeo=${TG_TRIGEO:?}
 meshes=${TG_MESHES_DIR:?}
@@ -91,6 +91,8 @@ cases = [
     (["path", plate, "--bezier", "v:0;v:1", "--from", "v:2"], 1, "--bezier excludes"),
     (["path", plate, "--bezier", "v:0;v:1", "--method", "straighten"], 1, "--method"),
     (["path", plate, "--bezier", "v:0;;v:1"], 1, "--bezier"),
+    (["path", plate, "--bezier", "v:0;v:1", "--bezier-method", "exact"], 1, "--bezier-method takes paths or logmap"),
+    (["path", plate, "--from", "v:0", "--to", "v:1", "--bezier-method", "logmap"], 1, "--bezier-method applies to --bezier"),
     (["path", plate, "--bezier", "v:0;v:1", "-o", os.path.join(tmp, "b.txt")], 1, "-o takes B.obj"),
     (["path", two, "--bezier", "v:0;v:1;v:4"], 2, "different components"),
     (["path", plate, "--bezier", "v:0;v:99999999"], 2, "v:99999999"),
@@ -104,11 +106,11 @@ for args, code, text in cases:
                                                                             code, r.stderr.strip(), text))
 
 # the Bezier curve of top control points: the planar one, at t = j / (N - 1)
-for degree in (1, 2, 3, 4):
+for degree, how in [(d, m) for d in (1, 2, 3, 4) for m in ("paths", "logmap")]:
     cs, cx = zip(*[top_point() for _ in range(degree + 1)])
     n = 13
     out = os.path.join(tmp, "b%d.obj" % degree)
-    r = run("path", plate, "--bezier", ";".join(cs), "--samples", str(n), "-o", out)
+    r = run("path", plate, "--bezier", ";".join(cs), "--samples", str(n), "-o", out, "--bezier-method", how)
     check(r.returncode == 0, "bezier exit %d %s" % (r.returncode, r.stderr))
     got = [tuple(map(float, l.split()[1:4])) for l in open(out) if l.startswith("v ")] if os.path.exists(out) else []
     line = [l for l in open(out) if l.startswith("l ")] if os.path.exists(out) else []
@@ -119,8 +121,8 @@ for degree in (1, 2, 3, 4):
                 for c in range(3)]
         worst = max(worst, math.dist(p, want))
     check(worst <= 1e-12 * diag and line == ["l " + " ".join(str(i + 1) for i in range(n)) + "\n"],
-          "degree %d: %d samples, %.3g from the planar curve" % (degree, len(got), worst))
-    r = run("path", plate, "--bezier", ";".join(cs), "--samples", str(n), "--json")
+          "degree %d (%s): %d samples, %.3g from the planar curve" % (degree, how, len(got), worst))
+    r = run("path", plate, "--bezier", ";".join(cs), "--samples", str(n), "--json", "--bezier-method", how)
     doc = json.loads(r.stdout) if r.returncode == 0 else {}
     check([tuple(x) for x in doc.get("xyz", [])] == got and len(doc.get("points", [])) == n and
           len(doc.get("controls", [])) == degree + 1, "degree %d: --json holds the OBJ's points" % degree)

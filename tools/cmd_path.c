@@ -527,7 +527,8 @@ static void print_bezier_json(FILE* f, const char* mesh_path, const cli_spec_lis
 }
 
 /* `--bezier "SPEC;...": the geodesic Bezier curve of the control points, sampled. */
-static int run_bezier(const char* mesh_path, cli_spec_list* ctrl, size_t samples, const char* out_path, bool json)
+static int run_bezier(const char* mesh_path, cli_spec_list* ctrl, size_t samples, tg_bezier_method method,
+                      const char* out_path, bool json)
 {
     int rc = CLI_INPUT;
     tg_bvh* bvh = NULL;
@@ -547,7 +548,7 @@ static int run_bezier(const char* mesh_path, cli_spec_list* ctrl, size_t samples
     memset(&o, 0, sizeof o);
     o = interruptible(&o);
     cli_interrupt_polling(true);
-    if (st == TG_OK) st = tg_geodesic_bezier(geo, NULL, ctrl->point, ctrl->count, samples, &o, pts, xyz);
+    if (st == TG_OK) st = tg_geodesic_bezier(geo, NULL, ctrl->point, ctrl->count, samples, method, &o, pts, xyz);
     cli_interrupt_polling(false);
     if (st == TG_ERR_CANCELLED) {
         cli_error(mesh_path, 0, "interrupted: nothing written");
@@ -605,7 +606,7 @@ done:
 static int run(int argc, char** argv)
 {
     const char *mesh_path = NULL, *from = NULL, *to = NULL, *pairs = NULL, *out_path = NULL, *method = NULL;
-    const char *through = NULL, *threads = NULL, *bezier = NULL, *samples = NULL;
+    const char *through = NULL, *threads = NULL, *bezier = NULL, *samples = NULL, *bezier_method = NULL;
     bool json = false, certify = false, closed = false;
     tg_path_options o;
     memset(&o, 0, sizeof o);
@@ -613,7 +614,7 @@ static int run(int argc, char** argv)
         const char* a = argv[i];
         if (!strcmp(a, "--from") || !strcmp(a, "--to") || !strcmp(a, "--pairs") || !strcmp(a, "-o") ||
             !strcmp(a, "--method") || !strcmp(a, "--through") || !strcmp(a, "--threads") || !strcmp(a, "--bezier") ||
-            !strcmp(a, "--samples")) {
+            !strcmp(a, "--samples") || !strcmp(a, "--bezier-method")) {
             if (i + 1 >= argc) return cli_usage("path", "%s needs a value", a);
             const char* val = argv[++i];
             if (!strcmp(a, "--from"))
@@ -632,6 +633,8 @@ static int run(int argc, char** argv)
                 bezier = val;
             else if (!strcmp(a, "--samples"))
                 samples = val;
+            else if (!strcmp(a, "--bezier-method"))
+                bezier_method = val;
             else
                 method = val;
         } else if (!strcmp(a, "--json")) {
@@ -649,6 +652,7 @@ static int run(int argc, char** argv)
         }
     }
     if (samples && !bezier) return cli_usage("path", "--samples applies to --bezier");
+    if (bezier_method && !bezier) return cli_usage("path", "--bezier-method applies to --bezier");
     if (bezier) {
         if (from || to || pairs || through || closed || threads)
             return cli_usage("path", "--bezier excludes --from, --to, --pairs, --through, --closed and --threads");
@@ -657,6 +661,11 @@ static int run(int argc, char** argv)
         unsigned long long ns = BEZIER_DEFAULT_SAMPLES;
         if (samples && (!cli_parse_uint(samples, &ns) || ns < 2 || ns > BEZIER_MAX_SAMPLES))
             return cli_usage("path", "--samples needs a number in 2..%u, not '%s'", BEZIER_MAX_SAMPLES, samples);
+        tg_bezier_method bm = TG_BEZIER_PATHS;
+        if (bezier_method && !strcmp(bezier_method, "logmap"))
+            bm = TG_BEZIER_LOG_MAP;
+        else if (bezier_method && strcmp(bezier_method, "paths"))
+            return cli_usage("path", "--bezier-method takes paths or logmap, not '%s'", bezier_method);
         if (!mesh_path) return cli_usage("path", "missing MESH");
         if (out_path && !cli_ext_is(out_path, ".obj") && !cli_ext_is(out_path, ".json"))
             return cli_usage("path", "-o takes B.obj (the polyline) or B.json (the surface points too)");
@@ -667,7 +676,7 @@ static int run(int argc, char** argv)
         if (rc != CLI_OK) return rc;
         cli_spec_list ctrl = {NULL, NULL, NULL, NULL, 0};
         rc = cli_spec_list_parse("path", "--bezier", bezier, &ctrl);
-        if (rc == CLI_OK) rc = run_bezier(mesh_path, &ctrl, (size_t)ns, out_path, json);
+        if (rc == CLI_OK) rc = run_bezier(mesh_path, &ctrl, (size_t)ns, bm, out_path, json);
         cli_spec_list_free(&ctrl);
         return rc;
     }
@@ -759,7 +768,7 @@ const cli_command cli_cmd_path = {
     "path",
     "path MESH ((--from SPEC|curve:FILE|boundary --to SPEC | --through \"SPEC;SPEC;...\" [--closed]) [-o PATH.obj|.json] [--json] |\n"
     "       --pairs PAIRS [-o OUT.csv] [--threads N]) [--method M] [--certify] |\n"
-    "       --bezier \"SPEC;SPEC;...\" [--samples N] [-o B.obj|.json] [--json]",
+    "       --bezier \"SPEC;SPEC;...\" [--bezier-method paths|logmap] [--samples N] [-o B.obj|.json] [--json]",
     "Geodesic paths on the surface between any two surface points (never snapped to a vertex): by\n"
     "default the globally shortest path, proven by an exact window propagation; or, faster, the\n"
     "shortest edge path (A*) with the endpoints inserted virtually, then shortened.\n\n"
@@ -782,6 +791,10 @@ const cli_command cli_cmd_path = {
     "                           region the planar Bezier curve. Written as an OBJ polyline of the\n"
     "                           samples (-o B.obj) or JSON with their surface points (-o B.json,\n"
     "                           --json); from the first control point to the last\n"
+    "  --bezier-method M        with --bezier: paths (default: the point at fraction t of the exact\n"
+    "                           shortest path) or logmap (exp_a(t log_a(b)): the trace from a along\n"
+    "                           the exact log map's direction to b for t times the distance; the\n"
+    "                           same where the path passes no vertex)\n"
     "  --samples N              with --bezier: N points at t = 0, 1/(N-1), ..., 1 (default 101)\n"
     "  -o PATH.obj|PATH.json    write the path as an OBJ polyline (v and l records), or the\n"
     "                           JSON document of --json (the format follows the extension)\n"

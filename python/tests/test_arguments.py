@@ -189,6 +189,7 @@ BAD = [
     ("points", lambda m, d: m.bezier([])),
     ("samples", lambda m, d: m.bezier([0, 1], samples=1)),
     ("samples", lambda m, d: m.bezier([0, 1], samples=2.5)),
+    ("method", lambda m, d: m.bezier([0, 1], method="straight")),
     ("count", lambda m, d: m.centroidal_voronoi(0)),
     ("count", lambda m, d: m.centroidal_voronoi(N + 1)),
     ("iterations", lambda m, d: m.centroidal_voronoi(3, iterations=0)),

@@ -1,6 +1,6 @@
 """Mesh.geodesic_mean and Mesh.bezier against independent oracles: on a flat jittered grid (no
 face folds) the mean is the weighted average of the points and the Bezier curve the planar one in
-Bernstein form, both to 1e-12 of the diagonal; the CLI (`trigeo mean --json`, `trigeo path
+Bernstein form (by both methods), both to 1e-12 of the diagonal; the CLI (`trigeo mean --json`, `trigeo path
 --bezier`) gives the same numbers bit for bit; bad input raises InvalidArgumentError; a progress
 callback that says stop, or raises, stops the call."""
 import csv
@@ -79,11 +79,11 @@ def test_mean_is_the_weighted_average(grid):
 def test_bezier_is_the_planar_curve(grid):
     m, v, f = grid
     rnd = np.random.default_rng(2)
-    for degree in range(1, 6):
+    for degree, method in [(d, how) for d in range(1, 6) for how in ("paths", "logmap")]:
         ctrl = face_points(rnd, f, degree + 1)
         cx = np.array([position(v, f, p) for p in ctrl])
         n = 11
-        xyz, faces, bary = m.bezier(ctrl, samples=n)
+        xyz, faces, bary = m.bezier(ctrl, samples=n, method=method)
         assert xyz.shape == (n, 3) and faces.shape == (n,) and bary.shape == (n, 3)
         for j in range(n):
             t = j / (n - 1)
@@ -122,6 +122,11 @@ def test_same_numbers_as_the_cli(grid, tmp_path):
     assert r.returncode == 0, r.stderr
     xyz, _, _ = mesh.bezier(pts[:4], samples=9)
     assert json.loads(r.stdout)["xyz"] == xyz.tolist()
+    r = subprocess.run([cli_path(), "path", str(path), "--bezier", ";".join(specs[:4]), "--samples", "9",
+                        "--bezier-method", "logmap", "--json"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    xyz, _, _ = mesh.bezier(pts[:4], samples=9, method="logmap")
+    assert json.loads(r.stdout)["xyz"] == xyz.tolist()
 
 
 def test_bad_input(grid):
@@ -135,7 +140,7 @@ def test_bad_input(grid):
                  lambda: m.geodesic_mean([0, 1], tolerance=-1), lambda: m.geodesic_mean([0, 1], max_iterations=0),
                  lambda: m.geodesic_mean([0, 10 ** 9]), lambda: two.geodesic_mean([0, 4]),
                  lambda: two.geodesic_mean([0, 1], start=4), lambda: m.bezier([0, 1], samples=1),
-                 lambda: m.bezier([]), lambda: two.bezier([0, 1, 4])):
+                 lambda: m.bezier([]), lambda: two.bezier([0, 1, 4]), lambda: m.bezier([0, 1], method="exact")):
         with pytest.raises(bad):
             call()
     with pytest.raises(bad, match="different components"):
@@ -157,23 +162,47 @@ def test_progress_stops(grid):
     assert m.geodesic_mean([0, 100, 200], progress=lambda fraction: None).status == "converged"
 
 
+def clip(poly, g, h):
+    """The polygon (corners in space) clipped to the half-space x . g <= h."""
+    out = []
+    for i in range(len(poly)):
+        a, b = poly[i], poly[(i + 1) % len(poly)]
+        va, vb = a @ g - h, b @ g - h
+        if va <= 0:
+            out.append(a)
+        if (va <= 0) != (vb <= 0):
+            out.append(a + va / (va - vb) * (b - a))
+    return out
+
+
 def planar_lloyd(v, f, s, iters):
-    """The planar discrete Lloyd iteration (lumped vertex areas) from sites s: (sites, labels,
-    energies), computed independently of the library."""
-    area = np.zeros(len(v))
-    cr = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
-    np.add.at(area, f.reshape(-1), np.repeat(np.linalg.norm(cr, axis=1) / 6.0, 3))
+    """The planar Lloyd iteration of the continuous domain from sites s, computed independently of
+    the library: each face clipped by the straight bisector half-planes of all the sites, each site
+    moved to its polygonal cell's centroid, the energy the exact integral of |x - s|^2 over the
+    cells. Returns (sites, vertex labels, energies)."""
     s = np.array(s, dtype=float)
     energies = []
     for it in range(iters + 1):
         d2 = ((v[:, None, :] - s[None, :, :]) ** 2).sum(axis=2)
         lab = d2.argmin(axis=1)
-        energies.append(float((area * d2[np.arange(len(v)), lab]).sum()))
-        if it < iters:
+        energy, moment, mass = 0.0, np.zeros_like(s), np.zeros(len(s))
+        for t in f:
             for i in range(len(s)):
-                cell = lab == i
-                if area[cell].sum() > 0:
-                    s[i] = (area[cell, None] * v[cell]).sum(axis=0) / area[cell].sum()
+                poly = [v[t[0]], v[t[1]], v[t[2]]]
+                for j in range(len(s)):
+                    if j != i and poly:
+                        poly = clip(poly, 2 * (s[j] - s[i]), s[j] @ s[j] - s[i] @ s[i])
+                for c in range(1, len(poly) - 1):  # fan: area, centroid, polar moment
+                    a, b, e = poly[0], poly[c], poly[c + 1]
+                    area = 0.5 * np.linalg.norm(np.cross(b - a, e - a))
+                    cen = (a + b + e) / 3
+                    l2 = (b - a) @ (b - a) + (e - a) @ (e - a) + (e - b) @ (e - b)
+                    energy += area * ((cen - s[i]) @ (cen - s[i]) + l2 / 36)
+                    moment[i] += area * cen
+                    mass[i] += area
+        energies.append(energy)
+        if it < iters:
+            s[mass > 0] = moment[mass > 0] / mass[mass > 0, None]
     return s, lab, np.array(energies)
 
 

@@ -691,6 +691,7 @@ def _write_whole(path: str, call: _Call, write: Callable[[bytes, _c.Diag], int])
 _FORMATS = {"auto": 0, "obj": 1, "off": 2, "ply": 3, "stl": 4}
 _SIGN = {"auto": 0, "pseudonormal": 1, "winding": 2}
 _METHODS = {"exact": 0, "straighten": 1, "relax": 2, "edge": 3}  # tg_path_method; "exact" is the C default
+_BEZIER_METHODS = {"paths": 0, "logmap": 1}  # tg_bezier_method
 _HIT = np.dtype(_c.ClosestHit)
 _SIGNED = np.dtype(_c.SignedHit)
 
@@ -1401,13 +1402,15 @@ class Mesh:
 
         return self._run(work, progress)
 
-    def bezier(self, points: Any, samples: int = 101,
+    def bezier(self, points: Any, samples: int = 101, method: str = "paths",
                progress: Optional[Callable[[float], Any]] = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The geodesic Bezier curve of the control points: de Casteljau's construction on the
-        surface, each interpolation taken along the exact shortest path between two points (on a
-        flat region the planar Bezier curve; the same numbers as `trigeo path --bezier` and
-        tg_geodesic_bezier). points: the n + 1 control points (as path() takes them; degree n),
-        all in one component. samples: the curve at t = 0, 1 / (samples - 1), ..., 1 (>= 2).
+        surface (on a flat region the planar Bezier curve; the same numbers as `trigeo path
+        --bezier` and tg_geodesic_bezier). method: "paths" (default: each interpolation at
+        fraction t of the exact shortest path between two points) or "logmap" (exp_a(t log_a(b))
+        on the exact maps: the trace from a along the log map's direction to b; the same where
+        the path passes no vertex). points: the n + 1 control points (as path() takes them;
+        degree n), all in one component. samples: the curve at t = 0, 1 / (samples - 1), ..., 1 (>= 2).
         Returns (xyz, faces, bary): (samples, 3) float64 positions, (samples,) int64 faces and
         (samples, 3) float64 barycentric coordinates in them (a point on an edge or at a vertex
         named in one face holding it); the first is the first control point, the last the last.
@@ -1415,6 +1418,7 @@ class Mesh:
         n = _index(samples, "samples")
         if n < 2:
             raise _bad(f"samples must be at least 2, not {_show(samples)}")
+        how = _choice(method, "method", _BEZIER_METHODS)
 
         def work(call: _Call) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
             ctrl = self._surface_points(points, "points")
@@ -1425,7 +1429,7 @@ class Mesh:
             opts = _c.PathOptions(0, 0, 0.0, None, 0, call.field_fn, None)  # exact, Ctrl-C as cancellation
             geo = self._get_geo()
             with self._geo_ws.take() as ws:
-                st = _L.tg_geodesic_bezier(geo, ws, ctrl, len(ctrl), n, ctypes.byref(opts), out, _ptr(xyz))
+                st = _L.tg_geodesic_bezier(geo, ws, ctrl, len(ctrl), n, how, ctypes.byref(opts), out, _ptr(xyz))
             if st == 1 and call.error is None:
                 raise _bad("bezier: the control points lie in different components of the mesh (no path joins them)")
             call.finish(st, "bezier")
@@ -1439,12 +1443,14 @@ class Mesh:
                            ) -> tuple[list, np.ndarray, np.ndarray]:
         """A geodesic centroidal Voronoi tessellation (geodesic Lloyd, tg_geodesic_centroidal_voronoi,
         the numbers of `trigeo sample --cvt`): `count` sites, each moved to the geodesic mean of
-        its exact Voronoi cell (its vertices weighing a third of their faces' areas), the cells
-        labelled again, at most `iterations` times or until no site moves more than tolerance
-        (default 1e-7) times the bounding box's diagonal. start: None (farthest-point sampling
-        with `seed`) or `count` surface points. Returns (sites, labels, energies): a list of
-        SurfacePoints, (n,) int64 cell labels (-1: unreached or unreferenced), and the energies
-        (sum of area x squared distance) before and after each iteration, never increasing."""
+        its exact Voronoi cell (the cells clipped inside the faces at their boundaries, each
+        vertex weighing the integral of its hat function over the cell: the quadrature in
+        trigeo.h), the cells made again, at most `iterations` times or until no site moves more
+        than tolerance (default 1e-7) times the bounding box's diagonal. start: None
+        (farthest-point sampling with `seed`) or `count` surface points. Returns (sites, labels,
+        energies): a list of SurfacePoints, (n,) int64 vertex labels (-1: unreached or
+        unreferenced), and the energies (the integral over the cells of the squared distance to
+        their site) before and after each iteration, never increasing."""
         k = _index(count, "count")
         its = _index(iterations, "iterations")
         if not 1 <= its <= 0xFFFFFFFF:

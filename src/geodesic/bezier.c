@@ -5,8 +5,10 @@
  *   of the control points); its Riemannian form, with geodesics in place of segments: C. Park
  *   and F. C. Ravani, "Bezier curves on Riemannian manifolds and Lie groups with kinematics
  *   applications", J. Mech. Des. 117, 1995, §3; the geodesics are tg_geodesic_path's exact ones
- *   (Mitchell, Mount & Papadimitriou 1987, §6), proven globally shortest. */
-#include "geodesic/workspace.h"
+ *   (Mitchell, Mount & Papadimitriou 1987, §6), proven globally shortest; or, as an option, each
+ *   interpolation exp_a(t log_a(b)) on the exact maps of mean.c (Park and Ravani's form). */
+#include "geodesic/mean.h"
+#include "kernels/edge_path.h"
 
 #include <string.h>
 
@@ -157,13 +159,49 @@ static tg_status sample_curve(const tg_geodesic* g, tg_geodesic_workspace* ws, c
     return st;
 }
 
+/* The same by the exact maps: each level's point i is exp_a(t log_a(b)), a and b the previous
+ * level's points i and i + 1. */
+static tg_status sample_curve_maps(const tg_geodesic* g, tg_geodesic_workspace* ws, curve_progress* cp,
+                                   const tg_surface_point* controls, size_t n, size_t sample_count,
+                                   tg_surface_point* level, tg_surface_point* out)
+{
+    const tg_mesh* m = g->mesh;
+    tg_trace* trace = NULL;
+    tg_status st = tg_trace_create(&g->allocator, &trace);
+    if (st != TG_OK) return st;
+    bool progress = cp->caller && cp->caller->progress;
+    out[0] = tg_surface_point_canonical(m, &controls[0]);
+    out[sample_count - 1] = tg_surface_point_canonical(m, &controls[n]);
+    for (size_t j = 1; j + 1 < sample_count && st == TG_OK; ++j) {
+        double t = (double)j / (double)(sample_count - 1);
+        cp->done = j;
+        for (size_t i = 0; i <= n; ++i) level[i] = tg_surface_point_canonical(m, &controls[i]);
+        for (size_t k = n; k >= 1 && st == TG_OK; --k) /* k + 1 points left */
+            for (size_t i = 0; i < k && st == TG_OK; ++i) {
+                st = between_paths(cp);
+                if (st == TG_OK)
+                    st = tg__exp_log(g, ws, &level[i], &level[i + 1], t, progress ? cp->caller->progress : NULL,
+                                     progress ? cp->caller->progress_user : NULL, j, sample_count, trace, &level[i]);
+            }
+        out[j] = level[0];
+    }
+    tg_trace_destroy(trace);
+    return st;
+}
+
 tg_status tg_geodesic_bezier(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* controls,
-                             size_t control_count, size_t sample_count, const tg_path_options* options,
-                             tg_surface_point* out_points, double* out_xyz)
+                             size_t control_count, size_t sample_count, tg_bezier_method method,
+                             const tg_path_options* options, tg_surface_point* out_points, double* out_xyz)
 {
     if (!g || !controls || !out_points || control_count == 0 || sample_count < 2) return TG_ERR_INVALID_ARGUMENT;
-    /* the paths are exact; tg_geodesic_path checks the rest of the options */
+    if (method != TG_BEZIER_PATHS && method != TG_BEZIER_LOG_MAP) return TG_ERR_INVALID_ARGUMENT;
+    /* the paths are exact; tg_geodesic_path checks the rest of the options, and so does this for
+     * the maps, which call no path (the same options refused by both methods) */
     if (options && options->method != TG_PATH_EXACT) return TG_ERR_INVALID_ARGUMENT;
+    if (options && method == TG_BEZIER_LOG_MAP &&
+        ((options->certify != TG_PATH_CERTIFY_OFF && options->certify != TG_PATH_CERTIFY_ON) ||
+         !(options->tolerance >= 0.0) || !isfinite(options->tolerance) || !tg__kernel_options_valid(options->kernel)))
+        return TG_ERR_INVALID_ARGUMENT;
     uint32_t comp = TG_NONE;
     for (size_t i = 0; i < control_count; ++i) {
         if (tg_surface_point_validate(g->mesh, &controls[i], NULL) != TG_OK) return TG_ERR_INVALID_ARGUMENT;
@@ -179,7 +217,7 @@ tg_status tg_geodesic_bezier(const tg_geodesic* g, tg_geodesic_workspace* ws, co
     if (st != TG_OK) return st;
     tg_path* path = NULL;
     polyline* legs = tg__alloc_array(a, n ? n : 1, sizeof *legs);
-    tg_surface_point* level = tg__alloc_array(a, n ? n : 1, sizeof *level);
+    tg_surface_point* level = tg__alloc_array(a, n + 1, sizeof *level);
     tg_surface_point* result = tg__alloc_array(a, sample_count, sizeof *result);
     st = legs && level && result ? tg_path_create(a, &path) : TG_ERR_OUT_OF_MEMORY;
     if (legs) memset(legs, 0, (n ? n : 1) * sizeof *legs);
@@ -188,11 +226,13 @@ tg_status tg_geodesic_bezier(const tg_geodesic* g, tg_geodesic_workspace* ws, co
         cp.piece = *options;
         if (options->progress) cp.piece.progress = report_piece, cp.piece.progress_user = &cp;
     }
-    for (size_t i = 0; i < n && st == TG_OK; ++i)
+    for (size_t i = 0; i < n && st == TG_OK && method == TG_BEZIER_PATHS; ++i)
         st = exact_polyline(g, ws, &cp, path, &controls[i], &controls[i + 1], &legs[i]);
     if (st == TG_OK) {
         if (n == 0) { /* one control point: the curve stays there */
             for (size_t j = 0; j < sample_count; ++j) result[j] = tg_surface_point_canonical(g->mesh, &controls[0]);
+        } else if (method == TG_BEZIER_LOG_MAP) {
+            st = sample_curve_maps(g, ws, &cp, controls, n, sample_count, level, result);
         } else {
             st = sample_curve(g, ws, &cp, path, controls, n, legs, sample_count, level, result);
         }

@@ -91,34 +91,24 @@ static tg_surface_point edge_point(const tg_geodesic* g, uint32_t h, double t)
     return tg__surface_in(g, &p);
 }
 
-/* One round: every open crossing's points evaluated by each of its two sources, each source's
- * points in one run bounded by `bound` (the final field plus a slack). */
-static tg_status evaluate_round(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources,
-                                size_t source_count, const double* bound, cross* cs, size_t n, size_t* by_source,
-                                size_t* entry, tg_surface_point* pts)
+/* ---- distances of given sources at given points ---- */
+
+tg_status tg__nearest_evaluate(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources,
+                               size_t source_count, const double* bound, const uint32_t* pair_source,
+                               const tg_surface_point* pair_point, size_t pair_count, size_t* by_source,
+                               size_t* order, tg_surface_point* pts, double* out)
 {
     const tg_geodesic* g = nf->g;
     memset(by_source, 0, (source_count + 1) * sizeof *by_source);
-    for (size_t e = 0; e < n; ++e)
-        if (!cs[e].done) by_source[cs[e].i + 1] += PROBES, by_source[cs[e].j + 1] += PROBES;
+    for (size_t p = 0; p < pair_count; ++p) by_source[pair_source[p] + 1]++;
     for (size_t s = 0; s < source_count; ++s) by_source[s + 1] += by_source[s];
-    for (size_t e = 0; e < n; ++e) {
-        if (cs[e].done) continue;
-        for (size_t k = 0; k < PROBES; ++k) {
-            entry[by_source[cs[e].i]++] = 2 * (PROBES * e + k);
-            entry[by_source[cs[e].j]++] = 2 * (PROBES * e + k) + 1;
-        }
-    }
+    for (size_t p = 0; p < pair_count; ++p) order[by_source[pair_source[p]]++] = p;
     for (size_t s = source_count; s > 0; --s) by_source[s] = by_source[s - 1];
     by_source[0] = 0;
     for (size_t s = 0; s < source_count; ++s) {
         size_t b = by_source[s], m = by_source[s + 1] - b;
         if (!m) continue;
-        for (size_t k = 0; k < m; ++k) {
-            size_t x = entry[b + k] / 2;
-            const cross* c = &cs[x / PROBES];
-            pts[k] = edge_point(g, c->h, c->at[x % PROBES]);
-        }
+        for (size_t k = 0; k < m; ++k) pts[k] = pair_point[order[b + k]];
         /* the caller's progress inside long runs and between short ones: a round of many
          * sources' short runs can take seconds (5000 sources on igl_armadillo: about 1 s) */
         bool progress = nf->options && nf->options->progress;
@@ -131,12 +121,59 @@ static tg_status evaluate_round(tg__nearest* nf, tg__field_scratch* fs, const tg
         if (st == TG_OK) st = tg__nearest_poll(nf);
         if (st != TG_OK) return st;
         tg__field_stats_add(&nf->stats, &run.stats);
-        for (size_t k = 0; k < m; ++k) {
-            size_t x = entry[b + k] / 2;
-            cross* c = &cs[x / PROBES];
-            if (entry[b + k] & 1) c->dj[x % PROBES] = run.qdist[k];
-            else c->di[x % PROBES] = run.qdist[k];
+        for (size_t k = 0; k < m; ++k) out[order[b + k]] = run.qdist[k];
+    }
+    return TG_OK;
+}
+
+/* The graph of the boundary: nodes are the crossings (0..n) and the junctions after them; a
+ * segment joins two nodes inside one face and separates the cells `a` < `b`. */
+typedef struct segment {
+    uint32_t u, v, a, b;
+} segment;
+
+/* Everything the assembly allocates, freed together. */
+typedef struct scratch {
+    cross* cs;
+    uint32_t* cross_of; /* per halfedge: its edge's crossing, TG_NONE */
+    size_t *by_source, *entry;
+    tg_surface_point *pts, *pair_point;
+    uint32_t* pair_source;
+    double* pair_dist;
+    segment* segs;
+    tg__node* nodes;  /* per node: its solver form */
+    double* bound;    /* per vertex: the field plus the slack the rounds' runs are bounded by */
+    uint32_t *adj_start, *adj, *used;
+} scratch;
+
+static void scratch_free(const tg_allocator* a, scratch* s)
+{
+    void* all[] = {s->cs, s->cross_of, s->by_source, s->entry, s->pts, s->pair_point, s->pair_source, s->pair_dist, s->segs, s->nodes, s->bound, s->adj_start, s->adj, s->used};
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; ++i) tg__free(a, all[i]);
+}
+
+/* One round: every open crossing's points evaluated by each of its two sources
+ * (tg__nearest_evaluate), bounded by `bound` (the final field plus a slack). */
+static tg_status evaluate_round(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources,
+                                size_t source_count, const double* bound, cross* cs, size_t n, scratch* s)
+{
+    const tg_geodesic* g = nf->g;
+    size_t m = 0;
+    for (size_t e = 0; e < n; ++e) {
+        if (cs[e].done) continue;
+        for (size_t k = 0; k < PROBES; ++k) {
+            tg_surface_point p = edge_point(g, cs[e].h, cs[e].at[k]);
+            s->pair_source[m] = cs[e].i, s->pair_point[m++] = p;
+            s->pair_source[m] = cs[e].j, s->pair_point[m++] = p;
         }
+    }
+    tg_status st = tg__nearest_evaluate(nf, fs, sources, source_count, bound, s->pair_source, s->pair_point, m,
+                                        s->by_source, s->entry, s->pts, s->pair_dist);
+    if (st != TG_OK) return st;
+    m = 0;
+    for (size_t e = 0; e < n; ++e) {
+        if (cs[e].done) continue;
+        for (size_t k = 0; k < PROBES; ++k) cs[e].di[k] = s->pair_dist[m++], cs[e].dj[k] = s->pair_dist[m++];
     }
     return TG_OK;
 }
@@ -183,12 +220,6 @@ static bool narrow(cross* cs, size_t n)
 
 /* ---- polylines ---- */
 
-/* The graph of the boundary: nodes are the crossings (0..n) and the junctions after them; a
- * segment joins two nodes inside one face and separates the cells `a` < `b`. */
-typedef struct segment {
-    uint32_t u, v, a, b;
-} segment;
-
 /* Where crossing c lies in face f as barycentrics of f's corners (its edge is the edge of the
  * face's halfedge k). */
 static void crossing_bary(const tg_geodesic* g, const cross* c, uint32_t f, uint32_t k, double b[3])
@@ -197,24 +228,6 @@ static void crossing_bary(const tg_geodesic* g, const cross* c, uint32_t f, uint
     double t = g->tri[c->h] == g->tri[hk] ? c->t : 1.0 - c->t; /* along hk, from its start */
     b[0] = b[1] = b[2] = 0.0;
     b[k] = 1.0 - t, b[(k + 1) % 3] = t;
-}
-
-/* Everything the assembly allocates, freed together. */
-typedef struct scratch {
-    cross* cs;
-    uint32_t* cross_of; /* per halfedge: its edge's crossing, TG_NONE */
-    size_t *by_source, *entry;
-    tg_surface_point* pts;
-    segment* segs;
-    tg__node* nodes;  /* per node: its solver form */
-    double* bound;    /* per vertex: the field plus the slack the rounds' runs are bounded by */
-    uint32_t *adj_start, *adj, *used;
-} scratch;
-
-static void scratch_free(const tg_allocator* a, scratch* s)
-{
-    void* all[] = {s->cs, s->cross_of, s->by_source, s->entry, s->pts, s->segs, s->nodes, s->bound, s->adj_start, s->adj, s->used};
-    for (size_t i = 0; i < sizeof all / sizeof all[0]; ++i) tg__free(a, all[i]);
 }
 
 void tg__voronoi_boundaries_clear(tg_voronoi_boundaries* b)
@@ -365,7 +378,11 @@ tg_status tg__voronoi_boundaries(tg__nearest* nf, tg__field_scratch* fs, const t
         s.by_source = tg__alloc_array(a, source_count + 1, sizeof *s.by_source);
         s.entry = tg__alloc_array(a, 2 * PROBES * n + 1, sizeof *s.entry);
         s.pts = tg__alloc_array(a, 2 * PROBES * n + 1, sizeof *s.pts);
-        if (!s.cs || !s.by_source || !s.entry || !s.pts) st = TG_ERR_OUT_OF_MEMORY;
+        s.pair_point = tg__alloc_array(a, 2 * PROBES * n + 1, sizeof *s.pair_point);
+        s.pair_source = tg__alloc_array(a, 2 * PROBES * n + 1, sizeof *s.pair_source);
+        s.pair_dist = tg__alloc_array(a, 2 * PROBES * n + 1, sizeof *s.pair_dist);
+        if (!s.cs || !s.by_source || !s.entry || !s.pts || !s.pair_point || !s.pair_source || !s.pair_dist)
+            st = TG_ERR_OUT_OF_MEMORY;
     }
     /* The rounds' runs are bounded by the field plus twice the longest boundary edge L, so that
      * each source's distance is finite on every boundary edge of its cell (a point x of such an
@@ -396,7 +413,7 @@ tg_status tg__voronoi_boundaries(tg__nearest* nf, tg__field_scratch* fs, const t
     }
     bool all = n == 0;
     for (int r = 0; st == TG_OK && !all && r < MAX_ROUNDS; ++r) {
-        st = evaluate_round(nf, fs, sources, source_count, s.bound, s.cs, n, s.by_source, s.entry, s.pts);
+        st = evaluate_round(nf, fs, sources, source_count, s.bound, s.cs, n, &s);
         if (st == TG_OK) all = narrow(s.cs, n);
     }
     for (size_t e = 0; st == TG_OK && e < n; ++e) /* past the rounds (not seen): the bracket's middle */

@@ -13,8 +13,9 @@
  *   (path/backtrack.c, as TG_PATH_EXACT), the strip unfolding (Mitchell, Mount & Papadimitriou
  *   1987, §3) and the trace (walk.c) with TG_TRACE_ANGLE's conventions, as the log map's
  *   (logmap.c: angles at a vertex scaled so the turn is 2 pi, geometry-central's). */
+#include "geodesic/mean.h"
+
 #include "geodesic/field.h"
-#include "geodesic/workspace.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -259,6 +260,7 @@ typedef struct mean_call {
     size_t done, rows;
     double next_report_s;
     uint32_t fields;
+    const double* toward; /* NULL, or with one point its position (solver frame): the runs are A*'s */
     /* the last step's arrival: its direction (3D, in the plane of solver face arrive_face) */
     bool arrived;
     uint32_t arrive_face;
@@ -302,7 +304,7 @@ static tg_status evaluate(mean_call* c, const tg_surface_point* p, mean_eval* e)
     tg_surface_point src = tg__surface_in(g, p);
     tg__field_query q = {.sources = &src, .source_count = 1, .points = c->points, .point_count = c->k,
                          .max_distance = INFINITY, .progress = c->fn ? report_run : NULL, .progress_user = c,
-                         .trace = true, .stop_at_points = true};
+                         .trace = true, .stop_at_points = true, .toward = c->toward};
     tg__field_run run;
     c->fields++;
     tg_status st = tg__field_execute(&c->ws->field, &q, &run);
@@ -696,6 +698,31 @@ static double diagonal(const tg_geodesic* g)
     }
     if (!(lo[0] <= hi[0])) return 0.0;
     return sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+tg_status tg__exp_log(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* a,
+                      const tg_surface_point* b, double t, tg_field_progress_fn progress, void* progress_user,
+                      size_t rows_done, size_t row_count, tg_trace* trace, tg_surface_point* out)
+{
+    tg_surface_point bs = tg__surface_in(g, b), start = tg_surface_point_canonical(g->mesh, a);
+    double one = 1.0;
+    mean_call c;
+    memset(&c, 0, sizeof c);
+    c.g = g, c.ws = ws, c.a = &g->allocator, c.points = &bs, c.weights = &one, c.k = 1, c.weight_sum = 1.0;
+    c.route.nodes.elem = sizeof(tg__node), c.route.faces.elem = sizeof(uint32_t);
+    c.fn = progress, c.user = progress_user, c.done = rows_done, c.rows = row_count;
+    tg__node bn = tg__node_from_surface(&bs);
+    double toward[3];
+    tg_v3_store(tg__node_pos(g, &bn), toward);
+    c.toward = toward; /* one point: the propagation ordered toward it (as TG_PATH_EXACT's) */
+    mean_eval e;
+    tg_status st = evaluate(&c, &start, &e); /* e.step = d(a, b), e.angle its direction at a */
+    double walked;
+    if (st == TG_OK && e.step > 0.0 && t > 0.0) st = step_from(&c, trace, &e, e.angle, t * e.step, out, &walked);
+    else if (st == TG_OK) *out = start;
+    tg__vec_free(c.a, &c.route.nodes);
+    tg__vec_free(c.a, &c.route.faces);
+    return st;
 }
 
 tg_status tg_geodesic_mean(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* points,

@@ -71,6 +71,23 @@ void tg__nearest_copy_out(const tg__nearest* nf, double* out_dist, uint32_t* out
  * scratch with nf's). Errors: TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED (b then empty). */
 tg_status tg__voronoi_boundaries(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources,
                                  size_t source_count, tg_voronoi_boundaries* b);
+/* The distances of given sources at given points, for callers going on from a complete field
+ * nf (bisector.c; the clipped cells of centroidal.c): pair p asks source pair_source[p] (an index
+ * into sources, the caller's form) at pair_point[p] (the solver's form); each source's points are
+ * evaluated in one run bounded by `bound` (per solver vertex, the solver's frame: the field plus
+ * a slack that keeps every path to the points inside it), into out[p] (the solver's frame; +inf
+ * where the bound cut every path). Scratch: by_source (source_count + 1), order and pts
+ * (pair_count each). Stats added to nf; the caller's progress as tg__nearest_poll. Errors:
+ * TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED. */
+tg_status tg__nearest_evaluate(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources,
+                               size_t source_count, const double* bound, const uint32_t* pair_source,
+                               const tg_surface_point* pair_point, size_t pair_count, size_t* by_source,
+                               size_t* order, tg_surface_point* pts, double* out);
+/* tg_geodesic_voronoi's labelling of these sources (the caller's form) into nf (initialised, its
+ * options and rows set): one run of them all first, then each source's own run (voronoi.c).
+ * Errors: TG_ERR_OUT_OF_MEMORY, TG_ERR_CANCELLED. */
+tg_status tg__voronoi_label(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources,
+                            size_t source_count);
 /* Empties b: its arrays freed, no polylines (bisector.c). */
 void tg__voronoi_boundaries_clear(tg_voronoi_boundaries* b);
 

@@ -11,6 +11,17 @@
 
 #include <string.h>
 
+tg_status tg__voronoi_label(tg__nearest* nf, tg__field_scratch* fs, const tg_surface_point* sources,
+                            size_t source_count)
+{
+    tg_status st = TG_OK;
+    /* several sources: one run of them all first bounds each one's run to its cell (without it
+     * the k-th source's run covered what the k - 1 before it left: about ln K fields in all) */
+    if (source_count > 1) st = tg__nearest_prebound(nf, fs, sources, source_count);
+    for (size_t i = 0; st == TG_OK && i < source_count; ++i) st = tg__nearest_add(nf, fs, &sources[i]);
+    return st;
+}
+
 tg_status tg_geodesic_voronoi(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
                               size_t source_count, const tg_field_options* options, tg_voronoi_boundaries* boundaries,
                               double* out_vertex_distance, uint32_t* out_vertex_label, tg_field_stats* out_stats)
@@ -36,10 +47,7 @@ tg_status tg_geodesic_voronoi(const tg_geodesic* g, tg_geodesic_workspace* ws, c
         return TG_ERR_OUT_OF_MEMORY;
     }
     nf.options = options, nf.rows = source_count;
-    /* several sources: one run of them all first bounds each one's run to its cell (without it
-     * the k-th source's run covered what the k - 1 before it left: about ln K fields in all) */
-    if (source_count > 1) st = tg__nearest_prebound(&nf, &ws->field, sources, source_count);
-    for (size_t i = 0; st == TG_OK && i < source_count; ++i) st = tg__nearest_add(&nf, &ws->field, &sources[i]);
+    st = tg__voronoi_label(&nf, &ws->field, sources, source_count);
     if (st == TG_OK && boundaries) st = tg__voronoi_boundaries(&nf, &ws->field, sources, source_count, boundaries);
     if (st == TG_OK) {
         tg__nearest_copy_out(&nf, out_vertex_distance, out_vertex_label);

@@ -97,6 +97,12 @@ extern "C" {
  *    tg_geodesic_curve_distance_matrix (rows of curves). CLI: field --from curve:FILE and --from boundary,
  *    path --from curve:FILE|boundary; Python: Mesh.field(curve=, curves=, boundary=), field_at
  *    likewise, Mesh.curve_path, Mesh.boundary_segments().
+ *  - tg_geodesic_centroidal_voronoi's cells are clipped at their boundaries inside the faces (a
+ *    face split between the cells it meets; the energy integrated over the pieces) instead of
+ *    lumped vertex areas: on a flat mesh its iterations are the continuous planar Lloyd's.
+ *  - tg_geodesic_bezier_with: de Casteljau by exact shortest paths (tg_geodesic_bezier's method)
+ *    or by the exact exp/log maps (TG_BEZIER_LOG_MAP); CLI path --bezier-method, Python
+ *    Mesh.bezier(method=).
  *  - A solver takes at most 536,870,909 vertices (one id fewer: it names a curve's windows). */
 
 /* Changes in 0.6.1 (ABI-compatible with 0.6.0: same soname, new behaviour and entry points only):
@@ -2333,7 +2339,7 @@ TG_API tg_status tg_geodesic_mean(const tg_geodesic* geodesic, tg_geodesic_works
 /* Geodesic Bézier curves (src/geodesic/bezier.c)                                                 */
 /* ============================================================================================== */
 
-/** How tg_geodesic_bezier interpolates between two points a and b at each level of de Casteljau's
+/** How tg_geodesic_bezier_with interpolates between two points a and b at each level of de Casteljau's
  *  construction. */
 typedef enum tg_bezier_method {
     /** the point at fraction t of the arclength of the exact shortest path from a to b (default) */
@@ -2377,12 +2383,18 @@ typedef enum tg_bezier_method {
  *  TG_ERR_INTERNAL (as tg_geodesic_path), TG_ERR_CANCELLED; on error the outputs are untouched.
  *  Complexity: TG_BEZIER_PATHS n exact paths, plus n (n - 1) / 2 per sample; TG_BEZIER_LOG_MAP
  *  n (n + 1) / 2 fields and traces per sample (between nearby points: a small region's
- *  propagation each). Thread-safe for distinct workspaces. (New in 0.6.1; `method` added before
- *  0.6.1 shipped.) */
+ *  propagation each). Thread-safe for distinct workspaces. (New in 0.6.2; tg_geodesic_bezier, new
+ *  in 0.6.1, is this call with TG_BEZIER_PATHS.) */
+TG_API tg_status tg_geodesic_bezier_with(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
+                                         const tg_surface_point* controls, size_t control_count, size_t sample_count,
+                                         tg_bezier_method method, const tg_path_options* options,
+                                         tg_surface_point* out_points, double* out_xyz);
+
+/** tg_geodesic_bezier_with with TG_BEZIER_PATHS (exact shortest paths): the 0.6.1 entry point.
+ *  (New in 0.6.1.) */
 TG_API tg_status tg_geodesic_bezier(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                                     const tg_surface_point* controls, size_t control_count, size_t sample_count,
-                                    tg_bezier_method method, const tg_path_options* options,
-                                    tg_surface_point* out_points, double* out_xyz);
+                                    const tg_path_options* options, tg_surface_point* out_points, double* out_xyz);
 
 /* ============================================================================================== */
 /* Centroidal Voronoi tessellations (src/geodesic/centroidal.c)                                   */

@@ -57,7 +57,7 @@ static void test_flat(void)
             }
             tg_surface_point out[SAMPLES];
             double sxyz[3 * SAMPLES];
-            CHECK_STATUS(tg_geodesic_bezier(c.geo, c.ws, ctrl, n + 1, SAMPLES, method, NULL, out, sxyz), TG_OK);
+            CHECK_STATUS(tg_geodesic_bezier_with(c.geo, c.ws, ctrl, n + 1, SAMPLES, method, NULL, out, sxyz), TG_OK);
             double worst = 0.0;
             for (int j = 0; j < SAMPLES; ++j) {
                 double want[3], got[3];
@@ -81,7 +81,7 @@ static void test_flat(void)
     /* one control point: every sample is that point; NULL workspace and xyz */
     tg_surface_point one = tg_surface_face(7, 0.2, 0.2, 0.6), out[3];
     for (int method = 0; method < 2; ++method) {
-        CHECK_STATUS(tg_geodesic_bezier(c.geo, NULL, &one, 1, 3, (tg_bezier_method)method, NULL, out, NULL), TG_OK);
+        CHECK_STATUS(tg_geodesic_bezier_with(c.geo, NULL, &one, 1, 3, (tg_bezier_method)method, NULL, out, NULL), TG_OK);
         for (int j = 0; j < 3; ++j) CHECK(!memcmp(&out[j], &one, sizeof one));
     }
     close_ctx(&c);
@@ -98,7 +98,7 @@ static void test_curved(void)
         tg_surface_point ends[2] = {random_face_point(&r, tg_mesh_face_count(c.mesh)),
                                     random_face_point(&r, tg_mesh_face_count(c.mesh))};
         tg_surface_point out[SAMPLES];
-        CHECK_STATUS(tg_geodesic_bezier(c.geo, c.ws, ends, 2, SAMPLES, TG_BEZIER_PATHS, NULL, out, NULL), TG_OK);
+        CHECK_STATUS(tg_geodesic_bezier_with(c.geo, c.ws, ends, 2, SAMPLES, TG_BEZIER_PATHS, NULL, out, NULL), TG_OK);
         double d0[SAMPLES], d1[SAMPLES], len;
         CHECK_STATUS(tg_geodesic_field_at(c.geo, c.ws, &ends[0], 1, out, SAMPLES, NULL, d0, NULL, NULL), TG_OK);
         CHECK_STATUS(tg_geodesic_field_at(c.geo, c.ws, &ends[1], 1, out, SAMPLES, NULL, d1, NULL, NULL), TG_OK);
@@ -112,8 +112,8 @@ static void test_curved(void)
         /* a cubic, and its control polygon reversed: the same points in reverse order */
         tg_surface_point ctrl[4], back[4], fwd[SAMPLES], rev[SAMPLES];
         for (int i = 0; i < 4; ++i) ctrl[i] = random_face_point(&r, tg_mesh_face_count(c.mesh)), back[3 - i] = ctrl[i];
-        CHECK_STATUS(tg_geodesic_bezier(c.geo, c.ws, ctrl, 4, SAMPLES, TG_BEZIER_PATHS, NULL, fwd, NULL), TG_OK);
-        CHECK_STATUS(tg_geodesic_bezier(c.geo, c.ws, back, 4, SAMPLES, TG_BEZIER_PATHS, NULL, rev, NULL), TG_OK);
+        CHECK_STATUS(tg_geodesic_bezier_with(c.geo, c.ws, ctrl, 4, SAMPLES, TG_BEZIER_PATHS, NULL, fwd, NULL), TG_OK);
+        CHECK_STATUS(tg_geodesic_bezier_with(c.geo, c.ws, back, 4, SAMPLES, TG_BEZIER_PATHS, NULL, rev, NULL), TG_OK);
         double worst = 0.0;
         for (int j = 0; j < SAMPLES; ++j) {
             double a[3], b[3];
@@ -144,8 +144,8 @@ static double methods_apart(ctx* c, tg_rng* r, int trials, double spread)
                 ctrl[i] = random_face_point(r, tg_mesh_face_count(c->mesh));
                 tg_surface_point_position(c->mesh, &ctrl[i], p);
             } while (dist3(p, centre) > spread);
-        CHECK_STATUS(tg_geodesic_bezier(c->geo, c->ws, ctrl, 4, SAMPLES, TG_BEZIER_PATHS, NULL, a, NULL), TG_OK);
-        CHECK_STATUS(tg_geodesic_bezier(c->geo, c->ws, ctrl, 4, SAMPLES, TG_BEZIER_LOG_MAP, NULL, b, NULL), TG_OK);
+        CHECK_STATUS(tg_geodesic_bezier_with(c->geo, c->ws, ctrl, 4, SAMPLES, TG_BEZIER_PATHS, NULL, a, NULL), TG_OK);
+        CHECK_STATUS(tg_geodesic_bezier_with(c->geo, c->ws, ctrl, 4, SAMPLES, TG_BEZIER_LOG_MAP, NULL, b, NULL), TG_OK);
         for (int j = 0; j < SAMPLES; ++j) {
             double x[3], y[3];
             tg_surface_point_position(c->mesh, &a[j], x);
@@ -192,29 +192,29 @@ static void test_errors(void)
     tg_surface_point p[3] = {tg_surface_face(0, 0.2, 0.3, 0.5), tg_surface_face(1, 0.5, 0.25, 0.25), tg_surface_vertex(a)};
     tg_surface_point out[4], keep = tg_surface_vertex(12345);
     for (int j = 0; j < 4; ++j) out[j] = keep;
-    CHECK_STATUS(tg_geodesic_bezier(NULL, NULL, p, 3, 4, TG_BEZIER_PATHS, NULL, out, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_bezier(c.geo, c.ws, NULL, 3, 4, TG_BEZIER_PATHS, NULL, out, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_bezier(c.geo, c.ws, p, 3, 4, TG_BEZIER_PATHS, NULL, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_bezier(c.geo, c.ws, p, 3, 4, (tg_bezier_method)2, NULL, out, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_bezier(c.geo, c.ws, p, 0, 4, TG_BEZIER_PATHS, NULL, out, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_bezier(c.geo, c.ws, p, 3, 1, TG_BEZIER_PATHS, NULL, out, NULL), TG_ERR_INVALID_ARGUMENT);
-    CHECK_STATUS(tg_geodesic_bezier(c.geo, c.ws, p, 3, 0, TG_BEZIER_PATHS, NULL, out, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_bezier_with(NULL, NULL, p, 3, 4, TG_BEZIER_PATHS, NULL, out, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_bezier_with(c.geo, c.ws, NULL, 3, 4, TG_BEZIER_PATHS, NULL, out, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_bezier_with(c.geo, c.ws, p, 3, 4, TG_BEZIER_PATHS, NULL, NULL, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_bezier_with(c.geo, c.ws, p, 3, 4, (tg_bezier_method)2, NULL, out, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_bezier_with(c.geo, c.ws, p, 0, 4, TG_BEZIER_PATHS, NULL, out, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_bezier_with(c.geo, c.ws, p, 3, 1, TG_BEZIER_PATHS, NULL, out, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_bezier_with(c.geo, c.ws, p, 3, 0, TG_BEZIER_PATHS, NULL, out, NULL), TG_ERR_INVALID_ARGUMENT);
     tg_surface_point other[3] = {p[0], tg_surface_face(2, 0.3, 0.3, 0.4), p[1]};
-    CHECK_STATUS(tg_geodesic_bezier(c.geo, c.ws, other, 3, 4, TG_BEZIER_PATHS, NULL, out, NULL), TG_ERR_INVALID_ARGUMENT);
+    CHECK_STATUS(tg_geodesic_bezier_with(c.geo, c.ws, other, 3, 4, TG_BEZIER_PATHS, NULL, out, NULL), TG_ERR_INVALID_ARGUMENT);
     tg_surface_point bad[3] = {tg_surface_face(0, NAN, 0.5, 0.5), tg_surface_face(99, 0.3, 0.3, 0.4), tg_surface_vertex(7)};
     for (int i = 0; i < 3; ++i) {
         tg_surface_point two[2] = {p[0], bad[i]};
-        CHECK_STATUS(tg_geodesic_bezier(c.geo, c.ws, two, 2, 4, TG_BEZIER_PATHS, NULL, out, NULL), TG_ERR_INVALID_ARGUMENT);
+        CHECK_STATUS(tg_geodesic_bezier_with(c.geo, c.ws, two, 2, 4, TG_BEZIER_PATHS, NULL, out, NULL), TG_ERR_INVALID_ARGUMENT);
     }
     for (int method = 0; method < 2; ++method) {
         tg_bezier_method bm = (tg_bezier_method)method;
         tg_path_options o = {.method = TG_PATH_STRAIGHTEN};
-        CHECK_STATUS(tg_geodesic_bezier(c.geo, c.ws, p, 3, 4, bm, &o, out, NULL), TG_ERR_INVALID_ARGUMENT);
+        CHECK_STATUS(tg_geodesic_bezier_with(c.geo, c.ws, p, 3, 4, bm, &o, out, NULL), TG_ERR_INVALID_ARGUMENT);
         tg_path_options o2 = {.tolerance = -1.0};
-        CHECK_STATUS(tg_geodesic_bezier(c.geo, c.ws, p, 3, 4, bm, &o2, out, NULL), TG_ERR_INVALID_ARGUMENT);
+        CHECK_STATUS(tg_geodesic_bezier_with(c.geo, c.ws, p, 3, 4, bm, &o2, out, NULL), TG_ERR_INVALID_ARGUMENT);
         int calls = 0;
         tg_path_options o3 = {.progress = stop_now, .progress_user = &calls};
-        CHECK_STATUS(tg_geodesic_bezier(c.geo, c.ws, p, 3, 4, bm, &o3, out, NULL), TG_ERR_CANCELLED);
+        CHECK_STATUS(tg_geodesic_bezier_with(c.geo, c.ws, p, 3, 4, bm, &o3, out, NULL), TG_ERR_CANCELLED);
         CHECK_MSG(calls >= 1, "method %d: progress called %d times", method, calls);
     }
     for (int j = 0; j < 4; ++j) CHECK_MSG(!memcmp(&out[j], &keep, sizeof keep), "out[%d] written on an error", j);

@@ -548,7 +548,7 @@ static int run_bezier(const char* mesh_path, cli_spec_list* ctrl, size_t samples
     memset(&o, 0, sizeof o);
     o = interruptible(&o);
     cli_interrupt_polling(true);
-    if (st == TG_OK) st = tg_geodesic_bezier(geo, NULL, ctrl->point, ctrl->count, samples, method, &o, pts, xyz);
+    if (st == TG_OK) st = tg_geodesic_bezier_with(geo, NULL, ctrl->point, ctrl->count, samples, method, &o, pts, xyz);
     cli_interrupt_polling(false);
     if (st == TG_ERR_CANCELLED) {
         cli_error(mesh_path, 0, "interrupted: nothing written");

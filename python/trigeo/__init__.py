@@ -1406,7 +1406,7 @@ class Mesh:
                progress: Optional[Callable[[float], Any]] = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The geodesic Bezier curve of the control points: de Casteljau's construction on the
         surface (on a flat region the planar Bezier curve; the same numbers as `trigeo path
-        --bezier` and tg_geodesic_bezier). method: "paths" (default: each interpolation at
+        --bezier` and tg_geodesic_bezier_with). method: "paths" (default: each interpolation at
         fraction t of the exact shortest path between two points) or "logmap" (exp_a(t log_a(b))
         on the exact maps: the trace from a along the log map's direction to b; the same where
         the path passes no vertex). points: the n + 1 control points (as path() takes them;
@@ -1429,7 +1429,7 @@ class Mesh:
             opts = _c.PathOptions(0, 0, 0.0, None, 0, call.field_fn, None)  # exact, Ctrl-C as cancellation
             geo = self._get_geo()
             with self._geo_ws.take() as ws:
-                st = _L.tg_geodesic_bezier(geo, ws, ctrl, len(ctrl), n, how, ctypes.byref(opts), out, _ptr(xyz))
+                st = _L.tg_geodesic_bezier_with(geo, ws, ctrl, len(ctrl), n, how, ctypes.byref(opts), out, _ptr(xyz))
             if st == 1 and call.error is None:
                 raise _bad("bezier: the control points lie in different components of the mesh (no path joins them)")
             call.finish(st, "bezier")

@@ -347,7 +347,7 @@ _SIGNATURES = {
     "tg_mean_status_name": (c_char_p, [c_int]),
     "tg_mean_uniqueness_name": (c_char_p, [c_int]),
     "tg_geodesic_mean": (c_int, [_vp, _vp, _psp, _pd, c_size_t, POINTER(MeanOptions), POINTER(MeanResult)]),
-    "tg_geodesic_bezier": (c_int, [_vp, _vp, _psp, c_size_t, c_size_t, c_int, POINTER(PathOptions), _psp, _pd]),
+    "tg_geodesic_bezier_with": (c_int, [_vp, _vp, _psp, c_size_t, c_size_t, c_int, POINTER(PathOptions), _psp, _pd]),
     "tg_geodesic_centroidal_voronoi": (c_int, [_vp, _vp, _psp, c_uint64, c_size_t, POINTER(CentroidalOptions), _psp,
                                                _pu32, _pd, POINTER(c_size_t)]),
     "tg_geodesic_farthest_point_sampling": (c_int, [_vp, _vp, c_uint32, c_uint64, c_size_t, POINTER(FieldOptions),

@@ -189,9 +189,9 @@ static tg_status sample_curve_maps(const tg_geodesic* g, tg_geodesic_workspace* 
     return st;
 }
 
-tg_status tg_geodesic_bezier(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* controls,
-                             size_t control_count, size_t sample_count, tg_bezier_method method,
-                             const tg_path_options* options, tg_surface_point* out_points, double* out_xyz)
+tg_status tg_geodesic_bezier_with(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* controls,
+                                  size_t control_count, size_t sample_count, tg_bezier_method method,
+                                  const tg_path_options* options, tg_surface_point* out_points, double* out_xyz)
 {
     if (!g || !controls || !out_points || control_count == 0 || sample_count < 2) return TG_ERR_INVALID_ARGUMENT;
     if (method != TG_BEZIER_PATHS && method != TG_BEZIER_LOG_MAP) return TG_ERR_INVALID_ARGUMENT;
@@ -249,4 +249,12 @@ tg_status tg_geodesic_bezier(const tg_geodesic* g, tg_geodesic_workspace* ws, co
     tg__free(a, legs);
     tg__workspace_release(own);
     return st;
+}
+
+tg_status tg_geodesic_bezier(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* controls,
+                             size_t control_count, size_t sample_count, const tg_path_options* options,
+                             tg_surface_point* out_points, double* out_xyz)
+{
+    return tg_geodesic_bezier_with(g, ws, controls, control_count, sample_count, TG_BEZIER_PATHS, options, out_points,
+                                   out_xyz);
 }

@@ -123,8 +123,7 @@ tg_status tg_geodesic_field_gradient(const tg_geodesic* g, tg_geodesic_workspace
     if (st == TG_OK) {
         tg__field_points_in(g, sources, source_count, in);
         nf.options = options, nf.rows = source_count + (out_face_gradient || out_face_flag ? 1 : 0);
-        if (source_count > 1) st = tg__nearest_prebound(&nf, &ws->field, sources, source_count);
-        for (size_t i = 0; st == TG_OK && i < source_count; ++i) st = tg__nearest_add(&nf, &ws->field, &sources[i]);
+        st = tg__voronoi_label(&nf, &ws->field, sources, source_count);
     }
     tg_field_stats stats;
     memset(&stats, 0, sizeof stats);

@@ -626,6 +626,7 @@ static bool emit_segment_face(tg__field_run* run, uint32_t f, const double ba[3]
                 return false;
         }
         tg__field_queries_segment(run, f, A, B, m);
+        if (run->q->record_levels && !tg__field_record_segment(run, f, side > 0 ? A : B, side > 0 ? B : A)) return false;
         for (uint32_t k = 0; k < 3; ++k) {
             uint32_t h = 3 * f + k;
             const tg__frame* fr = &g->frame[h];

@@ -900,9 +900,10 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
     if (!L) {
         tg__field_queries_cross(run, h, pool, ids, n);
         if (run->q->record_levels && !tg__field_record_cross(run, h, pool, ids, n)) return false;
-    } else if (run->q->record_levels || (run->q->point_count && fs->qface[h / 3])) {
+    } else if (n && (run->q->record_levels || (run->q->point_count && fs->qface[h / 3]))) {
         /* evaluated and recorded by the merge, in the round's order (the windows stay in
-         * their slots until then: a lane releases none) */
+         * their slots until then: a lane releases none; an empty list: nothing, and no copy to
+         * a buffer never grown) */
         if (!lane_grow(fs, L, &L->qids, n)) return false;
         memcpy((uint32_t*)L->qids.data + L->qids.count, ids, n * sizeof *ids);
         L->qids.count += n;

@@ -874,9 +874,14 @@ static bool levels_cross(const piece* a, double ra, const piece* b, double rb, d
     if (!a->line && !b->line) return arcs_cross(a, ra, b, rb, x, near, out);
     if (!a->line) return arc_line_cross(a, ra, b, L, x, near, out);
     if (!b->line) return arc_line_cross(b, rb, a, L, x, near, out);
-    double det = a->nx * b->ny - a->ny * b->nx, ea = L - a->off, eb = L - b->off;
-    if (!(fabs(det) > 1e-12)) return false; /* parallel: no corner between them */
-    double cand[1][2] = {{(ea * b->ny - a->ny * eb) / det, (a->nx * eb - ea * b->nx) / det}};
+    /* two lines: from x onto a's, then along it to b's (each step exact to rounding on its line
+     * whatever the angle between them: nearly parallel lines, one bundle unfolded two ways,
+     * would make Cramer's rule miss both by the rounding over the sine of that angle) */
+    double ea = line_value(a, x) - L, pa[2] = {x[0] - ea * a->nx, x[1] - ea * a->ny};
+    double slope = b->nx * -a->ny + b->ny * a->nx; /* b's value along a's direction */
+    if (!(slope != 0.0)) return false;            /* parallel: no corner between them */
+    double s = (L - line_value(b, pa)) / slope;
+    double cand[1][2] = {{pa[0] - s * a->ny, pa[1] + s * a->nx}};
     return nearest_of(cand, 1, x, near, out);
 }
 

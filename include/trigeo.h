@@ -2151,8 +2151,11 @@ TG_API tg_status tg_geodesic_isolines(const tg_geodesic* geodesic, tg_geodesic_w
  *  active piece changes (a circle meeting a line, two lines: the offset curve's corners, as at a
  *  reflex corner of the boundary) their exact intersection is inserted. Everything else (edge
  *  crossings solved in closed form, nodes at vertices on the level, chaining, open polylines at the
- *  mesh's boundary, the documented limits) as tg_geodesic_isolines. A level of 0 is the curve
- *  itself only where it crosses faces; the curve is better drawn from its own points.
+ *  mesh's boundary, the documented limits) as tg_geodesic_isolines. Levels within about 1e-9 of
+ *  the faces' size of the curve are below what the tracing resolves (the two sides of a segment
+ *  tie there to rounding) and give short pieces of curve only, as circles about a point source
+ *  of radius 1e-7 of the mesh break into pieces; a level of 0 does not draw the curve (draw its
+ *  own points).
  *
  *  sources, source_count, segments, segment_count: as tg_geodesic_curve_field (either count may be
  *  0; with neither, no polylines). levels, options, isolines, out_vertex_distance (then the field

@@ -419,6 +419,22 @@ static void test_threads_and_point(void)
     CHECK_MSG(v[0].polyline_count == v[1].polyline_count, "1 and 2 threads: %zu and %zu polylines",
               v[0].polyline_count, v[1].polyline_count);
     for (int t = 0; t < 3; ++t) tg_isolines_destroy(iso[t]);
+
+    /* levels within rounding of the curve (below what the tracing resolves, as for a point
+     * source): no more than pieces of curve, never a walk to and fro between the two sides'
+     * pieces until its step limit (40001 points a polyline before) */
+    double tiny[2] = {1e-12, 0.0};
+    tg_isolines* t = NULL;
+    tg_isolines_view tv;
+    CHECK_STATUS(tg_isolines_create(NULL, &t), TG_OK);
+    CHECK_STATUS(tg_geodesic_curve_isolines(c.geo, c.ws, NULL, 0, seg, ns, tiny, 2, NULL, t, NULL, NULL), TG_OK);
+    tg_isolines_get_view(t, &tv);
+    size_t longest = 0;
+    for (size_t p = 0; p < tv.polyline_count; ++p)
+        if (tv.polyline_start[p + 1] - tv.polyline_start[p] > longest) longest = tv.polyline_start[p + 1] - tv.polyline_start[p];
+    CHECK_MSG(longest <= 100, "levels 1e-12 and 0 of a curve: a polyline of %zu points (%zu polylines)", longest,
+              tv.polyline_count);
+    tg_isolines_destroy(t);
     free(seg);
 
     tg_surface_segment zero = {src, src};

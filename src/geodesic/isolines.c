@@ -1177,6 +1177,10 @@ static bool walk_on(iso_state* st, const face_geo* fg, uint32_t ci, const double
     double p[2] = {start[0], start[1]};
     segment sg = {ci, TG_NONE, fg->f, 0, st->pts.count, 0};
     bool ok = true;
+    /* the last two places where the piece changed: a walk back at the one before the last goes
+     * to and fro between two pieces (a level within rounding of a curve, where both sides' pieces
+     * hold to rounding: nearer side on no side) and stops there */
+    double turns[2][2] = {{INFINITY, INFINITY}, {INFINITY, INFINITY}};
     for (int step = 0; step < MAX_STEPS; ++step) {
         const piece* pc = &pcs[j];
         double r = arc_scale(pc, p);
@@ -1235,6 +1239,8 @@ static bool walk_on(iso_state* st, const face_geo* fg, uint32_t ci, const double
             xk[0] = cx[0], xk[1] = cx[1];
         else
             snap_onto(&pcs[next], xk, L, START_SNAP * fg->span, 0.0, xk);
+        if (hypot(xk[0] - turns[0][0], xk[1] - turns[0][1]) <= START_SNAP * fg->span) break;
+        turns[0][0] = turns[1][0], turns[0][1] = turns[1][1], turns[1][0] = xk[0], turns[1][1] = xk[1];
         if (lo > 0.0 && !add_point(st, fg, xk)) return false;
         p[0] = xk[0], p[1] = xk[1], j = next;
     }

@@ -103,6 +103,9 @@ extern "C" {
  *  - tg_geodesic_bezier_with: de Casteljau by exact shortest paths (tg_geodesic_bezier's method)
  *    or by the exact exp/log maps (TG_BEZIER_LOG_MAP); CLI path --bezier-method, Python
  *    Mesh.bezier(method=).
+ *  - Exact isolines of curve fields (offset curves on the surface): tg_geodesic_curve_isolines
+ *    (tg_geodesic_isolines is the same code with no segments). CLI: field --from curve:FILE|boundary
+ *    --isolines/--isoline-count; Python: Mesh.isolines(curve=, curves=, boundary=).
  *  - A solver takes at most 536,870,909 vertices (one id fewer: it names a curve's windows). */
 
 /* Changes in 0.6.1 (ABI-compatible with 0.6.0: same soname, new behaviour and entry points only):
@@ -2136,6 +2139,39 @@ TG_API tg_status tg_geodesic_isolines(const tg_geodesic* geodesic, tg_geodesic_w
                                       size_t level_count, const tg_field_options* options,
                                       tg_isolines* isolines, double* out_vertex_distance,
                                       tg_field_stats* out_stats);
+
+/** Exact isolines of the distance from curves (and points): the offset curves of polylines on
+ *  the surface, or of the mesh's boundary, at the given levels. The same as tg_geodesic_isolines
+ *  (one implementation: tg_geodesic_isolines is this call with no segments) for the field of
+ *  tg_geodesic_curve_field: the run also records the line windows (the rays leaving a segment's
+ *  inside at right angles, whose distance is linear: its level sets are straight) and, in the
+ *  faces that hold a segment, each side of the segment (the Euclidean distance to it where the
+ *  foot of the perpendicular falls inside it; its ends are point sources). Inside a face the curve
+ *  is followed along the exact arcs and straight pieces of the lower envelope, and where the
+ *  active piece changes (a circle meeting a line, two lines: the offset curve's corners, as at a
+ *  reflex corner of the boundary) their exact intersection is inserted. Everything else (edge
+ *  crossings solved in closed form, nodes at vertices on the level, chaining, open polylines at the
+ *  mesh's boundary, the documented limits) as tg_geodesic_isolines. Levels within about 1e-9 of
+ *  the faces' size of the curve are below what the tracing resolves (the two sides of a segment
+ *  tie there to rounding) and give short pieces of curve only, as circles about a point source
+ *  of radius 1e-7 of the mesh break into pieces; a level of 0 does not draw the curve (draw its
+ *  own points).
+ *
+ *  sources, source_count, segments, segment_count: as tg_geodesic_curve_field (either count may be
+ *  0; with neither, no polylines). levels, options, isolines, out_vertex_distance (then the field
+ *  as tg_geodesic_curve_field returns it, bit-identical), out_stats: as tg_geodesic_isolines
+ *  (options->threads: the same polylines, bit for bit, for every count >= 2).
+ *  Errors: as tg_geodesic_isolines, and TG_ERR_INVALID_ARGUMENT for NULL segments with a non-zero
+ *  count or an invalid segment (tg_surface_segment_validate). On error the isolines object is
+ *  empty, out_vertex_distance and out_stats are untouched, nothing leaks. Complexity: as
+ *  tg_geodesic_isolines for a field from as many sources. Thread-safe as tg_geodesic_field.
+ *  (New in 0.6.2.) */
+TG_API tg_status tg_geodesic_curve_isolines(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
+                                            const tg_surface_point* sources, size_t source_count,
+                                            const tg_surface_segment* segments, size_t segment_count,
+                                            const double* levels, size_t level_count,
+                                            const tg_field_options* options, tg_isolines* isolines,
+                                            double* out_vertex_distance, tg_field_stats* out_stats);
 
 /** Read-only view of isolines (valid until the object is filled again or destroyed). Polylines are grouped by level:
  *  those of level i are level_start[i] .. level_start[i + 1] - 1; polyline p is points

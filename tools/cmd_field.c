@@ -348,17 +348,20 @@ done:
 }
 
 /* --isolines / --isoline-count: the exact isolines of the field of the sources (the nearest of
- * them), to -o. A count of levels runs the field first for its largest distance. */
+ * them, curves included: their offset curves), to -o. A count of levels runs the field first for
+ * its largest distance. */
 static int run_isolines(const field_args* fa, char** items, const unsigned long long* lines, size_t count)
 {
     int rc = CLI_INPUT;
     tg_bvh* bvh = NULL;
     tg_geodesic* geo = NULL;
     tg_isolines* iso = NULL;
+    tg_surface_segment* seg = NULL; /* curve sources */
+    size_t nseg = 0;
     double *levels = NULL, *dist = NULL;
     size_t nl = 0;
     bool autolv = fa->isoline_count != NULL;
-    tg_surface_point* pts = malloc(count * sizeof *pts);
+    tg_surface_point* pts = malloc((count ? count : 1) * sizeof *pts);
     if (!pts) cli_error(NULL, 0, "out of memory");
     if (!pts) goto done;
     rc = autolv ? cli_parse_level_count("--isoline-count", fa->isoline_count, &levels, &nl)
@@ -373,17 +376,21 @@ static int run_isolines(const field_args* fa, char** items, const unsigned long 
     } else if ((rc = cli_resolve_items("field", fa->mesh_path, fa->sources_path, false, mesh, &bvh, items, lines, count, pts)) == CLI_OK) {
         rc = CLI_INPUT;
         tg_status st = make_solver(mesh, nv, &dist, &geo);
+        if (st == TG_OK && (fa->curves.count || fa->curves.boundary) &&
+            cli_curve_segments("field", fa->mesh_path, &fa->curves, mesh, &bvh, geo, &seg, &nseg, NULL) != CLI_OK)
+            goto close;
         tg_field_options o;
         cli_progress prog;
         tg_field_stats stats;
         start_work(fa, &o, &prog, &stats);
         double t0 = cli_seconds();
         if (st == TG_OK && autolv) {
-            st = tg_geodesic_field(geo, NULL, pts, count, &o, dist, NULL);
+            st = tg_geodesic_curve_field(geo, NULL, pts, count, seg, nseg, NULL, 0, &o, NULL, dist, NULL);
             if (st == TG_OK) cli_auto_levels(dist, nv, nl, levels);
         }
         if (st == TG_OK) st = tg_isolines_create(NULL, &iso);
-        if (st == TG_OK) st = tg_geodesic_isolines(geo, NULL, pts, count, levels, nl, &o, iso, dist, &stats);
+        if (st == TG_OK)
+            st = tg_geodesic_curve_isolines(geo, NULL, pts, count, seg, nseg, levels, nl, &o, iso, dist, &stats);
         double secs = cli_seconds() - t0;
         cli_interrupt_polling(false);
         cli_progress_end(&prog);
@@ -394,15 +401,17 @@ static int run_isolines(const field_args* fa, char** items, const unsigned long 
             size_t closed = 0;
             for (size_t p = 0; p < v.polyline_count; ++p) closed += v.polyline_closed[p];
             printf("sources            %zu\n", count);
+            if (nseg) printf("curve segments     %zu\n", nseg);
             printf("levels             %zu (%s .. %s)\n", nl, cli_num(levels[0]).s, cli_num(levels[nl - 1]).s);
             printf("polylines          %zu (%zu closed), %zu points\n", v.polyline_count, closed, v.point_count);
             cli_print_work(&stats, secs);
             rc = fflush(stdout) == 0 ? CLI_OK : CLI_INPUT;
         }
     }
+close:
     tg_mesh_destroy(mesh);
 done:
-    free(pts), free(levels), free(dist);
+    free(pts), free(levels), free(dist), free(seg);
     tg_isolines_destroy(iso);
     tg_geodesic_destroy(geo);
     tg_bvh_destroy(bvh);
@@ -699,9 +708,9 @@ static int run(int argc, char** argv)
         int bad = all == 0 ? cli_usage("field", "bad --from list \"%s\" (SPEC;SPEC;..., no empty item, at most %d)",
                                        from, MAX_SOURCES)
                   : fa.curves.count > CLI_CURVES_MAX ? cli_usage("field", "at most %d curve files", CLI_CURVES_MAX)
-                  : (fa.curves.boundary || fa.curves.count) && (fa.gradient || fa.isolines || fa.isoline_count)
+                  : (fa.curves.boundary || fa.curves.count) && fa.gradient
                       ? cli_usage("field", "curve sources (curve:FILE, boundary) go with a field (-o, --at, --labels, "
-                                           "--max-distance, --threads), not yet with --gradient or --isolines")
+                                           "--isolines, --max-distance, --threads), not yet with --gradient")
                   : (fa.curves.boundary || fa.curves.count) && fa.boundaries
                       ? cli_usage("field", "--boundaries draws the cells of point sources only, not of curves")
                       : CLI_OK;
@@ -795,9 +804,9 @@ static int run(int argc, char** argv)
         rc = n < 0 ? CLI_INPUT : split_curves(&fa, rows, lines, (size_t)n, &kept);
         if (rc == CLI_OK && (fa.curves.count || fa.curves.boundary)) { /* curve rows */
             rc = fa.curves.count > CLI_CURVES_MAX ? cli_usage("field", "at most %d curve files", CLI_CURVES_MAX)
-                 : fa.sparse || fa.gradient || fa.isolines || fa.isoline_count || fa.boundaries
+                 : fa.sparse || fa.gradient || fa.boundaries
                      ? cli_usage("field", "curve rows (curve:FILE, boundary) in --sources go with the dense matrix "
-                                          "(-o .npy, .csv; --to) and --labels")
+                                          "(-o .npy, .csv; --to), --labels and --isolines")
                      : check_files(&fa, at_opt, csv);
             n = (long)kept;
         }
@@ -841,13 +850,13 @@ const cli_command cli_cmd_field = {
     "                                                    1e-9 of an edge or corner is taken on it)\n"
     "                                   boundary         every boundary edge of the mesh\n"
     "                         curves are exact sources (their segments' insides too), with -o,\n"
-    "                         --at, --max-distance and --threads\n"
+    "                         --at, --isolines (offset curves), --max-distance and --threads\n"
     "  --sources FILE|all     one field per source: FILE has one SPEC a line ('#' comments and\n"
     "                         blank lines skipped; '-' reads stdin), 'all' is every vertex in order\n"
     "                         (sparse outputs only); the fields are computed in parallel and\n"
     "                         written as the distance matrix, one row per source; a line\n"
     "                         curve:FILE or boundary is a row of that curve (dense matrix, --to,\n"
-    "                         --labels)\n"
+    "                         --labels, --isolines: the nearest row's)\n"
     "  --to POINTS            with --sources: the matrix of sources x these points (SPEC or \"x y z\"\n"
     "                         a line), each field stopped once its points are settled (.npy, .csv)\n"
     "  --sparse               with --sources: only the entries within --max-distance (every\n"
@@ -890,7 +899,8 @@ const cli_command cli_cmd_field = {
     "                         ones end on their first vertex); -o ISO.json: {\"levels\": [...],\n"
     "                         \"polylines\": [{\"level\": I, \"value\": L, \"closed\": B, \"points\":\n"
     "                         [[x, y, z], ...], \"faces\": [...], \"surface\": [\"e:H:t\", ...]}]};\n"
-    "                         negative, NaN or missing levels: exit 2, no file\n"
+    "                         negative, NaN or missing levels: exit 2, no file; from curve:FILE or\n"
+    "                         boundary the curves' exact offset curves (straight beside a segment)\n"
     "  --gradient             the exact gradient to -o: per vertex distance, gx, gy, gz (the unit\n"
     "                         direction in which its shortest path arrives: steepest ascent), flag\n"
     "                         (0 defined, 1 a source, 2 unreached, 3 two sources tie) and label\n"

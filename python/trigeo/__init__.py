@@ -2209,11 +2209,16 @@ class Mesh:
             _L.tg_voronoi_boundaries_destroy(bounds)
         return _labels(labels), dist, lines
 
-    def isolines(self, sources: Any, levels: Any = None, max_distance: Optional[float] = None, details: bool = False,
-                 progress: Optional[Callable[[float], Any]] = None, *, count: Optional[int] = None,
-                 threads: int = 1) -> list:
+    def isolines(self, sources: Any = None, levels: Any = None, max_distance: Optional[float] = None,
+                 details: bool = False, progress: Optional[Callable[[float], Any]] = None, *,
+                 count: Optional[int] = None, threads: int = 1, curve: Any = None, curves: Any = None,
+                 boundary: bool = False) -> list:
         """Exact isolines: for each level, the curves where the exact geodesic distance from the
-        nearest source equals it. sources as field() (none: no curves); levels: a number or a
+        nearest source equals it. sources as field() (none: no curves); curve=, curves=,
+        boundary=True: curves as sources, as field() takes them (then the isolines are their
+        exact offset curves on the surface: straight where the distance comes from a segment's
+        inside, arcs about its ends and about the vertices the paths bend at, the CLI's field
+        --from curve:FILE|boundary --isolines); levels: a number or a
         sequence of finite levels >= 0 (any order; a number is always a level, as the CLI's
         --isolines). count=N instead of levels: N levels equally spaced below the largest
         distance, max * k / (N + 1) for k = 1..N (the CLI's --isoline-count N; the field is
@@ -2229,6 +2234,9 @@ class Mesh:
         thread's, each on its level)."""
         details = _flag(details, "details")
         nthreads = _threads(threads)
+        segs = self._segments(curve, curves, boundary)
+        if sources is None and segs is None:
+            raise _bad("isolines() needs sources, curve=, curves= or boundary=True")
         if (levels is None) == (count is None):
             raise _bad("give the levels or count=N (how many levels below the largest distance), one of them")
         if count is not None:
@@ -2242,21 +2250,23 @@ class Mesh:
             _check_values(lv, "levels", ">=0")
 
         def work(call: _Call) -> None:
-            src = self._surface_points(sources, "sources")
+            src = self._surface_points(sources if sources is not None else [], "sources")
+            sg, ns = (segs, len(segs)) if segs is not None else (None, 0)
             o = self._field_options(max_distance, call, nthreads)
             geo = self._get_geo()
             with self._geo_ws.take() as ws:
                 if count is not None:  # the levels below the field's largest finite distance, as the CLI's
                     d = np.empty(self.vertex_count)
-                    st = _L.tg_geodesic_field(geo, ws, src, len(src), ctypes.byref(o), _ptr(d), None)
+                    st = _L.tg_geodesic_curve_field(geo, ws, src, len(src), sg, ns, None, 0, ctypes.byref(o), None,
+                                                    _ptr(d), None)
                     if st != 0:
                         call.finish(st, "isolines")
                     fin = d[np.isfinite(d)]
                     far = float(fin.max()) if fin.size and fin.max() > 0 else 0.0
                     for k in range(lv.size):
                         lv[k] = far * float(k + 1) / float(lv.size + 1)
-                st = _L.tg_geodesic_isolines(geo, ws, src, len(src), _ptr(lv), lv.size, ctypes.byref(o), handle,
-                                             None, None)
+                st = _L.tg_geodesic_curve_isolines(geo, ws, src, len(src), sg, ns, _ptr(lv), lv.size,
+                                                   ctypes.byref(o), handle, None, None)
             call.finish(st, "isolines")
 
         handle = _new(_L.tg_isolines_create, None)

@@ -341,6 +341,8 @@ _SIGNATURES = {
     "tg_voronoi_boundaries_destroy": (None, [_vp]),
     "tg_geodesic_isolines": (c_int, [_vp, _vp, _psp, c_size_t, _pd, c_size_t, POINTER(FieldOptions), _vp, _pd,
                                      _vp]),
+    "tg_geodesic_curve_isolines": (c_int, [_vp, _vp, _psp, c_size_t, POINTER(SurfaceSegmentC), c_size_t, _pd,
+                                           c_size_t, POINTER(FieldOptions), _vp, _pd, _vp]),
     "tg_isolines_create": (c_int, [_vp, _pvp]),
     "tg_isolines_get_view": (None, [_vp, POINTER(IsolinesView)]),
     "tg_isolines_destroy": (None, [_vp]),

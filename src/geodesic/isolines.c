@@ -24,7 +24,14 @@
  * below the level everywhere (field/record.c: some of its windows were then left out, so its
  * pieces do not give its distance) is not walked, and its sides have no crossing. Nor is a
  * zero-area face (its sides lie on one segment): it joins the crossings at one place of two of
- * its sides. */
+ * its sides.
+ * Curves (tg_geodesic_curve_isolines): two more kinds of piece, linear: a line window's
+ * sigma + n . p over the strip of its parallel rays, and in a face holding a segment each side's
+ * distance to it, over the strip where the foot of the perpendicular falls inside it (its ends
+ * are point sources). Their level sets are straight: the walk goes along n turned by +90 degrees
+ * (the nearer side on the left, as about a centre), in one step to the side it leaves by, and
+ * the curve's corners where the piece changes are the exact crossings of a line with a circle or
+ * another line. Edges, nodes and chaining are the same. */
 #include "geodesic/workspace.h"
 
 #include <stdlib.h>
@@ -34,13 +41,26 @@
 
 /* A piece of the distance in a face: sigma + |p - c| for p in its wedge (k < 3: a window in the
  * frame of side k, its image (sx, sy) and interval [b0, b1]; k == 3: everywhere, a corner or a
- * source in the face, `source` then set). (cx, cy): the centre in the face's frame. */
+ * source in the face, `source` then set). (cx, cy): the centre in the face's frame.
+ * A line piece (`line` set: a line window, or one side of a curve's segment in its face) is
+ * linear instead: off + n . p (face frame) over the strip of its parallel rays. Its frame: origin
+ * o, unit axis t (the window's side, or the segment), y along t turned by +90 degrees; the rays
+ * have the direction (sx, sy) there (sy > 0) and leave the axis within [b0, b1] (x), at y >= ylo
+ * (a segment: its own side only, to rounding; a window: -inf, its face lies on its side). Its
+ * level sets are straight lines across the strip, walked along n turned by +90 degrees (the
+ * nearer side on the left, as for arcs). */
 typedef struct piece {
     uint32_t k, source;
     uint32_t circle; /* the first piece with the same centre and offset (one distance function,
-                        split among wedges: a bundle entering through two sides, a corner) */
+                        split among wedges: a bundle entering through two sides, a corner); for
+                        a line, the same linear function */
+    uint32_t line;
     double sx, sy, b0, b1;
     double cx, cy, sigma;
+    double ox, oy, tx, ty, ylo; /* line: its frame */
+    double nx, ny, off;         /* line: the gradient n and the value at the face frame's origin */
+    double lo;                  /* the least value over the face (less a margin: lines), the sort key:
+                                   sigma for a circle */
 } piece;
 
 /* A face in its own frame (that of halfedge 3f): corners c[i], sides i = c[i] -> c[i + 1] of
@@ -172,28 +192,77 @@ static bool push(const tg_allocator* a, tg__vec* v, const void* item)
 static int cmp_piece(const void* x, const void* y)
 {
     const piece *a = x, *b = y;
-    if (a->sigma != b->sigma) return a->sigma < b->sigma ? -1 : 1;
+    if (a->lo != b->lo) return a->lo < b->lo ? -1 : 1;
+    if (a->line != b->line) return a->line < b->line ? -1 : 1;
     if (a->cx != b->cx) return a->cx < b->cx ? -1 : 1;
     if (a->cy != b->cy) return a->cy < b->cy ? -1 : 1;
+    if (a->nx != b->nx) return a->nx < b->nx ? -1 : 1;
+    if (a->ny != b->ny) return a->ny < b->ny ? -1 : 1;
+    if (a->off != b->off) return a->off < b->off ? -1 : 1;
     if (a->k != b->k) return a->k < b->k ? -1 : 1;
     return (a->b0 > b->b0) - (a->b0 < b->b0);
 }
 
-/* Sorts the pieces by offset and names each one's circle: the first piece with the same centre
- * and offset to a relative 1e-12 of the face (the same image reached through different sides
- * differs by the rounding of two unfoldings). */
-static void group_circles(piece* pcs, size_t n, double scale)
+/* A line piece's value at p (face frame), its strip not looked at. */
+static double line_value(const piece* pc, const double p[2])
+{
+    return pc->off + pc->nx * p[0] + pc->ny * p[1];
+}
+
+/* Do two pieces give the same distance function, to tol? Circles: the same centre and offset;
+ * lines: the same values at the face's corners (a linear function is fixed by them). */
+static bool same_function(const face_geo* fg, const piece* a, const piece* b, double tol)
+{
+    if (a->line != b->line) return false;
+    if (!a->line) return fabs(a->cx - b->cx) <= tol && fabs(a->cy - b->cy) <= tol;
+    for (int i = 0; i < 3; ++i)
+        if (!(fabs(line_value(a, fg->c[i]) - line_value(b, fg->c[i])) <= tol)) return false;
+    return true;
+}
+
+/* Sorts the pieces by their least value and names each one's circle: the first piece with the
+ * same distance function to a relative 1e-12 of the face (the same image reached through
+ * different sides differs by the rounding of two unfoldings). */
+static void group_circles(const face_geo* fg, piece* pcs, size_t n, double scale)
 {
     if (n > 1) qsort(pcs, n, sizeof *pcs, cmp_piece);
     double tol = 1e-12 * scale;
     for (size_t i = 0; i < n; ++i) {
         pcs[i].circle = (uint32_t)i;
-        for (size_t j = i; j-- > 0 && pcs[i].sigma - pcs[j].sigma <= tol;)
-            if (fabs(pcs[i].cx - pcs[j].cx) <= tol && fabs(pcs[i].cy - pcs[j].cy) <= tol) {
+        for (size_t j = i; j-- > 0 && pcs[i].lo - pcs[j].lo <= tol;)
+            if (same_function(fg, &pcs[i], &pcs[j], tol)) {
                 pcs[i].circle = pcs[j].circle;
                 break;
             }
     }
+}
+
+/* The line piece of a recorded line window (side k's frame) or segment side (face frame). False
+ * for a segment of no length (none). */
+static bool line_piece(const face_geo* fg, const tg__rec_window* r, piece* p)
+{
+    p->line = 1, p->sigma = r->sigma;
+    if (r->kind == TG__REC_SEGMENT) {
+        double dx = r->b0 - r->sx, dy = r->b1 - r->sy, len = sqrt(dx * dx + dy * dy);
+        if (!(len > 0.0)) return false;
+        /* rays at right angles from the segment, on its left; the strip's ends snapped as a line
+         * window's (query.c), the side to rounding (a segment along an edge lies on it) */
+        double snap = tg__window_snap(len, 0.0, 0.0);
+        p->k = 3, p->ox = r->sx, p->oy = r->sy, p->tx = dx / len, p->ty = dy / len;
+        p->sx = 0.0, p->sy = 1.0, p->b0 = -snap, p->b1 = len + snap, p->ylo = -1e-12 * fg->span;
+    } else {
+        uint32_t k = r->h % 3;
+        double snap = tg__window_snap(fg->len[k], 0.0, 0.0);
+        p->k = k, p->ox = fg->c[k][0], p->oy = fg->c[k][1], p->tx = fg->u[k][0], p->ty = fg->u[k][1];
+        p->sx = r->sx, p->sy = r->sy, p->b0 = r->b0 - snap, p->b1 = r->b1 + snap, p->ylo = -INFINITY;
+    }
+    p->nx = p->sx * p->tx - p->sy * p->ty, p->ny = p->sx * p->ty + p->sy * p->tx;
+    p->off = p->sigma - (p->nx * p->ox + p->ny * p->oy);
+    double least = INFINITY;
+    for (int i = 0; i < 3; ++i) least = fmin(least, line_value(p, fg->c[i]));
+    /* points looked at lie in the face to 1e-9 of it: far within this margin */
+    p->lo = least - 1e-6 * fg->span;
+    return true;
 }
 
 /* The pieces of face f into v (cleared first): its recorded windows, its corners, its sources. */
@@ -207,7 +276,9 @@ static bool pieces_of(iso_state* st, const face_geo* fg, tg__vec* v)
         piece p;
         memset(&p, 0, sizeof p);
         p.sigma = r->sigma;
-        if (!(r->b0 < r->b1)) { /* a point source, in the face's frame */
+        if (r->kind != TG__REC_POINT) {
+            if (!line_piece(fg, r, &p)) continue;
+        } else if (!(r->b0 < r->b1)) { /* a point source, in the face's frame */
             p.k = 3, p.source = 1, p.cx = r->sx, p.cy = r->sy;
         } else {
             uint32_t k = r->h % 3;
@@ -218,6 +289,7 @@ static bool pieces_of(iso_state* st, const face_geo* fg, tg__vec* v)
             p.cx = fg->c[k][0] + r->sx * fg->u[k][0] + r->sy * vx;
             p.cy = fg->c[k][1] + r->sx * fg->u[k][1] + r->sy * vy;
         }
+        if (!p.line) p.lo = p.sigma;
         if (!push(st->alloc, v, &p)) return false;
     }
     for (int i = 0; i < 3; ++i) {
@@ -225,10 +297,10 @@ static bool pieces_of(iso_state* st, const face_geo* fg, tg__vec* v)
         if (!(d < INFINITY)) continue;
         piece p;
         memset(&p, 0, sizeof p);
-        p.k = 3, p.cx = fg->c[i][0], p.cy = fg->c[i][1], p.sigma = d;
+        p.k = 3, p.cx = fg->c[i][0], p.cy = fg->c[i][1], p.sigma = p.lo = d;
         if (!push(st->alloc, v, &p)) return false;
     }
-    group_circles(v->data, v->count, fg->span + (v->count ? ((piece*)v->data)[v->count - 1].sigma : 0.0));
+    group_circles(fg, v->data, v->count, fg->span + (v->count ? ((piece*)v->data)[v->count - 1].sigma : 0.0));
     return true;
 }
 
@@ -236,6 +308,12 @@ static bool pieces_of(iso_state* st, const face_geo* fg, tg__vec* v)
  * to p crosses the window's edge. */
 static bool piece_holds(const face_geo* fg, const piece* pc, const double p[2])
 {
+    if (pc->line) { /* where its ray through p leaves the axis, as query.c decides it */
+        double qx = p[0] - pc->ox, qy = p[1] - pc->oy;
+        double x = qx * pc->tx + qy * pc->ty, y = pc->tx * qy - pc->ty * qx;
+        double xs = x - y * pc->sx / pc->sy;
+        return y >= pc->ylo && xs >= pc->b0 && xs <= pc->b1;
+    }
     if (pc->k == 3) return true;
     double q[2];
     to_side(fg, (int)pc->k, p, q);
@@ -245,14 +323,85 @@ static bool piece_holds(const face_geo* fg, const piece* pc, const double p[2])
 
 /* The angle counterclockwise about the piece's centre from p (in its wedge) to the end of its
  * wedge: the ray from the image through the window's start b0 (rays through the edge turn from
- * b1 towards b0 counterclockwise, the face on the edge's left); +inf for a corner or a source. */
+ * b1 towards b0 counterclockwise, the face on the edge's left); +inf for a corner or a source.
+ * A line: the length along its level line to the strip's ray through b0. */
 static double wedge_left(const face_geo* fg, const piece* pc, const double p[2])
 {
+    if (pc->line) { /* along the level line the rays' foot moves towards b0 at 1 / sy per unit */
+        double qx = p[0] - pc->ox, qy = p[1] - pc->oy;
+        double x = qx * pc->tx + qy * pc->ty, y = pc->tx * qy - pc->ty * qx;
+        return (x - y * pc->sx / pc->sy - pc->b0) * pc->sy;
+    }
     if (pc->k == 3) return INFINITY;
     double q[2];
     to_side(fg, (int)pc->k, p, q);
     double vx = q[0] - pc->sx, vy = q[1] - pc->sy, dx = pc->b0 - pc->sx, dy = -pc->sy;
     return atan2(vx * dy - vy * dx, vx * dx + vy * dy);
+}
+
+/* The piece's value at p (face frame), its wedge or strip not looked at. */
+static double piece_value(const piece* pc, const double p[2])
+{
+    if (pc->line) return line_value(pc, p);
+    double dx = p[0] - pc->cx, dy = p[1] - pc->cy;
+    return pc->sigma + sqrt(dx * dx + dy * dy);
+}
+
+/* ---- the walk along a piece's level set: an arc about its centre, parametrised by the angle
+ * counterclockwise; a line, by the length along its direction n turned by +90 degrees (the
+ * nearer side on the left in both) ---- */
+
+/* The length walked per unit of the parameter at p: the radius (arcs), 1 (lines). */
+static double arc_scale(const piece* pc, const double p[2])
+{
+    if (pc->line) return 1.0;
+    double vx = p[0] - pc->cx, vy = p[1] - pc->cy;
+    return sqrt(vx * vx + vy * vy);
+}
+
+/* The least parameter of a start's first step through its own side: START_ANGLE, for a line the
+ * same length as on a circle of the face's size. */
+static double start_param(const face_geo* fg, const piece* pc)
+{
+    return pc->line ? START_ANGLE * fg->span : START_ANGLE;
+}
+
+/* The unit tangent of the walk at p (p not an arc's centre). */
+static void tangent_at(const piece* pc, const double p[2], double t[2])
+{
+    if (pc->line) {
+        t[0] = -pc->ny, t[1] = pc->nx;
+        return;
+    }
+    double gx = p[0] - pc->cx, gy = p[1] - pc->cy, r = sqrt(gx * gx + gy * gy);
+    t[0] = -gy / r, t[1] = gx / r;
+}
+
+/* p moved along the walk of piece pc by the parameter a. */
+static void advance(const piece* pc, const double p[2], double a, double out[2])
+{
+    if (pc->line) {
+        out[0] = p[0] - a * pc->ny, out[1] = p[1] + a * pc->nx;
+        return;
+    }
+    double vx = p[0] - pc->cx, vy = p[1] - pc->cy, cs = cos(a), sn = sin(a);
+    out[0] = pc->cx + cs * vx - sn * vy, out[1] = pc->cy + sn * vx + cs * vy;
+}
+
+/* When p lies within `snap` of piece pc's level set L (an arc's point beyond min_r of its centre),
+ * its nearest point of it into out (out may be p). */
+static bool snap_onto(const piece* pc, const double p[2], double L, double snap, double min_r, double out[2])
+{
+    if (pc->line) {
+        double e = line_value(pc, p) - L;
+        if (!(fabs(e) <= snap)) return false;
+        out[0] = p[0] - e * pc->nx, out[1] = p[1] - e * pc->ny;
+        return true;
+    }
+    double gx = p[0] - pc->cx, gy = p[1] - pc->cy, r = sqrt(gx * gx + gy * gy), want = L - pc->sigma;
+    if (!(r > min_r) || !(fabs(r - want) <= snap)) return false;
+    out[0] = pc->cx + gx * want / r, out[1] = pc->cy + gy * want / r;
+    return true;
 }
 
 /* The distance at p (face frame) and its piece (*out_arg, TG_NONE when none holds p). */
@@ -262,19 +411,51 @@ static double eval_at(const face_geo* fg, const piece* pcs, size_t n, const doub
     uint32_t arg = TG_NONE;
     for (size_t i = 0; i < n; ++i) {
         const piece* pc = &pcs[i];
-        if (!(pc->sigma < best)) continue;
-        double dx = p[0] - pc->cx, dy = p[1] - pc->cy;
-        double d = pc->sigma + sqrt(dx * dx + dy * dy);
+        if (!(pc->lo < best)) continue;
+        double d = piece_value(pc, p);
         if (d < best && piece_holds(fg, pc, p)) best = d, arg = (uint32_t)i;
     }
     *out_arg = arg;
     return best;
 }
 
+/* [x0, x1] cut to where alpha + beta x <= 0; false when nothing is left of the line. */
+static bool clip_linear(double alpha, double beta, double* x0, double* x1)
+{
+    if (beta > 0.0) {
+        double t = -alpha / beta;
+        if (t < *x1) *x1 = t;
+    } else if (beta < 0.0) {
+        double t = -alpha / beta;
+        if (t > *x0) *x0 = t;
+    } else if (alpha > 0.0) {
+        return false;
+    }
+    return true;
+}
+
+/* side_interval for a line piece: along the side its value, the foot of its ray and its height
+ * above its axis are linear in x, so each condition cuts a half-line. */
+static bool line_side_interval(const face_geo* fg, const piece* pc, int m, double L, double* lo, double* hi)
+{
+    double x0 = 0.0, x1 = fg->len[m], ux = fg->u[m][0], uy = fg->u[m][1];
+    double qx = fg->c[m][0] - pc->ox, qy = fg->c[m][1] - pc->oy;
+    double y0 = pc->tx * qy - pc->ty * qx, dy = pc->tx * uy - pc->ty * ux;
+    double xs0 = qx * pc->tx + qy * pc->ty - y0 * pc->sx / pc->sy;
+    double dxs = ux * pc->tx + uy * pc->ty - dy * pc->sx / pc->sy;
+    bool ok = clip_linear(line_value(pc, fg->c[m]) - L, pc->nx * ux + pc->ny * uy, &x0, &x1) &&
+              clip_linear(pc->b0 - xs0, -dxs, &x0, &x1) && clip_linear(xs0 - pc->b1, dxs, &x0, &x1) &&
+              (pc->ylo == -INFINITY || clip_linear(pc->ylo - y0, -dy, &x0, &x1));
+    if (!ok || !(x0 <= x1)) return false;
+    *lo = x0, *hi = x1;
+    return true;
+}
+
 /* The part of side m (x from c[m], in [0, len]) where the piece is at most L: [*lo, *hi];
  * false when empty. */
 static bool side_interval(const face_geo* fg, const piece* pc, int m, double L, double* lo, double* hi)
 {
+    if (pc->line) return line_side_interval(fg, pc, m, L, lo, hi);
     double r = L - pc->sigma;
     if (!(r >= 0.0)) return false;
     double qx = fg->c[m][0] - pc->cx, qy = fg->c[m][1] - pc->cy, ux = fg->u[m][0], uy = fg->u[m][1];
@@ -542,11 +723,33 @@ static double step_angle(double r, double span)
     return a;
 }
 
-/* The first angle in (amin[m], amax] at which the circle about c through p (counterclockwise) meets
- * a side m of the face; its side in *out_m, its abscissa along it in *out_x. */
-static double first_exit(const face_geo* fg, const double c[2], const double p[2], const double amin[3],
+/* The first parameter in (amin[m], amax] at which the line of piece pc through p meets a side m of
+ * the face (first_exit's). */
+static double first_exit_line(const face_geo* fg, const piece* pc, const double p[2], const double amin[3],
+                              double amax, int* out_m, double* out_x)
+{
+    double t[2], best = INFINITY;
+    tangent_at(pc, p, t);
+    for (int m = 0; m < 3; ++m) {
+        double ux = fg->u[m][0], uy = fg->u[m][1], den = t[0] * uy - t[1] * ux;
+        if (!(den != 0.0)) continue; /* along the side: it leaves through another */
+        double wx = fg->c[m][0] - p[0], wy = fg->c[m][1] - p[1];
+        double a = (wx * uy - wy * ux) / den, x = (wx * t[1] - wy * t[0]) / den, slack = 1e-9 * fg->len[m];
+        if (x < -slack || x > fg->len[m] + slack) continue; /* through a corner: either side */
+        x = x < 0.0 ? 0.0 : x > fg->len[m] ? fg->len[m] : x;
+        if (a > amin[m] && a <= amax && a < best) best = a, *out_m = m, *out_x = x;
+    }
+    return best;
+}
+
+/* The first parameter in (amin[m], amax] at which the walk of piece pc from p (an arc: the angle
+ * counterclockwise about its centre) meets a side m of the face; its side in *out_m, its abscissa
+ * along it in *out_x. */
+static double first_exit(const face_geo* fg, const piece* pc, const double p[2], const double amin[3],
                          double amax, int* out_m, double* out_x)
 {
+    if (pc->line) return first_exit_line(fg, pc, p, amin, amax, out_m, out_x);
+    const double c[2] = {pc->cx, pc->cy};
     double vx = p[0] - c[0], vy = p[1] - c[1], r = sqrt(vx * vx + vy * vy);
     double best = INFINITY;
     for (int m = 0; m < 3; ++m) {
@@ -600,19 +803,11 @@ static bool add_point(iso_state* st, const face_geo* fg, const double p[2])
     return push(st->alloc, &st->pts, &nd);
 }
 
-/* p rotated counterclockwise by angle a about the centre of piece pc. */
-static void rotate_about(const piece* pc, const double p[2], double a, double out[2])
-{
-    double vx = p[0] - pc->cx, vy = p[1] - pc->cy, cs = cos(a), sn = sin(a);
-    out[0] = pc->cx + cs * vx - sn * vy, out[1] = pc->cy + sn * vx + cs * vy;
-}
-
 /* Is piece k's circle the distance at q (a piece of it holds q, no piece is shorter there beyond
  * rounding)? */
 static bool piece_rules(const face_geo* fg, const piece* pcs, size_t n, uint32_t k, const double q[2], double tol)
 {
-    double dx = q[0] - pcs[k].cx, dy = q[1] - pcs[k].cy;
-    double bar = pcs[k].sigma + sqrt(dx * dx + dy * dy) - tol;
+    double bar = piece_value(&pcs[k], q) - tol;
     bool held = false; /* by a piece of k's circle */
     for (size_t i = 0; i < n; ++i) {
         const piece* pc = &pcs[i];
@@ -620,15 +815,26 @@ static bool piece_rules(const face_geo* fg, const piece* pcs, size_t n, uint32_t
             held = held || piece_holds(fg, pc, q);
             continue;
         }
-        if (!(pc->sigma < bar)) continue;
-        double ex = q[0] - pc->cx, ey = q[1] - pc->cy;
-        if (pc->sigma + sqrt(ex * ex + ey * ey) < bar && piece_holds(fg, pc, q)) return false;
+        if (!(pc->lo < bar)) continue;
+        if (piece_value(pc, q) < bar && piece_holds(fg, pc, q)) return false;
     }
     return held;
 }
 
 static bool walk_on(iso_state* st, const face_geo* fg, uint32_t ci, const double start[2], int m0, int m1,
                     uint32_t j, double L);
+
+/* The point of out[0 .. n) nearest x, into out, when within near of x. */
+static bool nearest_of(const double (*cand)[2], int n, const double x[2], double near, double out[2])
+{
+    double best = near;
+    bool found = false;
+    for (int i = 0; i < n; ++i) {
+        double e = hypot(cand[i][0] - x[0], cand[i][1] - x[1]);
+        if (e <= best) best = e, out[0] = cand[i][0], out[1] = cand[i][1], found = true;
+    }
+    return found;
+}
 
 /* The crossing of the circles about a's centre (radius ra) and b's (radius rb) nearest x, into
  * out, when within near of x; false when they do not cross there. */
@@ -648,6 +854,86 @@ static bool arcs_cross(const piece* a, double ra, const piece* b, double rb, con
     return found;
 }
 
+/* The same for the circle of piece c (radius r) and the level L of line piece ln. */
+static bool arc_line_cross(const piece* c, double r, const piece* ln, double L, const double x[2], double near,
+                           double out[2])
+{
+    double at[2] = {c->cx, c->cy}, delta = L - line_value(ln, at); /* the line from the centre along n */
+    double h2 = r * r - delta * delta;
+    if (!(h2 >= 0.0)) return false;
+    double h = sqrt(h2), fx = c->cx + delta * ln->nx, fy = c->cy + delta * ln->ny;
+    double cand[2][2] = {{fx - h * ln->ny, fy + h * ln->nx}, {fx + h * ln->ny, fy - h * ln->nx}};
+    return nearest_of(cand, 2, x, near, out);
+}
+
+/* The crossing of the level sets L of pieces a and b (a's arc through the walk: radius ra; b's:
+ * rb) nearest x, into out, when within near of x. */
+static bool levels_cross(const piece* a, double ra, const piece* b, double rb, double L, const double x[2],
+                         double near, double out[2])
+{
+    if (!a->line && !b->line) return arcs_cross(a, ra, b, rb, x, near, out);
+    if (!a->line) return arc_line_cross(a, ra, b, L, x, near, out);
+    if (!b->line) return arc_line_cross(b, rb, a, L, x, near, out);
+    /* two lines: from x onto a's, then along it to b's (each step exact to rounding on its line
+     * whatever the angle between them: nearly parallel lines, one bundle unfolded two ways,
+     * would make Cramer's rule miss both by the rounding over the sine of that angle) */
+    double ea = line_value(a, x) - L, pa[2] = {x[0] - ea * a->nx, x[1] - ea * a->ny};
+    double slope = b->nx * -a->ny + b->ny * a->nx; /* b's value along a's direction */
+    if (!(slope != 0.0)) return false;            /* parallel: no corner between them */
+    double s = (L - line_value(b, pa)) / slope;
+    double cand[1][2] = {{pa[0] - s * a->ny, pa[1] + s * a->nx}};
+    return nearest_of(cand, 1, x, near, out);
+}
+
+/* The stretch (*lo, *hi) of the walk of piece pj from p (arc: radius r, angles counterclockwise
+ * from p, lo in [0, 2 pi); line: lengths, either end may be infinite) inside the part where the
+ * circle or line of piece pc is below L, when it meets it crosswise within reach of p and reaches
+ * deeper than shallow beyond pj's level set (first_dip). */
+static bool stretch_below(const piece* pj, const double p[2], double r, const piece* pc, double L, double reach,
+                          double shallow, double* lo, double* hi)
+{
+    if (!pj->line && !pc->line) { /* in the disc of pc's circle */
+        double ri = L - pc->sigma, ex = pc->cx - p[0], ey = pc->cy - p[1];
+        if (!(ri > 0.0) || !(ex * ex + ey * ey < (ri + reach) * (ri + reach))) return false;
+        double vx = p[0] - pj->cx, vy = p[1] - pj->cy;
+        double dx = pc->cx - pj->cx, dy = pc->cy - pj->cy, d = sqrt(dx * dx + dy * dy);
+        if (!(d < r + ri) || !(d > fabs(r - ri)) || !(ri - r + d > shallow)) return false;
+        double cs = (d * d + r * r - ri * ri) / (2.0 * d * r);
+        double half = acos(cs < -1.0 ? -1.0 : cs > 1.0 ? 1.0 : cs);
+        *lo = atan2(vx * dy - vy * dx, vx * dx + vy * dy) - half; /* from p, counterclockwise */
+        *lo = fmod(*lo + 4.0 * TG__PI, 2.0 * TG__PI);
+        *hi = *lo + 2.0 * half;
+        return true;
+    }
+    if (!pj->line) { /* pj's circle in the half-plane below pc's line: about the direction -n */
+        double at[2] = {pj->cx, pj->cy}, kappa = (L - line_value(pc, at)) / r;
+        if (!(line_value(pc, p) - L < reach) || !(kappa < 1.0) || !(kappa > -1.0) || !(r * (kappa + 1.0) > shallow))
+            return false;
+        double vx = p[0] - pj->cx, vy = p[1] - pj->cy, dx = -pc->nx, dy = -pc->ny, half = acos(-kappa);
+        *lo = atan2(vx * dy - vy * dx, vx * dx + vy * dy) - half;
+        *lo = fmod(*lo + 4.0 * TG__PI, 2.0 * TG__PI);
+        *hi = *lo + 2.0 * half;
+        return true;
+    }
+    double t[2];
+    tangent_at(pj, p, t);
+    if (!pc->line) { /* pj's line through pc's disc: a chord */
+        double ri = L - pc->sigma, wx = pc->cx - p[0], wy = pc->cy - p[1];
+        if (!(ri > 0.0) || !(wx * wx + wy * wy < (ri + reach) * (ri + reach))) return false;
+        double a0 = t[0] * wx + t[1] * wy, dist = fabs(t[0] * wy - t[1] * wx);
+        if (!(ri - dist > shallow)) return false;
+        double h = sqrt((ri - dist) * (ri + dist));
+        *lo = a0 - h, *hi = a0 + h;
+        return true;
+    }
+    /* two lines: pc's value along pj's line is linear */
+    double v0 = line_value(pc, p) - L, slope = pc->nx * t[0] + pc->ny * t[1];
+    if (!(slope != 0.0) || !(fmax(-v0, -(v0 + slope * reach)) > shallow)) return false;
+    double root = -v0 / slope;
+    *lo = slope > 0.0 ? -INFINITY : root, *hi = slope > 0.0 ? root : INFINITY;
+    return true;
+}
+
 /* Does piece j stop ruling strictly inside the step (0, at] of its arc (at the level) from p,
  * where the step's end alone does not show it (a short stretch where a nearer image rules, a
  * small disc the step passes over)? The arc lies in the disc {sigma + |x - c| < L} of another
@@ -655,31 +941,31 @@ static bool arcs_cross(const piece* a, double ra, const piece* b, double rb, con
  * looked at in the middle of the stretch's part within the step (a disc the whole step lies in
  * shows at the step's end), when the disc reaches deeper than START_SNAP of the face inside the
  * circle (a shallower one moves the curve by less: one image unfolded two ways; the step's end
- * still sees it). The first angle where j does not rule, else at. */
+ * still sees it). Lines alike: a line's half-plane below L across an arc, a disc or a half-plane
+ * across a line (stretch_below). The first parameter where j does not rule, else at. */
 static double first_dip(const face_geo* fg, const piece* pcs, size_t n, uint32_t j, const double p[2], double at,
                         double L, double tol)
 {
     const piece* pj = &pcs[j];
-    double vx = p[0] - pj->cx, vy = p[1] - pj->cy, r = sqrt(vx * vx + vy * vy), best = at;
+    double r = arc_scale(pj, p), best = at;
     double reach = r * at, shallow = START_SNAP * fg->span; /* the step lies within reach of p */
     for (size_t i = 0; i < n; ++i) {
         const piece* pc = &pcs[i];
-        double ri = L - pc->sigma, ex = pc->cx - p[0], ey = pc->cy - p[1];
-        if (pc->circle != i || pc->circle == pj->circle || !(ri > 0.0) ||
-            !(ex * ex + ey * ey < (ri + reach) * (ri + reach)))
+        double lo, hi, a, b; /* the part (a, b) of the stretch within the step */
+        if (pc->circle != i || pc->circle == pj->circle || !stretch_below(pj, p, r, pc, L, reach, shallow, &lo, &hi))
             continue;
-        double dx = pc->cx - pj->cx, dy = pc->cy - pj->cy, d = sqrt(dx * dx + dy * dy);
-        if (!(d < r + ri) || !(d > fabs(r - ri)) || !(ri - r + d > shallow)) continue;
-        double cs = (d * d + r * r - ri * ri) / (2.0 * d * r);
-        double half = acos(cs < -1.0 ? -1.0 : cs > 1.0 ? 1.0 : cs);
-        double lo = atan2(vx * dy - vy * dx, vx * dx + vy * dy) - half; /* from p, counterclockwise */
-        lo = fmod(lo + 4.0 * TG__PI, 2.0 * TG__PI);
-        double hi = lo + 2.0 * half, a, b; /* the part (a, b) of the stretch within the step */
-        if (lo < best) a = lo, b = fmin(hi, best);
-        else if (hi - 2.0 * TG__PI > 0.0 && hi - 2.0 * TG__PI < best) a = 0.0, b = hi - 2.0 * TG__PI;
-        else continue;
+        if (pj->line) {
+            a = fmax(lo, 0.0), b = fmin(hi, best);
+            if (!(a < b)) continue;
+        } else if (lo < best) {
+            a = lo, b = fmin(hi, best);
+        } else if (hi - 2.0 * TG__PI > 0.0 && hi - 2.0 * TG__PI < best) {
+            a = 0.0, b = hi - 2.0 * TG__PI;
+        } else {
+            continue;
+        }
         double t[2];
-        rotate_about(pj, p, 0.5 * (a + b), t);
+        advance(pj, p, 0.5 * (a + b), t);
         if (!piece_rules(fg, pcs, n, j, t, tol)) best = 0.5 * (a + b);
     }
     return best;
@@ -693,8 +979,7 @@ static bool taken_over(const face_geo* fg, const piece* pcs, size_t n, const dou
 {
     uint32_t k;
     if (!(eval_at(fg, pcs, n, q, &k) < L) || k == TG_NONE) return false;
-    double dx = p[0] - pcs[k].cx, dy = p[1] - pcs[k].cy;
-    return pcs[k].sigma + sqrt(dx * dx + dy * dy) > L + tol;
+    return piece_value(&pcs[k], p) > L + tol;
 }
 
 /* Does the circle of piece c leave p (face frame, on it) into the face: across side m, or inside
@@ -709,18 +994,19 @@ static bool look_along(const face_geo* fg, const piece* pcs, size_t n, uint32_t 
     const piece* pc = &pcs[c];
     const double* u_in = fg->u[m];             /* along side m, away from c[m] */
     const double* u_back = fg->u[(m + 2) % 3]; /* side m - 1 arrives at c[m] */
-    double gx = p[0] - pc->cx, gy = p[1] - pc->cy, r = sqrt(gx * gx + gy * gy);
-    double tx = -gy / r, ty = gx / r;
+    double t[2], r = arc_scale(pc, p);
+    tangent_at(pc, p, t);
+    double tx = t[0], ty = t[1];
     if (corner ? !(u_in[0] * ty - u_in[1] * tx > -1e-12) || !(tx * -u_back[1] - ty * -u_back[0] > 1e-12)
                : !(u_in[0] * ty - u_in[1] * tx > 1e-12))
         return false;
     double amin[3] = {0.0, 0.0, 0.0}, ex;
     int em;
-    amin[m] = START_ANGLE;
-    if (corner) amin[(m + 2) % 3] = START_ANGLE;
-    double centre[2] = {pc->cx, pc->cy}, a = fmin(1e-6 * fg->span / r, most);
-    double ea = first_exit(fg, centre, p, amin, a, &em, &ex);
-    rotate_about(pc, p, ea < a ? 0.5 * ea : a, q);
+    amin[m] = start_param(fg, pc);
+    if (corner) amin[(m + 2) % 3] = start_param(fg, pc);
+    double a = fmin(1e-6 * fg->span / r, most);
+    double ea = first_exit(fg, pc, p, amin, a, &em, &ex);
+    advance(pc, p, ea < a ? 0.5 * ea : a, q);
     *k = TG_NONE;
     for (size_t i = 0; i < n && *k == TG_NONE; ++i)
         if (pcs[i].circle == c && piece_holds(fg, &pcs[i], q)) *k = (uint32_t)i;
@@ -728,11 +1014,32 @@ static bool look_along(const face_geo* fg, const piece* pcs, size_t n, uint32_t 
 }
 
 /* Does the circle of piece pc pass through p (face frame) at the level, to the rounding of a vertex
- * on it, p not its centre? */
+ * on it, p not its centre? (A line: its level line.) */
 static bool through(const face_geo* fg, const piece* pc, const double p[2], double L, double tol)
 {
+    if (pc->line) return fabs(line_value(pc, p) - L) <= VERTEX_LEVEL_REL * L + tol;
     double gx = p[0] - pc->cx, gy = p[1] - pc->cy, r = sqrt(gx * gx + gy * gy);
     return r > 1e-9 * fg->span && fabs(pc->sigma + r - L) <= VERTEX_LEVEL_REL * L + tol;
+}
+
+/* Where the level set L of piece pc meets the line of side m (x from c[m]): into xs, their count. */
+static int side_levels(const face_geo* fg, const piece* pc, int m, double L, double xs[2])
+{
+    double ux = fg->u[m][0], uy = fg->u[m][1];
+    if (pc->line) {
+        double slope = pc->nx * ux + pc->ny * uy;
+        if (!(slope != 0.0)) return 0;
+        xs[0] = (L - line_value(pc, fg->c[m])) / slope;
+        return 1;
+    }
+    double r = L - pc->sigma;
+    if (!(r > 0.0)) return 0;
+    double qx = fg->c[m][0] - pc->cx, qy = fg->c[m][1] - pc->cy;
+    double a = -(qx * ux + qy * uy), b = fabs(ux * qy - uy * qx);
+    if (!(b <= r)) return 0;
+    double w = sqrt((r - b) * (r + b));
+    xs[0] = a - w, xs[1] = a + w;
+    return 2;
 }
 
 /* At corner m, a vertex on the level (crossing ci) that no circle through it leaves into the face:
@@ -752,14 +1059,11 @@ static bool walk_from_near(iso_state* st, const face_geo* fg, uint32_t ci, int m
         double near = near_dist(st->g, 3 * fg->f + (uint32_t)s), at = t ? fg->len[s] : 0.0;
         for (uint32_t c = 0; c < n; ++c) {
             const piece* pc = &pcs[c];
-            double r = L - pc->sigma;
-            if (pc->circle != c || !(r > 0.0) || through(fg, pc, fg->c[m], L, tol)) continue;
-            double qx = fg->c[s][0] - pc->cx, qy = fg->c[s][1] - pc->cy, ux = fg->u[s][0], uy = fg->u[s][1];
-            double a = -(qx * ux + qy * uy), b = fabs(ux * qy - uy * qx);
-            if (!(b <= r)) continue;
-            double w = sqrt((r - b) * (r + b));
-            for (int sg = -1; sg <= 1; sg += 2) {
-                double x = a + sg * w, p[2], q[2];
+            double xs[2], ux = fg->u[s][0], uy = fg->u[s][1];
+            if (pc->circle != c || through(fg, pc, fg->c[m], L, tol)) continue;
+            int nx = side_levels(fg, pc, s, L, xs);
+            for (int i = 0; i < nx; ++i) {
+                double x = xs[i], p[2], q[2];
                 uint32_t k;
                 if (!(fabs(x - at) <= near) || !(x > 0.0 && x < fg->len[s])) continue;
                 p[0] = fg->c[s][0] + x * ux, p[1] = fg->c[s][1] + x * uy;
@@ -820,8 +1124,13 @@ static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, dou
     for (uint32_t c = 0; c < n && !corner; ++c) {
         const piece* pc = &pcs[c];
         double gx = p[0] - pc->cx, gy = p[1] - pc->cy, r = sqrt(gx * gx + gy * gy), s[2];
-        if (pc->circle != c || !(r > 1e-9 * fg->span) || !(fabs(pc->sigma + r - L) <= START_SNAP * fg->span)) continue;
-        s[0] = pc->cx + gx * (L - pc->sigma) / r, s[1] = pc->cy + gy * (L - pc->sigma) / r;
+        if (pc->circle != c) continue;
+        if (pc->line) {
+            if (!snap_onto(pc, p, L, START_SNAP * fg->span, 0.0, s)) continue;
+        } else {
+            if (!(r > 1e-9 * fg->span) || !(fabs(pc->sigma + r - L) <= START_SNAP * fg->span)) continue;
+            s[0] = pc->cx + gx * (L - pc->sigma) / r, s[1] = pc->cy + gy * (L - pc->sigma) / r;
+        }
         if (look_along(fg, pcs, n, c, s, m, false, INFINITY, q, &k) && k != TG_NONE &&
             piece_rules(fg, pcs, n, k, q, tol))
             return walk_on(st, fg, ci, s, m, -1, k, L);
@@ -834,7 +1143,7 @@ static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, dou
      * lies within twice START_ANGLE (a crossing that close to a wedge's end, below what a start
      * resolves: looked along, a crossing 8e-9 from a vertex drew a loop of rounding there). */
     double end = corner ? 0.0 : wedge_left(fg, &pcs[first], p);
-    if (end > 2.0 * START_ANGLE && end < INFINITY && through(fg, &pcs[first], p, L, tol) &&
+    if (end > 2.0 * start_param(fg, &pcs[first]) && end < INFINITY && through(fg, &pcs[first], p, L, tol) &&
         look_along(fg, pcs, n, pcs[first].circle, p, m, false, 0.5 * end, q, &k) && k != TG_NONE &&
         piece_rules(fg, pcs, n, k, q, tol))
         return walk_on(st, fg, ci, p, m, -1, k, L);
@@ -844,8 +1153,8 @@ static bool walk_from(iso_state* st, const face_geo* fg, uint32_t ci, int m, dou
      * curve starts along it when it rules at a shorter look, halved down to twice START_ANGLE;
      * walk_on switches at the wedge's edge */
     if (!corner && through(fg, &pcs[first], p, L, tol)) {
-        double gx = p[0] - pcs[first].cx, gy = p[1] - pcs[first].cy, r = sqrt(gx * gx + gy * gy);
-        for (double most = 0.5e-6 * fg->span / r; most > 2.0 * START_ANGLE; most *= 0.5)
+        double r = arc_scale(&pcs[first], p);
+        for (double most = 0.5e-6 * fg->span / r; most > 2.0 * start_param(fg, &pcs[first]); most *= 0.5)
             if (look_along(fg, pcs, n, pcs[first].circle, p, m, false, most, q, &k) && k != TG_NONE &&
                 piece_rules(fg, pcs, n, k, q, tol))
                 return walk_on(st, fg, ci, p, m, -1, k, L);
@@ -868,26 +1177,30 @@ static bool walk_on(iso_state* st, const face_geo* fg, uint32_t ci, const double
     double p[2] = {start[0], start[1]};
     segment sg = {ci, TG_NONE, fg->f, 0, st->pts.count, 0};
     bool ok = true;
+    /* the last two places where the piece changed: a walk back at the one before the last goes
+     * to and fro between two pieces (a level within rounding of a curve, where both sides' pieces
+     * hold to rounding: nearer side on no side) and stops there */
+    double turns[2][2] = {{INFINITY, INFINITY}, {INFINITY, INFINITY}};
     for (int step = 0; step < MAX_STEPS; ++step) {
         const piece* pc = &pcs[j];
-        double c[2] = {pc->cx, pc->cy};
-        double vx = p[0] - c[0], vy = p[1] - c[1], r = sqrt(vx * vx + vy * vy);
+        double r = arc_scale(pc, p);
         if (!(r > 0.0)) break;
-        double da = step_angle(r, fg->span);
+        /* a line is straight: one step to where it leaves the face (no chord is longer) */
+        double da = pc->line ? fg->span : step_angle(r, fg->span);
         int em = -1;
         double ex = 0.0;
         double amin[3] = {0.0, 0.0, 0.0};
         if (step == 0) {
-            amin[m0] = START_ANGLE;
-            if (m1 >= 0) amin[m1] = START_ANGLE;
+            amin[m0] = start_param(fg, pc);
+            if (m1 >= 0) amin[m1] = start_param(fg, pc);
         }
-        double ea = first_exit(fg, c, p, amin, da, &em, &ex);
+        double ea = first_exit(fg, pc, p, amin, da, &em, &ex);
         double at = ea <= da ? ea : da, q[2];
-        rotate_about(pc, p, at, q);
+        advance(pc, p, at, q);
         bool rules = piece_rules(fg, pcs, n, j, q, tol);
         if (rules) { /* and nowhere in between it stops ruling */
             double dip = first_dip(fg, pcs, n, j, p, at, L, tol);
-            if (dip < at) at = dip, rules = false, rotate_about(pc, p, at, q);
+            if (dip < at) at = dip, rules = false, advance(pc, p, at, q);
         }
         if (rules) {
             if (ea <= da) { /* the arc leaves the face: at a crossing of that side, or its end */
@@ -908,23 +1221,26 @@ static bool walk_on(iso_state* st, const face_geo* fg, uint32_t ci, const double
         double lo = 0.0, hi = at;
         for (int it = 0; it < 60 && (hi - lo) * r > 1e-11 * fg->span; ++it) {
             double mid = 0.5 * (lo + hi), t[2];
-            rotate_about(pc, p, mid, t);
+            advance(pc, p, mid, t);
             if (piece_rules(fg, pcs, n, j, t, tol)) lo = mid;
             else hi = mid;
         }
         double xk[2], beyond[2];
-        rotate_about(pc, p, lo, xk);
-        rotate_about(pc, p, hi, beyond);
+        advance(pc, p, lo, xk);
+        advance(pc, p, hi, beyond);
         uint32_t next;
         eval_at(fg, pcs, n, beyond, &next);
         if (next == TG_NONE || next == j) break; /* nothing rules beyond: the walk stops */
         /* onto the next arc (D is continuous: it passes within rounding of xk): at the two arcs'
          * crossing nearest xk when that is within START_SNAP of the face (the corner of the curve,
-         * exact to rounding), else at the next circle's point nearest xk */
-        double nx = xk[0] - pcs[next].cx, ny = xk[1] - pcs[next].cy, nr = sqrt(nx * nx + ny * ny);
-        double want = L - pcs[next].sigma, cx[2] = {0.0, 0.0};
-        if (arcs_cross(pc, r, &pcs[next], want, xk, START_SNAP * fg->span, cx)) xk[0] = cx[0], xk[1] = cx[1];
-        else if (nr > 0.0 && fabs(nr - want) <= START_SNAP * fg->span) xk[0] = pcs[next].cx + nx * want / nr, xk[1] = pcs[next].cy + ny * want / nr;
+         * exact to rounding), else at the next circle's point nearest xk (lines alike) */
+        double cx[2] = {0.0, 0.0};
+        if (levels_cross(pc, r, &pcs[next], L - pcs[next].sigma, L, xk, START_SNAP * fg->span, cx))
+            xk[0] = cx[0], xk[1] = cx[1];
+        else
+            snap_onto(&pcs[next], xk, L, START_SNAP * fg->span, 0.0, xk);
+        if (hypot(xk[0] - turns[0][0], xk[1] - turns[0][1]) <= START_SNAP * fg->span) break;
+        turns[0][0] = turns[1][0], turns[0][1] = turns[1][1], turns[1][0] = xk[0], turns[1][1] = xk[1];
         if (lo > 0.0 && !add_point(st, fg, xk)) return false;
         p[0] = xk[0], p[1] = xk[1], j = next;
     }
@@ -1314,10 +1630,11 @@ static void vec_init(iso_state* st)
     st->adj_start.elem = st->adj.elem = st->used.elem = sizeof(uint32_t);
 }
 
-/* The run from the sources (the solver's form, field.h), then every level traced and chained
- * (solver frame: levels times scale). */
+/* The run from the sources and segments (the solver's form, field.h; segment_count pairs), then
+ * every level traced and chained (solver frame: levels times scale). */
 static tg_status isolines_of(const tg_geodesic* g, tg__field_scratch* fs, const tg_surface_point* sources,
-                             size_t source_count, const double* levels, size_t nl, const tg_field_options* options,
+                             size_t source_count, const tg_surface_point* segments, size_t segment_count,
+                             const double* levels, size_t nl, const tg_field_options* options,
                              const tg_allocator* a, tg_isolines* out, double* out_vertex_distance,
                              tg_field_stats* out_stats)
 {
@@ -1334,7 +1651,8 @@ static tg_status isolines_of(const tg_geodesic* g, tg__field_scratch* fs, const 
         for (size_t i = 0; i < nl; ++i) sorted[i] = levels[i] * g->scale;
         qsort(sorted, nl, sizeof *sorted, tg__cmp_double);
         bool progress = options && options->progress;
-        tg__field_query q = {.sources = sources, .source_count = source_count, .max_distance = limit,
+        tg__field_query q = {.sources = sources, .source_count = source_count, .segments = segments,
+                             .segment_count = segment_count, .max_distance = limit,
                              .progress = progress ? tg__field_report_single : NULL, .progress_user = (void*)options,
                              .record_levels = sorted, .record_level_count = nl,
                              .threads = tg__field_threads(options)};
@@ -1373,13 +1691,14 @@ static tg_status isolines_of(const tg_geodesic* g, tg__field_scratch* fs, const 
     return status;
 }
 
-tg_status tg_geodesic_isolines(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
-                               size_t source_count, const double* levels, size_t level_count,
-                               const tg_field_options* options, tg_isolines* isolines,
-                               double* out_vertex_distance, tg_field_stats* out_stats)
+tg_status tg_geodesic_curve_isolines(const tg_geodesic* g, tg_geodesic_workspace* ws,
+                                     const tg_surface_point* sources, size_t source_count,
+                                     const tg_surface_segment* segments, size_t segment_count, const double* levels,
+                                     size_t level_count, const tg_field_options* options, tg_isolines* isolines,
+                                     double* out_vertex_distance, tg_field_stats* out_stats)
 {
     if (!isolines) return TG_ERR_INVALID_ARGUMENT;
-    tg_status st = levels && level_count ? TG_OK : TG_ERR_INVALID_ARGUMENT;
+    tg_status st = levels && level_count && (segments || !segment_count) ? TG_OK : TG_ERR_INVALID_ARGUMENT;
     for (size_t i = 0; st == TG_OK && i < level_count; ++i)
         if (!(levels[i] >= 0.0 && levels[i] < INFINITY)) st = TG_ERR_INVALID_ARGUMENT;
     if (st == TG_OK) st = tg__field_check(g, sources, source_count, options);
@@ -1387,14 +1706,22 @@ tg_status tg_geodesic_isolines(const tg_geodesic* g, tg_geodesic_workspace* ws, 
     if (st == TG_OK) st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
     if (st == TG_OK) {
         const tg_allocator* a = options && options->allocator ? options->allocator : &g->allocator;
-        const tg_surface_point *in_sources, *in_points;
-        if (!tg__field_points_in_workspace(ws, sources, source_count, NULL, 0, &in_sources, &in_points))
-            st = TG_ERR_OUT_OF_MEMORY;
-        else
-            st = isolines_of(g, &ws->field, in_sources, source_count, levels, level_count, options, a, isolines,
-                             out_vertex_distance, out_stats);
+        tg__curve_in in;
+        st = tg__curve_points_in(ws, sources, source_count, segments, segment_count, NULL, 0, &in);
+        if (st == TG_OK)
+            st = isolines_of(g, &ws->field, in.sources, source_count, in.segments, segment_count, levels, level_count,
+                             options, a, isolines, out_vertex_distance, out_stats);
         tg__workspace_release(own);
     }
     if (st != TG_OK) isolines_clear(isolines);
     return st;
+}
+
+tg_status tg_geodesic_isolines(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
+                               size_t source_count, const double* levels, size_t level_count,
+                               const tg_field_options* options, tg_isolines* isolines,
+                               double* out_vertex_distance, tg_field_stats* out_stats)
+{
+    return tg_geodesic_curve_isolines(g, ws, sources, source_count, NULL, 0, levels, level_count, options, isolines,
+                                      out_vertex_distance, out_stats);
 }

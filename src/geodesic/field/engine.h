@@ -136,9 +136,14 @@ typedef struct tg__corner_hit {
 
 /* A window recorded while its list crossed face h / 3 (record.c, for isolines): its source image
  * (sx, sy) and interval [b0, b1] in the frame of h, its offset sigma; a point source inside the
- * face (no wedge) has h = 3f + 0, (sx, sy) in that frame and b0 > b1. */
+ * face (no wedge) has h = 3f + 0, (sx, sy) in that frame and b0 > b1. kind TG__REC_LINE: a line
+ * window ((sx, sy) its rays' direction, engine.h's tg__window); TG__REC_SEGMENT: one side of the
+ * inside of a curve's segment in face f = h / 3 (h = 3f): the distance sigma + the distance to the
+ * segment's line, over the strip where the foot of the perpendicular falls inside the segment,
+ * on the left of O = (sx, sy) -> E = (b0, b1) (frame of 3f). */
+enum { TG__REC_POINT = 0, TG__REC_LINE = 1, TG__REC_SEGMENT = 2 };
 typedef struct tg__rec_window {
-    uint32_t h;
+    uint32_t h, kind;
     double sx, sy, sigma, b0, b1;
 } tg__rec_window;
 

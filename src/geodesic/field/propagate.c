@@ -626,6 +626,7 @@ static bool emit_segment_face(tg__field_run* run, uint32_t f, const double ba[3]
                 return false;
         }
         tg__field_queries_segment(run, f, A, B, m);
+        if (run->q->record_levels && !tg__field_record_segment(run, f, side > 0 ? A : B, side > 0 ? B : A)) return false;
         for (uint32_t k = 0; k < 3; ++k) {
             uint32_t h = 3 * f + k;
             const tg__frame* fr = &g->frame[h];
@@ -899,9 +900,10 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
     if (!L) {
         tg__field_queries_cross(run, h, pool, ids, n);
         if (run->q->record_levels && !tg__field_record_cross(run, h, pool, ids, n)) return false;
-    } else if (run->q->record_levels || (run->q->point_count && fs->qface[h / 3])) {
+    } else if (n && (run->q->record_levels || (run->q->point_count && fs->qface[h / 3]))) {
         /* evaluated and recorded by the merge, in the round's order (the windows stay in
-         * their slots until then: a lane releases none) */
+         * their slots until then: a lane releases none; an empty list: nothing, and no copy to
+         * a buffer never grown) */
         if (!lane_grow(fs, L, &L->qids, n)) return false;
         memcpy((uint32_t*)L->qids.data + L->qids.count, ids, n * sizeof *ids);
         L->qids.count += n;

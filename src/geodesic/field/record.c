@@ -1,6 +1,7 @@
 /* record.c - recording, while a run propagates, the windows that may matter for given distance
- * levels: each list's windows as they cross their face (with the point sources inside faces),
- * so that the exact distance inside a face can be rebuilt after the run (isolines.c).
+ * levels: each list's windows as they cross their face (with the point sources inside faces,
+ * and the sides of the curves' segments in the faces holding them), so that the exact distance
+ * inside a face can be rebuilt after the run (isolines.c).
  * Based on: J. S. B. Mitchell, D. M. Mount and C. H. Papadimitriou, "The discrete geodesic
  *   problem", SIAM J. Comput. 16(4), 1987, §4 (the distance at a point of a face is the least over
  *   the windows whose rays reach it, the face's corners, and the sources in the face; query.c).
@@ -82,13 +83,16 @@ bool tg__field_record_cross(tg__field_run* run, uint32_t h, const tg__window* po
         const tg__window* w = &pool[ids[i]];
         if (!(w->b0 < w->b1)) continue;
         /* the least distance over the interval: at the foot of the image when inside, else an end
-         * (rays only grow beyond the edge, so this bounds the face's part too) */
-        double wmin = (w->sx > w->b0 && w->sx < w->b1) ? w->sigma - w->sy
-                                                       : fmin(tg__win_dist(w, w->b0), tg__win_dist(w, w->b1));
+         * (rays only grow beyond the edge, so this bounds the face's part too); a line window's is
+         * linear along the edge: an end */
+        bool line = tg__win_is_line(w);
+        double wmin = (!line && w->sx > w->b0 && w->sx < w->b1)
+                          ? w->sigma - w->sy
+                          : fmin(tg__win_dist(w, w->b0), tg__win_dist(w, w->b1));
         double lo = wmin * (1.0 - 1e-12);
         if (lo < *least) *least = lo;
         if (!level_within(run->q, lo, lo + span)) continue;
-        tg__rec_window r = {h, w->sx, w->sy, w->sigma, w->b0, w->b1};
+        tg__rec_window r = {h, line ? TG__REC_LINE : TG__REC_POINT, w->sx, w->sy, w->sigma, w->b0, w->b1};
         if (!append(run->fs, &r)) return false;
     }
     return true;
@@ -100,6 +104,13 @@ bool tg__field_record_source(tg__field_run* run, const double src[3], double sig
     if (g->fflags[f] & (TG__F_SKIP | TG__F_FLAT)) return true;
     double xy[2];
     tg__frame_point(g, 3 * f, tg_v3_load(src), xy);
-    tg__rec_window r = {3 * f, xy[0], xy[1], sigma, 1.0, 0.0};
+    tg__rec_window r = {3 * f, TG__REC_POINT, xy[0], xy[1], sigma, 1.0, 0.0};
+    return append(run->fs, &r);
+}
+
+bool tg__field_record_segment(tg__field_run* run, uint32_t f, const double o[2], const double e[2])
+{
+    if (run->g->fflags[f] & (TG__F_SKIP | TG__F_FLAT)) return true;
+    tg__rec_window r = {3 * f, TG__REC_SEGMENT, o[0], o[1], 0.0, e[0], e[1]};
     return append(run->fs, &r);
 }

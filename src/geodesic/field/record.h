@@ -20,5 +20,8 @@ bool tg__field_record_below(const tg__field_scratch* fs, uint32_t f, double leve
 bool tg__field_record_cross(tg__field_run* run, uint32_t h, const tg__window* pool, const uint32_t* ids, size_t n);
 /* A point source (or a point a zero-area face carries) at distance sigma inside face f. */
 bool tg__field_record_source(tg__field_run* run, const double src[3], double sigma, uint32_t f);
+/* One side of the inside of a curve's segment in face f (distance 0 on it): the side on the left
+ * of o -> e (its ends, frame of 3f). Recorded for every level, as point sources are. */
+bool tg__field_record_segment(tg__field_run* run, uint32_t f, const double o[2], const double e[2]);
 
 #endif

@@ -1282,7 +1282,7 @@ static tg_surface_segment curve_segments[CURVE_SEGMENTS]; /* chords of faces and
 static uint32_t curve_site[CURVE_SEGMENTS];               /* 3 sites */
 
 typedef struct curve_ctx {
-    int call; /* 0 field (and points), 1 path, 2 Voronoi, 3 matrix */
+    int call; /* 0 field (and points), 1 path, 2 Voronoi, 3 matrix, 4 isolines (their field as out) */
     int threads;
     size_t nv;
     double *ref, *out;
@@ -1304,9 +1304,22 @@ static tg_status curve_call(curve_ctx* cc, const tg_allocator* a, double* out, d
     case 2:
         return tg_geodesic_curve_voronoi(spot_g, NULL, NULL, 0, NULL, curve_segments, CURVE_SEGMENTS, curve_site, 3, &o,
                                          out, label, NULL);
-    default:
+    case 3:
         return tg_geodesic_curve_distance_matrix(spot_g, NULL, 0, NULL, curve_segments, CURVE_SEGMENTS, curve_site, 3,
                                                  NULL, 0, &o, cc->threads, out, NULL);
+    default: {
+        static const double levels[2] = {0.05, 0.2};
+        tg_isolines* iso = NULL;
+        if (tg_isolines_create(NULL, &iso) != TG_OK) return TG_ERR_OUT_OF_MEMORY; /* not under test: never fails */
+        tg_status st = tg_geodesic_curve_isolines(spot_g, NULL, NULL, 0, curve_segments, CURVE_SEGMENTS, levels, 2, &o,
+                                                  iso, out, NULL);
+        tg_isolines_view v;
+        tg_isolines_get_view(iso, &v);
+        if (st == TG_OK && out_points) out_points[0] = (double)v.point_count, out_points[1] = v.point_count ? v.xyz[0] : 0.0;
+        if (st != TG_OK) CHECK_MSG(v.polyline_count == 0, "curve isolines: not empty after %s", tg_status_name(st));
+        tg_isolines_destroy(iso);
+        return st;
+    }
     }
 }
 
@@ -1341,7 +1354,8 @@ static tg_status try_curve(sweep* s, void* ctx)
     arm(s);
     tg_status st = curve_call(cc, &s->a, cc->out, cc->out + n - FIELD_POINTS, cc->label, NULL);
     disarm(s);
-    size_t written = cc->call == 0 ? n : n - FIELD_POINTS; /* the points' distances: the field's only */
+    /* the points' distances: the field's only; the isolines' point count and first coordinate there */
+    size_t written = cc->call == 0 ? n : cc->call == 4 ? n - FIELD_POINTS + 2 : n - FIELD_POINTS;
     if (st == TG_OK) {
         CHECK_MSG(same_bytes(cc->out, cc->ref, written * sizeof *cc->out) &&
                       (!cc->label || same_bytes(cc->label, cc->ref_label, cc->nv * sizeof *cc->label)),
@@ -1369,8 +1383,9 @@ static void sweep_curves(void)
     }
     const long dense = TG_TEST_WORK(300, 60), stride = TG_TEST_WORK(2, 7);
     static const char* names[] = {"tg_geodesic_curve_field (and points)", "tg_geodesic_curve_path",
-                                  "tg_geodesic_curve_voronoi", "tg_geodesic_curve_distance_matrix"};
-    for (int call = 0; call < 4; ++call)
+                                  "tg_geodesic_curve_voronoi", "tg_geodesic_curve_distance_matrix",
+                                  "tg_geodesic_curve_isolines"};
+    for (int call = 0; call < 5; ++call)
         for (int threads = 1; threads <= (call == 3 ? 2 : 1); ++threads) {
             curve_ctx cc;
             memset(&cc, 0, sizeof cc);

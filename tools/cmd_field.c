@@ -686,39 +686,6 @@ static int run(int argc, char** argv)
     }
     if (!fa.mesh_path) return cli_usage("field", "missing MESH");
     if (!from == !fa.sources_path) return cli_usage("field", "give either --from SPEC[;SPEC...] or --sources FILE");
-    /* the --from list: point SPECs, and curve sources (curve:FILE, boundary) set apart */
-    char* list = NULL;
-    char** items = NULL;
-    size_t count = 0;
-    if (from) {
-        size_t len = strlen(from);
-        list = malloc(len + 1);
-        items = malloc(MAX_SOURCES * sizeof *items);
-        if (!list || !items) {
-            free(list), free(items), free(fa.point_site);
-            cli_error(NULL, 0, "out of memory");
-            return CLI_INPUT;
-        }
-        memcpy(list, from, len + 1);
-        size_t all = cli_split_list(list, items, MAX_SOURCES);
-        if (split_curves(&fa, items, NULL, all, &count) != CLI_OK) {
-            free(list), free(items), free(fa.point_site);
-            return CLI_INPUT;
-        }
-        int bad = all == 0 ? cli_usage("field", "bad --from list \"%s\" (SPEC;SPEC;..., no empty item, at most %d)",
-                                       from, MAX_SOURCES)
-                  : fa.curves.count > CLI_CURVES_MAX ? cli_usage("field", "at most %d curve files", CLI_CURVES_MAX)
-                  : (fa.curves.boundary || fa.curves.count) && fa.gradient
-                      ? cli_usage("field", "curve sources (curve:FILE, boundary) go with a field (-o, --at, --labels, "
-                                           "--isolines, --max-distance, --threads), not yet with --gradient")
-                  : (fa.curves.boundary || fa.curves.count) && fa.boundaries
-                      ? cli_usage("field", "--boundaries draws the cells of point sources only, not of curves")
-                      : CLI_OK;
-        if (bad != CLI_OK) {
-            free(list), free(items), free(fa.point_site);
-            return bad;
-        }
-    }
     if (fa.out && csv) return cli_usage("field", "-o and --csv exclude each other");
     if (fa.isolines && fa.isoline_count)
         return cli_usage("field", "give the levels (--isolines L,L,...) or their count (--isoline-count N), not both");
@@ -778,6 +745,39 @@ static int run(int argc, char** argv)
     fa.field_threads = 1;
     if (threads && !fa.matrix) /* one field (--from, --labels' each source, --isolines) on several threads */
         fa.field_threads = nt == 0 ? TG_THREADS_ALL : (int)nt;
+    /* the --from list: point SPECs, and curve sources (curve:FILE, boundary) set apart */
+    char* list = NULL;
+    char** items = NULL;
+    size_t count = 0;
+    if (from) {
+        size_t len = strlen(from);
+        list = malloc(len + 1);
+        items = malloc(MAX_SOURCES * sizeof *items);
+        if (!list || !items) {
+            free(list), free(items), free(fa.point_site);
+            cli_error(NULL, 0, "out of memory");
+            return CLI_INPUT;
+        }
+        memcpy(list, from, len + 1);
+        size_t all = cli_split_list(list, items, MAX_SOURCES);
+        if (split_curves(&fa, items, NULL, all, &count) != CLI_OK) {
+            free(list), free(items), free(fa.point_site);
+            return CLI_INPUT;
+        }
+        int bad = all == 0 ? cli_usage("field", "bad --from list \"%s\" (SPEC;SPEC;..., no empty item, at most %d)",
+                                       from, MAX_SOURCES)
+                  : fa.curves.count > CLI_CURVES_MAX ? cli_usage("field", "at most %d curve files", CLI_CURVES_MAX)
+                  : (fa.curves.boundary || fa.curves.count) && fa.gradient
+                      ? cli_usage("field", "curve sources (curve:FILE, boundary) go with a field (-o, --at, --labels, "
+                                           "--isolines, --max-distance, --threads), not yet with --gradient")
+                  : (fa.curves.boundary || fa.curves.count) && fa.boundaries
+                      ? cli_usage("field", "--boundaries draws the cells of point sources only, not of curves")
+                      : CLI_OK;
+        if (bad != CLI_OK) {
+            free(list), free(items), free(fa.point_site);
+            return bad;
+        }
+    }
     int check = check_files(&fa, at_opt, csv);
     if (check == CLI_OK && (fa.sources_path || fa.field_threads != 1) && !cli_threads_available(fa.threads, "field"))
         check = CLI_INPUT;

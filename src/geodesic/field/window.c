@@ -143,6 +143,12 @@ static TG__ALWAYS_INLINE int winner_at(const tg__window* wi, const tg__window* w
     double tol = TIE_REL * (di > dj ? di : dj);
     if (dj > di + tol) return 1;
     if (di > dj + tol) return -1;
+    /* a line window and a point window tie only where the point's distance touches the line's
+     * from above (their difference is convex along the edge: the point's pseudo-source lies on
+     * a ray of the line, as a segment's end does): the line is the shorter everywhere else, and a
+     * sample at the touching point must not give it to the point (c3d_woody.obj's boundary: a
+     * collinear segments' shared end took a whole edge from their line, 0.15 long at a vertex) */
+    if (lines && tg__win_is_line(wi) != tg__win_is_line(wj)) return tg__win_is_line(wi) ? 1 : -1;
     if (wi->sigma != wj->sigma) return wi->sigma < wj->sigma ? 1 : -1;
     return i_first ? 1 : -1;
 }

@@ -783,10 +783,12 @@ typedef struct tg_mesh_distance_result {
  *     through its dual so that rounding cannot lower it;
  *   - edge split: two of those faces sharing an edge cut T by the bisector plane of their
  *     dihedral angle, each side bounded by its face at the polygon's vertices (convexity);
- *   - prisms (only for pieces that would otherwise be refined and whose corners lie within 1/64
- *     of their longest edge of B): T cut into the parts inside the prisms of nearby faces of B,
- *     where d(x, t) is the distance to t's plane, and the rest, bounded by convexity: exact
- *     where A lies on or near B across B's edges and vertices, or over many of B's faces.
+ *   - prisms (only for pieces that would otherwise be refined): T cut into the parts inside the
+ *     prisms of nearby faces of B, where d(x, t) is the distance to t's plane, and the rest,
+ *     bounded by convexity, each part only as tightly as it takes to spare T its refinement:
+ *     exact where A lies on or near B across B's edges and vertices, and where B is convex
+ *     under T; so a triangle of A over many of B's faces (B much finer than A) is mostly
+ *     certified whole, its cost growing with the number of B's faces under it.
  *  Pieces whose bound exceeds lower + tolerance are taken worst first: the point where the
  *  interpolants peak is queried, then they are split in four at their edge midpoints (each
  *  queried). Where d is the distance to one or two planes of B the bounds are exact, so little

@@ -823,9 +823,11 @@ typedef struct tg_mesh_distance_result {
  *  where d comes within the tolerance of its maximum, typically a few per level of subdivision
  *  (log(edge / tolerance) levels). About 7x the vertices' closest-point pass on armadillo_1m
  *  against igl_armadillo at 1e-6 of the diagonal (BENCHMARKS.md). A much coarser than B costs
- *  more: each face of A lies over many faces of B, which its corners do not see (refined to
- *  about B's resolution, or, where A lies on B, the prisms of B's faces under it: tens of
- *  microseconds a face). Memory O(V + F + pieces). Thread-safe: the meshes and the BVH are only read (concurrent calls need distinct
+ *  more than that pass, which is then tiny: each face of A lies over many faces of B, which its
+ *  corners do not see; the prisms of B's faces under it bound it, at a cost growing with their
+ *  number (some 1-2 microseconds a face of B under A; tens of microseconds a face of A over 16
+ *  of B's), so the whole takes about as long as the other direction, B to A (BENCHMARKS.md).
+ *  Memory O(V + F + pieces). Thread-safe: the meshes and the BVH are only read (concurrent calls need distinct
  *  output arrays). (New in 0.6.1.) */
 TG_API tg_status tg_mesh_distance(const tg_mesh* a, const tg_bvh* b, const tg_mesh_distance_options* options,
                                   double* out_vertex_distance, tg_mesh_distance_result* out_result);

@@ -637,8 +637,8 @@ static double prism_bound(const md_ctx* c, uint32_t* stack, const md_point* cons
         double hold_l = INFINITY;
         /* the neighbour across the edge the polygon was cut off by holds it, most often; taken
          * without looking for a nearer face when its plane bounds the whole polygon by `good` */
-        if (area2 > 0x1p-40 && h0 >= 0 && ok[h0] && affine_at(g[h0][0], cen) >= 0.0 && affine_at(g[h0][1], cen) >= 0.0 &&
-            affine_at(g[h0][2], cen) >= 0.0) {
+        if (area2 > 0x1p-40 && h0 >= 0 && ok[h0] && affine_at(g[h0][0], cen) >= 0.0 &&
+            affine_at(g[h0][1], cen) >= 0.0 && affine_at(g[h0][2], cen) >= 0.0) {
             double w = 0.0;
             for (int k = 0; k < P.n; ++k) w = fmax(w, fabs(affine_at(l[h0], P.v[k])));
             if (w <= good) hold = h0;
@@ -744,7 +744,8 @@ static double piece_bound(const md_ctx* c, uint32_t* stack, const md_point* cons
      * interpolants are far above the distance (a piece over many of B's faces, B much finer
      * than A, or A on B across B's edges and vertices); `good` lets them stop at the bound
      * that spares the refinement */
-    if (ub > c->refine_above) ub = fmin(ub, prism_bound(c, stack, p, ub - c->margin, c->refine_above - c->margin) + c->margin);
+    if (ub > c->refine_above)
+        ub = fmin(ub, prism_bound(c, stack, p, ub - c->margin, c->refine_above - c->margin) + c->margin);
     return ub;
 }
 

@@ -814,10 +814,12 @@ typedef struct tg_mesh_distance_result {
  *     through its dual so that rounding cannot lower it;
  *   - edge split: two of those faces sharing an edge cut T by the bisector plane of their
  *     dihedral angle, each side bounded by its face at the polygon's vertices (convexity);
- *   - prisms (only for pieces that would otherwise be refined and whose corners lie within 1/64
- *     of their longest edge of B): T cut into the parts inside the prisms of nearby faces of B,
- *     where d(x, t) is the distance to t's plane, and the rest, bounded by convexity: exact
- *     where A lies on or near B across B's edges and vertices, or over many of B's faces.
+ *   - prisms (only for pieces that would otherwise be refined): T cut into the parts inside the
+ *     prisms of nearby faces of B, where d(x, t) is the distance to t's plane, and the rest,
+ *     bounded by convexity, each part only as tightly as it takes to spare T its refinement:
+ *     exact where A lies on or near B across B's edges and vertices, and where B is convex
+ *     under T; so a triangle of A over many of B's faces (B much finer than A) is mostly
+ *     certified whole, its cost growing with the number of B's faces under it.
  *  Pieces whose bound exceeds lower + tolerance are taken worst first: the point where the
  *  interpolants peak is queried, then they are split in four at their edge midpoints (each
  *  queried). Where d is the distance to one or two planes of B the bounds are exact, so little
@@ -852,9 +854,11 @@ typedef struct tg_mesh_distance_result {
  *  where d comes within the tolerance of its maximum, typically a few per level of subdivision
  *  (log(edge / tolerance) levels). About 7x the vertices' closest-point pass on armadillo_1m
  *  against igl_armadillo at 1e-6 of the diagonal (BENCHMARKS.md). A much coarser than B costs
- *  more: each face of A lies over many faces of B, which its corners do not see (refined to
- *  about B's resolution, or, where A lies on B, the prisms of B's faces under it: tens of
- *  microseconds a face). Memory O(V + F + pieces). Thread-safe: the meshes and the BVH are only read (concurrent calls need distinct
+ *  more than that pass, which is then tiny: each face of A lies over many faces of B, which its
+ *  corners do not see; the prisms of B's faces under it bound it, at a cost growing with their
+ *  number (some 1-2 microseconds a face of B under A; tens of microseconds a face of A over 16
+ *  of B's), so the whole takes about as long as the other direction, B to A (BENCHMARKS.md).
+ *  Memory O(V + F + pieces). Thread-safe: the meshes and the BVH are only read (concurrent calls need distinct
  *  output arrays). (New in 0.6.1.) */
 TG_API tg_status tg_mesh_distance(const tg_mesh* a, const tg_bvh* b, const tg_mesh_distance_options* options,
                                   double* out_vertex_distance, tg_mesh_distance_result* out_result);

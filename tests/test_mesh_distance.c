@@ -380,6 +380,147 @@ static void test_coarse_on_fine(void)
     grow_free(&ga), grow_free(&gb);
 }
 
+/* ---- a coarse sphere against a fine one of the same radius ---- */
+
+/* The unit outward normal n and offset b (n.x <= b inside) of every face of B. */
+static void face_planes(const grow_mesh* b, double (*pl)[4])
+{
+    for (size_t f = 0; f < b->nf; ++f) {
+        const double *p0 = b->xyz + 3 * b->tri[3 * f], *p1 = b->xyz + 3 * b->tri[3 * f + 1], *p2 = b->xyz + 3 * b->tri[3 * f + 2];
+        double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, v[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+        double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+        double nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (int k = 0; k < 3; ++k) pl[f][k] = n[k] / nn;
+        pl[f][3] = pl[f][0] * p0[0] + pl[f][1] * p0[1] + pl[f][2] * p0[2];
+    }
+}
+
+/* The value of plane t's constraint at x: the distance from x to t's plane, inside. */
+static double plane_gap(const double* pl, const double* x) { return pl[3] - (pl[0] * x[0] + pl[1] * x[1] + pl[2] * x[2]); }
+
+/* h(A, B) for A inside a convex polyhedron B, exactly: there d(x, B) is the least distance to
+ * B's face planes, g(x) = min_t (b_t - n_t.x), concave and piecewise linear, so its maximum on a
+ * face of A is the linear program max z, z <= b_t - n_t.x(u, v), u, v >= 0, u + v <= 1, at a
+ * vertex (three active constraints). Solved by cutting planes: the program over a few of B's
+ * planes (at first the nearest one to the face's centroid), by enumerating the vertices, is a
+ * relaxation (its maximum at least the true one); when its best vertex satisfies every plane it
+ * is the answer, else the most violated plane joins and it is solved again. */
+static double lp_inside(const grow_mesh* a, const grow_mesh* b, const double (*pl)[4])
+{
+    enum { CMAX = 64 };
+    double best = 0.0;
+    for (size_t f = 0; f < a->nf; ++f) {
+        const double* c[3] = {a->xyz + 3 * a->tri[3 * f], a->xyz + 3 * a->tri[3 * f + 1], a->xyz + 3 * a->tri[3 * f + 2]};
+        double e1[3], e2[3], cen[3];
+        for (int k = 0; k < 3; ++k)
+            e1[k] = c[1][k] - c[0][k], e2[k] = c[2][k] - c[0][k], cen[k] = (c[0][k] + c[1][k] + c[2][k]) / 3;
+        /* rows r: r0 + r1 u + r2 v >= 0 (sides) or >= z (planes) */
+        double row[CMAX + 3][3] = {{0, 1, 0}, {0, 0, 1}, {1, -1, -1}};
+        const int sides = 3;
+        int nr = sides;
+        size_t next = 0;
+        double gmin = INFINITY;
+        for (size_t t = 0; t < b->nf; ++t)
+            if (plane_gap(pl[t], cen) < gmin) gmin = plane_gap(pl[t], cen), next = t;
+        double face_best = NAN;
+        for (;;) {
+            CHECK_MSG(nr < CMAX + 3, "face %zu: more than %d cuts", f, CMAX);
+            if (nr == CMAX + 3) break;
+            row[nr][0] = plane_gap(pl[next], c[0]);
+            row[nr][1] = -(pl[next][0] * e1[0] + pl[next][1] * e1[1] + pl[next][2] * e1[2]);
+            row[nr][2] = -(pl[next][0] * e2[0] + pl[next][1] * e2[1] + pl[next][2] * e2[2]);
+            ++nr;
+            double zb = -INFINITY, ub = 0, vb = 0;
+            for (int i = 0; i < nr; ++i)
+                for (int j = i + 1; j < nr; ++j)
+                    for (int k = j + 1; k < nr; ++k) {
+                        int id[3] = {i, j, k};
+                        double M[3][4]; /* r1 u + r2 v - [plane] z = -r0 */
+                        for (int q = 0; q < 3; ++q) {
+                            const double* r = row[id[q]];
+                            M[q][0] = r[1], M[q][1] = r[2], M[q][2] = id[q] < sides ? 0.0 : -1.0, M[q][3] = -r[0];
+                        }
+                        double det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                                     M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                                     M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+                        if (fabs(det) < 1e-15) continue;
+                        double sol[3];
+                        for (int col = 0; col < 3; ++col) { /* Cramer */
+                            double D[3][3];
+                            for (int q = 0; q < 3; ++q)
+                                for (int w = 0; w < 3; ++w) D[q][w] = w == col ? M[q][3] : M[q][w];
+                            sol[col] = (D[0][0] * (D[1][1] * D[2][2] - D[1][2] * D[2][1]) -
+                                        D[0][1] * (D[1][0] * D[2][2] - D[1][2] * D[2][0]) +
+                                        D[0][2] * (D[1][0] * D[2][1] - D[1][1] * D[2][0])) /
+                                       det;
+                        }
+                        double u = sol[0], v = sol[1], z = sol[2];
+                        if (!(z > zb)) continue;
+                        bool ok = true; /* a vertex of the relaxation: every row of it holds */
+                        for (int q = 0; q < nr && ok; ++q) {
+                            double val = row[q][0] + row[q][1] * u + row[q][2] * v;
+                            ok = q < sides ? val >= -1e-13 : val >= z - 1e-13;
+                        }
+                        if (ok) zb = z, ub = u, vb = v;
+                    }
+            double x[3], worst = 0.0;
+            for (int q = 0; q < 3; ++q) x[q] = c[0][q] + ub * e1[q] + vb * e2[q];
+            for (size_t t = 0; t < b->nf; ++t) /* the most violated plane */
+                if (zb - plane_gap(pl[t], x) > worst) worst = zb - plane_gap(pl[t], x), next = t;
+            if (worst <= 1e-13) {
+                face_best = zb;
+                break;
+            }
+        }
+        CHECK_MSG(face_best == face_best, "face %zu: no answer", f);
+        best = face_best > best ? face_best : best;
+    }
+    return best;
+}
+
+/* A coarse icosphere (level 1, 80 faces) against a fine one of the same radius (level 4, 5120
+ * faces): A's vertices are vertices of B (the same midpoints, normalised alike), so A lies inside
+ * the convex B (checked: every vertex of B on the inner side of every face plane), where the
+ * distance is the least plane distance: h(A, B) exactly by the linear programs above. The other
+ * way B lies outside the convex A, where the distance is convex on each face: h(B, A) is the
+ * scan over B's vertices. Each face of A lies over some 64 faces of B, which its corners do not
+ * see: certified with few pieces beyond A's faces (the prisms of B's faces under each face, the
+ * rest refined only where d comes near its maximum), where refining every face towards B's
+ * resolution took 6656 pieces. */
+static void test_coarse_sphere_on_fine(void)
+{
+    grow_mesh ga = icosphere(1, 1.0), gb = icosphere(4, 1.0);
+    double(*pl)[4] = malloc(gb.nf * sizeof *pl);
+    face_planes(&gb, pl);
+    int concave = 0;
+    for (size_t t = 0; t < gb.nf; ++t)
+        for (size_t v = 0; v < gb.nv; ++v)
+            concave += pl[t][0] * gb.xyz[3 * v] + pl[t][1] * gb.xyz[3 * v + 1] + pl[t][2] * gb.xyz[3 * v + 2] > pl[t][3] + 1e-15;
+    CHECK_EQ_INT(concave, 0);
+    double exact = lp_inside(&ga, &gb, (const double(*)[4])pl);
+    double sampled = scan_sampled(&ga, &gb, 8);
+    printf("coarse sphere -> fine: exact (linear programs) %.17g, sampled %.17g\n", exact, sampled);
+    CHECK_MSG(exact >= sampled - 1e-14 && exact < sampled + 0.01, "exact %.17g against sampled %.17g", exact, sampled);
+    tg_mesh *a = make(&ga), *b = make(&gb);
+    tg_mesh_distance_result r;
+    const double tol = 1e-10;
+    CHECK_STATUS(run(a, b, tol, 1, NULL, &r), TG_OK);
+    check_interval("coarse sphere -> fine", &r, exact);
+    CHECK_MSG(r.pieces <= 4 * ga.nf, "%llu pieces for %zu faces of A (at most 4 a face)", (unsigned long long)r.pieces,
+              ga.nf);
+    CHECK_NEAR(scan_distance(&gb, r.point), r.distance, 1e-14);
+    tg_mesh_distance_result r2;
+    CHECK_STATUS(run(a, b, tol, 2, NULL, &r2), TG_OK);
+    CHECK(memcmp(&r, &r2, sizeof r) == 0);
+
+    double back = scan_vertices(&gb, &ga);
+    CHECK_STATUS(run(b, a, tol, 1, NULL, &r), TG_OK);
+    check_interval("fine sphere -> coarse", &r, back);
+    tg_mesh_destroy(a), tg_mesh_destroy(b);
+    free(pl);
+    grow_free(&ga), grow_free(&gb);
+}
+
 static int stop_at_once(void* user, const tg_mesh_distance_progress* p)
 {
     (void)p;
@@ -466,6 +607,7 @@ int main(void)
     test_ridge();
     test_fan();
     test_coarse_on_fine();
+    test_coarse_sphere_on_fine();
     test_garbage();
     return tg_test_finish();
 }

@@ -244,6 +244,16 @@ static inline double affine_at(const double g[3], const double* uv)
  * same crossing points. */
 static void clip(md_poly* P, const double h[3])
 {
+    bool all_in = true, all_out = true; /* the common cases, without the copy (the same result) */
+    for (int i = 0; i < P->n; ++i) {
+        double hv = affine_at(h, P->v[i]);
+        all_in &= hv <= 0.0, all_out &= hv > 0.0;
+    }
+    if (all_in) return;
+    if (all_out) {
+        P->n = 0;
+        return;
+    }
     md_poly out;
     out.n = 0;
     for (int i = 0; i < P->n && out.n < MD_CLIP_MAX + 3; ++i) {
@@ -555,22 +565,31 @@ static int piece_candidates(const md_ctx* c, const md_point* const p[3], uint32_
  * each side of the plane, so its maximum over a convex polygon is at a vertex. Polygons are taken
  * from a work stack, starting with the piece: the face whose prism holds the polygon's centroid
  * takes the part inside its prism, and the up to three convex parts outside (one per side plane)
- * go back on the stack; a polygon no prism holds (or a sliver) is bounded by the least over the
- * candidates of the largest kernel distance at its vertices (convexity), or halved when that
- * bound could raise the maximum (a sliver along the prisms' sides reaching over several faces). Exact, up to rounding,
- * where A lies on or near B and the candidates cover the piece: the cases the corner faces'
- * interpolants cannot resolve (a piece over a vertex or across several faces of B). The
- * candidates: B's faces whose boxes meet the piece's box grown by the corners' distances, or
- * when there are too many, those around the corners (any set gives a valid bound). +inf when
- * the work exceeds MD_PRISM_STEPS polygons, or once the bound reaches `enough`. */
+ * go back on the stack, each with the face across the side it was cut off by, which is tried
+ * first; a polygon no prism holds (or a sliver) is bounded by the least over the candidates of
+ * the largest kernel distance at its vertices (convexity), or halved when that bound could raise
+ * the maximum above `good` (a sliver along the prisms' sides reaching over several faces). A
+ * polygon's bound at most `good` (the level that spares the piece its refinement) is taken as it
+ * comes, without looking for a tighter one: so over a piece lying above many of B's faces (B
+ * finer than A) most polygons cost one face's test. Exact, up to rounding, where A lies on or
+ * near B and the candidates cover the piece, and where B is convex under the piece (the prisms
+ * then hold the faces' Voronoi regions, the gaps between them are bounded by the edge they
+ * open on): the cases the corner faces' interpolants cannot resolve (a piece over a vertex or
+ * across several faces of B). The candidates: B's faces whose boxes meet the piece's box grown
+ * by the corners' distances, or when there are too many, those around the corners (any set
+ * gives a valid bound). +inf when the work exceeds 8 polygons a candidate (plus 64, at most
+ * MD_PRISM_STEPS: near a maximum of d inside the piece the prisms cannot resolve it, and the
+ * slivers along their sides would multiply), or once the bound reaches `enough`. */
 #define MD_PRISM_STEPS 2048
 #define MD_POLY_LIST 64
-static double prism_bound(const md_ctx* c, uint32_t* stack, const md_point* const p[3], double enough)
+static double prism_bound(const md_ctx* c, uint32_t* stack, const md_point* const p[3], double enough,
+                          double good)
 {
     uint32_t cand[MD_CAND_MAX];
     double reach = fmax(p[0]->d, fmax(p[1]->d, p[2]->d));
     int nc = near_faces(c, stack, p, fmin(reach, enough), cand, MD_CAND_MAX);
     if (nc <= 0) nc = piece_candidates(c, p, cand);
+    const int max_steps = 8 * nc + 64 < MD_PRISM_STEPS ? 8 * nc + 64 : MD_PRISM_STEPS;
     /* per candidate, at the piece's corners: l (signed plane distance) and the side functions
      * g_e, >= 0 on the prism's side of edge e (inward normal nrm x edge); all affine in (u, v) */
     double l[MD_CAND_MAX][3], g[MD_CAND_MAX][3][3];
@@ -597,14 +616,17 @@ static double prism_bound(const md_ctx* c, uint32_t* stack, const md_point* cons
         }
     }
     md_poly work[MD_POLY_LIST];
+    int hint[MD_POLY_LIST]; /* the candidate across the edge a polygon was cut off by (-1: none) */
     int n = 1, steps = 0, last = -1;
+    hint[0] = -1;
     work[0].n = 3;
     work[0].v[0][0] = 0, work[0].v[0][1] = 0, work[0].v[1][0] = 1, work[0].v[1][1] = 0, work[0].v[2][0] = 0,
     work[0].v[2][1] = 1;
     double worst = 0.0;
     while (n > 0) {
-        if (++steps > MD_PRISM_STEPS) return INFINITY;
+        if (++steps > max_steps) return INFINITY;
         md_poly P = work[--n];
+        int h0 = hint[n];
         double area2 = 0.0, cen[2] = {0, 0};
         for (int k = 0; k < P.n; ++k) {
             const double *a = P.v[k], *b = P.v[(k + 1) % P.n];
@@ -613,7 +635,29 @@ static double prism_bound(const md_ctx* c, uint32_t* stack, const md_point* cons
         }
         int hold = -1; /* of the prisms holding the centroid (they are infinite), the nearest face */
         double hold_l = INFINITY;
-        if (area2 > 0x1p-40) /* slivers are bounded directly */
+        /* the neighbour across the edge the polygon was cut off by holds it, most often; taken
+         * without looking for a nearer face when its plane bounds the whole polygon by `good` */
+        if (area2 > 0x1p-40 && h0 >= 0 && ok[h0] && affine_at(g[h0][0], cen) >= 0.0 &&
+            affine_at(g[h0][1], cen) >= 0.0 && affine_at(g[h0][2], cen) >= 0.0) {
+            double w = 0.0;
+            for (int k = 0; k < P.n; ++k) w = fmax(w, fabs(affine_at(l[h0], P.v[k])));
+            if (w <= good) hold = h0;
+        }
+        if (hold < 0 && h0 >= 0 && ok[h0]) {
+            /* or, outside its prism (a gap over a convex edge of B), the neighbour's own distance
+             * at the polygon's vertices (convexity) when that changes nothing */
+            double w = 0.0, accept = fmax(worst + c->margin, good);
+            for (int k = 0; k < P.n && w <= accept; ++k) {
+                double u = P.v[k][0], vv = P.v[k][1], x[3];
+                for (int j = 0; j < 3; ++j) x[j] = (1.0 - u - vv) * p[0]->xyz[j] + u * p[1]->xyz[j] + vv * p[2]->xyz[j];
+                w = fmax(w, face_distance(c, x, cand[h0]));
+            }
+            if (w <= accept) {
+                worst = fmax(worst, w);
+                continue;
+            }
+        }
+        if (area2 > 0x1p-40 && hold < 0) /* slivers are bounded directly */
             for (int ci = 0; ci < nc; ++ci)
                 if (ok[ci] && affine_at(g[ci][0], cen) >= 0.0 && affine_at(g[ci][1], cen) >= 0.0 &&
                     affine_at(g[ci][2], cen) >= 0.0 && fabs(affine_at(l[ci], cen)) < hold_l)
@@ -622,7 +666,8 @@ static double prism_bound(const md_ctx* c, uint32_t* stack, const md_point* cons
             /* any candidate bounds it; the last one that held a polygon (a neighbour) first, and
              * no search past a bound that cannot raise the maximum */
             double best = INFINITY;
-            for (int o = -1; o < nc && best > worst + c->margin; ++o) {
+            double accept = fmax(worst + c->margin, good); /* a bound below both changes nothing */
+            for (int o = -1; o < nc && best > accept; ++o) {
                 int ci = o < 0 ? last : o;
                 if (ci < 0 || (o >= 0 && ci == last)) continue;
                 double w = 0.0;
@@ -642,7 +687,7 @@ static double prism_bound(const md_ctx* c, uint32_t* stack, const md_point* cons
                 double l2 = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
                 if (l2 > len2) len2 = l2, longest = k;
             }
-            if (best > worst + c->margin && len2 > 0x1p-90 && n + 2 <= MD_POLY_LIST) {
+            if (best > accept && len2 > 0x1p-90 && n + 2 <= MD_POLY_LIST) {
                 const double *a = P.v[longest], *b = P.v[(longest + 1) % P.n];
                 double mid[2] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])}, d[2] = {b[0] - a[0], b[1] - a[1]};
                 /* h(u, v) = ((u, v) - mid) . d as corner values (the corners are (0,0), (1,0), (0,1)) */
@@ -652,21 +697,28 @@ static double prism_bound(const md_ctx* c, uint32_t* stack, const md_point* cons
                 md_poly lo = P, hi = P;
                 clip(&lo, h);
                 clip(&hi, nh);
-                if (lo.n >= 3) work[n++] = lo;
-                if (hi.n >= 3) work[n++] = hi;
+                if (lo.n >= 3) hint[n] = last, work[n++] = lo;
+                if (hi.n >= 3) hint[n] = last, work[n++] = hi;
                 continue;
             }
             worst = fmax(worst, best);
         } else {
             last = hold;
             for (int e = 0; e < 3 && P.n >= 3; ++e) {
+                bool inside = true; /* P wholly on the prism's side of e: nothing to cut */
+                for (int k = 0; k < P.n && inside; ++k) inside = affine_at(g[hold][e], P.v[k]) > 0.0;
+                if (inside) continue;
                 double neg[3] = {-g[hold][e][0], -g[hold][e][1], -g[hold][e][2]};
                 md_poly out = P;
                 clip(&out, g[hold][e]); /* g_e <= 0: outside across edge e */
                 clip(&P, neg);          /* g_e >= 0 */
                 if (out.n >= 3) {
                     if (n == MD_POLY_LIST) return INFINITY;
-                    work[n++] = out;
+                    uint32_t o = c->bopp[3 * (size_t)cand[hold] + (size_t)e];
+                    int across = -1;
+                    for (int ci = 0; o != TG_NONE && ci < nc && across < 0; ++ci)
+                        if (cand[ci] == o / 3) across = ci;
+                    hint[n] = across, work[n++] = out;
                 }
             }
             for (int k = 0; k < P.n; ++k) worst = fmax(worst, fabs(affine_at(l[hold], P.v[k])));
@@ -688,17 +740,12 @@ static double piece_bound(const md_ctx* c, uint32_t* stack, const md_point* cons
                 uint32_t h = 3 * S[a] + (uint32_t)k, o = c->bopp[h];
                 if (o != TG_NONE && o / 3 == S[b]) ub = fmin(ub, split_bound(c, p, h) + c->margin);
             }
-    /* only where the piece would otherwise be refined, and where its corners lie on B or nearly
-     * (within 1/64 of its longest edge): the prisms cost more, and help where the interpolants
-     * are far above a distance that is about 0 */
-    if (ub > c->refine_above) {
-        double reach = fmax(p[0]->d, fmax(p[1]->d, p[2]->d)), edge2 = 0.0;
-        for (int i = 0; i < 3; ++i) {
-            const double *x = p[i]->xyz, *y = p[(i + 1) % 3]->xyz;
-            edge2 = fmax(edge2, (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) + (x[2] - y[2]) * (x[2] - y[2]));
-        }
-        if (reach * reach * 4096.0 <= edge2) ub = fmin(ub, prism_bound(c, stack, p, ub - c->margin) + c->margin);
-    }
+    /* only where the piece would otherwise be refined: the prisms cost more, and help where the
+     * interpolants are far above the distance (a piece over many of B's faces, B much finer
+     * than A, or A on B across B's edges and vertices); `good` lets them stop at the bound
+     * that spares the refinement */
+    if (ub > c->refine_above)
+        ub = fmin(ub, prism_bound(c, stack, p, ub - c->margin, c->refine_above - c->margin) + c->margin);
     return ub;
 }
 

@@ -80,6 +80,25 @@ def grid(n: int, amplitude: float = 0.05):
     return v, f
 
 
+def flat_grid(n: int) -> "trigeo.Mesh":
+    """The unit square z = 0 as an n x n grid of vertices (n + 1)^2, two triangles a cell: a flat
+    mesh whose geodesic distances are the Euclidean ones (curve tests)."""
+    import numpy as np
+    import trigeo
+    i, j = np.meshgrid(np.arange(n + 1), np.arange(n + 1), indexing="ij")
+    v = np.stack([i.ravel() / n, j.ravel() / n, np.zeros(i.size)], axis=1)
+    a = (i[:-1, :-1] * (n + 1) + j[:-1, :-1]).ravel()
+    f = np.concatenate([np.stack([a, a + n + 1, a + n + 2], 1), np.stack([a, a + n + 2, a + 1], 1)])
+    return trigeo.Mesh(v, f)
+
+
+def seg_dist(p, a, b):
+    """Euclidean distance from each row of p (k, 3) to the segment a b."""
+    import numpy as np
+    t = np.clip(((p - a) @ (b - a)) / ((b - a) @ (b - a)), 0, 1)
+    return np.linalg.norm(p - (a + t[:, None] * (b - a)), axis=1)
+
+
 @pytest.fixture(scope="session")
 def spot() -> "trigeo.Mesh":
     return trigeo.load(SPOT)

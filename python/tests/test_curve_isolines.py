@@ -9,20 +9,7 @@ import numpy as np
 import pytest
 
 import trigeo
-from conftest import SPOT, corpus, run_cli
-
-
-def flat_grid(n):
-    i, j = np.meshgrid(np.arange(n + 1), np.arange(n + 1), indexing="ij")
-    v = np.stack([i.ravel() / n, j.ravel() / n, np.zeros(i.size)], axis=1)
-    a = (i[:-1, :-1] * (n + 1) + j[:-1, :-1]).ravel()
-    f = np.concatenate([np.stack([a, a + n + 1, a + n + 2], 1), np.stack([a, a + n + 2, a + 1], 1)])
-    return trigeo.Mesh(v, f)
-
-
-def seg_dist(p, a, b):
-    t = np.clip(((p - a) @ (b - a)) / ((b - a) @ (b - a)), 0, 1)
-    return np.linalg.norm(p - (a + t[:, None] * (b - a)), axis=1)
+from conftest import SPOT, corpus, flat_grid, run_cli, seg_dist
 
 
 def test_flat_squares_and_stadium():

@@ -721,7 +721,7 @@ static int run(int argc, char** argv)
         return cli_usage("path", "-o takes PATH.obj (the polyline) or PATH.json (the whole answer)");
     int rc = cli_check_outputs(outputs, 1, inputs, 1);
     if (rc != CLI_OK) return rc;
-    if (!through && from && (strchr(from, ';') || !strcmp(from, "boundary") || !strncmp(from, "curve:", 5))) {
+    if (!through && from && (strchr(from, ';') || !strcmp(from, "boundary") || !strncmp(from, "curve:", 6))) {
         /* curve sources: `curve:FILE`, `boundary`, with point SPECs beside them */
         char* list = strdup(from);
         curve_from cf;

@@ -98,9 +98,9 @@ void tg__field_points_in(const tg_geodesic* g, const tg_surface_point* points, s
     for (size_t i = 0; i < n; ++i) out[i] = tg__surface_in(g, &points[i]);
 }
 
-tg_status tg__curve_points_in(tg_geodesic_workspace* ws, const tg_surface_point* sources, size_t source_count,
+tg_status tg__field_points_in_workspace(tg_geodesic_workspace* ws, const tg_surface_point* sources, size_t source_count,
                               const tg_surface_segment* segments, size_t segment_count, const tg_surface_point* points,
-                              size_t point_count, tg__curve_in* out)
+                              size_t point_count, tg__field_points_ws* out)
 {
     const tg_geodesic* g = ws->geo;
     memset(out, 0, sizeof *out);
@@ -124,16 +124,6 @@ tg_status tg__curve_points_in(tg_geodesic_workspace* ws, const tg_surface_point*
     return TG_OK;
 }
 
-bool tg__field_points_in_workspace(tg_geodesic_workspace* ws, const tg_surface_point* sources, size_t source_count,
-                                   const tg_surface_point* points, size_t point_count,
-                                   const tg_surface_point** out_sources, const tg_surface_point** out_points)
-{
-    tg__curve_in in;
-    tg_status st = tg__curve_points_in(ws, sources, source_count, NULL, 0, points, point_count, &in);
-    *out_sources = in.sources, *out_points = in.points;
-    return st == TG_OK;
-}
-
 tg_status tg__field_run_points(const tg_geodesic* g, tg_geodesic_workspace* ws, const tg_surface_point* sources,
                                size_t source_count, const tg_surface_segment* segments, size_t segment_count,
                                const tg_surface_point* points, size_t point_count, const tg_field_options* options,
@@ -142,8 +132,8 @@ tg_status tg__field_run_points(const tg_geodesic* g, tg_geodesic_workspace* ws, 
     tg_geodesic_workspace* own;
     tg_status st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
     if (st != TG_OK) return st;
-    tg__curve_in in;
-    st = tg__curve_points_in(ws, sources, source_count, segments, segment_count, points, point_count, &in);
+    tg__field_points_ws in;
+    st = tg__field_points_in_workspace(ws, sources, source_count, segments, segment_count, points, point_count, &in);
     if (st != TG_OK) {
         tg__workspace_release(own);
         return st;

@@ -26,12 +26,18 @@ int tg__field_threads(const tg_field_options* opt);
  * points of the caller, into out[0 .. n): the one conversion of a query's points, made where
  * they enter (a tg__field_query carries no other form). */
 void tg__field_points_in(const tg_geodesic* g, const tg_surface_point* points, size_t n, tg_surface_point* out);
-/* The same for one query's sources and points, into the workspace's buffer (it grows to the
- * largest query and is kept, so a call given a workspace allocates nothing after its first):
- * *out_sources, *out_points (NULL for none). false when out of memory. */
-bool tg__field_points_in_workspace(tg_geodesic_workspace* ws, const tg_surface_point* sources, size_t source_count,
-                                   const tg_surface_point* points, size_t point_count,
-                                   const tg_surface_point** out_sources, const tg_surface_point** out_points);
+
+/* A query's sources, curve segments (two points each) and points in the solver's form, into the
+ * workspace's buffer (it grows to the largest query and is kept, so a call given a workspace
+ * allocates nothing after its first); NULL for none. The segments are checked
+ * (tg_surface_segment_validate): TG_ERR_INVALID_ARGUMENT for a bad one; TG_ERR_OUT_OF_MEMORY. */
+typedef struct tg__field_points_ws {
+    const tg_surface_point *sources, *segments, *points;
+} tg__field_points_ws;
+tg_status tg__field_points_in_workspace(tg_geodesic_workspace* ws, const tg_surface_point* sources,
+                                        size_t source_count, const tg_surface_segment* segments, size_t segment_count,
+                                        const tg_surface_point* points, size_t point_count, tg__field_points_ws* out);
+
 
 /* Sites of several point sources and curve segments (curve Voronoi cells, curve matrix rows),
  * gathered by site in the solver's form: site k's sources are src[src_start[k] .. src_start[k +
@@ -48,17 +54,6 @@ tg_status tg__curve_sites_make(const tg_geodesic* g, const tg_allocator* a, cons
                                size_t segment_count, const uint32_t* segment_site, size_t site_count,
                                tg__curve_sites* out);
 void tg__curve_sites_free(const tg_allocator* a, tg__curve_sites* s);
-
-/* A query's sources, curve segments (two points each) and points in the solver's form, into the
- * workspace's buffer (as tg__field_points_in_workspace; NULL for none). The segments are checked
- * (tg_surface_segment_validate): TG_ERR_INVALID_ARGUMENT for a bad one, TG_ERR_OUT_OF_MEMORY.
- *  */
-typedef struct tg__curve_in {
-    const tg_surface_point *sources, *segments, *points;
-} tg__curve_in;
-tg_status tg__curve_points_in(tg_geodesic_workspace* ws, const tg_surface_point* sources, size_t source_count,
-                              const tg_surface_segment* segments, size_t segment_count, const tg_surface_point* points,
-                              size_t point_count, tg__curve_in* out);
 
 /* The run of tg_geodesic_field_at and tg_geodesic_curve_field after their argument checks: the
  * workspace (NULL: a temporary one), the points in the solver's form, one run, the distances

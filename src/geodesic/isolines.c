@@ -1706,8 +1706,8 @@ tg_status tg_geodesic_curve_isolines(const tg_geodesic* g, tg_geodesic_workspace
     if (st == TG_OK) st = tg__workspace_acquire(g, options ? options->allocator : NULL, &ws, &own);
     if (st == TG_OK) {
         const tg_allocator* a = options && options->allocator ? options->allocator : &g->allocator;
-        tg__curve_in in;
-        st = tg__curve_points_in(ws, sources, source_count, segments, segment_count, NULL, 0, &in);
+        tg__field_points_ws in;
+        st = tg__field_points_in_workspace(ws, sources, source_count, segments, segment_count, NULL, 0, &in);
         if (st == TG_OK)
             st = isolines_of(g, &ws->field, in.sources, source_count, in.segments, segment_count, levels, level_count,
                              options, a, isolines, out_vertex_distance, out_stats);

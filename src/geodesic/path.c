@@ -280,8 +280,8 @@ tg_status tg_geodesic_path(const tg_geodesic* g, tg_geodesic_workspace* ws, cons
 /* The exact path from the nearest of the sources and curves to `to` (converted: in), as exact_path
  * does it for one source: the propagation from all of them ordered toward `to`, the backtrack to
  * the point of a source or a segment it comes from. */
-static tg_status curve_route(tg_geodesic_workspace* ws, const request* rq, const tg__curve_in* in, size_t source_count,
-                             size_t segment_count, tg_path* path)
+static tg_status curve_route(tg_geodesic_workspace* ws, const request* rq, const tg__field_points_ws* in,
+                             size_t source_count, size_t segment_count, tg_path* path)
 {
     const tg_geodesic* g = ws->geo;
     tg__node target = tg__node_from_surface(in->points);
@@ -320,8 +320,8 @@ tg_status tg_geodesic_curve_path(const tg_geodesic* g, tg_geodesic_workspace* ws
     tg_geodesic_workspace* own;
     st = tg__workspace_acquire(g, NULL, &ws, &own);
     if (st != TG_OK) return st;
-    tg__curve_in in;
-    st = tg__curve_points_in(ws, sources, source_count, segments, segment_count, to, 1, &in);
+    tg__field_points_ws in;
+    st = tg__field_points_in_workspace(ws, sources, source_count, segments, segment_count, to, 1, &in);
     if (st == TG_OK) st = curve_route(ws, &rq, &in, source_count, segment_count, path);
     if (st != TG_OK) tg__path_clear(path);
     tg__workspace_release(own);

@@ -18,6 +18,7 @@
  * distance back along the ray, an image like a point source's. */
 #include "core/predicates.h"
 #include "geodesic/path/stages.h"
+#include "kernels/point_triangle.h"
 
 #include <string.h>
 
@@ -88,13 +89,13 @@ static tg_vec3 image_pos(const tg_geodesic* g, uint32_t o, const double s[2])
     return tg_v3_add(tg__gpos(g, g->tri[o]), tg_v3_add(tg_v3_scale(u, s[0]), tg_v3_scale(v, s[1])));
 }
 
-/* Distance from p to the segment a b (in space). */
+/* Distance from p to the segment a b (in space): the seed's kernel (kernels/point_triangle.h). */
 static double segment_dist(tg_vec3 p, tg_vec3 a, tg_vec3 b)
 {
-    tg_vec3 ab = tg_v3_sub(b, a);
-    double ll = tg_v3_dot(ab, ab), t = ll > 0.0 ? tg_v3_dot(tg_v3_sub(p, a), ab) / ll : 0.0;
-    t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
-    return tg_v3_dist(p, tg_v3_add(a, tg_v3_scale(ab, t)));
+    tg_vec3 e = tg_v3_sub(b, a), disp;
+    double sq;
+    tg__segment_closest_3d(tg_v3_sub(a, p), e, tg_v3_len_sq(e), &disp, &sq);
+    return sqrt(sq);
 }
 
 /* A run of several sources and curves (the backtrack's source NULL): does the image s (in o's

@@ -107,9 +107,7 @@ typedef struct curve_progress {
 static int report_piece(void* user, const tg_field_progress* p)
 {
     const curve_progress* cp = user;
-    tg_field_progress q = *p;
-    q.rows_done = cp->done, q.row_count = cp->samples;
-    q.settled_fraction = (double)cp->done / (double)cp->samples;
+    tg_field_progress q = tg__field_progress_within(p, cp->done, cp->samples);
     return cp->caller->progress(cp->caller->progress_user, &q);
 }
 

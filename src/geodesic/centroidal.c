@@ -35,9 +35,7 @@ typedef struct cvt_progress {
 static int report_inner(void* user, const tg_field_progress* p)
 {
     const cvt_progress* cp = user;
-    tg_field_progress q = *p;
-    q.rows_done = cp->done, q.row_count = cp->rows;
-    q.settled_fraction = (double)cp->done / (double)cp->rows;
+    tg_field_progress q = tg__field_progress_within(p, cp->done, cp->rows);
     return cp->caller->progress(cp->caller->progress_user, &q);
 }
 

@@ -67,6 +67,15 @@ void tg__field_progress_rows(const tg__field_run* run, size_t rows_done, size_t 
     if (out->settled_fraction > 1.0) out->settled_fraction = 1.0;
 }
 
+tg_field_progress tg__field_progress_within(const tg_field_progress* p, size_t rows_done, size_t rows)
+{
+    tg_field_progress q = *p;
+    q.rows_done = rows_done, q.row_count = rows;
+    q.settled_fraction = rows ? ((double)rows_done + p->settled_fraction) / (double)rows : 1.0;
+    if (q.settled_fraction > 1.0) q.settled_fraction = 1.0;
+    return q;
+}
+
 int tg__field_report_single(void* user, const tg__field_run* run)
 {
     const tg_field_options* opt = user;

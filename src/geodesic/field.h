@@ -73,6 +73,10 @@ void tg__field_progress_of(const tg__field_run* run, tg_field_progress* out);
 /* The same for row rows_done of `rows` (batches, sources added one at a time): the settled share
  * counts the rows done as whole. */
 void tg__field_progress_rows(const tg__field_run* run, size_t rows_done, size_t rows, tg_field_progress* out);
+/* An inner call's report p seen as part of row rows_done of `rows` (calls made one after another:
+ * paths of a route or a Bézier curve, the fields of an iteration): rows_done, row_count = rows,
+ * the share (rows_done + p's share) / rows, at most 1. */
+tg_field_progress tg__field_progress_within(const tg_field_progress* p, size_t rows_done, size_t rows);
 /* The progress hook of a single field (progress_user: the caller's tg_field_options): the
  * caller's callback with this run's figures. */
 int tg__field_report_single(void* user, const tg__field_run* run);

@@ -35,9 +35,7 @@ typedef struct route_progress {
 static int report_piece(void* user, const tg_field_progress* p)
 {
     const route_progress* rp = user;
-    tg_field_progress q = *p;
-    q.rows_done = rp->done, q.row_count = rp->legs;
-    q.settled_fraction = ((double)rp->done + p->settled_fraction) / (double)rp->legs;
+    tg_field_progress q = tg__field_progress_within(p, rp->done, rp->legs);
     return rp->caller->progress(rp->caller->progress_user, &q);
 }
 

@@ -35,6 +35,18 @@ def test_equals_cli_and_path_curve(tmp_path):
     r = run_cli("field", name, "--from", "boundary", "--csv", str(out), "--quiet")
     assert r.returncode == 0, r.stderr
     assert np.array_equal(np.loadtxt(out, delimiter=",", skiprows=1)[:, 1], m.field(boundary=True))
+    # on 2 threads, and at points (--at, SPECs and x y z), mixed with a point source: the same bits
+    r = run_cli("field", name, "--from", "boundary;v:100", "--threads", "2", "--csv", str(out), "--quiet")
+    assert r.returncode == 0, r.stderr
+    assert np.array_equal(np.loadtxt(out, delimiter=",", skiprows=1)[:, 1], m.field([100], boundary=True, threads=2))
+    pts = tmp_path / "at.txt"
+    xyz = m.vertices[[7, 4000]] * 0.5 + m.vertices[[8, 4001]] * 0.5
+    pts.write_text("v:3\nf:10:0.2,0.3,0.5\n" + "".join("%.17g %.17g %.17g\n" % tuple(q) for q in xyz))
+    at = tmp_path / "at.csv"
+    r = run_cli("field", name, "--from", "boundary;v:100", "--at", str(pts), "-o", str(at), "--quiet")
+    assert r.returncode == 0, r.stderr
+    want = m.field_at([100], [3, trigeo.SurfacePoint(10, (0.2, 0.3, 0.5))] + list(xyz), boundary=True)
+    assert np.array_equal(np.loadtxt(at), want)
     # a path written as .obj is a curve for the CLI; its points are one for Python: the same field
     s = trigeo.load(SPOT)
     p = s.path(17, 2500)

@@ -491,22 +491,24 @@ double tg__fan_total(const tg_geodesic* g, uint32_t v, uint32_t f, int k, bool* 
 
 /* Pseudo-source vertices: not a single closed fan of crossable edges (boundary, non-manifold,
  * pinched, a non-orientable seam), touching a flat or skipped face, or a total angle beyond
- * 2 pi by more than the flat margin. */
+ * 2 pi by more than the flat margin. And each vertex's shortest edge. */
 static void classify_vertices(tg_geodesic* g)
 {
     size_t nv = g->vertex_count;
     for (size_t v = 0; v < nv; ++v) {
         uint32_t n = 0, first = TG_NONE;
         bool pseudo = false;
-        double angle = 0.0;
+        double angle = 0.0, shortest = INFINITY;
         for (uint32_t i = g->corner_start[v]; i < g->corner_start[v + 1]; ++i) {
             uint32_t c = g->corners[i], f = c / 3;
             if (g->fflags[f] & TG__F_SKIP) continue;
+            shortest = fmin(shortest, fmin(g->frame[c].len, g->frame[tg_halfedge_prev(c)].len));
             if (g->fflags[f] & TG__F_FLAT) pseudo = true;
             if (first == TG_NONE) first = c;
             angle += tg__corner_angle(g, f, (int)(c % 3));
             n++;
         }
+        g->edge_min[v] = shortest;
         if (n == 0) continue;
         if (!pseudo && angle > 2.0 * TG__PI * (1.0 + TG__FLAT_ANGLE_REL)) pseudo = true;
         if (!pseudo) { /* one closed fan: n steps around v come back to the first face */
@@ -634,7 +636,7 @@ void tg_geodesic_destroy(tg_geodesic* g)
     tg_allocator a = g->allocator;
     void* owned[] = {g->mesh_vertex, g->solver_vertex, g->mesh_face, g->solver_face, g->xyz, g->tri, g->opp,
                      g->ring, g->comp, g->frame, g->vflags, g->fflags, g->corner_start, g->corners, g->adj_start,
-                     g->adj, g->comp_vertices};
+                     g->adj, g->comp_vertices, g->edge_min};
     for (size_t i = 0; i < sizeof owned / sizeof owned[0]; ++i) tg__free(&a, owned[i]);
     tg__free(&a, g);
 }
@@ -650,7 +652,10 @@ static bool alloc_tables(tg_geodesic* g)
     g->frame = tg__alloc_array(a, 3 * nf, sizeof(tg__frame));
     g->fflags = tg__calloc_array(a, nf, 1);
     g->vflags = tg__calloc_array(a, nv, 1);
-    return g->ring && g->opp && g->frame && g->fflags && g->vflags;
+    g->edge_min = tg__alloc_array(a, nv, sizeof(double));
+    if (g->edge_min)
+        for (size_t v = 0; v < nv; ++v) g->edge_min[v] = INFINITY;
+    return g->ring && g->opp && g->frame && g->fflags && g->vflags && g->edge_min;
 }
 
 tg_status tg_geodesic_create(const tg_mesh* mesh, const tg_geodesic_options* options, tg_geodesic** out)
@@ -685,7 +690,7 @@ size_t tg_geodesic_memory_bytes(const tg_geodesic* g)
 {
     if (!g) return 0;
     size_t nv = g->vertex_count, nf = g->face_count, u = sizeof(uint32_t);
-    return sizeof *g + nv * (2 * u + 3 * sizeof(double) + 1) + (nv + 1) * 2 * u + nf * (2 * u + 3 * u + 1) +
+    return sizeof *g + nv * (2 * u + 4 * sizeof(double) + 1) + (nv + 1) * 2 * u + nf * (2 * u + 3 * u + 1) +
            3 * nf * (3 * u + sizeof(tg__frame)) + (size_t)g->adj_start[nv] * u +
            (size_t)g->corner_start[nv] * u + (size_t)g->comp_count * u;
 }

@@ -82,6 +82,7 @@ struct tg_geodesic {
     uint32_t* comp; /* F: the mesh's component of each face */
     tg__frame* frame; /* 3F: halfedge frames */
     uint8_t* vflags;  /* V: TG__V_* */
+    double* edge_min; /* V: the shortest edge at each vertex (of the kept faces; +inf: none) */
     uint8_t* fflags;  /* F: TG__F_* */
     uint32_t* corner_start; /* V + 1: the corners of v are corners[corner_start[v] .. corner_start[v + 1]) */
     uint32_t* corners;      /* corners 3f + k with tri[3f + k] == v, ascending (so by face) */

@@ -186,7 +186,7 @@ typedef struct tg__lane_relax {
  * qids: the trimmed lists whose windows the merge evaluates at query points or records for
  * levels, as the serial engine does while they cross), and its own copies of the list scratch
  * (list, keys, hits). */
-#define TG__LANE_BUFFERS(X) X(child) X(child_rec) X(relax) X(freed) X(qids) X(list) X(keys) X(hits)
+#define TG__LANE_BUFFERS(X) X(child) X(child_rec) X(relax) X(freed) X(qids) X(ready) X(list) X(keys) X(hits)
 
 /* One thread's buffers (TG__LANE_BUFFERS). */
 typedef struct tg__field_lane {
@@ -200,10 +200,13 @@ typedef struct tg__field_lane {
     char pad[128]; /* lanes are written by different threads: no cache line shared */
 } tg__field_lane;
 
-/* Where the results of one list of a round lie: its lane, and the ranges in the lane's buffers. */
+/* Where the results of one list (or one vertex) of a round lie: its lane, and the ranges in the
+ * lane's buffers (a vertex's: its children, relaxed neighbours and the halfedges whose lists it
+ * releases, `ready`; emit_here: it emits on thread 0 in the merge, as in the serial engine;
+ */
 typedef struct tg__lane_task {
     uint32_t lane;
-    uint32_t child0, child1, relax0, relax1, freed0, freed1, qids0, qids1;
+    uint32_t child0, child1, relax0, relax1, freed0, freed1, qids0, qids1, ready0, ready1, emit_here;
 } tg__lane_task;
 
 /* The engine's scratch: tables sized for the mesh once, buffers that grow to the largest run
@@ -300,6 +303,7 @@ typedef struct tg__field_run {
     size_t settled, referenced;
     uint64_t work_since_check;
     double wave_wall_s;   /* several threads: the waves' wall time (the rest of thread 0's is serial) */
+    int vertex_wave;      /* several threads: the wave under way takes vertices of a round, not lists */
     double next_check_s;
     size_t next_bound_check; /* q->stop_at_points: the settled count of the next look at the bounds */
     /* results: vertex distances and predecessors are the scratch's (solver numbering) */

@@ -37,7 +37,7 @@
  * with no record (a constant NULL) and no lines (a constant false) compile to the code without
  * them. */
 
-enum { VS_INSIDE = 1, VS_SOURCE = 2, VS_TOUCHED = 4 }; /* fs->inside */
+enum { VS_INSIDE = 1, VS_SOURCE = 2, VS_TOUCHED = 4, VS_ROUND = 8 }; /* fs->inside (VS_ROUND: propagate_rounds) */
 enum { Q_QUEUED = 1, Q_TOUCHED = 2 };                  /* fs->queued */
 
 /* Notes that a run wrote the entries of vertex or halfedge `id` (flag `bit` in `flags[id]`, the
@@ -354,13 +354,14 @@ static TG__ALWAYS_INLINE bool window_ends(const tg_geodesic* g, uint32_t h, doub
 }
 
 /* Adds the window [c0, c1] on halfedge h (its end distances d0, d1: window_ends) to h's list,
- * unless it is dominated or beyond the distance limit. */
+ * unless it is dominated (not asked again when `checked`: a lane's child, checked against the
+ * distances as its wave began) or beyond the distance limit. */
 static TG__ALWAYS_INLINE bool store_window(tg__field_run* run, uint32_t h, double c0, double c1, double x, double y,
                                            double sigma, double d0, double d1, uint32_t tag, const tg__lm_rec* rec,
-                                           bool line)
+                                           bool line, bool checked)
 {
     tg__field_scratch* fs = run->fs;
-    if (dominated(run, h, c0, c1, d0, d1)) {
+    if (!checked && dominated(run, h, c0, c1, d0, d1)) {
         run->stats.windows_filtered++;
         return true;
     }
@@ -395,7 +396,7 @@ static TG__ALWAYS_INLINE bool push_window(tg__field_run* run, uint32_t h, double
         run->stats.windows_filtered++;
         return true;
     }
-    return store_window(run, h, c0, c1, x, y, sigma, d0, d1, tag, rec, line);
+    return store_window(run, h, c0, c1, x, y, sigma, d0, d1, tag, rec, line, false);
 }
 
 /* The interval [t0, t1] of halfedge e (face e / 3 on its +y side) lit from (x, y) of e's frame
@@ -1139,6 +1140,38 @@ static tg_status propagate_serial(tg__field_run* run)
 #define ROUND_SHARE 8
 #define WAVE_MIN 16
 
+/* Merges ask for the tables of the item MERGE_AHEAD on early (cache prefetch): the lanes just
+ * read them on other cores. */
+#define MERGE_AHEAD 4
+
+/* A task's corner distances (or relaxed neighbours) from its lane, applied in the lane's order. */
+static bool merge_relax(tg__field_run* run, const tg__field_lane* L, const tg__lane_task* t)
+{
+    tg__field_scratch* fs = run->fs;
+    const tg__lane_relax* r = L->relax.data;
+    for (uint32_t i = t->relax0; i < t->relax1; ++i) {
+        if (r[i].d < fs->dist[r[i].v] && !isnan(r[i].theta)) ((double*)fs->lm_theta.data)[r[i].v] = r[i].theta;
+        if (!relax_vertex(run, r[i].v, r[i].d, r[i].how)) return false;
+    }
+    return true;
+}
+
+/* A task's children from its lane, stored as the serial engine stores them (with their log map
+ * records). */
+static bool merge_children(tg__field_run* run, const tg__field_lane* L, const tg__lane_task* t)
+{
+    const tg__lane_child* c = L->child.data;
+    const tg__lm_rec* rec = run->q->logmap ? L->child_rec.data : NULL;
+    for (uint32_t i = t->child0; i < t->child1; ++i) {
+        if (i + MERGE_AHEAD < t->child1) TG__PREFETCH_FACE(run, c[i + MERGE_AHEAD].h);
+        const tg__lm_rec* ri = rec && !isnan(rec[i].base) ? &rec[i] : NULL;
+        if (!store_window(run, c[i].h, c[i].c0, c[i].c1, c[i].x, c[i].y, c[i].sigma, c[i].d0, c[i].d1, c[i].tag, ri,
+                          TG__TAG_ORIGIN(c[i].tag) == TG__ORIGIN_LINE, true))
+            return false;
+    }
+    return true;
+}
+
 /* The results of list h, in its lane, applied to the shared state in the serial engine's order:
  * the windows evaluated at query points and recorded (the list still in its slots), the corner,
  * the released slots, the children (with their log map records). */
@@ -1152,21 +1185,118 @@ static bool merge_task(tg__field_run* run, uint32_t h, const tg__lane_task* t)
         tg__field_queries_cross(run, h, fs->windows.data, ids, n);
         if (run->q->record_levels && !tg__field_record_cross(run, h, fs->windows.data, ids, n)) return false;
     }
-    const tg__lane_relax* r = L->relax.data;
-    for (uint32_t i = t->relax0; i < t->relax1; ++i) {
-        if (r[i].d < fs->dist[r[i].v] && !isnan(r[i].theta)) ((double*)fs->lm_theta.data)[r[i].v] = r[i].theta;
-        if (!relax_vertex(run, r[i].v, r[i].d, r[i].how)) return false;
-    }
+    if (!merge_relax(run, L, t)) return false;
     const uint32_t* freed = L->freed.data;
     for (uint32_t i = t->freed0; i < t->freed1; ++i) win_release(fs, freed[i]);
-    const tg__lane_child* c = L->child.data;
-    const tg__lm_rec* rec = run->q->logmap ? L->child_rec.data : NULL;
-    for (uint32_t i = t->child0; i < t->child1; ++i) {
-        const tg__lm_rec* ri = rec && !isnan(rec[i].base) ? &rec[i] : NULL;
-        if (!store_window(run, c[i].h, c[i].c0, c[i].c1, c[i].x, c[i].y, c[i].sigma, c[i].d0, c[i].d1, c[i].tag, ri,
-                          TG__TAG_ORIGIN(c[i].tag) == TG__ORIGIN_LINE))
+    return merge_children(run, L, t);
+}
+
+/* ---- several threads: the vertices of a round ----
+ * A round of at least VERTEX_WAVE_MIN vertices takes them off the front first (thread 0: the
+ * heap), then each vertex does on a lane what front_step does once it has left the front (its
+ * emission as children, its neighbours relaxed along its edges, the lists it releases), read
+ * against the distances and lists as the round began; the merge applies them in the order the
+ * vertices left the front. The round takes vertices only while their keys stay below the first
+ * one's plus the shortest edge at any vertex taken (the light edges of Meyer and Sanders'
+ * delta-stepping): no vertex of the round can then lower another along an edge, so none is
+ * taken at a distance the serial engine would have found stale. Distances only shrink and flags
+ * only rise before the merge, so what a lane leaves out (a neighbour already as near, a list
+ * queued) stays out; a list a lane found empty and the merge then fills (another vertex's
+ * emission) is released by the merge when its face's far corner left the front in the round.
+ * The mesh's memory, which the front's steps wait for on a million-face mesh, is then read on
+ * every thread. */
+#define VERTEX_WAVE_MIN 32
+#define VERTEX_EMITS 0x80000000u /* in a round's item: the vertex emits (TG__MAX_VERTICES is below) */
+
+/* Neighbour u at du along an edge from `from`, kept for the merge unless no shorter (or, runs that
+ * mark ties, not as short to the margin) than its distance as the round began. */
+static TG__ALWAYS_INLINE bool lane_relax_edge(tg__field_run* run, tg__field_lane* L, uint32_t u, double du,
+                                              uint32_t from)
+{
+    double cur = run->fs->dist[u];
+    if (!(du < cur) && !(run->q->ties && du <= cur * (1.0 + TG__TIE_REL))) return true;
+    if (!lane_grow(run->fs, L, &L->relax, 1)) return false;
+    tg__lane_relax r = {u, du, {TG_NONE, from, 0.0, 0.0}, NAN};
+    ((tg__lane_relax*)L->relax.data)[L->relax.count++] = r;
+    return true;
+}
+
+/* Halfedge h's list, to be released in the merge unless already queued or (unless `any`: the
+ * vertex's own emission may fill it) empty as the round began. */
+static TG__ALWAYS_INLINE bool lane_release(tg__field_run* run, tg__field_lane* L, uint32_t h, bool any)
+{
+    const tg__field_scratch* fs = run->fs;
+    if ((fs->queued[h] & Q_QUEUED) || (!any && fs->head[h] == TG_NONE)) return true;
+    if (!lane_grow(run->fs, L, &L->ready, 1)) return false;
+    ((uint32_t*)L->ready.data)[L->ready.count++] = h;
+    return true;
+}
+
+/* Vertex `item` of a round (VERTEX_EMITS when it emits) on lane L: emit_vertex, relax_neighbours
+ * and release_lists, in that order, into the lane. A vertex emitting into a zero-area face emits
+ * in the merge instead (emit_face_point writes as it goes): k->emit_here. */
+static bool vertex_lane(tg__field_run* run, tg__field_lane* L, uint32_t item, tg__lane_task* k)
+{
+    const tg__field_scratch* fs = run->fs;
+    const tg_geodesic* g = fs->g;
+    uint32_t v = item & ~VERTEX_EMITS;
+    bool emitter = (item & VERTEX_EMITS) != 0, emits = emitter;
+    double d = fs->dist[v];
+    uint32_t i0 = g->corner_start[v], i1 = g->corner_start[v + 1];
+    for (uint32_t i = i0; i < i1 && emits; ++i) {
+        uint8_t ff = g->fflags[g->corners[i] / 3];
+        if (!(ff & TG__F_SKIP) && (ff & TG__F_FLAT)) k->emit_here = 1, emits = false;
+    }
+    for (uint32_t i = i0; i < i1 && emits; ++i) {
+        uint32_t c = g->corners[i], f = c / 3, e = 3 * f + (c % 3 + 1) % 3;
+        if (g->fflags[f] & TG__F_SKIP) continue;
+        const tg__frame* fr = &g->frame[e];
+        tg__lm_rec rec;
+        if (!lane_ring(run, L, e, 0.0, fr->len, fr->cx, fr->cy, d, v, tg__lm_seed(run->q->logmap, v, e, &rec)))
             return false;
     }
+    for (uint32_t i = i0; i < i1; ++i) {
+        uint32_t c = g->corners[i], f = c / 3, k3 = c % 3;
+        if (g->fflags[f] & TG__F_SKIP) continue;
+        uint32_t hn = 3 * f + (k3 + 1) % 3, hp = 3 * f + (k3 + 2) % 3;
+        if (!lane_relax_edge(run, L, g->tri[hn], d + g->frame[c].len, v) ||
+            !lane_relax_edge(run, L, g->tri[hp], d + g->frame[hp].len, v))
+            return false;
+    }
+    for (uint32_t i = i0; i < i1; ++i) {
+        uint32_t c = g->corners[i], f = c / 3, k3 = c % 3;
+        if (g->fflags[f] & TG__F_SKIP) continue;
+        uint32_t e = 3 * f + (k3 + 1) % 3;
+        if (!lane_release(run, L, c, false) || !lane_release(run, L, 3 * f + (k3 + 2) % 3, false) ||
+            !lane_release(run, L, e, false))
+            return false;
+        for (uint32_t o = g->ring[e]; o != e; o = g->ring[o])
+            if (fs->dist[g->tri[tg_halfedge_prev(o)]] < INFINITY && !lane_release(run, L, o, emitter)) return false;
+    }
+    return true;
+}
+
+/* Vertex `item`'s results, in its lane, applied as front_step applies them. */
+static bool merge_vertex(tg__field_run* run, uint32_t item, const tg__lane_task* t)
+{
+    tg__field_scratch* fs = run->fs;
+    const tg__field_lane* L = &fs->lanes[t->lane];
+    uint32_t v = item & ~VERTEX_EMITS;
+    if (t->emit_here) {
+        if (!emit_vertex(run, v)) return false;
+    } else if (item & VERTEX_EMITS) {
+        run->stats.pseudo_source_events++;
+    }
+    if (!merge_children(run, L, t)) return false;
+    /* a child whose face's far corner left the front in this round: that corner's lane saw no
+     * list there, and the serial engine would have released it (or found it released) */
+    const tg__lane_child* ch = L->child.data;
+    for (uint32_t i = t->child0; i < t->child1; ++i)
+        if ((fs->inside[fs->g->tri[tg_halfedge_prev(ch[i].h)]] & VS_ROUND) && !enqueue(run, ch[i].h)) return false;
+    if (!merge_relax(run, L, t)) return false;
+    const uint32_t* ready = L->ready.data;
+    for (uint32_t i = t->ready0; i < t->ready1; ++i)
+        if (!enqueue(run, ready[i])) return false;
     return true;
 }
 
@@ -1218,6 +1348,7 @@ static void crew_cross(tg__field_run* run, crew* c, int t, unsigned id)
          * them only between waves) */
         const uint32_t* wave = fs->wave.data;
         tg__lane_task* tasks = fs->tasks.data;
+        bool vertices = run->vertex_wave != 0;
         size_t i1 = i0 + CREW_CHUNK < count ? i0 + CREW_CHUNK : count;
         double t0 = now_s();
         for (size_t i = i0; i < i1; ++i) {
@@ -1225,9 +1356,12 @@ static void crew_cross(tg__field_run* run, crew* c, int t, unsigned id)
             k->lane = (uint32_t)t;
             k->child0 = (uint32_t)L->child.count, k->relax0 = (uint32_t)L->relax.count;
             k->freed0 = (uint32_t)L->freed.count, k->qids0 = (uint32_t)L->qids.count;
-            if (!L->failed && !propagate_lane(run, L, wave[i])) L->failed = 1;
+            k->ready0 = (uint32_t)L->ready.count, k->emit_here = 0;
+            if (!L->failed && !(vertices ? vertex_lane(run, L, wave[i], k) : propagate_lane(run, L, wave[i])))
+                L->failed = 1;
             k->child1 = (uint32_t)L->child.count, k->relax1 = (uint32_t)L->relax.count;
             k->freed1 = (uint32_t)L->freed.count, k->qids1 = (uint32_t)L->qids.count;
+            k->ready1 = (uint32_t)L->ready.count;
         }
         L->busy_s += now_s() - t0; /* before the lists are reported done: thread 0 then reads it */
 #ifdef TG__CREW_THREADS
@@ -1305,6 +1439,35 @@ static void crew_wait(crew* c)
 #endif
 }
 
+/* Crosses the wave's n items (fs->wave) on the crew's lanes: lists, or with run->vertex_wave
+ * vertices of a round; their results wait in the lanes for the merge. */
+static tg_status crew_run(tg__field_run* run, crew* c, size_t n)
+{
+    tg__field_scratch* fs = run->fs;
+    for (int t = 0; t <= c->workers; ++t) {
+        tg__field_lane* L = &fs->lanes[t];
+        L->child.count = L->child_rec.count = L->relax.count = L->freed.count = L->qids.count = L->ready.count = 0;
+        L->failed = 0;
+    }
+    double w0 = now_s();
+    unsigned id = crew_start(c, n, 0);
+    crew_cross(run, c, 0, id);
+    crew_wait(c);
+    run->wave_wall_s += now_s() - w0;
+    run->stats.waves++, run->stats.wave_lists += n;
+    tg_status st = TG_OK;
+    for (int t = 0; t <= c->workers; ++t) {
+        tg__field_lane* L = &fs->lanes[t];
+        if (L->failed) st = TG_ERR_OUT_OF_MEMORY;
+        run->stats.windows_filtered += L->stats.windows_filtered;
+        run->stats.windows_propagated += L->stats.windows_propagated;
+        run->stats.wave_seconds += L->busy_s;
+        memset(&L->stats, 0, sizeof L->stats);
+        L->busy_s = 0.0;
+    }
+    return st;
+}
+
 /* One wave: the n lists waiting in the FIFO cross at once on the crew's lanes, then merge. */
 static tg_status cross_wave(tg__field_run* run, crew* c, size_t n)
 {
@@ -1314,30 +1477,51 @@ static tg_status cross_wave(tg__field_run* run, crew* c, size_t n)
     memcpy(wave, (const uint32_t*)fs->fifo.data + fs->fifo_head, n * sizeof *wave);
     fs->fifo.count = fs->fifo_head = 0;
     for (size_t i = 0; i < n; ++i) fs->queued[wave[i]] &= (uint8_t)~Q_QUEUED;
-    tg__lane_task* tasks = fs->tasks.data;
-    for (int t = 0; t <= c->workers; ++t) {
-        tg__field_lane* L = &fs->lanes[t];
-        L->child.count = L->child_rec.count = L->relax.count = L->freed.count = L->qids.count = 0;
-        L->failed = 0;
-    }
-    double w0 = now_s();
-    unsigned id = crew_start(c, n, 0);
-    crew_cross(run, c, 0, id);
-    crew_wait(c);
-    run->wave_wall_s += now_s() - w0;
-    run->stats.waves++, run->stats.wave_lists += n;
-    for (int t = 0; t <= c->workers; ++t) {
-        tg__field_lane* L = &fs->lanes[t];
-        if (L->failed) return TG_ERR_OUT_OF_MEMORY;
-        run->stats.windows_filtered += L->stats.windows_filtered;
-        run->stats.windows_propagated += L->stats.windows_propagated;
-        run->stats.wave_seconds += L->busy_s;
-        memset(&L->stats, 0, sizeof L->stats);
-        L->busy_s = 0.0;
-    }
+    run->vertex_wave = 0;
+    tg_status st = crew_run(run, c, n);
+    if (st != TG_OK) return st;
+    const tg__lane_task* tasks = fs->tasks.data;
     for (size_t i = 0; i < n; ++i)
         if (!merge_task(run, wave[i], &tasks[i])) return TG_ERR_OUT_OF_MEMORY;
     return keep_going_by(run, n) ? TG_OK : TG_ERR_CANCELLED;
+}
+
+/* A round of `take` vertices (VERTEX_WAVE_MIN and more): off the front on this thread, through
+ * the lanes, merged in their order. Returns front_step's codes. */
+static int vertex_round(tg__field_run* run, crew* c, size_t take)
+{
+    tg__field_scratch* fs = run->fs;
+    const tg_geodesic* g = fs->g;
+    if (!tg__field_grow(fs, &fs->wave, take) || !tg__field_grow(fs, &fs->tasks, take)) return STEP_NO_MEMORY;
+    uint32_t* wave = fs->wave.data;
+    size_t n = 0;
+    double end = INFINITY; /* the first key plus the shortest edge at a vertex taken */
+    for (size_t k = 0; k < take && fs->front.count; ++k) {
+        tg__heap_item top = ((const tg__heap_item*)fs->front.data)[0];
+        if (top.key > run->max_dist || !(top.key < INFINITY)) break; /* front_step's case */
+        if (n && !(top.key < end)) break;
+        tg__heap_item it = tg__heap_take(fs->front.data, &fs->front.count);
+        uint32_t v = it.node;
+        if (it.key != front_key(run, v, fs->dist[v])) continue; /* a shorter distance was queued since */
+        if (!n) end = it.key + g->edge_min[v];
+        else if (it.key + g->edge_min[v] < end) end = it.key + g->edge_min[v];
+        if (!(fs->inside[v] & VS_INSIDE)) run->settled++;
+        fs->inside[v] |= VS_INSIDE | VS_ROUND;
+        run->front = fs->dist[v];
+        bool emits = (g->vflags[v] & TG__V_PSEUDO) || (fs->inside[v] & VS_SOURCE);
+        fs->inside[v] &= (uint8_t)~VS_SOURCE;
+        wave[n++] = v | (emits ? VERTEX_EMITS : 0u);
+    }
+    if (!n) return front_step(run);
+    run->vertex_wave = 1;
+    tg_status st = crew_run(run, c, n);
+    run->vertex_wave = 0;
+    if (st != TG_OK) return STEP_NO_MEMORY;
+    const tg__lane_task* tasks = fs->tasks.data;
+    for (size_t i = 0; i < n; ++i)
+        if (!merge_vertex(run, wave[i], &tasks[i])) return STEP_NO_MEMORY;
+    for (size_t i = 0; i < n; ++i) fs->inside[wave[i] & ~VERTEX_EMITS] &= (uint8_t)~VS_ROUND;
+    return keep_going_by(run, n) ? STEP_ON : STEP_CANCELLED;
 }
 
 /* Thread 0's part: the rounds. */
@@ -1366,10 +1550,16 @@ static tg_status rounds_lead(tg__field_run* run, crew* c)
         run->stats.rounds++;
         size_t take = fs->front.count / ROUND_SHARE;
         take = take < 1 ? 1 : take > ROUND_VERTICES ? ROUND_VERTICES : take;
-        for (size_t k = 0; k < take && !done; ++k) {
-            int step = front_step(run);
+        if (take >= VERTEX_WAVE_MIN) { /* wide: the vertices on the lanes too */
+            int step = vertex_round(run, c, take);
             if (step == STEP_DONE) done = true;
             else if (step != STEP_ON) return step_status(step);
+        } else {
+            for (size_t k = 0; k < take && !done; ++k) {
+                int step = front_step(run);
+                if (step == STEP_DONE) done = true;
+                else if (step != STEP_ON) return step_status(step);
+            }
         }
         if (done && fs->fifo.count == fs->fifo_head) break;
     }

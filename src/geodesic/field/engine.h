@@ -217,7 +217,8 @@ typedef struct tg__field_scratch {
     tg_allocator allocator;
     /* per vertex */
     double* dist;    /* best distance found so far */
-    uint8_t* inside; /* VS_* flags of propagate.c: taken from the front, a source, touched */
+    uint8_t* inside; /* VS_* flags of propagate.c: taken from the front, a source, touched, ... */
+    uint32_t* fpos;  /* its slot on the front (valid while VS_FRONT) */
     tg__pred* pred;  /* how each got its distance (runs that trace paths) */
     /* per halfedge */
     uint32_t* head;  /* first window of the list waiting to enter face h / 3, TG_NONE if empty */

@@ -37,7 +37,9 @@
  * with no record (a constant NULL) and no lines (a constant false) compile to the code without
  * them. */
 
-enum { VS_INSIDE = 1, VS_SOURCE = 2, VS_TOUCHED = 4, VS_ROUND = 8 }; /* fs->inside (VS_ROUND: propagate_rounds) */
+/* fs->inside: taken off the front, a source, touched, on the front (its slot in fs->fpos), taken
+ * off the front in this round (propagate_rounds) */
+enum { VS_INSIDE = 1, VS_SOURCE = 2, VS_TOUCHED = 4, VS_FRONT = 8, VS_ROUND = 16 };
 enum { Q_QUEUED = 1, Q_TOUCHED = 2 };                  /* fs->queued */
 
 /* Notes that a run wrote the entries of vertex or halfedge `id` (flag `bit` in `flags[id]`, the
@@ -165,16 +167,28 @@ static bool lm_store(tg__field_scratch* fs, uint32_t id, const tg__lm_rec* r)
     return true;
 }
 
-/* ---- the vertex front: the layer's heap on (distance, vertex), lazy (stale entries skipped) ---- */
+/* ---- the vertex front: the layer's heap on (distance, vertex), indexed (a vertex on it once,
+ * its key lowered in place) ---- */
 
+/* Puts v on the front at `key`, or lowers its key there (keys only go down: distances shrink). */
 static bool front_push(tg__field_run* run, double key, uint32_t v)
 {
     tg__field_scratch* fs = run->fs;
-    if (!tg__field_grow(fs, &fs->front, 1)) return false;
+    bool present = (fs->inside[v] & VS_FRONT) != 0;
+    if (!present && !tg__field_grow(fs, &fs->front, 1)) return false;
     tg__heap_item it = {key, v};
-    tg__heap_insert(fs->front.data, &fs->front.count, it);
+    tg__heap_lower(fs->front.data, fs->fpos, &fs->front.count, it, present);
+    fs->inside[v] |= VS_FRONT;
     if (fs->front.count > run->stats.max_queue) run->stats.max_queue = fs->front.count;
     return true;
+}
+
+/* Takes the nearest vertex off the front (count > 0). */
+static tg__heap_item front_take(tg__field_scratch* fs)
+{
+    tg__heap_item it = tg__heap_take_indexed(fs->front.data, fs->fpos, &fs->front.count);
+    fs->inside[it.node] &= (uint8_t)~VS_FRONT;
+    return it;
 }
 
 /* The front's key of vertex v at distance d: d, plus (A*) the Euclidean distance to the target,
@@ -1052,13 +1066,16 @@ static int front_step(tg__field_run* run)
     tg__field_scratch* fs = run->fs;
     const tg_geodesic* g = fs->g;
     tg__heap_item it = {INFINITY, 0};
-    if (fs->front.count) it = tg__heap_take(fs->front.data, &fs->front.count);
+    if (fs->front.count) it = front_take(fs);
     uint32_t v = it.node;
     if (it.key > run->max_dist || !(it.key < INFINITY)) {
         /* past the limit, or the front is empty while vertices beyond the limit (or the
          * bound) were never queued: every window within it must still cross, whatever its
          * vertices */
-        fs->front.count = 0; /* the rest is past the limit too (vertices pushed from here on are not) */
+        /* the rest is past the limit too (vertices pushed from here on are not) */
+        for (size_t i = 0; i < fs->front.count; ++i)
+            fs->inside[((const tg__heap_item*)fs->front.data)[i].node] &= (uint8_t)~VS_FRONT;
+        fs->front.count = 0;
         if (!run->all_ready && (run->max_dist < INFINITY || run->bounded)) {
             run->all_ready = 1;
             if (fs->touched_all) {
@@ -1500,7 +1517,7 @@ static int vertex_round(tg__field_run* run, crew* c, size_t take)
         tg__heap_item top = ((const tg__heap_item*)fs->front.data)[0];
         if (top.key > run->max_dist || !(top.key < INFINITY)) break; /* front_step's case */
         if (n && !(top.key < end)) break;
-        tg__heap_item it = tg__heap_take(fs->front.data, &fs->front.count);
+        tg__heap_item it = front_take(fs);
         uint32_t v = it.node;
         if (it.key != front_key(run, v, fs->dist[v])) continue; /* a shorter distance was queued since */
         if (!n) end = it.key + g->edge_min[v];

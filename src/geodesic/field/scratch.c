@@ -10,7 +10,7 @@
 size_t tg__field_scratch_fixed_bytes(const tg_geodesic* g)
 {
     size_t nv = g->vertex_count, nh = 3 * (size_t)g->face_count;
-    return nv * (sizeof(double) + 1 + sizeof(tg__pred)) + nh * (sizeof(uint32_t) + 1 + 2 * sizeof(double)) +
+    return nv * (sizeof(double) + 1 + sizeof(uint32_t) + sizeof(tg__pred)) + nh * (sizeof(uint32_t) + 1 + 2 * sizeof(double)) +
            g->face_count;
 }
 
@@ -65,7 +65,7 @@ bool tg__field_grow_slow(tg__field_scratch* fs, tg__vec* v, size_t extra)
 void tg__field_scratch_free(tg__field_scratch* fs)
 {
     const tg_allocator* a = &fs->allocator;
-    void* tables[] = {fs->dist, fs->inside, fs->pred, fs->head, fs->queued, fs->split_d, fs->split_x, fs->qface};
+    void* tables[] = {fs->dist, fs->inside, fs->fpos, fs->pred, fs->head, fs->queued, fs->split_d, fs->split_x, fs->qface};
     for (size_t i = 0; i < sizeof tables / sizeof tables[0]; ++i) tg__free(a, tables[i]);
 #define TG__FIELD_FREE_(name, type) tg__vec_free(a, &fs->name);
     TG__FIELD_BUFFERS(TG__FIELD_FREE_)
@@ -92,13 +92,14 @@ bool tg__field_scratch_init(tg__field_scratch* fs, const tg_geodesic* g, const t
     size_t nv = g->vertex_count ? g->vertex_count : 1, nf = g->face_count ? g->face_count : 1, nh = 3 * nf;
     fs->dist = tg__alloc_array(a, nv, sizeof(double));
     fs->inside = tg__alloc_array(a, nv, 1);
+    fs->fpos = tg__alloc_array(a, nv, sizeof(uint32_t));
     fs->pred = tg__alloc_array(a, nv, sizeof(tg__pred));
     fs->head = tg__alloc_array(a, nh, sizeof(uint32_t));
     fs->queued = tg__alloc_array(a, nh, 1);
     fs->split_d = tg__alloc_array(a, nh, sizeof(double));
     fs->split_x = tg__alloc_array(a, nh, sizeof(double));
     fs->qface = tg__calloc_array(a, nf, 1);
-    if (!fs->dist || !fs->inside || !fs->pred || !fs->head || !fs->queued || !fs->split_d || !fs->split_x || !fs->qface)
+    if (!fs->dist || !fs->inside || !fs->fpos || !fs->pred || !fs->head || !fs->queued || !fs->split_d || !fs->split_x || !fs->qface)
         return false;
     fs->peak_bytes = tg__field_scratch_bytes(fs);
     return true;

@@ -83,9 +83,21 @@ extern "C" {
 
 #define TG_VERSION_MAJOR 0
 #define TG_VERSION_MINOR 6
-#define TG_VERSION_PATCH 2
+#define TG_VERSION_PATCH 3
 /** Single integer for comparisons: major * 10000 + minor * 100 + patch. */
 #define TG_VERSION (TG_VERSION_MAJOR * 10000 + TG_VERSION_MINOR * 100 + TG_VERSION_PATCH)
+
+/* Changes in 0.6.3 (ABI-compatible with 0.6.0: same soname, no interface change):
+ *  - One field on several threads (tg_field_options.threads > 1): the vertices a round takes off
+ *    the front are processed on every thread too (their emissions, their neighbours relaxed
+ *    along the edges, the lists they release), not only the lists; a round takes vertices only
+ *    within the shortest edge at any of them, so none lowers another. Every N >= 2 still gives the
+ *    same bits; tg_field_stats.waves and wave_lists count these waves too.
+ *  - The field's front is an indexed heap (a vertex on it once, its key lowered in place): the
+ *    same vertices leave it in the same order, so one-thread fields are bit-identical to 0.6.2's;
+ *    tg_field_stats.max_queue counts vertices, no stale entries. A solver keeps each vertex's
+ *    shortest edge (tg_geodesic_memory_bytes: 8 bytes more a vertex), a workspace each vertex's
+ *    place on the front (4 bytes). */
 
 /* Changes in 0.6.2 (ABI-compatible with 0.6.0: same soname, new entry points only):
  *  - Curves as sources of exact fields: tg_geodesic_curve_field (segments of polylines on the
@@ -1560,8 +1572,8 @@ typedef struct tg_field_stats {
     /* One field on several threads (tg_field_options.threads > 1; zero otherwise): its schedule,
      * from which a speed-up on more threads can be planned (BENCHMARKS.md, "Every core"). */
     uint64_t rounds;     /**< rounds: vertices taken off the front together */
-    uint64_t waves;      /**< waves of lists crossed on all threads at once */
-    uint64_t wave_lists; /**< the lists those waves crossed (the rest crossed on thread 0) */
+    uint64_t waves;      /**< waves of lists (or of a round's vertices) crossed on all threads at once */
+    uint64_t wave_lists; /**< the lists and vertices those waves took (the rest on thread 0) */
     double lead_seconds; /**< thread 0's time outside the waves: the front, the merges, small waves */
     double wave_seconds; /**< the threads' busy time in the waves, summed over the threads */
 } tg_field_stats;

@@ -7,7 +7,9 @@
  *   the window that reaches the face's opposite corner most shortly splits the list); S.-Q. Xin
  *   and G.-J. Wang, "Improving Chen and Han's algorithm on the discrete geodesic problem", ACM TOG
  *   28(4), 2009 (the vertex-distance filter; one angle, one split, kept per edge side across
- *   lists); J. Chen and Y. Han, SoCG 1990 (pseudo-sources at saddle and boundary vertices).
+ *   lists); J. Chen and Y. Han, SoCG 1990 (pseudo-sources at saddle and boundary vertices);
+ *   U. Meyer and P. Sanders, "Delta-stepping: a parallelizable shortest path algorithm", J.
+ *   Algorithms 49(1), 2003 (on several threads, a round's vertices lie within a light edge).
  *
  * Every distance recorded is the length of a real path on the surface (straight in an unfolded
  * chain of faces, bending only at vertices), so the result never falls below the geodesic

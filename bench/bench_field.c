@@ -6,8 +6,8 @@
  *   0: every core); with T != 1 a second row gives the parallel schedule summed over the fields:
  *   | rounds | waves | lists per wave | serial share f (thread 0 outside the waves, over that
  *   plus the threads' busy time in them) | Amdahl speed-up 1 / (f + (1 - f) / P) at P = 2, 4,
- *   8, 16, 32 (the waves' lists are taken 8 at a time, so P beyond lists per wave / 8 cannot be
- *   busy: that bound is that column) | thread 0's seconds outside the waves | the threads' busy
+ *   8, 16, 32 (a wave's lists are taken a chunk at a time, n / 4P of them, 1 to 8, so no more
+ *   threads than lists per wave can be busy: that bound is that column) | thread 0's seconds outside the waves | the threads' busy
  *   seconds in them (their sum against the one-thread time: the work the rounds add) |
  *   --batch K: instead, K fields from K random vertices through tg_geodesic_distance_matrix on 1 and
  *   on 2 threads; prints | mesh | faces | fields/s on 1 thread | fields/s on 2 threads | (wall).
@@ -121,7 +121,7 @@ int main(int argc, char** argv)
         printf("| schedule | rounds %llu | waves %llu | %.0f lists per wave | f = %.3f |", (unsigned long long)sched.rounds,
                (unsigned long long)sched.waves, per, f);
         for (int p = 2; p <= 32; p *= 2) printf(" S(%d) %.2f |", p, 1.0 / (f + (1.0 - f) / p));
-        printf(" busy threads <= %.0f | lead s %.3f | busy s %.3f |\n", per / 8.0, sched.lead_seconds, sched.wave_seconds);
+        printf(" busy threads <= %.0f | lead s %.3f | busy s %.3f |\n", per, sched.lead_seconds, sched.wave_seconds);
     }
     free(dist), free(cpu), free(wall), free(windows);
     tg_geodesic_destroy(g);

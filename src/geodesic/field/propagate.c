@@ -1320,7 +1320,7 @@ static bool merge_vertex(tg__field_run* run, uint32_t item, const tg__lane_task*
 }
 
 /* The crew of a run on several threads: thread 0 (the caller's) runs the rounds and the merges;
- * the others wait for a wave, cross lists from it, and wait again. Lists are taken CREW_CHUNK at
+ * the others wait for a wave, cross lists from it, and wait again. Lists are taken a chunk at
  * a time from one counter that also names its wave, so a thread that wakes late takes nothing of
  * a wave already done (nor a list twice), and thread 0 waits only until every list of the wave
  * has crossed, not for every thread: on a machine whose cores are busy with other work a
@@ -1335,6 +1335,7 @@ typedef struct crew {
     atomic_int lead_sleeps;     /* thread 0 asleep waiting for the wave's end */
     atomic_flag grow;           /* held while a lane's buffer grows (lane_grow) */
     atomic_size_t count;        /* the wave's lists (read beside `next`, which says whose) */
+    atomic_size_t chunk;        /* lists taken at a time in the wave (likewise) */
     int workers;                /* threads besides thread 0 */
     atomic_int quit;
 #ifdef TG__CREW_THREADS
@@ -1344,6 +1345,9 @@ typedef struct crew {
 } crew;
 
 #define CREW_SPIN 4000
+/* Lists are taken up to CREW_CHUNK at a time, fewer in a wave too short to give every thread four
+ * takes (which lane crosses which list never changes the result: the merge goes by the wave's
+ * order). */
 #define CREW_CHUNK 8
 
 
@@ -1354,21 +1358,21 @@ static void crew_cross(tg__field_run* run, crew* c, int t, unsigned id)
     tg__field_lane* L = &fs->lanes[t];
     for (;;) {
         uint_fast64_t v = atomic_load(&c->next);
-        size_t i0, count;
+        size_t i0, count, chunk;
         for (;;) {
             if ((unsigned)(v >> 32) != id) return;
             /* a count read here may be the next wave's: `next` was closed before it was written
              * (crew_start), so the exchange below then fails */
-            i0 = (size_t)(v & 0xFFFFFFFFu), count = atomic_load(&c->count);
+            i0 = (size_t)(v & 0xFFFFFFFFu), count = atomic_load(&c->count), chunk = atomic_load(&c->chunk);
             if (i0 >= count) return;
-            if (atomic_compare_exchange_weak(&c->next, &v, v + CREW_CHUNK)) break;
+            if (atomic_compare_exchange_weak(&c->next, &v, v + chunk)) break;
         }
         /* holding lists of the wave, it cannot end: its count and arrays stay (thread 0 grows
          * them only between waves) */
         const uint32_t* wave = fs->wave.data;
         tg__lane_task* tasks = fs->tasks.data;
         bool vertices = run->vertex_wave != 0;
-        size_t i1 = i0 + CREW_CHUNK < count ? i0 + CREW_CHUNK : count;
+        size_t i1 = i0 + chunk < count ? i0 + chunk : count;
         double t0 = now_s();
         for (size_t i = i0; i < i1; ++i) {
             tg__lane_task* k = &tasks[i];
@@ -1428,6 +1432,8 @@ static unsigned crew_start(crew* c, size_t count, int quit)
      * wave's count never reached, thread 0 asleep for good) */
     atomic_store(&c->next, (uint_fast64_t)id << 32 | 0xFFFFFFFFu);
     atomic_store(&c->count, count);
+    size_t chunk = count / (4 * (size_t)(c->workers + 1));
+    atomic_store(&c->chunk, chunk < 1 ? 1 : chunk > CREW_CHUNK ? CREW_CHUNK : chunk);
     atomic_store(&c->quit, quit);
     atomic_store(&c->done, 0);
     atomic_store(&c->next, (uint_fast64_t)id << 32);
@@ -1597,6 +1603,7 @@ static tg_status propagate_rounds(tg__field_run* run, int threads)
     crew c;
     memset(&c, 0, sizeof c);
     atomic_init(&c.epoch, 0), atomic_init(&c.next, 0), atomic_init(&c.done, 0), atomic_init(&c.count, 0);
+    atomic_init(&c.chunk, CREW_CHUNK);
     atomic_init(&c.quit, 0);
     atomic_flag_clear(&c.grow);
     atomic_init(&c.sleepers, 0), atomic_init(&c.lead_sleeps, 0);

@@ -9,6 +9,13 @@
  *   8, 16, 32 (a wave's lists are taken a chunk at a time, n / 4P of them, 1 to 8, so no more
  *   threads than lists per wave can be busy: that bound is that column) | thread 0's seconds outside the waves | the threads' busy
  *   seconds in them (their sum against the one-thread time: the work the rounds add) |
+ *   --span (with T != 1): each wave's items are timed inside the library (propagate.h,
+ *   tg__schedule_log) and the schedule replayed on P = 2, 4, ..., 32 simulated threads: each
+ *   wave's lists dealt in the crew's chunks (n / 4P, 1 to 8) to whichever simulated thread is free
+ *   first, the wave ending with the last; a third row gives | the waves' work s | the lead s |
+ *   S(P) = (lead + work) / (lead + the waves' spans on P) |: the speed-up the schedule allows
+ *   with the waves' real granularity, against the rounds' own work (the timing adds its cost to
+ *   every item, so the rows' times are a little longer).
  *   --batch K: instead, K fields from K random vertices through tg_geodesic_distance_matrix on 1 and
  *   on 2 threads; prints | mesh | faces | fields/s on 1 thread | fields/s on 2 threads | (wall).
  *   N (default 5) fields, each from one random vertex (fixed seed: every run times the same
@@ -24,6 +31,30 @@
 #include <trigeo.h>
 
 #include "bench_common.h"
+#include "geodesic/field/propagate.h" /* tg__schedule_log: the --span replay */
+
+/* The waves of a logged field replayed on P simulated threads (the crew's rule, propagate.c:
+ * chunks of n / 4P lists, 1 to 8, each to the first thread free): the sum of the waves' spans. */
+static double replay(const tg__schedule_log* lg, int P)
+{
+    double total = 0.0, free_at[32];
+    size_t at = 0;
+    for (size_t w = 0; w < lg->waves; ++w) {
+        size_t n = lg->wave_n[w], c = n / (4 * (size_t)P);
+        c = c < 1 ? 1 : c > 8 ? 8 : c;
+        for (int k = 0; k < P; ++k) free_at[k] = 0.0;
+        for (size_t i = 0; i < n; i += c) {
+            int b = 0;
+            for (int k = 1; k < P; ++k)
+                if (free_at[k] < free_at[b]) b = k;
+            for (size_t j = i; j < i + c && j < n; ++j) free_at[b] += lg->item_s[at + j];
+        }
+        double span = 0.0;
+        for (int k = 0; k < P; ++k) span = free_at[k] > span ? free_at[k] : span;
+        total += span, at += n;
+    }
+    return total;
+}
 
 static void die(const char* msg, const char* arg)
 {
@@ -35,7 +66,7 @@ int main(int argc, char** argv)
 {
     if (argc < 2) die("usage: bench_field MESH [--sources N] [--seed S]", NULL);
     const char* path = argv[1];
-    int sources = 5, batch = 0, threads = 1;
+    int sources = 5, batch = 0, threads = 1, span = 0;
     unsigned long long seed = 1;
     for (int i = 2; i < argc; ++i) {
         if (!strcmp(argv[i], "--sources") && i + 1 < argc)
@@ -44,6 +75,8 @@ int main(int argc, char** argv)
             batch = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--threads") && i + 1 < argc)
             threads = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--span"))
+            span = 1;
         else if (!strcmp(argv[i], "--seed") && i + 1 < argc)
             seed = strtoull(argv[++i], NULL, 10);
         else
@@ -90,7 +123,17 @@ int main(int argc, char** argv)
     size_t scratch = 0;
     tg_field_stats sched;
     memset(&sched, 0, sizeof sched);
+    tg__schedule_log lg;
+    memset(&lg, 0, sizeof lg);
+    double work = 0.0, spans[6] = {0};
+    if (span && threads != 1) {
+        lg.cap_items = (size_t)1 << 25, lg.cap_waves = (size_t)1 << 22;
+        lg.item_s = malloc(lg.cap_items * sizeof *lg.item_s), lg.wave_n = malloc(lg.cap_waves * sizeof *lg.wave_n);
+        if (!lg.item_s || !lg.wave_n) die("out of memory", NULL);
+        tg__field_schedule_log(&lg);
+    }
     for (int q = 0; q < sources; ++q) {
+        lg.items = lg.waves = 0;
         s ^= s >> 12, s ^= s << 25, s ^= s >> 27;
         uint32_t v = t[(s * 2685821657736338717ull) % (3 * F)];
         tg_surface_point src = tg_surface_vertex(v);
@@ -106,7 +149,13 @@ int main(int argc, char** argv)
         sched.rounds += st.rounds, sched.waves += st.waves, sched.wave_lists += st.wave_lists;
         sched.lead_seconds += st.lead_seconds, sched.wave_seconds += st.wave_seconds;
         if (st.peak_bytes > scratch) scratch = st.peak_bytes;
+        if (lg.item_s) {
+            if (lg.full) die("--span: the log is full on", path);
+            for (size_t i = 0; i < lg.items; ++i) work += lg.item_s[i];
+            for (int k = 0, p = 2; p <= 32; ++k, p *= 2) spans[k] += replay(&lg, p);
+        }
     }
+    tg__field_schedule_log(NULL);
     const char* name = strrchr(path, '/');
     name = name ? name + 1 : path;
     double mx = 0;
@@ -122,6 +171,13 @@ int main(int argc, char** argv)
                (unsigned long long)sched.waves, per, f);
         for (int p = 2; p <= 32; p *= 2) printf(" S(%d) %.2f |", p, 1.0 / (f + (1.0 - f) / p));
         printf(" busy threads <= %.0f | lead s %.3f | busy s %.3f |\n", per, sched.lead_seconds, sched.wave_seconds);
+    }
+    if (lg.item_s) {
+        printf("| span | waves' work s %.3f | lead s %.3f |", work, sched.lead_seconds);
+        for (int k = 0, p = 2; p <= 32; ++k, p *= 2)
+            printf(" S(%d) %.2f |", p, (sched.lead_seconds + work) / (sched.lead_seconds + spans[k]));
+        printf("\n");
+        free(lg.item_s), free(lg.wave_n);
     }
     free(dist), free(cpu), free(wall), free(windows);
     tg_geodesic_destroy(g);

@@ -305,6 +305,7 @@ typedef struct tg__field_run {
     uint64_t work_since_check;
     double wave_wall_s;   /* several threads: the waves' wall time (the rest of thread 0's is serial) */
     int vertex_wave;      /* several threads: the wave under way takes vertices of a round, not lists */
+    double* item_s;       /* several threads, benchmarks: where the wave's item times go (propagate.h) */
     double next_check_s;
     size_t next_bound_check; /* q->stop_at_points: the settled count of the next look at the bounds */
     /* results: vertex distances and predecessors are the scratch's (solver numbering) */

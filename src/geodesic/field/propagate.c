@@ -1372,9 +1372,11 @@ static void crew_cross(tg__field_run* run, crew* c, int t, unsigned id)
         const uint32_t* wave = fs->wave.data;
         tg__lane_task* tasks = fs->tasks.data;
         bool vertices = run->vertex_wave != 0;
+        double* item_s = run->item_s;
         size_t i1 = i0 + chunk < count ? i0 + chunk : count;
         double t0 = now_s();
         for (size_t i = i0; i < i1; ++i) {
+            double ti = item_s ? now_s() : 0.0;
             tg__lane_task* k = &tasks[i];
             k->lane = (uint32_t)t;
             k->child0 = (uint32_t)L->child.count, k->relax0 = (uint32_t)L->relax.count;
@@ -1385,6 +1387,7 @@ static void crew_cross(tg__field_run* run, crew* c, int t, unsigned id)
             k->child1 = (uint32_t)L->child.count, k->relax1 = (uint32_t)L->relax.count;
             k->freed1 = (uint32_t)L->freed.count, k->qids1 = (uint32_t)L->qids.count;
             k->ready1 = (uint32_t)L->ready.count;
+            if (item_s) item_s[i] = now_s() - ti; /* its own slot: no other thread writes it */
         }
         L->busy_s += now_s() - t0; /* before the lists are reported done: thread 0 then reads it */
 #ifdef TG__CREW_THREADS
@@ -1464,6 +1467,13 @@ static void crew_wait(crew* c)
 #endif
 }
 
+static tg__schedule_log* schedule_log; /* benchmarks only (propagate.h) */
+
+void tg__field_schedule_log(tg__schedule_log* log)
+{
+    schedule_log = log;
+}
+
 /* Crosses the wave's n items (fs->wave) on the crew's lanes: lists, or with run->vertex_wave
  * vertices of a round; their results wait in the lanes for the merge. */
 static tg_status crew_run(tg__field_run* run, crew* c, size_t n)
@@ -1474,12 +1484,19 @@ static tg_status crew_run(tg__field_run* run, crew* c, size_t n)
         L->child.count = L->child_rec.count = L->relax.count = L->freed.count = L->qids.count = L->ready.count = 0;
         L->failed = 0;
     }
+    tg__schedule_log* slog = schedule_log;
+    run->item_s = NULL; /* published to the helpers by crew_start */
+    if (slog && !slog->full) {
+        if (slog->items + n <= slog->cap_items && slog->waves < slog->cap_waves) run->item_s = slog->item_s + slog->items;
+        else slog->full = 1;
+    }
     double w0 = now_s();
     unsigned id = crew_start(c, n, 0);
     crew_cross(run, c, 0, id);
     crew_wait(c);
     run->wave_wall_s += now_s() - w0;
     run->stats.waves++, run->stats.wave_lists += n;
+    if (run->item_s) slog->items += n, slog->wave_n[slog->waves++] = (uint32_t)n;
     tg_status st = TG_OK;
     for (int t = 0; t <= c->workers; ++t) {
         tg__field_lane* L = &fs->lanes[t];

@@ -1147,8 +1147,9 @@ static tg_status propagate_serial(tg__field_run* run)
 /* ---- several threads: rounds ----
  * A round takes up to ROUND_VERTICES vertices off the front (and no more than a ROUND_SHARE-th
  * of the vertices on it, so that where the front is narrow, on small meshes and near the
- * sources, rounds stay thin and the order of vertices still does its filtering), then crosses the lists in the FIFO
- * wave by wave: the lists of a wave cross their faces at once, each on a thread's lane (reading
+ * sources, rounds stay thin and the order of vertices still does its filtering; a round of
+ * VERTEX_WAVE_MIN or more does their steps on the lanes too, vertex_round below), then crosses
+ * the lists in the FIFO wave by wave: the lists of a wave cross their faces at once, each on a thread's lane (reading
  * the distances as the wave began), and the lanes are merged in the wave's order (corner
  * distances, released slots, then the children pushed as the serial engine pushes them). Waves
  * of fewer than WAVE_MIN lists cross on this thread as in the serial engine. Neither the rounds

@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <sys/resource.h>
 #include <time.h>
@@ -71,6 +72,23 @@ static inline uint64_t bench_rng_next(uint64_t* s)
     return *s * 2685821657736338717ull;
 }
 static inline double bench_rng_unit(uint64_t* s) { return (double)(bench_rng_next(s) >> 11) * (1.0 / 9007199254740992.0); }
+
+/* The mesh at `path`, its solver and a workspace; on failure a message naming the program and the
+ * file and exit status 2. */
+static inline void bench_open(const char* prog, const char* path, tg_mesh** m, tg_geodesic** g,
+                              tg_geodesic_workspace** ws)
+{
+    tg_diag d;
+    *m = NULL, *g = NULL, *ws = NULL;
+    if (tg_mesh_load(path, TG_FORMAT_AUTO, NULL, &d, m) != TG_OK) {
+        fprintf(stderr, "%s: cannot load %s: %s\n", prog, path, d.message);
+        exit(2);
+    }
+    if (tg_geodesic_create(*m, NULL, g) != TG_OK || tg_geodesic_workspace_create(*g, ws) != TG_OK) {
+        fprintf(stderr, "%s: cannot make the solver for %s\n", prog, path);
+        exit(2);
+    }
+}
 
 /* A face chosen uniformly (not by area), a point uniform in it. */
 static inline tg_surface_point bench_random_face_point(uint64_t* s, size_t faces)

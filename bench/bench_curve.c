@@ -55,11 +55,9 @@ int main(int argc, char** argv)
     }
     if (reps < 1 || reps > 16) die("--reps must be in 1..16", NULL);
     tg_mesh* m = NULL;
-    tg_diag d;
-    if (tg_mesh_load(argv[1], TG_FORMAT_AUTO, NULL, &d, &m) != TG_OK) die("cannot load", d.message);
-    tg_geodesic* g = NULL;
-    tg_geodesic_workspace* ws = NULL;
-    if (tg_geodesic_create(m, NULL, &g) != TG_OK || tg_geodesic_workspace_create(g, &ws) != TG_OK) die("solver", argv[1]);
+    tg_geodesic* g;
+    tg_geodesic_workspace* ws;
+    bench_open("bench_curve", argv[1], &m, &g, &ws);
     size_t n = tg_mesh_vertex_count(m), ns = 0;
     const char* what = "boundary";
     tg_geodesic_boundary_segments(g, NULL, 0, &ns);

@@ -8,13 +8,9 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
 #include <trigeo.h>
 
-static double cpu_s(void)
-{
-    return (double)clock() / CLOCKS_PER_SEC;
-}
+#include "bench_common.h"
 
 int main(int argc, char** argv)
 {
@@ -22,14 +18,10 @@ int main(int argc, char** argv)
         fprintf(stderr, "usage: bench_cvt MESH K ITERATIONS\n");
         return 1;
     }
-    tg_mesh* m = NULL;
-    tg_geodesic* g = NULL;
-    tg_geodesic_workspace* ws = NULL;
-    if (tg_mesh_load(argv[1], TG_FORMAT_AUTO, NULL, NULL, &m) != TG_OK || tg_geodesic_create(m, NULL, &g) != TG_OK ||
-        tg_geodesic_workspace_create(g, &ws) != TG_OK) {
-        fprintf(stderr, "bench_cvt: cannot load %s\n", argv[1]);
-        return 2;
-    }
+    tg_mesh* m;
+    tg_geodesic* g;
+    tg_geodesic_workspace* ws;
+    bench_open("bench_cvt", argv[1], &m, &g, &ws);
     size_t n = tg_mesh_vertex_count(m), k = (size_t)strtoull(argv[2], NULL, 10);
     uint32_t iterations = (uint32_t)strtoul(argv[3], NULL, 10);
     double* dist = malloc(n * sizeof *dist);
@@ -40,23 +32,23 @@ int main(int argc, char** argv)
     tg_surface_point v0 = tg_surface_vertex(0);
     double field = INFINITY;
     for (int r = 0; r < 3; ++r) {
-        double t0 = cpu_s();
+        double t0 = bench_cpu_process();
         if (tg_geodesic_field(g, ws, &v0, 1, NULL, dist, NULL) != TG_OK) return 2;
-        double t = cpu_s() - t0;
+        double t = bench_cpu_process() - t0;
         field = t < field ? t : field;
     }
     tg_centroidal_options o = {.iterations = iterations};
     size_t done = 0;
-    double t0 = cpu_s();
+    double t0 = bench_cpu_process();
     tg_status st = tg_geodesic_centroidal_voronoi(g, ws, NULL, 0, k, &o, sites, label, energies, &done);
-    double cvt = cpu_s() - t0;
+    double cvt = bench_cpu_process() - t0;
     if (st != TG_OK) {
         fprintf(stderr, "bench_cvt: %s\n", tg_status_string(st));
         return 2;
     }
-    t0 = cpu_s();
+    t0 = bench_cpu_process();
     if (tg_geodesic_voronoi(g, ws, sites, k, NULL, NULL, dist, label, NULL) != TG_OK) return 2;
-    double voronoi = cpu_s() - t0;
+    double voronoi = bench_cpu_process() - t0;
     printf("one field from v:0 (best of 3): %.3f s\n", field);
     printf("one tg_geodesic_voronoi of the %zu final sites: %.3f s = %.2f fields\n", k, voronoi, voronoi / field);
     printf("centroidal Voronoi, %zu sites, %zu iterations: %.3f s = %.1f fields\n", k, done, cvt, cvt / field);

@@ -44,12 +44,9 @@ int main(int argc, char** argv)
     }
     if (!path || reps < 2) die("usage: bench_logmap MESH [--source V] [--reps R >= 2]", NULL);
     tg_mesh* m = NULL;
-    tg_geodesic* g = NULL;
-    tg_geodesic_workspace* ws = NULL;
-    tg_diag d;
-    if (tg_mesh_load(path, TG_FORMAT_AUTO, NULL, &d, &m) != TG_OK) die("cannot load", path);
-    if (tg_geodesic_create(m, NULL, &g) != TG_OK || tg_geodesic_workspace_create(g, &ws) != TG_OK)
-        die("cannot make the solver for", path);
+    tg_geodesic* g;
+    tg_geodesic_workspace* ws;
+    bench_open("bench_logmap", path, &m, &g, &ws);
     size_t n = tg_mesh_vertex_count(m);
     double *field = malloc(n * sizeof *field), *r = malloc(n * sizeof *r), *a = malloc(n * sizeof *a);
     double *tf = malloc(reps * sizeof *tf), *tl = malloc(reps * sizeof *tl), *ratio = malloc(reps * sizeof *ratio);

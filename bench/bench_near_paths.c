@@ -161,14 +161,11 @@ int main(int argc, char** argv)
             "[--regions N [--landmarks K]]",
             NULL);
     tg_mesh* m = NULL;
-    tg_diag d;
     tg_geodesic* g = NULL;
     tg_geodesic_workspace* ws = NULL;
     tg_path* p = NULL;
-    if (tg_mesh_load(path, TG_FORMAT_AUTO, NULL, &d, &m) != TG_OK) die("cannot load", path);
-    if (tg_geodesic_create(m, NULL, &g) != TG_OK || tg_geodesic_workspace_create(g, &ws) != TG_OK ||
-        tg_path_create(NULL, &p) != TG_OK)
-        die("cannot make the solver for", path);
+    bench_open("bench_near_paths", path, &m, &g, &ws);
+    if (tg_path_create(NULL, &p) != TG_OK) die("out of memory", NULL);
     size_t nv = tg_mesh_vertex_count(m);
     const tg_mesh_report* rep = tg_mesh_get_report(m);
     double diag = 0.0;

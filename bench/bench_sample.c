@@ -12,12 +12,7 @@
 #include <time.h>
 #include <trigeo.h>
 
-static double now_s(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
+#include "bench_common.h"
 
 int main(int argc, char** argv)
 {
@@ -25,21 +20,17 @@ int main(int argc, char** argv)
         fprintf(stderr, "usage: bench_sample MESH K incremental|full\n");
         return 1;
     }
-    tg_mesh* m = NULL;
-    tg_geodesic* g = NULL;
-    tg_geodesic_workspace* ws = NULL;
-    if (tg_mesh_load(argv[1], TG_FORMAT_AUTO, NULL, NULL, &m) != TG_OK || tg_geodesic_create(m, NULL, &g) != TG_OK ||
-        tg_geodesic_workspace_create(g, &ws) != TG_OK) {
-        fprintf(stderr, "bench_sample: cannot load %s\n", argv[1]);
-        return 2;
-    }
+    tg_mesh* m;
+    tg_geodesic* g;
+    tg_geodesic_workspace* ws;
+    bench_open("bench_sample", argv[1], &m, &g, &ws);
     size_t n = tg_mesh_vertex_count(m), k = (size_t)strtoull(argv[2], NULL, 10);
     uint32_t* s = malloc(k * sizeof *s);
     double *best = malloc(n * sizeof *best), *f = malloc(n * sizeof *f);
     unsigned char* used = calloc(n, 1);
     const uint32_t* t = tg_mesh_triangles(m);
     for (size_t i = 0; i < 3 * tg_mesh_face_count(m); ++i) used[t[i]] = 1;
-    double t0 = now_s();
+    double t0 = bench_wall();
     tg_status st = TG_OK;
     if (!strcmp(argv[3], "incremental")) {
         st = tg_geodesic_farthest_point_sampling(g, ws, t[0], 0, k, NULL, s, best, NULL, NULL);
@@ -59,7 +50,7 @@ int main(int argc, char** argv)
             if (i + 1 < k) s[i + 1] = (uint32_t)arg;
         }
     }
-    double secs = now_s() - t0;
+    double secs = bench_wall() - t0;
     if (st != TG_OK) {
         fprintf(stderr, "bench_sample: %s\n", tg_status_string(st));
         return 2;

@@ -249,6 +249,18 @@ check(iso["2"] == iso["3"], "--isolines: 2 and 3 threads give different files")
 count = lambda text: sum(1 for l in text.splitlines() if l.startswith("v "))
 check(count(iso["1"]) == count(iso["2"]) > 0, "--isolines: %d points on 2 threads, %d on one" % (count(iso["2"]), count(iso["1"])))
 err([spot, "--from", "v:0", "--threads", "x"], 1, "--threads")
+# a front wide enough for rounds whose vertices are processed on every thread (propagate.c,
+# vertex_round): fcpw_kitten, one field on 1, 2 and 3 threads
+big = {}
+for t in ("1", "2", "3"):
+    o = os.path.join(tmp, "k%s.npy" % t)
+    r = run(kitten, "--from", "v:0", "--threads", t, "-o", o, "--quiet")
+    big[t] = open(o, "rb").read() if r.returncode == 0 else r.stderr.encode()
+check(big["2"] == big["3"], "kitten: 2 and 3 threads give different files")
+k1, k2 = (struct.unpack("<%dd" % ((len(big[t]) - 128) // 8), big[t][128:]) for t in ("1", "2"))
+check(len(k1) == len(k2) == 53123 and all(abs(a - b) <= 1e-12 * a for a, b in zip(k1, k2)),
+      "kitten, 2 threads vs 1: %s" % (max(abs(a - b) / a for a, b in zip(k1, k2) if a) if len(k1) == len(k2) else
+                                     (len(k1), len(k2))))
 
 # --gradient: the CSV and the PLY hold the same numbers; --face-gradient beside it; usage errors
 g_csv, g_ply, g_face = (os.path.join(tmp, n) for n in ("g.csv", "g.ply", "gf.csv"))

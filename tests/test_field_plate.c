@@ -68,6 +68,7 @@ static void test_trim_near_tie(void)
     w[1].b0 = 2.5948872704093446, w[1].b1 = 15.713484026367716, w[1].sx = 15.713484026367697;
     w[1].sy = -15.713484026367718, w[1].sigma = 11.156020353309547;
     w[0].tag = 1, w[1].tag = 2;
+    for (int i = 0; i < 2; ++i) w[i].d0 = tg__win_dist(&w[i], w[i].b0), w[i].d1 = tg__win_dist(&w[i], w[i].b1);
     uint32_t ids[2] = {1, 0}; /* lists arrive in descending order of start */
     tg__win_key keys[2];
     tg__windows_trim(w, ids, keys, 2, 15.713484026367716, false);

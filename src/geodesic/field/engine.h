@@ -46,7 +46,8 @@ typedef struct tg__window {
     double sx, sy;
     double sigma;
     double d0, d1; /* the distances at b0 and b1 as made (for the filters before trimming moves
-                      the ends): one 64-byte line a window */
+                      the ends, and trimming's own test of the ends; NAN once trimming moved an
+                      end): one 64-byte line a window */
     uint32_t next; /* next window in the same list, TG_NONE at the end */
     uint32_t tag;  /* origin (low 29 bits, TG__TAG_ORIGIN): the pseudo-source vertex whose image
                       is (sx, sy), or TG__ORIGIN_SOURCE; bits 29-31 (TG__TAG_FLAT): how many

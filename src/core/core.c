@@ -6,6 +6,7 @@
 #include "core.h"
 
 #include <locale.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -133,37 +134,39 @@ size_t tg__grow_capacity(size_t cap, size_t need, size_t first)
     return c;
 }
 
+/* Gives v room for cap elements, the content kept; an aligned buffer's data moves to its new
+ * block's first aligned address (the block is `align` bytes longer). */
+static bool vec_resize(const tg_allocator* a, tg__vec* v, size_t cap)
+{
+    size_t bytes;
+    if (tg__mul_overflows(cap, v->elem, &bytes) || bytes > SIZE_MAX - v->align) return false;
+    char* block = v->data ? (char*)v->data - v->pad : NULL;
+    char* p = tg__realloc(a, block, bytes + v->align);
+    if (!p) return false;
+    size_t pad = v->align ? (size_t)(-(uintptr_t)p & (v->align - 1)) : 0;
+    if (pad != v->pad && v->capacity) memmove(p + pad, p + v->pad, v->capacity * v->elem);
+    v->data = p + pad, v->pad = pad, v->capacity = cap;
+    return true;
+}
+
 bool tg__vec_grow(const tg_allocator* a, tg__vec* v, size_t extra)
 {
     if (extra <= v->capacity - v->count) return true;
     if (extra > SIZE_MAX - v->count) return false;
-    size_t cap = tg__grow_capacity(v->capacity, v->count + extra, 64);
-    size_t bytes;
-    if (tg__mul_overflows(cap, v->elem, &bytes)) return false;
-    void* p = tg__realloc(a, v->data, bytes);
-    if (!p) return false;
-    v->data = p;
-    v->capacity = cap;
-    return true;
+    return vec_resize(a, v, tg__grow_capacity(v->capacity, v->count + extra, 64));
 }
 
 bool tg__vec_fit(const tg_allocator* a, tg__vec* v, size_t n)
 {
     if (n <= v->capacity) return true;
-    size_t cap = tg__grow_capacity(v->capacity, n, 64), bytes;
-    if (tg__mul_overflows(cap, v->elem, &bytes)) return false;
-    void* p = tg__realloc(a, v->data, bytes);
-    if (!p) return false;
-    v->data = p;
-    v->capacity = cap;
-    return true;
+    return vec_resize(a, v, tg__grow_capacity(v->capacity, n, 64));
 }
 
 void tg__vec_free(const tg_allocator* a, tg__vec* v)
 {
-    tg__free(a, v->data);
+    tg__free(a, v->data ? (char*)v->data - v->pad : NULL);
     v->data = NULL;
-    v->count = v->capacity = 0;
+    v->count = v->capacity = v->pad = 0;
 }
 
 /* A fresh "C" locale object per use keeps this free of global state; glibc hands out its static

@@ -98,6 +98,8 @@ typedef struct tg__vec {
     size_t count;    /* elements in use */
     size_t capacity; /* elements allocated */
     size_t elem;     /* element size in bytes */
+    size_t align;    /* 0, or a power of two data is aligned to (set before the first growth) */
+    size_t pad;      /* bytes from the allocated block to data */
 } tg__vec;
 /* Makes room for `extra` more elements; false on overflow or allocation failure. The common case
  * (room already) is inline: buffers of hot loops (the exact field's front and pools) ask often. */

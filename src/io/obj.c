@@ -114,9 +114,9 @@ tg_status tg__read_obj(const char* data, size_t size, const char* name, const tg
                        tg_diag* diag, tg__soup* out)
 {
     obj_cursor c = {data, data + size, data, 1};
-    tg__vec xyz = {NULL, 0, 0, sizeof(double)};
-    tg__vec tris = {NULL, 0, 0, sizeof(uint32_t)};
-    tg__vec poly = {NULL, 0, 0, sizeof(uint32_t)};
+    tg__vec xyz = {NULL, 0, 0, sizeof(double), 0, 0};
+    tg__vec tris = {NULL, 0, 0, sizeof(uint32_t), 0, 0};
+    tg__vec poly = {NULL, 0, 0, sizeof(uint32_t), 0, 0};
     tg_status st = TG_OK;
     while (c.p < c.end && st == TG_OK) {
         skip_blanks(&c);

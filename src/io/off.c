@@ -262,9 +262,9 @@ tg_status tg__read_off(const char* data, size_t size, const char* name, const tg
                        (long long)nv, (long long)nf, (size_t)(c.end - c.p));
     if ((uint64_t)nv >= (1u << 31))
         return fail_at(&c, c.p, TG_ERR_UNSUPPORTED, "%lld vertices exceed the 32-bit index limit", (long long)nv);
-    tg__vec xyz = {NULL, 0, 0, sizeof(double)};
-    tg__vec tris = {NULL, 0, 0, sizeof(uint32_t)};
-    tg__vec poly = {NULL, 0, 0, sizeof(uint32_t)};
+    tg__vec xyz = {NULL, 0, 0, sizeof(double), 0, 0};
+    tg__vec tris = {NULL, 0, 0, sizeof(uint32_t), 0, 0};
+    tg__vec poly = {NULL, 0, 0, sizeof(uint32_t), 0, 0};
     if (!tg__vec_reserve(a, &xyz, 3 * (size_t)nv + 1) || !tg__vec_reserve(a, &tris, 3 * (size_t)nf + 3))
         st = TG_ERR_OUT_OF_MEMORY;
     if (st == TG_OK) st = parse_vertices(&c, (size_t)nv, xyz.data);

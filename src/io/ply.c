@@ -783,9 +783,9 @@ tg_status tg__read_ply(const char* data, size_t size, const char* name, const tg
     ply_file f;
     ply_init(&f, data, size, name, a, diag);
     ply_pick vpick = {{0, 0, 0}, 0, false, NULL, PLY_NO_PROP, 0, NULL};
-    tg__vec poly = {NULL, 0, 0, sizeof(uint32_t)};
+    tg__vec poly = {NULL, 0, 0, sizeof(uint32_t), 0, 0};
     ply_pick fpick = {{0, 0, 0}, 0, false, NULL, PLY_NO_PROP, 0, &poly};
-    tg__vec tris = {NULL, 0, 0, sizeof(uint32_t)};
+    tg__vec tris = {NULL, 0, 0, sizeof(uint32_t), 0, 0};
     size_t vidx = PLY_NO_PROP, fidx;
     double* xyz = NULL;
     tg_status st = parse_header(&f);

@@ -40,7 +40,7 @@ static tg_status read_gz(const char* path, const tg_allocator* a, tg_diag* diag,
         tg__diag_set(diag, path, 0, 0, 0, "cannot open: %s", strerror(errno));
         return TG_ERR_IO;
     }
-    tg__vec buf = {NULL, 0, 0, 1};
+    tg__vec buf = {NULL, 0, 0, 1, 0, 0};
     tg_status st = TG_OK;
     for (;;) {
         if (!tg__vec_reserve(a, &buf, (size_t)1 << 20)) {
@@ -116,7 +116,7 @@ tg_status tg__inflate_memory(const char* data, size_t size, const char* name, co
         tg__diag_set(diag, name, 0, 0, 0, "out of memory for gzip decompression");
         return TG_ERR_OUT_OF_MEMORY;
     }
-    tg__vec buf = {NULL, 0, 0, 1};
+    tg__vec buf = {NULL, 0, 0, 1, 0, 0};
     size_t in = 0; /* input bytes consumed */
     tg_status st = TG_OK;
     for (;;) {
@@ -180,7 +180,7 @@ tg_status tg__inflate_memory(const char* data, size_t size, const char* name, co
 static tg_status read_stream(FILE* f, const char* path, const tg_allocator* a, tg_diag* diag, char** out_data,
                              size_t* out_size)
 {
-    tg__vec buf = {NULL, 0, 0, 1};
+    tg__vec buf = {NULL, 0, 0, 1, 0, 0};
     tg_status st = TG_OK;
     for (;;) {
         if (!tg__vec_reserve(a, &buf, (size_t)1 << 16)) {

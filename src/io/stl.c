@@ -303,7 +303,7 @@ tg_status tg__read_stl(const char* data, size_t size, const char* name, const tg
     }
     if (binary) return read_binary(data, size, name, a, diag, out);
     stl_cursor c = {data, 0, size, name, diag, 0};
-    tg__vec xyz = {NULL, 0, 0, sizeof(double)};
+    tg__vec xyz = {NULL, 0, 0, sizeof(double), 0, 0};
     tg_status st = parse_ascii(&c, a, &xyz);
     if (c.corners == 0 && size >= 84 && 84 + 50 * (uint64_t)ld32le((const unsigned char*)data + 80) <= size) {
         /* a binary file whose 80-byte header happens to start with "solid" */

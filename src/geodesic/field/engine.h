@@ -48,11 +48,12 @@ typedef struct tg__window {
     double d0, d1; /* the distances at b0 and b1 as made (for the filters before trimming moves
                       the ends, and trimming's own test of the ends; NAN once trimming moved an
                       end): one 64-byte line a window */
-    uint32_t next; /* next window in the same list, TG_NONE at the end */
-    uint32_t tag;  /* origin (low 29 bits, TG__TAG_ORIGIN): the pseudo-source vertex whose image
+    uint32_t spare; /* (the list's links are the scratch's wnext: walked without the windows) */
+    uint32_t tag;   /* origin (low 29 bits, TG__TAG_ORIGIN): the pseudo-source vertex whose image
                       is (sx, sy), or TG__ORIGIN_SOURCE; bits 29-31 (TG__TAG_FLAT): how many
                       zero-area faces it has just crossed in a row */
 } tg__window;
+_Static_assert(sizeof(tg__window) == 64, "a window is one cache line: the pool is aligned to it (scratch.c)");
 
 /* Rays cross a zero-area face (solver.h, TG__F_FLAT) at once, its three corners on one line, and
  * go on into the faces beyond its other two edges. Such faces come stacked where CAD meshes fill
@@ -114,6 +115,7 @@ typedef struct tg__corner_hit {
 /* The growable buffers of the field scratch, written once: (member, element type). */
 #define TG__FIELD_BUFFERS(X)                                                                       \
     X(windows, tg__window)     /* the window pool */                                              \
+    X(wnext, uint32_t)         /* per pool slot: the next window in its list, TG_NONE at the end */ \
     X(free_ids, uint32_t)      /* released pool slots */                                          \
     X(front, tg__heap_item)    /* the vertex front (lazy: stale entries skipped) */               \
     X(fifo, uint32_t)          /* ring buffer of halfedges whose lists may cross */               \

@@ -88,6 +88,9 @@ bool tg__field_scratch_init(tg__field_scratch* fs, const tg_geodesic* g, const t
 #define TG__FIELD_ELEM_(name, type) fs->name.elem = sizeof(type);
     TG__FIELD_BUFFERS(TG__FIELD_ELEM_)
 #undef TG__FIELD_ELEM_
+    /* a window is one cache line (engine.h), when the pool starts on one: malloc's 16-byte
+     * alignment put each window across two */
+    fs->windows.align = sizeof(tg__window);
     fs->touched_all = 1;
     size_t nv = g->vertex_count ? g->vertex_count : 1, nf = g->face_count ? g->face_count : 1, nh = 3 * nf;
     fs->dist = tg__alloc_array(a, nv, sizeof(double));

@@ -83,6 +83,7 @@ check: check-release check-asan
 
 large:
 	@bash ../shared/tools/make_large_meshes.sh $(BUILD)/large
+	@for l in 7 8; do [ -s $(BUILD)/large/icosphere$$l.ply ] || python3 bench/make_icosphere.py $$l $(BUILD)/large/icosphere$$l.ply; done
 
 bench: bench-deps large
 	cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER=gcc -DCMAKE_CXX_COMPILER=g++ \

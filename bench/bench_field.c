@@ -1,7 +1,11 @@
 /* bench_field.c - exact geodesic distance fields: seconds per field (median and max over sources)
  * from random vertex sources, windows propagated, scratch memory and peak RSS.
  *
- * usage: bench_field MESH [--sources N] [--seed S] [--threads T] [--batch K]
+ * usage: bench_field MESH [--sources N] [--seed S] [--vertex V] [--threads T] [--batch K]
+ *   --vertex V: every field from vertex V (the peers' runs from one vertex, e.g. VTP's run.sh
+ *   MESH V). --reuse: one workspace made before the first field and kept for all (the default
+ *   makes each field's inside the call, as the CLI does: its pool's first pages then count); with
+ *   --vertex V the median then times V's field as VTP's clock times its propagation alone.
  *   --threads T: each field on T threads (tg_field_options.threads; default 1, the serial engine;
  *   0: every core); with T != 1 a second row gives the parallel schedule summed over the fields:
  *   | rounds | waves | lists per wave | serial share f (thread 0 outside the waves, over that
@@ -66,7 +70,8 @@ int main(int argc, char** argv)
 {
     if (argc < 2) die("usage: bench_field MESH [--sources N] [--seed S]", NULL);
     const char* path = argv[1];
-    int sources = 5, batch = 0, threads = 1, span = 0;
+    int sources = 5, batch = 0, threads = 1, span = 0, reuse = 0;
+    long long vertex = -1;
     unsigned long long seed = 1;
     for (int i = 2; i < argc; ++i) {
         if (!strcmp(argv[i], "--sources") && i + 1 < argc)
@@ -77,6 +82,10 @@ int main(int argc, char** argv)
             threads = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--span"))
             span = 1;
+        else if (!strcmp(argv[i], "--reuse"))
+            reuse = 1;
+        else if (!strcmp(argv[i], "--vertex") && i + 1 < argc)
+            vertex = atoll(argv[++i]);
         else if (!strcmp(argv[i], "--seed") && i + 1 < argc)
             seed = strtoull(argv[++i], NULL, 10);
         else
@@ -87,6 +96,7 @@ int main(int argc, char** argv)
     tg_diag d;
     if (tg_mesh_load(path, TG_FORMAT_AUTO, NULL, &d, &m) != TG_OK) die("cannot load", d.message);
     size_t n = tg_mesh_vertex_count(m), F = tg_mesh_face_count(m);
+    if (vertex >= (long long)n) die("--vertex beyond the mesh's vertices:", argv[1]);
     if (F == 0) die("no faces in", path);
     tg_geodesic* g = NULL;
     if (tg_geodesic_create(m, NULL, &g) != TG_OK) die("solver", path);
@@ -132,17 +142,19 @@ int main(int argc, char** argv)
         if (!lg.item_s || !lg.wave_n) die("out of memory", NULL);
         tg__field_schedule_log(&lg);
     }
+    tg_geodesic_workspace* ws = NULL;
+    if (reuse && tg_geodesic_workspace_create(g, &ws) != TG_OK) die("out of memory", NULL);
     for (int q = 0; q < sources; ++q) {
         lg.items = lg.waves = 0;
         s ^= s >> 12, s ^= s << 25, s ^= s >> 27;
-        uint32_t v = t[(s * 2685821657736338717ull) % (3 * F)];
+        uint32_t v = vertex >= 0 ? (uint32_t)vertex : t[(s * 2685821657736338717ull) % (3 * F)];
         tg_surface_point src = tg_surface_vertex(v);
         tg_field_stats st;
         double w0 = bench_wall(), c0 = bench_cpu_thread();
         tg_field_options o;
         memset(&o, 0, sizeof o);
         o.threads = threads == 0 ? TG_THREADS_ALL : threads;
-        if (tg_geodesic_field(g, NULL, &src, 1, &o, dist, &st) != TG_OK) die("field failed on", path);
+        if (tg_geodesic_field(g, ws, &src, 1, &o, dist, &st) != TG_OK) die("field failed on", path);
         cpu[q] = bench_cpu_thread() - c0;
         wall[q] = bench_wall() - w0;
         windows[q] = (double)st.windows_propagated;
@@ -156,6 +168,7 @@ int main(int argc, char** argv)
         }
     }
     tg__field_schedule_log(NULL);
+    tg_geodesic_workspace_destroy(ws);
     const char* name = strrchr(path, '/');
     name = name ? name + 1 : path;
     double mx = 0;

@@ -83,9 +83,17 @@ extern "C" {
 
 #define TG_VERSION_MAJOR 0
 #define TG_VERSION_MINOR 6
-#define TG_VERSION_PATCH 3
+#define TG_VERSION_PATCH 4
 /** Single integer for comparisons: major * 10000 + minor * 100 + patch. */
 #define TG_VERSION (TG_VERSION_MAJOR * 10000 + TG_VERSION_MINOR * 100 + TG_VERSION_PATCH)
+
+/* Changes in 0.6.4 (ABI-compatible with 0.6.0: same soname, no interface change):
+ *  - Exact fields are faster with the same results (the same bits on every mesh tried): a pair
+ *    of windows of one edge whose overlap's ends are each won by the window ending there is left
+ *    as it is without solving for their crossings (fcpw_kitten, openfoam_DTC-scaled and
+ *    openfoam_terrain 10-12% faster); a list's links are walked without reading its windows and
+ *    the windows fetched together, the pool aligned to the 64-byte window (the icosphere of level
+ *    8, 245M windows: 2x faster). A workspace takes 72 bytes per window slot (4 more). */
 
 /* Changes in 0.6.3 (ABI-compatible with 0.6.0: same soname, no interface change):
  *  - One field on several threads (tg_field_options.threads > 1): the vertices a round takes off

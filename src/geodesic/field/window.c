@@ -168,7 +168,7 @@ static TG__ALWAYS_INLINE bool ends_kept(const tg__window* wi, const tg__window* 
 }
 
 /* Trims the pair over their overlap [p, q]: each window loses the runs of sub-intervals that the
- * other wins and that touch its own end; an end moved gets no distance (NAN) until asked for. */
+ * other wins and that touch its own end; an end it moves loses its distance (NAN). */
 static TG__ALWAYS_INLINE void trim_pair(tg__window* wi, tg__window* wj, bool lines)
 {
     double p = wi->b0 > wj->b0 ? wi->b0 : wj->b0, q = wi->b1 < wj->b1 ? wi->b1 : wj->b1;

@@ -1,7 +1,7 @@
 /* bench_field.c - exact geodesic distance fields: seconds per field (median and max over sources)
  * from random vertex sources, windows propagated, scratch memory and peak RSS.
  *
- * usage: bench_field MESH [--sources N] [--seed S] [--vertex V] [--threads T] [--batch K]
+ * usage: bench_field MESH [--sources N] [--seed S] [--vertex V] [--reuse] [--threads T [--span]] [--batch K]
  *   --vertex V: every field from vertex V (the peers' runs from one vertex, e.g. VTP's run.sh
  *   MESH V). --reuse: one workspace made before the first field and kept for all (the default
  *   makes each field's inside the call, as the CLI does: its pool's first pages then count); with
@@ -68,7 +68,7 @@ static void die(const char* msg, const char* arg)
 
 int main(int argc, char** argv)
 {
-    if (argc < 2) die("usage: bench_field MESH [--sources N] [--seed S]", NULL);
+    if (argc < 2) die("usage: bench_field MESH [--sources N] [--seed S] [--vertex V] [--reuse] [--threads T [--span]] [--batch K]", NULL);
     const char* path = argv[1];
     int sources = 5, batch = 0, threads = 1, span = 0, reuse = 0;
     long long vertex = -1;

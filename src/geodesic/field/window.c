@@ -206,8 +206,8 @@ static TG__ALWAYS_INLINE void trim_pair(tg__window* wi, tg__window* wj, bool lin
     }
 }
 
-/* Lists up to this long are sorted by insertion only (measured: 64 on openfoam_terrain's lists of
- * 24 windows on average, a few of them out of place) */
+/* Lists up to this long are sorted by insertion only: they arrive nearly in order (openfoam_terrain's
+ * hold 24 windows on average, a few out of place), where Shell sort's first gaps cost 7% of a field */
 #define INSERTION_MAX 64
 
 static int cmp_key(const void* x, const void* y)

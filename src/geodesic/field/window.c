@@ -153,6 +153,16 @@ static TG__ALWAYS_INLINE int winner_at(const tg__window* wi, const tg__window* w
     return i_first ? 1 : -1;
 }
 
+/* Is window w's distance at x longer than d beyond the tie margin? Compared squared (no square
+ * root): w's distance is sigma + sqrt(Q), so the question is sqrt(Q) > R with R = d (1 + TIE_REL) -
+ * sigma. A NAN d (an end trimming moved) answers no. */
+static TG__ALWAYS_INLINE bool longer_at(const tg__window* w, double x, double d)
+{
+    double dx = x - w->sx, q = dx * dx + w->sy * w->sy;
+    double r = d * (1.0 + TIE_REL) - w->sigma;
+    return r < 0.0 || q > r * r;
+}
+
 /* Whether trim_pair would cut nothing because each end of the overlap [p, q] is an end of one
  * window only, and that window is the shorter there beyond the tie margin (a run the other wins
  * is cut only where it touches an end of the loser). Most overlapping pairs of a list are a
@@ -162,9 +172,7 @@ static TG__ALWAYS_INLINE bool ends_kept(const tg__window* wi, const tg__window* 
 {
     bool ip = wi->b0 == p, iq = wi->b1 == q;
     if (ip == (wj->b0 == p) || iq == (wj->b1 == q)) return false; /* an end of both */
-    double dop = ip ? wi->d0 : wj->d0, dxp = tg__win_dist_k(ip ? wj : wi, p, false);
-    double doq = iq ? wi->d1 : wj->d1, dxq = tg__win_dist_k(iq ? wj : wi, q, false);
-    return dxp > dop + TIE_REL * dxp && dxq > doq + TIE_REL * dxq;
+    return longer_at(ip ? wj : wi, p, ip ? wi->d0 : wj->d0) && longer_at(iq ? wj : wi, q, iq ? wi->d1 : wj->d1);
 }
 
 /* Trims the pair over their overlap [p, q]: each window loses the runs of sub-intervals that the

@@ -895,6 +895,10 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
     int flat = !(fr->cy > 0.0);
     TG__PREFETCH_FACE(run, g->ring[hn]);
     TG__PREFETCH_FACE(run, g->ring[hp]);
+    /* the face's corner distances, which the filters below and every child's read */
+    TG__PREFETCH(&fs->dist[g->tri[h]]);
+    TG__PREFETCH(&fs->dist[g->tri[hn]]);
+    TG__PREFETCH(&fs->dist[g->tri[hp]]);
     /* the list's slots first, along its links (4 bytes a window), each window asked for as its
      * slot is found (cache prefetch): a pool of millions of windows is far larger than the
      * caches, and reading each window for the link to the next made a list a chain of misses

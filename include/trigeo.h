@@ -1625,7 +1625,8 @@ typedef struct tg_field_stats {
  *  progress callback returned non-zero). On any error out_vertex_distance and out_stats are
  *  untouched and nothing leaks.
  *  Complexity: typically a small multiple of n^1.5 window crossings for n vertices (O(n^2 log n)
- *  worst case); memory: the workspace plus 72 bytes per window slot (as many as were live at once).
+ *  worst case); memory: the workspace plus about 73 bytes per window slot (as many as were live at
+ *  once: the window, its place on the free list and in its list's block of 14).
  *  Thread-safe: geodesic is only read; concurrent calls need distinct workspaces and output arrays. */
 TG_API tg_status tg_geodesic_field(const tg_geodesic* geodesic, tg_geodesic_workspace* workspace,
                             const tg_surface_point* sources, size_t source_count,

@@ -48,12 +48,24 @@ typedef struct tg__window {
     double d0, d1; /* the distances at b0 and b1 as made (for the filters before trimming moves
                       the ends, and trimming's own test of the ends; NAN once trimming moved an
                       end): one 64-byte line a window */
-    uint32_t spare; /* (the list's links are the scratch's wnext: walked without the windows) */
+    uint32_t spare; /* (a window's list holds its id in a block: tg__list_block) */
     uint32_t tag;   /* origin (low 29 bits, TG__TAG_ORIGIN): the pseudo-source vertex whose image
                       is (sx, sy), or TG__ORIGIN_SOURCE; bits 29-31 (TG__TAG_FLAT): how many
                       zero-area faces it has just crossed in a row */
 } tg__window;
 _Static_assert(sizeof(tg__window) == 64, "a window is one cache line: the pool is aligned to it (scratch.c)");
+
+/* A list's windows: the ids of its pool slots, TG__BLOCK_IDS a block, the blocks linked from the
+ * halfedge's head (the newest first, each filled in order), so that a list of n windows is
+ * walked in about n / 14 reads of a cache line where a link per window made n dependent reads
+ * (a pool of millions of windows: each a miss). */
+#define TG__BLOCK_IDS 14
+typedef struct tg__list_block {
+    uint32_t next;  /* the older block, TG_NONE at the end */
+    uint32_t count; /* ids in use (1 .. TG__BLOCK_IDS) */
+    uint32_t ids[TG__BLOCK_IDS];
+} tg__list_block;
+_Static_assert(sizeof(tg__list_block) == 64, "a block is one cache line: its buffer is aligned to it (scratch.c)");
 
 /* Rays cross a zero-area face (solver.h, TG__F_FLAT) at once, its three corners on one line, and
  * go on into the faces beyond its other two edges. Such faces come stacked where CAD meshes fill
@@ -115,8 +127,9 @@ typedef struct tg__corner_hit {
 /* The growable buffers of the field scratch, written once: (member, element type). */
 #define TG__FIELD_BUFFERS(X)                                                                       \
     X(windows, tg__window)     /* the window pool */                                              \
-    X(wnext, uint32_t)         /* per pool slot: the next window in its list, TG_NONE at the end */ \
     X(free_ids, uint32_t)      /* released pool slots */                                          \
+    X(blocks, tg__list_block)  /* the lists' blocks (tg__list_block) */                           \
+    X(free_blocks, uint32_t)   /* released blocks */                                              \
     X(front, tg__heap_item)    /* the vertex front (lazy: stale entries skipped) */               \
     X(fifo, uint32_t)          /* ring buffer of halfedges whose lists may cross */               \
     X(list, uint32_t)          /* one list's windows while it is propagated */                    \
@@ -186,10 +199,11 @@ typedef struct tg__lane_relax {
 
 /* The buffers of a lane: the results of the lists it crossed (child; child_rec, in log map runs,
  * the children's records (logmap_record.h) at the same index, base NaN for none; relax; freed;
+ * freed_blocks: the blocks of the lists it took, released by thread 0 after the wave;
  * qids: the trimmed lists whose windows the merge evaluates at query points or records for
  * levels, as the serial engine does while they cross), and its own copies of the list scratch
  * (list, keys, hits). */
-#define TG__LANE_BUFFERS(X) X(child) X(child_rec) X(relax) X(freed) X(qids) X(ready) X(list) X(keys) X(hits)
+#define TG__LANE_BUFFERS(X) X(child) X(child_rec) X(relax) X(freed) X(freed_blocks) X(qids) X(ready) X(list) X(keys) X(hits)
 
 /* One thread's buffers (TG__LANE_BUFFERS). */
 typedef struct tg__field_lane {
@@ -224,7 +238,7 @@ typedef struct tg__field_scratch {
     uint32_t* fpos;  /* its slot on the front (valid while VS_FRONT) */
     tg__pred* pred;  /* how each got its distance (runs that trace paths) */
     /* per halfedge */
-    uint32_t* head;  /* first window of the list waiting to enter face h / 3, TG_NONE if empty */
+    uint32_t* head;  /* newest block of the list waiting to enter face h / 3, TG_NONE if empty */
     uint8_t* queued; /* Q_* flags of propagate.c: in the FIFO, touched */
     double* split_d; /* shortest distance to the face's opposite corner among windows through h */
     double* split_x; /* where that window's ray to the corner crosses h */

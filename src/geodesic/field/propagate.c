@@ -86,14 +86,47 @@ static TG__ALWAYS_INLINE uint32_t win_alloc(tg__field_scratch* fs)
     if (fs->free_ids.capacity < fs->windows.capacity &&
         !tg__field_grow(fs, &fs->free_ids, fs->windows.capacity - fs->free_ids.count))
         return TG_NONE;
-    if (fs->wnext.capacity < fs->windows.capacity && !tg__field_grow(fs, &fs->wnext, fs->windows.capacity - fs->wnext.count))
-        return TG_NONE;
     return (uint32_t)fs->windows.count++;
 }
 
 static void win_release(tg__field_scratch* fs, uint32_t id)
 {
     ((uint32_t*)fs->free_ids.data)[fs->free_ids.count++] = id;
+}
+
+/* ---- the lists' blocks (engine.h's tg__list_block) ---- */
+
+static TG__ALWAYS_INLINE uint32_t block_alloc(tg__field_scratch* fs)
+{
+    if (fs->free_blocks.count) return ((uint32_t*)fs->free_blocks.data)[--fs->free_blocks.count];
+    if (fs->blocks.count >= (size_t)UINT32_MAX - 1) return TG_NONE;
+    if (!tg__field_grow(fs, &fs->blocks, 1)) return TG_NONE;
+    /* the free list can hold every block, so releasing never allocates */
+    if (fs->free_blocks.capacity < fs->blocks.capacity &&
+        !tg__field_grow(fs, &fs->free_blocks, fs->blocks.capacity - fs->free_blocks.count))
+        return TG_NONE;
+    return (uint32_t)fs->blocks.count++;
+}
+
+static void block_release(tg__field_scratch* fs, uint32_t b)
+{
+    ((uint32_t*)fs->free_blocks.data)[fs->free_blocks.count++] = b;
+}
+
+/* Adds pool slot `id` to the list of h (newest first when walked); false when out of memory. */
+static TG__ALWAYS_INLINE bool list_add(tg__field_scratch* fs, uint32_t h, uint32_t id)
+{
+    uint32_t b = fs->head[h];
+    if (b == TG_NONE || ((const tg__list_block*)fs->blocks.data)[b].count == TG__BLOCK_IDS) {
+        uint32_t nb = block_alloc(fs);
+        if (nb == TG_NONE) return false;
+        tg__list_block* blk = &((tg__list_block*)fs->blocks.data)[nb];
+        blk->next = b, blk->count = 0;
+        fs->head[h] = b = nb;
+    }
+    tg__list_block* blk = &((tg__list_block*)fs->blocks.data)[b];
+    blk->ids[blk->count++] = id;
+    return true;
 }
 
 /* ---- several threads: a lane keeps what a list's crossing would write to shared state ---- */
@@ -396,8 +429,7 @@ static TG__ALWAYS_INLINE bool store_window(tg__field_run* run, uint32_t h, doubl
     w->b0 = c0, w->b1 = c1, w->sx = x, w->sy = y, w->sigma = sigma, w->d0 = d0, w->d1 = d1, w->tag = tag;
     if (rec && !lm_store(fs, id, rec)) return false;
     if (!touch_halfedge(fs, h)) return false;
-    ((uint32_t*)fs->wnext.data)[id] = fs->head[h];
-    fs->head[h] = id;
+    if (!list_add(fs, h, id)) return false;
     run->stats.windows_created++;
     size_t live = fs->windows.count - fs->free_ids.count;
     if (live > run->stats.peak_windows) run->stats.peak_windows = live;
@@ -885,7 +917,7 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
     tg__vec* listv = L ? &L->list : &fs->list;
     tg__vec* keysv = L ? &L->keys : &fs->keys;
     tg__vec* hitsv = L ? &L->hits : &fs->hits;
-    uint32_t id = fs->head[h];
+    uint32_t blk_id = fs->head[h];
     fs->head[h] = TG_NONE;
     const tg__frame* fr = &g->frame[h];
     uint32_t hn = tg_halfedge_next(h), hp = tg_halfedge_prev(h);
@@ -899,16 +931,32 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
     TG__PREFETCH(&fs->dist[g->tri[h]]);
     TG__PREFETCH(&fs->dist[g->tri[hn]]);
     TG__PREFETCH(&fs->dist[g->tri[hp]]);
-    /* the list's slots first, along its links (4 bytes a window), each window asked for as its
-     * slot is found (cache prefetch): a pool of millions of windows is far larger than the
+    /* the list's slots first, block by block (engine.h: newest first), each window asked for as
+     * its slot is found (cache prefetch): a pool of millions of windows is far larger than the
      * caches, and reading each window for the link to the next made a list a chain of misses
-     * (half of a field's time on the icosphere of level 8) */
+     * (half of a field's time on the icosphere of level 8). The blocks go back to the free list
+     * (a lane's after the wave: thread 0 owns it). */
     listv->count = 0;
-    const uint32_t* wnext = fs->wnext.data;
-    for (; id != TG_NONE; id = wnext[id]) {
-        if (!scratch_grow(fs, L, listv, 1)) return false;
-        TG__PREFETCH(&pool[id]);
-        ((uint32_t*)listv->data)[listv->count++] = id;
+    const tg__list_block* blocks = fs->blocks.data;
+    while (blk_id != TG_NONE) {
+        const tg__list_block* blk = &blocks[blk_id];
+        uint32_t count = blk->count, next = blk->next;
+        if (next != TG_NONE) TG__PREFETCH(&blocks[next]);
+        if (!scratch_grow(fs, L, listv, count)) return false;
+        uint32_t* out = (uint32_t*)listv->data + listv->count;
+        for (uint32_t k = count; k-- > 0;) {
+            uint32_t id = blk->ids[k];
+            TG__PREFETCH(&pool[id]);
+            *out++ = id;
+        }
+        listv->count += count;
+        if (!L) {
+            block_release(fs, blk_id);
+        } else {
+            if (!lane_grow(fs, L, &L->freed_blocks, 1)) return false;
+            ((uint32_t*)L->freed_blocks.data)[L->freed_blocks.count++] = blk_id;
+        }
+        blk_id = next;
     }
     uint32_t* ids = listv->data;
     size_t n = 0;
@@ -1027,6 +1075,7 @@ void tg__field_reset(tg__field_scratch* fs)
     fs->windows.count = 0;
     fs->lm_win.count = 0;
     fs->free_ids.count = 0;
+    fs->blocks.count = fs->free_blocks.count = 0;
     fs->front.count = 0;
     fs->fifo.count = 0;
     fs->fifo_head = 0;
@@ -1497,6 +1546,7 @@ static tg_status crew_run(tg__field_run* run, crew* c, size_t n)
     for (int t = 0; t <= c->workers; ++t) {
         tg__field_lane* L = &fs->lanes[t];
         L->child.count = L->child_rec.count = L->relax.count = L->freed.count = L->qids.count = L->ready.count = 0;
+        L->freed_blocks.count = 0;
         L->failed = 0;
     }
     tg__schedule_log* slog = schedule_log;
@@ -1521,6 +1571,9 @@ static tg_status crew_run(tg__field_run* run, crew* c, size_t n)
         run->stats.wave_seconds += L->busy_s;
         memset(&L->stats, 0, sizeof L->stats);
         L->busy_s = 0.0;
+        /* the blocks of the lists it took (which blocks are reused never changes a result) */
+        const uint32_t* fb = L->freed_blocks.data;
+        for (size_t i = 0; i < L->freed_blocks.count; ++i) block_release(fs, fb[i]);
     }
     return st;
 }

@@ -41,7 +41,7 @@ bool tg__field_lanes(tg__field_scratch* fs, int n)
         tg__field_lane* L = &lanes[i];
         L->child.elem = sizeof(tg__lane_child), L->child_rec.elem = sizeof(tg__lm_rec);
         L->relax.elem = sizeof(tg__lane_relax);
-        L->freed.elem = L->qids.elem = L->ready.elem = L->list.elem = sizeof(uint32_t);
+        L->freed.elem = L->freed_blocks.elem = L->qids.elem = L->ready.elem = L->list.elem = sizeof(uint32_t);
         L->keys.elem = sizeof(tg__win_key), L->hits.elem = sizeof(tg__corner_hit);
     }
     tg__free(&fs->allocator, fs->lanes);
@@ -91,6 +91,7 @@ bool tg__field_scratch_init(tg__field_scratch* fs, const tg_geodesic* g, const t
     /* a window is one cache line (engine.h), when the pool starts on one: malloc's 16-byte
      * alignment put each window across two */
     fs->windows.align = sizeof(tg__window);
+    fs->blocks.align = sizeof(tg__list_block);
     fs->touched_all = 1;
     size_t nv = g->vertex_count ? g->vertex_count : 1, nf = g->face_count ? g->face_count : 1, nh = 3 * nf;
     fs->dist = tg__alloc_array(a, nv, sizeof(double));

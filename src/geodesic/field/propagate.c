@@ -1021,6 +1021,13 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
             if (!relax_vertex(run, vc, hc.dc, ray)) return false;
         }
     }
+    /* the blocks the children will join (their heads were asked for as the list began) */
+    {
+        const tg__list_block* bl = fs->blocks.data;
+        uint32_t bn = fs->head[g->ring[hn]], bp = fs->head[g->ring[hp]];
+        if (bn != TG_NONE) TG__PREFETCH(&bl[bn]);
+        if (bp != TG_NONE) TG__PREFETCH(&bl[bp]);
+    }
     /* the exit edges' directions, once for the list (crossable: both have a length) */
     const double a[2] = {0.0, 0.0}, b[2] = {fr->len, 0.0}, c[2] = {fr->cx, fr->cy};
     double u[4];

@@ -83,9 +83,17 @@ extern "C" {
 
 #define TG_VERSION_MAJOR 0
 #define TG_VERSION_MINOR 6
-#define TG_VERSION_PATCH 4
+#define TG_VERSION_PATCH 5
 /** Single integer for comparisons: major * 10000 + minor * 100 + patch. */
 #define TG_VERSION (TG_VERSION_MAJOR * 10000 + TG_VERSION_MINOR * 100 + TG_VERSION_PATCH)
+
+/* Changes in 0.6.5 (ABI-compatible with 0.6.0: same soname, no interface change):
+ *  - Exact fields are faster, exact as before, not the same bits as 0.6.4's (within rounding):
+ *    the windows of one edge are each trimmed against the next 3 by start, not every window they
+ *    overlap (1.7-3% more windows cross; openfoam_terrain 7%, openfoam_DTC-scaled 5%, fcpw_kitten
+ *    4% faster), with the ends' test compared squared; a list's windows are held in blocks of 14
+ *    ids, walked a cache line at a time (the icosphere of level 8: 15.4 s -> 13.8 s on one
+ *    thread, 11.5 -> 10.5 s on two). A workspace takes about 73 bytes per window slot. */
 
 /* Changes in 0.6.4 (ABI-compatible with 0.6.0: same soname, no interface change):
  *  - Exact fields are faster with the same results (the same bits on every mesh tried): a pair

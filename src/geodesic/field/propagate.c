@@ -1021,8 +1021,9 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
             if (!relax_vertex(run, vc, hc.dc, ray)) return false;
         }
     }
-    /* the blocks the children will join (their heads were asked for as the list began) */
-    {
+    /* the blocks the children will join (their heads were asked for as the list began); not on
+     * a lane, where another lane may be taking one of those lists at once */
+    if (!L) {
         const tg__list_block* bl = fs->blocks.data;
         uint32_t bn = fs->head[g->ring[hn]], bp = fs->head[g->ring[hp]];
         if (bn != TG_NONE) TG__PREFETCH(&bl[bn]);

@@ -75,50 +75,45 @@ static double now_s(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* ---- window pool ---- */
+/* ---- pools with a free list: the windows (free_ids) and the lists' blocks (free_blocks) ---- */
+
+/* A slot of `pool` (its free list `free_list`): the last released, else a new one; TG_NONE when out of
+ * memory or ids. */
+static TG__ALWAYS_INLINE uint32_t pool_alloc(tg__field_scratch* fs, tg__vec* pool, tg__vec* free_list)
+{
+    if (free_list->count) return ((uint32_t*)free_list->data)[--free_list->count];
+    if (pool->count >= (size_t)UINT32_MAX - 1) return TG_NONE;
+    if (!tg__field_grow(fs, pool, 1)) return TG_NONE;
+    /* the free list can hold every slot, so releasing never allocates */
+    if (free_list->capacity < pool->capacity &&
+        !tg__field_grow(fs, free_list, pool->capacity - free_list->count))
+        return TG_NONE;
+    return (uint32_t)pool->count++;
+}
+
+static TG__ALWAYS_INLINE void pool_release(tg__vec* free_list, uint32_t id)
+{
+    ((uint32_t*)free_list->data)[free_list->count++] = id;
+}
 
 static TG__ALWAYS_INLINE uint32_t win_alloc(tg__field_scratch* fs)
 {
-    if (fs->free_ids.count) return ((uint32_t*)fs->free_ids.data)[--fs->free_ids.count];
-    if (fs->windows.count >= (size_t)UINT32_MAX - 1) return TG_NONE;
-    if (!tg__field_grow(fs, &fs->windows, 1)) return TG_NONE;
-    /* the free list can hold every slot, so releasing never allocates; every slot has a link */
-    if (fs->free_ids.capacity < fs->windows.capacity &&
-        !tg__field_grow(fs, &fs->free_ids, fs->windows.capacity - fs->free_ids.count))
-        return TG_NONE;
-    return (uint32_t)fs->windows.count++;
+    return pool_alloc(fs, &fs->windows, &fs->free_ids);
 }
 
 static void win_release(tg__field_scratch* fs, uint32_t id)
 {
-    ((uint32_t*)fs->free_ids.data)[fs->free_ids.count++] = id;
+    pool_release(&fs->free_ids, id);
 }
 
 /* ---- the lists' blocks (engine.h's tg__list_block) ---- */
-
-static TG__ALWAYS_INLINE uint32_t block_alloc(tg__field_scratch* fs)
-{
-    if (fs->free_blocks.count) return ((uint32_t*)fs->free_blocks.data)[--fs->free_blocks.count];
-    if (fs->blocks.count >= (size_t)UINT32_MAX - 1) return TG_NONE;
-    if (!tg__field_grow(fs, &fs->blocks, 1)) return TG_NONE;
-    /* the free list can hold every block, so releasing never allocates */
-    if (fs->free_blocks.capacity < fs->blocks.capacity &&
-        !tg__field_grow(fs, &fs->free_blocks, fs->blocks.capacity - fs->free_blocks.count))
-        return TG_NONE;
-    return (uint32_t)fs->blocks.count++;
-}
-
-static void block_release(tg__field_scratch* fs, uint32_t b)
-{
-    ((uint32_t*)fs->free_blocks.data)[fs->free_blocks.count++] = b;
-}
 
 /* Adds pool slot `id` to the list of h (newest first when walked); false when out of memory. */
 static TG__ALWAYS_INLINE bool list_add(tg__field_scratch* fs, uint32_t h, uint32_t id)
 {
     uint32_t b = fs->head[h];
     if (b == TG_NONE || ((const tg__list_block*)fs->blocks.data)[b].count == TG__BLOCK_IDS) {
-        uint32_t nb = block_alloc(fs);
+        uint32_t nb = pool_alloc(fs, &fs->blocks, &fs->free_blocks);
         if (nb == TG_NONE) return false;
         tg__list_block* blk = &((tg__list_block*)fs->blocks.data)[nb];
         blk->next = b, blk->count = 0;
@@ -951,7 +946,7 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
         }
         listv->count += count;
         if (!L) {
-            block_release(fs, blk_id);
+            pool_release(&fs->free_blocks, blk_id);
         } else {
             if (!lane_grow(fs, L, &L->freed_blocks, 1)) return false;
             ((uint32_t*)L->freed_blocks.data)[L->freed_blocks.count++] = blk_id;
@@ -1581,7 +1576,7 @@ static tg_status crew_run(tg__field_run* run, crew* c, size_t n)
         L->busy_s = 0.0;
         /* the blocks of the lists it took (which blocks are reused never changes a result) */
         const uint32_t* fb = L->freed_blocks.data;
-        for (size_t i = 0; i < L->freed_blocks.count; ++i) block_release(fs, fb[i]);
+        for (size_t i = 0; i < L->freed_blocks.count; ++i) pool_release(&fs->free_blocks, fb[i]);
     }
     return st;
 }

@@ -203,7 +203,8 @@ typedef struct tg__lane_relax {
  * qids: the trimmed lists whose windows the merge evaluates at query points or records for
  * levels, as the serial engine does while they cross), and its own copies of the list scratch
  * (list, keys, hits). */
-#define TG__LANE_BUFFERS(X) X(child) X(child_rec) X(relax) X(freed) X(freed_blocks) X(qids) X(ready) X(list) X(keys) X(hits)
+#define TG__LANE_BUFFERS(X)                                                                        \
+    X(child) X(child_rec) X(relax) X(freed) X(freed_blocks) X(qids) X(ready) X(list) X(keys) X(hits)
 
 /* One thread's buffers (TG__LANE_BUFFERS). */
 typedef struct tg__field_lane {

@@ -1217,9 +1217,8 @@ static tg_status propagate_serial(tg__field_run* run)
  * VERTEX_WAVE_MIN or more does their steps on the lanes too, vertex_round below), then crosses
  * the lists in the FIFO wave by wave: the lists of a wave cross their faces at once, each on a thread's lane (reading
  * the distances as the wave began), and the lanes are merged in the wave's order (corner
- * distances, released slots, then the children pushed as the serial engine pushes them). Fewer
- * than WAVE_MIN lists wait for one round (they cross with its lists on the lanes when there are
- * enough then), and cross on this thread as in the serial engine if there are still too few. Neither the rounds
+ * distances, released slots, then the children pushed as the serial engine pushes them). Waves
+ * of fewer than WAVE_MIN lists cross on this thread as in the serial engine. Neither the rounds
  * nor the merge depend on the number of threads, so every thread count gives the same bits.
  * Every distance is still a real path and every filter still compares with real paths, so the
  * result is exact like the serial engine's; they differ in the order windows meet (rounding). */
@@ -1642,20 +1641,14 @@ static int vertex_round(tg__field_run* run, crew* c, size_t take)
 static tg_status rounds_lead(tg__field_run* run, crew* c)
 {
     tg__field_scratch* fs = run->fs;
-    bool waited = false; /* a small wave waited for one round */
     for (;;) {
         size_t n = fs->fifo.count - fs->fifo_head;
         if (n >= WAVE_MIN) {
             tg_status st = cross_wave(run, c, n);
             if (st != TG_OK) return st;
-            waited = false;
             continue;
         }
-        if (n && !waited && fs->front.count) {
-            /* a small wave waits for the next round's lists, to cross with them on the lanes */
-            waited = true;
-        } else if (n) { /* a small wave: these n lists on this thread, in order */
-            waited = false;
+        if (n) { /* a small wave: these n lists on this thread, in order */
             for (size_t i = 0; i < n; ++i) {
                 uint32_t h = ((uint32_t*)fs->fifo.data)[fs->fifo_head++];
                 fs->queued[h] &= (uint8_t)~Q_QUEUED;
@@ -1664,7 +1657,7 @@ static tg_status rounds_lead(tg__field_run* run, crew* c)
             if (!keep_going_by(run, n)) return TG_ERR_CANCELLED;
             continue;
         }
-        if (!n) fs->fifo.count = fs->fifo_head = 0;
+        fs->fifo.count = fs->fifo_head = 0;
         bounds_due(run);
         bool done = false;
         run->stats.rounds++;

@@ -230,8 +230,9 @@ static int cmp_key(const void* x, const void* y)
  * others, whose crossings are the costly part of trimming. Leaving a pair untrimmed keeps both
  * windows whole, which loses no path (only more windows cross). Measured against every
  * overlapping pair (BENCHMARKS.md, 2026-11-29): 3 makes openfoam_terrain 5% faster, DTC-scaled
- * 4%, fcpw_kitten 3%, igl_armadillo 1%, for 1.7-2.4% more windows; 2 is no faster than 3 and
- * makes 3.5-4.5% more; skipping only the nested pairs beyond 3 gains nothing. */
+ * 4%, fcpw_kitten 3%, igl_armadillo 1%, for 1.7-2.4% more windows; 2 is 0-2% faster than 3 for
+ * 1.1-2% more windows again, 1 slower than 3 (6.5-8% more); skipping only the nested pairs
+ * beyond 3 gains nothing. */
 #define TRIM_NEXT 3
 
 /* The merges and trims of tg__windows_trim after the sort (ids in order of start). */

@@ -71,7 +71,8 @@ int main(int argc, char** argv)
     if (argc < 2) die("usage: bench_field MESH [--sources N] [--seed S] [--vertex V] [--reuse] [--threads T [--span]] [--batch K]", NULL);
     const char* path = argv[1];
     int sources = 5, batch = 0, threads = 1, span = 0, reuse = 0;
-    long long vertex = -1;
+    long long vertex = 0;
+    int one_vertex = 0;
     unsigned long long seed = 1;
     for (int i = 2; i < argc; ++i) {
         if (!strcmp(argv[i], "--sources") && i + 1 < argc)
@@ -85,7 +86,7 @@ int main(int argc, char** argv)
         else if (!strcmp(argv[i], "--reuse"))
             reuse = 1;
         else if (!strcmp(argv[i], "--vertex") && i + 1 < argc)
-            vertex = atoll(argv[++i]);
+            vertex = atoll(argv[++i]), one_vertex = 1;
         else if (!strcmp(argv[i], "--seed") && i + 1 < argc)
             seed = strtoull(argv[++i], NULL, 10);
         else
@@ -96,7 +97,7 @@ int main(int argc, char** argv)
     tg_diag d;
     if (tg_mesh_load(path, TG_FORMAT_AUTO, NULL, &d, &m) != TG_OK) die("cannot load", d.message);
     size_t n = tg_mesh_vertex_count(m), F = tg_mesh_face_count(m);
-    if (vertex >= (long long)n) die("--vertex beyond the mesh's vertices:", argv[1]);
+    if (one_vertex && (vertex < 0 || vertex >= (long long)n)) die("--vertex outside the mesh's vertices:", argv[1]);
     if (F == 0) die("no faces in", path);
     tg_geodesic* g = NULL;
     if (tg_geodesic_create(m, NULL, &g) != TG_OK) die("solver", path);
@@ -147,7 +148,7 @@ int main(int argc, char** argv)
     for (int q = 0; q < sources; ++q) {
         lg.items = lg.waves = 0;
         s ^= s >> 12, s ^= s << 25, s ^= s >> 27;
-        uint32_t v = vertex >= 0 ? (uint32_t)vertex : t[(s * 2685821657736338717ull) % (3 * F)];
+        uint32_t v = one_vertex ? (uint32_t)vertex : t[(s * 2685821657736338717ull) % (3 * F)];
         tg_surface_point src = tg_surface_vertex(v);
         tg_field_stats st;
         double w0 = bench_wall(), c0 = bench_cpu_thread();

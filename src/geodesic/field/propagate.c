@@ -361,6 +361,24 @@ static bool dominated(const tg__field_run* run, uint32_t h, double c0, double c1
     return du + c1 < d1 * (1.0 - TG__DOMINATED_REL) || dw + (len - c0) < d0 * (1.0 - TG__DOMINATED_REL);
 }
 
+/* dominated() for a point window not yet made, from its shape (source image (x, y), offset sigma)
+ * instead of its end distances: d = sigma + sqrt(Q) at an end is longer than the end vertex's path
+ * P beyond the margin (P < d (1 - margin)) when sqrt(Q) > P / (1 - margin) - sigma, compared
+ * squared, so that a dominated window costs no square root (most children on a mesh already
+ * crossed are). */
+#define DOMINATED_INV (1.0 / (1.0 - TG__DOMINATED_REL))
+static TG__ALWAYS_INLINE bool dominated_shape(const tg__field_run* run, uint32_t h, double c0, double c1, double x,
+                                              double y, double sigma)
+{
+    const tg_geodesic* g = run->g;
+    double du = run->fs->dist[g->tri[h]], dw = run->fs->dist[g->tri[tg_halfedge_next(h)]];
+    double len = g->frame[h].len;
+    double a1 = (du + c1) * DOMINATED_INV - sigma, q1 = (c1 - x) * (c1 - x) + y * y;
+    if (a1 < 0.0 || q1 > a1 * a1) return true;
+    double a0 = (dw + (len - c0)) * DOMINATED_INV - sigma, q0 = (c0 - x) * (c0 - x) + y * y;
+    return a0 < 0.0 || q0 > a0 * a0;
+}
+
 /* A nearest-source field: can the window, whose least distance over [c0, c1] of the edge of h is
  * wmin, get below the other sources anywhere there? Their distance at x is at most
  * U(x) = min(B(a) + x, B(b) + (len - x)) (a path along the edge from an end vertex, B the bound),
@@ -380,6 +398,22 @@ static bool beyond_bound(const tg__field_run* run, uint32_t h, double c0, double
     return wmin > u * (1.0 + TG__DOMINATED_REL);
 }
 
+/* Is the point window [c0, c1] on halfedge h lit from (x, y) at offset sigma neither empty, nor
+ * grazing, nor unreached? */
+static TG__ALWAYS_INLINE bool window_lit(const tg_geodesic* g, uint32_t h, double c0, double c1, double x, double y,
+                                         double sigma)
+{
+    return c0 < c1 && -y > TG__GRAZING_REL * (fabs(x) + g->frame[h].len) && sigma < INFINITY;
+}
+
+/* A point window's distances at its ends. */
+static TG__ALWAYS_INLINE void window_point_ends(double c0, double c1, double x, double y, double sigma, double* d0,
+                                                double* d1)
+{
+    *d0 = sigma + sqrt((c0 - x) * (c0 - x) + y * y);
+    *d1 = sigma + sqrt((c1 - x) * (c1 - x) + y * y);
+}
+
 /* The window [c0, c1] on halfedge h lit from (x, y) at offset sigma (line: a line window, rays
  * of direction (x, y)): false when it is empty, grazing or unreached; else the distances at its
  * ends. (`line` and the flags below are constants where they are inlined: plain fields carry no
@@ -387,15 +421,13 @@ static bool beyond_bound(const tg__field_run* run, uint32_t h, double c0, double
 static TG__ALWAYS_INLINE bool window_ends(const tg_geodesic* g, uint32_t h, double c0, double c1, double x, double y,
                                           double sigma, bool line, double* d0, double* d1)
 {
-    double len = g->frame[h].len;
     if (line) {
         if (!(c0 < c1) || !(y > TG__GRAZING_REL) || !(sigma < INFINITY)) return false;
         *d0 = fmax(0.0, sigma + x * c0), *d1 = fmax(0.0, sigma + x * c1); /* rounding below the segment: 0 */
         return true;
     }
-    if (!(c0 < c1) || !(-y > TG__GRAZING_REL * (fabs(x) + len)) || !(sigma < INFINITY)) return false;
-    *d0 = sigma + sqrt((c0 - x) * (c0 - x) + y * y);
-    *d1 = sigma + sqrt((c1 - x) * (c1 - x) + y * y);
+    if (!window_lit(g, h, c0, c1, x, y, sigma)) return false;
+    window_point_ends(c0, c1, x, y, sigma, d0, d1);
     return true;
 }
 
@@ -437,6 +469,14 @@ static TG__ALWAYS_INLINE bool push_window(tg__field_run* run, uint32_t h, double
                                           double sigma, uint32_t tag, const tg__lm_rec* rec, bool line)
 {
     double d0, d1;
+    if (!line) {
+        if (!window_lit(run->g, h, c0, c1, x, y, sigma) || dominated_shape(run, h, c0, c1, x, y, sigma)) {
+            run->stats.windows_filtered++;
+            return true;
+        }
+        window_point_ends(c0, c1, x, y, sigma, &d0, &d1);
+        return store_window(run, h, c0, c1, x, y, sigma, d0, d1, tag, rec, false, true);
+    }
     if (!window_ends(run->g, h, c0, c1, x, y, sigma, line, &d0, &d1)) {
         run->stats.windows_filtered++;
         return true;
@@ -478,10 +518,13 @@ static bool lane_ring(tg__field_run* run, tg__field_lane* L, uint32_t e, double 
         if (line) tg__ring_line(g, e, o, x, y, sigma, &ox, &oy, &os);
         else tg__ring_point(g, e, o, x, y, &ox, &oy);
         tg__ring_interval(g, e, o, t0, t1, &c0, &c1);
-        if (!window_ends(g, o, c0, c1, ox, oy, os, line, &d0, &d1) || dominated(run, o, c0, c1, d0, d1)) {
+        bool lit = line ? window_ends(g, o, c0, c1, ox, oy, os, true, &d0, &d1) && !dominated(run, o, c0, c1, d0, d1)
+                        : window_lit(g, o, c0, c1, ox, oy, os) && !dominated_shape(run, o, c0, c1, ox, oy, os);
+        if (!lit) {
             L->stats.windows_filtered++;
             continue;
         }
+        if (!line) window_point_ends(c0, c1, ox, oy, os, &d0, &d1);
         if (!lane_grow(run->fs, L, &L->child, 1)) return false;
         tg__lane_child c = {o, tag, c0, c1, ox, oy, os, d0, d1};
         ((tg__lane_child*)L->child.data)[L->child.count++] = c;

@@ -153,35 +153,39 @@ static TG__ALWAYS_INLINE int winner_at(const tg__window* wi, const tg__window* w
     return i_first ? 1 : -1;
 }
 
-/* Is window w's distance at x longer than d beyond the tie margin? Compared squared (no square
- * root): w's distance is sigma + sqrt(Q), so the question is sqrt(Q) > R with R = d (1 + TIE_REL) -
- * sigma. A NAN d (an end trimming moved) answers no. */
-static TG__ALWAYS_INLINE bool longer_at(const tg__window* w, double x, double d)
+/* Which window is the shorter at an end x of the overlap that is an end of one window only (its
+ * owner, whose distance there is d): +1 the owner, beyond the tie margin (the other's distance at
+ * x longer than d (1 + TIE_REL)), -1 the other (shorter than d (1 - TIE_REL)), 0 within the margin
+ * or unknown (a NAN d: an end trimming moved). The other's distance is sigma + sqrt(Q), compared
+ * squared: no square root. */
+static TG__ALWAYS_INLINE int end_winner(const tg__window* other, double x, double d)
 {
-    double dx = x - w->sx, q = dx * dx + w->sy * w->sy;
-    double r = d * (1.0 + TIE_REL) - w->sigma;
-    return r < 0.0 || q > r * r;
-}
-
-/* Whether trim_pair would cut nothing because each end of the overlap [p, q] is an end of one
- * window only, and that window is the shorter there beyond the tie margin (a run the other wins
- * is cut only where it touches an end of the loser). Most overlapping pairs of a list are a
- * narrow window inside a wide one that it beats: nothing to cut, and this finds it with two
- * square roots instead of the crossings (the owners' distances at their own ends are d0, d1). */
-static TG__ALWAYS_INLINE bool ends_kept(const tg__window* wi, const tg__window* wj, double p, double q)
-{
-    bool ip = wi->b0 == p, iq = wi->b1 == q;
-    if (ip == (wj->b0 == p) || iq == (wj->b1 == q)) return false; /* an end of both */
-    return longer_at(ip ? wj : wi, p, ip ? wi->d0 : wj->d0) && longer_at(iq ? wj : wi, q, iq ? wi->d1 : wj->d1);
+    double dx = x - other->sx, q = dx * dx + other->sy * other->sy;
+    double hi = d * (1.0 + TIE_REL) - other->sigma;
+    if (hi < 0.0 || q > hi * hi) return 1;
+    double lo = d * (1.0 - TIE_REL) - other->sigma;
+    return lo >= 0.0 && q < lo * lo ? -1 : 0;
 }
 
 /* Trims the pair over their overlap [p, q]: each window loses the runs of sub-intervals that the
- * other wins and that touch its own end; an end it moves loses its distance (NAN). */
+ * other wins and that touch its own end; an end it moves loses its distance (NAN). Between the
+ * crossings of the two distances a sub-interval has one winner: the first and the last are
+ * classified at the overlap's ends when an end belongs to one window only and the two differ
+ * there beyond the tie margin (from the owner's distance at its own end: no square root), the
+ * rest (and those) sampled at their midpoints. Most overlapping pairs of a list are a narrow
+ * window inside a wide one that it beats, with both ends of the overlap its own: then nothing is
+ * cut, found without the crossings. */
 static TG__ALWAYS_INLINE void trim_pair(tg__window* wi, tg__window* wj, bool lines)
 {
     double p = wi->b0 > wj->b0 ? wi->b0 : wj->b0, q = wi->b1 < wj->b1 ? wi->b1 : wj->b1;
     if (!(p < q)) return;
-    if ((!lines || (!tg__win_is_line(wi) && !tg__win_is_line(wj))) && ends_kept(wi, wj, p, q)) return;
+    int at_p = 0, at_q = 0; /* +1: i is the shorter there, -1: j, 0: unknown */
+    if (!lines || (!tg__win_is_line(wi) && !tg__win_is_line(wj))) {
+        bool ip = wi->b0 == p, jp = wj->b0 == p, iq = wi->b1 == q, jq = wj->b1 == q;
+        if (ip != jp) at_p = ip ? end_winner(wj, p, wi->d0) : -end_winner(wi, p, wj->d0);
+        if (iq != jq) at_q = iq ? end_winner(wj, q, wi->d1) : -end_winner(wi, q, wj->d1);
+        if (ip != jp && iq != jq && at_p == (ip ? 1 : -1) && at_q == (iq ? 1 : -1)) return; /* each end kept by its owner */
+    }
     double br[4];
     int nb = 0;
     br[nb++] = p;
@@ -189,9 +193,12 @@ static TG__ALWAYS_INLINE void trim_pair(tg__window* wi, tg__window* wj, bool lin
     int nr = crossing_roots(wi, wj, p, q, r, lines);
     for (int k = 0; k < nr; ++k) br[nb++] = r[k];
     br[nb++] = q;
-    int win[3];
-    for (int k = 0; k + 1 < nb; ++k) win[k] = winner_at(wi, wj, 0.5 * (br[k] + br[k + 1]), 1, lines);
     int ns = nb - 1;
+    int win[3];
+    /* no crossing found yet the ends disagree (a crossing lost to rounding): sampled */
+    if (ns == 1 && at_p && at_q && at_p != at_q) at_p = at_q = 0;
+    for (int k = 0; k < ns; ++k)
+        win[k] = k == 0 && at_p ? at_p : k == ns - 1 && at_q ? at_q : winner_at(wi, wj, 0.5 * (br[k] + br[k + 1]), 1, lines);
     /* prefix runs: the window that starts at p loses the prefix the other wins */
     int k0 = 0;
     if (wj->b0 == p) {

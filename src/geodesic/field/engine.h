@@ -57,14 +57,22 @@ _Static_assert(sizeof(tg__window) == 64, "a window is one cache line: the pool i
 
 /* A list's windows: the ids of its pool slots, TG__BLOCK_IDS a block, the blocks linked from the
  * halfedge's head (the newest first, each filled in order), so that a list of n windows is
- * walked in about n / 14 reads of a cache line where a link per window made n dependent reads
- * (a pool of millions of windows: each a miss). */
-#define TG__BLOCK_IDS 14
+ * walked in about n / 15 reads of a cache line where a link per window made n dependent reads
+ * (a pool of millions of windows: each a miss). Every block but the newest is full; the newest's
+ * count lives in the head beside its id (TG__HEAD), so that adding an id to a list only writes
+ * to the block: the read of a count there was a miss on every first window of a list. */
+#define TG__BLOCK_IDS 15
 typedef struct tg__list_block {
-    uint32_t next;  /* the older block, TG_NONE at the end */
-    uint32_t count; /* ids in use (1 .. TG__BLOCK_IDS) */
+    uint32_t next; /* the older block (full), TG_NONE at the end */
     uint32_t ids[TG__BLOCK_IDS];
 } tg__list_block;
+/* A list's head (tg__field_scratch.head): its newest block's id in the low 28 bits, the ids in
+ * that block (1 .. TG__BLOCK_IDS) in the high 4; TG_NONE (no list) is no such pair. */
+#define TG__HEAD_BLOCK_BITS 28
+#define TG__HEAD_BLOCKS_MAX ((1u << TG__HEAD_BLOCK_BITS) - 1u) /* block ids below this */
+#define TG__HEAD(block, count) ((uint32_t)(count) << TG__HEAD_BLOCK_BITS | (block))
+#define TG__HEAD_BLOCK(head) ((head) & TG__HEAD_BLOCKS_MAX)
+#define TG__HEAD_COUNT(head) ((head) >> TG__HEAD_BLOCK_BITS)
 _Static_assert(sizeof(tg__list_block) == 64, "a block is one cache line: its buffer is aligned to it (scratch.c)");
 
 /* Rays cross a zero-area face (solver.h, TG__F_FLAT) at once, its three corners on one line, and
@@ -239,7 +247,7 @@ typedef struct tg__field_scratch {
     uint32_t* fpos;  /* its slot on the front (valid while VS_FRONT) */
     tg__pred* pred;  /* how each got its distance (runs that trace paths) */
     /* per halfedge */
-    uint32_t* head;  /* newest block of the list waiting to enter face h / 3, TG_NONE if empty */
+    uint32_t* head;  /* the list waiting to enter face h / 3: TG__HEAD of its newest block, TG_NONE if empty */
     uint8_t* queued; /* Q_* flags of propagate.c: in the FIFO, touched */
     double* split_d; /* shortest distance to the face's opposite corner among windows through h */
     double* split_x; /* where that window's ray to the corner crosses h */

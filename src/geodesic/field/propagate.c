@@ -78,11 +78,11 @@ static double now_s(void)
 /* ---- pools with a free list: the windows (free_ids) and the lists' blocks (free_blocks) ---- */
 
 /* A slot of `pool` (its free list `free_list`): the last released, else a new one; TG_NONE when out of
- * memory or ids. */
-static TG__ALWAYS_INLINE uint32_t pool_alloc(tg__field_scratch* fs, tg__vec* pool, tg__vec* free_list)
+ * memory or of the max_ids ids. */
+static TG__ALWAYS_INLINE uint32_t pool_alloc(tg__field_scratch* fs, tg__vec* pool, tg__vec* free_list, uint32_t max_ids)
 {
     if (free_list->count) return ((uint32_t*)free_list->data)[--free_list->count];
-    if (pool->count >= (size_t)UINT32_MAX - 1) return TG_NONE;
+    if (pool->count >= max_ids) return TG_NONE;
     if (!tg__field_grow(fs, pool, 1)) return TG_NONE;
     /* the free list can hold every slot, so releasing never allocates */
     if (free_list->capacity < pool->capacity &&
@@ -98,7 +98,7 @@ static TG__ALWAYS_INLINE void pool_release(tg__vec* free_list, uint32_t id)
 
 static TG__ALWAYS_INLINE uint32_t win_alloc(tg__field_scratch* fs)
 {
-    return pool_alloc(fs, &fs->windows, &fs->free_ids);
+    return pool_alloc(fs, &fs->windows, &fs->free_ids, UINT32_MAX - 1);
 }
 
 static void win_release(tg__field_scratch* fs, uint32_t id)
@@ -111,16 +111,19 @@ static void win_release(tg__field_scratch* fs, uint32_t id)
 /* Adds pool slot `id` to the list of h (newest first when walked); false when out of memory. */
 static TG__ALWAYS_INLINE bool list_add(tg__field_scratch* fs, uint32_t h, uint32_t id)
 {
-    uint32_t b = fs->head[h];
-    if (b == TG_NONE || ((const tg__list_block*)fs->blocks.data)[b].count == TG__BLOCK_IDS) {
-        uint32_t nb = pool_alloc(fs, &fs->blocks, &fs->free_blocks);
-        if (nb == TG_NONE) return false;
-        tg__list_block* blk = &((tg__list_block*)fs->blocks.data)[nb];
-        blk->next = b, blk->count = 0;
-        fs->head[h] = b = nb;
+    uint32_t hd = fs->head[h], b, n;
+    tg__list_block* blocks = fs->blocks.data;
+    if (hd == TG_NONE || TG__HEAD_COUNT(hd) == TG__BLOCK_IDS) {
+        b = pool_alloc(fs, &fs->blocks, &fs->free_blocks, TG__HEAD_BLOCKS_MAX);
+        if (b == TG_NONE) return false;
+        blocks = fs->blocks.data; /* perhaps moved */
+        blocks[b].next = hd == TG_NONE ? TG_NONE : TG__HEAD_BLOCK(hd);
+        n = 0;
+    } else {
+        b = TG__HEAD_BLOCK(hd), n = TG__HEAD_COUNT(hd);
     }
-    tg__list_block* blk = &((tg__list_block*)fs->blocks.data)[b];
-    blk->ids[blk->count++] = id;
+    blocks[b].ids[n] = id;
+    fs->head[h] = TG__HEAD(b, n + 1);
     return true;
 }
 
@@ -955,8 +958,9 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
     tg__vec* listv = L ? &L->list : &fs->list;
     tg__vec* keysv = L ? &L->keys : &fs->keys;
     tg__vec* hitsv = L ? &L->hits : &fs->hits;
-    uint32_t blk_id = fs->head[h];
+    uint32_t hd = fs->head[h];
     fs->head[h] = TG_NONE;
+    uint32_t blk_id = hd == TG_NONE ? TG_NONE : TG__HEAD_BLOCK(hd), count = hd == TG_NONE ? 0 : TG__HEAD_COUNT(hd);
     const tg__frame* fr = &g->frame[h];
     uint32_t hn = tg_halfedge_next(h), hp = tg_halfedge_prev(h);
     bool crossable = fr->len > 0.0 && g->frame[hn].len > 0.0 && g->frame[hp].len > 0.0;
@@ -978,7 +982,7 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
     const tg__list_block* blocks = fs->blocks.data;
     while (blk_id != TG_NONE) {
         const tg__list_block* blk = &blocks[blk_id];
-        uint32_t count = blk->count, next = blk->next;
+        uint32_t next = blk->next;
         if (next != TG_NONE) TG__PREFETCH(&blocks[next]);
         if (!scratch_grow(fs, L, listv, count)) return false;
         uint32_t* out = (uint32_t*)listv->data + listv->count;
@@ -994,7 +998,7 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
             if (!lane_grow(fs, L, &L->freed_blocks, 1)) return false;
             ((uint32_t*)L->freed_blocks.data)[L->freed_blocks.count++] = blk_id;
         }
-        blk_id = next;
+        blk_id = next, count = TG__BLOCK_IDS; /* the older blocks are full */
     }
     uint32_t* ids = listv->data;
     size_t n = 0;
@@ -1064,8 +1068,8 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
     if (!L) {
         const tg__list_block* bl = fs->blocks.data;
         uint32_t bn = fs->head[g->ring[hn]], bp = fs->head[g->ring[hp]];
-        if (bn != TG_NONE) TG__PREFETCH(&bl[bn]);
-        if (bp != TG_NONE) TG__PREFETCH(&bl[bp]);
+        if (bn != TG_NONE) TG__PREFETCH(&bl[TG__HEAD_BLOCK(bn)]);
+        if (bp != TG_NONE) TG__PREFETCH(&bl[TG__HEAD_BLOCK(bp)]);
     }
     /* the exit edges' directions, once for the list (crossable: both have a length) */
     const double a[2] = {0.0, 0.0}, b[2] = {fr->len, 0.0}, c[2] = {fr->cx, fr->cy};

@@ -125,6 +125,16 @@ static TG__ALWAYS_INLINE int crossing_roots(const tg__window* wi, const tg__wind
             if (B != 0.0) cand[n++] = -C / B + c;
         } else {
             double disc = B * B - 4.0 * A * C;
+            double yp = p - c, yq = q - c;
+            double fp = (A * yp + B) * yp + C, fq = (A * yq + B) * yq + C;
+            /* one sign at both ends of the overlap: a crossing inside means two, the vertex
+             * -B / 2A inside and A of the ends' sign (the value there, -disc / 4A, of the
+             * other). Else none: found without the square root and the divisions. */
+            if ((fp > 0.0 && fq > 0.0) || (fp < 0.0 && fq < 0.0)) {
+                double v = -B, lo = 2.0 * A * yp, hi = 2.0 * A * yq; /* the vertex against the ends, times 2A */
+                bool vertex_inside = A > 0.0 ? v > lo && v < hi : v < lo && v > hi;
+                if (!vertex_inside || (A > 0.0) != (fp > 0.0)) disc = -1.0;
+            }
             if (disc >= 0.0) {
                 double sq = sqrt(disc);
                 double t = -0.5 * (B + (B >= 0.0 ? sq : -sq)); /* no cancellation */

@@ -593,6 +593,21 @@ static void test_sweep_regressions(void)
          * tg_geodesic_field_at's */
         {"c3d_beetle.obj", {TG_SURFACE_VERTEX, 1121, 0.0, {0, 0, 0}}, {TG_SURFACE_VERTEX, 704, 0.0, {0, 0, 0}},
          0.541042978301056},
+        /* a point in a zero-area sliver of a seam zipped between coincident vertices (face 7797,
+         * corners 4338 and 4342 at one position): the point also lies in the next sliver (7798,
+         * whose edge of length 0 made it no stack then) and so in the face beyond it, which a
+         * shortest path leaves by; from the point the field got 0.051033630126664425, proven,
+         * 2.8% long, the path the other way 0.049622161687479953 (the sweep, seed 1501); the
+         * length is the validated straightened path's */
+        {"tbvh_legocar.obj",
+         {TG_SURFACE_FACE, 7797, 0.0, {0.58990985349425784, 0.16849743620926927, 0.24159271029647289}},
+         {TG_SURFACE_FACE, 7787, 0.0, {0.59037072815416802, 0.25208153086814156, 0.15754774097769042}},
+         0.049622161687479946},
+        /* an edge point of an edge of length 0 (4308 -> 4305, coincident): the exact path to it
+         * found no way back (TG_ERR_INTERNAL, the sweep, seed 1603); now its ends' vertex; the
+         * length is tg_geodesic_field_at's */
+        {"tbvh_legocar.obj", {TG_SURFACE_FACE, 7731, 0.0, {0, 0, 1}}, {TG_SURFACE_EDGE, 23180, 0.36386185892801037, {0, 0, 0}},
+         0.031132084192165808},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         ctx c;

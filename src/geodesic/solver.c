@@ -595,7 +595,17 @@ tg_surface_point tg__surface_to_solver(const tg_geodesic* g, tg_surface_point p)
 
 tg_surface_point tg__surface_in(const tg_geodesic* g, const tg_surface_point* p)
 {
-    return tg__surface_to_solver(g, tg_surface_point_canonical(g->mesh, p));
+    tg_surface_point q = tg_surface_point_canonical(g->mesh, p);
+    if (q.kind == TG_SURFACE_EDGE) {
+        /* an edge between coincident vertices (not welded: the seams of tbvh_legocar.obj) holds
+         * one point, its ends' position: the lower-indexed end, a vertex (an exact path to such
+         * an edge point found no way back, TG_ERR_INTERNAL) */
+        const uint32_t* t = g->mesh->tri;
+        uint32_t a = t[q.index], b = t[tg_halfedge_next(q.index)];
+        const double *pa = g->mesh->xyz + 3 * (size_t)a, *pb = g->mesh->xyz + 3 * (size_t)b;
+        if (pa[0] == pb[0] && pa[1] == pb[1] && pa[2] == pb[2]) q = tg_surface_vertex(a < b ? a : b);
+    }
+    return tg__surface_to_solver(g, q);
 }
 
 tg_surface_point tg__surface_out(const tg_geodesic* g, const tg__node* solver_node)

@@ -91,9 +91,15 @@ extern "C" {
  *  - Exact fields are a little faster, exact as before, not the same bits as 0.6.5's (within
  *    4.6e-15): where an end of two overlapping windows' common part belongs to one of them, the
  *    distance it was made with decides the run next to that end (no square root); a child window
- *    is found dominated before its end distances are computed; a list's newest block keeps its
- *    count in the list's head, 15 ids a block (fcpw_kitten 3%, openfoam_DTC-scaled 3%,
- *    armadillo_1m 2% faster on one thread). A workspace takes about 72 bytes per window slot. */
+ *    is found dominated before its end distances are computed; a pair's crossings are not
+ *    solved for when the quadratic that holds them shows none inside their overlap; a list's
+ *    newest block keeps its count in the list's head, 15 ids a block (fcpw_kitten 5%,
+ *    openfoam_DTC-scaled 5%, openfoam_terrain 2-3%, armadillo_1m 2% faster on one thread). A
+ *    workspace takes about 72 bytes per window slot.
+ *  - Seams zipped between coincident vertices (zero-area slivers with an edge of length 0): a
+ *    source inside such a sliver lights the faces on both sides (its field could come out a few
+ *    percent long, proven); an edge point of an edge of length 0 is taken as the vertex at its
+ *    position (the exact path to one could fail with TG_ERR_INTERNAL). */
 
 /* Changes in 0.6.5 (ABI-compatible with 0.6.0: same soname, no interface change):
  *  - Exact fields are faster, exact as before, not the same bits as 0.6.4's (within rounding):

@@ -9,14 +9,15 @@
  *   --threads T: each field on T threads (tg_field_options.threads; default 1, the serial engine;
  *   0: every core); with T != 1 a second row gives the parallel schedule summed over the fields:
  *   | rounds | waves | lists per wave | serial share f (thread 0 outside the waves, over that
- *   plus the threads' busy time in them) | Amdahl speed-up 1 / (f + (1 - f) / P) at P = 2, 4,
+ *   plus the threads' busy time in them, crossing lists and thread 0's merges) | Amdahl speed-up 1 / (f + (1 - f) / P) at P = 2, 4,
  *   8, 16, 32 (a wave's lists are taken a chunk at a time, n / 4P of them, 1 to 8, so no more
  *   threads than lists per wave can be busy: that bound is that column) | thread 0's seconds outside the waves | the threads' busy
  *   seconds in them (their sum against the one-thread time: the work the rounds add) |
  *   --span (with T != 1): each wave's items are timed inside the library (propagate.h,
  *   tg__schedule_log) and the schedule replayed on P = 2, 4, ..., 32 simulated threads: each
  *   wave's lists dealt in the crew's chunks (n / 4P, 1 to 8) to whichever simulated thread is free
- *   first, the wave ending with the last; a third row gives | the waves' work s | the lead s |
+ *   first, thread 0 merging the wave's lists in order as they are done (each merge timed too) and
+ *   taking a chunk while the next is not, the wave ending with the last merge; a third row gives | the waves' work s | the lead s |
  *   S(P) = (lead + work) / (lead + the waves' spans on P) |: the speed-up the schedule allows
  *   with the waves' real granularity, against the rounds' own work (the timing adds its cost to
  *   every item, so the rows' times are a little longer).
@@ -38,25 +39,50 @@
 #include "geodesic/field/propagate.h" /* tg__schedule_log: the --span replay */
 
 /* The waves of a logged field replayed on P simulated threads (the crew's rule, propagate.c:
- * chunks of n / 4P lists, 1 to 8, each to the first thread free): the sum of the waves' spans. */
+ * chunks of n / 4P lists, 1 to 8, each to the first thread free; thread 0 merges): the sum of
+ * the waves' spans. */
 static double replay(const tg__schedule_log* lg, int P)
 {
     double total = 0.0, free_at[32];
     size_t at = 0;
+    double* done_at = NULL;
+    size_t done_cap = 0;
     for (size_t w = 0; w < lg->waves; ++w) {
         size_t n = lg->wave_n[w], c = n / (4 * (size_t)P);
         c = c < 1 ? 1 : c > 8 ? 8 : c;
+        const double* x = lg->item_s + at;
+        const double* m = lg->merge_s + at;
+        if (n > done_cap) {
+            done_cap = 2 * n;
+            done_at = realloc(done_at, done_cap * sizeof *done_at);
+            if (!done_at) return 0.0;
+        }
         for (int k = 0; k < P; ++k) free_at[k] = 0.0;
-        for (size_t i = 0; i < n; i += c) {
-            int b = 0;
-            for (int k = 1; k < P; ++k)
+        /* as the crew runs it: chunks to whichever thread asks first; thread 0 (free_at[0])
+         * merges the lists in order as they are done (a vertex round's merges come after the
+         * wave, m = 0 here) and takes a chunk when the next is not done */
+        size_t next = 0, merged = 0;
+        while (merged < n) {
+            int b = 1;
+            for (int k = 2; k < P; ++k)
                 if (free_at[k] < free_at[b]) b = k;
-            for (size_t j = i; j < i + c && j < n; ++j) free_at[b] += lg->item_s[at + j];
+            if (next < n && P > 1 && free_at[b] <= free_at[0]) {
+                for (size_t j = next; j < next + c && j < n; ++j) free_at[b] += x[j], done_at[j] = free_at[b];
+                next += c;
+            } else if (merged < next && done_at[merged] <= free_at[0]) {
+                free_at[0] += m[merged++];
+            } else if (next < n) {
+                for (size_t j = next; j < next + c && j < n; ++j) free_at[0] += x[j], done_at[j] = free_at[0];
+                next += c;
+            } else {
+                free_at[0] = done_at[merged];
+            }
         }
         double span = 0.0;
         for (int k = 0; k < P; ++k) span = free_at[k] > span ? free_at[k] : span;
         total += span, at += n;
     }
+    free(done_at);
     return total;
 }
 
@@ -140,7 +166,8 @@ int main(int argc, char** argv)
     if (span && threads != 1) {
         lg.cap_items = (size_t)1 << 25, lg.cap_waves = (size_t)1 << 22;
         lg.item_s = malloc(lg.cap_items * sizeof *lg.item_s), lg.wave_n = malloc(lg.cap_waves * sizeof *lg.wave_n);
-        if (!lg.item_s || !lg.wave_n) die("out of memory", NULL);
+        lg.merge_s = malloc(lg.cap_items * sizeof *lg.merge_s);
+        if (!lg.item_s || !lg.wave_n || !lg.merge_s) die("out of memory", NULL);
         tg__field_schedule_log(&lg);
     }
     tg_geodesic_workspace* ws = NULL;
@@ -164,7 +191,7 @@ int main(int argc, char** argv)
         if (st.peak_bytes > scratch) scratch = st.peak_bytes;
         if (lg.item_s) {
             if (lg.full) die("--span: the log is full on", path);
-            for (size_t i = 0; i < lg.items; ++i) work += lg.item_s[i];
+            for (size_t i = 0; i < lg.items; ++i) work += lg.item_s[i] + lg.merge_s[i];
             for (int k = 0, p = 2; p <= 32; ++k, p *= 2) spans[k] += replay(&lg, p);
         }
     }
@@ -191,7 +218,7 @@ int main(int argc, char** argv)
         for (int k = 0, p = 2; p <= 32; ++k, p *= 2)
             printf(" S(%d) %.2f |", p, (sched.lead_seconds + work) / (sched.lead_seconds + spans[k]));
         printf("\n");
-        free(lg.item_s), free(lg.wave_n);
+        free(lg.item_s), free(lg.merge_s), free(lg.wave_n);
     }
     free(dist), free(cpu), free(wall), free(windows);
     tg_geodesic_destroy(g);

@@ -1604,8 +1604,10 @@ typedef struct tg_field_stats {
     uint64_t rounds;     /**< rounds: vertices taken off the front together */
     uint64_t waves;      /**< waves of lists (or of a round's vertices) crossed on all threads at once */
     uint64_t wave_lists; /**< the lists and vertices those waves took (the rest on thread 0) */
-    double lead_seconds; /**< thread 0's time outside the waves: the front, the merges, small waves */
-    double wave_seconds; /**< the threads' busy time in the waves, summed over the threads */
+    double lead_seconds; /**< thread 0's time outside the waves: the front, the merges of the vertex
+                              rounds and the corner distances after each wave, small waves */
+    double wave_seconds; /**< the threads' busy time in the waves, summed over the threads: lists
+                              crossed, and thread 0's merges of a wave's lists while later ones cross */
 } tg_field_stats;
 
 /** The exact geodesic distance from a set of surface points to every vertex: the length of the

@@ -135,16 +135,23 @@ size_t tg__grow_capacity(size_t cap, size_t need, size_t first)
 }
 
 /* Gives v room for cap elements, the content kept; an aligned buffer's data moves to its new
- * block's first aligned address (the block is `align` bytes longer). */
-static bool vec_resize(const tg_allocator* a, tg__vec* v, size_t cap)
+ * block's first aligned address (the block is `align` bytes longer). With out_old, the old block
+ * is not freed but handed to the caller (*out_old, NULL if none), unchanged: another thread may
+ * still be reading it. */
+static bool vec_resize(const tg_allocator* a, tg__vec* v, size_t cap, void** out_old)
 {
     size_t bytes;
     if (tg__mul_overflows(cap, v->elem, &bytes) || bytes > SIZE_MAX - v->align) return false;
     char* block = v->data ? (char*)v->data - v->pad : NULL;
-    char* p = tg__realloc(a, block, bytes + v->align);
+    char* p = out_old ? tg__alloc(a, bytes + v->align) : tg__realloc(a, block, bytes + v->align);
     if (!p) return false;
     size_t pad = v->align ? (size_t)(-(uintptr_t)p & (v->align - 1)) : 0;
-    if (pad != v->pad && v->capacity) memmove(p + pad, p + v->pad, v->capacity * v->elem);
+    if (out_old) {
+        if (v->count) memcpy(p + pad, v->data, v->count * v->elem);
+        *out_old = block;
+    } else if (pad != v->pad && v->capacity) {
+        memmove(p + pad, p + v->pad, v->capacity * v->elem);
+    }
     v->data = p + pad, v->pad = pad, v->capacity = cap;
     return true;
 }
@@ -153,13 +160,21 @@ bool tg__vec_grow(const tg_allocator* a, tg__vec* v, size_t extra)
 {
     if (extra <= v->capacity - v->count) return true;
     if (extra > SIZE_MAX - v->count) return false;
-    return vec_resize(a, v, tg__grow_capacity(v->capacity, v->count + extra, 64));
+    return vec_resize(a, v, tg__grow_capacity(v->capacity, v->count + extra, 64), NULL);
+}
+
+bool tg__vec_grow_kept(const tg_allocator* a, tg__vec* v, size_t extra, void** out_old)
+{
+    *out_old = NULL;
+    if (extra <= v->capacity - v->count) return true;
+    if (extra > SIZE_MAX - v->count) return false;
+    return vec_resize(a, v, tg__grow_capacity(v->capacity, v->count + extra, 64), out_old);
 }
 
 bool tg__vec_fit(const tg_allocator* a, tg__vec* v, size_t n)
 {
     if (n <= v->capacity) return true;
-    return vec_resize(a, v, tg__grow_capacity(v->capacity, n, 64));
+    return vec_resize(a, v, tg__grow_capacity(v->capacity, n, 64), NULL);
 }
 
 void tg__vec_free(const tg_allocator* a, tg__vec* v)

@@ -108,6 +108,10 @@ static inline bool tg__vec_reserve(const tg_allocator* a, tg__vec* v, size_t ext
 {
     return extra <= v->capacity - v->count || tg__vec_grow(a, v, extra);
 }
+/* tg__vec_grow, the elements in use copied to a new block and the old block not freed but
+ * handed over (*out_old; NULL when v did not move): for a buffer another thread may be reading
+ * while it grows, the old block freed (tg__free at *out_old) once that reader is done. */
+bool tg__vec_grow_kept(const tg_allocator* a, tg__vec* v, size_t extra, void** out_old);
 /* Makes room for n elements in all (for a buffer used as an array of that size), keeping the
  * content and the count; false on overflow or allocation failure. */
 bool tg__vec_fit(const tg_allocator* a, tg__vec* v, size_t n);

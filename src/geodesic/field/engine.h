@@ -25,6 +25,8 @@
 #include "core/heap.h"
 #include "geodesic/frame.h"
 
+#include <stdatomic.h>
+
 /* Inlined where called, so that constant arguments (no log map record, no line windows) remove
  * the code for them (propagate.c, window.c). */
 #if defined(__GNUC__) || defined(__clang__)
@@ -156,7 +158,8 @@ typedef struct tg__corner_hit {
     X(rec_floor, double)       /* runs that record: per face, the least distance of the windows \
                                   that crossed it (with record.c's margin), +inf if none */       \
     X(wave, uint32_t)          /* several threads: the halfedges whose lists cross in one round */ \
-    X(tasks, tg__lane_task)    /* several threads: where each list's results lie in the lanes */
+    X(tasks, tg__lane_task)    /* several threads: where each list's results lie in the lanes */ \
+    X(retired, void*)          /* several threads: lanes' old blocks, freed after the wave */
 
 /* A window recorded while its list crossed face h / 3 (record.c, for isolines): its source image
  * (sx, sy) and interval [b0, b1] in the frame of h, its offset sigma; a point source inside the
@@ -233,6 +236,13 @@ typedef struct tg__field_lane {
 typedef struct tg__lane_task {
     uint32_t lane;
     uint32_t child0, child1, relax0, relax1, freed0, freed1, qids0, qids1, ready0, ready1, emit_here;
+    uint32_t head; /* a list's: its head as the wave began (thread 0 empties the list first) */
+    /* a list's lane buffers as it was done (a lane's buffer may move while thread 0 merges
+     * from it: the old block is kept until the wave's end) */
+    const tg__lane_child* child;
+    const void* child_rec;
+    const uint32_t *freed, *qids;
+    _Atomic unsigned done; /* the number of the wave it was done in (release; propagate.c) */
 } tg__lane_task;
 
 /* The engine's scratch: tables sized for the mesh once, buffers that grow to the largest run
@@ -261,6 +271,10 @@ typedef struct tg__field_scratch {
     int lane_count;
     int touched_all; /* reset everything before the next run (first run, or a list could not grow) */
     size_t peak_bytes;
+    /* several threads: called before a buffer grows on thread 0 while a wave's lists still
+     * cross (propagate.c: they finish first), else NULL */
+    void (*before_grow)(void* arg);
+    void* before_grow_arg;
 } tg__field_scratch;
 
 struct tg__field_run;
@@ -330,6 +344,7 @@ typedef struct tg__field_run {
     size_t settled, referenced;
     uint64_t work_since_check;
     double wave_wall_s;   /* several threads: the waves' wall time (the rest of thread 0's is serial) */
+    double wave_start_s;  /* several threads: when the wave under way began */
     int vertex_wave;      /* several threads: the wave under way takes vertices of a round, not lists */
     double* item_s;       /* several threads, benchmarks: where the wave's item times go (propagate.h) */
     double next_check_s;

@@ -148,7 +148,8 @@ static bool lane_grow(tg__field_scratch* fs, tg__field_lane* L, tg__vec* v, size
     atomic_flag* lock = L->grow_lock;
     if (lock)
         while (atomic_flag_test_and_set_explicit(lock, memory_order_acquire)) crew_relax();
-    ok = tg__field_grow_slow(fs, v, extra);
+    /* thread 0 may be merging from the old block (the wave's merge): kept until the wave ends */
+    ok = tg__field_grow_kept(fs, v, extra);
     if (lock) atomic_flag_clear_explicit(lock, memory_order_release);
     if (!ok) L->failed = 1;
     return ok;
@@ -945,13 +946,15 @@ static bool cross_slit(tg__field_run* run, tg__field_lane* L, uint32_t h, uint32
     return true;
 }
 
-/* Takes the list of h and moves it across face h / 3: filters (end-vertex distances, flat faces
- * crossed twice), trims the windows against each other, lets the one that reaches the opposite
- * corner most shortly set the corner's distance and the split, then crosses each survivor.
- * With a lane (several threads) it reads the shared state as the round began and
- * writes only h's own entries (its list, its split) and the lane: the children, the corner's
- * distance and the released slots wait there for the merge. */
-static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, uint32_t h, bool lines)
+/* Moves the list of h (its head hd, taken off h) across face h / 3: filters (end-vertex
+ * distances, flat faces crossed twice), trims the windows against each other, lets the one that
+ * reaches the opposite corner most shortly set the corner's distance and the split, then crosses
+ * each survivor. With a lane (several threads) it reads the shared state as the wave began
+ * (the distances, which no merge writes before the wave's end; the pools, which do not grow
+ * before then; its list's blocks and slots, which nothing else touches) and writes only h's
+ * split and the lane: the children, the corner's distance and the released slots wait there for
+ * the merge. */
+static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, uint32_t h, uint32_t hd, bool lines)
 {
     tg__field_scratch* fs = run->fs;
     const tg_geodesic* g = fs->g;
@@ -960,8 +963,6 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
     tg__vec* listv = L ? &L->list : &fs->list;
     tg__vec* keysv = L ? &L->keys : &fs->keys;
     tg__vec* hitsv = L ? &L->hits : &fs->hits;
-    uint32_t hd = fs->head[h];
-    fs->head[h] = TG_NONE;
     uint32_t blk_id = hd == TG_NONE ? TG_NONE : TG__HEAD_BLOCK(hd), count = hd == TG_NONE ? 0 : TG__HEAD_COUNT(hd);
     const tg__frame* fr = &g->frame[h];
     uint32_t hn = tg_halfedge_next(h), hp = tg_halfedge_prev(h);
@@ -1095,13 +1096,16 @@ static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, 
 
 static bool propagate_list(tg__field_run* run, uint32_t h)
 {
+    uint32_t hd = run->fs->head[h];
+    run->fs->head[h] = TG_NONE;
     /* two copies: plain fields test no window for a line */
-    return run->lines ? cross_list(run, NULL, h, true) : cross_list(run, NULL, h, false);
+    return run->lines ? cross_list(run, NULL, h, hd, true) : cross_list(run, NULL, h, hd, false);
 }
 
-static bool propagate_lane(tg__field_run* run, tg__field_lane* L, uint32_t h)
+/* The list hd of h (taken off h by thread 0 as the wave began) on lane L. */
+static bool propagate_lane(tg__field_run* run, tg__field_lane* L, uint32_t h, uint32_t hd)
 {
-    return run->lines ? cross_list(run, L, h, true) : cross_list(run, L, h, false);
+    return run->lines ? cross_list(run, L, h, hd, true) : cross_list(run, L, h, hd, false);
 }
 
 /* ---- the front ---- */
@@ -1264,9 +1268,11 @@ static tg_status propagate_serial(tg__field_run* run)
  * of the vertices on it, so that where the front is narrow, on small meshes and near the
  * sources, rounds stay thin and the order of vertices still does its filtering; a round of
  * VERTEX_WAVE_MIN or more does their steps on the lanes too, vertex_round below), then crosses
- * the lists in the FIFO wave by wave: the lists of a wave cross their faces at once, each on a thread's lane (reading
- * the distances as the wave began), and the lanes are merged in the wave's order (corner
- * distances, released slots, then the children pushed as the serial engine pushes them). Waves
+ * the lists in the FIFO wave by wave: the lists of a wave cross their faces at once, each on a
+ * thread's lane (reading the distances as the wave began), and thread 0 merges the lanes in the
+ * wave's order (released slots, then the children pushed as the serial engine pushes them), a
+ * list as soon as it and those before it are done, while the wave's later lists still cross;
+ * then the corner distances, in the same order (cross_wave). Waves
  * of fewer than WAVE_MIN lists cross on this thread as in the serial engine. Neither the rounds
  * nor the merge depend on the number of threads, so every thread count gives the same bits.
  * Every distance is still a real path and every filter still compares with real paths, so the
@@ -1279,11 +1285,12 @@ static tg_status propagate_serial(tg__field_run* run)
  * read them on other cores. */
 #define MERGE_AHEAD 4
 
-/* A task's corner distances (or relaxed neighbours) from its lane, applied in the lane's order. */
-static bool merge_relax(tg__field_run* run, const tg__field_lane* L, const tg__lane_task* t)
+/* A task's corner distances (or relaxed neighbours) from its lane, applied in the lane's order
+ * (once every lane is done: its buffer no longer moves). */
+static bool merge_relax(tg__field_run* run, const tg__lane_task* t)
 {
     tg__field_scratch* fs = run->fs;
-    const tg__lane_relax* r = L->relax.data;
+    const tg__lane_relax* r = fs->lanes[t->lane].relax.data;
     for (uint32_t i = t->relax0; i < t->relax1; ++i) {
         if (r[i].d < fs->dist[r[i].v] && !isnan(r[i].theta)) ((double*)fs->lm_theta.data)[r[i].v] = r[i].theta;
         if (!relax_vertex(run, r[i].v, r[i].d, r[i].how)) return false;
@@ -1293,10 +1300,10 @@ static bool merge_relax(tg__field_run* run, const tg__field_lane* L, const tg__l
 
 /* A task's children from its lane, stored as the serial engine stores them (with their log map
  * records). */
-static bool merge_children(tg__field_run* run, const tg__field_lane* L, const tg__lane_task* t)
+static bool merge_children(tg__field_run* run, const tg__lane_task* t)
 {
-    const tg__lane_child* c = L->child.data;
-    const tg__lm_rec* rec = run->q->logmap ? L->child_rec.data : NULL;
+    const tg__lane_child* c = t->child;
+    const tg__lm_rec* rec = run->q->logmap ? t->child_rec : NULL;
     for (uint32_t i = t->child0; i < t->child1; ++i) {
         if (i + MERGE_AHEAD < t->child1) TG__PREFETCH_FACE(run, c[i + MERGE_AHEAD].h);
         const tg__lm_rec* ri = rec && !isnan(rec[i].base) ? &rec[i] : NULL;
@@ -1307,23 +1314,23 @@ static bool merge_children(tg__field_run* run, const tg__field_lane* L, const tg
     return true;
 }
 
-/* The results of list h, in its lane, applied to the shared state in the serial engine's order:
- * the windows evaluated at query points and recorded (the list still in its slots), the corner,
- * the released slots, the children (with their log map records). */
-static bool merge_task(tg__field_run* run, uint32_t h, const tg__lane_task* t)
+/* The results of list h, in its lane, applied to the shared state in the serial engine's order
+ * but for the corner distances (merge_relax, after the wave): the windows evaluated at query
+ * points and recorded (the list still in its slots), the released slots, the children (with
+ * their log map records). Storing a child reads no distance and a corner's relaxation nothing a
+ * child writes, so the corners may follow the children: this runs while the wave's later lists
+ * still cross, which read the distances as the wave began. */
+static bool merge_list(tg__field_run* run, uint32_t h, const tg__lane_task* t)
 {
     tg__field_scratch* fs = run->fs;
-    tg__field_lane* L = &fs->lanes[t->lane];
     if (t->qids1 > t->qids0) {
-        const uint32_t* ids = (const uint32_t*)L->qids.data + t->qids0;
+        const uint32_t* ids = t->qids + t->qids0;
         size_t n = t->qids1 - t->qids0;
         tg__field_queries_cross(run, h, fs->windows.data, ids, n);
         if (run->q->record_levels && !tg__field_record_cross(run, h, fs->windows.data, ids, n)) return false;
     }
-    if (!merge_relax(run, L, t)) return false;
-    const uint32_t* freed = L->freed.data;
-    for (uint32_t i = t->freed0; i < t->freed1; ++i) win_release(fs, freed[i]);
-    return merge_children(run, L, t);
+    for (uint32_t i = t->freed0; i < t->freed1; ++i) win_release(fs, t->freed[i]);
+    return merge_children(run, t);
 }
 
 /* ---- several threads: the vertices of a round ----
@@ -1422,13 +1429,13 @@ static bool merge_vertex(tg__field_run* run, uint32_t item, const tg__lane_task*
     } else if (item & VERTEX_EMITS) {
         run->stats.pseudo_source_events++;
     }
-    if (!merge_children(run, L, t)) return false;
+    if (!merge_children(run, t)) return false;
     /* a child whose face's far corner left the front in this round: that corner's lane saw no
      * list there, and the serial engine would have released it (or found it released) */
-    const tg__lane_child* ch = L->child.data;
+    const tg__lane_child* ch = t->child;
     for (uint32_t i = t->child0; i < t->child1; ++i)
         if ((fs->inside[fs->g->tri[tg_halfedge_prev(ch[i].h)]] & VS_ROUND) && !enqueue(run, ch[i].h)) return false;
-    if (!merge_relax(run, L, t)) return false;
+    if (!merge_relax(run, t)) return false;
     const uint32_t* ready = L->ready.data;
     for (uint32_t i = t->ready0; i < t->ready1; ++i)
         if (!enqueue(run, ready[i])) return false;
@@ -1467,54 +1474,68 @@ typedef struct crew {
 #define CREW_CHUNK 8
 
 
-/* Crosses lists of wave `id` on lane t until none is left (or the wave is another's). */
-static void crew_cross(tg__field_run* run, crew* c, int t, unsigned id)
+/* Crosses a chunk of wave `id`'s items on lane t; false when none is left (or the wave is
+ * another's). Each item, once done, says so (its task's `done`, released with its ranges and
+ * the lane's buffers as they were: thread 0 may merge it at once). */
+static bool crew_take(tg__field_run* run, crew* c, int t, unsigned id)
 {
     tg__field_scratch* fs = run->fs;
     tg__field_lane* L = &fs->lanes[t];
+    uint_fast64_t v = atomic_load(&c->next);
+    size_t i0, count, chunk;
     for (;;) {
-        uint_fast64_t v = atomic_load(&c->next);
-        size_t i0, count, chunk;
-        for (;;) {
-            if ((unsigned)(v >> 32) != id) return;
-            /* a count read here may be the next wave's: `next` was closed before it was written
-             * (crew_start), so the exchange below then fails */
-            i0 = (size_t)(v & 0xFFFFFFFFu), count = atomic_load(&c->count), chunk = atomic_load(&c->chunk);
-            if (i0 >= count) return;
-            if (atomic_compare_exchange_weak(&c->next, &v, v + chunk)) break;
-        }
-        /* holding lists of the wave, it cannot end: its count and arrays stay (thread 0 grows
-         * them only between waves) */
-        const uint32_t* wave = fs->wave.data;
-        tg__lane_task* tasks = fs->tasks.data;
-        bool vertices = run->vertex_wave != 0;
-        double* item_s = run->item_s;
-        size_t i1 = i0 + chunk < count ? i0 + chunk : count;
-        double t0 = now_s();
-        for (size_t i = i0; i < i1; ++i) {
-            double ti = item_s ? now_s() : 0.0;
-            tg__lane_task* k = &tasks[i];
-            k->lane = (uint32_t)t;
-            k->child0 = (uint32_t)L->child.count, k->relax0 = (uint32_t)L->relax.count;
-            k->freed0 = (uint32_t)L->freed.count, k->qids0 = (uint32_t)L->qids.count;
-            k->ready0 = (uint32_t)L->ready.count, k->emit_here = 0;
-            if (!L->failed && !(vertices ? vertex_lane(run, L, wave[i], k) : propagate_lane(run, L, wave[i])))
-                L->failed = 1;
-            k->child1 = (uint32_t)L->child.count, k->relax1 = (uint32_t)L->relax.count;
-            k->freed1 = (uint32_t)L->freed.count, k->qids1 = (uint32_t)L->qids.count;
-            k->ready1 = (uint32_t)L->ready.count;
-            if (item_s) item_s[i] = now_s() - ti; /* its own slot: no other thread writes it */
-        }
-        L->busy_s += now_s() - t0; /* before the lists are reported done: thread 0 then reads it */
+        if ((unsigned)(v >> 32) != id) return false;
+        /* a count read here may be the next wave's: `next` was closed before it was written
+         * (crew_start), so the exchange below then fails */
+        i0 = (size_t)(v & 0xFFFFFFFFu), count = atomic_load(&c->count), chunk = atomic_load(&c->chunk);
+        if (i0 >= count) return false;
+        /* smaller chunks towards the wave's end, so that the threads end it together */
+        size_t tail = (count - i0) / (2 * (size_t)(c->workers + 1));
+        if (chunk > tail) chunk = tail < 1 ? 1 : tail;
+        if (atomic_compare_exchange_weak(&c->next, &v, v + chunk)) break;
+    }
+    /* holding items of the wave, it cannot end: its count and arrays stay (thread 0 grows
+     * them only between waves) */
+    const uint32_t* wave = fs->wave.data;
+    tg__lane_task* tasks = fs->tasks.data;
+    bool vertices = run->vertex_wave != 0;
+    double* item_s = run->item_s;
+    size_t i1 = i0 + chunk < count ? i0 + chunk : count;
+    double t0 = now_s();
+    for (size_t i = i0; i < i1; ++i) {
+        double ti = item_s ? now_s() : 0.0;
+        tg__lane_task* k = &tasks[i];
+        k->lane = (uint32_t)t;
+        k->child0 = (uint32_t)L->child.count, k->relax0 = (uint32_t)L->relax.count;
+        k->freed0 = (uint32_t)L->freed.count, k->qids0 = (uint32_t)L->qids.count;
+        k->ready0 = (uint32_t)L->ready.count, k->emit_here = 0;
+        if (!L->failed && !(vertices ? vertex_lane(run, L, wave[i], k) : propagate_lane(run, L, wave[i], k->head)))
+            L->failed = 1;
+        k->child1 = (uint32_t)L->child.count, k->relax1 = (uint32_t)L->relax.count;
+        k->freed1 = (uint32_t)L->freed.count, k->qids1 = (uint32_t)L->qids.count;
+        k->ready1 = (uint32_t)L->ready.count;
+        k->child = L->child.data, k->child_rec = L->child_rec.data;
+        k->freed = L->freed.data, k->qids = L->qids.data;
+        if (item_s) item_s[i] = now_s() - ti; /* its own slot: no other thread writes it */
+        atomic_store_explicit(&k->done, id, memory_order_release);
+    }
+    L->busy_s += now_s() - t0; /* before the items are reported done: thread 0 then reads it */
 #ifdef TG__CREW_THREADS
-        if (atomic_fetch_add(&c->done, i1 - i0) + (i1 - i0) == count && t && atomic_load(&c->lead_sleeps)) {
-            mtx_lock(&c->mu);
-            cnd_signal(&c->finished);
-            mtx_unlock(&c->mu);
-        }
+    if (atomic_fetch_add(&c->done, i1 - i0) + (i1 - i0) == count && t && atomic_load(&c->lead_sleeps)) {
+        mtx_lock(&c->mu);
+        cnd_signal(&c->finished);
+        mtx_unlock(&c->mu);
+    }
 #else
-        atomic_fetch_add(&c->done, i1 - i0);
+    atomic_fetch_add(&c->done, i1 - i0);
 #endif
+    return true;
+}
+
+/* Crosses items of wave `id` on lane t until none is left (or the wave is another's). */
+static void crew_cross(tg__field_run* run, crew* c, int t, unsigned id)
+{
+    while (crew_take(run, c, t, id)) {
     }
 }
 
@@ -1590,9 +1611,10 @@ void tg__field_schedule_log(tg__schedule_log* log)
     schedule_log = log;
 }
 
-/* Crosses the wave's n items (fs->wave) on the crew's lanes: lists, or with run->vertex_wave
- * vertices of a round; their results wait in the lanes for the merge. */
-static tg_status crew_run(tg__field_run* run, crew* c, size_t n)
+/* Starts the wave of the n items in fs->wave (lists, or with run->vertex_wave vertices of a
+ * round; a list's task holds its head) on the crew's lanes, thread 0 taking part; returns its
+ * number. Their results wait in the lanes for the merge. */
+static unsigned crew_begin(tg__field_run* run, crew* c, size_t n)
 {
     tg__field_scratch* fs = run->fs;
     for (int t = 0; t <= c->workers; ++t) {
@@ -1601,18 +1623,30 @@ static tg_status crew_run(tg__field_run* run, crew* c, size_t n)
         L->freed_blocks.count = 0;
         L->failed = 0;
     }
+    tg__lane_task* tasks = fs->tasks.data;
+    for (size_t i = 0; i < n; ++i) atomic_init(&tasks[i].done, 0u);
     tg__schedule_log* slog = schedule_log;
     run->item_s = NULL; /* published to the helpers by crew_start */
     if (slog && !slog->full) {
-        if (slog->items + n <= slog->cap_items && slog->waves < slog->cap_waves) run->item_s = slog->item_s + slog->items;
-        else slog->full = 1;
+        if (slog->items + n <= slog->cap_items && slog->waves < slog->cap_waves) {
+            run->item_s = slog->item_s + slog->items;
+            memset(slog->merge_s + slog->items, 0, n * sizeof *slog->merge_s);
+        } else {
+            slog->full = 1;
+        }
     }
-    double w0 = now_s();
-    unsigned id = crew_start(c, n, 0);
-    crew_cross(run, c, 0, id);
-    crew_wait(c);
-    run->wave_wall_s += now_s() - w0;
+    run->wave_start_s = now_s();
+    return crew_start(c, n, 0);
+}
+
+/* Thread 0, the wave's items all done (crew_wait): its figures; TG_ERR_OUT_OF_MEMORY when a lane
+ * could not grow. */
+static tg_status crew_collect(tg__field_run* run, crew* c, size_t n)
+{
+    tg__field_scratch* fs = run->fs;
+    run->wave_wall_s += now_s() - run->wave_start_s;
     run->stats.waves++, run->stats.wave_lists += n;
+    tg__schedule_log* slog = schedule_log;
     if (run->item_s) slog->items += n, slog->wave_n[slog->waves++] = (uint32_t)n;
     tg_status st = TG_OK;
     for (int t = 0; t <= c->workers; ++t) {
@@ -1623,28 +1657,103 @@ static tg_status crew_run(tg__field_run* run, crew* c, size_t n)
         run->stats.wave_seconds += L->busy_s;
         memset(&L->stats, 0, sizeof L->stats);
         L->busy_s = 0.0;
-        /* the blocks of the lists it took (which blocks are reused never changes a result) */
-        const uint32_t* fb = L->freed_blocks.data;
-        for (size_t i = 0; i < L->freed_blocks.count; ++i) pool_release(&fs->free_blocks, fb[i]);
     }
     return st;
 }
 
-/* One wave: the n lists waiting in the FIFO cross at once on the crew's lanes, then merge. */
+/* Thread 0, the wave merged: the blocks of the lists the lanes took go back to the free list
+ * (which blocks are reused never changes a result), and the lanes' old buffers are freed. */
+static void crew_release(tg__field_run* run, crew* c)
+{
+    tg__field_scratch* fs = run->fs;
+    for (int t = 0; t <= c->workers; ++t) {
+        const tg__field_lane* L = &fs->lanes[t];
+        const uint32_t* fb = L->freed_blocks.data;
+        for (size_t i = 0; i < L->freed_blocks.count; ++i) pool_release(&fs->free_blocks, fb[i]);
+    }
+    tg__field_free_retired(fs);
+}
+
+/* A wave's merge on thread 0 (cross_wave) and the wave it merges. */
+typedef struct wave_merge {
+    tg__field_run* run;
+    crew* c;
+    unsigned id;
+} wave_merge;
+
+/* fs->before_grow during a wave's merge: a buffer of thread 0 is about to move (the pools, which
+ * the lanes read, or any other: the allocator is called by one thread at a time), so the wave's
+ * remaining lists cross first, on this thread too. */
+static void wave_settle(void* arg)
+{
+    wave_merge* m = arg;
+    crew_cross(m->run, m->c, 0, m->id);
+    crew_wait(m->c);
+    m->run->fs->before_grow = NULL;
+}
+
+/* Thread 0 merged lists [i0, i1) of a wave in `seconds`: its busy time, and with a benchmark's
+ * log (merge_s) each list's share by its children. */
+static void merge_stretch(tg__field_run* run, const tg__lane_task* tasks, double* merge_s, size_t i0, size_t i1,
+                          double seconds)
+{
+    run->stats.wave_seconds += seconds;
+    if (!merge_s || i1 <= i0) return;
+    double weight = 0.0;
+    for (size_t i = i0; i < i1; ++i) weight += 1.0 + (tasks[i].child1 - tasks[i].child0);
+    for (size_t i = i0; i < i1; ++i) merge_s[i] = seconds * (1.0 + (tasks[i].child1 - tasks[i].child0)) / weight;
+}
+
+/* One wave: the n lists waiting in the FIFO cross at once on the crew's lanes; thread 0 merges
+ * each list (merge_list) as soon as it and every list before it are done, crossing lists itself
+ * while the next is not, and, once all are, their corner distances. The lanes read nothing
+ * the merges write: each list was taken off its halfedge before the wave (a merge then starts
+ * a new list there), the distances wait for the wave's end, and the pools grow only after the
+ * lanes are done (wave_settle). */
 static tg_status cross_wave(tg__field_run* run, crew* c, size_t n)
 {
     tg__field_scratch* fs = run->fs;
     if (!tg__field_grow(fs, &fs->wave, n) || !tg__field_grow(fs, &fs->tasks, n)) return TG_ERR_OUT_OF_MEMORY;
     uint32_t* wave = fs->wave.data;
+    tg__lane_task* tasks = fs->tasks.data;
     memcpy(wave, (const uint32_t*)fs->fifo.data + fs->fifo_head, n * sizeof *wave);
     fs->fifo.count = fs->fifo_head = 0;
-    for (size_t i = 0; i < n; ++i) fs->queued[wave[i]] &= (uint8_t)~Q_QUEUED;
+    for (size_t i = 0; i < n; ++i) {
+        fs->queued[wave[i]] &= (uint8_t)~Q_QUEUED;
+        tasks[i].head = fs->head[wave[i]], fs->head[wave[i]] = TG_NONE;
+    }
     run->vertex_wave = 0;
-    tg_status st = crew_run(run, c, n);
+    wave_merge m = {run, c, crew_begin(run, c, n)};
+    fs->before_grow = wave_settle, fs->before_grow_arg = &m;
+    bool ok = true;
+    /* the merges' time, a stretch of them at a time (a clock read for each would cost a third
+     * of a merge); a benchmark's log shares a stretch out by the lists' children */
+    double* merge_s = run->item_s ? schedule_log->merge_s + (run->item_s - schedule_log->item_s) : NULL;
+    double t_merge = now_s();
+    size_t first = 0;
+    for (size_t i = 0; i < n && ok; ++i) {
+        int spin = 0;
+        if (atomic_load_explicit(&tasks[i].done, memory_order_acquire) != m.id) {
+            merge_stretch(run, tasks, merge_s, first, i, now_s() - t_merge);
+            while (atomic_load_explicit(&tasks[i].done, memory_order_acquire) != m.id) {
+                if (crew_take(run, c, 0, m.id)) continue;
+                if (++spin < CREW_SPIN) crew_relax();
+                else crew_wait(c);
+            }
+            t_merge = now_s(), first = i;
+        }
+        ok = merge_list(run, wave[i], &tasks[i]);
+    }
+    merge_stretch(run, tasks, merge_s, first, n, now_s() - t_merge);
+    fs->before_grow = NULL;
+    crew_cross(run, c, 0, m.id); /* after a failed merge: the lanes finish before anything is freed */
+    crew_wait(c);
+    tg_status st = crew_collect(run, c, n);
+    if (!ok) st = TG_ERR_OUT_OF_MEMORY;
+    for (size_t i = 0; i < n && st == TG_OK; ++i)
+        if (!merge_relax(run, &tasks[i])) st = TG_ERR_OUT_OF_MEMORY;
+    crew_release(run, c);
     if (st != TG_OK) return st;
-    const tg__lane_task* tasks = fs->tasks.data;
-    for (size_t i = 0; i < n; ++i)
-        if (!merge_task(run, wave[i], &tasks[i])) return TG_ERR_OUT_OF_MEMORY;
     return keep_going_by(run, n) ? TG_OK : TG_ERR_CANCELLED;
 }
 
@@ -1676,12 +1785,16 @@ static int vertex_round(tg__field_run* run, crew* c, size_t take)
     }
     if (!n) return front_step(run);
     run->vertex_wave = 1;
-    tg_status st = crew_run(run, c, n);
+    unsigned id = crew_begin(run, c, n);
+    crew_cross(run, c, 0, id);
+    crew_wait(c);
     run->vertex_wave = 0;
-    if (st != TG_OK) return STEP_NO_MEMORY;
+    tg_status st = crew_collect(run, c, n);
     const tg__lane_task* tasks = fs->tasks.data;
-    for (size_t i = 0; i < n; ++i)
-        if (!merge_vertex(run, wave[i], &tasks[i])) return STEP_NO_MEMORY;
+    for (size_t i = 0; i < n && st == TG_OK; ++i)
+        if (!merge_vertex(run, wave[i], &tasks[i])) st = TG_ERR_OUT_OF_MEMORY;
+    crew_release(run, c);
+    if (st != TG_OK) return STEP_NO_MEMORY;
     for (size_t i = 0; i < n; ++i) fs->inside[wave[i] & ~VERTEX_EMITS] &= (uint8_t)~VS_ROUND;
     return keep_going_by(run, n) ? STEP_ON : STEP_CANCELLED;
 }

@@ -23,11 +23,14 @@ tg_status tg__field_propagate(tg__field_run* run);
 bool tg__field_arrival(const tg_geodesic* g, const tg__pred* p, tg_vec3 at, tg_vec3 face_source, tg_vec3* out);
 
 /* For benchmarks only (bench/bench_field.c --span): while a log is set, each wave of a field on
- * several threads notes its size and each item's time (seconds, on whichever thread took it), so
- * that the schedule can be replayed on P simulated threads. One field at a time, in the caller's
- * arrays; a wave that does not fit sets `full` and ends the log. NULL (the default): none. */
+ * several threads notes its size and each item's time (seconds, on whichever thread took it),
+ * and for a wave of lists each list's merge on thread 0 (merge_s, at the item's index; 0 in a
+ * vertex round, merged after its wave), so that the schedule can be replayed on P simulated
+ * threads. One field at a time, in the caller's arrays; a wave that does not fit sets `full` and
+ * ends the log. NULL (the default): none. */
 typedef struct tg__schedule_log {
     double* item_s;
+    double* merge_s;
     uint32_t* wave_n;
     size_t items, cap_items, waves, cap_waves;
     int full;

@@ -51,20 +51,45 @@ bool tg__field_lanes(tg__field_scratch* fs, int n)
     return true;
 }
 
+static void note_peak(tg__field_scratch* fs)
+{
+    size_t b = tg__field_scratch_bytes(fs);
+    if (b > fs->peak_bytes) fs->peak_bytes = b;
+}
+
 bool tg__field_grow_slow(tg__field_scratch* fs, tg__vec* v, size_t extra)
 {
-    size_t cap = v->capacity;
+    if (extra <= v->capacity - v->count) return true;
+    /* a wave's merge on thread 0 while other threads still cross its lists, which read the
+     * pools: they finish first (propagate.c) */
+    if (fs->before_grow) fs->before_grow(fs->before_grow_arg);
     if (!tg__vec_reserve(&fs->allocator, v, extra)) return false;
-    if (v->capacity != cap) {
-        size_t b = tg__field_scratch_bytes(fs);
-        if (b > fs->peak_bytes) fs->peak_bytes = b;
-    }
+    note_peak(fs);
     return true;
+}
+
+bool tg__field_grow_kept(tg__field_scratch* fs, tg__vec* v, size_t extra)
+{
+    if (extra <= v->capacity - v->count) return true;
+    if (!tg__vec_reserve(&fs->allocator, &fs->retired, 1)) return false;
+    void* old;
+    if (!tg__vec_grow_kept(&fs->allocator, v, extra, &old)) return false;
+    if (old) ((void**)fs->retired.data)[fs->retired.count++] = old;
+    note_peak(fs);
+    return true;
+}
+
+void tg__field_free_retired(tg__field_scratch* fs)
+{
+    void** r = fs->retired.data;
+    for (size_t i = 0; i < fs->retired.count; ++i) tg__free(&fs->allocator, r[i]);
+    fs->retired.count = 0;
 }
 
 void tg__field_scratch_free(tg__field_scratch* fs)
 {
     const tg_allocator* a = &fs->allocator;
+    tg__field_free_retired(fs);
     void* tables[] = {fs->dist, fs->inside, fs->fpos, fs->pred, fs->head, fs->queued, fs->split_d, fs->split_x, fs->qface};
     for (size_t i = 0; i < sizeof tables / sizeof tables[0]; ++i) tg__free(a, tables[i]);
 #define TG__FIELD_FREE_(name, type) tg__vec_free(a, &fs->name);

@@ -12,6 +12,12 @@ void tg__field_scratch_free(tg__field_scratch* fs);
 /* Makes room for `extra` more elements of v, one of the scratch's buffers (noting the peak of
  * the scratch's memory); false on overflow or allocation failure. */
 bool tg__field_grow_slow(tg__field_scratch* fs, tg__vec* v, size_t extra);
+/* tg__field_grow_slow for a lane's buffer v while thread 0 may be reading it (several threads,
+ * propagate.c; the caller holds the crew's lock): the old block is kept in fs->retired until
+ * tg__field_free_retired. */
+bool tg__field_grow_kept(tg__field_scratch* fs, tg__vec* v, size_t extra);
+/* Frees the blocks tg__field_grow_kept kept (no thread reading them any more). */
+void tg__field_free_retired(tg__field_scratch* fs);
 /* Makes sure the scratch has n lanes (several threads, propagate.c); false when out of memory. */
 bool tg__field_lanes(tg__field_scratch* fs, int n);
 static inline bool tg__field_grow(tg__field_scratch* fs, tg__vec* v, size_t extra)

@@ -201,7 +201,7 @@ int main(int argc, char** argv)
     name = name ? name + 1 : path;
     double mx = 0;
     for (int q = 0; q < sources; ++q) mx = cpu[q] > mx ? cpu[q] : mx;
-    printf("| %s | %zu | %zu | %d | %.3f | %.3f | %.3f | %.0f | %.1f | %.1f |\n", name, n, F, sources,
+    printf("| %s | %zu | %zu | %d | %.4f | %.4f | %.4f | %.0f | %.1f | %.1f |\n", name, n, F, sources,
            bench_median(cpu, (size_t)sources), mx, bench_median(wall, (size_t)sources),
            bench_median(windows, (size_t)sources), (double)scratch / (1024.0 * 1024.0),
            (double)bench_peak_rss_kib() / 1024.0);

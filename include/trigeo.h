@@ -83,9 +83,17 @@ extern "C" {
 
 #define TG_VERSION_MAJOR 0
 #define TG_VERSION_MINOR 6
-#define TG_VERSION_PATCH 6
+#define TG_VERSION_PATCH 7
 /** Single integer for comparisons: major * 10000 + minor * 100 + patch. */
 #define TG_VERSION (TG_VERSION_MAJOR * 10000 + TG_VERSION_MINOR * 100 + TG_VERSION_PATCH)
+
+/* Changes in 0.6.7 (ABI-compatible with 0.6.0: same soname, no interface change):
+ *  - One field on several threads: thread 0 merges each list of a wave as soon as it and those
+ *    before it have crossed, crossing lists itself while the next is not done, instead of
+ *    after the whole wave; the corner distances follow the wave. The same bits as 0.6.6 for
+ *    every thread count (every corpus mesh on 2, 3 and 7 threads), a few percent faster on two
+ *    threads. tg_field_stats.lead_seconds no longer holds the merges of the waves' lists, and
+ *    wave_seconds does (the threads' busy time in the waves). */
 
 /* Changes in 0.6.6 (ABI-compatible with 0.6.0: same soname, no interface change):
  *  - Exact fields are a little faster, exact as before, not the same bits as 0.6.5's (within

@@ -1,7 +1,8 @@
 /* test_core_vec.c - the library's one growable buffer (src/core/core.h, tg__vec): growth keeps the
  * content, and a buffer with an alignment keeps its data aligned across every growth, whatever
  * the allocator's blocks (here each block lies at a different offset from a 64-byte line, so the
- * data must move within the block when the offset changes), and frees the block it was given. */
+ * data must move within the block when the offset changes), and frees the block it was given;
+ * grown with the old block kept, that block stays as it was. */
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -136,6 +137,48 @@ static void test_unaligned(void)
     CHECK_EQ_INT((int)s.bad, 0);
 }
 
+/* tg__vec_grow_kept (a lane's buffer that thread 0 may be reading while it grows, propagate.c):
+ * each move leaves the old block alive and unchanged for the caller to free, the content in the
+ * new one, aligned. */
+static void test_kept(void)
+{
+    shifty s;
+    memset(&s, 0, sizeof s);
+    tg_allocator a = {shifty_alloc, shifty_realloc, shifty_free, &s};
+    tg__vec v;
+    memset(&v, 0, sizeof v);
+    v.elem = 64, v.align = 64;
+    int moves = 0, lost = 0, changed = 0, misaligned = 0;
+    for (size_t i = 0; i < 5000; ++i) {
+        const unsigned char* before = v.data;
+        void* old = NULL;
+        if (!tg__vec_grow_kept(&a, &v, 1, &old)) {
+            CHECK(false);
+            return;
+        }
+        if (old) {
+            moves++;
+            lost += s.live != 2; /* the old block and the new */
+            for (size_t k = 0; k < v.count; ++k)
+                changed += before[64 * k + (k % 64)] != (unsigned char)(k % 251) ||
+                           ((unsigned char*)v.data)[64 * k + (k % 64)] != (unsigned char)(k % 251);
+            tg__free(&a, old);
+        } else {
+            CHECK(before == NULL || before == v.data);
+        }
+        misaligned += ((uintptr_t)v.data & 63) != 0;
+        memset((char*)v.data + 64 * i, (int)(i % 251), 64);
+        v.count = i + 1;
+    }
+    CHECK(moves > 5);
+    CHECK_EQ_INT(lost, 0);
+    CHECK_EQ_INT(changed, 0);
+    CHECK_EQ_INT(misaligned, 0);
+    tg__vec_free(&a, &v);
+    CHECK_EQ_INT((int)s.live, 0);
+    CHECK_EQ_INT((int)s.bad, 0);
+}
+
 int main(void)
 {
     /* several lengths, so that some end in a block whose data is not at its start */
@@ -143,5 +186,6 @@ int main(void)
     for (int k = 0; k < 8; ++k) padded += grow_and_check(k % 2, 3000 + 700 * (size_t)k) != 0; /* reserve, fit */
     CHECK(padded > 0);
     test_unaligned();
+    test_kept();
     return tg_test_finish();
 }

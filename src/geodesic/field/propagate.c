@@ -1514,6 +1514,9 @@ static bool crew_take(tg__field_run* run, crew* c, int t, unsigned id)
         k->child1 = (uint32_t)L->child.count, k->relax1 = (uint32_t)L->relax.count;
         k->freed1 = (uint32_t)L->freed.count, k->qids1 = (uint32_t)L->qids.count;
         k->ready1 = (uint32_t)L->ready.count;
+        if (L->failed) /* out of memory: the wave fails; a merge meanwhile finds nothing here (a
+                          result half written may be uneven: a child without its record) */
+            k->child1 = k->child0, k->relax1 = k->relax0, k->freed1 = k->freed0, k->qids1 = k->qids0, k->ready1 = k->ready0;
         k->child = L->child.data, k->child_rec = L->child_rec.data;
         k->freed = L->freed.data, k->qids = L->qids.data;
         if (item_s) item_s[i] = now_s() - ti; /* its own slot: no other thread writes it */

@@ -593,6 +593,12 @@ static void test_sweep_regressions(void)
          * tg_geodesic_field_at's */
         {"c3d_beetle.obj", {TG_SURFACE_VERTEX, 1121, 0.0, {0, 0, 0}}, {TG_SURFACE_VERTEX, 704, 0.0, {0, 0, 0}},
          0.541042978301056},
+        /* the same walk, which now keeps only the faces the field's distances allow beyond such
+         * an edge, found no way back from 699 (the A* run's distances off its path too long:
+         * TG_ERR_INTERNAL, the sweep, seed 2101); now again from the whole field; the length is
+         * tg_geodesic_field_at's */
+        {"c3d_beetle.obj", {TG_SURFACE_VERTEX, 505, 0.0, {0, 0, 0}}, {TG_SURFACE_VERTEX, 699, 0.0, {0, 0, 0}},
+         0.47559960133599077},
         /* a point in a zero-area sliver of a seam zipped between coincident vertices (face 7797,
          * corners 4338 and 4342 at one position): the point also lies in the next sliver (7798,
          * whose edge of length 0 made it no stack then) and so in the face beyond it, which a

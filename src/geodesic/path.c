@@ -68,19 +68,21 @@ static int report_propagation(void* user, const tg__field_run* run)
     return progress->fn(progress->user, &p);
 }
 
-/* The exact propagation from `from`, ordered toward `to` and bounded by `limit` (and by the best
- * distance to `to` found so far), recording how every vertex and `to` got its distance;
+/* The exact propagation from `from`, ordered toward `to` (A*) and bounded by `limit` (and by the
+ * best distance to `to` found so far), or with `whole` the whole field (every vertex's distance
+ * exact: the fallback below), recording how every vertex and `to` got its distance;
  * TG_ERR_CANCELLED when the query's progress callback asks to stop. */
 static tg_status exact_propagation(tg_geodesic_workspace* ws, const request* rq, const tg_surface_point* from,
-                                   const tg_surface_point* to, double limit, tg__field_run* out_run)
+                                   const tg_surface_point* to, double limit, bool whole, tg__field_run* out_run)
 {
     tg_surface_point s = tg__surface_in(ws->geo, from), t = tg__surface_in(ws->geo, to);
     tg__node tn = tg__node_from_surface(&t);
     double toward[3];
     tg_v3_store(tg__node_pos(ws->geo, &tn), toward);
-    tg__field_query q = {.sources = &s, .source_count = 1, .points = &t, .point_count = 1, .max_distance = limit,
+    tg__field_query q = {.sources = &s, .source_count = 1, .points = &t, .point_count = 1,
+                         .max_distance = whole ? INFINITY : limit,
                          .progress = rq->progress.fn ? report_propagation : NULL,
-                         .progress_user = (void*)&rq->progress, .trace = true, .toward = toward};
+                         .progress_user = (void*)&rq->progress, .trace = true, .toward = whole ? NULL : toward};
     return tg__field_execute(&ws->field, &q, out_run);
 }
 
@@ -94,13 +96,23 @@ static tg_status exact_route(tg_geodesic_workspace* ws, const request* rq, const
     route->nodes.count = route->faces.count = 0;
     *out_found = false;
     tg__field_run run;
-    tg_status st = exact_propagation(ws, rq, from, to, limit, &run);
+    tg_status st = exact_propagation(ws, rq, from, to, limit, false, &run);
     *out_distance = st == TG_OK ? run.qdist[0] : INFINITY;
     if (st != TG_OK || !(*out_distance < INFINITY)) return st;
     tg_surface_point ss = tg__surface_in(g, from), ts = tg__surface_in(g, to);
     tg__node source = tg__node_from_surface(&ss), target = tg__node_from_surface(&ts);
     bool oom = false;
     *out_found = tg__path_backtrack(g, &ws->allocator, &run, &source, &target, route, &oom);
+    if (!*out_found && !oom) {
+        /* beyond a non-manifold edge the walk back keeps the faces the field's distances allow
+         * (backtrack.c, ray_too_short), and an A* run leaves those off its path too long (upper
+         * bounds): it may find no way (c3d_beetle.obj v:505 -> v:699, the sweep, seed 2101).
+         * Again from the whole field, every distance exact: one field's time, only then. */
+        st = exact_propagation(ws, rq, from, to, limit, true, &run);
+        *out_distance = st == TG_OK ? run.qdist[0] : INFINITY;
+        if (st != TG_OK || !(*out_distance < INFINITY)) return st;
+        *out_found = tg__path_backtrack(g, &ws->allocator, &run, &source, &target, route, &oom);
+    }
     return oom ? TG_ERR_OUT_OF_MEMORY : TG_OK;
 }
 
@@ -296,6 +308,12 @@ static tg_status curve_route(tg_geodesic_workspace* ws, const request* rq, const
     if (st != TG_OK || !(run.qdist[0] < INFINITY)) return st; /* unreachable: the cleared path */
     bool oom = false;
     bool found = tg__path_backtrack(g, &ws->allocator, &run, NULL, &target, &ws->route, &oom);
+    if (!found && !oom) { /* again from the whole field, as exact_route does */
+        q.toward = NULL;
+        st = tg__field_execute(&ws->field, &q, &run);
+        if (st != TG_OK || !(run.qdist[0] < INFINITY)) return st;
+        found = tg__path_backtrack(g, &ws->allocator, &run, NULL, &target, &ws->route, &oom);
+    }
     if (oom) return TG_ERR_OUT_OF_MEMORY;
     if (!found || !backtrack_exact(g, &ws->route, run.qdist[0])) return TG_ERR_INTERNAL;
     st = fill_exact(g, &ws->allocator, &ws->route, path);

@@ -93,7 +93,10 @@ extern "C" {
  *    after the whole wave; the corner distances follow the wave. The same bits as 0.6.6 for
  *    every thread count (every corpus mesh on 2, 3 and 7 threads), a few percent faster on two
  *    threads. tg_field_stats.lead_seconds no longer holds the merges of the waves' lists, and
- *    wave_seconds does (the threads' busy time in the waves). */
+ *    wave_seconds does (the threads' busy time in the waves).
+ *  - Fixed: an exact path across non-manifold edges could fail with TG_ERR_INTERNAL (its walk
+ *    back, guided by the distances of a run ordered toward the target, found no way); such a
+ *    path is now followed back on the whole field. */
 
 /* Changes in 0.6.6 (ABI-compatible with 0.6.0: same soname, no interface change):
  *  - Exact fields are a little faster, exact as before, not the same bits as 0.6.5's (within

@@ -81,16 +81,23 @@ static void shifty_free(void* u, void* p)
     free(head_of(p).region);
 }
 
+/* A test's allocator (s zeroed) and an empty buffer of elements of `elem` bytes aligned to `align`. */
+static tg_allocator shifty_start(shifty* s, tg__vec* v, size_t elem, size_t align)
+{
+    memset(s, 0, sizeof *s);
+    memset(v, 0, sizeof *v);
+    v->elem = elem, v->align = align;
+    tg_allocator a = {shifty_alloc, shifty_realloc, shifty_free, s};
+    return a;
+}
+
 /* Pushes n records of 64 bytes (each filled with its index) one at a time, or grows to n at once
  * (fit), checking alignment and every record after each growth. */
 static size_t grow_and_check(bool fit, size_t n)
 {
     shifty s;
-    memset(&s, 0, sizeof s);
-    tg_allocator a = {shifty_alloc, shifty_realloc, shifty_free, &s};
     tg__vec v;
-    memset(&v, 0, sizeof v);
-    v.elem = 64, v.align = 64;
+    tg_allocator a = shifty_start(&s, &v, 64, 64);
     int misaligned = 0, wrong = 0;
     for (size_t i = 0; i < n; ++i) {
         if (fit ? !tg__vec_fit(&a, &v, i + 1) : !tg__vec_reserve(&a, &v, 1)) {
@@ -119,11 +126,8 @@ static size_t grow_and_check(bool fit, size_t n)
 static void test_unaligned(void)
 {
     shifty s;
-    memset(&s, 0, sizeof s);
-    tg_allocator a = {shifty_alloc, shifty_realloc, shifty_free, &s};
     tg__vec v;
-    memset(&v, 0, sizeof v);
-    v.elem = 4;
+    tg_allocator a = shifty_start(&s, &v, 4, 0);
     for (uint32_t i = 0; i < 10000; ++i) {
         CHECK(tg__vec_reserve(&a, &v, 1));
         ((uint32_t*)v.data)[v.count++] = i;
@@ -143,11 +147,8 @@ static void test_unaligned(void)
 static void test_kept(void)
 {
     shifty s;
-    memset(&s, 0, sizeof s);
-    tg_allocator a = {shifty_alloc, shifty_realloc, shifty_free, &s};
     tg__vec v;
-    memset(&v, 0, sizeof v);
-    v.elem = 64, v.align = 64;
+    tg_allocator a = shifty_start(&s, &v, 64, 64);
     int moves = 0, lost = 0, changed = 0, misaligned = 0;
     for (size_t i = 0; i < 5000; ++i) {
         const unsigned char* before = v.data;

@@ -9,15 +9,17 @@
  *   --threads T: each field on T threads (tg_field_options.threads; default 1, the serial engine;
  *   0: every core); with T != 1 a second row gives the parallel schedule summed over the fields:
  *   | rounds | waves | lists per wave | serial share f (thread 0 outside the waves, over that
- *   plus the threads' busy time in them, crossing lists and thread 0's merges) | Amdahl speed-up 1 / (f + (1 - f) / P) at P = 2, 4,
- *   8, 16, 32 (a wave's lists are taken a chunk at a time, n / 4P of them, 1 to 8, so no more
- *   threads than lists per wave can be busy: that bound is that column) | thread 0's seconds outside the waves | the threads' busy
- *   seconds in them (their sum against the one-thread time: the work the rounds add) |
+ *   plus the threads' busy time in them, crossing lists and thread 0's merges) | Amdahl
+ *   speed-up 1 / (f + (1 - f) / P) at P = 2, 4, 8, 16, 32 (a wave's lists are taken a chunk at a
+ *   time, n / 4P of them, 1 to 8, so no more threads than lists per wave can be busy: that bound
+ *   is that column) | thread 0's seconds outside the waves | the threads' busy seconds in them
+ *   (their sum against the one-thread time: the work the rounds add) |
  *   --span (with T != 1): each wave's items are timed inside the library (propagate.h,
  *   tg__schedule_log) and the schedule replayed on P = 2, 4, ..., 32 simulated threads: each
- *   wave's lists dealt in the crew's chunks (n / 4P, 1 to 8) to whichever simulated thread is free
- *   first, thread 0 merging the wave's lists in order as they are done (each merge timed too) and
- *   taking a chunk while the next is not, the wave ending with the last merge; a third row gives | the waves' work s | the lead s |
+ *   wave's lists dealt in the crew's chunks (n / 4P, 1 to 8, at most the rest / 2P) to whichever
+ *   simulated thread is free first, thread 0 merging the wave's lists in order as they are done
+ *   (each merge timed too) and taking a chunk while the next is not, the wave ending with the
+ *   last merge; a third row gives | the waves' work s | the lead s |
  *   S(P) = (lead + work) / (lead + the waves' spans on P) |: the speed-up the schedule allows
  *   with the waves' real granularity, against the rounds' own work (the timing adds its cost to
  *   every item, so the rows' times are a little longer).
@@ -39,8 +41,8 @@
 #include "geodesic/field/propagate.h" /* tg__schedule_log: the --span replay */
 
 /* The waves of a logged field replayed on P simulated threads (the crew's rule, propagate.c:
- * chunks of n / 4P lists, 1 to 8, each to the first thread free; thread 0 merges): the sum of
- * the waves' spans. */
+ * chunks of n / 4P lists, 1 to 8, and at most the rest / 2P, each to the first thread free;
+ * thread 0 merges): the sum of the waves' spans. */
 static double replay(const tg__schedule_log* lg, int P)
 {
     double total = 0.0, free_at[32];
@@ -66,14 +68,15 @@ static double replay(const tg__schedule_log* lg, int P)
             int b = 1;
             for (int k = 2; k < P; ++k)
                 if (free_at[k] < free_at[b]) b = k;
+            size_t tail = (n - next) / (2 * (size_t)P), cc = c > tail ? (tail < 1 ? 1 : tail) : c;
             if (next < n && P > 1 && free_at[b] <= free_at[0]) {
-                for (size_t j = next; j < next + c && j < n; ++j) free_at[b] += x[j], done_at[j] = free_at[b];
-                next += c;
+                for (size_t j = next; j < next + cc && j < n; ++j) free_at[b] += x[j], done_at[j] = free_at[b];
+                next += cc;
             } else if (merged < next && done_at[merged] <= free_at[0]) {
                 free_at[0] += m[merged++];
             } else if (next < n) {
-                for (size_t j = next; j < next + c && j < n; ++j) free_at[0] += x[j], done_at[j] = free_at[0];
-                next += c;
+                for (size_t j = next; j < next + cc && j < n; ++j) free_at[0] += x[j], done_at[j] = free_at[0];
+                next += cc;
             } else {
                 free_at[0] = done_at[merged];
             }

@@ -231,8 +231,7 @@ typedef struct tg__field_lane {
 
 /* Where the results of one list (or one vertex) of a round lie: its lane, and the ranges in the
  * lane's buffers (a vertex's: its children, relaxed neighbours and the halfedges whose lists it
- * releases, `ready`; emit_here: it emits on thread 0 in the merge, as in the serial engine;
- */
+ * releases, `ready`; emit_here: it emits on thread 0 in the merge, as in the serial engine). */
 typedef struct tg__lane_task {
     uint32_t lane;
     uint32_t child0, child1, relax0, relax1, freed0, freed1, qids0, qids1, ready0, ready1, emit_here;
@@ -240,7 +239,7 @@ typedef struct tg__lane_task {
     /* a list's lane buffers as it was done (a lane's buffer may move while thread 0 merges
      * from it: the old block is kept until the wave's end) */
     const tg__lane_child* child;
-    const void* child_rec;
+    const void* child_rec; /* tg__lm_rec (logmap_record.h), log map runs only */
     const uint32_t *freed, *qids;
     _Atomic unsigned done; /* the number of the wave it was done in (release; propagate.c) */
 } tg__lane_task;

@@ -120,10 +120,13 @@ typedef struct tg__pred {
  * the cut locus): far above the engine's rounding (~1e-15), far below what a user tells apart. */
 #define TG__TIE_REL 1e-12
 
-/* Trimming (window.c): the key of a window while one list is sorted by start. */
+/* Trimming (window.c): the key of a window while one list is sorted by start; ties go by the
+ * window's place in its list (never by its slot, which on several threads depends on which thread
+ * made it). */
 typedef struct tg__win_key {
     double key;
-    uint32_t id;
+    uint32_t id;  /* its pool slot */
+    uint32_t pos; /* its place in the list */
 } tg__win_key;
 
 /* Where window w meets the face's opposite corner C: orientation of C against its two boundary
@@ -199,6 +202,14 @@ typedef struct tg__lane_child {
     double c0, c1, x, y, sigma, d0, d1;
 } tg__lane_child;
 
+/* A child a lane made, in the order the merge adds it to its list (halfedge h's): the pool slot
+ * the lane wrote it to (one of the lane's own free slots, tg__field_lane.slots), or TG_NONE when
+ * it is held in the lane's `child` (the next held one) for the merge to store: the lane had no
+ * free slot left, or the child has a log map record. */
+typedef struct tg__lane_link {
+    uint32_t h, id;
+} tg__lane_link;
+
 /* A corner distance found while a list crossed (relax_vertex's arguments; in log map runs also
  * the angle at which the ray to the corner leaves the source, NaN when the window has no record). */
 typedef struct tg__lane_relax {
@@ -208,14 +219,16 @@ typedef struct tg__lane_relax {
     double theta;
 } tg__lane_relax;
 
-/* The buffers of a lane: the results of the lists it crossed (child; child_rec, in log map runs,
- * the children's records (logmap_record.h) at the same index, base NaN for none; relax; freed;
- * freed_blocks: the blocks of the lists it took, released by thread 0 after the wave;
- * qids: the trimmed lists whose windows the merge evaluates at query points or records for
- * levels, as the serial engine does while they cross), and its own copies of the list scratch
- * (list, keys, hits). */
+/* The buffers of a lane: the results of the lists it crossed (link: the children in order;
+ * child: those held for the merge; child_rec, in log map runs, the held children's records
+ * (logmap_record.h) at the same index, base NaN for none; relax; freed: the slots of the windows
+ * it crossed, its own free slots from the wave's end on; freed_blocks: the blocks of the lists it
+ * took, released by thread 0 after the wave; qids: the trimmed lists whose windows the merge
+ * evaluates at query points or records for levels, as the serial engine does while they cross),
+ * its free slots (slots: the children it makes are written there, no other thread touching
+ * them), and its own copies of the list scratch (list, keys, hits). */
 #define TG__LANE_BUFFERS(X)                                                                        \
-    X(child) X(child_rec) X(relax) X(freed) X(freed_blocks) X(qids) X(ready) X(list) X(keys) X(hits)
+    X(link) X(child) X(child_rec) X(relax) X(freed) X(freed_blocks) X(qids) X(ready) X(slots) X(list) X(keys) X(hits)
 
 /* One thread's buffers (TG__LANE_BUFFERS). */
 typedef struct tg__field_lane {
@@ -230,17 +243,19 @@ typedef struct tg__field_lane {
 } tg__field_lane;
 
 /* Where the results of one list (or one vertex) of a round lie: its lane, and the ranges in the
- * lane's buffers (a vertex's: its children, relaxed neighbours and the halfedges whose lists it
- * releases, `ready`; emit_here: it emits on thread 0 in the merge, as in the serial engine). */
+ * lane's buffers (a vertex's: its children (link0 .. link1, the held ones from child0 on),
+ * relaxed neighbours and the halfedges whose lists it releases, `ready`; emit_here: it emits on
+ * thread 0 in the merge, as in the serial engine). */
 typedef struct tg__lane_task {
     uint32_t lane;
-    uint32_t child0, child1, relax0, relax1, freed0, freed1, qids0, qids1, ready0, ready1, emit_here;
+    uint32_t link0, link1, child0, relax0, relax1, freed0, freed1, qids0, qids1, ready0, ready1, emit_here;
     uint32_t head; /* a list's: its head as the wave began (thread 0 empties the list first) */
     /* a list's lane buffers as it was done (a lane's buffer may move while thread 0 merges
      * from it: the old block is kept until the wave's end) */
+    const tg__lane_link* link;
     const tg__lane_child* child;
     const void* child_rec; /* tg__lm_rec (logmap_record.h), log map runs only */
-    const uint32_t *freed, *qids;
+    const uint32_t* qids;
     _Atomic unsigned done; /* the number of the wave it was done in (release; propagate.c) */
 } tg__lane_task;
 
@@ -354,6 +369,7 @@ typedef struct tg__field_run {
     double* qdist;        /* q->point_count distances */
     const tg__pred* qpred; /* how each point got its distance, NULL unless q->trace */
     tg_field_stats stats;
+    size_t lane_free; /* several threads: the free slots the lanes hold, as far as the merge has reached */
 } tg__field_run;
 
 static inline void tg__field_tighten(tg__field_run* run, double d)

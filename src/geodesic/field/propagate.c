@@ -438,6 +438,14 @@ static TG__ALWAYS_INLINE bool window_ends(const tg_geodesic* g, uint32_t h, doub
 /* Adds the window [c0, c1] on halfedge h (its end distances d0, d1: window_ends) to h's list,
  * unless it is dominated (not asked again when `checked`: a lane's child, checked against the
  * distances as its wave began) or beyond the distance limit. */
+/* The windows alive (slots neither on the free list nor free in a lane, as the merge has
+ * reached), for the peak. */
+static TG__ALWAYS_INLINE void note_live(tg__field_run* run)
+{
+    size_t live = run->fs->windows.count - run->fs->free_ids.count - run->lane_free;
+    if (live > run->stats.peak_windows) run->stats.peak_windows = live;
+}
+
 static TG__ALWAYS_INLINE bool store_window(tg__field_run* run, uint32_t h, double c0, double c1, double x, double y,
                                            double sigma, double d0, double d1, uint32_t tag, const tg__lm_rec* rec,
                                            bool line, bool checked)
@@ -462,8 +470,7 @@ static TG__ALWAYS_INLINE bool store_window(tg__field_run* run, uint32_t h, doubl
     if (!touch_halfedge(fs, h)) return false;
     if (!list_add(fs, h, id)) return false;
     run->stats.windows_created++;
-    size_t live = fs->windows.count - fs->free_ids.count;
-    if (live > run->stats.peak_windows) run->stats.peak_windows = live;
+    note_live(run);
     return list_ready(run, h) ? enqueue(run, h) : true;
 }
 
@@ -509,9 +516,11 @@ static TG__ALWAYS_INLINE bool push_ring(tg__field_run* run, uint32_t e, double t
 static bool lane_grow(tg__field_scratch* fs, tg__field_lane* L, tg__vec* v, size_t extra);
 
 /* push_ring for a lane: each window into the faces beyond, shaped and checked against the
- * distances as the round's wave began (they only shrink, so what they dominate stays dominated),
- * is kept in the lane for the merge (store_window); in log map runs with its record (rec: NULL,
- * or the record in e's frame), or a record marked none (base NaN). */
+ * distances as the round's wave began (they only shrink, so what they dominate stays dominated)
+ * and against the run's limits (which hold for the whole wave), is written to one of the lane's
+ * free slots, for the merge to add to its list in the wave's order. With no free slot left, or
+ * in log map runs, it is held in the lane for the merge to store (store_window), with its record
+ * (rec: NULL, or the record in e's frame) or a record marked none (base NaN). */
 static bool lane_ring(tg__field_run* run, tg__field_lane* L, uint32_t e, double t0, double t1, double x, double y,
                       double sigma, uint32_t tag, const tg__lm_rec* rec)
 {
@@ -529,14 +538,30 @@ static bool lane_ring(tg__field_run* run, tg__field_lane* L, uint32_t e, double 
             continue;
         }
         if (!line) window_point_ends(c0, c1, ox, oy, os, &d0, &d1);
-        if (!lane_grow(run->fs, L, &L->child, 1)) return false;
-        tg__lane_child c = {o, tag, c0, c1, ox, oy, os, d0, d1};
-        ((tg__lane_child*)L->child.data)[L->child.count++] = c;
-        if (records) { /* at the child's index */
-            if (!lane_grow(run->fs, L, &L->child_rec, 1)) return false;
-            tg__lm_rec none = {0.0, 0.0, NAN};
-            ((tg__lm_rec*)L->child_rec.data)[L->child_rec.count++] = rec ? tg__lm_ring(g, e, o, *rec) : none;
+        if (!lane_grow(run->fs, L, &L->link, 1)) return false;
+        tg__lane_link k = {o, TG_NONE};
+        if (!records && L->slots.count) {
+            /* store_window's limits (no A* on several threads) */
+            double key = (!line && ox > c0 && ox < c1) ? os - oy : (d0 < d1 ? d0 : d1);
+            if (run->bounded && beyond_bound(run, o, c0, c1, key)) {
+                L->stats.windows_filtered++;
+                continue;
+            }
+            if (key > run->max_dist) continue;
+            k.id = ((const uint32_t*)L->slots.data)[--L->slots.count];
+            tg__window* w = &((tg__window*)run->fs->windows.data)[k.id];
+            w->b0 = c0, w->b1 = c1, w->sx = ox, w->sy = oy, w->sigma = os, w->d0 = d0, w->d1 = d1, w->tag = tag;
+        } else {
+            if (!lane_grow(run->fs, L, &L->child, 1)) return false;
+            tg__lane_child c = {o, tag, c0, c1, ox, oy, os, d0, d1};
+            ((tg__lane_child*)L->child.data)[L->child.count++] = c;
+            if (records) { /* at the child's index */
+                if (!lane_grow(run->fs, L, &L->child_rec, 1)) return false;
+                tg__lm_rec none = {0.0, 0.0, NAN};
+                ((tg__lm_rec*)L->child_rec.data)[L->child_rec.count++] = rec ? tg__lm_ring(g, e, o, *rec) : none;
+            }
         }
+        ((tg__lane_link*)L->link.data)[L->link.count++] = k;
     }
     return true;
 }
@@ -1281,6 +1306,15 @@ static tg_status propagate_serial(tg__field_run* run)
 #define ROUND_SHARE 8
 #define WAVE_MIN 16
 
+/* A lane writes the children it makes to its own free slots: the slots of the windows it crossed
+ * (each its own again once the wave is merged), at most LANE_SLOTS_MAX of them, topped up from
+ * the pool's to LANE_SLOTS_MIN before each wave; so the merge only adds each child to its list
+ * (reading 8 bytes of the lane's where a child is 64), and a child goes to a slot the lane's core
+ * just read. Which slots hold which windows never changes a result (window.c sorts ties by place
+ * in the list). */
+#define LANE_SLOTS_MIN 256
+#define LANE_SLOTS_MAX 4096
+
 /* Merges ask for the tables of the item MERGE_AHEAD on early (cache prefetch): the lanes just
  * read them on other cores. */
 #define MERGE_AHEAD 4
@@ -1298,28 +1332,49 @@ static bool merge_relax(tg__field_run* run, const tg__lane_task* t)
     return true;
 }
 
-/* A task's children from its lane, stored as the serial engine stores them (with their log map
- * records). */
+/* Window `id`, written by a lane, added to the list of h as store_window adds one. */
+static TG__ALWAYS_INLINE bool link_window(tg__field_run* run, uint32_t h, uint32_t id)
+{
+    tg__field_scratch* fs = run->fs;
+    if (!touch_halfedge(fs, h)) return false;
+    if (!list_add(fs, h, id)) return false;
+    run->stats.windows_created++;
+    run->lane_free--; /* the slot is the window's now */
+    note_live(run);
+    return list_ready(run, h) ? enqueue(run, h) : true;
+}
+
+/* A task's children from its lane, added to their lists in the lane's order: those the lane
+ * wrote to its slots, and those it held, stored as the serial engine stores them (with their log
+ * map records). */
 static bool merge_children(tg__field_run* run, const tg__lane_task* t)
 {
+    const tg__lane_link* k = t->link;
     const tg__lane_child* c = t->child;
     const tg__lm_rec* rec = run->q->logmap ? t->child_rec : NULL;
-    for (uint32_t i = t->child0; i < t->child1; ++i) {
-        if (i + MERGE_AHEAD < t->child1) TG__PREFETCH_FACE(run, c[i + MERGE_AHEAD].h);
+    uint32_t i = t->child0;
+    for (uint32_t j = t->link0; j < t->link1; ++j) {
+        if (j + MERGE_AHEAD < t->link1) TG__PREFETCH_FACE(run, k[j + MERGE_AHEAD].h);
+        if (k[j].id != TG_NONE) {
+            if (!link_window(run, k[j].h, k[j].id)) return false;
+            continue;
+        }
         const tg__lm_rec* ri = rec && !isnan(rec[i].base) ? &rec[i] : NULL;
         if (!store_window(run, c[i].h, c[i].c0, c[i].c1, c[i].x, c[i].y, c[i].sigma, c[i].d0, c[i].d1, c[i].tag, ri,
                           TG__TAG_ORIGIN(c[i].tag) == TG__ORIGIN_LINE, true))
             return false;
+        i++;
     }
     return true;
 }
 
 /* The results of list h, in its lane, applied to the shared state in the serial engine's order
  * but for the corner distances (merge_relax, after the wave): the windows evaluated at query
- * points and recorded (the list still in its slots), the released slots, the children (with
- * their log map records). Storing a child reads no distance and a corner's relaxation nothing a
- * child writes, so the corners may follow the children: this runs while the wave's later lists
- * still cross, which read the distances as the wave began. */
+ * points and recorded (the list still in its slots: the lane's released slots are its own again
+ * only after the wave), the children (with their log map records). Storing a child reads no
+ * distance and a corner's relaxation nothing a child writes, so the corners may follow the
+ * children: this runs while the wave's later lists still cross, which read the distances as the
+ * wave began. */
 static bool merge_list(tg__field_run* run, uint32_t h, const tg__lane_task* t)
 {
     tg__field_scratch* fs = run->fs;
@@ -1329,7 +1384,7 @@ static bool merge_list(tg__field_run* run, uint32_t h, const tg__lane_task* t)
         tg__field_queries_cross(run, h, fs->windows.data, ids, n);
         if (run->q->record_levels && !tg__field_record_cross(run, h, fs->windows.data, ids, n)) return false;
     }
-    for (uint32_t i = t->freed0; i < t->freed1; ++i) win_release(fs, t->freed[i]);
+    run->lane_free += t->freed1 - t->freed0; /* the windows the list crossed are gone */
     return merge_children(run, t);
 }
 
@@ -1432,9 +1487,9 @@ static bool merge_vertex(tg__field_run* run, uint32_t item, const tg__lane_task*
     if (!merge_children(run, t)) return false;
     /* a child whose face's far corner left the front in this round: that corner's lane saw no
      * list there, and the serial engine would have released it (or found it released) */
-    const tg__lane_child* ch = t->child;
-    for (uint32_t i = t->child0; i < t->child1; ++i)
-        if ((fs->inside[fs->g->tri[tg_halfedge_prev(ch[i].h)]] & VS_ROUND) && !enqueue(run, ch[i].h)) return false;
+    const tg__lane_link* k = t->link;
+    for (uint32_t j = t->link0; j < t->link1; ++j)
+        if ((fs->inside[fs->g->tri[tg_halfedge_prev(k[j].h)]] & VS_ROUND) && !enqueue(run, k[j].h)) return false;
     if (!merge_relax(run, t)) return false;
     const uint32_t* ready = L->ready.data;
     for (uint32_t i = t->ready0; i < t->ready1; ++i)
@@ -1506,19 +1561,20 @@ static bool crew_take(tg__field_run* run, crew* c, int t, unsigned id)
         double ti = item_s ? now_s() : 0.0;
         tg__lane_task* k = &tasks[i];
         k->lane = (uint32_t)t;
-        k->child0 = (uint32_t)L->child.count, k->relax0 = (uint32_t)L->relax.count;
-        k->freed0 = (uint32_t)L->freed.count, k->qids0 = (uint32_t)L->qids.count;
-        k->ready0 = (uint32_t)L->ready.count, k->emit_here = 0;
+        k->link0 = (uint32_t)L->link.count, k->child0 = (uint32_t)L->child.count;
+        k->relax0 = (uint32_t)L->relax.count, k->freed0 = (uint32_t)L->freed.count;
+        k->qids0 = (uint32_t)L->qids.count, k->ready0 = (uint32_t)L->ready.count, k->emit_here = 0;
         if (!L->failed && !(vertices ? vertex_lane(run, L, wave[i], k) : propagate_lane(run, L, wave[i], k->head)))
             L->failed = 1;
-        k->child1 = (uint32_t)L->child.count, k->relax1 = (uint32_t)L->relax.count;
+        k->link1 = (uint32_t)L->link.count, k->relax1 = (uint32_t)L->relax.count;
         k->freed1 = (uint32_t)L->freed.count, k->qids1 = (uint32_t)L->qids.count;
         k->ready1 = (uint32_t)L->ready.count;
         if (L->failed) /* out of memory: the wave fails; a merge meanwhile finds nothing here (a
                           result half written may be uneven: a child without its record) */
-            k->child1 = k->child0, k->relax1 = k->relax0, k->freed1 = k->freed0, k->qids1 = k->qids0, k->ready1 = k->ready0;
-        k->child = L->child.data, k->child_rec = L->child_rec.data;
-        k->freed = L->freed.data, k->qids = L->qids.data;
+            k->link1 = k->link0, k->relax1 = k->relax0, k->freed1 = k->freed0, k->qids1 = k->qids0,
+            k->ready1 = k->ready0;
+        k->link = L->link.data, k->child = L->child.data, k->child_rec = L->child_rec.data;
+        k->qids = L->qids.data;
         if (item_s) item_s[i] = now_s() - ti; /* its own slot: no other thread writes it */
         atomic_store_explicit(&k->done, id, memory_order_release);
     }
@@ -1622,7 +1678,8 @@ static unsigned crew_begin(tg__field_run* run, crew* c, size_t n)
     tg__field_scratch* fs = run->fs;
     for (int t = 0; t <= c->workers; ++t) {
         tg__field_lane* L = &fs->lanes[t];
-        L->child.count = L->child_rec.count = L->relax.count = L->freed.count = L->qids.count = L->ready.count = 0;
+        L->link.count = L->child.count = L->child_rec.count = L->relax.count = L->freed.count = L->qids.count =
+            L->ready.count = 0;
         L->freed_blocks.count = 0;
         L->failed = 0;
     }
@@ -1665,16 +1722,45 @@ static tg_status crew_collect(tg__field_run* run, crew* c, size_t n)
 }
 
 /* Thread 0, the wave merged: the blocks of the lists the lanes took go back to the free list
- * (which blocks are reused never changes a result), and the lanes' old buffers are freed. */
+ * (which blocks are reused never changes a result), the slots of the windows each lane crossed
+ * become its own free slots (the last ones, the likeliest in its core's cache, up to
+ * LANE_SLOTS_MAX; the rest go back to the pool's free list), and the lanes' old buffers are freed. */
 static void crew_release(tg__field_run* run, crew* c)
 {
     tg__field_scratch* fs = run->fs;
     for (int t = 0; t <= c->workers; ++t) {
-        const tg__field_lane* L = &fs->lanes[t];
+        tg__field_lane* L = &fs->lanes[t];
         const uint32_t* fb = L->freed_blocks.data;
         for (size_t i = 0; i < L->freed_blocks.count; ++i) pool_release(&fs->free_blocks, fb[i]);
+        const uint32_t* fr = L->freed.data;
+        size_t n = L->freed.count, cap = L->slots.capacity < LANE_SLOTS_MAX ? L->slots.capacity : LANE_SLOTS_MAX;
+        size_t room = cap > L->slots.count ? cap - L->slots.count : 0, keep = n < room ? n : room;
+        for (size_t i = 0; i < n - keep; ++i) pool_release(&fs->free_ids, fr[i]);
+        run->lane_free -= n - keep;
+        memcpy((uint32_t*)L->slots.data + L->slots.count, fr + (n - keep), keep * sizeof *fr);
+        L->slots.count += keep;
+        L->freed.count = 0;
     }
     tg__field_free_retired(fs);
+}
+
+/* Thread 0, before a wave: each lane holds at least LANE_SLOTS_MIN free slots, taken from the
+ * pool's (which may grow now: no lane is crossing). Without them (out of memory) a lane holds its
+ * children for the merge to store, which then fails or not as the serial engine would. */
+static void lanes_slots(tg__field_run* run, crew* c)
+{
+    tg__field_scratch* fs = run->fs;
+    for (int t = 0; t <= c->workers; ++t) {
+        tg__field_lane* L = &fs->lanes[t];
+        if (L->slots.capacity < LANE_SLOTS_MAX && !tg__field_grow(fs, &L->slots, LANE_SLOTS_MAX - L->slots.count))
+            continue;
+        while (L->slots.count < LANE_SLOTS_MIN) {
+            uint32_t id = win_alloc(fs);
+            if (id == TG_NONE) return;
+            ((uint32_t*)L->slots.data)[L->slots.count++] = id;
+            run->lane_free++;
+        }
+    }
 }
 
 /* A wave's merge on thread 0 (cross_wave) and the wave it merges. */
@@ -1703,8 +1789,8 @@ static void merge_stretch(tg__field_run* run, const tg__lane_task* tasks, double
     run->stats.wave_seconds += seconds;
     if (!merge_s || i1 <= i0) return;
     double weight = 0.0;
-    for (size_t i = i0; i < i1; ++i) weight += 1.0 + (tasks[i].child1 - tasks[i].child0);
-    for (size_t i = i0; i < i1; ++i) merge_s[i] = seconds * (1.0 + (tasks[i].child1 - tasks[i].child0)) / weight;
+    for (size_t i = i0; i < i1; ++i) weight += 1.0 + (tasks[i].link1 - tasks[i].link0);
+    for (size_t i = i0; i < i1; ++i) merge_s[i] = seconds * (1.0 + (tasks[i].link1 - tasks[i].link0)) / weight;
 }
 
 /* One wave: the n lists waiting in the FIFO cross at once on the crew's lanes; thread 0 merges
@@ -1726,6 +1812,7 @@ static tg_status cross_wave(tg__field_run* run, crew* c, size_t n)
         tasks[i].head = fs->head[wave[i]], fs->head[wave[i]] = TG_NONE;
     }
     run->vertex_wave = 0;
+    lanes_slots(run, c);
     wave_merge m = {run, c, crew_begin(run, c, n)};
     fs->before_grow = wave_settle, fs->before_grow_arg = &m;
     bool ok = true;
@@ -1788,6 +1875,7 @@ static int vertex_round(tg__field_run* run, crew* c, size_t take)
     }
     if (!n) return front_step(run);
     run->vertex_wave = 1;
+    lanes_slots(run, c);
     unsigned id = crew_begin(run, c, n);
     crew_cross(run, c, 0, id);
     crew_wait(c);
@@ -1853,6 +1941,8 @@ static tg_status propagate_rounds(tg__field_run* run, int threads)
     if (procs >= 1 && threads > procs) threads = procs;
 #endif
     if (!tg__field_lanes(fs, threads)) return TG_ERR_OUT_OF_MEMORY;
+    for (int t = 0; t < fs->lane_count; ++t) fs->lanes[t].slots.count = fs->lanes[t].freed.count = 0; /* another run's */
+    run->lane_free = 0;
     crew c;
     memset(&c, 0, sizeof c);
     atomic_init(&c.epoch, 0), atomic_init(&c.next, 0), atomic_init(&c.done, 0), atomic_init(&c.count, 0);

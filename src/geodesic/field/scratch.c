@@ -41,7 +41,9 @@ bool tg__field_lanes(tg__field_scratch* fs, int n)
         tg__field_lane* L = &lanes[i];
         L->child.elem = sizeof(tg__lane_child), L->child_rec.elem = sizeof(tg__lm_rec);
         L->relax.elem = sizeof(tg__lane_relax);
-        L->freed.elem = L->freed_blocks.elem = L->qids.elem = L->ready.elem = L->list.elem = sizeof(uint32_t);
+        L->link.elem = sizeof(tg__lane_link);
+        L->freed.elem = L->freed_blocks.elem = L->qids.elem = L->ready.elem = L->slots.elem = L->list.elem =
+            sizeof(uint32_t);
         L->keys.elem = sizeof(tg__win_key), L->hits.elem = sizeof(tg__corner_hit);
     }
     tg__free(&fs->allocator, fs->lanes);

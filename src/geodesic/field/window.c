@@ -239,7 +239,7 @@ static int cmp_key(const void* x, const void* y)
 {
     const tg__win_key *a = x, *b = y;
     if (a->key != b->key) return a->key < b->key ? -1 : 1;
-    return (a->id > b->id) - (a->id < b->id);
+    return (a->pos > b->pos) - (a->pos < b->pos);
 }
 
 /* Each window is trimmed against the next TRIM_NEXT windows by start only (VTP's rule 2 checks a
@@ -286,7 +286,10 @@ static TG__ALWAYS_INLINE uint64_t trim_sorted(tg__window* pool, const uint32_t* 
 uint64_t tg__windows_trim(tg__window* pool, uint32_t* ids, tg__win_key* keys, size_t n, double len, bool lines)
 {
     /* sort by b0: lists are built by prepending, so they usually arrive in descending order */
-    for (size_t i = 0; i < n; ++i) keys[n - 1 - i].key = pool[ids[i]].b0, keys[n - 1 - i].id = ids[i];
+    for (size_t i = 0; i < n; ++i) {
+        tg__win_key* k = &keys[n - 1 - i];
+        k->key = pool[ids[i]].b0, k->id = ids[i], k->pos = (uint32_t)(n - 1 - i);
+    }
     bool sorted = true;
     for (size_t i = 1; i < n && sorted; ++i) sorted = cmp_key(&keys[i - 1], &keys[i]) <= 0;
     if (!sorted) { /* Shell sort (Ciura's gaps): in place, no allocation, fine for the rare long list;

@@ -1317,7 +1317,7 @@ static tg_status propagate_serial(tg__field_run* run)
 
 /* Merges ask for the tables of the item MERGE_AHEAD on early (cache prefetch): the lanes just
  * read them on other cores. */
-#define MERGE_AHEAD 4
+#define MERGE_AHEAD 8
 
 /* A task's corner distances (or relaxed neighbours) from its lane, applied in the lane's order
  * (once every lane is done: its buffer no longer moves). */
@@ -1354,7 +1354,12 @@ static bool merge_children(tg__field_run* run, const tg__lane_task* t)
     const tg__lm_rec* rec = run->q->logmap ? t->child_rec : NULL;
     uint32_t i = t->child0;
     for (uint32_t j = t->link0; j < t->link1; ++j) {
-        if (j + MERGE_AHEAD < t->link1) TG__PREFETCH_FACE(run, k[j + MERGE_AHEAD].h);
+        if (j + MERGE_AHEAD < t->link1) {
+            uint32_t ha = k[j + MERGE_AHEAD].h;
+            TG__PREFETCH(&run->fs->head[ha]);
+            TG__PREFETCH(&run->fs->queued[ha]);
+            TG__PREFETCH(&run->g->tri[ha]);
+        }
         if (k[j].id != TG_NONE) {
             if (!link_window(run, k[j].h, k[j].id)) return false;
             continue;

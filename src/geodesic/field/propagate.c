@@ -460,7 +460,9 @@ static TG__ALWAYS_INLINE bool store_window(tg__field_run* run, uint32_t h, doubl
         run->stats.windows_filtered++;
         return true;
     }
-    if (run->astar) key += target_gap(run, h, c0, c1);
+    /* A*: the key plus the straight way on to the target; only worth its square roots once the
+     * target has a distance to compare it with (until then the limit is infinite: most windows) */
+    if (run->astar && key <= run->max_dist && run->max_dist < INFINITY) key += target_gap(run, h, c0, c1);
     if (key > run->max_dist) return true;
     uint32_t id = win_alloc(fs);
     if (id == TG_NONE) return false;

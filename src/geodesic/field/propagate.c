@@ -979,8 +979,8 @@ static bool cross_slit(tg__field_run* run, tg__field_lane* L, uint32_t h, uint32
  * each survivor. With a lane (several threads) it reads the shared state as the wave began
  * (the distances, which no merge writes before the wave's end; the pools, which do not grow
  * before then; its list's blocks and slots, which nothing else touches) and writes only h's
- * split and the lane: the children, the corner's distance and the released slots wait there for
- * the merge. */
+ * split, the lane's own free slots (the children) and the lane: the children's order, the
+ * corner's distance and the released slots wait there for the merge. */
 static TG__ALWAYS_INLINE bool cross_list(tg__field_run* run, tg__field_lane* L, uint32_t h, uint32_t hd, bool lines)
 {
     tg__field_scratch* fs = run->fs;
@@ -1296,9 +1296,9 @@ static tg_status propagate_serial(tg__field_run* run)
  * sources, rounds stay thin and the order of vertices still does its filtering; a round of
  * VERTEX_WAVE_MIN or more does their steps on the lanes too, vertex_round below), then crosses
  * the lists in the FIFO wave by wave: the lists of a wave cross their faces at once, each on a
- * thread's lane (reading the distances as the wave began), and thread 0 merges the lanes in the
- * wave's order (released slots, then the children pushed as the serial engine pushes them), a
- * list as soon as it and those before it are done, while the wave's later lists still cross;
+ * thread's lane (reading the distances as the wave began, writing the windows it makes to its
+ * own free slots), and thread 0 merges the lanes in the wave's order (each child added to its
+ * list as the serial engine adds it), a list as soon as it and those before it are done, while the wave's later lists still cross;
  * then the corner distances, in the same order (cross_wave). Waves
  * of fewer than WAVE_MIN lists cross on this thread as in the serial engine. Neither the rounds
  * nor the merge depend on the number of threads, so every thread count gives the same bits.

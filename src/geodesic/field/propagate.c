@@ -1744,7 +1744,7 @@ static void crew_release(tg__field_run* run, crew* c)
         size_t room = cap > L->slots.count ? cap - L->slots.count : 0, keep = n < room ? n : room;
         for (size_t i = 0; i < n - keep; ++i) pool_release(&fs->free_ids, fr[i]);
         run->lane_free -= n - keep;
-        memcpy((uint32_t*)L->slots.data + L->slots.count, fr + (n - keep), keep * sizeof *fr);
+        if (keep) memcpy((uint32_t*)L->slots.data + L->slots.count, fr + (n - keep), keep * sizeof *fr);
         L->slots.count += keep;
         L->freed.count = 0;
     }

@@ -1298,8 +1298,8 @@ static tg_status propagate_serial(tg__field_run* run)
  * the lists in the FIFO wave by wave: the lists of a wave cross their faces at once, each on a
  * thread's lane (reading the distances as the wave began, writing the windows it makes to its
  * own free slots), and thread 0 merges the lanes in the wave's order (each child added to its
- * list as the serial engine adds it), a list as soon as it and those before it are done, while the wave's later lists still cross;
- * then the corner distances, in the same order (cross_wave). Waves
+ * list as the serial engine adds it), a list as soon as it and those before it are done, while
+ * the wave's later lists still cross; then the corner distances, in the same order (cross_wave). Waves
  * of fewer than WAVE_MIN lists cross on this thread as in the serial engine. Neither the rounds
  * nor the merge depend on the number of threads, so every thread count gives the same bits.
  * Every distance is still a real path and every filter still compares with real paths, so the
@@ -1948,7 +1948,8 @@ static tg_status propagate_rounds(tg__field_run* run, int threads)
     if (procs >= 1 && threads > procs) threads = procs;
 #endif
     if (!tg__field_lanes(fs, threads)) return TG_ERR_OUT_OF_MEMORY;
-    for (int t = 0; t < fs->lane_count; ++t) fs->lanes[t].slots.count = fs->lanes[t].freed.count = 0; /* another run's */
+    for (int t = 0; t < fs->lane_count; ++t) /* the free slots of another run's pool */
+        fs->lanes[t].slots.count = fs->lanes[t].freed.count = 0;
     run->lane_free = 0;
     crew c;
     memset(&c, 0, sizeof c);

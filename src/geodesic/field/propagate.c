@@ -446,6 +446,39 @@ static TG__ALWAYS_INLINE void note_live(tg__field_run* run)
     if (live > run->stats.peak_windows) run->stats.peak_windows = live;
 }
 
+/* Where a window [c0, c1] of h (source image (x, y), offset sigma, end distances d0, d1) stands
+ * against the run's limits: WITHIN; BEYOND_BOUND, where the other sources reach all of its
+ * interval more shortly (a nearest-source field: a filtered window); BEYOND_LIMIT, past
+ * max_distance or (A*) past the best distance to the target. */
+enum { WITHIN = 0, BEYOND_BOUND, BEYOND_LIMIT };
+static TG__ALWAYS_INLINE int window_limits(const tg__field_run* run, uint32_t h, double c0, double c1, double x,
+                                           double y, double sigma, double d0, double d1, bool line)
+{
+    double key = (!line && x > c0 && x < c1) ? sigma - y : (d0 < d1 ? d0 : d1);
+    if (run->bounded && beyond_bound(run, h, c0, c1, key)) return BEYOND_BOUND;
+    /* A*: the key plus the straight way on to the target; only worth its square roots once the
+     * target has a distance to compare it with (until then the limit is infinite: most windows) */
+    if (run->astar && key <= run->max_dist && run->max_dist < INFINITY) key += target_gap(run, h, c0, c1);
+    return key > run->max_dist ? BEYOND_LIMIT : WITHIN;
+}
+
+static TG__ALWAYS_INLINE void window_set(tg__window* w, double c0, double c1, double x, double y, double sigma,
+                                         double d0, double d1, uint32_t tag)
+{
+    w->b0 = c0, w->b1 = c1, w->sx = x, w->sy = y, w->sigma = sigma, w->d0 = d0, w->d1 = d1, w->tag = tag;
+}
+
+/* The window in slot `id` added to the list of h (the list released when ready). */
+static TG__ALWAYS_INLINE bool link_window(tg__field_run* run, uint32_t h, uint32_t id)
+{
+    tg__field_scratch* fs = run->fs;
+    if (!touch_halfedge(fs, h)) return false;
+    if (!list_add(fs, h, id)) return false;
+    run->stats.windows_created++;
+    note_live(run);
+    return list_ready(run, h) ? enqueue(run, h) : true;
+}
+
 static TG__ALWAYS_INLINE bool store_window(tg__field_run* run, uint32_t h, double c0, double c1, double x, double y,
                                            double sigma, double d0, double d1, uint32_t tag, const tg__lm_rec* rec,
                                            bool line, bool checked)
@@ -455,25 +488,14 @@ static TG__ALWAYS_INLINE bool store_window(tg__field_run* run, uint32_t h, doubl
         run->stats.windows_filtered++;
         return true;
     }
-    double key = (!line && x > c0 && x < c1) ? sigma - y : (d0 < d1 ? d0 : d1);
-    if (run->bounded && beyond_bound(run, h, c0, c1, key)) {
-        run->stats.windows_filtered++;
-        return true;
-    }
-    /* A*: the key plus the straight way on to the target; only worth its square roots once the
-     * target has a distance to compare it with (until then the limit is infinite: most windows) */
-    if (run->astar && key <= run->max_dist && run->max_dist < INFINITY) key += target_gap(run, h, c0, c1);
-    if (key > run->max_dist) return true;
+    int limit = window_limits(run, h, c0, c1, x, y, sigma, d0, d1, line);
+    if (limit == BEYOND_BOUND) run->stats.windows_filtered++;
+    if (limit != WITHIN) return true;
     uint32_t id = win_alloc(fs);
     if (id == TG_NONE) return false;
-    tg__window* w = &((tg__window*)fs->windows.data)[id];
-    w->b0 = c0, w->b1 = c1, w->sx = x, w->sy = y, w->sigma = sigma, w->d0 = d0, w->d1 = d1, w->tag = tag;
+    window_set(&((tg__window*)fs->windows.data)[id], c0, c1, x, y, sigma, d0, d1, tag);
     if (rec && !lm_store(fs, id, rec)) return false;
-    if (!touch_halfedge(fs, h)) return false;
-    if (!list_add(fs, h, id)) return false;
-    run->stats.windows_created++;
-    note_live(run);
-    return list_ready(run, h) ? enqueue(run, h) : true;
+    return link_window(run, h, id);
 }
 
 /* Adds the window [c0, c1] on halfedge h with source image (x, y) and offset sigma to h's list,
@@ -543,16 +565,11 @@ static bool lane_ring(tg__field_run* run, tg__field_lane* L, uint32_t e, double 
         if (!lane_grow(run->fs, L, &L->link, 1)) return false;
         tg__lane_link k = {o, TG_NONE};
         if (!records && L->slots.count) {
-            /* store_window's limits (no A* on several threads) */
-            double key = (!line && ox > c0 && ox < c1) ? os - oy : (d0 < d1 ? d0 : d1);
-            if (run->bounded && beyond_bound(run, o, c0, c1, key)) {
-                L->stats.windows_filtered++;
-                continue;
-            }
-            if (key > run->max_dist) continue;
+            int limit = window_limits(run, o, c0, c1, ox, oy, os, d0, d1, line);
+            if (limit == BEYOND_BOUND) L->stats.windows_filtered++;
+            if (limit != WITHIN) continue;
             k.id = ((const uint32_t*)L->slots.data)[--L->slots.count];
-            tg__window* w = &((tg__window*)run->fs->windows.data)[k.id];
-            w->b0 = c0, w->b1 = c1, w->sx = ox, w->sy = oy, w->sigma = os, w->d0 = d0, w->d1 = d1, w->tag = tag;
+            window_set(&((tg__window*)run->fs->windows.data)[k.id], c0, c1, ox, oy, os, d0, d1, tag);
         } else {
             if (!lane_grow(run->fs, L, &L->child, 1)) return false;
             tg__lane_child c = {o, tag, c0, c1, ox, oy, os, d0, d1};
@@ -1334,18 +1351,6 @@ static bool merge_relax(tg__field_run* run, const tg__lane_task* t)
     return true;
 }
 
-/* Window `id`, written by a lane, added to the list of h as store_window adds one. */
-static TG__ALWAYS_INLINE bool link_window(tg__field_run* run, uint32_t h, uint32_t id)
-{
-    tg__field_scratch* fs = run->fs;
-    if (!touch_halfedge(fs, h)) return false;
-    if (!list_add(fs, h, id)) return false;
-    run->stats.windows_created++;
-    run->lane_free--; /* the slot is the window's now */
-    note_live(run);
-    return list_ready(run, h) ? enqueue(run, h) : true;
-}
-
 /* A task's children from its lane, added to their lists in the lane's order: those the lane
  * wrote to its slots, and those it held, stored as the serial engine stores them (with their log
  * map records). */
@@ -1362,7 +1367,8 @@ static bool merge_children(tg__field_run* run, const tg__lane_task* t)
             TG__PREFETCH(&run->fs->queued[ha]);
             TG__PREFETCH(&run->g->tri[ha]);
         }
-        if (k[j].id != TG_NONE) {
+        if (k[j].id != TG_NONE) { /* written by the lane to one of its free slots */
+            run->lane_free--;
             if (!link_window(run, k[j].h, k[j].id)) return false;
             continue;
         }

@@ -137,7 +137,7 @@ ICOSPHERE = """
 """
 
 
-def _interrupt(call: str, setup: str = "", delay: float = 1.0):
+def _interrupt(call: str, setup: str = "", delay: float = 0.4):
     """Runs `call` on an icosphere of 328k faces (vertices 0 and 3 are antipodes) in a fresh
     interpreter, sends SIGINT after `delay` seconds; returns (the CPU seconds the interpreter
     spent from the signal to the KeyboardInterrupt, or None, its output)."""

@@ -42,7 +42,7 @@ def test_threads_share_a_mesh():
 
 def test_gil_released_during_c_calls():
     """While one thread is inside a long C call, another thread keeps running Python code."""
-    v, f = grid(400, 0.3)
+    v, f = grid(150, 0.3)  # a field of about 0.3 s (grid(400): 4 s, the longest Python test)
     m = trigeo.Mesh(v, f)
     ticks = []
     done = threading.Event()

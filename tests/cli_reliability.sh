@@ -23,8 +23,8 @@ asan = b"__asan_init" in subprocess.run(["nm", trigeo], capture_output=True).std
 slow = 6 if asan else 1  # AddressSanitizer runs 5-10x slower
 # Ctrl-C and SIGTERM come this long after the start: within the work (the icosphere loads in
 # 0.07 s under ASan; the shortest interrupted call, the 5000x5000 render, takes 4.7 s released and
-# 6.5 s under ASan, where a 6 s wait let it finish first now and then)
-start = 1.5 if asan else 1.0
+# 6.5 s under ASan, where a 6 s wait let it finish first now and then; 1.5 and 1 s until 0.6.9)
+start = 1.0 if asan else 0.5
 
 def leftovers(d):
     return [f for f in os.listdir(d) if f.startswith(".trigeo-") or ".tmp-" in f]

@@ -455,7 +455,9 @@ static void test_allocation_failures(void)
     tg_geodesic_destroy(g0);
     long total = -1;
     int failures = 0;
-    for (long k = 0;; ++k) {
+    /* every allocation failing in turn; the fast suite every third after the first 40 */
+    const long stride = TG_TEST_DEPTH(1, 3);
+    for (long k = 0;; k += k < 40 ? 1 : stride) {
         tg_test_counting c = {0, 0, k, 0};
         tg_allocator a = tg_test_failing_allocator(&c);
         tg_geodesic_options go = {&a};
@@ -487,7 +489,7 @@ static void test_allocation_failures(void)
         CHECK_MSG(st == TG_ERR_OUT_OF_MEMORY, "fail at %ld: %s", k, tg_status_name(st));
         if (k > 100000) break;
     }
-    CHECK_MSG(total > 20 && failures == total, "allocation points: %ld", total);
+    CHECK_MSG(total > 20 && failures > 20, "allocation points: %ld, %d tried", total, failures);
     free(ref), free(out);
     tg_mesh_destroy(m);
 }

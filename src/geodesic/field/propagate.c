@@ -1233,6 +1233,18 @@ static int front_step(tg__field_run* run)
     tg__heap_item it = {INFINITY, 0};
     if (fs->front.count) it = front_take(fs);
     uint32_t v = it.node;
+    if (fs->front.count) {
+        /* the front's next vertex, most likely the next step's: its tables are asked for now
+         * (cache prefetch), so that on a large mesh their misses overlap this step's work (its
+         * corners through its corner_start, read here: armadillo_1m's field 0.95x, near paths
+         * 0.97x; BENCHMARKS.md) */
+        uint32_t w = ((const tg__heap_item*)fs->front.data)[0].node;
+        TG__PREFETCH(&fs->dist[w]);
+        TG__PREFETCH(&fs->inside[w]);
+        TG__PREFETCH(&g->vflags[w]);
+        if (run->astar) TG__PREFETCH(g->xyz + 3 * (size_t)w);
+        TG__PREFETCH(&g->corners[g->corner_start[w]]);
+    }
     if (it.key > run->max_dist || !(it.key < INFINITY)) {
         /* past the limit, or the front is empty while vertices beyond the limit (or the
          * bound) were never queued: every window within it must still cross, whatever its

@@ -1584,6 +1584,18 @@ static bool crew_take(tg__field_run* run, crew* c, int t, unsigned id)
     double t0 = now_s();
     for (size_t i = i0; i < i1; ++i) {
         double ti = item_s ? now_s() : 0.0;
+        if (i + 1 < i1) { /* the next item's tables while this one works, as front_step asks */
+            uint32_t w = wave[i + 1];
+            if (vertices) {
+                w &= ~VERTEX_EMITS;
+                TG__PREFETCH(&fs->dist[w]);
+                TG__PREFETCH(&fs->g->corners[fs->g->corner_start[w]]);
+            } else {
+                TG__PREFETCH(&fs->head[w]);
+                TG__PREFETCH(&fs->g->frame[w]);
+                TG__PREFETCH(&fs->g->tri[w]);
+            }
+        }
         tg__lane_task* k = &tasks[i];
         k->lane = (uint32_t)t;
         k->link0 = (uint32_t)L->link.count, k->child0 = (uint32_t)L->child.count;

@@ -227,6 +227,32 @@ static tg__heap_item front_take(tg__field_scratch* fs)
     return it;
 }
 
+/* A cache prefetch: the line of p asked for, nothing read (p may be one past an array's end). */
+#if defined(__GNUC__) || defined(__clang__)
+#define TG__PREFETCH(p) __builtin_prefetch((p))
+#else
+#define TG__PREFETCH(p) ((void)(p))
+#endif
+
+/* Vertex w's tables that a step reads first (its distance, flags, shortest edge, A*'s position
+ * and, with `corners`, its corners through its corner_start, read here), asked for early (cache
+ * prefetch): on a million-face mesh each is a miss, which then overlaps the work in hand. The
+ * front's next vertex is most likely the next step's (front_step, vertex_round); a lane's next
+ * item is its next. Against none (BENCHMARKS.md): armadillo_1m's field 0.97-0.98x on one thread,
+ * about 0.98x on two (the waves' work 0.95x, thread 0's lead 0.96x), near paths 0.96x; the
+ * small meshes unchanged. */
+static TG__ALWAYS_INLINE void vertex_ahead(const tg__field_run* run, uint32_t w, bool corners)
+{
+    const tg__field_scratch* fs = run->fs;
+    const tg_geodesic* g = fs->g;
+    TG__PREFETCH(&fs->dist[w]);
+    TG__PREFETCH(&fs->inside[w]);
+    TG__PREFETCH(&g->vflags[w]);
+    TG__PREFETCH(&g->edge_min[w]);
+    if (run->astar) TG__PREFETCH(g->xyz + 3 * (size_t)w);
+    if (corners) TG__PREFETCH(&g->corners[g->corner_start[w]]);
+}
+
 /* The front's key of vertex v at distance d: d, plus (A*) the Euclidean distance to the target,
  * an admissible bound of the rest of any path through v. */
 static double front_key(const tg__field_run* run, uint32_t v, double d)
@@ -314,11 +340,6 @@ static double target_gap(const tg__field_run* run, uint32_t h, double c0, double
 
 /* The children of a list's windows go into the faces beyond its face's other two edges: their
  * tables are asked for early (cache prefetch), so that the misses overlap the list's own work. */
-#if defined(__GNUC__) || defined(__clang__)
-#define TG__PREFETCH(p) __builtin_prefetch((p))
-#else
-#define TG__PREFETCH(p) ((void)(p))
-#endif
 #define TG__PREFETCH_FACE(run, o)                                                                  \
     do {                                                                                          \
         uint32_t o_ = (o);                                                                        \
@@ -1233,18 +1254,7 @@ static int front_step(tg__field_run* run)
     tg__heap_item it = {INFINITY, 0};
     if (fs->front.count) it = front_take(fs);
     uint32_t v = it.node;
-    if (fs->front.count) {
-        /* the front's next vertex, most likely the next step's: its tables are asked for now
-         * (cache prefetch), so that on a large mesh their misses overlap this step's work (its
-         * corners through its corner_start, read here: armadillo_1m's field 0.95x, near paths
-         * 0.97x; BENCHMARKS.md) */
-        uint32_t w = ((const tg__heap_item*)fs->front.data)[0].node;
-        TG__PREFETCH(&fs->dist[w]);
-        TG__PREFETCH(&fs->inside[w]);
-        TG__PREFETCH(&g->vflags[w]);
-        if (run->astar) TG__PREFETCH(g->xyz + 3 * (size_t)w);
-        TG__PREFETCH(&g->corners[g->corner_start[w]]);
-    }
+    if (fs->front.count) vertex_ahead(run, ((const tg__heap_item*)fs->front.data)[0].node, true);
     if (it.key > run->max_dist || !(it.key < INFINITY)) {
         /* past the limit, or the front is empty while vertices beyond the limit (or the
          * bound) were never queued: every window within it must still cross, whatever its
@@ -1584,12 +1594,10 @@ static bool crew_take(tg__field_run* run, crew* c, int t, unsigned id)
     double t0 = now_s();
     for (size_t i = i0; i < i1; ++i) {
         double ti = item_s ? now_s() : 0.0;
-        if (i + 1 < i1) { /* the next item's tables while this one works, as front_step asks */
+        if (i + 1 < i1) { /* the next item's tables while this one works */
             uint32_t w = wave[i + 1];
             if (vertices) {
-                w &= ~VERTEX_EMITS;
-                TG__PREFETCH(&fs->dist[w]);
-                TG__PREFETCH(&fs->g->corners[fs->g->corner_start[w]]);
+                vertex_ahead(run, w & ~VERTEX_EMITS, true);
             } else {
                 TG__PREFETCH(&fs->head[w]);
                 TG__PREFETCH(&fs->g->frame[w]);
@@ -1900,6 +1908,7 @@ static int vertex_round(tg__field_run* run, crew* c, size_t take)
         if (n && !(top.key < end)) break;
         tg__heap_item it = front_take(fs);
         uint32_t v = it.node;
+        if (fs->front.count) vertex_ahead(run, ((const tg__heap_item*)fs->front.data)[0].node, false);
         if (it.key != front_key(run, v, fs->dist[v])) continue; /* a shorter distance was queued since */
         if (!n) end = it.key + g->edge_min[v];
         else if (it.key + g->edge_min[v] < end) end = it.key + g->edge_min[v];

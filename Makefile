@@ -4,10 +4,10 @@
 #   make demo    build, then run the main job on the bundled default mesh (data/nvd_spot.obj)
 #   make test    the fast suite: build with gcc and run the tests labelled fast (corpus loops on a
 #                fixed subset, sweeps at coarse steps); build with clang + ASan/UBSan and run them
-#                again (about 3 minutes on 2 cores from a fresh clone)
+#                again (about 5 minutes on 2 cores from a fresh clone)
 #   make check   the full suite: both builds (the sanitizer one with the fuzz targets), every test
 #                with TG_FULL=1 (every corpus sample, sweeps, OOM sweeps, install and cluster
-#                tests, fuzz smoke runs); about 8 minutes on 2 cores after make test
+#                tests, fuzz smoke runs); about 18 minutes on 2 cores after make test
 #   make bench   benchmarks against the peers (Embree, CGAL), tables on stdout
 #   make fuzz    libFuzzer targets for a bounded time each (FUZZ_SECONDS, default 60)
 #   make build   release build only (build/)

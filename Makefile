@@ -7,7 +7,7 @@
 #                again (about 5 minutes on 2 cores from a fresh clone)
 #   make check   the full suite: both builds (the sanitizer one with the fuzz targets), every test
 #                with TG_FULL=1 (every corpus sample, sweeps, OOM sweeps, install and cluster
-#                tests, fuzz smoke runs); about 18 minutes on 2 cores after make test
+#                tests, fuzz smoke runs); about 15 minutes on 2 cores after make test
 #   make bench   benchmarks against the peers (Embree, CGAL), tables on stdout
 #   make fuzz    libFuzzer targets for a bounded time each (FUZZ_SECONDS, default 60)
 #   make build   release build only (build/)

@@ -489,7 +489,9 @@ static void test_allocation_failures(void)
         CHECK_MSG(st == TG_ERR_OUT_OF_MEMORY, "fail at %ld: %s", k, tg_status_name(st));
         if (k > 100000) break;
     }
-    CHECK_MSG(total > 20 && failures > 20, "allocation points: %ld, %d tried", total, failures);
+    /* every point before the first success failed (in the full suite each was tried) */
+    CHECK_MSG(total > 20 && failures > 20 && (stride > 1 || failures == total), "allocation points: %ld, %d tried",
+              total, failures);
     free(ref), free(out);
     tg_mesh_destroy(m);
 }

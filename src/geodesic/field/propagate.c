@@ -338,8 +338,9 @@ static double target_gap(const tg__field_run* run, uint32_t h, double c0, double
     return sqrt(dx * dx + xy[1] * xy[1]);
 }
 
-/* The children of a list's windows go into the faces beyond its face's other two edges: their
- * tables are asked for early (cache prefetch), so that the misses overlap the list's own work. */
+/* Halfedge o's tables that filling or crossing its list reads first, asked for early (cache
+ * prefetch) so that the misses overlap the work in hand: the faces beyond a list's face, which its
+ * children go into, and a lane's next list. */
 #define TG__PREFETCH_FACE(run, o)                                                                  \
     do {                                                                                          \
         uint32_t o_ = (o);                                                                        \
@@ -1599,9 +1600,7 @@ static bool crew_take(tg__field_run* run, crew* c, int t, unsigned id)
             if (vertices) {
                 vertex_ahead(run, w & ~VERTEX_EMITS, true);
             } else {
-                TG__PREFETCH(&fs->head[w]);
-                TG__PREFETCH(&fs->g->frame[w]);
-                TG__PREFETCH(&fs->g->tri[w]);
+                TG__PREFETCH_FACE(run, w);
             }
         }
         tg__lane_task* k = &tasks[i];

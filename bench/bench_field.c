@@ -22,7 +22,10 @@
  *   last merge; a third row gives | the waves' work s | the lead s |
  *   S(P) = (lead + work) / (lead + the waves' spans on P) |: the speed-up the schedule allows
  *   with the waves' real granularity, against the rounds' own work (the timing adds its cost to
- *   every item, so the rows' times are a little longer).
+ *   every item, so the rows' times are a little longer); a fourth row, for planning, splits the
+ *   lead (the front's takes, a round's merges, a wave's corner merges, the rest) and gives S(P)
+ *   as it would be with the lists' merges shared out among the threads (replay_shared, a design
+ *   not built), then with the lead's merges shared too.
  *   --batch K: instead, K fields from K random vertices through tg_geodesic_distance_matrix on 1 and
  *   on 2 threads; prints | mesh | faces | fields/s on 1 thread | fields/s on 2 threads | (wall).
  *   N (default 5) fields, each from one random vertex (fixed seed: every run times the same
@@ -79,6 +82,52 @@ static double replay(const tg__schedule_log* lg, int P)
                 next += cc;
             } else {
                 free_at[0] = done_at[merged];
+            }
+        }
+        double span = 0.0;
+        for (int k = 0; k < P; ++k) span = free_at[k] > span ? free_at[k] : span;
+        total += span, at += n;
+    }
+    free(done_at);
+    return total;
+}
+
+/* replay() if the merges were shared out: each list's merge split evenly among the P simulated
+ * threads (as if each merged the children bound for its own part of the mesh), each thread merging
+ * its part of the lists in order as they are done and taking a chunk while the next is not. An
+ * optimistic model of a design not built (no thread scans links it does not own, the parts are
+ * even), for planning only. */
+static double replay_shared(const tg__schedule_log* lg, int P)
+{
+    double total = 0.0, free_at[32];
+    size_t at = 0, merged[32];
+    double* done_at = NULL;
+    size_t done_cap = 0;
+    for (size_t w = 0; w < lg->waves; ++w) {
+        size_t n = lg->wave_n[w], c = n / (4 * (size_t)P);
+        c = c < 1 ? 1 : c > 8 ? 8 : c;
+        const double* x = lg->item_s + at;
+        const double* m = lg->merge_s + at;
+        if (n > done_cap) {
+            done_cap = 2 * n;
+            done_at = realloc(done_at, done_cap * sizeof *done_at);
+            if (!done_at) return 0.0;
+        }
+        for (int k = 0; k < P; ++k) free_at[k] = 0.0, merged[k] = 0;
+        size_t next = 0;
+        for (;;) {
+            int b = -1; /* the first free thread with anything left to do */
+            for (int k = 0; k < P; ++k)
+                if (merged[k] < n && (b < 0 || free_at[k] < free_at[b])) b = k;
+            if (b < 0) break;
+            size_t tail = (n - next) / (2 * (size_t)P), cc = c > tail ? (tail < 1 ? 1 : tail) : c;
+            if (merged[b] < next && done_at[merged[b]] <= free_at[b]) {
+                free_at[b] += m[merged[b]++] / P;
+            } else if (next < n) {
+                for (size_t j = next; j < next + cc && j < n; ++j) free_at[b] += x[j], done_at[j] = free_at[b];
+                next += cc;
+            } else {
+                free_at[b] = done_at[merged[b]];
             }
         }
         double span = 0.0;
@@ -165,7 +214,7 @@ int main(int argc, char** argv)
     memset(&sched, 0, sizeof sched);
     tg__schedule_log lg;
     memset(&lg, 0, sizeof lg);
-    double work = 0.0, spans[6] = {0};
+    double work = 0.0, spans[6] = {0}, shared[6] = {0};
     if (span && threads != 1) {
         lg.cap_items = (size_t)1 << 25, lg.cap_waves = (size_t)1 << 22;
         lg.item_s = malloc(lg.cap_items * sizeof *lg.item_s), lg.wave_n = malloc(lg.cap_waves * sizeof *lg.wave_n);
@@ -195,7 +244,7 @@ int main(int argc, char** argv)
         if (lg.item_s) {
             if (lg.full) die("--span: the log is full on", path);
             for (size_t i = 0; i < lg.items; ++i) work += lg.item_s[i] + lg.merge_s[i];
-            for (int k = 0, p = 2; p <= 32; ++k, p *= 2) spans[k] += replay(&lg, p);
+            for (int k = 0, p = 2; p <= 32; ++k, p *= 2) spans[k] += replay(&lg, p), shared[k] += replay_shared(&lg, p);
         }
     }
     tg__field_schedule_log(NULL);
@@ -221,6 +270,18 @@ int main(int argc, char** argv)
         for (int k = 0, p = 2; p <= 32; ++k, p *= 2)
             printf(" S(%d) %.2f |", p, (sched.lead_seconds + work) / (sched.lead_seconds + spans[k]));
         printf("\n");
+        /* what-ifs for planning (replay_shared): the lists' merges shared; then the lead's
+         * merges too (a round's vertices, a wave's corner distances), its other part (the
+         * front's takes, small waves, single steps) still on one thread */
+        double merges = lg.vertex_merge_s + lg.relax_merge_s, rest = sched.lead_seconds - merges;
+        printf("| what-if | lead: takes s %.3f, round merges s %.3f, corner merges s %.3f, rest s %.3f | merges shared:",
+               lg.pop_s, lg.vertex_merge_s, lg.relax_merge_s, rest - lg.pop_s);
+        for (int k = 0, p = 2; p <= 32; ++k, p *= 2)
+            printf(" S(%d) %.2f", p, (sched.lead_seconds + work) / (sched.lead_seconds + shared[k]));
+        printf(" | the lead's merges too:");
+        for (int k = 0, p = 2; p <= 32; ++k, p *= 2)
+            printf(" S(%d) %.2f", p, (sched.lead_seconds + work) / (rest + merges / p + shared[k]));
+        printf(" |\n");
         free(lg.item_s), free(lg.merge_s), free(lg.wave_n);
     }
     free(dist), free(cpu), free(wall), free(windows);

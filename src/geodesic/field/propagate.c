@@ -1884,8 +1884,10 @@ static tg_status cross_wave(tg__field_run* run, crew* c, size_t n)
     crew_wait(c);
     tg_status st = crew_collect(run, c, n);
     if (!ok) st = TG_ERR_OUT_OF_MEMORY;
+    double t_relax = run->item_s ? now_s() : 0.0;
     for (size_t i = 0; i < n && st == TG_OK; ++i)
         if (!merge_relax(run, &tasks[i])) st = TG_ERR_OUT_OF_MEMORY;
+    if (run->item_s) schedule_log->relax_merge_s += now_s() - t_relax;
     crew_release(run, c);
     if (st != TG_OK) return st;
     return keep_going_by(run, n) ? TG_OK : TG_ERR_CANCELLED;
@@ -1901,6 +1903,8 @@ static int vertex_round(tg__field_run* run, crew* c, size_t take)
     uint32_t* wave = fs->wave.data;
     size_t n = 0;
     double end = INFINITY; /* the first key plus the shortest edge at a vertex taken */
+    tg__schedule_log* slog = schedule_log && !schedule_log->full ? schedule_log : NULL;
+    double t_pop = slog ? now_s() : 0.0;
     for (size_t k = 0; k < take && fs->front.count; ++k) {
         tg__heap_item top = ((const tg__heap_item*)fs->front.data)[0];
         if (top.key > run->max_dist || !(top.key < INFINITY)) break; /* front_step's case */
@@ -1919,6 +1923,7 @@ static int vertex_round(tg__field_run* run, crew* c, size_t take)
         wave[n++] = v | (emits ? VERTEX_EMITS : 0u);
     }
     if (!n) return front_step(run);
+    if (slog) slog->pop_s += now_s() - t_pop;
     run->vertex_wave = 1;
     lanes_slots(run, c);
     unsigned id = crew_begin(run, c, n);
@@ -1927,8 +1932,10 @@ static int vertex_round(tg__field_run* run, crew* c, size_t take)
     run->vertex_wave = 0;
     tg_status st = crew_collect(run, c, n);
     const tg__lane_task* tasks = fs->tasks.data;
+    double t_merge = slog ? now_s() : 0.0;
     for (size_t i = 0; i < n && st == TG_OK; ++i)
         if (!merge_vertex(run, wave[i], &tasks[i])) st = TG_ERR_OUT_OF_MEMORY;
+    if (slog) slog->vertex_merge_s += now_s() - t_merge;
     crew_release(run, c);
     if (st != TG_OK) return STEP_NO_MEMORY;
     for (size_t i = 0; i < n; ++i) fs->inside[wave[i] & ~VERTEX_EMITS] &= (uint8_t)~VS_ROUND;

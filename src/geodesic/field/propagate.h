@@ -34,6 +34,10 @@ typedef struct tg__schedule_log {
     uint32_t* wave_n;
     size_t items, cap_items, waves, cap_waves;
     int full;
+    /* thread 0's seconds outside the waves, added up while the log is set (not reset by a field):
+     * taking a round's vertices off the front, merging a round's vertices, merging a wave's corner
+     * distances after it (merge_relax) */
+    double pop_s, vertex_merge_s, relax_merge_s;
 } tg__schedule_log;
 void tg__field_schedule_log(tg__schedule_log* log);
 

@@ -24,7 +24,7 @@
  *   with the waves' real granularity, against the rounds' own work (the timing adds its cost to
  *   every item, so the rows' times are a little longer); a fourth row, for planning, splits the
  *   lead (the front's takes, a round's merges, a wave's corner merges, the rest) and gives S(P)
- *   as it would be with the lists' merges shared out among the threads (replay_shared, a design
+ *   as it would be with the lists' merges shared out among the threads (replay's `shared`, a design
  *   not built), then with the lead's merges shared too.
  *   --batch K: instead, K fields from K random vertices through tg_geodesic_distance_matrix on 1 and
  *   on 2 threads; prints | mesh | faces | fields/s on 1 thread | fields/s on 2 threads | (wall).
@@ -45,59 +45,12 @@
 
 /* The waves of a logged field replayed on P simulated threads (the crew's rule, propagate.c:
  * chunks of n / 4P lists, 1 to 8, and at most the rest / 2P, each to the first thread free;
- * thread 0 merges): the sum of the waves' spans. */
-static double replay(const tg__schedule_log* lg, int P)
-{
-    double total = 0.0, free_at[32];
-    size_t at = 0;
-    double* done_at = NULL;
-    size_t done_cap = 0;
-    for (size_t w = 0; w < lg->waves; ++w) {
-        size_t n = lg->wave_n[w], c = n / (4 * (size_t)P);
-        c = c < 1 ? 1 : c > 8 ? 8 : c;
-        const double* x = lg->item_s + at;
-        const double* m = lg->merge_s + at;
-        if (n > done_cap) {
-            done_cap = 2 * n;
-            done_at = realloc(done_at, done_cap * sizeof *done_at);
-            if (!done_at) return 0.0;
-        }
-        for (int k = 0; k < P; ++k) free_at[k] = 0.0;
-        /* as the crew runs it: chunks to whichever thread asks first; thread 0 (free_at[0])
-         * merges the lists in order as they are done (a vertex round's merges come after the
-         * wave, m = 0 here) and takes a chunk when the next is not done */
-        size_t next = 0, merged = 0;
-        while (merged < n) {
-            int b = 1;
-            for (int k = 2; k < P; ++k)
-                if (free_at[k] < free_at[b]) b = k;
-            size_t tail = (n - next) / (2 * (size_t)P), cc = c > tail ? (tail < 1 ? 1 : tail) : c;
-            if (next < n && P > 1 && free_at[b] <= free_at[0]) {
-                for (size_t j = next; j < next + cc && j < n; ++j) free_at[b] += x[j], done_at[j] = free_at[b];
-                next += cc;
-            } else if (merged < next && done_at[merged] <= free_at[0]) {
-                free_at[0] += m[merged++];
-            } else if (next < n) {
-                for (size_t j = next; j < next + cc && j < n; ++j) free_at[0] += x[j], done_at[j] = free_at[0];
-                next += cc;
-            } else {
-                free_at[0] = done_at[merged];
-            }
-        }
-        double span = 0.0;
-        for (int k = 0; k < P; ++k) span = free_at[k] > span ? free_at[k] : span;
-        total += span, at += n;
-    }
-    free(done_at);
-    return total;
-}
-
-/* replay() if the merges were shared out: each list's merge split evenly among the P simulated
- * threads (as if each merged the children bound for its own part of the mesh), each thread merging
- * its part of the lists in order as they are done and taking a chunk while the next is not. An
- * optimistic model of a design not built (no thread scans links it does not own, the parts are
- * even), for planning only. */
-static double replay_shared(const tg__schedule_log* lg, int P)
+ * thread 0 merges): the sum of the waves' spans. With `shared`, a what-if for planning: each
+ * list's merge split evenly among the P threads (as if each merged the children bound for its own
+ * part of the mesh), each thread merging its part of the lists in order as they are done and
+ * taking a chunk while the next is not; an optimistic model of a design not built (no thread scans
+ * links it does not own, the parts are even). */
+static double replay(const tg__schedule_log* lg, int P, bool shared)
 {
     double total = 0.0, free_at[32];
     size_t at = 0, merged[32];
@@ -116,18 +69,35 @@ static double replay_shared(const tg__schedule_log* lg, int P)
         for (int k = 0; k < P; ++k) free_at[k] = 0.0, merged[k] = 0;
         size_t next = 0;
         for (;;) {
-            int b = -1; /* the first free thread with anything left to do */
-            for (int k = 0; k < P; ++k)
-                if (merged[k] < n && (b < 0 || free_at[k] < free_at[b])) b = k;
-            if (b < 0) break;
+            /* the thread that acts next: the first free one (shared: with anything left to do;
+             * else thread 0 merging, helper b the first free of the others, as the crew runs it:
+             * chunks to whichever thread asks first, thread 0 merging the lists in order as they
+             * are done, a vertex round's merges after the wave, m = 0 here, and taking a chunk
+             * when the next is not done) */
+            int b = shared ? -1 : 1;
+            for (int k = shared ? 0 : 2; k < P; ++k)
+                if (shared ? merged[k] < n && (b < 0 || free_at[k] < free_at[b]) : free_at[k] < free_at[b]) b = k;
+            if (shared ? b < 0 : merged[0] >= n) break;
             size_t tail = (n - next) / (2 * (size_t)P), cc = c > tail ? (tail < 1 ? 1 : tail) : c;
-            if (merged[b] < next && done_at[merged[b]] <= free_at[b]) {
-                free_at[b] += m[merged[b]++] / P;
+            int t = shared ? b : next < n && P > 1 && free_at[b] <= free_at[0] ? b : 0; /* who acts */
+            if (t != 0 || shared) {
+                if (shared && merged[t] < next && done_at[merged[t]] <= free_at[t]) {
+                    free_at[t] += m[merged[t]++] / P;
+                    continue;
+                }
+                if (next < n) {
+                    for (size_t j = next; j < next + cc && j < n; ++j) free_at[t] += x[j], done_at[j] = free_at[t];
+                    next += cc;
+                } else {
+                    free_at[t] = done_at[merged[t]];
+                }
+            } else if (merged[0] < next && done_at[merged[0]] <= free_at[0]) {
+                free_at[0] += m[merged[0]++];
             } else if (next < n) {
-                for (size_t j = next; j < next + cc && j < n; ++j) free_at[b] += x[j], done_at[j] = free_at[b];
+                for (size_t j = next; j < next + cc && j < n; ++j) free_at[0] += x[j], done_at[j] = free_at[0];
                 next += cc;
             } else {
-                free_at[b] = done_at[merged[b]];
+                free_at[0] = done_at[merged[0]];
             }
         }
         double span = 0.0;
@@ -244,7 +214,7 @@ int main(int argc, char** argv)
         if (lg.item_s) {
             if (lg.full) die("--span: the log is full on", path);
             for (size_t i = 0; i < lg.items; ++i) work += lg.item_s[i] + lg.merge_s[i];
-            for (int k = 0, p = 2; p <= 32; ++k, p *= 2) spans[k] += replay(&lg, p), shared[k] += replay_shared(&lg, p);
+            for (int k = 0, p = 2; p <= 32; ++k, p *= 2) spans[k] += replay(&lg, p, false), shared[k] += replay(&lg, p, true);
         }
     }
     tg__field_schedule_log(NULL);
@@ -270,7 +240,7 @@ int main(int argc, char** argv)
         for (int k = 0, p = 2; p <= 32; ++k, p *= 2)
             printf(" S(%d) %.2f |", p, (sched.lead_seconds + work) / (sched.lead_seconds + spans[k]));
         printf("\n");
-        /* what-ifs for planning (replay_shared): the lists' merges shared; then the lead's
+        /* what-ifs for planning (replay, shared): the lists' merges shared; then the lead's
          * merges too (a round's vertices, a wave's corner distances), its other part (the
          * front's takes, small waves, single steps) still on one thread */
         double merges = lg.vertex_merge_s + lg.relax_merge_s, rest = sched.lead_seconds - merges;
